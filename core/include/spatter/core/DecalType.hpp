@@ -1,0 +1,40 @@
+#pragma once
+// DecalType: what a kind of decal looks like and how it is placed. Registered by name with the
+// decal system; the renderer reads the appearance half.
+
+#include <glm/glm.hpp>
+#include <string>
+
+namespace spatter {
+
+// Built-in procedural decal textures (layers of the renderer's decal texture array).
+enum class DecalTexture : int { BulletHole = 0, Blood = 1, Paint = 2, Scorch = 3, Count = 4 };
+
+// How a decal fades with the distance of a pixel to its plane, as a fraction of the half-depth.
+enum class DepthFade : int { None = 0, Linear = 1, Smooth = 2 };
+
+struct DecalType {
+    std::string name;
+
+    // Placement.
+    glm::vec2 size{0.1f, 0.1f}; // full width (along the tangent) and height, world units
+    float sizeJitter = 0.0f;    // relative, in [0, 1): size *= 1 + uniform(-j, j)
+    bool randomRotation = true; // rotate the tangent about the normal by a seeded random angle
+    float maxAngleDeg = 80.0f;  // largest angle between the reversed ray and the surface normal;
+                                // the renderer also rejects pixels whose normal is farther than
+                                // this from the decal axis
+    float lifetime = 0.0f;      // seconds; 0 = permanent
+    float fadeOutTime = 1.0f;   // seconds of fading before a decal is removed (lifetime, eviction)
+    float halfDepth = 0.0f;     // override of the automatic half-depth; 0 = automatic
+    bool onDynamic = true;      // may land on dynamic objects
+
+    // Appearance.
+    int texture = int(DecalTexture::BulletHole); // layer in the decal texture array
+    glm::vec4 tint{1.0f};
+    bool wrapAround = false; // follow corners and curvature by the surface normal
+    DepthFade depthFade = DepthFade::Smooth;
+    bool normalMap = true;   // blend the texture's normal map into the G-buffer normal
+    float roughness = -1.0f; // roughness written under the decal; < 0 keeps the surface's
+};
+
+} // namespace spatter

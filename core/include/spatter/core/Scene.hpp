@@ -1,0 +1,53 @@
+#pragma once
+// Scene: the objects a game draws and shoots at. Each object has a render mesh in its own space, a
+// double-precision object-to-world transform, a material, and the flags that decide how decals
+// treat it.
+
+#include "spatter/core/Bounds.hpp"
+#include "spatter/core/Image.hpp"
+#include "spatter/core/Mesh.hpp"
+
+#include <glm/glm.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace spatter {
+
+struct Material {
+    std::string name;
+    glm::vec4 baseColorFactor{1.0f};
+    int baseColorTexture = -1; // index into Scene::images, -1 for none
+    int normalTexture = -1;    // index into Scene::images, -1 for none
+    float normalScale = 1.0f;
+    float roughness = 1.0f;
+    float metallic = 0.0f;
+};
+
+struct SceneObject {
+    std::string name;
+    Mesh mesh;                    // render mesh, object space
+    glm::dmat4 transform{1.0};    // object to world
+    bool dynamic = false;         // moves at run time: placed as an Embree instance, gets an object ID
+    bool receivesDecals = true;   // false: not in the collision world, never decaled
+    std::optional<Mesh> collider; // authored collision proxy (UCX_ / -col), object space
+};
+
+struct Scene {
+    std::string source; // path or builtin name it was made from
+    std::vector<SceneObject> objects;
+    std::vector<Material> materials;
+    std::vector<Image> images;
+
+    size_t triangleCount() const; // render triangles of all objects
+    size_t dynamicObjectCount() const;
+    DBounds worldBounds() const; // bounds of every render mesh, transformed to world space
+    // Adds `offset` to every object's translation (used to test precision far from the origin).
+    void translate(const glm::dvec3& offset);
+};
+
+// Checks every mesh (validateMesh), every transform (finite, invertible), and every material's
+// texture indices. The error names the object or material.
+Status validateScene(const Scene& scene);
+
+} // namespace spatter

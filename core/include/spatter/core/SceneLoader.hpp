@@ -1,0 +1,25 @@
+#pragma once
+// Loading scenes from files and from the builtin generators. Every loader validates what it
+// returns: on any problem it returns an error naming the file and the problem, never a
+// half-loaded scene, and never reads out of bounds.
+
+#include "spatter/core/Scene.hpp"
+
+#include <string>
+
+namespace spatter {
+
+// Loads by source: "builtin:gallery", or a file chosen by extension (.gltf, .glb, .obj, .ply,
+// .off, .stl; case-insensitive).
+Result<Scene> loadScene(const std::string& source);
+
+// glTF 2.0 (.gltf with external or embedded buffers, or .glb) through tinygltf. The default scene's
+// node hierarchy becomes objects, one per node with a mesh (its triangle primitives become
+// submeshes). Node extras {"dynamic": true} and {"decals": false} set the flags. Nodes named
+// UCX_* or *-col become the collider of their parent's object and are not drawn.
+Result<Scene> loadGltf(const std::string& path);
+
+// OBJ, PLY, OFF or STL through OpenMesh, as one static object named after the file.
+Result<Scene> loadMeshFile(const std::string& path);
+
+} // namespace spatter

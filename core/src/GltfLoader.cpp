@@ -1,0 +1,887 @@
+// glTF 2.0 loading. tinygltf parses the JSON, reads the buffers and hands over image bytes; every index,
+// byte range and value is checked here before it is used, and any problem rejects the whole file.
+//
+// Conventions of this loader:
+// - Objects come from the default scene (`scene`, else scene 0, else every root node), one per node
+//   whose mesh has triangles; transforms are composed in double precision.
+// - Node extras {"dynamic": true} and {"decals": false} (booleans, or numbers where 0 is false) set the
+//   object's flags. Both are inherited by descendants. A node may override an inherited "decals", but
+//   not an inherited "dynamic": a child of a moving node moves with it, so {"dynamic": false} under a
+//   dynamic ancestor is an error.
+// - Nodes named UCX_* or *-col are colliders: their triangles, mapped into the space of the nearest
+//   ancestor that became an object, are appended to that object's collider and are not drawn.
+// - Every image is decoded to RGBA8 by decodeImage; an image that cannot be read or decoded is an error.
+// - Tangents are kept only when every triangle primitive of a mesh has them.
+
+#include "spatter/core/SceneLoader.hpp"
+
+#include <tiny_gltf.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <optional>
+
+namespace spatter {
+
+namespace {
+
+// Required extensions whose data is read correctly here. KHR_mesh_quantization only allows integer
+// component types for vertex attributes, which the accessor reader handles anyway.
+const char* const kSupportedRequiredExtensions[] = {"KHR_mesh_quantization"};
+
+constexpr uint32_t kGlbJsonChunk = 0x4E4F534A; // "JSON"
+
+// Upper bound on the vertices, and on the indices, of all objects and colliders of one scene.
+constexpr size_t kMaxSceneElements = size_t(1) << 26;
+
+// --- small helpers ------------------------------------------------------------------------------
+
+std::string num(size_t value) {
+    return std::to_string(value);
+}
+
+std::string named(const char* kind, size_t index, const std::string& name) {
+    const std::string s = std::string(kind) + " " + num(index);
+    return name.empty() ? s : s + " (" + name + ")";
+}
+
+bool validIndex(int index, size_t count) {
+    return index >= 0 && size_t(index) < count;
+}
+
+// True when [begin, begin + length) lies inside [0, size), without overflow.
+bool rangeInside(size_t begin, size_t length, size_t size) {
+    return begin <= size && length <= size - begin;
+}
+
+// out = a * b + c; false on overflow.
+bool mulAdd(size_t a, size_t b, size_t c, size_t& out) {
+    if (b != 0 && a > (std::numeric_limits<size_t>::max() - c) / b) return false;
+    out = a * b + c;
+    return true;
+}
+
+template <class T> T load(const unsigned char* p) {
+    T value;
+    std::memcpy(&value, p, sizeof value);
+    return value;
+}
+
+template <int N> bool finite(const glm::vec<N, float>& v) {
+    for (int i = 0; i < N; ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+
+// tinygltf's messages are newline-terminated and may quote whole data URIs: join them into one line
+// and cut each data URI after its header.
+std::string tidyParserMessage(const std::string& text) {
+    std::string out;
+    size_t i = 0;
+    while (i < text.size()) {
+        if (text.compare(i, 5, "data:") == 0) {
+            const size_t comma = text.find(',', i);
+            const size_t end = text.find_first_of(" \n\"'", i);
+            if (comma != std::string::npos && comma < end) {
+                out.append(text, i, comma + 1 - i).append("...");
+                i = end == std::string::npos ? text.size() : end;
+                continue;
+            }
+        }
+        if (text[i] == '\n') {
+            if (i + 1 < text.size()) out += "; ";
+        } else {
+            out += text[i];
+        }
+        ++i;
+    }
+    return out;
+}
+
+// --- component types ----------------------------------------------------------------------------
+
+size_t componentSize(int componentType) {
+    switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+        return 4;
+    default:
+        return 0; // INT and DOUBLE are not glTF 2.0 component types
+    }
+}
+
+constexpr unsigned componentBit(int componentType) {
+    return 1u << unsigned(componentType - 5120);
+}
+
+constexpr unsigned kIndexTypes = componentBit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) |
+                                 componentBit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) |
+                                 componentBit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+constexpr unsigned kVertexTypes =
+    componentBit(TINYGLTF_COMPONENT_TYPE_FLOAT) | componentBit(TINYGLTF_COMPONENT_TYPE_BYTE) |
+    componentBit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) | componentBit(TINYGLTF_COMPONENT_TYPE_SHORT) |
+    componentBit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+
+int componentCount(int type) {
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR:
+        return 1;
+    case TINYGLTF_TYPE_VEC2:
+        return 2;
+    case TINYGLTF_TYPE_VEC3:
+        return 3;
+    case TINYGLTF_TYPE_VEC4:
+        return 4;
+    default:
+        return 0;
+    }
+}
+
+std::string typeName(int type) {
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR:
+        return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+        return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+        return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+        return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+        return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+        return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+        return "MAT4";
+    default:
+        return "type " + std::to_string(type);
+    }
+}
+
+// --- accessors ----------------------------------------------------------------------------------
+
+// The elements of one accessor, after its byte range was checked against its buffer view and buffer:
+// every read stays inside the buffer.
+struct AccessorView {
+    const unsigned char* data = nullptr; // element 0
+    size_t count = 0;
+    size_t stride = 0;
+    int componentType = 0;
+    bool normalized = false;
+    bool present = false; // false for an attribute the primitive does not have
+
+    // Component `c` of element `i` as a float; normalized integers map to [0, 1] or [-1, 1].
+    float component(size_t i, int c) const {
+        const unsigned char* p = data + i * stride + size_t(c) * componentSize(componentType);
+        switch (componentType) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            const float v = load<int8_t>(p);
+            return normalized ? std::max(v / 127.0f, -1.0f) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+            const float v = load<uint8_t>(p);
+            return normalized ? v / 255.0f : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            const float v = load<int16_t>(p);
+            return normalized ? std::max(v / 32767.0f, -1.0f) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            const float v = load<uint16_t>(p);
+            return normalized ? v / 65535.0f : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            return float(load<uint32_t>(p));
+        default:
+            return load<float>(p);
+        }
+    }
+
+    template <int N> glm::vec<N, float> vec(size_t i) const {
+        glm::vec<N, float> v;
+        for (int c = 0; c < N; ++c)
+            v[c] = component(i, c);
+        return v;
+    }
+
+    // Element `i` of an unsigned integer scalar accessor.
+    uint32_t index(size_t i) const {
+        const unsigned char* p = data + i * stride;
+        switch (componentType) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return load<uint8_t>(p);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return load<uint16_t>(p);
+        default:
+            return load<uint32_t>(p);
+        }
+    }
+};
+
+// Checks accessor `index` for use as `role` (type and allowed component types) and that every
+// element it reads lies inside its buffer view. Buffer views were checked against their buffers.
+Result<AccessorView> viewAccessor(const tinygltf::Model& model, int index, const char* role, int type,
+                                  unsigned allowedComponentTypes) {
+    if (!validIndex(index, model.accessors.size()))
+        return fail(std::string(role) + " refers to accessor " + std::to_string(index) +
+                    ", which does not exist");
+    const tinygltf::Accessor& a = model.accessors[size_t(index)];
+    const std::string what = "accessor " + std::to_string(index) + " (" + role + ")";
+    if (a.sparse.isSparse) return fail(what + " is sparse, which is not supported");
+    if (a.type != type) return fail(what + " is " + typeName(a.type) + ", expected " + typeName(type));
+    const size_t size = componentSize(a.componentType);
+    if (size == 0 || (componentBit(a.componentType) & allowedComponentTypes) == 0)
+        return fail(what + " has component type " + std::to_string(a.componentType) + ", which " + role +
+                    " cannot use");
+    if (a.bufferView < 0)
+        return fail(what + " has no buffer view (zero-filled or extension-provided data is not supported)");
+    if (!validIndex(a.bufferView, model.bufferViews.size()))
+        return fail(what + " refers to buffer view " + std::to_string(a.bufferView) +
+                    ", which does not exist");
+    const tinygltf::BufferView& view = model.bufferViews[size_t(a.bufferView)];
+    const size_t elementSize = size * size_t(componentCount(type));
+    const size_t stride = view.byteStride != 0 ? view.byteStride : elementSize;
+    if (stride < elementSize)
+        return fail(what + ": byte stride " + num(stride) + " of buffer view " +
+                    std::to_string(a.bufferView) + " is smaller than one element (" + num(elementSize) +
+                    " bytes)");
+
+    AccessorView v;
+    v.present = true;
+    v.count = a.count;
+    v.stride = stride;
+    v.componentType = a.componentType;
+    v.normalized = a.normalized;
+    if (a.count == 0) return v;
+    size_t span = 0;
+    if (!mulAdd(a.count - 1, stride, elementSize, span) || !rangeInside(a.byteOffset, span, view.byteLength))
+        return fail(what + " reads past the end of buffer view " + std::to_string(a.bufferView) + " (" +
+                    num(a.count) + " elements from byte " + num(a.byteOffset) + ", the view has " +
+                    num(view.byteLength) + " bytes)");
+    v.data = model.buffers[size_t(view.buffer)].data.data() + view.byteOffset + a.byteOffset;
+    return v;
+}
+
+Status checkBufferViews(const tinygltf::Model& model) {
+    for (size_t i = 0; i < model.bufferViews.size(); ++i) {
+        const tinygltf::BufferView& view = model.bufferViews[i];
+        if (!validIndex(view.buffer, model.buffers.size()))
+            return fail("buffer view " + num(i) + " refers to buffer " + std::to_string(view.buffer) +
+                        ", which does not exist");
+        const size_t bufferSize = model.buffers[size_t(view.buffer)].data.size();
+        if (!rangeInside(view.byteOffset, view.byteLength, bufferSize))
+            return fail("buffer view " + num(i) + " reads past the end of buffer " +
+                        std::to_string(view.buffer) + " (bytes " + num(view.byteOffset) + " + " +
+                        num(view.byteLength) + ", the buffer has " + num(bufferSize) + ")");
+    }
+    return {};
+}
+
+// --- meshes -------------------------------------------------------------------------------------
+
+// How many triangle primitives of one glTF mesh there were, and how many of them had each attribute.
+struct AttributeCounts {
+    size_t primitives = 0, normals = 0, uvs = 0, tangents = 0;
+};
+
+// Turns the primitive's vertex order into triangle corners (3 per triangle) for `mode` 4, 5 or 6.
+// Strips and fans drop the triangles that repeat a vertex (the usual strip stitching).
+Result<std::vector<uint32_t>> triangleCorners(const std::vector<uint32_t>& order, int mode) {
+    std::vector<uint32_t> corners;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+        if (order.size() % 3 != 0)
+            return fail("has " + num(order.size()) + " triangle list vertices, not a multiple of 3");
+        return order;
+    }
+    for (size_t i = 0; i + 2 < order.size(); ++i) {
+        uint32_t a, b, c;
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            a = order[i];
+            b = order[i + 1 + i % 2];
+            c = order[i + 2 - i % 2];
+        } else {
+            a = order[i + 1];
+            b = order[i + 2];
+            c = order[0];
+        }
+        if (a == b || b == c || a == c) continue;
+        corners.insert(corners.end(), {a, b, c});
+    }
+    return corners;
+}
+
+// Appends one primitive's triangles to `mesh` as a submesh. Points and lines add nothing.
+// Attributes the primitive lacks are filled with zeros and counted in `counts`.
+Status appendPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, Mesh& mesh,
+                       AttributeCounts& counts) {
+    if (prim.mode >= TINYGLTF_MODE_POINTS && prim.mode <= TINYGLTF_MODE_LINE_STRIP) return {};
+    if (prim.mode < TINYGLTF_MODE_TRIANGLES || prim.mode > TINYGLTF_MODE_TRIANGLE_FAN)
+        return fail("mode " + std::to_string(prim.mode) + " is not a glTF primitive mode");
+    if (prim.material != -1 && !validIndex(prim.material, model.materials.size()))
+        return fail("refers to material " + std::to_string(prim.material) + ", which does not exist");
+
+    const auto posIt = prim.attributes.find("POSITION");
+    if (posIt == prim.attributes.end()) return fail("has no POSITION attribute");
+    Result<AccessorView> pos =
+        viewAccessor(model, posIt->second, "POSITION", TINYGLTF_TYPE_VEC3, kVertexTypes);
+    if (!pos) return fail(pos.error());
+    const size_t n = pos->count;
+
+    // An optional attribute with as many elements as POSITION, or no view when absent.
+    auto optional = [&](const char* name, int type) -> Result<AccessorView> {
+        const auto it = prim.attributes.find(name);
+        if (it == prim.attributes.end()) return AccessorView{};
+        Result<AccessorView> v = viewAccessor(model, it->second, name, type, kVertexTypes);
+        if (v && v->count != n)
+            return fail("accessor " + std::to_string(it->second) + " (" + name + ") has " + num(v->count) +
+                        " elements, POSITION has " + num(n));
+        return v;
+    };
+    Result<AccessorView> normal = optional("NORMAL", TINYGLTF_TYPE_VEC3);
+    if (!normal) return fail(normal.error());
+    Result<AccessorView> uv = optional("TEXCOORD_0", TINYGLTF_TYPE_VEC2);
+    if (!uv) return fail(uv.error());
+    Result<AccessorView> tangent = optional("TANGENT", TINYGLTF_TYPE_VEC4);
+    if (!tangent) return fail(tangent.error());
+
+    std::vector<uint32_t> order;
+    if (prim.indices == -1) {
+        if (n > std::numeric_limits<uint32_t>::max())
+            return fail("has more vertices than 32-bit indices address");
+        order.resize(n);
+        for (size_t i = 0; i < n; ++i)
+            order[i] = uint32_t(i);
+    } else {
+        Result<AccessorView> idx =
+            viewAccessor(model, prim.indices, "indices", TINYGLTF_TYPE_SCALAR, kIndexTypes);
+        if (!idx) return fail(idx.error());
+        order.resize(idx->count);
+        for (size_t i = 0; i < idx->count; ++i) {
+            order[i] = idx->index(i);
+            if (order[i] >= n)
+                return fail("index " + num(order[i]) + " (element " + num(i) + " of accessor " +
+                            std::to_string(prim.indices) + ") is past the vertex count " + num(n));
+        }
+    }
+    Result<std::vector<uint32_t>> corners = triangleCorners(order, prim.mode);
+    if (!corners) return fail(corners.error());
+    if (corners->empty()) return {};
+
+    const size_t base = mesh.positions.size();
+    if (n > std::numeric_limits<uint32_t>::max() - base)
+        return fail("the mesh has more vertices than 32-bit indices address");
+    if (corners->size() > std::numeric_limits<uint32_t>::max() - mesh.indices.size())
+        return fail("the mesh has more indices than a submesh range addresses");
+    // Non-finite positions, UVs and tangents are errors; non-finite normals are repaired later.
+    auto notFinite = [&](const char* name, size_t i) {
+        return fail("accessor " + std::to_string(prim.attributes.at(name)) + " (" + name + ") element " +
+                    num(i) + " is not finite (NaN or Inf)");
+    };
+    for (size_t i = 0; i < n; ++i) {
+        mesh.positions.push_back(pos->vec<3>(i));
+        if (!finite(mesh.positions.back())) return notFinite("POSITION", i);
+        mesh.normals.push_back(normal->present ? normal->vec<3>(i) : glm::vec3(0.0f));
+        mesh.uvs.push_back(uv->present ? uv->vec<2>(i) : glm::vec2(0.0f));
+        if (!finite(mesh.uvs.back())) return notFinite("TEXCOORD_0", i);
+        mesh.tangents.push_back(tangent->present ? tangent->vec<4>(i) : glm::vec4(0.0f));
+        if (!finite(mesh.tangents.back())) return notFinite("TANGENT", i);
+    }
+
+    Submesh sub;
+    sub.firstIndex = uint32_t(mesh.indices.size());
+    sub.indexCount = uint32_t(corners->size());
+    sub.material = prim.material;
+    for (uint32_t c : corners.value())
+        mesh.indices.push_back(uint32_t(base) + c);
+    mesh.submeshes.push_back(sub);
+
+    ++counts.primitives;
+    counts.normals += normal->present ? 1 : 0;
+    counts.uvs += uv->present ? 1 : 0;
+    counts.tangents += tangent->present ? 1 : 0;
+    return {};
+}
+
+// Unit xyz and w = +-1; tangents that cannot be normalised are recomputed from the UVs.
+void finishTangents(Mesh& mesh) {
+    for (glm::vec4& t : mesh.tangents) {
+        const float len = glm::length(glm::vec3(t));
+        if (!(len > 1e-12f)) {
+            computeTangents(mesh);
+            return;
+        }
+        t = glm::vec4(glm::vec3(t) / len, t.w < 0.0f ? -1.0f : 1.0f);
+    }
+}
+
+// The render mesh of glTF mesh `index`: its triangle primitives as submeshes. Normals are computed
+// where the file has none and repaired where they are unusable.
+Result<Mesh> convertMesh(const tinygltf::Model& model, size_t index) {
+    const tinygltf::Mesh& source = model.meshes[index];
+    Mesh mesh;
+    AttributeCounts counts;
+    for (size_t p = 0; p < source.primitives.size(); ++p)
+        if (Status s = appendPrimitive(model, source.primitives[p], mesh, counts); !s)
+            return fail(named("mesh", index, source.name) + " primitive " + num(p) + ": " + s.error());
+    if (counts.normals == 0)
+        computeNormals(mesh);
+    else
+        repairNormals(mesh);
+    if (counts.uvs == 0) mesh.uvs.clear();
+    if (counts.tangents < counts.primitives || counts.primitives == 0)
+        mesh.tangents.clear();
+    else
+        finishTangents(mesh);
+    return mesh;
+}
+
+// --- nodes --------------------------------------------------------------------------------------
+
+Result<glm::dmat4> localTransform(const tinygltf::Node& node) {
+    // JSON numbers are finite; a composed transform that overflows is caught by validateScene.
+    if (!node.matrix.empty()) {
+        if (node.matrix.size() != 16)
+            return fail("has a matrix of " + num(node.matrix.size()) + " numbers, not 16");
+        return glm::make_mat4(node.matrix.data());
+    }
+    if (!node.translation.empty() && node.translation.size() != 3)
+        return fail("has a translation of " + num(node.translation.size()) + " numbers, not 3");
+    if (!node.rotation.empty() && node.rotation.size() != 4)
+        return fail("has a rotation of " + num(node.rotation.size()) + " numbers, not 4");
+    if (!node.scale.empty() && node.scale.size() != 3)
+        return fail("has a scale of " + num(node.scale.size()) + " numbers, not 3");
+    glm::dmat4 m(1.0);
+    if (!node.translation.empty()) m = glm::translate(m, glm::make_vec3(node.translation.data()));
+    if (!node.rotation.empty()) {
+        glm::dquat q;
+        q.x = node.rotation[0];
+        q.y = node.rotation[1];
+        q.z = node.rotation[2];
+        q.w = node.rotation[3];
+        const double len = glm::length(q);
+        if (!(len > 1e-12)) return fail("has a zero rotation quaternion");
+        m *= glm::mat4_cast(q / len);
+    }
+    if (!node.scale.empty()) m = glm::scale(m, glm::make_vec3(node.scale.data()));
+    return m;
+}
+
+// The parent of every node (-1 for roots), after checking that the children lists form a forest:
+// valid indices, no node with two parents, no cycles.
+Result<std::vector<int>> nodeParents(const tinygltf::Model& model) {
+    const size_t count = model.nodes.size();
+    std::vector<int> parent(count, -1);
+    for (size_t p = 0; p < count; ++p)
+        for (int c : model.nodes[p].children) {
+            if (!validIndex(c, count))
+                return fail(named("node", p, model.nodes[p].name) + " has child " + std::to_string(c) +
+                            ", which does not exist");
+            if (size_t(c) == p)
+                return fail("the node hierarchy has a cycle: node " + num(p) + " is its own child");
+            if (parent[size_t(c)] != -1)
+                return fail(named("node", size_t(c), model.nodes[size_t(c)].name) +
+                            " has two parents (nodes " + std::to_string(parent[size_t(c)]) + " and " +
+                            num(p) + ")");
+            parent[size_t(c)] = int(p);
+        }
+    // With at most one parent each, a cycle shows up as a parent chain that returns to itself.
+    enum : char { Unknown, OnWalk, Acyclic };
+    std::vector<char> state(count, Unknown);
+    std::vector<size_t> walk;
+    for (size_t start = 0; start < count; ++start) {
+        walk.clear();
+        int n = int(start);
+        while (n != -1 && state[size_t(n)] == Unknown) {
+            state[size_t(n)] = OnWalk;
+            walk.push_back(size_t(n));
+            n = parent[size_t(n)];
+        }
+        if (n != -1 && state[size_t(n)] == OnWalk)
+            return fail("the node hierarchy has a cycle through " +
+                        named("node", size_t(n), model.nodes[size_t(n)].name));
+        for (size_t w : walk)
+            state[w] = Acyclic;
+    }
+    return parent;
+}
+
+// Root nodes of the default scene: `scene`, else scene 0, else every node without a parent.
+Result<std::vector<int>> sceneRoots(const tinygltf::Model& model, const std::vector<int>& parent) {
+    std::vector<int> roots;
+    if (model.scenes.empty()) {
+        for (size_t n = 0; n < parent.size(); ++n)
+            if (parent[n] == -1) roots.push_back(int(n));
+        return roots;
+    }
+    const int s = model.defaultScene == -1 ? 0 : model.defaultScene;
+    if (!validIndex(s, model.scenes.size()))
+        return fail("default scene " + std::to_string(s) + " does not exist");
+    std::vector<bool> listed(model.nodes.size(), false);
+    for (int n : model.scenes[size_t(s)].nodes) {
+        if (!validIndex(n, model.nodes.size()))
+            return fail("scene " + std::to_string(s) + " lists node " + std::to_string(n) +
+                        ", which does not exist");
+        if (parent[size_t(n)] != -1)
+            return fail("scene " + std::to_string(s) + " lists node " + std::to_string(n) +
+                        " as a root, but it is a child of node " + std::to_string(parent[size_t(n)]));
+        if (listed[size_t(n)])
+            return fail("scene " + std::to_string(s) + " lists node " + std::to_string(n) + " twice");
+        listed[size_t(n)] = true;
+        roots.push_back(n);
+    }
+    return roots;
+}
+
+// extras[key] as a flag: absent gives no value; booleans and numbers (0 is false) are accepted.
+Result<std::optional<bool>> extrasFlag(const tinygltf::Value& extras, const char* key) {
+    if (!extras.IsObject() || !extras.Has(key)) return std::optional<bool>();
+    const tinygltf::Value& v = extras.Get(key);
+    if (v.IsBool()) return std::optional<bool>(v.Get<bool>());
+    if (v.IsNumber()) return std::optional<bool>(v.GetNumberAsDouble() != 0.0);
+    return fail(std::string("extras.") + key + " is not a boolean");
+}
+
+bool isColliderName(const std::string& name) {
+    const std::string suffix = "-col";
+    return name.rfind("UCX_", 0) == 0 ||
+           (name.size() >= suffix.size() &&
+            name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0);
+}
+
+// Appends the triangles of `part` to `collider`, mapping positions by `toObject`.
+Status appendCollider(std::optional<Mesh>& collider, const Mesh& part, const glm::dmat4& toObject) {
+    if (!collider) collider = Mesh{};
+    const size_t base = collider->positions.size();
+    if (part.positions.size() > std::numeric_limits<uint32_t>::max() - base)
+        return fail("the collider has more vertices than 32-bit indices address");
+    for (const glm::vec3& p : part.positions) {
+        const glm::vec3 q(toObject * glm::dvec4(glm::dvec3(p), 1.0));
+        if (!finite(q)) return fail("is not finite in its object's space (singular transform)");
+        collider->positions.push_back(q);
+    }
+    for (uint32_t i : part.indices)
+        collider->indices.push_back(uint32_t(base) + i);
+    return {};
+}
+
+// --- materials and images -----------------------------------------------------------------------
+
+// Image index behind texture `texture` (-1 stays -1, as does a texture without a source image).
+Result<int> textureImage(const tinygltf::Model& model, int texture) {
+    if (texture == -1) return -1;
+    if (!validIndex(texture, model.textures.size()))
+        return fail("refers to texture " + std::to_string(texture) + ", which does not exist");
+    const int source = model.textures[size_t(texture)].source;
+    if (source != -1 && !validIndex(source, model.images.size()))
+        return fail("refers to texture " + std::to_string(texture) + ", whose image " +
+                    std::to_string(source) + " does not exist");
+    return source;
+}
+
+Result<Material> convertMaterial(const tinygltf::Model& model, size_t index) {
+    const tinygltf::Material& source = model.materials[index];
+    const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
+    const std::string what = named("material", index, source.name);
+    Material m;
+    m.name = source.name;
+    if (pbr.baseColorFactor.size() != 4)
+        return fail(what + " has a base colour factor that is not 4 numbers");
+    m.baseColorFactor = glm::vec4(glm::make_vec4(pbr.baseColorFactor.data()));
+    m.roughness = float(pbr.roughnessFactor);
+    m.metallic = float(pbr.metallicFactor);
+    m.normalScale = float(source.normalTexture.scale);
+    Result<int> base = textureImage(model, pbr.baseColorTexture.index);
+    if (!base) return fail(what + ": base colour texture " + base.error());
+    Result<int> normal = textureImage(model, source.normalTexture.index);
+    if (!normal) return fail(what + ": normal texture " + normal.error());
+    m.baseColorTexture = base.value();
+    m.normalTexture = normal.value();
+    return m;
+}
+
+std::string imageName(const tinygltf::Image& image, int index) {
+    return named("image", size_t(index), image.uri.empty() ? image.name : image.uri);
+}
+
+// tinygltf image callback: decodes to RGBA8 with decodeImage. `user` is the Model being filled;
+// its buffers and buffer views are already parsed when images are.
+bool decodeGltfImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                     const unsigned char* bytes, int size, void* user) {
+    const auto& model = *static_cast<const tinygltf::Model*>(user);
+    const std::string name = imageName(*image, index);
+    auto reject = [&](const std::string& message) {
+        if (err) *err += message + "\n";
+        return false;
+    };
+    if (image->bufferView >= 0) {
+        // tinygltf passes the view's bytes without checking that the view lies inside its buffer.
+        const int v = image->bufferView;
+        const bool inside =
+            validIndex(v, model.bufferViews.size()) &&
+            validIndex(model.bufferViews[size_t(v)].buffer, model.buffers.size()) &&
+            rangeInside(model.bufferViews[size_t(v)].byteOffset, model.bufferViews[size_t(v)].byteLength,
+                        model.buffers[size_t(model.bufferViews[size_t(v)].buffer)].data.size());
+        if (!inside)
+            return reject(name + ": buffer view " + std::to_string(v) + " reads past the end of its buffer");
+    }
+    if (size <= 0) return reject(name + ": image data is empty");
+    Result<Image> decoded = decodeImage(bytes, size_t(size), name);
+    if (!decoded) return reject(decoded.error());
+    image->width = decoded->width;
+    image->height = decoded->height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image = std::move(decoded->rgba);
+    return true;
+}
+
+// --- parsing ------------------------------------------------------------------------------------
+
+uint32_t le32(const std::vector<unsigned char>& bytes, size_t offset) {
+    uint32_t v;
+    std::memcpy(&v, bytes.data() + offset, 4);
+    return v;
+}
+
+// Checks the GLB container (header and chunk lengths) and returns the length it declares.
+Result<size_t> checkGlbLayout(const std::vector<unsigned char>& bytes) {
+    if (bytes.size() < 12)
+        return fail("truncated GLB: " + num(bytes.size()) + " bytes, less than its header");
+    const uint32_t version = le32(bytes, 4), length = le32(bytes, 8);
+    if (version != 2) return fail("GLB version " + num(version) + " is not supported (only 2)");
+    if (length > bytes.size())
+        return fail("truncated GLB: the header declares " + num(length) + " bytes, the file has " +
+                    num(bytes.size()));
+    if (length < 20) return fail("truncated GLB: no JSON chunk");
+    const uint32_t jsonLength = le32(bytes, 12);
+    if (le32(bytes, 16) != kGlbJsonChunk) return fail("the first GLB chunk is not JSON");
+    if (uint64_t(jsonLength) + 20 > length)
+        return fail("truncated GLB: the JSON chunk of " + num(jsonLength) +
+                    " bytes ends past the end of the data");
+    const size_t next = 20 + size_t(jsonLength);
+    if (next < length) {
+        if (length - next < 8) return fail("truncated GLB: incomplete chunk header after the JSON chunk");
+        const uint32_t binLength = le32(bytes, next);
+        if (uint64_t(binLength) + next + 8 > length)
+            return fail("truncated GLB: the binary chunk of " + num(binLength) +
+                        " bytes ends past the end of the data");
+    }
+    return size_t(length);
+}
+
+Result<std::vector<unsigned char>> readFile(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return fail("file not found");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return fail("cannot open file");
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) return fail("read error");
+    return bytes;
+}
+
+// Parses .gltf (JSON, detected by content) or .glb (binary) with tinygltf, images decoded to RGBA8.
+Status parseModel(const std::string& path, tinygltf::Model& model) {
+    Result<std::vector<unsigned char>> bytes = readFile(path);
+    if (!bytes) return fail(bytes.error());
+    if (bytes->empty()) return fail("file is empty");
+    if (bytes->size() > std::numeric_limits<uint32_t>::max()) return fail("file is larger than 4 GiB");
+    const bool binary = bytes->size() >= 4 && std::memcmp(bytes->data(), "glTF", 4) == 0;
+    size_t length = bytes->size();
+    if (binary) {
+        Result<size_t> declared = checkGlbLayout(bytes.value());
+        if (!declared) return fail(declared.error());
+        length = declared.value();
+    }
+
+    tinygltf::TinyGLTF parser;
+    parser.SetImageLoader(&decodeGltfImage, &model);
+    const std::string baseDir = std::filesystem::path(path).parent_path().string();
+    std::string err, warn;
+    bool parsed = false;
+    try {
+        parsed = binary ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes->data(), unsigned(length),
+                                                      baseDir)
+                        : parser.LoadASCIIFromString(&model, &err, &warn,
+                                                     reinterpret_cast<const char*>(bytes->data()),
+                                                     unsigned(length), baseDir);
+    } catch (const std::exception& e) {
+        return fail(std::string("not valid glTF: ") + e.what());
+    }
+    if (!parsed) return fail("not valid glTF: " + tidyParserMessage(err.empty() ? warn : err));
+    return {};
+}
+
+// --- scene --------------------------------------------------------------------------------------
+
+Status checkRequiredExtensions(const tinygltf::Model& model) {
+    for (const std::string& ext : model.extensionsRequired)
+        if (std::find(std::begin(kSupportedRequiredExtensions), std::end(kSupportedRequiredExtensions),
+                      ext) == std::end(kSupportedRequiredExtensions))
+            return fail("requires extension " + ext + ", which is not supported");
+    return {};
+}
+
+// A node with a mesh, found while walking the hierarchy; meshes are copied only once the whole
+// scene's size is known.
+struct Placement {
+    size_t node;
+    size_t mesh;
+    glm::dmat4 world;
+    bool dynamic;
+    bool decals;
+    int owner; // for a collider, the drawn placement it joins; -1 for drawn ones
+};
+
+// Walks the default scene's hierarchy and makes the objects and colliders.
+Status addObjects(const tinygltf::Model& model, Scene& scene) {
+    Result<std::vector<int>> parent = nodeParents(model);
+    if (!parent) return fail(parent.error());
+    Result<std::vector<int>> roots = sceneRoots(model, parent.value());
+    if (!roots) return fail(roots.error());
+
+    std::vector<std::optional<Mesh>> meshes(model.meshes.size()); // converted on first use
+    std::vector<Placement> drawn, colliders;
+    struct Visit {
+        int node;
+        glm::dmat4 parentWorld;
+        bool dynamic;
+        bool decals;
+        int drawnAncestor; // nearest ancestor in `drawn`, -1 for none
+    };
+    std::vector<Visit> stack;
+    for (auto r = roots->rbegin(); r != roots->rend(); ++r)
+        stack.push_back({*r, glm::dmat4(1.0), false, true, -1});
+    while (!stack.empty()) {
+        const Visit visit = stack.back();
+        stack.pop_back();
+        const size_t index = size_t(visit.node);
+        const tinygltf::Node& node = model.nodes[index];
+        const std::string what = named("node", index, node.name);
+
+        Result<glm::dmat4> local = localTransform(node);
+        if (!local) return fail(what + " " + local.error());
+        const glm::dmat4 world = visit.parentWorld * local.value();
+        Result<std::optional<bool>> dynamicFlag = extrasFlag(node.extras, "dynamic");
+        if (!dynamicFlag) return fail(what + ": " + dynamicFlag.error());
+        Result<std::optional<bool>> decalsFlag = extrasFlag(node.extras, "decals");
+        if (!decalsFlag) return fail(what + ": " + decalsFlag.error());
+        if (visit.dynamic && dynamicFlag.value() == false)
+            return fail(what + " has \"dynamic\": false under a dynamic ancestor, which moves it");
+        const bool dynamic = visit.dynamic || dynamicFlag.value().value_or(false);
+        const bool decals = decalsFlag.value().value_or(visit.decals);
+
+        int drawnAncestor = visit.drawnAncestor;
+        if (node.mesh != -1) {
+            if (!validIndex(node.mesh, model.meshes.size()))
+                return fail(what + " refers to mesh " + std::to_string(node.mesh) + ", which does not exist");
+            const size_t m = size_t(node.mesh);
+            if (!meshes[m]) {
+                Result<Mesh> converted = convertMesh(model, m);
+                if (!converted) return fail(converted.error());
+                meshes[m] = std::move(converted.value());
+            }
+            if (isColliderName(node.name)) {
+                if (visit.drawnAncestor == -1)
+                    return fail("collider " + what + " has no ancestor node with a drawn mesh to attach to");
+                colliders.push_back({index, m, world, dynamic, decals, visit.drawnAncestor});
+            } else if (meshes[m]->triangleCount() > 0) {
+                drawnAncestor = int(drawn.size());
+                drawn.push_back({index, m, world, dynamic, decals, -1});
+            }
+        }
+        for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
+            stack.push_back({*c, world, dynamic, decals, drawnAncestor});
+    }
+    if (drawn.empty()) return fail("the default scene has no triangle meshes");
+
+    // Instancing lets a small file describe a huge scene: bound the total before copying anything.
+    size_t vertices = 0, indices = 0;
+    for (const std::vector<Placement>* list : {&drawn, &colliders})
+        for (const Placement& p : *list) {
+            vertices += meshes[p.mesh]->vertexCount();
+            indices += meshes[p.mesh]->indices.size();
+        }
+    if (vertices > kMaxSceneElements || indices > kMaxSceneElements)
+        return fail("the default scene has " + num(vertices) + " vertices and " + num(indices) +
+                    " indices in all, more than the limit of " + num(kMaxSceneElements));
+
+    for (const Placement& p : drawn) {
+        SceneObject o;
+        const tinygltf::Node& node = model.nodes[p.node];
+        const std::string& meshName = model.meshes[p.mesh].name;
+        o.name = !node.name.empty() ? node.name : !meshName.empty() ? meshName : "node" + num(p.node);
+        o.mesh = *meshes[p.mesh];
+        o.transform = p.world;
+        o.dynamic = p.dynamic;
+        o.receivesDecals = p.decals;
+        scene.objects.push_back(std::move(o));
+    }
+    for (const Placement& p : colliders) {
+        SceneObject& owner = scene.objects[size_t(p.owner)];
+        if (Status s =
+                appendCollider(owner.collider, *meshes[p.mesh], glm::inverse(owner.transform) * p.world);
+            !s)
+            return fail("collider " + named("node", p.node, model.nodes[p.node].name) + " " + s.error());
+    }
+    for (SceneObject& o : scene.objects)
+        if (o.collider) computeNormals(*o.collider);
+    return {};
+}
+
+Result<Scene> buildScene(tinygltf::Model& model) {
+    if (Status s = checkRequiredExtensions(model); !s) return fail(s.error());
+    if (Status s = checkBufferViews(model); !s) return fail(s.error());
+
+    Scene scene;
+    for (size_t i = 0; i < model.images.size(); ++i) {
+        tinygltf::Image& source = model.images[i];
+        // tinygltf only warns when an external image file is missing; here it is an error.
+        if (source.image.empty())
+            return fail(imageName(source, int(i)) + " cannot be read (missing or unreadable file)");
+        Image image;
+        image.width = source.width;
+        image.height = source.height;
+        image.rgba = std::move(source.image);
+        image.name = !source.uri.empty()    ? source.uri
+                     : !source.name.empty() ? source.name
+                                            : "image " + num(i);
+        scene.images.push_back(std::move(image));
+    }
+    for (size_t i = 0; i < model.materials.size(); ++i) {
+        Result<Material> m = convertMaterial(model, i);
+        if (!m) return fail(m.error());
+        scene.materials.push_back(std::move(m.value()));
+    }
+    if (Status s = addObjects(model, scene); !s) return fail(s.error());
+    if (Status s = validateScene(scene); !s) return fail(s.error());
+    return scene;
+}
+
+} // namespace
+
+Result<Scene> loadGltf(const std::string& path) {
+    tinygltf::Model model;
+    if (Status s = parseModel(path, model); !s) return fail(path + ": " + s.error());
+    Result<Scene> scene = buildScene(model);
+    if (!scene) return fail(path + ": " + scene.error());
+    scene->source = path;
+    return scene;
+}
+
+} // namespace spatter

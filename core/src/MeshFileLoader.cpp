@@ -1,0 +1,83 @@
+// OBJ, PLY, OFF and STL through OpenMesh's readers, as one static object.
+
+#include "spatter/core/SceneLoader.hpp"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+
+#include <filesystem>
+
+namespace spatter {
+
+namespace {
+
+using ReadMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+// Silences OpenMesh's own error stream while reading: problems are reported through the Result.
+struct QuietOpenMesh {
+    QuietOpenMesh() { omerr().disable(), omlog().disable(), omout().disable(); }
+    ~QuietOpenMesh() { omerr().enable(), omlog().enable(), omout().enable(); }
+};
+
+} // namespace
+
+Result<Scene> loadMeshFile(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return fail(path + ": file not found");
+    if (std::filesystem::file_size(path, ec) == 0) return fail(path + ": file is empty");
+
+    ReadMesh om;
+    om.request_vertex_normals();
+    om.request_vertex_texcoords2D();
+    OpenMesh::IO::Options opt;
+    opt += OpenMesh::IO::Options::VertexNormal;
+    opt += OpenMesh::IO::Options::VertexTexCoord;
+    bool read = false;
+    {
+        QuietOpenMesh quiet;
+        read = OpenMesh::IO::read_mesh(om, path, opt);
+    }
+    if (!read) return fail(path + ": cannot be read as a mesh (unsupported or malformed file)");
+    if (om.n_faces() == 0) return fail(path + ": contains no faces");
+
+    Mesh mesh;
+    mesh.positions.reserve(om.n_vertices());
+    for (const auto& v : om.vertices()) {
+        const auto& p = om.point(v);
+        mesh.positions.emplace_back(p[0], p[1], p[2]);
+    }
+    const bool hasNormals = opt.check(OpenMesh::IO::Options::VertexNormal);
+    const bool hasUvs = opt.check(OpenMesh::IO::Options::VertexTexCoord);
+    if (hasUvs)
+        for (const auto& v : om.vertices()) {
+            const auto& t = om.texcoord2D(v);
+            mesh.uvs.emplace_back(t[0], t[1]);
+        }
+    mesh.indices.reserve(om.n_faces() * 3);
+    for (const auto& f : om.faces()) {
+        // TriMesh triangulates polygons on import, so each face has three vertices.
+        for (const auto& v : f.vertices())
+            mesh.indices.push_back(uint32_t(v.idx()));
+    }
+    if (hasNormals) {
+        for (const auto& v : om.vertices()) {
+            const auto& n = om.normal(v);
+            mesh.normals.emplace_back(n[0], n[1], n[2]);
+        }
+        repairNormals(mesh);
+    } else {
+        computeNormals(mesh);
+    }
+    if (Status s = validateMesh(mesh); !s) return fail(path + ": " + s.error());
+
+    Scene scene;
+    scene.source = path;
+    SceneObject object;
+    object.name = std::filesystem::path(path).stem().string();
+    object.mesh = std::move(mesh);
+    scene.objects.push_back(std::move(object));
+    return scene;
+}
+
+} // namespace spatter

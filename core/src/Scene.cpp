@@ -1,0 +1,71 @@
+#include "spatter/core/Scene.hpp"
+
+#include <cmath>
+
+namespace spatter {
+
+size_t Scene::triangleCount() const {
+    size_t n = 0;
+    for (const SceneObject& o : objects)
+        n += o.mesh.triangleCount();
+    return n;
+}
+
+size_t Scene::dynamicObjectCount() const {
+    size_t n = 0;
+    for (const SceneObject& o : objects)
+        n += o.dynamic ? 1 : 0;
+    return n;
+}
+
+DBounds Scene::worldBounds() const {
+    DBounds b;
+    for (const SceneObject& o : objects)
+        for (const glm::vec3& p : o.mesh.positions)
+            b.extend(glm::dvec3(o.transform * glm::dvec4(glm::dvec3(p), 1.0)));
+    return b;
+}
+
+void Scene::translate(const glm::dvec3& offset) {
+    for (SceneObject& o : objects)
+        o.transform[3] += glm::dvec4(offset, 0.0);
+}
+
+static bool finiteMatrix(const glm::dmat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+Status validateScene(const Scene& scene) {
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const SceneObject& o = scene.objects[i];
+        const std::string what = "object " + std::to_string(i) + " (" + o.name + ")";
+        if (Status s = validateMesh(o.mesh); !s) return fail(what + ": render mesh " + s.error());
+        if (o.collider)
+            if (Status s = validateMesh(*o.collider); !s) return fail(what + ": collider " + s.error());
+        if (!finiteMatrix(o.transform)) return fail(what + ": transform is not finite");
+        const double det = glm::determinant(glm::dmat3(o.transform));
+        if (!(std::fabs(det) > 1e-30) || !std::isfinite(det))
+            return fail(what + ": transform is not invertible");
+        for (const Submesh& sm : o.mesh.submeshes)
+            if (sm.material < -1 || sm.material >= int(scene.materials.size()))
+                return fail(what + ": submesh material " + std::to_string(sm.material) + " does not exist");
+    }
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+        const Material& m = scene.materials[i];
+        const int n = int(scene.images.size());
+        if (m.baseColorTexture < -1 || m.baseColorTexture >= n || m.normalTexture < -1 ||
+            m.normalTexture >= n)
+            return fail("material " + std::to_string(i) + " (" + m.name + ") refers to a missing image");
+    }
+    for (size_t i = 0; i < scene.images.size(); ++i) {
+        const Image& im = scene.images[i];
+        if (im.empty() || im.rgba.size() != size_t(im.width) * size_t(im.height) * 4)
+            return fail("image " + std::to_string(i) + " (" + im.name + ") has no valid pixels");
+    }
+    return {};
+}
+
+} // namespace spatter

@@ -1,0 +1,58 @@
+#include "spatter/core/SceneLoader.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+using namespace spatter;
+using ::testing::HasSubstr;
+
+TEST(SceneLoader, RejectsUnknownExtensionNamingIt) {
+    Result<Scene> scene = loadScene("level.fbx");
+    EXPECT_THAT(scene.error(), HasSubstr("level.fbx"));
+    EXPECT_THAT(scene.error(), HasSubstr(".fbx"));
+}
+
+TEST(SceneLoader, RejectsUnknownBuiltin) {
+    EXPECT_THAT(loadScene("builtin:nothing").error(), HasSubstr("unknown builtin"));
+}
+
+TEST(SceneLoader, LoadsBuiltinGalleryAndRecordsSource) {
+    Result<Scene> scene = loadScene("builtin:gallery");
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    EXPECT_EQ(scene->source, "builtin:gallery");
+    EXPECT_GT(scene->triangleCount(), 10000u);
+    EXPECT_GT(scene->dynamicObjectCount(), 0u);
+    EXPECT_TRUE(validateScene(scene.value()).ok());
+}
+
+TEST(SceneLoader, TranslateMovesEveryObjectInDoublePrecision) {
+    Scene scene;
+    scene.objects.resize(2);
+    scene.objects[1].transform[3] = glm::dvec4(1.0, 2.0, 3.0, 1.0);
+    scene.translate(glm::dvec3(1e6, 0.5, -1e6));
+    EXPECT_EQ(scene.objects[0].transform[3], glm::dvec4(1e6, 0.5, -1e6, 1.0));
+    EXPECT_EQ(scene.objects[1].transform[3], glm::dvec4(1e6 + 1.0, 2.5, 3.0 - 1e6, 1.0));
+}
+
+TEST(SceneLoader, ValidateSceneRejectsSingularTransform) {
+    Scene scene;
+    SceneObject o;
+    o.name = "flat";
+    o.mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    o.mesh.indices = {0, 1, 2};
+    computeNormals(o.mesh);
+    o.transform = glm::dmat4(0.0);
+    scene.objects.push_back(o);
+    EXPECT_THAT(validateScene(scene).error(), HasSubstr("not invertible"));
+}
+
+TEST(SceneLoader, ValidateSceneRejectsMissingMaterial) {
+    Scene scene;
+    SceneObject o;
+    o.mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    o.mesh.indices = {0, 1, 2};
+    o.mesh.submeshes = {{0, 3, 4}};
+    computeNormals(o.mesh);
+    scene.objects.push_back(o);
+    EXPECT_THAT(validateScene(scene).error(), HasSubstr("material 4"));
+}
