@@ -1,0 +1,197 @@
+#include "GallerySim.hpp"
+
+#include "spatter/core/SceneLoader.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace spatter::gallery {
+
+using Clock = std::chrono::steady_clock;
+
+static std::string defaultCacheDir() {
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/spatter";
+    if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.cache/spatter";
+    return "";
+}
+
+// The gallery's decal types: bullet holes, paint in three colours, scorch marks.
+static std::vector<std::pair<ShotKind, DecalType>> galleryTypes() {
+    std::vector<std::pair<ShotKind, DecalType>> types;
+    DecalType bullet;
+    bullet.name = "bullet_hole";
+    bullet.size = {0.09f, 0.09f};
+    bullet.sizeJitter = 0.25f;
+    bullet.maxAngleDeg = 85.0f;
+    bullet.fadeOutTime = 1.5f;
+    bullet.texture = int(DecalTexture::BulletHole);
+    bullet.roughness = 0.9f;
+    types.push_back({ShotKind::Bullet, bullet});
+
+    const glm::vec4 paints[] = {
+        {0.95f, 0.2f, 0.15f, 1.0f}, {0.15f, 0.55f, 0.95f, 1.0f}, {0.95f, 0.8f, 0.1f, 1.0f}};
+    const char* paintNames[] = {"paint_red", "paint_blue", "paint_yellow"};
+    for (int i = 0; i < 3; ++i) {
+        DecalType paint;
+        paint.name = paintNames[i];
+        paint.size = {0.8f, 0.8f};
+        paint.sizeJitter = 0.3f;
+        paint.maxAngleDeg = 88.0f;
+        paint.fadeOutTime = 2.0f;
+        paint.texture = int(DecalTexture::Paint);
+        paint.tint = paints[i];
+        paint.wrapAround = true;
+        paint.roughness = 0.35f;
+        types.push_back({ShotKind::Paint, paint});
+    }
+
+    DecalType scorch;
+    scorch.name = "scorch";
+    scorch.size = {0.6f, 0.6f};
+    scorch.sizeJitter = 0.2f;
+    scorch.maxAngleDeg = 85.0f;
+    scorch.fadeOutTime = 2.0f;
+    scorch.texture = int(DecalTexture::Scorch);
+    scorch.normalMap = false;
+    types.push_back({ShotKind::Scorch, scorch});
+    return types;
+}
+
+Result<GallerySim> GallerySim::create(const GalleryOptions& options) {
+    Result<Scene> scene = loadScene(options.scene);
+    if (!scene) return fail(scene.error());
+    GallerySim sim;
+    sim.options_ = options;
+    if (sim.options_.cacheDir.empty()) sim.options_.cacheDir = defaultCacheDir();
+    sim.scene_ = std::move(scene).value();
+    sim.rng_ = Rng(options.seed, 0x9a11e7);
+
+    // Rails: every dynamic receiver slides along world X and turns about the vertical.
+    for (uint32_t i = 0; i < sim.scene_.objects.size(); ++i) {
+        const SceneObject& o = sim.scene_.objects[i];
+        if (!o.dynamic || !o.receivesDecals) continue;
+        const Bounds b = o.mesh.bounds();
+        Rail rail;
+        rail.object = i;
+        rail.base = o.transform;
+        rail.amplitude = std::max(0.3, 1.6 * double(std::max(b.extent().x, b.extent().z)));
+        rail.speed = 0.6 + 0.25 * double(sim.rails_.size() % 3);
+        rail.phase = 2.1 * double(sim.rails_.size());
+        rail.turn = 0.45;
+        sim.rails_.push_back(rail);
+    }
+    if (Status s = sim.rebuildProxies(options.tolerancePercent); !s) return fail(s.error());
+    return sim;
+}
+
+Status GallerySim::registerTypes() {
+    types_.clear();
+    for (auto& kindTypes : typeOf_)
+        kindTypes.clear();
+    for (const auto& [kind, type] : galleryTypes()) {
+        Result<uint16_t> index = system_->registerType(type);
+        if (!index) return fail(index.error());
+        typeOf_[int(kind)].push_back(index.value());
+        types_.push_back(type);
+    }
+    return {};
+}
+
+Status GallerySim::rebuildProxies(float tolerancePercent) {
+    const Clock::time_point start = Clock::now();
+    ProxySettings settings;
+    settings.tolerance = tolerancePercent / 100.0f;
+    settings.toleranceRelative = true;
+    settings.cacheDirectory = options_.cacheDir;
+    std::vector<std::optional<Proxy>> proxies(scene_.objects.size());
+    for (size_t i = 0; i < scene_.objects.size(); ++i) {
+        const SceneObject& o = scene_.objects[i];
+        if (!o.receivesDecals) continue;
+        const Mesh* collider = o.collider ? &*o.collider : nullptr;
+        Result<Proxy> proxy = buildProxy(o.mesh, settings, collider);
+        if (!proxy) return fail("proxy of " + o.name + ": " + proxy.error());
+        proxies[i] = std::move(proxy).value();
+    }
+    Result<CollisionWorld> world = CollisionWorld::build(scene_, proxies);
+    if (!world) return fail(world.error());
+    DecalSettings decalSettings;
+    decalSettings.seed = options_.seed;
+    decalSettings.cellSize = 0.5f;
+    decalSettings.maxPerCell = 6;
+    decalSettings.policy = LimitPolicy::FadeOldest;
+    decalSettings.budget = 20000;
+    decalSettings.maxPerObject = 400;
+    Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), decalSettings);
+    if (!system) return fail(system.error());
+    system_.emplace(std::move(system).value());
+    if (Status s = registerTypes(); !s) return s;
+    for (const Rail& rail : rails_)
+        system_->setTransform(rail.object, transform(rail.object));
+    counters_ = {};
+    tolerancePercent_ = tolerancePercent;
+    proxySeconds_ = std::chrono::duration<double>(Clock::now() - start).count();
+    return {};
+}
+
+glm::dmat4 GallerySim::transform(uint32_t object) const {
+    for (const Rail& rail : rails_) {
+        if (rail.object != object) continue;
+        const double slide = rail.amplitude * std::sin(rail.speed * time_ + rail.phase);
+        const double turn = rail.turn * std::sin(0.7 * rail.speed * time_ + 1.3 * rail.phase);
+        glm::dmat4 m = glm::translate(glm::dmat4(1.0), glm::dvec3(slide, 0.0, 0.0)) * rail.base;
+        const glm::dvec3 origin(m[3]);
+        m[3] = glm::dvec4(0.0, 0.0, 0.0, 1.0);
+        m = glm::rotate(glm::dmat4(1.0), turn, glm::dvec3(0.0, 1.0, 0.0)) * m;
+        m[3] = glm::dvec4(origin, 1.0);
+        return m;
+    }
+    return object < scene_.objects.size() ? scene_.objects[object].transform : glm::dmat4(1.0);
+}
+
+void GallerySim::advance(double dt) {
+    time_ += dt;
+    for (const Rail& rail : rails_)
+        system_->setTransform(rail.object, transform(rail.object));
+    system_->update(dt);
+}
+
+SpawnResult GallerySim::shoot(const Ray& ray, ShotKind kind) {
+    const std::vector<uint16_t>& candidates = typeOf_[int(kind)];
+    const uint16_t type = candidates[rng_.below(uint32_t(candidates.size()))];
+    const Clock::time_point start = Clock::now();
+    SpawnResult result = system_->spawn(ray, type);
+    counters_.placementSeconds += std::chrono::duration<double>(Clock::now() - start).count();
+    ++counters_.shots;
+    if (result.placed()) {
+        const Decal* decal = system_->get(result.handle);
+        if (decal && scene_.objects[decal->object].dynamic) ++counters_.onMovingTargets;
+    }
+    return result;
+}
+
+std::vector<uint8_t> GallerySim::objectIds() const {
+    std::vector<uint8_t> ids(scene_.objects.size());
+    for (uint32_t i = 0; i < ids.size(); ++i)
+        ids[i] = system_->objectId(i);
+    return ids;
+}
+
+size_t GallerySim::proxyTriangles() const {
+    return system_->world().triangleCount();
+}
+
+double GallerySim::errorBound() const {
+    double h = 0.0;
+    for (uint32_t i = 0; i < scene_.objects.size(); ++i)
+        h = std::max(h, system_->world().worldErrorBound(i));
+    return h;
+}
+
+void GallerySim::setPaintWrapAround(bool on) {
+    for (uint16_t index : typeOf_[int(ShotKind::Paint)])
+        types_[index].wrapAround = on;
+}
+
+} // namespace spatter::gallery

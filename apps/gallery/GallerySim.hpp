@@ -1,0 +1,88 @@
+#pragma once
+// GallerySim: the shooting gallery without its window: the scene, its collision proxies, the decal
+// system with the gallery's decal types, and the targets moving on their rails. The headless run
+// and the window both drive it.
+
+#include "GalleryOptions.hpp"
+
+#include "spatter/core/DecalType.hpp"
+#include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/core/Random.hpp"
+#include "spatter/core/Scene.hpp"
+#include "spatter/placement/DecalSystem.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace spatter::gallery {
+
+enum class ShotKind { Bullet, Paint, Scorch };
+
+// A dynamic object sliding along its rail and turning about the vertical through its origin.
+struct Rail {
+    uint32_t object = 0;
+    glm::dmat4 base{1.0}; // transform at the rail's centre
+    double amplitude = 1.0;
+    double speed = 0.8; // radians per second of the slide
+    double phase = 0.0;
+    double turn = 0.5; // largest turn, radians
+};
+
+struct ShotCounters {
+    uint64_t shots = 0;
+    uint64_t onMovingTargets = 0;  // decals placed on dynamic objects
+    double placementSeconds = 0.0; // spent in spawn calls
+};
+
+class GallerySim {
+public:
+    static Result<GallerySim> create(const GalleryOptions& options);
+
+    // Builds the proxies of every receiver at `tolerancePercent` of its bounding diagonal (cached on
+    // disk), and a fresh decal system on them. Decals placed so far are dropped.
+    Status rebuildProxies(float tolerancePercent);
+
+    // Advances the clock: targets move along their rails, decals age.
+    void advance(double dt);
+    // Fires one shot and counts it.
+    SpawnResult shoot(const Ray& ray, ShotKind kind);
+
+    const Scene& scene() const { return scene_; }
+    const DecalSystem& decals() const { return *system_; }
+    const std::vector<Rail>& rails() const { return rails_; }
+    const ShotCounters& counters() const { return counters_; }
+    // Decal types in registry order (Decal::type indexes them), for the renderer.
+    const std::vector<DecalType>& types() const { return types_; }
+    // Object decal IDs of every scene object, for the renderer.
+    std::vector<uint8_t> objectIds() const;
+    glm::dmat4 transform(uint32_t object) const;
+
+    float tolerancePercent() const { return tolerancePercent_; }
+    size_t renderTriangles() const { return scene_.triangleCount(); }
+    size_t proxyTriangles() const;
+    double errorBound() const; // largest world-space proxy error bound h
+    double proxySeconds() const { return proxySeconds_; }
+    double time() const { return time_; }
+
+    // Types set in the HUD: wrap-around on the paint types.
+    void setPaintWrapAround(bool on);
+
+private:
+    GallerySim() = default;
+    Status registerTypes();
+
+    GalleryOptions options_;
+    Scene scene_;
+    std::optional<DecalSystem> system_;
+    std::vector<DecalType> types_;
+    std::vector<uint16_t> typeOf_[3]; // registry indices per ShotKind
+    std::vector<Rail> rails_;
+    ShotCounters counters_;
+    Rng rng_{1};
+    float tolerancePercent_ = 0.0f;
+    double proxySeconds_ = 0.0;
+    double time_ = 0.0;
+};
+
+} // namespace spatter::gallery

@@ -1,0 +1,239 @@
+#include "Headless.hpp"
+
+#include "GallerySim.hpp"
+#include "GalleryView.hpp"
+
+#include "spatter/render/GlContext.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace spatter::gallery {
+
+namespace {
+
+constexpr double kShotInterval = 1.0 / 20.0; // seconds of motion between two shots
+
+// Centre of the white pixels of a coverage image, or nothing when none is white.
+std::optional<glm::dvec2> coverageCentroid(const Image& image) {
+    glm::dvec2 sum(0.0);
+    size_t count = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            if (image.rgba[(size_t(y) * image.width + x) * 4] > 127) {
+                sum += glm::dvec2(x + 0.5, y + 0.5);
+                ++count;
+            }
+    if (count == 0) return std::nullopt;
+    return sum / double(count);
+}
+
+// Pixel position (x right, y down) of a world point seen by `camera`.
+glm::dvec2 project(const Camera& camera, int width, int height, const glm::dvec3& world) {
+    const glm::dvec4 clip = projection(camera, double(width) / height) * viewRotation(camera) *
+                            glm::dvec4(world - camera.eye, 1.0);
+    const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+    return {(ndc.x * 0.5 + 0.5) * width, (0.5 - ndc.y * 0.5) * height};
+}
+
+const Decal* findDecal(const DecalSystem& system, uint32_t id) {
+    for (const Decal& d : system.decals())
+        if (d.id == id) return &d;
+    return nullptr;
+}
+
+// Follows the newest decal on a moving target across frames of motion, in the world and in the
+// rendered coverage image, and checks it still lies on its target's collision surface.
+Result<nlohmann::ordered_json> trackTargetDecal(GallerySim& sim, Renderer& renderer, const Camera& camera) {
+    const Decal* newest = nullptr;
+    for (const Decal& d : sim.decals().decals())
+        if (sim.scene().objects[d.object].dynamic && d.opacity >= 1.0f &&
+            (!newest || d.spawnTime > newest->spawnTime))
+            newest = &d;
+    if (!newest) return fail("no decal landed on a moving target to follow");
+    const uint32_t id = newest->id;
+    const int w = renderer.settings().width, h = renderer.settings().height;
+
+    struct Sample {
+        glm::dvec3 world;
+        glm::dvec2 projected;
+        std::optional<glm::dvec2> imaged;
+    };
+    auto sample = [&](const Decal& decal) -> Result<Sample> {
+        for (const Rail& rail : sim.rails())
+            renderer.setObjectTransform(rail.object, sim.transform(rail.object));
+        renderer.setDecals({decal});
+        if (Result<FrameStats> st = renderer.render(camera, View::Coverage); !st) return fail(st.error());
+        Result<Image> image = renderer.readback();
+        if (!image) return fail(image.error());
+        const glm::dvec3 world = sim.decals().worldBox(decal).center;
+        return Sample{world, project(camera, w, h, world), coverageCentroid(image.value())};
+    };
+    Result<Sample> a = sample(*newest);
+    if (!a) return fail(a.error());
+    for (int i = 0; i < 8; ++i)
+        sim.advance(1.0 / 30.0);
+    const Decal* later = findDecal(sim.decals(), id);
+    if (!later) return fail("the followed decal disappeared while its target moved");
+    Result<Sample> b = sample(*later);
+    if (!b) return fail(b.error());
+
+    // Is the decal still on its target? Cast at its centre along its axis.
+    const WorldDecal box = sim.decals().worldBox(*later);
+    const glm::dvec3 axis(box.frame.normal);
+    Ray probe;
+    probe.origin = box.center + axis * double(box.halfDepth + 0.5);
+    probe.direction = -axis;
+    const std::optional<Hit> hit = sim.decals().world().intersect(probe);
+
+    nlohmann::ordered_json out;
+    out["object"] = sim.scene().objects[later->object].name;
+    out["decal_id"] = id;
+    out["world_moved_m"] = glm::length(b->world - a->world);
+    out["on_target_after_move"] = hit && hit->object == later->object &&
+                                  glm::length(hit->position - box.center) <= double(box.halfDepth);
+    if (a->imaged && b->imaged) {
+        out["image_moved_px"] = glm::length(*b->imaged - *a->imaged);
+        out["image_vs_projection_px"] =
+            std::max(glm::length(*a->imaged - a->projected), glm::length(*b->imaged - b->projected));
+    } else {
+        out["image_moved_px"] = nullptr;
+        out["image_vs_projection_px"] = nullptr;
+    }
+    return out;
+}
+
+} // namespace
+
+int runHeadless(const GalleryOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    Result<GallerySim> sim = GallerySim::create(options);
+    if (!sim) {
+        std::cerr << "spatter-gallery: " << sim.error() << "\n";
+        return 1;
+    }
+    Result<GlContext> gl = GlContext::createHeadless();
+    if (!gl) {
+        std::cerr << "spatter-gallery: no OpenGL 4.5 context: " << gl.error() << "\n";
+        return 1;
+    }
+    RendererSettings settings;
+    settings.width = options.width ? options.width : 960;
+    settings.height = options.height ? options.height : 540;
+    settings.waitForTimers = true;
+    Result<Renderer> renderer = Renderer::create(gl.value(), settings);
+    if (!renderer) {
+        std::cerr << "spatter-gallery: " << renderer.error() << "\n";
+        return 1;
+    }
+    if (Status s = prepareRenderer(renderer.value(), sim.value()); !s) {
+        std::cerr << "spatter-gallery: " << s.error() << "\n";
+        return 1;
+    }
+
+    const Camera camera = startCamera(sim->scene());
+    const double aspect = double(settings.width) / settings.height;
+    Rng rng(options.seed, 0x5ca1ab1e);
+    const int frameEvery = std::max(1, options.shots / 24);
+    int frames = 0;
+    double gpuMs = 0.0;
+    std::string glRenderer;
+    auto renderFrame = [&]() -> Status {
+        syncRenderer(renderer.value(), sim.value());
+        Result<FrameStats> stats = renderer->render(camera, View::Final);
+        if (!stats) return fail(stats.error());
+        ++frames;
+        gpuMs += stats->gpu.totalMs();
+        glRenderer = stats->glRenderer;
+        return {};
+    };
+
+    for (int shot = 0; shot < options.shots; ++shot) {
+        sim->advance(kShotInterval);
+        Ray ray;
+        if (!sim->rails().empty() && rng.uniform() < 0.45f) {
+            // At a target: its current bounds, jittered inside them.
+            const uint32_t object = sim->rails()[rng.below(uint32_t(sim->rails().size()))].object;
+            const DBounds b = sim->decals().world().worldBounds(object);
+            const glm::dvec3 jitter(rng.uniform(-0.3f, 0.3f), rng.uniform(-0.3f, 0.3f), 0.0);
+            ray.origin = camera.eye;
+            ray.direction = b.center() + jitter * b.extent() - camera.eye;
+        } else {
+            ray = rayThrough(camera, aspect, rng.uniform(-0.95f, 0.95f), rng.uniform(-0.95f, 0.95f));
+        }
+        const float pick = rng.uniform();
+        const ShotKind kind = pick < 0.65f  ? ShotKind::Bullet
+                              : pick < 0.9f ? ShotKind::Paint
+                                            : ShotKind::Scorch;
+        sim->shoot(ray, kind);
+        if ((shot + 1) % frameEvery == 0)
+            if (Status s = renderFrame(); !s) {
+                std::cerr << "spatter-gallery: " << s.error() << "\n";
+                return 1;
+            }
+    }
+
+    Result<nlohmann::ordered_json> tracked = trackTargetDecal(sim.value(), renderer.value(), camera);
+    if (Status s = renderFrame(); !s) {
+        std::cerr << "spatter-gallery: " << s.error() << "\n";
+        return 1;
+    }
+    Result<Image> image = renderer->readback();
+    if (!image) {
+        std::cerr << "spatter-gallery: " << image.error() << "\n";
+        return 1;
+    }
+
+    std::error_code ec;
+    std::filesystem::create_directories(options.outDir, ec);
+    const std::string png = options.outDir + "/gallery.png", json = options.outDir + "/gallery.json";
+    if (Status s = writePng(png, image.value()); !s) {
+        std::cerr << "spatter-gallery: " << s.error() << "\n";
+        return 1;
+    }
+
+    const DecalStats& st = sim->decals().stats();
+    nlohmann::ordered_json out;
+    out["shots"] = sim->counters().shots;
+    out["placed"] = st.placed;
+    out["rejected"] = st.rejectedTotal();
+    out["evicted"] = st.evicted;
+    out["on_moving_targets"] = sim->counters().onMovingTargets;
+    out["alive"] = st.alive;
+    out["frames"] = frames;
+    out["placement_us_per_shot"] =
+        sim->counters().shots ? 1e6 * sim->counters().placementSeconds / double(sim->counters().shots) : 0.0;
+    out["gpu_ms_per_frame"] = frames ? gpuMs / frames : 0.0;
+    out["render_triangles"] = sim->renderTriangles();
+    out["proxy_triangles"] = sim->proxyTriangles();
+    out["error_bound"] = sim->errorBound();
+    nlohmann::ordered_json reasons;
+    for (size_t i = 1; i < kSpawnStatusCount; ++i)
+        if (st.rejected[i]) reasons[toString(SpawnStatus(i))] = st.rejected[i];
+    out["rejected_by_reason"] = reasons.is_null() ? nlohmann::ordered_json::object() : reasons;
+    out["expired"] = st.expired;
+    out["tolerance_percent"] = sim->tolerancePercent();
+    out["proxy_build_s"] = sim->proxySeconds();
+    out["tracked_decal"] = tracked ? tracked.value() : nlohmann::ordered_json{{"error", tracked.error()}};
+    out["size"] = {settings.width, settings.height};
+    out["seed"] = options.seed;
+    out["gl_renderer"] = glRenderer;
+    out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::ofstream file(json);
+    file << out.dump(2) << "\n";
+    if (!file) {
+        std::cerr << "spatter-gallery: cannot write " << json << "\n";
+        return 1;
+    }
+    std::cout << "spatter-gallery: " << st.placed << " of " << sim->counters().shots << " shots placed ("
+              << sim->counters().onMovingTargets << " on moving targets), " << st.alive << " alive, "
+              << st.evicted << " evicted; wrote " << png << " and " << json << "\n";
+    return 0;
+}
+
+} // namespace spatter::gallery

@@ -1,0 +1,245 @@
+#include "Interactive.hpp"
+
+#include "GallerySim.hpp"
+#include "GalleryView.hpp"
+
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+
+namespace spatter::gallery {
+
+namespace {
+
+// First-person camera: position, yaw about +Y and pitch, in radians.
+struct Player {
+    glm::dvec3 eye{0.0, 1.7, 7.5};
+    double yaw = 0.0; // 0 looks down -Z
+    double pitch = -0.05;
+
+    glm::dvec3 forward() const {
+        return {-std::sin(yaw) * std::cos(pitch), std::sin(pitch), -std::cos(yaw) * std::cos(pitch)};
+    }
+    Camera camera(double nearPlane) const {
+        Camera c;
+        c.eye = eye;
+        c.target = eye + forward();
+        c.nearPlane = nearPlane;
+        return c;
+    }
+};
+
+struct Trigger {
+    double interval = 0.1; // seconds between automatic shots while held
+    double cooldown = 0.0;
+    // True when a shot fires this frame: on the press, then every interval while held.
+    bool fire(bool held, double dt) {
+        cooldown -= dt;
+        if (!held) {
+            cooldown = 0.0;
+            return false;
+        }
+        if (cooldown > 0.0) return false;
+        cooldown = interval;
+        return true;
+    }
+};
+
+struct Hud {
+    View view = View::Final;
+    bool wrapAround = true;
+    float tolerance = 0.5f;
+    double lastPlacementUs = 0.0;
+    std::string lastResult;
+    std::string status;
+};
+
+const View kViews[] = {View::Final, View::Albedo, View::Normal, View::Depth, View::Ids, View::Coverage};
+
+void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& frame) {
+    ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.75f);
+    ImGui::Begin("spatter gallery", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    const DecalStats& st = sim.decals().stats();
+    ImGui::Text("decals alive %zu   placed %llu   evicted %llu", st.alive, (unsigned long long)st.placed,
+                (unsigned long long)st.evicted);
+    ImGui::Text("shots %llu   on moving targets %llu", (unsigned long long)sim.counters().shots,
+                (unsigned long long)sim.counters().onMovingTargets);
+    const double avgUs =
+        sim.counters().shots ? 1e6 * sim.counters().placementSeconds / double(sim.counters().shots) : 0.0;
+    ImGui::Text("placement: last %.1f us, mean %.1f us per shot", hud.lastPlacementUs, avgUs);
+    ImGui::Text("last shot: %s", hud.lastResult.c_str());
+    ImGui::Text("GPU: decal pass %.3f ms, frame %.3f ms", frame.gpu.decalsMs, frame.gpu.totalMs());
+    ImGui::Text("decals drawn %zu, culled %zu, camera inside %zu", frame.decalsDrawn, frame.decalsCulled,
+                frame.decalsInside);
+    ImGui::Text("triangles: render %zu, proxy %zu", sim.renderTriangles(), sim.proxyTriangles());
+    ImGui::Text("proxy error bound h = %.4f m", sim.errorBound());
+    ImGui::Separator();
+    int viewIndex = 0;
+    for (int i = 0; i < 6; ++i)
+        if (kViews[i] == hud.view) viewIndex = i;
+    if (ImGui::Combo("view", &viewIndex, "final\0albedo\0normal\0depth\0ids\0coverage\0"))
+        hud.view = kViews[viewIndex];
+    if (ImGui::Checkbox("paint wraps around corners", &hud.wrapAround)) {
+        sim.setPaintWrapAround(hud.wrapAround);
+        renderer.setDecalTypes(sim.types());
+    }
+    ImGui::SliderFloat("proxy tolerance %", &hud.tolerance, 0.0f, 5.0f, "%.2f");
+    if (ImGui::Button("rebuild proxies (clears decals)")) {
+        const Status s = sim.rebuildProxies(hud.tolerance);
+        hud.status = s ? "proxies rebuilt in " + std::to_string(sim.proxySeconds()) + " s" : s.error();
+        if (s) prepareRenderer(renderer, sim);
+    }
+    if (!hud.status.empty()) ImGui::TextWrapped("%s", hud.status.c_str());
+    ImGui::Separator();
+    ImGui::TextUnformatted("LMB bullet  RMB paint  F scorch  WASD/QE move  Tab cursor  Esc quit");
+    ImGui::End();
+
+    // Crosshair.
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const ImVec2 c(ImGui::GetIO().DisplaySize.x * 0.5f, ImGui::GetIO().DisplaySize.y * 0.5f);
+    draw->AddLine(ImVec2(c.x - 8, c.y), ImVec2(c.x + 8, c.y), IM_COL32(255, 255, 255, 220), 1.5f);
+    draw->AddLine(ImVec2(c.x, c.y - 8), ImVec2(c.x, c.y + 8), IM_COL32(255, 255, 255, 220), 1.5f);
+}
+
+} // namespace
+
+int runInteractive(const GalleryOptions& options, GlContext& context) {
+    Result<GallerySim> sim = GallerySim::create(options);
+    if (!sim) {
+        std::cerr << "spatter-gallery: " << sim.error() << "\n";
+        return 1;
+    }
+    int fbw = 0, fbh = 0;
+    context.framebufferSize(fbw, fbh);
+    RendererSettings settings;
+    settings.width = std::max(fbw, 16);
+    settings.height = std::max(fbh, 16);
+    Result<Renderer> renderer = Renderer::create(context, settings);
+    if (!renderer) {
+        std::cerr << "spatter-gallery: " << renderer.error() << "\n";
+        return 1;
+    }
+    if (Status s = prepareRenderer(renderer.value(), sim.value()); !s) {
+        std::cerr << "spatter-gallery: " << s.error() << "\n";
+        return 1;
+    }
+
+    GLFWwindow* window = context.window();
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+
+    const Camera start = startCamera(sim->scene());
+    Player player;
+    player.eye = start.eye;
+    const glm::dvec3 look = glm::normalize(start.target - start.eye);
+    player.yaw = std::atan2(-look.x, -look.z);
+    player.pitch = std::asin(std::clamp(look.y, -1.0, 1.0));
+    const double moveSpeed = std::max(1.0, 0.15 * glm::length(sim->scene().worldBounds().extent()));
+
+    bool captured = true;
+    glfwSetInputMode(window, GLFW_CURSOR, GLFW_CURSOR_DISABLED);
+    double mx = 0.0, my = 0.0;
+    glfwGetCursorPos(window, &mx, &my);
+    bool tabWasDown = false, scorchWasDown = false;
+    Trigger bullet{0.1}, paint{0.25};
+    Hud hud;
+    hud.tolerance = options.tolerancePercent;
+    FrameStats frame;
+    int frames = 0;
+    auto last = std::chrono::steady_clock::now();
+
+    while (!context.shouldClose()) {
+        context.pollEvents();
+        const auto now = std::chrono::steady_clock::now();
+        const double dt = std::min(0.1, std::chrono::duration<double>(now - last).count());
+        last = now;
+
+        if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, GLFW_TRUE);
+        const bool tabDown = glfwGetKey(window, GLFW_KEY_TAB) == GLFW_PRESS;
+        if (tabDown && !tabWasDown) {
+            captured = !captured;
+            glfwSetInputMode(window, GLFW_CURSOR, captured ? GLFW_CURSOR_DISABLED : GLFW_CURSOR_NORMAL);
+        }
+        tabWasDown = tabDown;
+
+        double cx = 0.0, cy = 0.0;
+        glfwGetCursorPos(window, &cx, &cy);
+        if (captured) {
+            player.yaw -= (cx - mx) * 0.0025;
+            player.pitch = std::clamp(player.pitch - (cy - my) * 0.0025, -1.5, 1.5);
+        }
+        mx = cx;
+        my = cy;
+
+        const glm::dvec3 fwd = player.forward();
+        const glm::dvec3 flat = glm::normalize(glm::dvec3(fwd.x, 0.0, fwd.z));
+        const glm::dvec3 right(-flat.z, 0.0, flat.x);
+        glm::dvec3 move(0.0);
+        if (glfwGetKey(window, GLFW_KEY_W) == GLFW_PRESS) move += flat;
+        if (glfwGetKey(window, GLFW_KEY_S) == GLFW_PRESS) move -= flat;
+        if (glfwGetKey(window, GLFW_KEY_D) == GLFW_PRESS) move += right;
+        if (glfwGetKey(window, GLFW_KEY_A) == GLFW_PRESS) move -= right;
+        if (glfwGetKey(window, GLFW_KEY_E) == GLFW_PRESS) move.y += 1.0;
+        if (glfwGetKey(window, GLFW_KEY_Q) == GLFW_PRESS) move.y -= 1.0;
+        const double speed = moveSpeed * (glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ? 3.0 : 1.0);
+        if (glm::length(move) > 0.0) player.eye += glm::normalize(move) * speed * dt;
+
+        sim->advance(dt);
+        const Camera camera = player.camera(start.nearPlane);
+        context.framebufferSize(fbw, fbh);
+        const double aspect = fbh > 0 ? double(fbw) / fbh : 1.0;
+
+        const bool shooting = captured && !ImGui::GetIO().WantCaptureMouse;
+        auto fire = [&](ShotKind kind) {
+            const auto t0 = std::chrono::steady_clock::now();
+            const SpawnResult r = sim->shoot(rayThrough(camera, aspect, 0.0, 0.0), kind);
+            hud.lastPlacementUs =
+                1e6 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            hud.lastResult = r.placed() ? "placed" : toString(r.status);
+        };
+        if (bullet.fire(shooting && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS, dt))
+            fire(ShotKind::Bullet);
+        if (paint.fire(shooting && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS, dt))
+            fire(ShotKind::Paint);
+        const bool scorchDown = glfwGetKey(window, GLFW_KEY_F) == GLFW_PRESS;
+        if (scorchDown && !scorchWasDown && captured) fire(ShotKind::Scorch);
+        scorchWasDown = scorchDown;
+
+        if (fbw > 0 && fbh > 0) {
+            if (fbw != renderer->settings().width || fbh != renderer->settings().height)
+                renderer->resize(fbw, fbh);
+            syncRenderer(renderer.value(), sim.value());
+            if (Result<FrameStats> st = renderer->render(camera, hud.view); st) frame = st.value();
+            renderer->present(fbw, fbh);
+        }
+
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        drawHud(hud, sim.value(), renderer.value(), frame);
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        context.swapBuffers();
+
+        if (options.quitAfterFrames > 0 && ++frames >= options.quitAfterFrames)
+            glfwSetWindowShouldClose(window, GLFW_TRUE);
+    }
+
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    std::cout << "spatter-gallery: " << sim->decals().stats().placed << " decals placed in " << frames
+              << " frames\n";
+    return 0;
+}
+
+} // namespace spatter::gallery

@@ -1,0 +1,357 @@
+// spatter-place SCENE: casts rays at a scene through the decal system and prints one JSON record
+// per ray (JSON Lines), in input order.
+
+#include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/core/SceneLoader.hpp"
+#include "spatter/placement/DecalSystem.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+const char* kUsage = R"(usage: spatter-place SCENE [--rays FILE|-] [--seed N] [--size W[,H]] [--max-angle DEG]
+                     [--proxy render|auto|TOL] [--translate X,Y,Z] [--out FILE] [--summary]
+
+Casts rays at SCENE (builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file) through the
+decal system and prints one JSON object per input ray, in input order (JSON Lines), on stdout or
+into --out FILE.
+
+Rays (--rays FILE, or standard input when FILE is - or the option is absent): one per line,
+"ox oy oz dx dy dz" in world space; the direction need not be unit length. '#' starts a comment;
+lines with nothing but blanks and comments are not rays. Rays are numbered from 0.
+
+Records:
+  {"ray":0,"status":"placed","reason":"","object":"name","object_id":0,"decal_id":123,
+   "position":[x,y,z],"normal":[x,y,z],"tangent":[x,y,z],"bitangent":[x,y,z],"size":[w,h],
+   "half_depth":d,"max_angle_deg":a,"proxy_error_bound":h}
+  {"ray":1,"status":"missed","reason":"..."}
+  {"ray":2,"status":"rejected","reason":"..."}
+status is placed, missed (the ray hits no decal receiver) or rejected (a line that cannot be
+parsed, an invalid ray, a grazing hit, ...); non-placed records carry only ray, status and reason.
+position is the decal centre in world space (the hit on the collision mesh); normal, tangent and
+bitangent are the unit axes of its right-handed frame; the decal box is |x| <= w/2, |y| <= h/2,
+|z| <= half_depth in that frame. object_id is the object's 8-bit decal ID (0 for static
+geometry), decal_id the decal's 32-bit random ID. proxy_error_bound is the collision mesh's error
+bound h in world units (the render surface lies within h of the collision surface);
+half_depth = h + 0.25 * max(w, h).
+
+Options:
+  --seed N          seed of the decal IDs and rotations (default 1)
+  --size W[,H]      decal width and height in world units (default 0.1; H defaults to W)
+  --max-angle DEG   largest angle between the reversed ray and the surface normal, in (0, 90]
+                    (default 80); steeper hits are rejected
+  --proxy MODE      collision meshes: render (the render meshes as they are, h = 0; the
+                    default), auto (the proxy builder's defaults: h target 0.5% of each object's
+                    bounding diagonal), or a tolerance TOL for h, absolute (0.01) or relative to
+                    each object's bounding diagonal (1%). With auto and TOL an object's authored
+                    collider, where it has one, is its proxy; h is certified by the proxy builder
+  --translate X,Y,Z move the whole scene by this offset before building the collision world (the
+                    rays are given in the moved world)
+  --out FILE        write the records to FILE instead of stdout
+  --summary         print one JSON object on stderr: rays, placed, missed, rejected by reason,
+                    render_triangles, proxy_triangles, seconds
+  --help            this text
+
+No area limits apply: every ray gets its own decal. Exit code 0 when the scene loads (whatever
+happens to the rays), 1 when it cannot be loaded (or a proxy cannot be built), 2 on bad options or
+unreadable files.
+)";
+
+// The double nearest to the shortest decimal that reads back as `f`, so that floats print briefly.
+double shortFloat(float f) {
+    char buf[32];
+    for (int precision = 6; precision <= 9; ++precision) {
+        std::snprintf(buf, sizeof buf, "%.*g", precision, double(f));
+        if (std::strtof(buf, nullptr) == f) break;
+    }
+    return std::strtod(buf, nullptr);
+}
+
+nlohmann::ordered_json vec3(const glm::vec3& v) {
+    return {shortFloat(v.x), shortFloat(v.y), shortFloat(v.z)};
+}
+
+bool parseDouble(const std::string& s, double& out) {
+    if (s.empty()) return false;
+    char* end = nullptr;
+    out = std::strtod(s.c_str(), &end);
+    return end == s.c_str() + s.size();
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> parts;
+    std::string part;
+    std::istringstream in(s);
+    while (std::getline(in, part, sep))
+        parts.push_back(part);
+    if (!s.empty() && s.back() == sep) parts.push_back("");
+    return parts;
+}
+
+// A ray line, or an error message.
+struct ParsedLine {
+    bool isRay = false; // false: blank or comment only
+    bool ok = false;
+    spatter::Ray ray;
+    std::string error;
+};
+
+ParsedLine parseRayLine(const std::string& raw, size_t lineNumber) {
+    ParsedLine p;
+    const std::string line = raw.substr(0, raw.find('#'));
+    std::istringstream in(line);
+    std::vector<std::string> tokens;
+    for (std::string tok; in >> tok;)
+        tokens.push_back(tok);
+    if (tokens.empty()) return p;
+    p.isRay = true;
+    double v[6];
+    bool good = tokens.size() == 6;
+    for (size_t i = 0; good && i < 6; ++i)
+        good = parseDouble(tokens[i], v[i]);
+    if (!good) {
+        p.error = "line " + std::to_string(lineNumber) + ": expected 6 numbers \"ox oy oz dx dy dz\"";
+        return p;
+    }
+    p.ok = true;
+    p.ray.origin = glm::dvec3(v[0], v[1], v[2]);
+    p.ray.direction = glm::dvec3(v[3], v[4], v[5]);
+    return p;
+}
+
+int usageError(const std::string& message) {
+    std::cerr << "spatter-place: " << message << "\n(see spatter-place --help)\n";
+    return 2;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point start = Clock::now();
+
+    std::string scenePath, raysPath = "-", outPath, proxyMode = "render";
+    uint64_t seed = 1;
+    float width = 0.1f, height = 0.1f, maxAngle = 80.0f;
+    glm::dvec3 translate(0.0);
+    bool summary = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&](std::string& out) {
+            if (i + 1 >= argc) return false;
+            out = argv[++i];
+            return true;
+        };
+        std::string v;
+        if (a == "--help" || a == "-h") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        } else if (a == "--summary") {
+            summary = true;
+        } else if (a == "--rays") {
+            if (!value(raysPath)) return usageError("--rays needs a file");
+        } else if (a == "--out") {
+            if (!value(outPath)) return usageError("--out needs a file");
+        } else if (a == "--proxy") {
+            if (!value(proxyMode)) return usageError("--proxy needs render, auto or a tolerance");
+        } else if (a == "--seed") {
+            char* end = nullptr;
+            if (!value(v) || v.empty() || v[0] == '-')
+                return usageError("--seed needs a non-negative integer");
+            seed = std::strtoull(v.c_str(), &end, 10);
+            if (end != v.c_str() + v.size()) return usageError("--seed needs a non-negative integer");
+        } else if (a == "--size") {
+            if (!value(v)) return usageError("--size needs W or W,H");
+            const std::vector<std::string> parts = split(v, ',');
+            double w = 0.0, h = 0.0;
+            if (parts.empty() || parts.size() > 2 || !parseDouble(parts[0], w) ||
+                (parts.size() == 2 && !parseDouble(parts[1], h)))
+                return usageError("--size needs W or W,H");
+            if (parts.size() == 1) h = w;
+            width = float(w);
+            height = float(h);
+        } else if (a == "--max-angle") {
+            double d = 0.0;
+            if (!value(v) || !parseDouble(v, d)) return usageError("--max-angle needs a number of degrees");
+            maxAngle = float(d);
+        } else if (a == "--translate") {
+            const std::vector<std::string> parts = value(v) ? split(v, ',') : std::vector<std::string>();
+            if (parts.size() != 3 || !parseDouble(parts[0], translate.x) ||
+                !parseDouble(parts[1], translate.y) || !parseDouble(parts[2], translate.z) ||
+                !std::isfinite(translate.x) || !std::isfinite(translate.y) || !std::isfinite(translate.z))
+                return usageError("--translate needs three finite numbers X,Y,Z");
+        } else if (!a.empty() && a[0] == '-' && a != "-") {
+            return usageError("unknown option " + a);
+        } else if (scenePath.empty()) {
+            scenePath = a;
+        } else {
+            return usageError("more than one scene given");
+        }
+    }
+    if (scenePath.empty()) return usageError("no scene given");
+    spatter::ProxySettings proxySettings;
+    if (proxyMode != "render" && proxyMode != "auto") {
+        std::string number = proxyMode;
+        proxySettings.toleranceRelative = !number.empty() && number.back() == '%';
+        if (proxySettings.toleranceRelative) number.pop_back();
+        double tolerance = 0.0;
+        if (!parseDouble(number, tolerance) || !std::isfinite(tolerance) || tolerance < 0.0)
+            return usageError("--proxy needs render, auto or a tolerance (0.01 or 1%)");
+        proxySettings.tolerance = float(proxySettings.toleranceRelative ? tolerance / 100.0 : tolerance);
+    }
+
+    spatter::Result<spatter::Scene> scene = spatter::loadScene(scenePath);
+    if (!scene) {
+        std::cerr << "spatter-place: " << scene.error() << "\n";
+        return 1;
+    }
+    scene->translate(translate);
+
+    std::vector<std::optional<spatter::Proxy>> proxies;
+    if (proxyMode != "render") {
+        proxies.resize(scene->objects.size());
+        for (size_t i = 0; i < scene->objects.size(); ++i) {
+            const spatter::SceneObject& o = scene->objects[i];
+            if (!o.receivesDecals) continue;
+            spatter::Result<spatter::Proxy> proxy =
+                spatter::buildProxy(o.mesh, proxySettings, o.collider ? &*o.collider : nullptr);
+            if (!proxy) {
+                std::cerr << "spatter-place: proxy of object '" << o.name << "': " << proxy.error() << "\n";
+                return 1;
+            }
+            proxies[i] = std::move(proxy).value();
+        }
+    }
+    spatter::WorldSettings worldSettings;
+    worldSettings.useColliders = false; // --proxy render: the render meshes as they are
+    spatter::Result<spatter::CollisionWorld> world =
+        spatter::CollisionWorld::build(scene.value(), proxies, worldSettings);
+    if (!world) {
+        std::cerr << "spatter-place: " << world.error() << "\n";
+        return 1;
+    }
+    spatter::DecalSettings settings;
+    settings.seed = seed;
+    settings.maxPerCell = std::numeric_limits<uint32_t>::max();
+    settings.budget = std::numeric_limits<uint32_t>::max();
+    settings.maxPerObject = std::numeric_limits<uint32_t>::max();
+    spatter::Result<spatter::DecalSystem> system =
+        spatter::DecalSystem::create(std::move(world).value(), settings);
+    if (!system) {
+        std::cerr << "spatter-place: " << system.error() << "\n";
+        return 1;
+    }
+    spatter::DecalType type;
+    type.name = "spatter-place";
+    type.size = glm::vec2(width, height);
+    type.maxAngleDeg = maxAngle;
+    spatter::Result<uint16_t> typeIndex = system->registerType(type);
+    if (!typeIndex) return usageError(typeIndex.error());
+
+    // Read every ray line.
+    std::ifstream file;
+    std::istream* in = &std::cin;
+    if (raysPath != "-") {
+        file.open(raysPath);
+        if (!file) return usageError("cannot read " + raysPath);
+        in = &file;
+    }
+    std::vector<ParsedLine> lines;
+    std::vector<spatter::Ray> rays;
+    size_t lineNumber = 0;
+    for (std::string raw; std::getline(*in, raw);) {
+        ParsedLine p = parseRayLine(raw, ++lineNumber);
+        if (!p.isRay) continue;
+        if (p.ok) rays.push_back(p.ray);
+        lines.push_back(std::move(p));
+    }
+
+    std::ofstream outFile;
+    std::ostream* out = &std::cout;
+    if (!outPath.empty()) {
+        outFile.open(outPath);
+        if (!outFile) return usageError("cannot write " + outPath);
+        out = &outFile;
+    }
+
+    const Clock::time_point traceStart = Clock::now();
+    std::vector<spatter::SpawnResult> results;
+    system->spawnBatch(rays, typeIndex.value(), results);
+    const double traceSeconds = std::chrono::duration<double>(Clock::now() - traceStart).count();
+
+    size_t placed = 0, missed = 0, unparseable = 0;
+    size_t rejectedBy[spatter::kSpawnStatusCount] = {};
+    size_t next = 0;
+    for (size_t r = 0; r < lines.size(); ++r) {
+        nlohmann::ordered_json rec;
+        rec["ray"] = r;
+        if (!lines[r].ok) {
+            unparseable++;
+            rec["status"] = "rejected";
+            rec["reason"] = "cannot parse the ray: " + lines[r].error;
+        } else {
+            const spatter::SpawnResult& res = results[next++];
+            if (res.placed()) {
+                placed++;
+                const spatter::Decal& d = *system->get(res.handle);
+                const spatter::WorldDecal w = system->worldBox(d);
+                rec["status"] = "placed";
+                rec["reason"] = "";
+                rec["object"] = system->world().object(d.object)->name;
+                rec["object_id"] = d.objectId;
+                rec["decal_id"] = d.id;
+                rec["position"] = {w.center.x, w.center.y, w.center.z};
+                rec["normal"] = vec3(w.frame.normal);
+                rec["tangent"] = vec3(w.frame.tangent);
+                rec["bitangent"] = vec3(w.frame.bitangent);
+                rec["size"] = {shortFloat(w.size.x), shortFloat(w.size.y)};
+                rec["half_depth"] = shortFloat(w.halfDepth);
+                rec["max_angle_deg"] = shortFloat(maxAngle);
+                rec["proxy_error_bound"] = system->world().worldErrorBound(d.object);
+            } else if (res.status == spatter::SpawnStatus::Missed) {
+                missed++;
+                rec["status"] = "missed";
+                rec["reason"] = res.reason;
+            } else {
+                rejectedBy[size_t(res.status)]++;
+                rec["status"] = "rejected";
+                rec["reason"] = std::string(spatter::toString(res.status)) + ": " + res.reason;
+            }
+        }
+        *out << rec.dump() << '\n';
+    }
+    out->flush();
+
+    if (summary) {
+        nlohmann::ordered_json s;
+        s["rays"] = lines.size();
+        s["placed"] = placed;
+        s["missed"] = missed;
+        nlohmann::ordered_json rejected;
+        rejected["unparseable"] = unparseable;
+        for (size_t k = 0; k < spatter::kSpawnStatusCount; ++k) {
+            const auto status = spatter::SpawnStatus(k);
+            if (status == spatter::SpawnStatus::Placed || status == spatter::SpawnStatus::Missed) continue;
+            rejected[spatter::toString(status)] = rejectedBy[k];
+        }
+        s["rejected"] = std::move(rejected);
+        s["render_triangles"] = scene->triangleCount();
+        s["proxy_triangles"] = system->world().triangleCount();
+        s["trace_seconds"] = traceSeconds;
+        s["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();
+        std::cerr << s.dump() << "\n";
+    }
+    return 0;
+}

@@ -1,0 +1,227 @@
+// spatter-proxy build MESH --tolerance T[%] ...: builds the collision proxy of a mesh or scene, writes it
+// as OBJ and reports its certified error bound.
+
+#include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/core/SceneLoader.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <unistd.h>
+
+static const char* kUsage = R"(usage: spatter-proxy build MESH --tolerance T[%] [--backend openmesh|meshopt|auto]
+                           --out PROXY.obj [--report REPORT.json] [--cache DIR]
+                           [--max-triangles N] [--quiet]
+
+Builds the collision proxy of MESH and writes it to PROXY.obj (positions, normals, triangles).
+
+  MESH              builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file. The render
+                    meshes of all its objects are merged into one mesh in world space.
+  --tolerance T     target for the error bound h, in world units; T% is a percentage of the
+                    diagonal of the merged mesh's bounding box (0.5% = 0.005 x diagonal).
+  --backend B       openmesh (OpenMesh Decimater), meshopt (meshoptimizer, the fast path) or
+                    auto (the default: picks by size and tolerance).
+  --report FILE     writes {"input_triangles", "proxy_triangles", "backend", "tolerance",
+                    "error_bound", "proxy_to_render_max", "render_to_proxy_max", "seconds",
+                    "cached"}: tolerance and distances in world units, backend "none" when the
+                    mesh is its own proxy (below 512 triangles, or nothing to remove).
+  --cache DIR       reuses or stores the proxy in DIR, keyed by a hash of the mesh and the
+                    settings. Without it nothing is cached.
+  --max-triangles N largest number of proxy triangles (0, the default: no limit).
+  --quiet           no progress on stderr.
+
+h is never below the true two-sided Hausdorff distance between the proxy and the merged mesh.
+Progress and notes go to stderr. Exit code 0 on success, 1 on an error (one line on stderr),
+2 on bad usage.
+)";
+
+namespace {
+
+int usageError(const std::string& message) {
+    std::cerr << "spatter-proxy: " << message << "\n(spatter-proxy --help for usage)\n";
+    return 2;
+}
+
+bool parseNumber(const std::string& text, double& out) {
+    if (text.empty()) return false;
+    char* end = nullptr;
+    out = std::strtod(text.c_str(), &end);
+    return end == text.c_str() + text.size() && std::isfinite(out);
+}
+
+// The render meshes of every object, transformed to world space, as one mesh.
+spatter::Mesh mergeWorld(const spatter::Scene& scene) {
+    spatter::Mesh out;
+    for (const spatter::SceneObject& o : scene.objects) {
+        const uint32_t base = uint32_t(out.positions.size());
+        for (const glm::vec3& p : o.mesh.positions)
+            out.positions.push_back(glm::vec3(o.transform * glm::dvec4(glm::dvec3(p), 1.0)));
+        for (uint32_t i : o.mesh.indices) out.indices.push_back(base + i);
+    }
+    spatter::computeNormals(out);
+    return out;
+}
+
+bool writeObj(const std::string& path, const spatter::Proxy& proxy) {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) return false;
+    const spatter::Mesh& m = proxy.mesh;
+    std::fprintf(f, "# spatter-proxy: %zu vertices, %zu triangles, source %s, backend %s, h = %.9g\n",
+                 m.positions.size(), m.triangleCount(), spatter::proxySourceName(proxy.source),
+                 spatter::proxyBackendName(proxy.backend), proxy.errorBound);
+    for (const glm::vec3& p : m.positions) std::fprintf(f, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
+    for (const glm::vec3& n : m.normals) std::fprintf(f, "vn %.9g %.9g %.9g\n", n.x, n.y, n.z);
+    for (size_t t = 0; t < m.triangleCount(); ++t) {
+        const uint32_t a = m.indices[3 * t] + 1, b = m.indices[3 * t + 1] + 1, c = m.indices[3 * t + 2] + 1;
+        std::fprintf(f, "f %u//%u %u//%u %u//%u\n", a, a, b, b, c, c);
+    }
+    const bool ok = std::ferror(f) == 0;
+    return std::fclose(f) == 0 && ok;
+}
+
+// Progress on stderr: on a terminal one line per stage, rewritten in place; otherwise a line at the
+// start of each stage and at every quarter.
+class ProgressPrinter {
+public:
+    bool operator()(float fraction, const char* stage) {
+        const int percent = int(std::lround(std::clamp(fraction, 0.0f, 1.0f) * 100.0f));
+        const bool newStage = stage_ != stage;
+        if (!newStage && percent == percent_) return true;
+        if (tty_) {
+            if (newStage && !stage_.empty()) std::fputc('\n', stderr);
+            std::fprintf(stderr, "\rspatter-proxy: %-8s %3d%%", stage, percent);
+        } else if (newStage || percent / 25 != percent_ / 25) {
+            std::fprintf(stderr, "spatter-proxy: %-8s %3d%%\n", stage, percent);
+        }
+        stage_ = stage;
+        percent_ = percent;
+        return true;
+    }
+    void finish() {
+        if (tty_ && !stage_.empty()) std::fputc('\n', stderr);
+        stage_.clear();
+    }
+
+private:
+    bool tty_ = isatty(fileno(stderr)) != 0;
+    std::string stage_;
+    int percent_ = -1;
+};
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc >= 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) {
+        std::fputs(kUsage, stdout);
+        return 0;
+    }
+    if (argc < 3 || std::strcmp(argv[1], "build") != 0) {
+        std::fputs(kUsage, stderr);
+        return 2;
+    }
+    const std::string mesh = argv[2];
+    std::string out, report, toleranceText;
+    bool quiet = false;
+    spatter::ProxySettings settings;
+    for (int i = 3; i < argc; ++i) {
+        const std::string arg = argv[i];
+        auto value = [&](std::string& into) {
+            if (i + 1 >= argc) return false;
+            into = argv[++i];
+            return true;
+        };
+        std::string v;
+        if (arg == "--tolerance") {
+            if (!value(toleranceText)) return usageError("--tolerance needs a value");
+        } else if (arg == "--backend") {
+            if (!value(v)) return usageError("--backend needs a value");
+            if (v == "openmesh") settings.backend = spatter::ProxyBackend::OpenMesh;
+            else if (v == "meshopt") settings.backend = spatter::ProxyBackend::MeshOpt;
+            else if (v == "auto") settings.backend = spatter::ProxyBackend::Auto;
+            else return usageError("unknown backend '" + v + "' (openmesh, meshopt or auto)");
+        } else if (arg == "--out") {
+            if (!value(out)) return usageError("--out needs a file");
+        } else if (arg == "--report") {
+            if (!value(report)) return usageError("--report needs a file");
+        } else if (arg == "--cache") {
+            if (!value(settings.cacheDirectory)) return usageError("--cache needs a directory");
+        } else if (arg == "--max-triangles") {
+            double n = 0.0;
+            if (!value(v) || !parseNumber(v, n) || n < 0.0 || n > 4294967295.0 || n != std::floor(n))
+                return usageError("--max-triangles needs a whole number >= 0");
+            settings.maxTriangles = uint32_t(n);
+        } else if (arg == "--quiet") {
+            quiet = true;
+        } else {
+            return usageError("unknown argument '" + arg + "'");
+        }
+    }
+    if (toleranceText.empty()) return usageError("--tolerance is required");
+    if (out.empty()) return usageError("--out is required");
+    const bool percent = toleranceText.back() == '%';
+    double tolerance = 0.0;
+    if (!parseNumber(percent ? toleranceText.substr(0, toleranceText.size() - 1) : toleranceText, tolerance) ||
+        tolerance < 0.0)
+        return usageError("--tolerance needs a number >= 0, optionally followed by %");
+    settings.tolerance = float(percent ? tolerance / 100.0 : tolerance);
+    settings.toleranceRelative = percent;
+
+    spatter::Result<spatter::Scene> scene = spatter::loadScene(mesh);
+    if (!scene) {
+        std::cerr << "spatter-proxy: " << scene.error() << "\n";
+        return 1;
+    }
+    const spatter::Mesh world = mergeWorld(scene.value());
+    for (const spatter::SceneObject& o : scene->objects)
+        if (o.collider && !quiet)
+            std::cerr << "spatter-proxy: note: object '" << o.name
+                      << "' has an authored collider; this tool simplifies the merged render meshes\n";
+
+    ProgressPrinter printer;
+    spatter::ProgressCallback progress;
+    if (!quiet) progress = [&printer](float f, const char* stage) { return printer(f, stage); };
+    spatter::Result<spatter::Proxy> proxy = spatter::buildProxy(world, settings, nullptr, progress);
+    printer.finish();
+    if (!proxy) {
+        std::cerr << "spatter-proxy: " << mesh << ": " << proxy.error() << "\n";
+        return 1;
+    }
+    if (!quiet)
+        for (const std::string& note : proxy->notes) std::cerr << "spatter-proxy: note: " << note << "\n";
+    if (!writeObj(out, proxy.value())) {
+        std::cerr << "spatter-proxy: cannot write " << out << "\n";
+        return 1;
+    }
+    nlohmann::ordered_json r;
+    r["input_triangles"] = proxy->inputTriangles;
+    r["proxy_triangles"] = proxy->proxyTriangles;
+    r["backend"] = spatter::proxyBackendName(proxy->backend);
+    r["tolerance"] = proxy->tolerance;
+    r["error_bound"] = proxy->errorBound;
+    r["proxy_to_render_max"] = proxy->proxyToRenderMax;
+    r["render_to_proxy_max"] = proxy->renderToProxyMax;
+    r["seconds"] = proxy->seconds;
+    r["cached"] = proxy->cached;
+    if (!report.empty()) {
+        std::ofstream f(report);
+        f << r.dump(2) << "\n";
+        f.close();
+        if (!f) {
+            std::cerr << "spatter-proxy: cannot write " << report << "\n";
+            return 1;
+        }
+    }
+    if (!quiet)
+        std::cerr << "spatter-proxy: " << proxy->inputTriangles << " -> " << proxy->proxyTriangles << " triangles ("
+                  << spatter::proxySourceName(proxy->source) << ", " << spatter::proxyBackendName(proxy->backend)
+                  << "), h = " << proxy->errorBound << " (tolerance " << proxy->tolerance << "), "
+                  << proxy->seconds << " s" << (proxy->cached ? ", cached" : "") << "\n";
+    return 0;
+}

@@ -1,0 +1,485 @@
+#include "spatter/core/MeshDistance.hpp"
+
+#include "spatter/core/Random.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace spatter {
+
+namespace {
+
+// Relative allowance added to every bound for the rounding of double arithmetic (sample positions and
+// point-triangle distances are computed in double from float vertex positions).
+constexpr double kRoundingAllowance = 1e-9;
+
+Status checkTriangles(const Mesh& mesh) {
+    const size_t n = mesh.positions.size();
+    if (mesh.indices.size() % 3 != 0)
+        return fail("index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
+    for (size_t i = 0; i < mesh.indices.size(); ++i)
+        if (mesh.indices[i] >= n)
+            return fail("index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
+                        ", past the vertex count " + std::to_string(n));
+    for (size_t i = 0; i < n; ++i) {
+        const glm::vec3& p = mesh.positions[i];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            return fail("position " + std::to_string(i) + " is not finite (NaN or Inf)");
+    }
+    return {};
+}
+
+glm::dvec3 corner(const Mesh& mesh, size_t triangle, int k) {
+    return glm::dvec3(mesh.positions[mesh.indices[3 * triangle + size_t(k)]]);
+}
+
+// Triangles with three distinct indices and a non-zero cross product: the drawn surface.
+std::vector<uint32_t> surfaceTriangles(const Mesh& mesh) {
+    std::vector<uint32_t> out;
+    out.reserve(mesh.triangleCount());
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+        const uint32_t i0 = mesh.indices[3 * t], i1 = mesh.indices[3 * t + 1], i2 = mesh.indices[3 * t + 2];
+        if (i0 == i1 || i1 == i2 || i2 == i0) continue;
+        const glm::dvec3 a = corner(mesh, t, 0);
+        const glm::dvec3 n = glm::cross(corner(mesh, t, 1) - a, corner(mesh, t, 2) - a);
+        if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0) continue;
+        out.push_back(uint32_t(t));
+    }
+    return out;
+}
+
+// Closest point to `p` on the triangle (a, b, c) (Ericson, Real-Time Collision Detection, 5.1.5).
+// The triangle has non-zero area.
+glm::dvec3 closestOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return a;
+    const glm::dvec3 bp = p - b;
+    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
+    const glm::dvec3 cp = p - c;
+    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    const double denom = 1.0 / (va + vb + vc);
+    return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// Radius of the smallest circle enclosing the triangle: the circumradius when no angle is obtuse,
+// half the longest edge otherwise. Every point of the triangle lies within it of a corner.
+double enclosingRadius(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    const double ab2 = glm::dot(b - a, b - a), bc2 = glm::dot(c - b, c - b), ca2 = glm::dot(a - c, a - c);
+    const double longest2 = std::max({ab2, bc2, ca2});
+    const double halfLongest = 0.5 * std::sqrt(longest2);
+    if (longest2 >= ab2 + bc2 + ca2 - longest2) return halfLongest;
+    const double twiceArea = glm::length(glm::cross(b - a, c - a));
+    const double circumradius = std::sqrt(ab2 * bc2 * ca2) / (2.0 * twiceArea);
+    return std::isfinite(circumradius) ? std::max(circumradius, halfLongest) : halfLongest;
+}
+
+// Runs body(begin, end, worker) over [0, count) in chunks on up to hardware_concurrency threads. The
+// calling thread takes part (as worker 0) and reports done/count between its chunks; when report
+// returns false the remaining chunks are skipped and false is returned.
+template <class Body, class Report>
+bool parallelChunks(size_t count, size_t chunk, unsigned workers, Body&& body, Report&& report) {
+    const size_t chunks = (count + chunk - 1) / chunk;
+    std::atomic<size_t> next{0}, done{0};
+    std::atomic<bool> cancelled{false};
+    auto run = [&](unsigned worker) {
+        while (!cancelled.load(std::memory_order_relaxed)) {
+            const size_t c = next.fetch_add(1);
+            if (c >= chunks) break;
+            const size_t begin = c * chunk, end = std::min(count, begin + chunk);
+            body(begin, end, worker);
+            done.fetch_add(end - begin);
+            if (worker == 0 && !report(double(done.load()) / double(std::max<size_t>(count, 1))))
+                cancelled = true;
+        }
+    };
+    std::vector<std::thread> threads;
+    for (unsigned w = 1; w < workers && w < chunks; ++w) threads.emplace_back(run, w);
+    run(0);
+    for (std::thread& t : threads) t.join();
+    return !cancelled.load();
+}
+
+unsigned workerCount() {
+    const unsigned hw = std::thread::hardware_concurrency();
+    return std::clamp(hw, 1u, 16u);
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+// ClosestPointQuery
+
+struct ClosestPointQuery::Impl {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    std::vector<glm::dvec3> corners;   // three per surface triangle
+    std::vector<uint32_t> triangleIds; // surface triangle -> mesh triangle
+
+    ~Impl() {
+        if (scene) rtcReleaseScene(scene);
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+namespace {
+
+struct PointQueryState {
+    const glm::dvec3* corners;
+    glm::dvec3 p;
+    double best2 = std::numeric_limits<double>::infinity();
+    glm::dvec3 bestPoint{0.0};
+    uint32_t bestTriangle = 0;
+};
+
+bool closestPointCallback(RTCPointQueryFunctionArguments* args) {
+    auto* s = static_cast<PointQueryState*>(args->userPtr);
+    const glm::dvec3* t = s->corners + 3 * size_t(args->primID);
+    const glm::dvec3 q = closestOnTriangle(s->p, t[0], t[1], t[2]);
+    const double d2 = glm::dot(q - s->p, q - s->p);
+    if (!(d2 < s->best2)) return false;
+    s->best2 = d2;
+    s->bestPoint = q;
+    s->bestTriangle = args->primID;
+    // Rounded up so that no triangle at the current best distance is culled by the float radius.
+    const float r = std::nextafter(float(std::sqrt(d2)), std::numeric_limits<float>::infinity());
+    if (r < args->query->radius) {
+        args->query->radius = r;
+        return true;
+    }
+    return false;
+}
+
+} // namespace
+
+ClosestPointQuery::ClosestPointQuery(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+ClosestPointQuery::ClosestPointQuery(ClosestPointQuery&&) noexcept = default;
+ClosestPointQuery& ClosestPointQuery::operator=(ClosestPointQuery&&) noexcept = default;
+ClosestPointQuery::~ClosestPointQuery() = default;
+
+Result<ClosestPointQuery> ClosestPointQuery::create(const Mesh& mesh) {
+    if (Status s = checkTriangles(mesh); !s) return fail(s.error());
+    auto impl = std::make_unique<Impl>();
+    const std::vector<uint32_t> surface = surfaceTriangles(mesh);
+    impl->triangleIds = surface;
+    impl->corners.reserve(3 * surface.size());
+    for (uint32_t t : surface)
+        for (int k = 0; k < 3; ++k) impl->corners.push_back(corner(mesh, t, k));
+    if (surface.empty()) return ClosestPointQuery(std::move(impl));
+
+    impl->device = rtcNewDevice(nullptr);
+    if (!impl->device) return fail("Embree could not create a device");
+    impl->scene = rtcNewScene(impl->device);
+    RTCGeometry geom = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                 3 * sizeof(float), mesh.positions.size()));
+    auto* indices = static_cast<uint32_t*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), surface.size()));
+    if (!vertices || !indices) {
+        rtcReleaseGeometry(geom);
+        return fail("Embree could not allocate buffers for " + std::to_string(surface.size()) + " triangles");
+    }
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        vertices[3 * i] = mesh.positions[i].x;
+        vertices[3 * i + 1] = mesh.positions[i].y;
+        vertices[3 * i + 2] = mesh.positions[i].z;
+    }
+    for (size_t i = 0; i < surface.size(); ++i)
+        for (int k = 0; k < 3; ++k) indices[3 * i + size_t(k)] = mesh.indices[3 * size_t(surface[i]) + size_t(k)];
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(impl->scene, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(impl->scene);
+    if (const RTCError err = rtcGetDeviceError(impl->device); err != RTC_ERROR_NONE)
+        return fail("Embree failed to build the closest-point structure (error " + std::to_string(int(err)) + ")");
+    return ClosestPointQuery(std::move(impl));
+}
+
+std::optional<ClosestPoint> ClosestPointQuery::closest(const glm::dvec3& p) const {
+    if (!impl_->scene) return std::nullopt;
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return std::nullopt;
+    PointQueryState state;
+    state.corners = impl_->corners.data();
+    state.p = p;
+    RTCPointQuery query;
+    query.x = float(p.x);
+    query.y = float(p.y);
+    query.z = float(p.z);
+    query.time = 0.0f;
+    query.radius = std::numeric_limits<float>::infinity();
+    RTCPointQueryContext context;
+    rtcInitPointQueryContext(&context);
+    rtcPointQuery(impl_->scene, &query, &context, closestPointCallback, &state);
+    if (!std::isfinite(state.best2)) return std::nullopt;
+    ClosestPoint out;
+    out.point = state.bestPoint;
+    out.distance = std::sqrt(state.best2);
+    out.triangle = impl_->triangleIds[state.bestTriangle];
+    return out;
+}
+
+size_t ClosestPointQuery::surfaceTriangleCount() const { return impl_->triangleIds.size(); }
+
+// ---------------------------------------------------------------------------------------------
+// One-sided distance
+
+namespace {
+
+// A piece of a triangle being cut: its corners and the distances measured at them.
+struct Piece {
+    glm::dvec3 p[3];
+    double d[3];
+};
+
+// The four pieces of a triangle cut at its edge midpoints m[k] (on the edge from corner k to k + 1).
+void quarter(const Piece& t, const glm::dvec3 (&m)[3], const double (&dm)[3], Piece (&out)[4]) {
+    out[0] = {{t.p[0], m[0], m[2]}, {t.d[0], dm[0], dm[2]}};
+    out[1] = {{m[0], t.p[1], m[1]}, {dm[0], t.d[1], dm[1]}};
+    out[2] = {{m[2], m[1], t.p[2]}, {dm[2], dm[1], t.d[2]}};
+    out[3] = {{m[0], m[1], m[2]}, {dm[0], dm[1], dm[2]}};
+}
+
+double largestOf(const double (&d)[3]) { return std::max({d[0], d[1], d[2]}); }
+
+} // namespace
+
+Result<OneSidedDistance> measureOneSidedDistance(const Mesh& from, const ClosestPointQuery& to,
+                                                 const SurfaceSampling& sampling, const ProgressCallback& progress) {
+    if (Status s = checkTriangles(from); !s) return fail(s.error());
+    const std::vector<uint32_t> surface = surfaceTriangles(from);
+    OneSidedDistance out;
+    if (surface.empty()) return out;
+    if (to.surfaceTriangleCount() == 0) return fail("the target mesh has no surface (no triangle of non-zero area)");
+
+    // Vertices of the surface triangles, each measured once.
+    std::vector<uint32_t> vertexSlot(from.positions.size(), UINT32_MAX);
+    std::vector<uint32_t> vertices;
+    for (uint32_t t : surface)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = from.indices[3 * size_t(t) + size_t(k)];
+            if (vertexSlot[v] == UINT32_MAX) {
+                vertexSlot[v] = uint32_t(vertices.size());
+                vertices.push_back(v);
+            }
+        }
+
+    const unsigned workers = workerCount();
+    struct Accumulator {
+        double measured = 0.0;
+        double bound = 0.0;
+        size_t samples = 0;
+    };
+    std::vector<Accumulator> acc(workers);
+    auto distanceTo = [&](const glm::dvec3& p) {
+        const std::optional<ClosestPoint> c = to.closest(p);
+        return c ? c->distance : std::numeric_limits<double>::infinity();
+    };
+    // Progress: vertices, midpoints and random samples are known amounts of work; the cutting is
+    // reported per triangle done.
+    const double stages = 4.0;
+    auto reporter = [&](double stage) {
+        return [&progress, stage, stages](double fraction) {
+            return !progress || progress(float((stage + fraction) / stages), "measure");
+        };
+    };
+
+    // 1. Vertices and edge midpoints: M1, the level every piece is compared with.
+    std::vector<double> vertexDistance(vertices.size());
+    bool ok = parallelChunks(
+        vertices.size(), 1024, workers,
+        [&](size_t begin, size_t end, unsigned w) {
+            for (size_t i = begin; i < end; ++i) {
+                vertexDistance[i] = distanceTo(glm::dvec3(from.positions[vertices[i]]));
+                acc[w].measured = std::max(acc[w].measured, vertexDistance[i]);
+                ++acc[w].samples;
+            }
+        },
+        reporter(0.0));
+    if (!ok) return fail("cancelled");
+    auto piece = [&](size_t i) {
+        Piece t;
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = from.indices[3 * size_t(surface[i]) + size_t(k)];
+            t.p[k] = glm::dvec3(from.positions[v]);
+            t.d[k] = vertexDistance[vertexSlot[v]];
+        }
+        return t;
+    };
+    std::vector<std::array<double, 3>> midpointDistance(surface.size());
+    ok = parallelChunks(
+        surface.size(), 256, workers,
+        [&](size_t begin, size_t end, unsigned w) {
+            for (size_t i = begin; i < end; ++i) {
+                const Piece t = piece(i);
+                for (int k = 0; k < 3; ++k) {
+                    midpointDistance[i][size_t(k)] = distanceTo(0.5 * (t.p[k] + t.p[(k + 1) % 3]));
+                    acc[w].measured = std::max(acc[w].measured, midpointDistance[i][size_t(k)]);
+                }
+                acc[w].samples += 3;
+            }
+        },
+        reporter(1.0));
+    if (!ok) return fail("cancelled");
+    double level = 0.0; // M1
+    for (const Accumulator& a : acc) level = std::max(level, a.measured);
+
+    // 2. Cutting, with r doubled until it fits the sample budget.
+    double radius = sampling.radius > 0.0 ? sampling.radius : 0.0;
+    const size_t firstSamples = vertices.size() + 3 * surface.size();
+    const size_t budget = sampling.maxSamples > firstSamples ? sampling.maxSamples - firstSamples : 0;
+    for (;;) {
+        std::atomic<size_t> cutSamples{0};
+        std::atomic<bool> overBudget{false};
+        std::vector<Accumulator> cut(workers);
+        ok = parallelChunks(
+            surface.size(), 64, workers,
+            [&](size_t begin, size_t end, unsigned w) {
+                std::vector<Piece> stack;
+                for (size_t i = begin; i < end && !overBudget.load(std::memory_order_relaxed); ++i) {
+                    const Piece t = piece(i);
+                    glm::dvec3 m[3];
+                    double dm[3];
+                    for (int k = 0; k < 3; ++k) {
+                        m[k] = 0.5 * (t.p[k] + t.p[(k + 1) % 3]);
+                        dm[k] = midpointDistance[i][size_t(k)];
+                    }
+                    Piece quarters[4];
+                    quarter(t, m, dm, quarters);
+                    stack.assign(quarters, quarters + 4);
+                    size_t local = 0;
+                    while (!stack.empty()) {
+                        const Piece q = stack.back();
+                        stack.pop_back();
+                        const double c = enclosingRadius(q.p[0], q.p[1], q.p[2]);
+                        const double sum = largestOf(q.d) + c;
+                        if (radius <= 0.0 || c <= radius || sum <= level + radius) {
+                            cut[w].bound = std::max(cut[w].bound, sum);
+                            continue;
+                        }
+                        // Halve the longest edge (from corner k to k + 1).
+                        int k = 0;
+                        double longest = -1.0;
+                        for (int e = 0; e < 3; ++e) {
+                            const glm::dvec3 d = q.p[(e + 1) % 3] - q.p[e];
+                            if (glm::dot(d, d) > longest) longest = glm::dot(d, d), k = e;
+                        }
+                        const int k1 = (k + 1) % 3;
+                        const glm::dvec3 mid = 0.5 * (q.p[k] + q.p[k1]);
+                        const double dmid = distanceTo(mid);
+                        cut[w].measured = std::max(cut[w].measured, dmid);
+                        ++local;
+                        Piece a = q, b = q;
+                        a.p[k1] = mid;
+                        a.d[k1] = dmid;
+                        b.p[k] = mid;
+                        b.d[k] = dmid;
+                        stack.push_back(a);
+                        stack.push_back(b);
+                    }
+                    cut[w].samples += local;
+                    if (cutSamples.fetch_add(local) + local > budget) overBudget = true;
+                }
+            },
+            reporter(2.0));
+        if (!ok) return fail("cancelled");
+        if (!overBudget.load() || radius <= 0.0) {
+            for (unsigned w = 0; w < workers; ++w) {
+                acc[w].measured = std::max(acc[w].measured, cut[w].measured);
+                acc[w].bound = std::max(acc[w].bound, cut[w].bound);
+                acc[w].samples += cut[w].samples;
+            }
+            break;
+        }
+        radius *= 2.0;
+    }
+
+    // 3. Random area-weighted samples (seeded, so the result is reproducible).
+    const size_t randomTotal = sampling.randomSamples;
+    if (randomTotal > 0) {
+        std::vector<double> cumulative(surface.size());
+        double total = 0.0;
+        for (size_t i = 0; i < surface.size(); ++i) {
+            const uint32_t t = surface[i];
+            const glm::dvec3 a = corner(from, t, 0);
+            total += glm::length(glm::cross(corner(from, t, 1) - a, corner(from, t, 2) - a));
+            cumulative[i] = total;
+        }
+        std::vector<glm::dvec3> points(randomTotal);
+        Rng rng(sampling.seed);
+        for (glm::dvec3& p : points) {
+            const double pick = double(rng.uniform()) * total;
+            const size_t i = std::min(size_t(std::upper_bound(cumulative.begin(), cumulative.end(), pick) -
+                                             cumulative.begin()),
+                                      surface.size() - 1);
+            const double su = std::sqrt(double(rng.uniform())), v = double(rng.uniform());
+            const uint32_t t = surface[i];
+            p = corner(from, t, 0) * (1.0 - su) + corner(from, t, 1) * (su * (1.0 - v)) + corner(from, t, 2) * (su * v);
+        }
+        ok = parallelChunks(
+            points.size(), 1024, workers,
+            [&](size_t begin, size_t end, unsigned w) {
+                for (size_t i = begin; i < end; ++i) {
+                    acc[w].measured = std::max(acc[w].measured, distanceTo(points[i]));
+                    ++acc[w].samples;
+                }
+            },
+            reporter(3.0));
+        if (!ok) return fail("cancelled");
+    }
+
+    double scale = 0.0;
+    for (uint32_t v : vertices) {
+        const glm::vec3& p = from.positions[v];
+        scale = std::max({scale, double(std::fabs(p.x)), double(std::fabs(p.y)), double(std::fabs(p.z))});
+    }
+    for (const Accumulator& a : acc) {
+        out.measuredMax = std::max(out.measuredMax, a.measured);
+        out.bound = std::max(out.bound, a.bound);
+        out.samples += a.samples;
+    }
+    out.bound = std::max(out.bound, out.measuredMax) * (1.0 + kRoundingAllowance) + kRoundingAllowance * scale;
+    out.margin = out.bound - out.measuredMax;
+    return out;
+}
+
+Result<MeshDistance> measureMeshDistance(const Mesh& a, const Mesh& b, const SurfaceSampling& sampling,
+                                         const ProgressCallback& progress) {
+    Result<ClosestPointQuery> qa = ClosestPointQuery::create(a);
+    if (!qa) return fail("mesh A: " + qa.error());
+    Result<ClosestPointQuery> qb = ClosestPointQuery::create(b);
+    if (!qb) return fail("mesh B: " + qb.error());
+    if ((qa->surfaceTriangleCount() == 0) != (qb->surfaceTriangleCount() == 0))
+        return fail(std::string("mesh ") + (qa->surfaceTriangleCount() == 0 ? "A" : "B") +
+                    " has no surface (no triangle of non-zero area) but the other has one");
+    auto half = [&](float offset) -> ProgressCallback {
+        if (!progress) return {};
+        return [&progress, offset](float f, const char* stage) { return progress(offset + 0.5f * f, stage); };
+    };
+    MeshDistance out;
+    Result<OneSidedDistance> ab = measureOneSidedDistance(a, qb.value(), sampling, half(0.0f));
+    if (!ab) return fail(ab.error());
+    Result<OneSidedDistance> ba = measureOneSidedDistance(b, qa.value(), sampling, half(0.5f));
+    if (!ba) return fail(ba.error());
+    out.aToB = ab.value();
+    out.bToA = ba.value();
+    return out;
+}
+
+} // namespace spatter

@@ -1,0 +1,656 @@
+#include "spatter/core/ProxyBuilder.hpp"
+
+#include "spatter/core/ProxyCache.hpp"
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModHausdorffT.hh>
+#include <OpenMesh/Tools/Decimater/ModNormalDeviationT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+#include <OpenMesh/Tools/Decimater/Observer.hh>
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace spatter {
+
+const char* proxyBackendName(ProxyBackend backend) {
+    switch (backend) {
+    case ProxyBackend::Auto: return "auto";
+    case ProxyBackend::OpenMesh: return "openmesh";
+    case ProxyBackend::MeshOpt: return "meshopt";
+    case ProxyBackend::None: return "none";
+    }
+    return "unknown";
+}
+
+const char* proxySourceName(ProxySource source) {
+    switch (source) {
+    case ProxySource::Simplified: return "simplified";
+    case ProxySource::OwnMesh: return "own-mesh";
+    case ProxySource::AuthoredCollider: return "authored-collider";
+    }
+    return "unknown";
+}
+
+// The rule is documented in the header; the thresholds come from the measurements in docs/PROXIES.md.
+constexpr size_t kAutoOpenMeshMaxTriangles = 8000;
+constexpr double kAutoOpenMeshMaxRelativeTolerance = 0.01;
+
+ProxyBackend resolveProxyBackend(ProxyBackend requested, size_t triangles, double absoluteTolerance,
+                                 double diagonal) {
+    if (requested != ProxyBackend::Auto) return requested;
+    const bool tight = diagonal > 0.0 && absoluteTolerance <= kAutoOpenMeshMaxRelativeTolerance * diagonal;
+    return triangles <= kAutoOpenMeshMaxTriangles && tight ? ProxyBackend::OpenMesh : ProxyBackend::MeshOpt;
+}
+
+namespace {
+
+// Internal tolerance of the first simplification run, as a fraction of the target: the rest is left
+// for the covering radius of the measurement and for the error the backend does not see (OpenMesh's
+// Hausdorff module checks the removed vertices only; meshoptimizer's quadric error is an average).
+constexpr double kFirstRunFraction[3] = {0.0, 0.5, 0.35}; // indexed by ProxyBackend (OpenMesh, MeshOpt)
+// Later runs scale the internal tolerance by target / measured error, within these limits.
+constexpr double kRetryFactorMin = 0.2, kRetryFactorMax = 0.75;
+// Full angle of the normal cone a decimated face may sweep (ModNormalDeviation): it only rules out
+// fold-overs; the distance error is controlled by the Hausdorff module and the measurement.
+constexpr float kNormalConeDegrees = 150.0f;
+// Measurement covering radius when the tolerance is 0 (an authored collider), as a fraction of the
+// render mesh's diagonal.
+constexpr double kFallbackCoverage = 0.001;
+
+using Clock = std::chrono::steady_clock;
+constexpr double kPi = 3.14159265358979323846;
+
+Status checkMesh(const Mesh& mesh, const char* what) {
+    const size_t n = mesh.positions.size();
+    const std::string prefix = std::string(what) + ": ";
+    if (mesh.indices.size() % 3 != 0)
+        return fail(prefix + "index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
+    if (n > size_t(UINT32_MAX)) return fail(prefix + "too many vertices (" + std::to_string(n) + ")");
+    for (size_t i = 0; i < mesh.indices.size(); ++i)
+        if (mesh.indices[i] >= n)
+            return fail(prefix + "index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
+                        ", past the vertex count " + std::to_string(n));
+    for (size_t i = 0; i < n; ++i) {
+        const glm::vec3& p = mesh.positions[i];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            return fail(prefix + "position " + std::to_string(i) + " is not finite (NaN or Inf)");
+    }
+    return {};
+}
+
+Status checkSettings(const ProxySettings& s) {
+    if (!std::isfinite(s.tolerance) || s.tolerance < 0.0f)
+        return fail("proxy settings: tolerance " + std::to_string(s.tolerance) + " is not finite and >= 0");
+    if (s.backend == ProxyBackend::None) return fail("proxy settings: backend 'none' cannot simplify");
+    if (uint32_t(s.backend) > uint32_t(ProxyBackend::None)) return fail("proxy settings: unknown backend");
+    if (!(s.featureAngleDegrees >= 0.0f && s.featureAngleDegrees <= 180.0f))
+        return fail("proxy settings: feature angle " + std::to_string(s.featureAngleDegrees) + " is not in [0, 180]");
+    if (!(s.coverageFraction > 0.0f && s.coverageFraction < 1.0f))
+        return fail("proxy settings: coverage fraction " + std::to_string(s.coverageFraction) + " is not in (0, 1)");
+    if (s.maxAttempts < 1) return fail("proxy settings: maxAttempts must be at least 1");
+    return {};
+}
+
+bool isSurfaceTriangle(const std::vector<glm::vec3>& positions, uint32_t a, uint32_t b, uint32_t c) {
+    if (a == b || b == c || c == a) return false;
+    const glm::dvec3 pa(positions[a]);
+    const glm::dvec3 n = glm::cross(glm::dvec3(positions[b]) - pa, glm::dvec3(positions[c]) - pa);
+    return n.x != 0.0 || n.y != 0.0 || n.z != 0.0;
+}
+
+size_t surfaceTriangleCount(const Mesh& m) {
+    size_t n = 0;
+    for (size_t t = 0; t < m.triangleCount(); ++t)
+        n += isSurfaceTriangle(m.positions, m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]);
+    return n;
+}
+
+double referencedDiagonal(const Mesh& m) {
+    Bounds b;
+    for (uint32_t i : m.indices) b.extend(m.positions[i]);
+    return double(b.diagonal());
+}
+
+// Positions and indices only: vertices with bit-identical positions merged, triangles with a repeated
+// index or zero area dropped, unreferenced vertices removed.
+Mesh weldedSurface(const Mesh& in) {
+    std::vector<glm::vec3> positions(in.positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) positions[i] = in.positions[i] + glm::vec3(0.0f); // -0 -> +0
+    Mesh out;
+    if (in.indices.empty() || positions.empty()) return out;
+    std::vector<unsigned int> remap(positions.size());
+    const size_t unique = meshopt_generateVertexRemap(remap.data(), in.indices.data(), in.indices.size(),
+                                                      positions.data(), positions.size(), sizeof(glm::vec3));
+    std::vector<glm::vec3> welded(unique);
+    meshopt_remapVertexBuffer(welded.data(), positions.data(), positions.size(), sizeof(glm::vec3), remap.data());
+    std::vector<uint32_t> indices;
+    indices.reserve(in.indices.size());
+    for (size_t t = 0; t < in.triangleCount(); ++t) {
+        const uint32_t a = remap[in.indices[3 * t]], b = remap[in.indices[3 * t + 1]], c = remap[in.indices[3 * t + 2]];
+        if (!isSurfaceTriangle(welded, a, b, c)) continue;
+        indices.insert(indices.end(), {a, b, c});
+    }
+    // Compact: dropping triangles can leave vertices unreferenced.
+    std::vector<uint32_t> slot(welded.size(), UINT32_MAX);
+    for (uint32_t& i : indices) {
+        if (slot[i] == UINT32_MAX) {
+            slot[i] = uint32_t(out.positions.size());
+            out.positions.push_back(welded[i]);
+        }
+        i = slot[i];
+    }
+    out.indices = std::move(indices);
+    return out;
+}
+
+// Gives each vertex one copy per fan of triangles joined across edges whose dihedral angle is at most
+// `angleDegrees`; edges used by other than two triangles separate fans too. Afterwards vertices along
+// sharp edges are split, which keeps normals crisp there and makes meshoptimizer treat the edges as
+// seams (collapsible only along themselves).
+void splitCreases(Mesh& m, float angleDegrees) {
+    const size_t corners = m.indices.size();
+    const size_t triangles = m.triangleCount();
+    std::vector<glm::dvec3> normal(triangles);
+    for (size_t t = 0; t < triangles; ++t) {
+        const glm::dvec3 a(m.positions[m.indices[3 * t]]);
+        const glm::dvec3 n =
+            glm::cross(glm::dvec3(m.positions[m.indices[3 * t + 1]]) - a, glm::dvec3(m.positions[m.indices[3 * t + 2]]) - a);
+        const double len = glm::length(n);
+        normal[t] = len > 0.0 ? n / len : glm::dvec3(0.0);
+    }
+    struct EdgeUse {
+        uint64_t key;
+        uint32_t corner; // the edge runs from indices[corner] to the next corner of its triangle
+    };
+    auto nextCorner = [](uint32_t c) { return c % 3 == 2 ? c - 2 : c + 1; };
+    std::vector<EdgeUse> uses(corners);
+    for (uint32_t c = 0; c < corners; ++c) {
+        const uint32_t a = m.indices[c], b = m.indices[nextCorner(c)];
+        uses[c] = {(uint64_t(std::min(a, b)) << 32) | std::max(a, b), c};
+    }
+    std::sort(uses.begin(), uses.end(),
+              [](const EdgeUse& x, const EdgeUse& y) { return x.key != y.key ? x.key < y.key : x.corner < y.corner; });
+    std::vector<uint32_t> parent(corners);
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto find = [&](uint32_t c) {
+        while (parent[c] != c) c = parent[c] = parent[parent[c]];
+        return c;
+    };
+    auto unite = [&](uint32_t x, uint32_t y) {
+        x = find(x);
+        y = find(y);
+        if (x != y) parent[std::max(x, y)] = std::min(x, y);
+    };
+    // The corner of triangle t that holds vertex v.
+    auto cornerOf = [&](uint32_t t, uint32_t v) {
+        for (uint32_t k = 0; k < 3; ++k)
+            if (m.indices[3 * t + k] == v) return 3 * t + k;
+        return 3 * t;
+    };
+    const double cosLimit = std::cos(double(angleDegrees) * kPi / 180.0);
+    for (size_t i = 0; i < uses.size();) {
+        size_t j = i + 1;
+        while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+        if (j - i == 2) {
+            const uint32_t t1 = uses[i].corner / 3, t2 = uses[i + 1].corner / 3;
+            if (glm::dot(normal[t1], normal[t2]) >= cosLimit) {
+                const uint32_t a = uint32_t(uses[i].key >> 32), b = uint32_t(uses[i].key & 0xffffffffu);
+                unite(cornerOf(t1, a), cornerOf(t2, a));
+                unite(cornerOf(t1, b), cornerOf(t2, b));
+            }
+        }
+        i = j;
+    }
+    std::vector<uint32_t> vertexOfRoot(corners, UINT32_MAX);
+    std::vector<bool> used(m.positions.size(), false);
+    for (uint32_t c = 0; c < corners; ++c) {
+        const uint32_t root = find(c);
+        if (vertexOfRoot[root] == UINT32_MAX) {
+            const uint32_t v = m.indices[c];
+            if (!used[v]) {
+                used[v] = true;
+                vertexOfRoot[root] = v;
+            } else {
+                vertexOfRoot[root] = uint32_t(m.positions.size());
+                m.positions.push_back(m.positions[v]);
+            }
+        }
+        m.indices[c] = vertexOfRoot[root];
+    }
+}
+
+// The mesh a backend returned, made into a proxy: welded, degenerate triangles dropped, creases split
+// (keepSharpFeatures), normals computed.
+Mesh finishProxy(const Mesh& simplified, const ProxySettings& s) {
+    Mesh out = weldedSurface(simplified);
+    if (s.keepSharpFeatures) splitCreases(out, s.featureAngleDegrees);
+    computeNormals(out);
+    return out;
+}
+
+// A mesh with only the referenced vertices of `positions`.
+Mesh compactMesh(const std::vector<glm::vec3>& positions, const unsigned int* indices, size_t count) {
+    Mesh out;
+    std::vector<uint32_t> slot(positions.size(), UINT32_MAX);
+    out.indices.resize(count);
+    for (size_t i = 0; i < count; ++i) {
+        const uint32_t v = indices[i];
+        if (slot[v] == UINT32_MAX) {
+            slot[v] = uint32_t(out.positions.size());
+            out.positions.push_back(positions[v]);
+        }
+        out.indices[i] = slot[v];
+    }
+    return out;
+}
+
+// meshoptimizer. `tolerance` is absolute (infinity: stop at the budget only); `budget` 0 is no limit.
+Mesh simplifyMeshopt(const Mesh& input, double tolerance, uint32_t budget, bool lockBorder) {
+    const float scale = meshopt_simplifyScale(&input.positions[0].x, input.positions.size(), sizeof(glm::vec3));
+    const float relative = std::isfinite(tolerance) && scale > 0.0f ? float(tolerance / double(scale))
+                                                                     : std::numeric_limits<float>::max();
+    std::vector<unsigned int> out(input.indices.size());
+    const size_t count = meshopt_simplify(out.data(), input.indices.data(), input.indices.size(), &input.positions[0].x,
+                                          input.positions.size(), sizeof(glm::vec3), size_t(budget) * 3, relative,
+                                          lockBorder ? unsigned(meshopt_SimplifyLockBorder) : 0u, nullptr);
+    return compactMesh(input.positions, out.data(), count);
+}
+
+// meshoptimizer's sloppy simplifier: ignores topology, so it can reach budgets the others cannot.
+Mesh simplifySloppy(const Mesh& input, uint32_t budget) {
+    std::vector<unsigned int> out(input.indices.size());
+    const size_t count =
+        meshopt_simplifySloppy(out.data(), input.indices.data(), input.indices.size(), &input.positions[0].x,
+                               input.positions.size(), sizeof(glm::vec3), size_t(budget) * 3,
+                               std::numeric_limits<float>::max(), nullptr);
+    return compactMesh(input.positions, out.data(), count);
+}
+
+struct OmTraits : public OpenMesh::DefaultTraits {
+    typedef OpenMesh::Vec3d Point;
+    typedef OpenMesh::Vec3d Normal;
+    VertexAttributes(OpenMesh::Attributes::Status);
+    EdgeAttributes(OpenMesh::Attributes::Status);
+    HalfedgeAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::PrevHalfedge);
+    FaceAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::Normal);
+};
+using OmMesh = OpenMesh::TriMesh_ArrayKernelT<OmTraits>;
+
+class DecimationObserver : public OpenMesh::Decimater::Observer {
+public:
+    DecimationObserver(size_t interval, size_t expected, const ProgressCallback& progress)
+        : Observer(interval), expected_(std::max<size_t>(expected, 1)), progress_(progress) {}
+    void notify(size_t step) override {
+        const float fraction = std::min(0.99f, float(double(step) / double(expected_)));
+        if (progress_ && !progress_(fraction, "simplify")) cancelled_ = true;
+    }
+    bool abort() const override { return cancelled_; }
+    bool cancelled() const { return cancelled_; }
+
+private:
+    size_t expected_;
+    const ProgressCallback& progress_;
+    bool cancelled_ = false;
+};
+
+// True when add_face(a, b, c) keeps the mesh manifold: every vertex is new or on a boundary, and no
+// directed edge of the face is taken already (OpenMesh's own preconditions).
+bool canAddFace(const OmMesh& om, const OmMesh::VertexHandle (&v)[3]) {
+    for (int k = 0; k < 3; ++k) {
+        if (!om.is_isolated(v[k]) && !om.is_boundary(v[k])) return false;
+        const OmMesh::HalfedgeHandle h = om.find_halfedge(v[k], v[(k + 1) % 3]);
+        if (h.is_valid() && !om.is_boundary(h)) return false;
+    }
+    return true;
+}
+
+// OpenMesh Decimater. `tolerance` absolute (infinity: no Hausdorff constraint); `budget` 0 is no limit.
+// Faces that would make the mesh non-manifold are added on their own copies of their vertices.
+Result<Mesh> simplifyOpenMesh(const Mesh& input, double tolerance, uint32_t budget, const ProxySettings& s,
+                              const ProgressCallback& progress, size_t& detachedFaces) {
+    OmMesh om;
+    std::vector<OmMesh::VertexHandle> handles(input.positions.size());
+    for (size_t i = 0; i < handles.size(); ++i) {
+        const glm::vec3& p = input.positions[i];
+        handles[i] = om.add_vertex(OmMesh::Point(p.x, p.y, p.z));
+    }
+    detachedFaces = 0;
+    for (size_t t = 0; t < input.triangleCount(); ++t) {
+        OmMesh::VertexHandle v[3] = {handles[input.indices[3 * t]], handles[input.indices[3 * t + 1]],
+                                     handles[input.indices[3 * t + 2]]};
+        if (canAddFace(om, v) && om.add_face(v[0], v[1], v[2]).is_valid()) continue;
+        for (OmMesh::VertexHandle& h : v) h = om.add_vertex(om.point(h));
+        om.add_face(v[0], v[1], v[2]);
+        ++detachedFaces;
+    }
+    om.update_face_normals();
+
+    const double cosFeature = std::cos(double(s.featureAngleDegrees) * kPi / 180.0);
+    for (const OmMesh::EdgeHandle e : om.edges()) {
+        if (om.is_boundary(e)) {
+            if (s.keepBoundaries) {
+                om.status(om.from_vertex_handle(om.halfedge_handle(e, 0))).set_locked(true);
+                om.status(om.to_vertex_handle(om.halfedge_handle(e, 0))).set_locked(true);
+            }
+            continue;
+        }
+        if (!s.keepSharpFeatures) continue;
+        const OmMesh::Normal n0 = om.normal(om.face_handle(om.halfedge_handle(e, 0)));
+        const OmMesh::Normal n1 = om.normal(om.face_handle(om.halfedge_handle(e, 1)));
+        if (OpenMesh::dot(n0, n1) < cosFeature) {
+            om.status(e).set_feature(true);
+            om.status(om.from_vertex_handle(om.halfedge_handle(e, 0))).set_feature(true);
+            om.status(om.to_vertex_handle(om.halfedge_handle(e, 0))).set_feature(true);
+        }
+    }
+
+    using Decimater = OpenMesh::Decimater::DecimaterT<OmMesh>;
+    Decimater decimater(om);
+    OpenMesh::Decimater::ModQuadricT<OmMesh>::Handle quadric;
+    OpenMesh::Decimater::ModHausdorffT<OmMesh>::Handle hausdorff;
+    OpenMesh::Decimater::ModNormalDeviationT<OmMesh>::Handle normals;
+    decimater.add(quadric);
+    decimater.module(quadric).unset_max_err();
+    if (std::isfinite(tolerance)) {
+        decimater.add(hausdorff);
+        decimater.module(hausdorff).set_tolerance(tolerance);
+    }
+    decimater.add(normals);
+    decimater.module(normals).set_normal_deviation(kNormalConeDegrees);
+    if (!decimater.initialize()) return fail("OpenMesh Decimater could not be initialised");
+    const size_t vertices = om.n_vertices();
+    const size_t expected = budget > 0 ? vertices - std::min(vertices, size_t(budget) / 2) : vertices;
+    DecimationObserver observer(std::max<size_t>(expected / 100, 64), expected, progress);
+    decimater.set_observer(&observer);
+    decimater.decimate_to_faces(0, budget);
+    decimater.set_observer(nullptr);
+    if (observer.cancelled()) return fail("cancelled");
+    om.garbage_collection();
+
+    Mesh out;
+    out.positions.reserve(om.n_vertices());
+    for (const OmMesh::VertexHandle v : om.vertices()) {
+        const OmMesh::Point& p = om.point(v);
+        out.positions.emplace_back(float(p[0]), float(p[1]), float(p[2]));
+    }
+    out.indices.reserve(3 * om.n_faces());
+    for (const OmMesh::FaceHandle f : om.faces())
+        for (const OmMesh::VertexHandle v : om.fv_range(f)) out.indices.push_back(uint32_t(v.idx()));
+    return out;
+}
+
+struct Candidate {
+    Mesh mesh;
+    ProxyBackend backend = ProxyBackend::None;
+    bool budgetLimited = false; // the budget, not the tolerance, stopped simplification
+    OneSidedDistance proxyToRender, renderToProxy;
+    double bound() const { return std::max(proxyToRender.bound, renderToProxy.bound); }
+};
+
+// One simplification run with the chosen backend, made to respect the budget: a run stopped by the
+// tolerance above the budget is redone without the tolerance, and as a last resort with the sloppy
+// simplifier.
+Result<Candidate> simplifyOnce(ProxyBackend backend, const Mesh& welded, const Mesh& meshoptInput,
+                               double tolerance, const ProxySettings& s, const ProgressCallback& progress,
+                               std::vector<std::string>& notes) {
+    const uint32_t budget = s.maxTriangles;
+    auto run = [&](double tol) -> Result<Mesh> {
+        if (progress && !progress(0.0f, "simplify")) return fail("cancelled");
+        if (backend == ProxyBackend::MeshOpt) return simplifyMeshopt(meshoptInput, tol, budget, s.keepBoundaries);
+        size_t detached = 0;
+        Result<Mesh> m = simplifyOpenMesh(welded, tol, budget, s, progress, detached);
+        if (m && detached > 0)
+            notes.push_back("OpenMesh: " + std::to_string(detached) +
+                            " non-manifold faces were added on their own vertex copies");
+        return m;
+    };
+    Candidate c;
+    c.backend = backend;
+    Result<Mesh> m = run(tolerance);
+    if (!m) return fail(m.error());
+    c.mesh = finishProxy(m.value(), s);
+    if (budget > 0 && c.mesh.triangleCount() > budget) {
+        c.budgetLimited = true;
+        m = run(std::numeric_limits<double>::infinity());
+        if (!m) return fail(m.error());
+        c.mesh = finishProxy(m.value(), s);
+    }
+    if (budget > 0 && c.mesh.triangleCount() > budget) {
+        notes.push_back(std::string(proxyBackendName(backend)) + " stopped at " +
+                        std::to_string(c.mesh.triangleCount()) + " triangles, above the budget of " +
+                        std::to_string(budget) + ": sloppy simplification used");
+        c.mesh = finishProxy(simplifySloppy(welded, budget), s);
+    }
+    if (budget > 0 && c.mesh.triangleCount() > budget)
+        return fail("no proxy within the budget of " + std::to_string(budget) + " triangles could be made (" +
+                    std::to_string(c.mesh.triangleCount()) + " left)");
+    if (progress && !progress(1.0f, "simplify")) return fail("cancelled");
+    return c;
+}
+
+// Everything needed to measure a candidate against the render mesh.
+struct Measuring {
+    const Mesh& render;
+    const ClosestPointQuery& renderQuery;
+    SurfaceSampling sampling;
+};
+
+Status measure(Candidate& c, const Measuring& m, const ProgressCallback& progress) {
+    auto half = [&progress](float offset) -> ProgressCallback {
+        return [&progress, offset](float f, const char* stage) { return !progress || progress(offset + 0.5f * f, stage); };
+    };
+    Result<OneSidedDistance> p2r = measureOneSidedDistance(c.mesh, m.renderQuery, m.sampling, half(0.0f));
+    if (!p2r) return fail("proxy to render: " + p2r.error());
+    Result<ClosestPointQuery> proxyQuery = ClosestPointQuery::create(c.mesh);
+    if (!proxyQuery) return fail("proxy: " + proxyQuery.error());
+    Result<OneSidedDistance> r2p = measureOneSidedDistance(m.render, proxyQuery.value(), m.sampling, half(0.5f));
+    if (!r2p) return fail("render to proxy: " + r2p.error());
+    c.proxyToRender = p2r.value();
+    c.renderToProxy = r2p.value();
+    return {};
+}
+
+struct BackendOutcome {
+    std::optional<Candidate> best; // empty: simplification removed no triangle
+    uint32_t attempts = 0;
+};
+
+// Up to maxAttempts runs of one backend, each measured; a run whose h exceeds the tolerance is
+// followed by one with a smaller internal tolerance. Returns the first run within the tolerance, or
+// the one with the smallest h.
+Result<BackendOutcome> runBackend(ProxyBackend backend, const Mesh& welded, double tolerance, size_t surfaceTriangles,
+                                  bool withinBudget, const Measuring& measuring, const ProxySettings& s,
+                                  const ProgressCallback& progress, std::vector<std::string>& notes) {
+    Mesh meshoptInput;
+    if (backend == ProxyBackend::MeshOpt) {
+        meshoptInput = welded;
+        if (s.keepSharpFeatures) splitCreases(meshoptInput, s.featureAngleDegrees);
+    }
+    BackendOutcome out;
+    double internal = tolerance * kFirstRunFraction[uint32_t(backend)];
+    while (out.attempts < s.maxAttempts) {
+        Result<Candidate> c = simplifyOnce(backend, welded, meshoptInput, internal, s, progress, notes);
+        if (!c) return fail(c.error());
+        ++out.attempts;
+        if (withinBudget && c->mesh.triangleCount() >= surfaceTriangles) {
+            notes.push_back(std::string(proxyBackendName(backend)) + " removed no triangle");
+            out.best.reset();
+            return out;
+        }
+        if (Status st = measure(c.value(), measuring, progress); !st) return fail(st.error());
+        const double h = c->bound();
+        const bool met = h <= tolerance, budgetLimited = c->budgetLimited;
+        const double measured = std::max(c->proxyToRender.measuredMax, c->renderToProxy.measuredMax);
+        const double margin = std::max(c->proxyToRender.margin, c->renderToProxy.margin);
+        if (!out.best || h < out.best->bound()) out.best = std::move(c.value());
+        if (met || budgetLimited) break;
+        if (out.attempts < s.maxAttempts)
+            notes.push_back(std::string(proxyBackendName(backend)) + " run " + std::to_string(out.attempts) +
+                            ": h = " + std::to_string(h) + " above the tolerance " + std::to_string(tolerance) +
+                            ", simplifying less");
+        const double factor = measured > 0.0 ? 0.9 * (tolerance - margin) / measured : kRetryFactorMin;
+        internal *= std::clamp(factor, kRetryFactorMin, kRetryFactorMax);
+    }
+    return out;
+}
+
+// The render mesh's own positions, indices and normals.
+Mesh ownMesh(const Mesh& m) {
+    Mesh out;
+    out.positions = m.positions;
+    out.indices = m.indices;
+    out.normals = m.normals;
+    repairNormals(out);
+    return out;
+}
+
+void finishResult(Proxy& p, const Clock::time_point& start) {
+    p.proxyTriangles = p.mesh.triangleCount();
+    p.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Cache lookup: the proxy on a hit; nothing on a miss (a corrupt entry adds a note).
+std::optional<Proxy> lookUp(const ProxySettings& s, uint64_t key, const ProgressCallback& progress,
+                            std::vector<std::string>& notes) {
+    if (s.cacheDirectory.empty()) return std::nullopt;
+    Result<Proxy> hit = loadCachedProxy(s.cacheDirectory, key);
+    if (hit) {
+        if (progress) progress(1.0f, "cache");
+        return std::move(hit).value();
+    }
+    if (hit.error().rfind("no cache entry", 0) != 0) notes.push_back(hit.error() + "; rebuilt");
+    return std::nullopt;
+}
+
+void store(const ProxySettings& s, uint64_t key, Proxy& p) {
+    if (s.cacheDirectory.empty()) return;
+    if (Status st = storeCachedProxy(s.cacheDirectory, key, p); !st) p.notes.push_back(st.error());
+}
+
+} // namespace
+
+Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh* authoredCollider,
+                         const ProgressCallback& progress) {
+    const Clock::time_point start = Clock::now();
+    if (Status st = checkSettings(s); !st) return fail(st.error());
+    if (Status st = checkMesh(render, "render mesh"); !st) return fail(st.error());
+    if (authoredCollider)
+        if (Status st = checkMesh(*authoredCollider, "authored collider"); !st) return fail(st.error());
+
+    const double diagonal = referencedDiagonal(render);
+    const double tolerance = s.toleranceRelative ? double(s.tolerance) * diagonal : double(s.tolerance);
+    const size_t inputTriangles = render.triangleCount();
+    const size_t surfaceTriangles = surfaceTriangleCount(render);
+    SurfaceSampling sampling;
+    sampling.radius = double(s.coverageFraction) * (tolerance > 0.0 ? tolerance : kFallbackCoverage * diagonal);
+    sampling.maxSamples = s.maxSamples;
+    sampling.randomSamples = s.randomSamples;
+    sampling.seed = s.seed;
+
+    Proxy proxy;
+    proxy.tolerance = tolerance;
+    proxy.inputTriangles = inputTriangles;
+
+    if (authoredCollider) {
+        const uint64_t key = proxyCacheKey(render, s, authoredCollider);
+        if (std::optional<Proxy> hit = lookUp(s, key, progress, proxy.notes)) {
+            hit->notes = std::move(proxy.notes);
+            finishResult(*hit, start);
+            return std::move(*hit);
+        }
+        proxy.mesh = ownMesh(*authoredCollider);
+        proxy.source = ProxySource::AuthoredCollider;
+        proxy.backend = ProxyBackend::None;
+        auto measure = [&](float f, const char* stage) { return !progress || progress(f, stage); };
+        Result<MeshDistance> d = measureMeshDistance(proxy.mesh, render, sampling, measure);
+        if (!d) return fail("authored collider: " + d.error());
+        proxy.proxyToRenderMax = d->aToB.measuredMax;
+        proxy.renderToProxyMax = d->bToA.measuredMax;
+        proxy.errorBound = d->upperBound();
+        proxy.samplingMargin = std::max(d->aToB.margin, d->bToA.margin);
+        proxy.samples = d->aToB.samples + d->bToA.samples;
+        proxy.toleranceMet = proxy.errorBound <= tolerance;
+        finishResult(proxy, start);
+        store(s, key, proxy);
+        return proxy;
+    }
+
+    const bool withinBudget = s.maxTriangles == 0 || inputTriangles <= s.maxTriangles;
+    if (surfaceTriangles == 0 || (withinBudget && (inputTriangles < s.smallMeshTriangles || tolerance == 0.0))) {
+        if (surfaceTriangles == 0) proxy.notes.push_back("the render mesh has no surface: the proxy is empty");
+        else proxy.mesh = ownMesh(render);
+        proxy.source = ProxySource::OwnMesh;
+        finishResult(proxy, start);
+        return proxy;
+    }
+
+    const uint64_t key = proxyCacheKey(render, s, nullptr);
+    if (std::optional<Proxy> hit = lookUp(s, key, progress, proxy.notes)) {
+        hit->notes = std::move(proxy.notes);
+        finishResult(*hit, start);
+        return std::move(*hit);
+    }
+
+    const ProxyBackend backend = resolveProxyBackend(s.backend, inputTriangles, tolerance, diagonal);
+    const Mesh welded = weldedSurface(render);
+    Result<ClosestPointQuery> renderQuery = ClosestPointQuery::create(render);
+    if (!renderQuery) return fail("render mesh: " + renderQuery.error());
+    const Measuring measuring{render, renderQuery.value(), sampling};
+    auto ownMeshResult = [&](uint32_t attempts) {
+        proxy.notes.push_back("the render mesh is its own proxy");
+        proxy.mesh = ownMesh(render);
+        proxy.source = ProxySource::OwnMesh;
+        proxy.attempts = attempts;
+        finishResult(proxy, start);
+        store(s, key, proxy);
+        return proxy;
+    };
+
+    Result<BackendOutcome> outcome =
+        runBackend(backend, welded, tolerance, surfaceTriangles, withinBudget, measuring, s, progress, proxy.notes);
+    if (!outcome) return fail(outcome.error());
+    uint32_t attempts = outcome->attempts;
+    std::optional<Candidate> best = std::move(outcome->best);
+    if (!best) return ownMeshResult(attempts);
+    if (s.backend == ProxyBackend::Auto && backend == ProxyBackend::OpenMesh && best->bound() > tolerance) {
+        // Auto: OpenMesh missed the tolerance; meshoptimizer gets its turn and the better proxy is kept.
+        proxy.notes.push_back("openmesh missed the tolerance: trying meshopt");
+        Result<BackendOutcome> other = runBackend(ProxyBackend::MeshOpt, welded, tolerance, surfaceTriangles,
+                                                  withinBudget, measuring, s, progress, proxy.notes);
+        if (!other) return fail(other.error());
+        attempts += other->attempts;
+        if (!other->best) return ownMeshResult(attempts);
+        const bool otherMet = other->best->bound() <= tolerance;
+        if (otherMet || other->best->bound() < best->bound()) best = std::move(other->best);
+    }
+
+    proxy.mesh = std::move(best->mesh);
+    proxy.source = ProxySource::Simplified;
+    proxy.backend = best->backend;
+    proxy.errorBound = best->bound();
+    proxy.proxyToRenderMax = best->proxyToRender.measuredMax;
+    proxy.renderToProxyMax = best->renderToProxy.measuredMax;
+    proxy.samplingMargin = std::max(best->proxyToRender.margin, best->renderToProxy.margin);
+    proxy.samples = best->proxyToRender.samples + best->renderToProxy.samples;
+    proxy.toleranceMet = proxy.errorBound <= tolerance;
+    proxy.attempts = attempts;
+    if (!proxy.toleranceMet)
+        proxy.notes.push_back(std::string("h = ") + std::to_string(proxy.errorBound) + " is above the tolerance " +
+                              std::to_string(tolerance) +
+                              (best->budgetLimited ? " (the triangle budget stopped simplification)" : ""));
+    finishResult(proxy, start);
+    store(s, key, proxy);
+    return proxy;
+}
+
+} // namespace spatter

@@ -1,0 +1,123 @@
+#pragma once
+// CollisionWorld: the Embree scene that shots are traced against. Every decal receiver of a Scene
+// contributes its collision mesh (a proxy, an authored collider or the render mesh) and the error
+// bound h within which that mesh stays of the render surface.
+//
+// Layout: one Embree device; every scene ROBUST. The collision meshes of all static receivers are
+// one Embree scene (one geometry per object), stored in single precision relative to a
+// double-precision origin (the centre of the static bounds), so that far from the world origin the
+// geometry keeps float precision. Each dynamic receiver is an instance of its own object-space scene
+// with its object-to-world transform. The top-level scene holds the static scene (one instance) and
+// the dynamic instances, so moving an object only updates its instance and recommits the top level.
+// Objects with receivesDecals == false are not in the world (shots pass through them).
+//
+// Queries: rays are validated (rayProblem), normalised and clipped to the world bounds in double,
+// moved into the float frame, traced (mask 0xFFFFFFFF, geomID and instID starting invalid), and the
+// hit is refined in double on the hit triangle in object space. Among hits at exactly the same
+// distance the one with the smallest (instance, geometry, primitive) wins whatever the traversal
+// order, so intersectBatch (Embree ray streams) returns exactly what intersect returns ray by ray.
+//
+// Threading: intersect and intersectBatch are const and may run concurrently from any number of
+// threads; setTransform and removeObject must not run concurrently with anything else.
+
+#include "spatter/core/Bounds.hpp"
+#include "spatter/core/Mesh.hpp"
+#include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/core/Result.hpp"
+#include "spatter/core/Scene.hpp"
+#include "spatter/placement/Ray.hpp"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace spatter {
+
+struct WorldSettings {
+    // Use SceneObject::collider where an object has one and no Proxy is given; its error bound is
+    // then measured at build time by buildProxy with the collider: certified (never below the true
+    // two-sided Hausdorff distance) and at most about 1% of the render mesh's diagonal above the
+    // measured distance. false: render meshes (h = 0) wherever no Proxy is given.
+    bool useColliders = true;
+    // Embree device configuration passed to rtcNewDevice, e.g. "threads=4" or "isa=avx2" (empty:
+    // Embree's defaults). A configuration Embree rejects makes build fail.
+    std::string deviceConfig;
+};
+
+// What the world knows about one Scene object.
+struct CollisionObject {
+    std::string name;
+    bool dynamic = false;
+    bool inWorld = false;      // receives decals and has not been removed
+    glm::dmat4 transform{1.0}; // object to world, current
+    double errorBound = 0.0;   // h, object-space units
+    size_t triangles = 0;      // collision triangles (0 when not in the world)
+    Bounds localBounds;        // of the collision mesh (of the render mesh when not in the world)
+};
+
+// One ray hit. Normals are unit, geometric (the hit triangle's face normal, the vector Embree reports
+// as Ng, recomputed in double), and face the ray: dot(normal, ray.direction) <= 0.
+struct Hit {
+    uint32_t object = 0;           // index into Scene::objects
+    uint32_t primitive = 0;        // triangle index in the object's collision mesh
+    double t = 0.0;                // ray parameter, in units of the ray's direction
+    glm::dvec3 position{0.0};      // world space: origin + t * direction
+    glm::dvec3 normal{0.0};        // world space, through the object's normal matrix
+    glm::dvec3 localPosition{0.0}; // object space
+    glm::dvec3 localNormal{0.0};   // object space
+};
+
+class CollisionWorld {
+public:
+    // Builds the world for `scene` (validated with validateScene first). `proxies` is empty or has
+    // one entry per Scene object; a present entry (from buildProxy) replaces that object's collision
+    // mesh: its `mesh` (object space, validated with validateMesh) and `errorBound` (object-space
+    // units, finite and >= 0) are used, the other fields are not. Errors name the object.
+    static Result<CollisionWorld> build(const Scene& scene,
+                                        const std::vector<std::optional<Proxy>>& proxies = {},
+                                        const WorldSettings& settings = {});
+
+    CollisionWorld(CollisionWorld&&) noexcept;
+    CollisionWorld& operator=(CollisionWorld&&) noexcept;
+    ~CollisionWorld();
+
+    // Closest hit along `ray` with t in [tnear, tfar], or nothing (also for a ray that rayProblem
+    // rejects).
+    std::optional<Hit> intersect(const Ray& ray) const;
+    // The hits of `rays`, traced as Embree ray streams; element i equals intersect(rays[i]) exactly.
+    std::vector<std::optional<Hit>> intersectBatch(const std::vector<Ray>& rays) const;
+
+    // Moves a dynamic object (its instance transform; only the top level is recommitted). Fails for
+    // an index out of range, a static object, an object not in the world, or a transform that is
+    // not finite and invertible.
+    Status setTransform(uint32_t object, const glm::dmat4& transform);
+    // Takes an object out of the world (later rays pass through it). Fails for an index out of range
+    // or an object not in the world.
+    Status removeObject(uint32_t object);
+
+    // Number of Scene objects the world was built from (receivers or not).
+    size_t objectCount() const;
+    // The object at `index`, or nullptr when out of range.
+    const CollisionObject* object(uint32_t index) const;
+    // World-space bounds of the object's collision mesh under its current transform (of the render
+    // mesh for objects not in the world); empty for an index out of range or an empty mesh.
+    DBounds worldBounds(uint32_t index) const;
+    // The object's error bound in world units under its current transform: errorBound times the
+    // largest column length of the transform's linear part (its largest scale for TRS transforms).
+    // 0 for an index out of range.
+    double worldErrorBound(uint32_t index) const;
+    // Origin of the single-precision frame the static geometry is stored in.
+    glm::dvec3 origin() const;
+    // Collision triangles of the objects in the world.
+    size_t triangleCount() const;
+
+private:
+    struct Impl;
+    explicit CollisionWorld(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace spatter

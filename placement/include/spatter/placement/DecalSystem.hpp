@@ -1,0 +1,174 @@
+#pragma once
+// DecalSystem: the gameplay API that turns shots into decals (the counterpart of Unreal's
+// SpawnDecalAtLocation / SpawnDecalAttached). It owns the CollisionWorld, the registered decal
+// types, the live decals and the limits on them.
+//
+//   Result<DecalSystem> sys = DecalSystem::create(scene);          // or create(world, settings)
+//   uint16_t hole = sys->registerType(holeType).value();
+//   SpawnResult r = sys->spawn(Ray{eye, aim}, hole);               // r.placed() or r.status/r.reason
+//   sys->update(dt);                                               // ages, fades, expires
+//   renderer.draw(sys->decals());                                  // contiguous, object space
+//
+// Rules every call follows:
+// - A call that places nothing returns a status and a reason and changes no state except the
+//   rejection counter of its status in stats(): no decal, no limit list, no random number.
+//   Random numbers are drawn only once every check has passed, in this order: the 32-bit decal ID,
+//   the rotation angle (types with randomRotation), the size factor (types with sizeJitter > 0).
+// - Same settings (seed), same types and same calls give bit-identical decals.
+// - Decal::center and Decal::frame are in the space of the decal's object (static objects too), so
+//   decals follow their object when it moves and go with it when it is removed.
+// - Mutations (register, spawn*, update, remove, setTransform, removeObject) are single-threaded and
+//   must not overlap other calls on the same system; const calls may run concurrently with each other.
+
+#include "spatter/core/Decal.hpp"
+#include "spatter/core/DecalType.hpp"
+#include "spatter/core/Frame.hpp"
+#include "spatter/core/Result.hpp"
+#include "spatter/core/Scene.hpp"
+#include "spatter/placement/CollisionWorld.hpp"
+#include "spatter/placement/Ray.hpp"
+#include "spatter/placement/SpawnResult.hpp"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace spatter {
+
+// What happens when a spawn would exceed a limit (cell, object cap or global budget).
+enum class LimitPolicy : uint8_t {
+    EvictOldest, // the oldest decal under that limit is removed at once (stats: evicted)
+    FadeOldest,  // the oldest decal under that limit stops counting and fades out over its type's
+                 // fadeOutTime, then update() removes it (stats: evicted, when the fade starts)
+    Reject,      // the spawn fails with SpawnStatus::AreaLimit
+};
+
+struct DecalSettings {
+    uint64_t seed = 1;        // decal IDs, rotations, size jitter and object IDs all derive from it
+    float cellSize = 0.5f;    // edge of a spatial-hash cell, world units (> 0)
+    uint32_t maxPerCell = 16; // decals per cell (>= 1)
+    LimitPolicy policy = LimitPolicy::EvictOldest;
+    uint32_t budget = 4096;       // decals in the whole world (>= 1)
+    uint32_t maxPerObject = 1024; // decals per object (>= 1)
+    double idSeparation = 1.0;    // dynamic objects whose bounds are closer than this (world units)
+                                  // get different object IDs while 255 IDs allow it (>= 0)
+    float depthMargin = 0.25f;    // half_depth = max(type.halfDepth, h + depthMargin * max(w, h)) (>= 0)
+};
+
+struct DecalStats {
+    uint64_t placed = 0;
+    std::array<uint64_t, kSpawnStatusCount> rejected{}; // calls that placed nothing, by SpawnStatus
+    uint64_t evicted = 0;         // decals a limit removed or started fading (LimitPolicy)
+    uint64_t expired = 0;         // decals removed at the end of their type's lifetime
+    uint64_t removed = 0;         // decals removed by remove() or removeObject()
+    size_t alive = 0;             // decals in decals(), fading ones included
+    uint32_t sharedObjectIds = 0; // pairs of neighbouring dynamic objects that had to share an object ID
+
+    uint64_t rejectedTotal() const;
+    bool operator==(const DecalStats& o) const;
+    bool operator!=(const DecalStats& o) const { return !(*this == o); }
+};
+
+// A decal's box in world space: |x| <= size.x / 2, |y| <= size.y / 2, |z| <= halfDepth in `frame`
+// around `center`. Exact for rigid transforms with uniform or axis-aligned scale (TRS); under shear
+// the world box is the object-space box mapped by the transform, and this is its nearest
+// orthonormal description.
+struct WorldDecal {
+    glm::dvec3 center{0.0};
+    Frame frame;
+    glm::vec2 size{0.0f};
+    float halfDepth = 0.0f;
+};
+
+class DecalSystem {
+public:
+    // Takes ownership of `world`. Fails on settings out of the ranges documented in DecalSettings.
+    // Object IDs are assigned here, once, from the objects' bounds at this moment (assignObjectIds
+    // with settings.idSeparation and settings.seed), and stay fixed when objects move.
+    static Result<DecalSystem> create(CollisionWorld world, const DecalSettings& settings = {});
+    // Builds the collision world of `scene` (CollisionWorld::build with no proxies) and the system.
+    static Result<DecalSystem> create(const Scene& scene, const DecalSettings& settings = {});
+
+    DecalSystem(DecalSystem&&) noexcept;
+    DecalSystem& operator=(DecalSystem&&) noexcept;
+    ~DecalSystem();
+
+    // Registers a type and returns its index. Fails (naming the type and field) on an empty or
+    // duplicate name, a size that is not finite and positive, sizeJitter outside [0, 1),
+    // maxAngleDeg outside (0, 90], a lifetime, fadeOutTime or halfDepth that is negative or not
+    // finite, a negative texture, a non-finite tint or roughness, or more than 65535 types.
+    Result<uint16_t> registerType(const DecalType& type);
+    // Index of the type named `name`, or an error naming it.
+    Result<uint16_t> typeIndex(const std::string& name) const;
+    // The type at `index`, or nullptr.
+    const DecalType* type(uint16_t index) const;
+    size_t typeCount() const;
+
+    // Traces `ray` and places a decal of `type` where it hits. Checks, in order: type (InvalidType),
+    // ray (InvalidRay), hit (Missed), object (NotReceiver for a dynamic object when the type has
+    // onDynamic == false), angle between -direction and the surface normal (GrazingAngle when above
+    // maxAngleDeg), limits (AreaLimit under LimitPolicy::Reject). The decal's frame: normal = the
+    // hit's geometric normal (facing the ray); tangent = the ray direction projected onto the surface
+    // (frameFromNormalAndHint: then world X, then Duff et al.), turned by a random angle.
+    SpawnResult spawn(const Ray& ray, uint16_t type);
+
+    // Places a decal centred on the collision surface at `position`, facing `normal` (world space,
+    // need not be unit). The surface is found by a probe ray from position + r * n to
+    // position - r * n, r = max(type.size): Missed when it finds no receiver; GrazingAngle when the
+    // surface normal there is more than maxAngleDeg from `normal`. InvalidArgument for a non-finite
+    // position or normal or a zero normal. The tangent starts along world X.
+    SpawnResult spawnAt(const glm::dvec3& position, const glm::dvec3& normal, uint16_t type);
+
+    // Places a decal on `object` at `localPosition` facing `localNormal` (object space; no ray, no
+    // angle check). InvalidArgument for an index out of range or non-finite or zero vectors;
+    // NotReceiver for an object not in the world, or dynamic with a type that has onDynamic == false.
+    // The tangent starts along the object's X axis, so the result does not depend on where the
+    // object is at the time.
+    SpawnResult spawnAttached(uint32_t object, const glm::vec3& localPosition, const glm::vec3& localNormal,
+                              uint16_t type);
+
+    // Spawns one decal per ray, tracing them together as Embree ray streams. `results` is replaced
+    // by one result per ray, and everything (results, decals, IDs, random numbers, limits, stats)
+    // ends exactly as if spawn had been called on each ray in order.
+    void spawnBatch(const std::vector<Ray>& rays, uint16_t type, std::vector<SpawnResult>& results);
+
+    // Advances the clock by `dt` seconds (finite, >= 0): a decal whose type has a lifetime stays
+    // opaque until the last fadeOutTime seconds of it, fades linearly to 0, and is removed (expired)
+    // when its age reaches the lifetime; a decal evicted under FadeOldest fades over fadeOutTime from
+    // its eviction and is then removed. Fails, changing nothing, on a bad dt.
+    Status update(double dt);
+
+    // Removes a decal. False for a stale or invalid handle.
+    bool remove(DecalHandle handle);
+    // The decal, or nullptr for a stale or invalid handle. The pointer is valid until the next mutation.
+    const Decal* get(DecalHandle handle) const;
+    // The decal's box in world space under its object's current transform.
+    std::optional<WorldDecal> worldBox(DecalHandle handle) const;
+    WorldDecal worldBox(const Decal& decal) const;
+
+    // The live decals, contiguous, for the renderer. Order is deterministic but changes on removals.
+    const std::vector<Decal>& decals() const;
+
+    // Moves a dynamic object (CollisionWorld::setTransform); its decals follow.
+    Status setTransform(uint32_t object, const glm::dmat4& transform);
+    // Removes an object from the world together with its decals (counted in stats().removed).
+    Status removeObject(uint32_t object);
+    // The 8-bit object decal ID of an object (0 for static objects and indices out of range).
+    uint8_t objectId(uint32_t object) const;
+
+    const DecalStats& stats() const;
+    const DecalSettings& settings() const;
+    const CollisionWorld& world() const;
+    // Seconds accumulated by update().
+    double time() const;
+
+private:
+    struct Impl;
+    explicit DecalSystem(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace spatter

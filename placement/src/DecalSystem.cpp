@@ -1,0 +1,536 @@
+#include "spatter/placement/DecalSystem.hpp"
+
+#include "AreaLimits.hpp"
+#include "spatter/core/Random.hpp"
+#include "spatter/placement/ObjectIds.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace spatter {
+
+namespace {
+
+constexpr uint32_t kNone = UINT32_MAX;
+constexpr double kPi = 3.14159265358979323846;
+
+bool finite3(const glm::dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Largest column length of the linear part: the largest scale factor of a TRS transform.
+double largestScale(const glm::dmat3& m) {
+    return std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+}
+
+int64_t cellCoordinate(double v, double cellSize) {
+    const double c = std::floor(v / cellSize);
+    const double limit = 9.0e18;
+    return int64_t(std::clamp(c, -limit, limit));
+}
+
+std::string formatNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+struct Meta {
+    uint32_t slot = kNone;
+    bool fading = false;    // evicted under FadeOldest, no longer counted by the limits
+    double evictedAt = 0.0; // clock time of that eviction
+};
+
+struct Slot {
+    uint32_t dense = kNone;
+    uint32_t generation = 1;
+};
+
+} // namespace
+
+uint64_t DecalStats::rejectedTotal() const {
+    uint64_t n = 0;
+    for (uint64_t r : rejected)
+        n += r;
+    return n;
+}
+
+bool DecalStats::operator==(const DecalStats& o) const {
+    return placed == o.placed && rejected == o.rejected && evicted == o.evicted && expired == o.expired &&
+           removed == o.removed && alive == o.alive && sharedObjectIds == o.sharedObjectIds;
+}
+
+struct DecalSystem::Impl {
+    CollisionWorld world;
+    DecalSettings settings;
+    std::vector<DecalType> types;
+    std::vector<uint8_t> objectIds;
+    Rng rng;
+    double time = 0.0;
+    std::vector<Decal> decals; // dense
+    std::vector<Meta> meta;    // parallel to decals
+    std::vector<Slot> slots;
+    std::vector<uint32_t> freeSlots;
+    AreaLimits limits;
+    DecalStats stats;
+
+    Impl(CollisionWorld w, const DecalSettings& s)
+        : world(std::move(w)), settings(s), rng(s.seed), limits(world.objectCount()) {}
+
+    SpawnResult reject(SpawnStatus status, std::string reason) {
+        stats.rejected[size_t(status)]++;
+        SpawnResult r;
+        r.status = status;
+        r.reason = std::move(reason);
+        return r;
+    }
+
+    std::string typeError(uint16_t type) const {
+        return "no decal type with index " + std::to_string(type) + " (" + std::to_string(types.size()) +
+               " registered)";
+    }
+
+    const CollisionObject& object(uint32_t index) const { return *world.object(index); }
+
+    CellKey cellKey(uint32_t objectIndex, const glm::dvec3& local) const {
+        const CollisionObject& o = object(objectIndex);
+        glm::dvec3 p;
+        CellKey key;
+        if (o.dynamic) {
+            p = local * largestScale(glm::dmat3(o.transform));
+            key.space = 1 + objectIndex;
+        } else {
+            p = glm::dvec3(o.transform * glm::dvec4(local, 1.0));
+            key.space = 0;
+        }
+        const double cs = settings.cellSize;
+        key.x = cellCoordinate(p.x, cs);
+        key.y = cellCoordinate(p.y, cs);
+        key.z = cellCoordinate(p.z, cs);
+        return key;
+    }
+
+    void removeDense(uint32_t dense) {
+        const uint32_t slot = meta[dense].slot;
+        limits.unlink(slot);
+        slots[slot].dense = kNone;
+        slots[slot].generation++;
+        freeSlots.push_back(slot);
+        const uint32_t last = uint32_t(decals.size() - 1);
+        if (dense != last) {
+            decals[dense] = decals[last];
+            meta[dense] = meta[last];
+            slots[meta[dense].slot].dense = dense;
+        }
+        decals.pop_back();
+        meta.pop_back();
+        stats.alive = decals.size();
+    }
+
+    void evict(uint32_t slot) {
+        stats.evicted++;
+        const uint32_t dense = slots[slot].dense;
+        const float fade = types[decals[dense].type].fadeOutTime;
+        if (settings.policy == LimitPolicy::FadeOldest && fade > 0.0f) {
+            limits.unlink(slot);
+            meta[dense].fading = true;
+            meta[dense].evictedAt = time;
+        } else {
+            removeDense(dense);
+        }
+    }
+
+    // Under Reject: the reason a new decal in `key` on `objectIndex` would break a limit, or empty.
+    // Under the evicting policies: evicts until the new decal fits and returns empty.
+    std::string makeRoom(const CellKey& key, uint32_t objectIndex) {
+        if (settings.policy == LimitPolicy::Reject) {
+            if (limits.cellCount(key) >= settings.maxPerCell)
+                return "the cell (" + std::to_string(key.x) + ", " + std::to_string(key.y) + ", " +
+                       std::to_string(key.z) + ") holds " + std::to_string(limits.cellCount(key)) +
+                       " decals (maxPerCell " + std::to_string(settings.maxPerCell) + ")";
+            if (limits.objectCount(objectIndex) >= settings.maxPerObject)
+                return "object '" + object(objectIndex).name + "' holds " +
+                       std::to_string(limits.objectCount(objectIndex)) + " decals (maxPerObject " +
+                       std::to_string(settings.maxPerObject) + ")";
+            if (limits.total() >= settings.budget)
+                return "the world holds " + std::to_string(limits.total()) + " decals (budget " +
+                       std::to_string(settings.budget) + ")";
+            return {};
+        }
+        while (limits.cellCount(key) >= settings.maxPerCell)
+            evict(limits.oldestInCell(key));
+        while (limits.objectCount(objectIndex) >= settings.maxPerObject)
+            evict(limits.oldestOfObject(objectIndex));
+        while (limits.total() >= settings.budget)
+            evict(limits.oldest());
+        return {};
+    }
+
+    // Places a decal of `typeIndex` on `objectIndex` at `local` (object space) facing `worldNormal`
+    // (unit), its tangent from `worldHint`. Every check but the limits has passed.
+    SpawnResult place(uint32_t objectIndex, const glm::dvec3& local, const glm::dvec3& worldNormal,
+                      const glm::dvec3& worldHint, uint16_t typeIndex) {
+        const CollisionObject& o = object(objectIndex);
+        const DecalType& t = types[typeIndex];
+        const CellKey key = cellKey(objectIndex, local);
+        if (std::string why = makeRoom(key, objectIndex); !why.empty())
+            return reject(SpawnStatus::AreaLimit, std::move(why));
+
+        const uint32_t id = rng.next();
+        const float angle = t.randomRotation ? rng.uniform() * float(2.0 * kPi) : 0.0f;
+        const float scale = t.sizeJitter > 0.0f ? 1.0f + rng.uniform(-t.sizeJitter, t.sizeJitter) : 1.0f;
+
+        Frame f = frameFromNormalAndHint(glm::normalize(glm::vec3(worldNormal)), glm::vec3(worldHint));
+        if (t.randomRotation) f = rotateAboutNormal(f, angle);
+        const glm::vec2 size = t.size * scale;
+        const glm::dmat3 m(o.transform);
+        const double h = world.worldErrorBound(objectIndex);
+        const float halfDepth =
+            std::max(t.halfDepth, float(h + double(settings.depthMargin) * double(std::max(size.x, size.y))));
+
+        // To object space: normals by the transpose, tangents by the inverse.
+        const glm::dmat3 inv = glm::inverse(m);
+        const glm::dvec3 n = glm::normalize(glm::transpose(m) * glm::dvec3(f.normal));
+        glm::dvec3 tan = inv * glm::dvec3(f.tangent);
+        tan = glm::normalize(tan - n * glm::dot(n, tan));
+        const glm::dvec3 bit = glm::cross(n, tan);
+
+        Decal d;
+        d.frame.tangent = glm::vec3(tan);
+        d.frame.bitangent = glm::vec3(bit);
+        d.frame.normal = glm::vec3(n);
+        d.center = glm::vec3(local);
+        d.size = glm::vec2(float(size.x / glm::length(m * tan)), float(size.y / glm::length(m * bit)));
+        d.halfDepth = float(halfDepth * glm::length(glm::transpose(inv) * n));
+        d.object = objectIndex;
+        d.objectId = objectIndex < objectIds.size() ? objectIds[objectIndex] : 0;
+        d.id = id;
+        d.type = typeIndex;
+        d.spawnTime = time;
+        d.opacity = 1.0f;
+
+        uint32_t slot;
+        if (!freeSlots.empty()) {
+            slot = freeSlots.back();
+            freeSlots.pop_back();
+        } else {
+            slot = uint32_t(slots.size());
+            slots.emplace_back();
+        }
+        slots[slot].dense = uint32_t(decals.size());
+        decals.push_back(d);
+        Meta mt;
+        mt.slot = slot;
+        meta.push_back(mt);
+        limits.link(slot, key, objectIndex);
+        stats.placed++;
+        stats.alive = decals.size();
+
+        SpawnResult r;
+        r.status = SpawnStatus::Placed;
+        r.handle = DecalHandle{slot, slots[slot].generation};
+        return r;
+    }
+
+    SpawnResult fromHit(const Ray& ray, const std::optional<Hit>& hit, uint16_t typeIndex) {
+        if (!hit) return reject(SpawnStatus::Missed, "the ray hits no decal receiver");
+        const DecalType& t = types[typeIndex];
+        const CollisionObject& o = object(hit->object);
+        if (o.dynamic && !t.onDynamic)
+            return reject(SpawnStatus::NotReceiver,
+                          "decal type '" + t.name + "' may not land on dynamic object '" + o.name + "'");
+        const glm::dvec3 dir = glm::normalize(ray.direction);
+        const double angle = std::acos(std::clamp(-glm::dot(dir, hit->normal), -1.0, 1.0)) * (180.0 / kPi);
+        if (angle > double(t.maxAngleDeg))
+            return reject(SpawnStatus::GrazingAngle, "the ray meets '" + o.name + "' at " +
+                                                         formatNumber(angle) +
+                                                         " degrees from its normal (type '" + t.name +
+                                                         "' allows " + formatNumber(t.maxAngleDeg) + ")");
+        return place(hit->object, hit->localPosition, hit->normal, dir, typeIndex);
+    }
+
+    WorldDecal toWorld(const Decal& d) const {
+        const CollisionObject* o = world.object(d.object);
+        const glm::dmat4 xf = o ? o->transform : glm::dmat4(1.0);
+        const glm::dmat3 m(xf);
+        const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(m));
+        WorldDecal w;
+        w.center = glm::dvec3(xf * glm::dvec4(glm::dvec3(d.center), 1.0));
+        const glm::dvec3 nScaled = normalMatrix * glm::dvec3(d.frame.normal);
+        const glm::dvec3 n = glm::normalize(nScaled);
+        const glm::dvec3 tScaled = m * glm::dvec3(d.frame.tangent);
+        glm::dvec3 t = tScaled - n * glm::dot(n, tScaled);
+        t = glm::normalize(t);
+        w.frame.normal = glm::vec3(n);
+        w.frame.tangent = glm::vec3(t);
+        w.frame.bitangent = glm::vec3(glm::cross(n, t));
+        w.size = glm::vec2(float(d.size.x * glm::length(tScaled)),
+                           float(d.size.y * glm::length(m * glm::dvec3(d.frame.bitangent))));
+        w.halfDepth = float(d.halfDepth / glm::length(nScaled));
+        return w;
+    }
+};
+
+DecalSystem::DecalSystem(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+DecalSystem::DecalSystem(DecalSystem&&) noexcept = default;
+DecalSystem& DecalSystem::operator=(DecalSystem&&) noexcept = default;
+DecalSystem::~DecalSystem() = default;
+
+Result<DecalSystem> DecalSystem::create(CollisionWorld world, const DecalSettings& s) {
+    if (!std::isfinite(s.cellSize) || !(s.cellSize > 0.0f))
+        return fail("decal settings: cellSize must be finite and > 0");
+    if (s.maxPerCell < 1) return fail("decal settings: maxPerCell must be >= 1");
+    if (s.budget < 1) return fail("decal settings: budget must be >= 1");
+    if (s.maxPerObject < 1) return fail("decal settings: maxPerObject must be >= 1");
+    if (!std::isfinite(s.idSeparation) || s.idSeparation < 0.0)
+        return fail("decal settings: idSeparation must be finite and >= 0");
+    if (!std::isfinite(s.depthMargin) || s.depthMargin < 0.0f)
+        return fail("decal settings: depthMargin must be finite and >= 0");
+    auto impl = std::make_unique<Impl>(std::move(world), s);
+    const size_t n = impl->world.objectCount();
+    std::vector<DBounds> bounds(n);
+    std::vector<bool> dynamic(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        bounds[i] = impl->world.worldBounds(i);
+        dynamic[i] = impl->world.object(i)->dynamic;
+    }
+    ObjectIdAssignment ids = assignObjectIds(bounds, dynamic, s.idSeparation, s.seed);
+    impl->objectIds = std::move(ids.ids);
+    impl->stats.sharedObjectIds = ids.sharedPairs;
+    return DecalSystem(std::move(impl));
+}
+
+Result<DecalSystem> DecalSystem::create(const Scene& scene, const DecalSettings& settings) {
+    Result<CollisionWorld> world = CollisionWorld::build(scene);
+    if (!world) return fail(world.error());
+    return create(std::move(world).value(), settings);
+}
+
+Result<uint16_t> DecalSystem::registerType(const DecalType& t) {
+    const std::string where = "decal type '" + t.name + "': ";
+    if (t.name.empty()) return fail("decal type: empty name");
+    for (const DecalType& other : impl_->types)
+        if (other.name == t.name) return fail(where + "a type of that name is already registered");
+    if (impl_->types.size() >= 65535) return fail(where + "65535 types are registered already");
+    if (!std::isfinite(t.size.x) || !std::isfinite(t.size.y) || !(t.size.x > 0.0f) || !(t.size.y > 0.0f))
+        return fail(where + "size must be finite and > 0");
+    if (!std::isfinite(t.sizeJitter) || t.sizeJitter < 0.0f || !(t.sizeJitter < 1.0f))
+        return fail(where + "sizeJitter must be in [0, 1)");
+    if (!std::isfinite(t.maxAngleDeg) || !(t.maxAngleDeg > 0.0f) || t.maxAngleDeg > 90.0f)
+        return fail(where + "maxAngleDeg must be in (0, 90]");
+    if (!std::isfinite(t.lifetime) || t.lifetime < 0.0f)
+        return fail(where + "lifetime must be finite and >= 0");
+    if (!std::isfinite(t.fadeOutTime) || t.fadeOutTime < 0.0f)
+        return fail(where + "fadeOutTime must be finite and >= 0");
+    if (!std::isfinite(t.halfDepth) || t.halfDepth < 0.0f)
+        return fail(where + "halfDepth must be finite and >= 0");
+    if (t.texture < 0) return fail(where + "texture must be >= 0");
+    if (!std::isfinite(t.tint.x) || !std::isfinite(t.tint.y) || !std::isfinite(t.tint.z) ||
+        !std::isfinite(t.tint.w))
+        return fail(where + "tint must be finite");
+    if (!std::isfinite(t.roughness)) return fail(where + "roughness must be finite");
+    impl_->types.push_back(t);
+    return uint16_t(impl_->types.size() - 1);
+}
+
+Result<uint16_t> DecalSystem::typeIndex(const std::string& name) const {
+    for (size_t i = 0; i < impl_->types.size(); ++i)
+        if (impl_->types[i].name == name) return uint16_t(i);
+    return fail("no decal type named '" + name + "'");
+}
+
+const DecalType* DecalSystem::type(uint16_t index) const {
+    return index < impl_->types.size() ? &impl_->types[index] : nullptr;
+}
+
+size_t DecalSystem::typeCount() const {
+    return impl_->types.size();
+}
+
+SpawnResult DecalSystem::spawn(const Ray& ray, uint16_t type) {
+    if (type >= impl_->types.size()) return impl_->reject(SpawnStatus::InvalidType, impl_->typeError(type));
+    if (const char* problem = rayProblem(ray)) return impl_->reject(SpawnStatus::InvalidRay, problem);
+    return impl_->fromHit(ray, impl_->world.intersect(ray), type);
+}
+
+SpawnResult DecalSystem::spawnAt(const glm::dvec3& position, const glm::dvec3& normal, uint16_t type) {
+    Impl& s = *impl_;
+    if (type >= s.types.size()) return s.reject(SpawnStatus::InvalidType, s.typeError(type));
+    if (!finite3(position)) return s.reject(SpawnStatus::InvalidArgument, "spawnAt: position is not finite");
+    if (!finite3(normal)) return s.reject(SpawnStatus::InvalidArgument, "spawnAt: normal is not finite");
+    const double len2 = glm::dot(normal, normal);
+    if (!(len2 >= std::numeric_limits<double>::min()) || !std::isfinite(len2))
+        return s.reject(SpawnStatus::InvalidArgument, "spawnAt: normal is zero or cannot be normalised");
+    const DecalType& t = s.types[type];
+    const glm::dvec3 n = normal / std::sqrt(len2);
+    const double r = double(std::max(t.size.x, t.size.y));
+    Ray probe;
+    probe.origin = position + n * r;
+    probe.direction = -n;
+    probe.tnear = 0.0;
+    probe.tfar = 2.0 * r;
+    const std::optional<Hit> hit = s.world.intersect(probe);
+    if (!hit)
+        return s.reject(SpawnStatus::Missed, "spawnAt: no decal receiver within " + formatNumber(r) +
+                                                 " of the position along the normal");
+    const CollisionObject& o = s.object(hit->object);
+    if (o.dynamic && !t.onDynamic)
+        return s.reject(SpawnStatus::NotReceiver,
+                        "decal type '" + t.name + "' may not land on dynamic object '" + o.name + "'");
+    const double angle = std::acos(std::clamp(glm::dot(n, hit->normal), -1.0, 1.0)) * (180.0 / kPi);
+    if (angle > double(t.maxAngleDeg))
+        return s.reject(SpawnStatus::GrazingAngle, "spawnAt: the surface of '" + o.name + "' is " +
+                                                       formatNumber(angle) +
+                                                       " degrees from the normal (type '" + t.name +
+                                                       "' allows " + formatNumber(t.maxAngleDeg) + ")");
+    return s.place(hit->object, hit->localPosition, n, glm::dvec3(1.0, 0.0, 0.0), type);
+}
+
+SpawnResult DecalSystem::spawnAttached(uint32_t objectIndex, const glm::vec3& localPosition,
+                                       const glm::vec3& localNormal, uint16_t type) {
+    Impl& s = *impl_;
+    if (type >= s.types.size()) return s.reject(SpawnStatus::InvalidType, s.typeError(type));
+    const CollisionObject* o = s.world.object(objectIndex);
+    if (!o)
+        return s.reject(SpawnStatus::InvalidArgument,
+                        "spawnAttached: object " + std::to_string(objectIndex) + " out of range (" +
+                            std::to_string(s.world.objectCount()) + " objects)");
+    const glm::dvec3 p(localPosition), ln(localNormal);
+    if (!finite3(p))
+        return s.reject(SpawnStatus::InvalidArgument, "spawnAttached: local position is not finite");
+    if (!finite3(ln))
+        return s.reject(SpawnStatus::InvalidArgument, "spawnAttached: local normal is not finite");
+    const glm::dmat3 m(o->transform);
+    const glm::dvec3 wn = glm::transpose(glm::inverse(m)) * ln;
+    const double len2 = glm::dot(wn, wn);
+    if (!(len2 >= std::numeric_limits<double>::min()) || !std::isfinite(len2))
+        return s.reject(SpawnStatus::InvalidArgument,
+                        "spawnAttached: local normal is zero or cannot be normalised");
+    if (!o->inWorld)
+        return s.reject(SpawnStatus::NotReceiver, "object '" + o->name + "' is not in the collision world");
+    const DecalType& t = s.types[type];
+    if (o->dynamic && !t.onDynamic)
+        return s.reject(SpawnStatus::NotReceiver,
+                        "decal type '" + t.name + "' may not land on dynamic object '" + o->name + "'");
+    return s.place(objectIndex, p, wn / std::sqrt(len2), m * glm::dvec3(1.0, 0.0, 0.0), type);
+}
+
+void DecalSystem::spawnBatch(const std::vector<Ray>& rays, uint16_t type, std::vector<SpawnResult>& results) {
+    Impl& s = *impl_;
+    results.clear();
+    results.reserve(rays.size());
+    if (type >= s.types.size()) {
+        for (size_t i = 0; i < rays.size(); ++i)
+            results.push_back(s.reject(SpawnStatus::InvalidType, s.typeError(type)));
+        return;
+    }
+    const std::vector<std::optional<Hit>> hits = s.world.intersectBatch(rays);
+    for (size_t i = 0; i < rays.size(); ++i) {
+        if (const char* problem = rayProblem(rays[i]))
+            results.push_back(s.reject(SpawnStatus::InvalidRay, problem));
+        else
+            results.push_back(s.fromHit(rays[i], hits[i], type));
+    }
+}
+
+Status DecalSystem::update(double dt) {
+    if (!std::isfinite(dt) || dt < 0.0) return fail("update: dt must be finite and >= 0");
+    Impl& s = *impl_;
+    s.time += dt;
+    for (size_t i = s.decals.size(); i-- > 0;) {
+        Decal& d = s.decals[i];
+        const Meta& m = s.meta[i];
+        const DecalType& t = s.types[d.type];
+        float opacity = 1.0f;
+        bool remove = false;
+        if (t.lifetime > 0.0f) {
+            const double age = s.time - d.spawnTime;
+            if (age >= double(t.lifetime)) {
+                remove = true;
+                if (!m.fading) s.stats.expired++;
+            } else {
+                const double fadeStart = std::max(0.0, double(t.lifetime) - double(t.fadeOutTime));
+                if (age > fadeStart)
+                    opacity = float((double(t.lifetime) - age) / (double(t.lifetime) - fadeStart));
+            }
+        }
+        if (!remove && m.fading) {
+            const double since = s.time - m.evictedAt;
+            if (since >= double(t.fadeOutTime))
+                remove = true;
+            else
+                opacity = std::min(opacity, float(1.0 - since / double(t.fadeOutTime)));
+        }
+        if (remove)
+            s.removeDense(uint32_t(i));
+        else
+            d.opacity = opacity;
+    }
+    return {};
+}
+
+bool DecalSystem::remove(DecalHandle handle) {
+    Impl& s = *impl_;
+    if (!get(handle)) return false;
+    s.removeDense(s.slots[handle.slot].dense);
+    s.stats.removed++;
+    return true;
+}
+
+const Decal* DecalSystem::get(DecalHandle handle) const {
+    const Impl& s = *impl_;
+    if (handle.slot >= s.slots.size()) return nullptr;
+    const Slot& slot = s.slots[handle.slot];
+    if (slot.generation != handle.generation || slot.dense == kNone) return nullptr;
+    return &s.decals[slot.dense];
+}
+
+std::optional<WorldDecal> DecalSystem::worldBox(DecalHandle handle) const {
+    const Decal* d = get(handle);
+    if (!d) return std::nullopt;
+    return impl_->toWorld(*d);
+}
+
+WorldDecal DecalSystem::worldBox(const Decal& decal) const {
+    return impl_->toWorld(decal);
+}
+
+const std::vector<Decal>& DecalSystem::decals() const {
+    return impl_->decals;
+}
+
+Status DecalSystem::setTransform(uint32_t object, const glm::dmat4& transform) {
+    return impl_->world.setTransform(object, transform);
+}
+
+Status DecalSystem::removeObject(uint32_t object) {
+    Impl& s = *impl_;
+    if (Status st = s.world.removeObject(object); !st) return st;
+    for (size_t i = s.decals.size(); i-- > 0;) {
+        if (s.decals[i].object != object) continue;
+        s.removeDense(uint32_t(i));
+        s.stats.removed++;
+    }
+    return {};
+}
+
+uint8_t DecalSystem::objectId(uint32_t object) const {
+    return object < impl_->objectIds.size() ? impl_->objectIds[object] : 0;
+}
+
+const DecalStats& DecalSystem::stats() const {
+    return impl_->stats;
+}
+const DecalSettings& DecalSystem::settings() const {
+    return impl_->settings;
+}
+const CollisionWorld& DecalSystem::world() const {
+    return impl_->world;
+}
+double DecalSystem::time() const {
+    return impl_->time;
+}
+
+} // namespace spatter

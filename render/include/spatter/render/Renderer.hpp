@@ -1,0 +1,139 @@
+#pragma once
+// Renderer: the deferred renderer and its decal projector (Krassnigg, "A Deferred Decal Rendering
+// Technique", Game Engine Gems 2). A frame is
+//   1. geometry   the render meshes of every decal receiver fill the G-buffer (albedo, octahedral
+//                 normal, roughness/metallic, reversed-Z float depth, and object decal IDs when the
+//                 scene has dynamic objects);
+//   2. decals     one instanced unit cube per visible decal, one draw for the boxes that may contain
+//                 the eye (front faces culled, no depth test) and one for the rest (back faces
+//                 culled, depth test GL_GEQUAL, which is "not behind the scene" under reversed-Z).
+//                 Each fragment rebuilds the scene position from depth, keeps it when it is inside
+//                 the box, has the decal's object ID, and has a normal within the type's angle of
+//                 the decal axis, and writes albedo, normal (Whiteout) and roughness into the
+//                 G-buffer, so that decals are lit like everything else;
+//   3. late       objects that receive no decals, drawn over the decals;
+//   4. lighting   one directional light, ambient, GGX specular, tone mapping, sRGB output
+//                 (or one of the debug views).
+// Positions reach the GPU relative to the eye: object transforms stay double on the CPU and have
+// the eye subtracted before they become float.
+//
+//   Result<GlContext> gl = GlContext::createHeadless();
+//   Result<Renderer> r = Renderer::create(*gl, {640, 360});
+//   r->setScene(scene);
+//   r->setDecalTypes(types);             // appearance, indexed by Decal::type
+//   r->setObjectIds(ids);                // the decal system's 8-bit object IDs
+//   r->setDecals(decalSystem.decals());  // every frame; only changed instances are uploaded
+//   Result<FrameStats> stats = r->render(camera, View::Final);
+//   Result<Image> image = r->readback();
+//
+// Every call needs the context current on the calling thread; the context must outlive the
+// renderer. Invalid input (a decal naming a missing object or type, NaN in a transform, a size
+// out of range) never crashes: calls that can fail return a Status, and unusable decals are skipped
+// and counted in FrameStats::decalsInvalid.
+
+#include "spatter/core/Decal.hpp"
+#include "spatter/core/DecalType.hpp"
+#include "spatter/core/Image.hpp"
+#include "spatter/core/Result.hpp"
+#include "spatter/core/Scene.hpp"
+#include "spatter/render/Camera.hpp"
+#include "spatter/render/FrameStats.hpp"
+#include "spatter/render/GlContext.hpp"
+#include "spatter/render/View.hpp"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace spatter {
+
+// The frame in which a decal's normal map is applied.
+enum class DecalNormalFrame {
+    DecalAxes,        // the decal's tangent, bitangent and axis (Krassnigg 20.7)
+    DepthDerivatives, // per pixel: the drawn surface's normal from depth derivatives, with the
+                      // decal's tangent projected into it (follows curvature and wrapped corners)
+};
+
+struct LightSettings {
+    glm::vec3 direction{-0.35f, 0.8f, 0.5f}; // towards the light, world space (normalised on use)
+    glm::vec3 color{1.0f, 0.96f, 0.9f};
+    float intensity = 3.2f;
+    glm::vec3 skyAmbient{0.32f, 0.38f, 0.48f};
+    glm::vec3 groundAmbient{0.14f, 0.12f, 0.1f};
+    float exposure = 0.75f;
+};
+
+struct RendererSettings {
+    int width = 1280;
+    int height = 720;
+    DecalNormalFrame normalFrame = DecalNormalFrame::DecalAxes;
+    // Largest angle between a pixel's normal and the decal axis that a wrap-around type accepts:
+    // a type's maxAngleDeg (at most 90, a placement limit) would cut the decal at every corner it
+    // is meant to wrap around. Flat types use their own maxAngleDeg.
+    float wrapMaxAngleDeg = 120.0f;
+    // Depth fading starts at this fraction of the half-depth (|z| / halfDepth) and reaches zero at
+    // the box face; DecalType::depthFade picks the curve (None, Linear, Smooth). In [0, 1).
+    float fadeStart = 0.5f;
+    int decalTextureSize = 256; // size of the decal texture layers: a power of two in [16, 2048]
+    bool waitForTimers = false; // render() waits for this frame's GPU times (tools, benchmarks)
+    LightSettings light;
+};
+
+class Renderer {
+public:
+    // Compiles the shaders, creates the G-buffer at settings.width x settings.height and the decal
+    // texture array with the built-in layers. Fails on settings out of range or a shader that
+    // does not build (the message carries the driver's log).
+    static Result<Renderer> create(const GlContext& context, const RendererSettings& settings = {});
+
+    Renderer(Renderer&&) noexcept;
+    Renderer& operator=(Renderer&&) noexcept;
+    ~Renderer();
+
+    // Uploads the scene's meshes, materials and textures and copies its transforms (validated with
+    // validateScene; on failure the previous scene stays). Clears decals and object IDs. The ID
+    // target exists exactly when the scene has dynamic objects.
+    Status setScene(const Scene& scene);
+    // Moves an object (double precision, like SceneObject::transform). Fails for an index out of
+    // range or a transform that is not finite and invertible.
+    Status setObjectTransform(uint32_t object, const glm::dmat4& transform);
+    // The 8-bit object decal ID of every object (0 for static geometry), as the decal system
+    // assigns them; one entry per scene object. Without dynamic objects there is no ID target and
+    // IDs are not compared. Before this call every object has ID 0.
+    Status setObjectIds(const std::vector<uint8_t>& ids);
+
+    // Decal appearance, indexed by Decal::type. Layers (DecalType::texture) refer to the decal
+    // texture array: 0..3 are the built-in DecalTexture values.
+    void setDecalTypes(const std::vector<DecalType>& types);
+    // The decals to draw (object space, as DecalSystem::decals() gives them). Only instances whose
+    // data changed since the last frame are uploaded.
+    void setDecals(const std::vector<Decal>& decals);
+    // Adds a decal texture layer (resized to the layer size); `normalMap` may be empty for a flat
+    // one. Returns its layer index.
+    Result<int> addDecalTexture(const Image& albedo, const Image& normalMap = {});
+    // The same from image files (PNG, JPEG, ...); `normalMapPath` may be empty.
+    Result<int> addDecalTextureFile(const std::string& albedoPath, const std::string& normalMapPath = "");
+    int decalTextureLayers() const;
+
+    // Resizes the G-buffer and the output.
+    Status resize(int width, int height);
+    // Fails, changing nothing, on a non-finite value or a zero direction.
+    Status setLight(const LightSettings& light);
+    const RendererSettings& settings() const;
+
+    // Renders one frame of `view` from `camera` into the output image.
+    Result<FrameStats> render(const Camera& camera, View view = View::Final);
+    // The output image of the last render, RGBA8, row 0 at the top.
+    Result<Image> readback() const;
+    // Copies the output image into the current default framebuffer (a window) of the given size.
+    void present(int framebufferWidth, int framebufferHeight) const;
+
+private:
+    struct Impl;
+    explicit Renderer(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace spatter

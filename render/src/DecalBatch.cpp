@@ -1,0 +1,181 @@
+#include "DecalBatch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace spatter::render_detail {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+bool finite(const glm::vec4& v) {
+    return finite(glm::vec3(v)) && std::isfinite(v.w);
+}
+
+glm::dmat4 boxToObject(const Decal& d) {
+    return glm::dmat4(d.boxToObject());
+}
+
+void addDirty(std::vector<std::pair<size_t, size_t>>& dirty, size_t begin, size_t end) {
+    // Ranges arrive in increasing order; join those closer than a few instances.
+    if (!dirty.empty() && begin <= dirty.back().second + 4) {
+        dirty.back().second = std::max(dirty.back().second, end);
+        return;
+    }
+    dirty.emplace_back(begin, end);
+}
+
+} // namespace
+
+void DecalBatch::configure(float wrapMaxAngleDeg, int layerCount) {
+    if (wrapMaxAngleDeg == wrapMaxAngleDeg_ && layerCount == layerCount_) return;
+    wrapMaxAngleDeg_ = wrapMaxAngleDeg;
+    layerCount_ = layerCount;
+    rebuild();
+}
+
+void DecalBatch::setTypes(std::vector<DecalType> types) {
+    types_ = std::move(types);
+    rebuild();
+}
+
+void DecalBatch::setDecals(const std::vector<Decal>& decals, size_t objectCount) {
+    decals_ = decals;
+    objectCount_ = objectCount;
+    rebuild();
+}
+
+bool DecalBatch::build(const Decal& d, DecalGpu& out) const {
+    out = DecalGpu{};
+    if (d.object >= objectCount_ || d.type >= types_.size()) return false;
+    const DecalType& type = types_[d.type];
+    if (!finite(d.frame.tangent) || !finite(d.frame.bitangent) || !finite(d.frame.normal) ||
+        !finite(d.center) || !std::isfinite(d.size.x) || !std::isfinite(d.size.y) ||
+        !std::isfinite(d.halfDepth) || !std::isfinite(d.opacity))
+        return false;
+    if (!(d.size.x > 0.0f) || !(d.size.y > 0.0f) || !(d.halfDepth > 0.0f)) return false;
+    if (type.texture < 0 || type.texture >= layerCount_ || !finite(type.tint) ||
+        !std::isfinite(type.maxAngleDeg) || !std::isfinite(type.roughness))
+        return false;
+    const double lt = glm::length(glm::dvec3(d.frame.tangent)),
+                 lb = glm::length(glm::dvec3(d.frame.bitangent)),
+                 ln = glm::length(glm::dvec3(d.frame.normal));
+    if (!(lt > 1e-6 && lb > 1e-6 && ln > 1e-6)) return false;
+
+    const glm::dmat4 b2o = boxToObject(d);
+    const double det = glm::determinant(glm::dmat3(b2o));
+    const double scale = lt * lb * ln * double(d.size.x) * double(d.size.y) * double(d.halfDepth) * 0.25;
+    if (!(std::fabs(det) > 1e-9 * scale) || !std::isfinite(det)) return false;
+    const glm::dmat4 o2b = glm::inverse(b2o);
+    for (int r = 0; r < 3; ++r) {
+        out.boxToObject[r] =
+            glm::vec4(float(b2o[0][r]), float(b2o[1][r]), float(b2o[2][r]), float(b2o[3][r]));
+        out.objectToBox[r] =
+            glm::vec4(float(o2b[0][r]), float(o2b[1][r]), float(o2b[2][r]), float(o2b[3][r]));
+    }
+    out.tangent = glm::vec4(glm::vec3(glm::dvec3(d.frame.tangent) / lt), float(0.5 * double(d.size.x) * lt));
+    out.bitangent =
+        glm::vec4(glm::vec3(glm::dvec3(d.frame.bitangent) / lb), float(0.5 * double(d.size.y) * lb));
+    out.normal = glm::vec4(glm::vec3(glm::dvec3(d.frame.normal) / ln), float(double(d.halfDepth) * ln));
+    out.tint = glm::vec4(glm::vec3(type.tint), type.tint.w * std::clamp(d.opacity, 0.0f, 1.0f));
+
+    uint32_t flags = 0;
+    if (type.wrapAround) flags |= kDecalWrap;
+    if (type.normalMap) flags |= kDecalNormalMap;
+    if (type.depthFade == DepthFade::Linear) flags |= kDecalFadeLinear;
+    if (type.depthFade == DepthFade::Smooth) flags |= kDecalFadeSmooth;
+    if (type.roughness >= 0.0f) flags |= kDecalRoughness;
+    if (det < 0.0) flags |= kDecalMirrored;
+    out.info = glm::uvec4(d.object, d.objectId, uint32_t(type.texture), flags);
+
+    double angle = std::clamp(double(type.maxAngleDeg), 0.0, 180.0);
+    if (type.wrapAround) angle = std::max(angle, std::clamp(double(wrapMaxAngleDeg_), 0.0, 180.0));
+    out.params =
+        glm::vec4(float(std::cos(angle * kPi / 180.0)), std::clamp(type.roughness, 0.0f, 1.0f), 0.0f, 0.0f);
+    return true;
+}
+
+void DecalBatch::rebuild() {
+    std::vector<DecalGpu> next(decals_.size());
+    valid_.assign(decals_.size(), 0);
+    invalid_ = 0;
+    for (size_t i = 0; i < decals_.size(); ++i) {
+        valid_[i] = build(decals_[i], next[i]) ? 1 : 0;
+        invalid_ += valid_[i] ? 0 : 1;
+    }
+    // Only instances whose bytes changed (or are new) need uploading.
+    const size_t common = std::min(next.size(), gpu_.size());
+    size_t i = 0;
+    while (i < next.size()) {
+        if (i < common && std::memcmp(&next[i], &gpu_[i], sizeof(DecalGpu)) == 0) {
+            ++i;
+            continue;
+        }
+        size_t j = i + 1;
+        while (j < next.size() && !(j < common && std::memcmp(&next[j], &gpu_[j], sizeof(DecalGpu)) == 0))
+            ++j;
+        addDirty(dirty_, i, j);
+        i = j;
+    }
+    gpu_ = std::move(next);
+    // Ranges recorded earlier may point past a shrunk array.
+    for (auto& r : dirty_)
+        r.second = std::min(r.second, gpu_.size());
+    dirty_.erase(
+        std::remove_if(dirty_.begin(), dirty_.end(), [](const auto& r) { return r.first >= r.second; }),
+        dirty_.end());
+    std::sort(dirty_.begin(), dirty_.end());
+}
+
+DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms, const Camera& camera,
+                                 double aspect) const {
+    DecalVisibility vis;
+    const glm::dmat4 viewProj = projection(camera, aspect) * viewRotation(camera);
+    const double radius = nearPlaneRadius(camera, aspect) * 1.01;
+    for (size_t i = 0; i < decals_.size(); ++i) {
+        if (!valid_[i]) continue;
+        const Decal& d = decals_[i];
+        if (d.object >= objectTransforms.size()) continue;
+        const glm::dmat4 boxToWorld = objectTransforms[d.object] * boxToObject(d);
+
+        // Frustum: the box is outside when all eight corners lie beyond one clip plane.
+        int outside[6] = {0, 0, 0, 0, 0, 0};
+        for (int c = 0; c < 8; ++c) {
+            const glm::dvec4 corner((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0, 1.0);
+            const glm::dvec3 rel = glm::dvec3(boxToWorld * corner) - camera.eye;
+            const glm::dvec4 clip = viewProj * glm::dvec4(rel, 1.0);
+            outside[0] += clip.x < -clip.w;
+            outside[1] += clip.x > clip.w;
+            outside[2] += clip.y < -clip.w;
+            outside[3] += clip.y > clip.w;
+            outside[4] += clip.z > clip.w; // in front of the near plane (reversed-Z)
+            outside[5] += clip.z < 0.0;    // beyond the far plane (never with an infinite one)
+        }
+        if (std::any_of(outside, outside + 6, [](int n) { return n == 8; })) {
+            ++vis.culled;
+            continue;
+        }
+
+        // Camera inside, conservatively: the eye's near-plane sphere against the box slabs. Row r of
+        // the inverse maps world offsets to box coordinate r, so the sphere reaches |u_r| <= 1 only
+        // if |u_r| <= 1 + radius * |row r|.
+        const glm::dmat4 worldToBox = glm::inverse(boxToWorld);
+        const glm::dvec3 u = glm::dvec3(worldToBox * glm::dvec4(camera.eye, 1.0));
+        bool inside = true;
+        for (int r = 0; r < 3 && inside; ++r) {
+            const double rowLength =
+                glm::length(glm::dvec3(worldToBox[0][r], worldToBox[1][r], worldToBox[2][r]));
+            inside = std::fabs(u[r]) <= 1.0 + radius * rowLength;
+        }
+        (inside ? vis.inside : vis.outside).push_back(uint32_t(i));
+        vis.flags |= gpu_[i].info.w;
+    }
+    return vis;
+}
+
+} // namespace spatter::render_detail

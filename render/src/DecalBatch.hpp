@@ -1,0 +1,62 @@
+#pragma once
+// DecalBatch: the CPU side of the decal pass. It turns Decals and DecalTypes into per-instance GPU
+// data (object space, so that it changes only when a decal or its type changes), keeps track of
+// which instances changed since the last upload, and per frame culls the boxes against the view
+// and sorts the visible ones into "camera outside" and "camera inside" lists.
+
+#include "GpuLayouts.hpp"
+
+#include "spatter/core/Decal.hpp"
+#include "spatter/core/DecalType.hpp"
+#include "spatter/render/Camera.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace spatter::render_detail {
+
+struct DecalVisibility {
+    std::vector<uint32_t> outside; // decal indices drawn with back-face culling and the depth test
+    std::vector<uint32_t> inside;  // boxes that may contain the eye or cross the near plane
+    uint32_t flags = 0;            // union of the DecalFlag bits of the visible decals
+    size_t culled = 0;             // valid decals outside the view
+};
+
+class DecalBatch {
+public:
+    // Settings that shape the instance data; a change rebuilds every instance.
+    void configure(float wrapMaxAngleDeg, int layerCount);
+    void setTypes(std::vector<DecalType> types);
+    void setDecals(const std::vector<Decal>& decals, size_t objectCount);
+
+    size_t size() const { return gpu_.size(); }
+    size_t invalidCount() const { return invalid_; }
+    const std::vector<DecalGpu>& instances() const { return gpu_; }
+    // Ranges [begin, end) of instances() changed since markUploaded().
+    const std::vector<std::pair<size_t, size_t>>& dirty() const { return dirty_; }
+    void markUploaded() { dirty_.clear(); }
+
+    // Frustum culling of the valid decals under the current object transforms (world space,
+    // double) and camera, for a viewport of the given aspect ratio.
+    DecalVisibility cull(const std::vector<glm::dmat4>& objectTransforms, const Camera& camera,
+                         double aspect) const;
+
+private:
+    void rebuild();
+    // The instance of decal i, or nothing (zero, invalid) when it cannot be drawn.
+    bool build(const Decal& d, DecalGpu& out) const;
+
+    float wrapMaxAngleDeg_ = 120.0f;
+    int layerCount_ = 0;
+    size_t objectCount_ = 0;
+    std::vector<DecalType> types_;
+    std::vector<Decal> decals_;
+    std::vector<uint8_t> valid_;
+    std::vector<DecalGpu> gpu_;
+    std::vector<std::pair<size_t, size_t>> dirty_;
+    size_t invalid_ = 0;
+};
+
+} // namespace spatter::render_detail

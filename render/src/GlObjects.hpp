@@ -1,0 +1,98 @@
+#pragma once
+// Move-only owners of OpenGL object names. Each deletes its name when destroyed, so the context
+// must be current then.
+
+#include <epoxy/gl.h>
+
+#include <utility>
+
+namespace spatter::render_detail {
+
+enum class GlKind { Buffer, Texture, Framebuffer, VertexArray, Query, Program, Shader };
+
+inline void deleteGlName(GlKind kind, GLuint name) {
+    switch (kind) {
+    case GlKind::Buffer:
+        glDeleteBuffers(1, &name);
+        break;
+    case GlKind::Texture:
+        glDeleteTextures(1, &name);
+        break;
+    case GlKind::Framebuffer:
+        glDeleteFramebuffers(1, &name);
+        break;
+    case GlKind::VertexArray:
+        glDeleteVertexArrays(1, &name);
+        break;
+    case GlKind::Query:
+        glDeleteQueries(1, &name);
+        break;
+    case GlKind::Program:
+        glDeleteProgram(name);
+        break;
+    case GlKind::Shader:
+        glDeleteShader(name);
+        break;
+    }
+}
+
+template <GlKind Kind> class GlName {
+public:
+    GlName() = default;
+    explicit GlName(GLuint name) : name_(name) {}
+    GlName(const GlName&) = delete;
+    GlName& operator=(const GlName&) = delete;
+    GlName(GlName&& o) noexcept : name_(std::exchange(o.name_, 0)) {}
+    GlName& operator=(GlName&& o) noexcept {
+        if (this != &o) {
+            reset();
+            name_ = std::exchange(o.name_, 0);
+        }
+        return *this;
+    }
+    ~GlName() { reset(); }
+
+    GLuint get() const { return name_; }
+    explicit operator bool() const { return name_ != 0; }
+    void reset() {
+        if (name_) deleteGlName(Kind, name_);
+        name_ = 0;
+    }
+
+private:
+    GLuint name_ = 0;
+};
+
+using GlBuffer = GlName<GlKind::Buffer>;
+using GlTexture = GlName<GlKind::Texture>;
+using GlFramebuffer = GlName<GlKind::Framebuffer>;
+using GlVertexArray = GlName<GlKind::VertexArray>;
+using GlQuery = GlName<GlKind::Query>;
+using GlProgram = GlName<GlKind::Program>;
+using GlShader = GlName<GlKind::Shader>;
+
+inline GlBuffer createBuffer() {
+    GLuint n = 0;
+    glCreateBuffers(1, &n);
+    return GlBuffer(n);
+}
+
+inline GlTexture createTexture(GLenum target) {
+    GLuint n = 0;
+    glCreateTextures(target, 1, &n);
+    return GlTexture(n);
+}
+
+inline GlFramebuffer createFramebuffer() {
+    GLuint n = 0;
+    glCreateFramebuffers(1, &n);
+    return GlFramebuffer(n);
+}
+
+inline GlVertexArray createVertexArray() {
+    GLuint n = 0;
+    glCreateVertexArrays(1, &n);
+    return GlVertexArray(n);
+}
+
+} // namespace spatter::render_detail

@@ -1,0 +1,76 @@
+#pragma once
+// C++ mirrors of the GLSL blocks in shaders/common.glsl. Field order, types and padding match the
+// std140 / std430 rules; the static_asserts keep both sides in step.
+
+#include <cstdint>
+#include <glm/glm.hpp>
+
+namespace spatter::render_detail {
+
+// Buffer binding points (layout(binding = N) in the shaders).
+enum Binding : uint32_t {
+    kFrameBlock = 0,   // uniform block FrameBlock
+    kObjectBuffer = 1, // shader storage ObjectBuffer
+    kMaterialBuffer = 2,
+    kDecalBuffer = 3,
+    kVisibleBuffer = 4,
+};
+
+// Decal flags (DecalGpu::info.w), as DECAL_* in common.glsl.
+enum DecalFlag : uint32_t {
+    kDecalWrap = 1u,
+    kDecalNormalMap = 2u,
+    kDecalFadeLinear = 4u,
+    kDecalFadeSmooth = 8u,
+    kDecalRoughness = 16u,
+    kDecalMirrored = 32u,
+};
+
+// std140 uniform block, binding kFrameBlock.
+struct alignas(16) FrameGpu {
+    glm::mat4 viewProj;       // camera-relative world -> clip
+    glm::mat4 view;           // camera-relative world -> view (a rotation)
+    glm::mat4 invView;        // view -> camera-relative world
+    glm::vec4 projection;     // x = P[0][0], y = P[1][1], z = A, w = B: depth = (A z + B) / -z
+    glm::vec4 viewport;       // width, height, 1 / width, 1 / height
+    glm::vec4 lightDirection; // xyz: unit, towards the light; w: intensity
+    glm::vec4 lightColor;     // rgb; w: exposure
+    glm::vec4 skyAmbient;     // rgb
+    glm::vec4 groundAmbient;  // rgb
+    glm::vec4 depthRange;     // x: nearest, y: farthest scene distance (depth view); z: decal fade start
+};
+static_assert(sizeof(FrameGpu) == 3 * 64 + 7 * 16, "FrameGpu must match FrameBlock (std140)");
+
+// std430, binding kObjectBuffer, one per scene object.
+struct alignas(16) ObjectGpu {
+    glm::mat4 model;         // object -> camera-relative world
+    glm::mat4 normalMatrix;  // inverse transpose of model's 3x3 part, in the upper left
+    glm::mat4 worldToObject; // camera-relative world -> object
+    glm::uvec4 info;         // x: object decal ID, y: 1 when model mirrors (negative determinant)
+};
+static_assert(sizeof(ObjectGpu) == 208, "ObjectGpu must match ObjectData (std430)");
+
+// std430, binding kMaterialBuffer; the last entry is the default material.
+struct alignas(16) MaterialGpu {
+    glm::vec4 baseColor;
+    glm::vec4 params; // x: roughness, y: metallic, z: normal scale
+    glm::uvec4 flags; // x: has base colour texture, y: has normal texture
+};
+static_assert(sizeof(MaterialGpu) == 48, "MaterialGpu must match MaterialData (std430)");
+
+// std430, binding kDecalBuffer, one per decal given to the renderer (invalid ones stay zero and
+// are never drawn). Object-space data only, so it changes only when the decal or its type does;
+// the camera-relative world-to-box transform is composed in the vertex shader with the object's.
+struct alignas(16) DecalGpu {
+    glm::vec4 objectToBox[3]; // rows: object space -> unit box [-1, 1]^3
+    glm::vec4 boxToObject[3]; // rows: unit box -> object space
+    glm::vec4 tangent;        // xyz: object-space unit tangent; w: half width
+    glm::vec4 bitangent;      // xyz: unit bitangent; w: half height
+    glm::vec4 normal;         // xyz: unit normal (decal axis); w: half depth
+    glm::vec4 tint;           // rgb: tint; a: tint alpha * opacity
+    glm::uvec4 info;          // x: object index, y: object decal ID, z: texture layer, w: DecalFlag bits
+    glm::vec4 params;         // x: cosine of the largest accepted angle, y: roughness written
+};
+static_assert(sizeof(DecalGpu) == 192, "DecalGpu must match DecalData (std430)");
+
+} // namespace spatter::render_detail

@@ -1,0 +1,42 @@
+#pragma once
+// GPU timer queries (GL_TIME_ELAPSED), one per pass and frame, in a ring of frames. Results are
+// read without stalling: at the end of each frame the newest frame whose queries have all
+// finished is read. wait = true reads the current frame's results at once (tools, benchmarks).
+
+#include "GlObjects.hpp"
+
+#include "spatter/render/FrameStats.hpp"
+
+#include <array>
+#include <cstdint>
+
+namespace spatter::render_detail {
+
+enum class GpuPass { Geometry = 0, Decals, Late, Lighting, Count };
+
+class GpuTimers {
+public:
+    void create();
+    void beginFrame(uint64_t frame);
+    void begin(GpuPass pass);
+    void end();
+    // Ends the frame and returns the newest complete results (frame -1 while there are none).
+    GpuPassTimes endFrame(bool wait);
+
+private:
+    static constexpr int kRing = 4;
+    static constexpr int kPasses = int(GpuPass::Count);
+    struct Slot {
+        std::array<GlQuery, kPasses> queries;
+        std::array<bool, kPasses> used{};
+        int64_t frame = -1; // frame whose queries are in flight, -1 when read or unused
+    };
+    void read(Slot& slot);
+
+    std::array<Slot, kRing> slots_;
+    int current_ = 0;
+    bool active_ = false;
+    GpuPassTimes latest_;
+};
+
+} // namespace spatter::render_detail

@@ -1,0 +1,653 @@
+#include "spatter/render/Renderer.hpp"
+
+#include "DecalBatch.hpp"
+#include "DecalTextureArray.hpp"
+#include "GBuffer.hpp"
+#include "GlObjects.hpp"
+#include "GpuLayouts.hpp"
+#include "GpuTimers.hpp"
+#include "SceneGpu.hpp"
+#include "ShaderProgram.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+
+namespace spatter {
+
+using namespace render_detail;
+
+namespace {
+
+// Decal shader variant bits: the features a frame's visible decals use.
+enum Variant : uint32_t {
+    kVariantIds = 1u,
+    kVariantWrap = 2u,
+    kVariantNormalMap = 4u,
+    kVariantFade = 8u,
+    kVariantCoverage = 16u,
+    kVariantDepthFrame = 32u,
+};
+
+std::vector<std::string> variantDefines(uint32_t bits) {
+    std::vector<std::string> d;
+    if (bits & kVariantIds) d.push_back("IDS");
+    if (bits & kVariantWrap) d.push_back("WRAP");
+    if (bits & kVariantNormalMap) d.push_back("NORMAL_MAP");
+    if (bits & kVariantFade) d.push_back("FADE");
+    if (bits & kVariantCoverage) d.push_back("COVERAGE");
+    if (bits & kVariantDepthFrame) d.push_back("DEPTH_FRAME");
+    return d;
+}
+
+std::string join(const std::vector<std::string>& parts) {
+    std::string s;
+    for (const std::string& p : parts)
+        s += (s.empty() ? "" : " ") + p;
+    return s;
+}
+
+bool finiteMatrix(const glm::dmat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+bool finiteVec(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+Status validateSettings(const RendererSettings& s) {
+    if (s.width <= 0 || s.height <= 0 || s.width > 16384 || s.height > 16384)
+        return fail("renderer: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                    " is out of range");
+    if (!std::isfinite(s.wrapMaxAngleDeg) || s.wrapMaxAngleDeg < 0.0f || s.wrapMaxAngleDeg > 180.0f)
+        return fail("renderer: wrapMaxAngleDeg must be in [0, 180]");
+    if (!std::isfinite(s.fadeStart) || s.fadeStart < 0.0f || s.fadeStart >= 1.0f)
+        return fail("renderer: fadeStart must be in [0, 1)");
+    const LightSettings& l = s.light;
+    if (!finiteVec(l.direction) || !(glm::length(l.direction) > 0.0f) || !finiteVec(l.color) ||
+        !std::isfinite(l.intensity) || !finiteVec(l.skyAmbient) || !finiteVec(l.groundAmbient) ||
+        !std::isfinite(l.exposure))
+        return fail("renderer: light settings must be finite with a non-zero direction");
+    return {};
+}
+
+// Distance from p to the box (0 inside) and to its farthest corner.
+void distanceRange(const DBounds& b, const glm::dvec3& p, double& nearest, double& farthest) {
+    const glm::dvec3 closest = glm::clamp(p, b.min, b.max);
+    nearest = glm::length(closest - p);
+    const glm::dvec3 far = glm::max(glm::abs(b.min - p), glm::abs(b.max - p));
+    farthest = glm::length(far);
+}
+
+} // namespace
+
+struct Renderer::Impl {
+    ContextInfo info;
+    RendererSettings settings;
+
+    GBuffer gbuffer;
+    SceneGpu scene;
+    std::vector<glm::dmat4> transforms;
+    std::vector<uint8_t> objectIds;
+    std::vector<uint8_t> receivers; // 1: drawn before the decals
+    std::vector<Bounds> localBounds;
+    bool hasDynamic = false;
+    bool hasLate = false;
+
+    DecalBatch batch;
+    DecalTextureArray decalTextures;
+
+    GlProgram geometryProgram, lightingProgram, viewProgram;
+    std::map<uint32_t, GlProgram> decalPrograms;
+
+    GlBuffer frameBuffer;
+    GlBuffer objectBuffer;
+    size_t objectCapacity = 0;
+    GlBuffer decalBuffer;
+    size_t decalCapacity = 0;
+    GlBuffer visibleBuffer;
+    size_t visibleCapacity = 0;
+    GlVertexArray emptyVao;
+    GlTexture zeroIds; // bound as s_ids when there is no ID target
+
+    GpuTimers timers;
+    uint64_t frame = 0;
+    bool rendered = false;
+
+    // Per-frame counters.
+    size_t drawCalls = 0;
+    size_t triangles = 0;
+
+    Result<GLuint> decalProgram(uint32_t bits) {
+        auto it = decalPrograms.find(bits);
+        if (it != decalPrograms.end()) return it->second.get();
+        Result<GlProgram> p = buildProgram(
+            {{GL_VERTEX_SHADER, "decal.vert"}, {GL_FRAGMENT_SHADER, "decal.frag"}}, variantDefines(bits));
+        if (!p) return fail("renderer: " + p.error());
+        const GLuint name = p->get();
+        decalPrograms.emplace(bits, std::move(p.value()));
+        return name;
+    }
+
+    void bindBuffers() const {
+        glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBlock, frameBuffer.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBuffer, objectBuffer.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBuffer, scene.materialBuffer());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBuffer, decalBuffer.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBuffer, visibleBuffer.get());
+    }
+
+    GLuint idTexture() const { return gbuffer.hasIds() ? gbuffer.ids() : zeroIds.get(); }
+
+    // State every pass starts from.
+    void baseState(GLuint framebuffer) const {
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glViewport(0, 0, gbuffer.width(), gbuffer.height());
+        glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_STENCIL_TEST);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        glDisable(GL_DEPTH_TEST);
+        glDepthMask(GL_FALSE);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glFrontFace(GL_CCW);
+        glDisable(GL_FRAMEBUFFER_SRGB);
+        bindBuffers();
+    }
+
+    void drawObjects(bool receiversPass) {
+        glUseProgram(geometryProgram.get());
+        for (size_t i = 0; i < scene.objectCount(); ++i) {
+            if ((receivers[i] != 0) != receiversPass) continue;
+            const GpuMesh& mesh = scene.mesh(i);
+            if (mesh.triangles == 0) continue;
+            glBindVertexArray(mesh.vao.get());
+            glUniform1ui(0, GLuint(i));
+            for (const GpuSubmesh& sm : mesh.submeshes) {
+                if (sm.indexCount == 0) continue;
+                glUniform1ui(1, sm.material);
+                glBindTextureUnit(0, scene.baseColorTexture(sm.material));
+                glBindTextureUnit(1, scene.normalTexture(sm.material));
+                glDrawElements(GL_TRIANGLES, GLsizei(sm.indexCount), GL_UNSIGNED_INT,
+                               reinterpret_cast<const void*>(uintptr_t(sm.firstIndex) * sizeof(uint32_t)));
+                ++drawCalls;
+                triangles += sm.indexCount / 3;
+            }
+        }
+    }
+
+    // Pass 1: clears the G-buffer and draws the decal receivers.
+    void geometryPass() {
+        baseState(gbuffer.framebuffer());
+        const GLenum all[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                               GLenum(gbuffer.hasIds() ? GL_COLOR_ATTACHMENT3 : GL_NONE),
+                               GL_COLOR_ATTACHMENT4};
+        glDrawBuffers(5, all);
+        const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        const GLuint zeroU[4] = {0, 0, 0, 0};
+        glClearBufferfv(GL_COLOR, 0, zero);
+        glClearBufferfv(GL_COLOR, 1, zero);
+        glClearBufferfv(GL_COLOR, 2, zero);
+        if (gbuffer.hasIds()) glClearBufferuiv(GL_COLOR, 3, zeroU);
+        glClearBufferfv(GL_COLOR, 4, zero);
+        glDepthMask(GL_TRUE);
+        glClearBufferfi(GL_DEPTH_STENCIL, 0, 0.0f, 0); // reversed-Z: 0 is infinitely far
+
+        const GLenum geometry[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                    GLenum(gbuffer.hasIds() ? GL_COLOR_ATTACHMENT3 : GL_NONE), GL_NONE};
+        glDrawBuffers(5, geometry);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GREATER);
+        glEnable(GL_FRAMEBUFFER_SRGB);
+        drawObjects(true);
+    }
+
+    // Pass 2: the decal boxes over the G-buffer (or their coverage).
+    void decalPass(GLuint program, const DecalVisibility& vis, bool coverage) {
+        baseState(gbuffer.framebuffer());
+        if (!coverage) {
+            glCopyImageSubData(gbuffer.normal(), GL_TEXTURE_2D, 0, 0, 0, 0, gbuffer.normalCopy(),
+                               GL_TEXTURE_2D, 0, 0, 0, 0, gbuffer.width(), gbuffer.height(), 1);
+            const GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                       GL_NONE, GL_NONE};
+            glDrawBuffers(5, buffers);
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+            glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);   // albedo; keep the surface's alpha
+            glColorMaski(1, GL_TRUE, GL_TRUE, GL_FALSE, GL_FALSE);  // octahedral normal
+            glColorMaski(2, GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE); // roughness; keep metallic
+            glEnable(GL_FRAMEBUFFER_SRGB);
+        } else {
+            const GLenum buffers[5] = {GL_NONE, GL_NONE, GL_NONE, GL_NONE, GL_COLOR_ATTACHMENT4};
+            glDrawBuffers(5, buffers);
+        }
+        glBindTextureUnit(0, gbuffer.depth());
+        // The coverage variant reads the live normals: nothing writes them during it.
+        glBindTextureUnit(1, coverage ? gbuffer.normal() : gbuffer.normalCopy());
+        glBindTextureUnit(2, idTexture());
+        glBindTextureUnit(3, decalTextures.albedoTexture());
+        glBindTextureUnit(4, decalTextures.normalTexture());
+        glUseProgram(program);
+        glBindVertexArray(emptyVao.get());
+        glEnable(GL_CULL_FACE);
+
+        // Boxes in front of the eye: back faces culled, depth test "box face not behind the scene".
+        if (!vis.outside.empty()) {
+            glCullFace(GL_BACK);
+            glEnable(GL_DEPTH_TEST);
+            glDepthFunc(GL_GEQUAL);
+            glUniform1ui(0, 0u);
+            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(vis.outside.size()));
+            ++drawCalls;
+        }
+        // Boxes that may hold the eye or cross the near plane: their far faces, no depth test.
+        if (!vis.inside.empty()) {
+            glCullFace(GL_FRONT);
+            glDisable(GL_DEPTH_TEST);
+            glUniform1ui(0, GLuint(vis.outside.size()));
+            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(vis.inside.size()));
+            ++drawCalls;
+        }
+        glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glColorMaski(2, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    }
+
+    // Pass 3: objects that take no decals, over whatever the decals wrote.
+    void latePass(bool coverage) {
+        baseState(gbuffer.framebuffer());
+        const GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                                   GLenum(gbuffer.hasIds() ? GL_COLOR_ATTACHMENT3 : GL_NONE),
+                                   GLenum(coverage ? GL_COLOR_ATTACHMENT4 : GL_NONE)};
+        glDrawBuffers(5, buffers);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GREATER);
+        glDepthMask(GL_TRUE);
+        glEnable(GL_FRAMEBUFFER_SRGB);
+        drawObjects(false);
+    }
+
+    // Pass 4: lighting, or a debug view, into the output image.
+    void outputPass(View view) {
+        baseState(gbuffer.outputFramebuffer());
+        glBindTextureUnit(0, gbuffer.depth());
+        glBindTextureUnit(1, gbuffer.albedo());
+        glBindTextureUnit(2, gbuffer.normal());
+        glBindTextureUnit(3, gbuffer.material());
+        glBindTextureUnit(4, idTexture());
+        glBindTextureUnit(5, gbuffer.coverage());
+        glBindVertexArray(emptyVao.get());
+        if (view == View::Final) {
+            glUseProgram(lightingProgram.get());
+        } else {
+            glUseProgram(viewProgram.get());
+            glUniform1i(0, int(view)); // View values 1..5 match u_viewMode
+        }
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        ++drawCalls;
+    }
+
+    void uploadFrame(const Camera& camera) {
+        const double aspect = double(gbuffer.width()) / double(gbuffer.height());
+        const glm::dmat4 proj = projection(camera, aspect);
+        const glm::dmat4 view = viewRotation(camera);
+        FrameGpu f{};
+        f.viewProj = glm::mat4(proj * view);
+        f.view = glm::mat4(view);
+        f.invView = glm::mat4(glm::transpose(view));
+        f.projection = glm::vec4(float(proj[0][0]), float(proj[1][1]), float(proj[2][2]), float(proj[3][2]));
+        f.viewport = glm::vec4(float(gbuffer.width()), float(gbuffer.height()), 1.0f / float(gbuffer.width()),
+                               1.0f / float(gbuffer.height()));
+        const LightSettings& l = settings.light;
+        f.lightDirection = glm::vec4(glm::normalize(l.direction), l.intensity);
+        f.lightColor = glm::vec4(l.color, l.exposure);
+        f.skyAmbient = glm::vec4(l.skyAmbient, 0.0f);
+        f.groundAmbient = glm::vec4(l.groundAmbient, 0.0f);
+
+        DBounds world;
+        for (size_t i = 0; i < transforms.size(); ++i) {
+            const Bounds& b = localBounds[i];
+            if (b.empty()) continue;
+            for (int c = 0; c < 8; ++c) {
+                const glm::dvec3 p((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y,
+                                   (c & 4) ? b.max.z : b.min.z);
+                world.extend(glm::dvec3(transforms[i] * glm::dvec4(p, 1.0)));
+            }
+        }
+        double nearest = 0.0, farthest = 1.0;
+        if (!world.empty()) distanceRange(world, camera.eye, nearest, farthest);
+        f.depthRange =
+            glm::vec4(float(nearest), float(std::max(farthest, nearest + 1e-6)), settings.fadeStart, 0.0f);
+        glNamedBufferSubData(frameBuffer.get(), 0, sizeof(FrameGpu), &f);
+
+        std::vector<ObjectGpu> objects(transforms.size());
+        const glm::dmat4 toEye = glm::translate(glm::dmat4(1.0), -camera.eye);
+        for (size_t i = 0; i < transforms.size(); ++i) {
+            const glm::dmat4 rel = toEye * transforms[i];
+            ObjectGpu& o = objects[i];
+            o.model = glm::mat4(rel);
+            o.normalMatrix = glm::mat4(glm::mat3(glm::transpose(glm::inverse(glm::dmat3(transforms[i])))));
+            o.worldToObject = glm::mat4(glm::inverse(rel));
+            o.info = glm::uvec4(gbuffer.hasIds() ? objectIds[i] : 0u,
+                                glm::determinant(glm::dmat3(transforms[i])) < 0.0 ? 1u : 0u, 0u, 0u);
+        }
+        if (!objects.empty())
+            glNamedBufferSubData(objectBuffer.get(), 0, GLsizeiptr(objects.size() * sizeof(ObjectGpu)),
+                                 objects.data());
+    }
+
+    // Sends changed decal instances and this frame's visible list; returns the bytes sent.
+    size_t uploadDecals(const DecalVisibility& vis) {
+        size_t bytes = 0;
+        const std::vector<DecalGpu>& inst = batch.instances();
+        if (inst.size() > decalCapacity) {
+            decalCapacity = std::max<size_t>(64, decalCapacity);
+            while (decalCapacity < inst.size())
+                decalCapacity *= 2;
+            decalBuffer = createBuffer();
+            glNamedBufferStorage(decalBuffer.get(), GLsizeiptr(decalCapacity * sizeof(DecalGpu)), nullptr,
+                                 GL_DYNAMIC_STORAGE_BIT);
+            glNamedBufferSubData(decalBuffer.get(), 0, GLsizeiptr(inst.size() * sizeof(DecalGpu)),
+                                 inst.data());
+            bytes += inst.size() * sizeof(DecalGpu);
+        } else {
+            for (const auto& r : batch.dirty()) {
+                glNamedBufferSubData(decalBuffer.get(), GLintptr(r.first * sizeof(DecalGpu)),
+                                     GLsizeiptr((r.second - r.first) * sizeof(DecalGpu)), &inst[r.first]);
+                bytes += (r.second - r.first) * sizeof(DecalGpu);
+            }
+        }
+        batch.markUploaded();
+
+        const size_t count = vis.outside.size() + vis.inside.size();
+        if (count == 0) return bytes;
+        if (count > visibleCapacity) {
+            visibleCapacity = std::max<size_t>(64, visibleCapacity);
+            while (visibleCapacity < count)
+                visibleCapacity *= 2;
+            visibleBuffer = createBuffer();
+            glNamedBufferStorage(visibleBuffer.get(), GLsizeiptr(visibleCapacity * sizeof(uint32_t)), nullptr,
+                                 GL_DYNAMIC_STORAGE_BIT);
+        }
+        std::vector<uint32_t> list;
+        list.reserve(count);
+        list.insert(list.end(), vis.outside.begin(), vis.outside.end());
+        list.insert(list.end(), vis.inside.begin(), vis.inside.end());
+        glNamedBufferSubData(visibleBuffer.get(), 0, GLsizeiptr(list.size() * sizeof(uint32_t)), list.data());
+        return bytes + list.size() * sizeof(uint32_t);
+    }
+};
+
+Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+Renderer::~Renderer() = default;
+
+Result<Renderer> Renderer::create(const GlContext& context, const RendererSettings& settings) {
+    if (Status s = validateSettings(settings); !s) return fail(s.error());
+    if (Status s = context.makeCurrent(); !s) return fail("renderer: " + s.error());
+    auto impl = std::make_unique<Impl>();
+    impl->info = context.info();
+    impl->settings = settings;
+
+    Result<GlProgram> geometry =
+        buildProgram({{GL_VERTEX_SHADER, "geometry.vert"}, {GL_FRAGMENT_SHADER, "geometry.frag"}}, {});
+    if (!geometry) return fail("renderer: " + geometry.error());
+    Result<GlProgram> lighting =
+        buildProgram({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}}, {});
+    if (!lighting) return fail("renderer: " + lighting.error());
+    Result<GlProgram> view =
+        buildProgram({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "view.frag"}}, {});
+    if (!view) return fail("renderer: " + view.error());
+    impl->geometryProgram = std::move(geometry.value());
+    impl->lightingProgram = std::move(lighting.value());
+    impl->viewProgram = std::move(view.value());
+
+    if (Status s = impl->gbuffer.create(settings.width, settings.height, false); !s)
+        return fail("renderer: " + s.error());
+    if (Status s = impl->decalTextures.create(settings.decalTextureSize); !s)
+        return fail("renderer: " + s.error());
+    impl->batch.configure(settings.wrapMaxAngleDeg, impl->decalTextures.layers());
+
+    impl->frameBuffer = createBuffer();
+    glNamedBufferStorage(impl->frameBuffer.get(), sizeof(FrameGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    // Placeholders so that every binding point has a buffer before the first scene.
+    impl->objectBuffer = createBuffer();
+    glNamedBufferStorage(impl->objectBuffer.get(), sizeof(ObjectGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    impl->decalBuffer = createBuffer();
+    glNamedBufferStorage(impl->decalBuffer.get(), sizeof(DecalGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    impl->visibleBuffer = createBuffer();
+    glNamedBufferStorage(impl->visibleBuffer.get(), sizeof(uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    impl->emptyVao = createVertexArray();
+    impl->zeroIds = createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(impl->zeroIds.get(), 1, GL_R8UI, 1, 1);
+    const uint8_t zero = 0;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(impl->zeroIds.get(), 0, 0, 0, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+    glTextureParameteri(impl->zeroIds.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(impl->zeroIds.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    impl->timers.create();
+
+    Renderer r(std::move(impl));
+    if (Status s = r.setScene(Scene{}); !s) return fail(s.error());
+    return r;
+}
+
+Status Renderer::setScene(const Scene& scene) {
+    Impl& m = *impl_;
+    if (Status s = m.scene.upload(scene); !s) return s;
+    const size_t n = scene.objects.size();
+    m.transforms.resize(n);
+    m.receivers.resize(n);
+    m.localBounds.resize(n);
+    m.hasDynamic = false;
+    m.hasLate = false;
+    for (size_t i = 0; i < n; ++i) {
+        const SceneObject& o = scene.objects[i];
+        m.transforms[i] = o.transform;
+        m.receivers[i] = o.receivesDecals ? 1 : 0;
+        m.localBounds[i] = o.mesh.bounds();
+        m.hasDynamic = m.hasDynamic || o.dynamic;
+        m.hasLate = m.hasLate || !o.receivesDecals;
+    }
+    m.objectIds.assign(n, 0);
+    if (m.hasDynamic != m.gbuffer.hasIds())
+        if (Status s = m.gbuffer.create(m.gbuffer.width(), m.gbuffer.height(), m.hasDynamic); !s)
+            return fail("renderer: " + s.error());
+    if (n > m.objectCapacity || m.objectCapacity == 0) {
+        m.objectCapacity = std::max<size_t>(n, 1);
+        m.objectBuffer = createBuffer();
+        glNamedBufferStorage(m.objectBuffer.get(), GLsizeiptr(m.objectCapacity * sizeof(ObjectGpu)), nullptr,
+                             GL_DYNAMIC_STORAGE_BIT);
+    }
+    m.batch.setDecals({}, n);
+    return {};
+}
+
+Status Renderer::setObjectTransform(uint32_t object, const glm::dmat4& transform) {
+    Impl& m = *impl_;
+    if (object >= m.transforms.size())
+        return fail("renderer: object " + std::to_string(object) + " is out of range (" +
+                    std::to_string(m.transforms.size()) + " objects)");
+    const double det = glm::determinant(glm::dmat3(transform));
+    if (!finiteMatrix(transform) || !(std::fabs(det) > 1e-30) || !std::isfinite(det))
+        return fail("renderer: transform of object " + std::to_string(object) +
+                    " is not finite and invertible");
+    m.transforms[object] = transform;
+    return {};
+}
+
+Status Renderer::setObjectIds(const std::vector<uint8_t>& ids) {
+    Impl& m = *impl_;
+    if (ids.size() != m.transforms.size())
+        return fail("renderer: " + std::to_string(ids.size()) + " object IDs for " +
+                    std::to_string(m.transforms.size()) + " objects");
+    m.objectIds = ids;
+    return {};
+}
+
+void Renderer::setDecalTypes(const std::vector<DecalType>& types) {
+    impl_->batch.setTypes(types);
+}
+
+void Renderer::setDecals(const std::vector<Decal>& decals) {
+    impl_->batch.setDecals(decals, impl_->transforms.size());
+}
+
+Result<int> Renderer::addDecalTexture(const Image& albedo, const Image& normalMap) {
+    Result<int> layer = impl_->decalTextures.add(albedo, normalMap);
+    if (layer) impl_->batch.configure(impl_->settings.wrapMaxAngleDeg, impl_->decalTextures.layers());
+    return layer;
+}
+
+Result<int> Renderer::addDecalTextureFile(const std::string& albedoPath, const std::string& normalMapPath) {
+    Result<Image> albedo = loadImage(albedoPath);
+    if (!albedo) return fail(albedo.error());
+    Image normal;
+    if (!normalMapPath.empty()) {
+        Result<Image> n = loadImage(normalMapPath);
+        if (!n) return fail(n.error());
+        normal = std::move(n.value());
+    }
+    return addDecalTexture(albedo.value(), normal);
+}
+
+int Renderer::decalTextureLayers() const {
+    return impl_->decalTextures.layers();
+}
+
+Status Renderer::resize(int width, int height) {
+    RendererSettings s = impl_->settings;
+    s.width = width;
+    s.height = height;
+    if (Status v = validateSettings(s); !v) return v;
+    if (Status c = impl_->gbuffer.create(width, height, impl_->hasDynamic); !c)
+        return fail("renderer: " + c.error());
+    impl_->settings = s;
+    return {};
+}
+
+Status Renderer::setLight(const LightSettings& light) {
+    RendererSettings s = impl_->settings;
+    s.light = light;
+    if (Status v = validateSettings(s); !v) return v;
+    impl_->settings = s;
+    return {};
+}
+
+const RendererSettings& Renderer::settings() const {
+    return impl_->settings;
+}
+
+Result<FrameStats> Renderer::render(const Camera& camera, View view) {
+    Impl& m = *impl_;
+    if (Status s = validateCamera(camera); !s) return fail("renderer: " + s.error());
+    const auto start = std::chrono::steady_clock::now();
+    const bool coverage = view == View::Coverage;
+    m.drawCalls = 0;
+    m.triangles = 0;
+
+    FrameStats stats;
+    stats.frame = m.frame;
+    stats.width = m.gbuffer.width();
+    stats.height = m.gbuffer.height();
+    stats.view = view;
+    stats.glRenderer = m.info.renderer;
+    stats.glVendor = m.info.vendor;
+    stats.glVersion = m.info.version;
+
+    // Decide the decal work first: a shader that fails to build fails the frame before any GL work.
+    const double aspect = double(m.gbuffer.width()) / double(m.gbuffer.height());
+    const DecalVisibility vis = m.batch.cull(m.transforms, camera, aspect);
+    stats.decals = m.batch.size();
+    stats.decalsInvalid = m.batch.invalidCount();
+    stats.decalsCulled = vis.culled;
+    stats.decalsDrawn = vis.outside.size() + vis.inside.size();
+    stats.decalsInside = vis.inside.size();
+    stats.decalPassSkipped = stats.decalsDrawn == 0;
+    GLuint decalProgram = 0;
+    if (!stats.decalPassSkipped) {
+        uint32_t bits = 0;
+        if (m.gbuffer.hasIds()) bits |= kVariantIds;
+        if (vis.flags & kDecalWrap) bits |= kVariantWrap;
+        if (coverage) {
+            bits |= kVariantCoverage;
+        } else {
+            if (vis.flags & kDecalNormalMap) {
+                bits |= kVariantNormalMap;
+                if (m.settings.normalFrame == DecalNormalFrame::DepthDerivatives) bits |= kVariantDepthFrame;
+            }
+            if (vis.flags & (kDecalFadeLinear | kDecalFadeSmooth)) bits |= kVariantFade;
+        }
+        Result<GLuint> program = m.decalProgram(bits);
+        if (!program) return fail(program.error());
+        decalProgram = program.value();
+        stats.decalVariant = join(variantDefines(bits));
+    }
+
+    m.timers.beginFrame(m.frame);
+    m.uploadFrame(camera);
+    stats.decalBytesUploaded = m.uploadDecals(vis);
+
+    m.timers.begin(GpuPass::Geometry);
+    m.geometryPass();
+    m.timers.end();
+    if (!stats.decalPassSkipped) {
+        m.timers.begin(GpuPass::Decals);
+        m.decalPass(decalProgram, vis, coverage);
+        m.timers.end();
+    }
+    if (m.hasLate) {
+        m.timers.begin(GpuPass::Late);
+        m.latePass(coverage);
+        m.timers.end();
+    }
+    m.timers.begin(GpuPass::Lighting);
+    m.outputPass(view);
+    m.timers.end();
+    stats.gpu = m.timers.endFrame(m.settings.waitForTimers);
+
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    stats.drawCalls = m.drawCalls;
+    stats.triangles = m.triangles;
+    stats.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    ++m.frame;
+    m.rendered = true;
+    return stats;
+}
+
+Result<Image> Renderer::readback() const {
+    const Impl& m = *impl_;
+    if (!m.rendered) return fail("renderer: nothing rendered yet");
+    const int w = m.gbuffer.width(), h = m.gbuffer.height();
+    std::vector<uint8_t> pixels(size_t(w) * size_t(h) * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(m.gbuffer.output(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(pixels.size()),
+                      pixels.data());
+    Image image;
+    image.width = w;
+    image.height = h;
+    image.name = "render";
+    image.rgba.resize(pixels.size());
+    const size_t row = size_t(w) * 4;
+    for (int y = 0; y < h; ++y) // GL row 0 is the bottom
+        std::copy_n(&pixels[size_t(h - 1 - y) * row], row, &image.rgba[size_t(y) * row]);
+    return image;
+}
+
+void Renderer::present(int framebufferWidth, int framebufferHeight) const {
+    const Impl& m = *impl_;
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    glBlitNamedFramebuffer(m.gbuffer.outputFramebuffer(), 0, 0, 0, m.gbuffer.width(), m.gbuffer.height(), 0,
+                           0, framebufferWidth, framebufferHeight, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+}
+
+} // namespace spatter

@@ -1,0 +1,127 @@
+#include "SceneGpu.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace spatter::render_detail {
+
+namespace {
+
+// Interleaved vertex: position, normal, uv, tangent.
+struct Vertex {
+    glm::vec3 position;
+    glm::vec3 normal;
+    glm::vec2 uv;
+    glm::vec4 tangent;
+};
+static_assert(sizeof(Vertex) == 48, "tightly packed vertex");
+
+GlTexture uploadImage(const Image& image, bool srgb) {
+    GlTexture t = createTexture(GL_TEXTURE_2D);
+    const int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
+    glTextureStorage2D(t.get(), levels, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, image.width, image.height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    // Image rows start at the top; glTF UVs have v = 0 at the top too, so rows go in as they are.
+    glTextureSubImage2D(t.get(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                        image.rgba.data());
+    glGenerateTextureMipmap(t.get());
+    glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(t.get(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(t.get(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+    return t;
+}
+
+} // namespace
+
+Status SceneGpu::upload(const Scene& scene) {
+    if (Status s = validateScene(scene); !s) return fail("renderer: " + s.error());
+    meshes_.clear();
+    textures_.clear();
+    baseTextures_.assign(scene.materials.size(), 0);
+    normalTextures_.assign(scene.materials.size(), 0);
+    const uint32_t defaultMaterial = uint32_t(scene.materials.size());
+
+    for (const SceneObject& o : scene.objects) {
+        const Mesh& m = o.mesh;
+        std::vector<glm::vec4> tangents = m.tangents;
+        if (tangents.size() != m.positions.size()) {
+            Mesh copy = m;
+            computeTangents(copy);
+            tangents = std::move(copy.tangents);
+        }
+        std::vector<Vertex> vertices(m.positions.size());
+        for (size_t i = 0; i < vertices.size(); ++i) {
+            vertices[i].position = m.positions[i];
+            vertices[i].normal = i < m.normals.size() ? m.normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
+            vertices[i].uv = i < m.uvs.size() ? m.uvs[i] : glm::vec2(0.0f);
+            vertices[i].tangent = i < tangents.size() ? tangents[i] : glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+        }
+        GpuMesh g;
+        g.vao = createVertexArray();
+        g.vertices = createBuffer();
+        g.indices = createBuffer();
+        glNamedBufferStorage(
+            g.vertices.get(), GLsizeiptr(std::max<size_t>(1, vertices.size()) * sizeof(Vertex)),
+            vertices.empty() ? nullptr : vertices.data(), vertices.empty() ? GL_DYNAMIC_STORAGE_BIT : 0);
+        glNamedBufferStorage(
+            g.indices.get(), GLsizeiptr(std::max<size_t>(1, m.indices.size()) * sizeof(uint32_t)),
+            m.indices.empty() ? nullptr : m.indices.data(), m.indices.empty() ? GL_DYNAMIC_STORAGE_BIT : 0);
+        const GLuint vao = g.vao.get();
+        glVertexArrayVertexBuffer(vao, 0, g.vertices.get(), 0, sizeof(Vertex));
+        glVertexArrayElementBuffer(vao, g.indices.get());
+        const GLuint offsets[4] = {offsetof(Vertex, position), offsetof(Vertex, normal), offsetof(Vertex, uv),
+                                   offsetof(Vertex, tangent)};
+        const GLint sizes[4] = {3, 3, 2, 4};
+        for (GLuint a = 0; a < 4; ++a) {
+            glEnableVertexArrayAttrib(vao, a);
+            glVertexArrayAttribFormat(vao, a, sizes[a], GL_FLOAT, GL_FALSE, offsets[a]);
+            glVertexArrayAttribBinding(vao, a, 0);
+        }
+        if (m.submeshes.empty()) {
+            g.submeshes.push_back({0, uint32_t(m.indices.size()), defaultMaterial});
+        } else {
+            for (const Submesh& s : m.submeshes)
+                g.submeshes.push_back(
+                    {s.firstIndex, s.indexCount, s.material < 0 ? defaultMaterial : uint32_t(s.material)});
+        }
+        g.triangles = m.triangleCount();
+        meshes_.push_back(std::move(g));
+    }
+
+    // Textures: one per (image, colour space) that some material uses.
+    std::map<std::pair<int, bool>, GLuint> uploaded;
+    auto texture = [&](int image, bool srgb) -> GLuint {
+        if (image < 0) return 0;
+        auto it = uploaded.find({image, srgb});
+        if (it != uploaded.end()) return it->second;
+        textures_.push_back(uploadImage(scene.images[size_t(image)], srgb));
+        return uploaded[{image, srgb}] = textures_.back().get();
+    };
+    std::vector<MaterialGpu> materials(scene.materials.size() + 1);
+    for (size_t i = 0; i <= scene.materials.size(); ++i) {
+        const Material m = i < scene.materials.size() ? scene.materials[i] : Material{};
+        const Material fallback;
+        auto finite = [](float v) { return std::isfinite(v); };
+        const glm::vec4& c = m.baseColorFactor;
+        MaterialGpu& g = materials[i];
+        // Non-finite factors (validateScene does not check them) fall back to the defaults.
+        g.baseColor = finite(c.x) && finite(c.y) && finite(c.z) && finite(c.w) ? c : fallback.baseColorFactor;
+        g.params = glm::vec4(finite(m.roughness) ? m.roughness : fallback.roughness,
+                             finite(m.metallic) ? m.metallic : fallback.metallic,
+                             finite(m.normalScale) ? m.normalScale : fallback.normalScale, 0.0f);
+        if (i < scene.materials.size()) {
+            baseTextures_[i] = texture(m.baseColorTexture, true);
+            normalTextures_[i] = texture(m.normalTexture, false);
+        }
+        g.flags = glm::uvec4(i < baseTextures_.size() && baseTextures_[i] ? 1u : 0u,
+                             i < normalTextures_.size() && normalTextures_[i] ? 1u : 0u, 0u, 0u);
+    }
+    materialBuffer_ = createBuffer();
+    glNamedBufferStorage(materialBuffer_.get(), GLsizeiptr(materials.size() * sizeof(MaterialGpu)),
+                         materials.data(), 0);
+    return {};
+}
+
+} // namespace spatter::render_detail

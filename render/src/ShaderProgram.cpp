@@ -1,0 +1,123 @@
+#include "ShaderProgram.hpp"
+
+#include "ShaderSources.hpp"
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+
+namespace spatter::render_detail {
+
+namespace {
+
+constexpr int kMaxIncludeDepth = 8;
+
+int findSource(const std::string& name) {
+    for (size_t i = 0; i < sizeof(kShaderSources) / sizeof(kShaderSources[0]); ++i)
+        if (name == kShaderSources[i].name) return int(i);
+    return -1;
+}
+
+std::string sourceList() {
+    std::string s;
+    for (size_t i = 0; i < sizeof(kShaderSources) / sizeof(kShaderSources[0]); ++i)
+        s += (i ? ", " : "") + std::to_string(i) + " = " + kShaderSources[i].name;
+    return s;
+}
+
+Status expand(int index, std::set<int>& included, int depth, std::string& out) {
+    if (depth > kMaxIncludeDepth)
+        return fail(std::string("shader ") + kShaderSources[index].name + ": includes nest too deep");
+    std::istringstream in(kShaderSources[index].text);
+    std::string line;
+    int lineNo = 0;
+    out += "#line 1 " + std::to_string(index) + "\n";
+    while (std::getline(in, line)) {
+        ++lineNo;
+        const size_t first = line.find_first_not_of(" \t");
+        if (first != std::string::npos && line.compare(first, 8, "#include") == 0) {
+            const size_t a = line.find('"', first), b = a == std::string::npos ? a : line.find('"', a + 1);
+            if (b == std::string::npos)
+                return fail(std::string("shader ") + kShaderSources[index].name + ":" +
+                            std::to_string(lineNo) + ": malformed #include");
+            const std::string name = line.substr(a + 1, b - a - 1);
+            const int inc = findSource(name);
+            if (inc < 0)
+                return fail(std::string("shader ") + kShaderSources[index].name + ":" +
+                            std::to_string(lineNo) + ": no embedded file '" + name + "'");
+            if (included.insert(inc).second) {
+                if (Status s = expand(inc, included, depth + 1, out); !s) return s;
+            }
+            out += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
+            continue;
+        }
+        out += line;
+        out += '\n';
+    }
+    return {};
+}
+
+Result<GlShader> compile(GLenum type, const std::string& file, const std::string& text) {
+    GlShader shader(glCreateShader(type));
+    const char* src = text.c_str();
+    glShaderSource(shader.get(), 1, &src, nullptr);
+    glCompileShader(shader.get());
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(std::max(len, 1)), '\0');
+        GLsizei written = 0;
+        glGetShaderInfoLog(shader.get(), GLsizei(log.size()), &written, log.data());
+        log.resize(size_t(std::max(written, 0)));
+        return fail("shader " + file + " does not compile (source strings: " + sourceList() + "):\n" + log);
+    }
+    return shader;
+}
+
+} // namespace
+
+Result<std::string> expandShader(const std::string& file, const std::vector<std::string>& defines) {
+    const int index = findSource(file);
+    if (index < 0) return fail("no embedded shader file '" + file + "'");
+    std::string out = "#version 450 core\n";
+    for (const std::string& d : defines)
+        out += "#define " + d + " 1\n";
+    std::set<int> included{index};
+    if (Status s = expand(index, included, 0, out); !s) return fail(s.error());
+    return out;
+}
+
+Result<GlProgram> buildProgram(const std::vector<ShaderStage>& stages,
+                               const std::vector<std::string>& defines) {
+    GlProgram program(glCreateProgram());
+    std::vector<GlShader> shaders;
+    std::string names;
+    for (const ShaderStage& st : stages) {
+        Result<std::string> text = expandShader(st.file, defines);
+        if (!text) return fail(text.error());
+        Result<GlShader> sh = compile(st.type, st.file, text.value());
+        if (!sh) return fail(sh.error());
+        glAttachShader(program.get(), sh->get());
+        shaders.push_back(std::move(sh.value()));
+        names += (names.empty() ? "" : " + ") + std::string(st.file);
+    }
+    glLinkProgram(program.get());
+    for (const GlShader& sh : shaders)
+        glDetachShader(program.get(), sh.get());
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint len = 0;
+        glGetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &len);
+        std::string log(size_t(std::max(len, 1)), '\0');
+        GLsizei written = 0;
+        glGetProgramInfoLog(program.get(), GLsizei(log.size()), &written, log.data());
+        log.resize(size_t(std::max(written, 0)));
+        return fail("shader program " + names + " does not link:\n" + log);
+    }
+    return program;
+}
+
+} // namespace spatter::render_detail

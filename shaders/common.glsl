@@ -1,0 +1,98 @@
+// Shared declarations: the per-frame block, the object, material and decal buffers, and the helpers
+// every pass uses. Mirrored on the C++ side by render/src/GpuLayouts.hpp (keep both in step).
+
+layout(std140, binding = 0) uniform FrameBlock {
+    mat4 u_viewProj;       // camera-relative world -> clip (reversed-Z)
+    mat4 u_view;           // camera-relative world -> view (a rotation)
+    mat4 u_invView;        // view -> camera-relative world
+    vec4 u_projection;     // x = P[0][0], y = P[1][1], z = A, w = B: depth = (A z + B) / -z
+    vec4 u_viewport;       // width, height, 1 / width, 1 / height
+    vec4 u_lightDirection; // xyz: unit, towards the light; w: intensity
+    vec4 u_lightColor;     // rgb; w: exposure
+    vec4 u_skyAmbient;
+    vec4 u_groundAmbient;
+    vec4 u_depthRange;     // x: nearest, y: farthest scene distance; z: decal fade start
+};
+
+struct ObjectData {
+    mat4 model;         // object -> camera-relative world
+    mat4 normalMatrix;  // upper left 3x3: inverse transpose of model
+    mat4 worldToObject; // camera-relative world -> object
+    uvec4 info;         // x: object decal ID, y: 1 when model mirrors
+};
+
+layout(std430, binding = 1) readonly buffer ObjectBuffer {
+    ObjectData objects[];
+};
+
+struct MaterialData {
+    vec4 baseColor;
+    vec4 params;  // x: roughness, y: metallic, z: normal scale
+    uvec4 flags;  // x: has base colour texture, y: has normal texture
+};
+
+layout(std430, binding = 2) readonly buffer MaterialBuffer {
+    MaterialData materials[];
+};
+
+const uint DECAL_WRAP = 1u;
+const uint DECAL_NORMAL_MAP = 2u;
+const uint DECAL_FADE_LINEAR = 4u;
+const uint DECAL_FADE_SMOOTH = 8u;
+const uint DECAL_ROUGHNESS = 16u;
+const uint DECAL_MIRRORED = 32u;
+
+struct DecalData {
+    vec4 objectToBox[3]; // rows: object -> unit box
+    vec4 boxToObject[3]; // rows: unit box -> object
+    vec4 tangent;        // xyz: object-space unit tangent; w: half width
+    vec4 bitangent;      // w: half height
+    vec4 normal;         // w: half depth
+    vec4 tint;           // rgb tint; a: tint alpha * opacity
+    uvec4 info;          // x: object index, y: object decal ID, z: texture layer, w: DECAL_* flags
+    vec4 params;         // x: cosine of the largest accepted angle; y: roughness written
+};
+
+layout(std430, binding = 3) readonly buffer DecalBuffer {
+    DecalData decals[];
+};
+
+layout(std430, binding = 4) readonly buffer VisibleBuffer {
+    uint visibleDecals[];
+};
+
+// Octahedral normal encoding (Cigolle et al. 2014): unit vector <-> [-1, 1]^2.
+vec2 signNotZero(vec2 v) {
+    return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0);
+}
+
+vec2 encodeNormal(vec3 n) {
+    vec2 p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+    return n.z <= 0.0 ? (1.0 - abs(p.yx)) * signNotZero(p) : p;
+}
+
+vec3 decodeNormal(vec2 e) {
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * signNotZero(n.xy);
+    return normalize(n);
+}
+
+// View-space position of the scene point behind window position `fragCoord` with reversed-Z
+// depth `depth` (> 0).
+vec3 viewPositionFromDepth(vec2 fragCoord, float depth) {
+    vec2 ndc = fragCoord * u_viewport.zw * 2.0 - 1.0;
+    float z = -u_projection.w / (depth + u_projection.z);
+    return vec3(ndc.x * -z / u_projection.x, ndc.y * -z / u_projection.y, z);
+}
+
+// Camera-relative world position of the same point.
+vec3 worldPositionFromDepth(vec2 fragCoord, float depth) {
+    return mat3(u_invView) * viewPositionFromDepth(fragCoord, depth);
+}
+
+// Linear to sRGB-encoded colour, for the output image (an RGBA8 target, encoded in the shader so
+// that readback gives exactly these bytes).
+vec3 linearToSrgb(vec3 c) {
+    c = clamp(c, 0.0, 1.0);
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}

@@ -1,0 +1,47 @@
+// Decal pass: one instanced unit cube per visible decal. The instance's decal index comes from the
+// visible list (u_firstInstance + gl_InstanceID); its object-space box is carried to camera-relative
+// world space by its object's transform, and the inverse, world -> unit box, goes to the fragment
+// shader together with the decal frame in world space.
+#include "common.glsl"
+
+layout(location = 0) uniform uint u_firstInstance;
+
+flat out vec4 v_worldToBox[3]; // rows: camera-relative world -> unit box [-1, 1]^3
+flat out vec4 v_tangent;       // xyz: world unit tangent; w: half width (world units)
+flat out vec4 v_bitangent;     // w: half height
+flat out vec4 v_normal;        // xyz: world unit decal axis; w: half depth
+flat out vec4 v_tint;
+flat out uvec4 v_info;         // x: object decal ID, y: texture layer, z: DECAL_* flags
+flat out vec2 v_params;        // x: cosine of the largest accepted angle, y: roughness
+
+// Corner i of the cube: x from bit 0, y from bit 1, z from bit 2; triangles wound
+// counter-clockwise seen from outside.
+const int kCubeIndices[36] = int[36](0, 4, 6, 0, 6, 2,  1, 3, 7, 1, 7, 5,  0, 1, 5, 0, 5, 4,
+                                     2, 6, 7, 2, 7, 3,  0, 2, 3, 0, 3, 1,  4, 5, 7, 4, 7, 6);
+
+void main() {
+    DecalData d = decals[visibleDecals[u_firstInstance + uint(gl_InstanceID)]];
+    ObjectData o = objects[d.info.x];
+
+    int corner = kCubeIndices[gl_VertexID];
+    vec3 c = vec3((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0, (corner & 4) != 0 ? 1.0 : -1.0);
+    // A mirroring box-to-world transform turns the winding inside out; mirroring the cube in its
+    // own space (it maps onto itself) turns it back.
+    bool mirrored = ((d.info.w & DECAL_MIRRORED) != 0u) != (o.info.y != 0u);
+    if (mirrored) c.x = -c.x;
+
+    vec4 local = vec4(c, 1.0);
+    vec3 objectPos = vec3(dot(d.boxToObject[0], local), dot(d.boxToObject[1], local), dot(d.boxToObject[2], local));
+    gl_Position = u_viewProj * (o.model * vec4(objectPos, 1.0));
+
+    for (int r = 0; r < 3; ++r) v_worldToBox[r] = d.objectToBox[r] * o.worldToObject;
+    vec3 t = mat3(o.model) * d.tangent.xyz;
+    vec3 b = mat3(o.model) * d.bitangent.xyz;
+    float depthScale = length(mat3(o.model) * d.normal.xyz);
+    v_tangent = vec4(normalize(t), length(t) * d.tangent.w);
+    v_bitangent = vec4(normalize(b), length(b) * d.bitangent.w);
+    v_normal = vec4(normalize(mat3(o.normalMatrix) * d.normal.xyz), depthScale * d.normal.w);
+    v_tint = d.tint;
+    v_info = uvec4(d.info.y, d.info.z, d.info.w, 0u);
+    v_params = d.params.xy;
+}

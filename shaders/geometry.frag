@@ -1,0 +1,47 @@
+// Geometry pass: fills the G-buffer. Surfaces are two-sided: a back face gets the reversed normal.
+#include "common.glsl"
+
+layout(location = 0) uniform uint u_object;
+layout(location = 1) uniform uint u_material;
+
+layout(binding = 0) uniform sampler2D s_baseColor;
+layout(binding = 1) uniform sampler2D s_normalMap;
+
+in vec3 v_normal;
+in vec2 v_uv;
+in vec4 v_tangent;
+
+layout(location = 0) out vec4 o_albedo;
+layout(location = 1) out vec4 o_normal;
+layout(location = 2) out vec4 o_material;
+layout(location = 3) out uint o_id;
+layout(location = 4) out vec4 o_coverage;
+
+void main() {
+    ObjectData o = objects[u_object];
+    MaterialData m = materials[u_material];
+    vec4 base = m.baseColor;
+    if (m.flags.x != 0u) base *= texture(s_baseColor, v_uv);
+
+    bool front = gl_FrontFacing != (o.info.y != 0u);
+    vec3 n = normalize(v_normal);
+    if (!front) n = -n;
+    if (m.flags.y != 0u) {
+        vec3 t = v_tangent.xyz - n * dot(n, v_tangent.xyz);
+        float tl = length(t);
+        if (tl > 1e-6) {
+            t /= tl;
+            vec3 b = cross(n, t) * (v_tangent.w < 0.0 ? -1.0 : 1.0);
+            vec3 tn = texture(s_normalMap, v_uv).xyz * 2.0 - 1.0;
+            tn.xy *= m.params.z;
+            vec3 mapped = t * tn.x + b * tn.y + n * max(tn.z, 1e-3);
+            n = normalize(mapped);
+        }
+    }
+
+    o_albedo = base;
+    o_normal = vec4(encodeNormal(n), 0.0, 0.0);
+    o_material = vec4(clamp(m.params.x, 0.02, 1.0), clamp(m.params.y, 0.0, 1.0), 0.0, 0.0);
+    o_id = o.info.x;
+    o_coverage = vec4(0.0);
+}

@@ -1,0 +1,147 @@
+#pragma once
+// Scenes with known geometry and exact comparisons shared by the placement tests.
+
+#include "spatter/core/Decal.hpp"
+#include "spatter/core/MeshBuilder.hpp"
+#include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/core/Random.hpp"
+#include "spatter/core/Scene.hpp"
+#include "spatter/placement/CollisionWorld.hpp"
+#include "spatter/placement/DecalSystem.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+#include <string>
+#include <vector>
+
+namespace spatter::test {
+
+inline SceneObject makeObject(std::string name, Mesh mesh, const glm::dmat4& transform = glm::dmat4(1.0),
+                              bool dynamic = false) {
+    SceneObject o;
+    o.name = std::move(name);
+    o.mesh = std::move(mesh);
+    o.transform = transform;
+    o.dynamic = dynamic;
+    return o;
+}
+
+// One static box [-0.5, 0.5]^3 at the origin, faces cut into 2 x 2 squares.
+inline Scene boxScene() {
+    Scene s;
+    s.source = "test:box";
+    s.objects.push_back(makeObject("box", makeBox(glm::vec3(0.5f), 2)));
+    return s;
+}
+
+// A static unit sphere at the origin.
+inline Scene sphereScene(int rings = 48, int segments = 96) {
+    Scene s;
+    s.source = "test:sphere";
+    s.objects.push_back(makeObject("sphere", makeSphere(1.0f, rings, segments)));
+    return s;
+}
+
+// A static floor (box 20 x 0.2 x 20, top at y = 0), a static wall (top of the floor, z = -5) and
+// `targets` dynamic boxes of 0.5 in a row at z = 0, x = 2 * i, centre height 1, rotated and scaled.
+inline Scene rangeScene(int targets = 3) {
+    Scene s;
+    s.source = "test:range";
+    s.objects.push_back(makeObject("floor", makeBox(glm::vec3(10.0f, 0.1f, 10.0f), 4),
+                                   glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.1, 0.0))));
+    s.objects.push_back(makeObject("wall", makeBox(glm::vec3(10.0f, 2.0f, 0.1f), 4),
+                                   glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 2.0, -5.1))));
+    for (int i = 0; i < targets; ++i) {
+        glm::dmat4 t = glm::translate(glm::dmat4(1.0), glm::dvec3(2.0 * i, 1.0, 0.0));
+        t = glm::rotate(t, 0.3 + 0.2 * i, glm::dvec3(0.0, 1.0, 0.0));
+        t = glm::scale(t, glm::dvec3(0.5 + 0.25 * i));
+        s.objects.push_back(makeObject("target_" + std::to_string(i), makeBox(glm::vec3(0.5f), 1), t, true));
+    }
+    return s;
+}
+
+// A proxy as the proxy builder would hand it over: a mesh and its error bound h.
+inline Proxy makeProxy(Mesh mesh, double errorBound) {
+    Proxy p;
+    p.mesh = std::move(mesh);
+    p.errorBound = errorBound;
+    return p;
+}
+
+inline bool sameBits(const void* a, const void* b, size_t n) {
+    return std::memcmp(a, b, n) == 0;
+}
+
+// Every field of two decals equal bit for bit.
+inline ::testing::AssertionResult sameDecal(const Decal& a, const Decal& b) {
+    const bool same = sameBits(&a.frame.tangent, &b.frame.tangent, sizeof(glm::vec3)) &&
+                      sameBits(&a.frame.bitangent, &b.frame.bitangent, sizeof(glm::vec3)) &&
+                      sameBits(&a.frame.normal, &b.frame.normal, sizeof(glm::vec3)) &&
+                      sameBits(&a.center, &b.center, sizeof(glm::vec3)) &&
+                      sameBits(&a.size, &b.size, sizeof(glm::vec2)) &&
+                      sameBits(&a.halfDepth, &b.halfDepth, sizeof(float)) && a.object == b.object &&
+                      a.objectId == b.objectId && a.id == b.id && a.type == b.type &&
+                      sameBits(&a.spawnTime, &b.spawnTime, sizeof(double)) &&
+                      sameBits(&a.opacity, &b.opacity, sizeof(float));
+    if (same) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure()
+           << "decals differ: id " << a.id << " vs " << b.id << ", object " << a.object << " vs " << b.object
+           << ", centre (" << a.center.x << ", " << a.center.y << ", " << a.center.z << ") vs (" << b.center.x
+           << ", " << b.center.y << ", " << b.center.z << ")";
+}
+
+inline ::testing::AssertionResult sameDecals(const std::vector<Decal>& a, const std::vector<Decal>& b) {
+    if (a.size() != b.size()) return ::testing::AssertionFailure() << a.size() << " decals vs " << b.size();
+    for (size_t i = 0; i < a.size(); ++i)
+        if (::testing::AssertionResult r = sameDecal(a[i], b[i]); !r) return r << " (decal " << i << ")";
+    return ::testing::AssertionSuccess();
+}
+
+inline ::testing::AssertionResult sameHit(const std::optional<Hit>& a, const std::optional<Hit>& b) {
+    if (a.has_value() != b.has_value())
+        return ::testing::AssertionFailure() << (a ? "hit" : "miss") << " vs " << (b ? "hit" : "miss");
+    if (!a) return ::testing::AssertionSuccess();
+    const bool same = a->object == b->object && a->primitive == b->primitive &&
+                      sameBits(&a->t, &b->t, sizeof(double)) &&
+                      sameBits(&a->position, &b->position, sizeof(glm::dvec3)) &&
+                      sameBits(&a->normal, &b->normal, sizeof(glm::dvec3)) &&
+                      sameBits(&a->localPosition, &b->localPosition, sizeof(glm::dvec3)) &&
+                      sameBits(&a->localNormal, &b->localNormal, sizeof(glm::dvec3));
+    if (same) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure()
+           << "hits differ: object " << a->object << "/" << b->object << ", primitive " << a->primitive << "/"
+           << b->primitive << ", t " << a->t << "/" << b->t;
+}
+
+// Rays from random points on a sphere of radius `radius` around `center` towards random points
+// within `spread` of it.
+inline std::vector<Ray> rayFan(size_t count, const glm::dvec3& center, double radius, double spread,
+                               uint64_t seed) {
+    Rng rng(seed);
+    std::vector<Ray> rays;
+    for (size_t i = 0; i < count; ++i) {
+        glm::dvec3 d;
+        do {
+            d = glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+        } while (glm::dot(d, d) > 1.0 || glm::dot(d, d) < 1e-3);
+        const glm::dvec3 from = center + glm::normalize(d) * radius;
+        const glm::dvec3 to =
+            center + spread * glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+        Ray r;
+        r.origin = from;
+        r.direction = (to - from) * double(0.5f + rng.uniform()); // not unit length
+        rays.push_back(r);
+    }
+    return rays;
+}
+
+inline DecalType plainType(const std::string& name = "hole", glm::vec2 size = glm::vec2(0.1f)) {
+    DecalType t;
+    t.name = name;
+    t.size = size;
+    return t;
+}
+
+} // namespace spatter::test

@@ -1,0 +1,205 @@
+// Placement on real scenes: builtin:gallery and the third-party meshes in ../shared/data.
+
+#include "PlacementTestUtil.hpp"
+#include "TestData.hpp"
+
+#include "spatter/core/SceneLoader.hpp"
+#include "spatter/placement/DecalSystem.hpp"
+
+#include <embree3/rtcore.h>
+#include <gtest/gtest.h>
+
+#include <limits>
+
+using namespace spatter;
+using namespace spatter::test;
+
+namespace {
+
+Scene load(const std::string& source) {
+    Result<Scene> s = loadScene(source);
+    EXPECT_TRUE(s.ok()) << s.error();
+    return s.ok() ? std::move(s).value() : Scene{};
+}
+
+DecalSystem makeSystem(const Scene& scene, const DecalSettings& settings = {}) {
+    Result<DecalSystem> s = DecalSystem::create(scene, settings);
+    EXPECT_TRUE(s.ok()) << s.error();
+    return std::move(s).value();
+}
+
+// Rays from a camera at `eye` through a w x h grid spanning `fovDeg` degrees around -Z.
+std::vector<Ray> cameraRays(const glm::dvec3& eye, int w, int h, double fovDeg) {
+    std::vector<Ray> rays;
+    const double half = std::tan(0.5 * fovDeg * 3.14159265358979323846 / 180.0);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) {
+            Ray r;
+            r.origin = eye;
+            r.direction =
+                glm::dvec3(half * (2.0 * (i + 0.5) / w - 1.0), half * (2.0 * (j + 0.5) / h - 1.0), -1.0);
+            rays.push_back(r);
+        }
+    return rays;
+}
+
+// The hit of `r` on a single mesh, traced with nothing but Embree (world-space float triangles).
+struct RawMeshTracer {
+    RTCDevice device = rtcNewDevice(nullptr);
+    RTCScene scene = rtcNewScene(device);
+
+    explicit RawMeshTracer(const Mesh& m) {
+        rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                              3 * sizeof(float), m.positions.size()));
+        for (size_t k = 0; k < m.positions.size(); ++k) {
+            v[3 * k] = m.positions[k].x;
+            v[3 * k + 1] = m.positions[k].y;
+            v[3 * k + 2] = m.positions[k].z;
+        }
+        auto* ix = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), m.triangleCount()));
+        std::copy(m.indices.begin(), m.indices.end(), ix);
+        rtcCommitGeometry(g);
+        rtcAttachGeometry(scene, g);
+        rtcReleaseGeometry(g);
+        rtcCommitScene(scene);
+    }
+    ~RawMeshTracer() {
+        rtcReleaseScene(scene);
+        rtcReleaseDevice(device);
+    }
+    // {primitive, t} or {invalid, inf}.
+    std::pair<unsigned, float> intersect(const Ray& r) const {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRayHit rh;
+        rh.ray.org_x = float(r.origin.x);
+        rh.ray.org_y = float(r.origin.y);
+        rh.ray.org_z = float(r.origin.z);
+        rh.ray.dir_x = float(r.direction.x);
+        rh.ray.dir_y = float(r.direction.y);
+        rh.ray.dir_z = float(r.direction.z);
+        rh.ray.tnear = 0.0f;
+        rh.ray.tfar = std::numeric_limits<float>::infinity();
+        rh.ray.time = 0.0f;
+        rh.ray.mask = 0xFFFFFFFFu;
+        rh.ray.id = 0;
+        rh.ray.flags = 0;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene, &ctx, &rh);
+        return {rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? RTC_INVALID_GEOMETRY_ID : rh.hit.primID,
+                rh.ray.tfar};
+    }
+};
+
+} // namespace
+
+TEST(PlacementOnGallery, ShotsFromTheCameraPlaceGoodDecals) {
+    const Scene scene = load("builtin:gallery");
+    ASSERT_FALSE(scene.objects.empty());
+    DecalSettings settings;
+    settings.maxPerCell = 1000;
+    DecalSystem single = makeSystem(scene, settings), batch = makeSystem(scene, settings);
+    DecalType t = plainType("hole", glm::vec2(0.15f));
+    t.sizeJitter = 0.2f;
+    single.registerType(t);
+    batch.registerType(t);
+    const std::vector<Ray> rays = cameraRays(glm::dvec3(0.0, 1.6, 7.0), 48, 32, 70.0);
+
+    std::vector<SpawnResult> batchResults;
+    batch.spawnBatch(rays, 0, batchResults);
+    size_t placed = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const SpawnResult r = single.spawn(rays[i], 0);
+        ASSERT_EQ(r.status, batchResults[i].status) << "ray " << i;
+        if (!r.placed()) continue;
+        ++placed;
+        const Decal& d = *single.get(r.handle);
+        const WorldDecal w = single.worldBox(d);
+        EXPECT_LE(frameError(d.frame), 1e-6f);
+        EXPECT_LE(frameError(w.frame), 1e-6f);
+        // The centre lies on the ray, the normal faces the camera.
+        const glm::dvec3 u = glm::normalize(rays[i].direction);
+        const glm::dvec3 toCenter = w.center - rays[i].origin;
+        EXPECT_LT(glm::length(toCenter - u * glm::dot(toCenter, u)), 1e-4) << "ray " << i;
+        EXPECT_LT(glm::dot(glm::dvec3(w.frame.normal), u), 0.0);
+        const SceneObject& o = scene.objects[d.object];
+        EXPECT_EQ(d.objectId, o.dynamic ? single.objectId(d.object) : 0);
+    }
+    EXPECT_GT(placed, rays.size() / 2);
+    EXPECT_TRUE(sameDecals(single.decals(), batch.decals()));
+    EXPECT_EQ(single.stats(), batch.stats());
+
+    // Targets (the dynamic objects) have non-zero IDs; static objects 0.
+    size_t dynamic = 0;
+    for (uint32_t i = 0; i < scene.objects.size(); ++i) {
+        if (scene.objects[i].dynamic) {
+            ++dynamic;
+            EXPECT_NE(single.objectId(i), 0) << scene.objects[i].name;
+        } else {
+            EXPECT_EQ(single.objectId(i), 0) << scene.objects[i].name;
+        }
+    }
+    EXPECT_GT(dynamic, 0u);
+}
+
+TEST(PlacementOnSharedData, FandiskHitsMatchRawEmbree) {
+    SPATTER_REQUIRE_SHARED(path, "meshes/fandisk.obj");
+    const Scene scene = load(path);
+    ASSERT_EQ(scene.objects.size(), 1u);
+    const RawMeshTracer raw(scene.objects[0].mesh);
+    DecalSystem s = makeSystem(scene);
+    DecalType t = plainType("hole", glm::vec2(0.02f));
+    t.maxAngleDeg = 90.0f;
+    s.registerType(t);
+    const DBounds b = scene.worldBounds();
+    const std::vector<Ray> rays = rayFan(3000, b.center(), 2.0 * b.diagonal(), 0.3 * b.diagonal(), 21);
+    size_t hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const auto [prim, rawT] = raw.intersect(rays[i]);
+        const std::optional<Hit> h = s.world().intersect(rays[i]);
+        ASSERT_EQ(h.has_value(), prim != RTC_INVALID_GEOMETRY_ID) << "ray " << i;
+        const SpawnResult r = s.spawn(rays[i], 0);
+        ASSERT_EQ(r.placed(), h.has_value()) << "ray " << i << ": " << r.reason;
+        if (!h) continue;
+        ++hits;
+        EXPECT_EQ(h->primitive, prim) << "ray " << i;
+        EXPECT_NEAR(h->t, rawT, 1e-5 * rawT) << "ray " << i;
+        const WorldDecal w = *s.worldBox(r.handle);
+        EXPECT_LT(glm::length(w.center - h->position), 1e-5 * b.diagonal());
+        EXPECT_LT(glm::length(glm::dvec3(w.frame.normal) - h->normal), 1e-6);
+        EXPECT_LE(frameError(w.frame), 1e-6f);
+    }
+    EXPECT_GT(hits, rays.size() / 4);
+}
+
+TEST(PlacementOnSharedData, DuckDecalsHaveWorldSizesDespiteTheRootScale) {
+    SPATTER_REQUIRE_SHARED(path, "gltf/Duck/Duck.glb");
+    const Scene scene = load(path);
+    DecalSettings settings;
+    settings.maxPerCell = 1000; // every decal stays alive
+    DecalSystem s = makeSystem(scene, settings);
+    s.registerType(plainType("hole", glm::vec2(0.05f, 0.03f)));
+    const DBounds b = scene.worldBounds();
+    const std::vector<Ray> rays = rayFan(400, b.center(), 3.0, 0.3, 4);
+    std::vector<SpawnResult> results;
+    s.spawnBatch(rays, 0, results);
+    size_t placed = 0;
+    for (const SpawnResult& r : results) {
+        if (!r.placed()) continue;
+        ++placed;
+        ASSERT_NE(s.get(r.handle), nullptr);
+        const Decal& d = *s.get(r.handle);
+        const WorldDecal w = s.worldBox(d);
+        EXPECT_NEAR(w.size.x, 0.05f, 1e-6f);
+        EXPECT_NEAR(w.size.y, 0.03f, 1e-6f);
+        EXPECT_NEAR(w.halfDepth, 0.25f * 0.05f, 1e-6f);
+        EXPECT_NEAR(d.size.x, 5.0f, 1e-4f); // object space is 100 times larger
+        EXPECT_LE(frameError(d.frame), 1e-6f);
+        EXPECT_LE(frameError(w.frame), 1e-6f);
+    }
+    EXPECT_GT(placed, 100u);
+}

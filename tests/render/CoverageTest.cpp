@@ -1,0 +1,194 @@
+// Decal coverage of the GPU decal pass against the CPU reference (rays through every pixel centre
+// against the render meshes, the same inclusion rule in double precision).
+
+#include "RenderTestSupport.hpp"
+
+#include "TestData.hpp"
+
+#include "spatter/core/GalleryScene.hpp"
+#include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/core/Random.hpp"
+#include "spatter/core/SceneLoader.hpp"
+#include "spatter/placement/DecalSystem.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+using namespace spatter;
+
+namespace {
+
+constexpr int kWidth = 160;
+constexpr int kHeight = 120;
+
+struct Placed {
+    test::CoverageInputs inputs;
+    size_t placed = 0;
+};
+
+// Shoots `shots` rays from the camera through random pixels, cycling through `types`. With
+// `proxies`, the rays are traced against them instead of the render meshes.
+Placed shootFromCamera(const Scene& scene, const Camera& cam, const std::vector<DecalType>& types, int shots,
+                       uint64_t seed, const std::vector<std::optional<Proxy>>& proxies = {}) {
+    Placed out;
+    WorldSettings ws;
+    ws.useColliders = false;
+    Result<CollisionWorld> world = CollisionWorld::build(scene, proxies, ws);
+    EXPECT_TRUE(world.ok()) << world.error();
+    if (!world) return out;
+    Result<DecalSystem> sys = DecalSystem::create(std::move(world.value()));
+    EXPECT_TRUE(sys.ok()) << sys.error();
+    if (!sys) return out;
+    std::vector<uint16_t> typeIndex;
+    for (const DecalType& t : types) {
+        Result<uint16_t> idx = sys->registerType(t);
+        EXPECT_TRUE(idx.ok()) << idx.error();
+        if (!idx) return out;
+        typeIndex.push_back(idx.value());
+    }
+    Rng rng(seed);
+    for (int s = 0; s < shots; ++s) {
+        const int i = int(rng.below(kWidth)), j = int(rng.below(kHeight));
+        Ray ray;
+        ray.origin = cam.eye;
+        ray.direction = pixelDirection(cam, kWidth, kHeight, i, j);
+        if (sys->spawn(ray, typeIndex[size_t(s) % typeIndex.size()]).placed()) ++out.placed;
+    }
+    out.inputs.decals = sys->decals();
+    out.inputs.types = types;
+    for (uint32_t o = 0; o < scene.objects.size(); ++o)
+        out.inputs.objectIds.push_back(sys->objectId(o));
+    return out;
+}
+
+DecalType makeType(const char* name, glm::vec2 size, DecalTexture tex, bool wrap = false,
+                   float halfDepth = 0.0f) {
+    DecalType t;
+    t.halfDepth = halfDepth; // deep boxes reach curved and hidden surfaces: the angle test must cut them
+    t.name = name;
+    t.size = size;
+    t.texture = int(tex);
+    t.wrapAround = wrap;
+    return t;
+}
+
+std::vector<uint8_t> renderCoverage(const Scene& scene, const test::CoverageInputs& in, const Camera& cam) {
+    Result<Renderer> r = test::makeRenderer(kWidth, kHeight);
+    EXPECT_TRUE(r.ok()) << r.error();
+    if (!r) return {};
+    EXPECT_TRUE(r->setScene(scene).ok());
+    EXPECT_TRUE(r->setObjectIds(in.objectIds).ok());
+    r->setDecalTypes(in.types);
+    r->setDecals(in.decals);
+    Result<FrameStats> st = r->render(cam, View::Coverage);
+    EXPECT_TRUE(st.ok()) << st.error();
+    EXPECT_EQ(st->decalsInvalid, 0u);
+    Result<Image> im = r->readback();
+    EXPECT_TRUE(im.ok());
+    return im ? test::whiteMask(im.value()) : std::vector<uint8_t>{};
+}
+
+// Renders the coverage view and compares it with the reference.
+void expectCoverageMatches(const std::string& name, const Scene& scene, const Placed& placed,
+                           const Camera& cam, double minIou) {
+    const std::vector<uint8_t> gpu = renderCoverage(scene, placed.inputs, cam);
+    const std::vector<uint8_t> cpu = test::referenceCoverage(scene, placed.inputs, cam, kWidth, kHeight);
+    test::dumpMask(name + "-gpu", gpu, kWidth, kHeight);
+    test::dumpMask(name + "-cpu", cpu, kWidth, kHeight);
+    // Enough covered pixels for the ratio to mean something.
+    EXPECT_GT(test::countSet(cpu), size_t(kWidth * kHeight) / 20) << name;
+    const double v = test::iou(gpu, cpu);
+    std::printf("%s: IoU %.4f (gpu %zu px, cpu %zu px, %zu decals)\n", name.c_str(), v, test::countSet(gpu),
+                test::countSet(cpu), placed.inputs.decals.size());
+    EXPECT_GE(v, minIou) << name << ": gpu " << test::countSet(gpu) << " px, cpu " << test::countSet(cpu)
+                         << " px";
+}
+
+Camera cameraFor(const Scene& scene, const glm::dvec3& direction) {
+    const DBounds b = scene.worldBounds();
+    Camera cam;
+    cam.target = b.center();
+    cam.eye = b.center() + glm::normalize(direction) * (b.diagonal() * 0.8);
+    cam.nearPlane = b.diagonal() * 1e-3;
+    return cam;
+}
+
+} // namespace
+
+TEST(Coverage, MatchesCpuReferenceOnTheGallery) {
+    SPATTER_REQUIRE_GL(gl);
+    GallerySettings gs;
+    gs.detail = 1;
+    const Scene scene = makeGalleryScene(gs);
+    Camera cam;
+    cam.eye = {1.5, 2.2, 4.5};
+    cam.target = {-0.5, 1.0, -3.0};
+    const std::vector<DecalType> types = {
+        makeType("hole", {0.45f, 0.45f}, DecalTexture::BulletHole),
+        makeType("blood", {0.9f, 0.7f}, DecalTexture::Blood, true),
+        makeType("scorch", {1.2f, 1.2f}, DecalTexture::Scorch, false, 0.8f)};
+    const Placed placed = shootFromCamera(scene, cam, types, 60, 7);
+    ASSERT_GT(placed.placed, 40u);
+    expectCoverageMatches("gallery", scene, placed, cam, 0.97);
+}
+
+TEST(Coverage, MatchesCpuReferenceOnSharedMeshes) {
+    SPATTER_REQUIRE_GL(gl);
+    for (const char* file : {"meshes/fandisk.obj", "meshes/rocker-arm.obj", "meshes/stanford-bunny.obj"}) {
+        SPATTER_REQUIRE_SHARED(path, file);
+        Result<Scene> scene = loadScene(path);
+        ASSERT_TRUE(scene.ok()) << scene.error();
+        const Camera cam = cameraFor(scene.value(), {0.6, 0.5, 1.0});
+        const float s = float(scene->worldBounds().diagonal()) * 0.12f;
+        const std::vector<DecalType> types = {makeType("a", {s, s}, DecalTexture::Paint),
+                                              makeType("b", {1.5f * s, s}, DecalTexture::Blood, true),
+                                              makeType("c", {s, s}, DecalTexture::Scorch, false, 0.7f * s)};
+        const Placed placed = shootFromCamera(scene.value(), cam, types, 60, 11);
+        ASSERT_GT(placed.placed, 10u) << file;
+        expectCoverageMatches(std::string(file).substr(7), scene.value(), placed, cam, 0.97);
+    }
+}
+
+TEST(Coverage, DecalsPlacedThroughACoarseProxyCoverTheDrawnSurface) {
+    SPATTER_REQUIRE_GL(gl);
+    GallerySettings gs;
+    gs.detail = 1;
+    const Scene scene = makeGalleryScene(gs);
+    // A coarse proxy for every object: h at most 2% of its bounding diagonal.
+    ProxySettings ps;
+    ps.tolerance = 0.02f;
+    ps.backend = ProxyBackend::MeshOpt;
+    ps.coverageFraction = 0.5f; // a looser (still certified) bound keeps the measurement quick
+    ps.maxSamples = 200000;
+    ps.randomSamples = 2048;
+    std::vector<std::optional<Proxy>> proxies(scene.objects.size());
+    size_t proxyTriangles = 0;
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        Result<Proxy> p = buildProxy(scene.objects[i].mesh, ps);
+        ASSERT_TRUE(p.ok()) << p.error();
+        proxyTriangles += p->proxyTriangles;
+        proxies[i] = std::move(p.value());
+    }
+    ASSERT_LT(proxyTriangles * 3, scene.triangleCount()) << "the proxies are not coarse";
+
+    Camera cam;
+    cam.eye = {-1.0, 2.0, 5.0};
+    cam.target = {0.5, 1.0, -3.0};
+    DecalType t = makeType("splat", {0.6f, 0.6f}, DecalTexture::Blood);
+    t.randomRotation = false; // the same ray gives the same footprint through either mesh
+    const Placed render = shootFromCamera(scene, cam, {t}, 60, 5);
+    const Placed proxy = shootFromCamera(scene, cam, {t}, 60, 5, proxies);
+    ASSERT_GT(render.placed, 40u);
+    ASSERT_GT(proxy.placed, 40u);
+    // Every proxy decal's box holds the drawn surface: its half-depth covers h.
+    const std::vector<uint8_t> a = renderCoverage(scene, render.inputs, cam);
+    const std::vector<uint8_t> b = renderCoverage(scene, proxy.inputs, cam);
+    test::dumpMask("proxy-render", a, kWidth, kHeight);
+    test::dumpMask("proxy-proxy", b, kWidth, kHeight);
+    EXPECT_GT(test::countSet(a), size_t(kWidth * kHeight) / 20);
+    const double v = test::iou(a, b);
+    std::printf("proxy vs render placement: IoU %.4f (%zu vs %zu px, proxies %zu of %zu triangles)\n", v,
+                test::countSet(b), test::countSet(a), proxyTriangles, scene.triangleCount());
+    EXPECT_GE(v, 0.95);
+}

@@ -1,0 +1,162 @@
+// The spatter-render command-line contract, run as a separate process.
+
+#include "TestData.hpp"
+
+#include "spatter/core/Image.hpp"
+#include "spatter/render/Camera.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+using namespace spatter;
+
+namespace {
+
+// Runs the tool with `args`; returns its exit code (-1 when it did not exit normally).
+int runTool(const std::string& args) {
+    const std::string cmd = std::string(SPATTER_RENDER_TOOL) + " " + args + " >/dev/null 2>&1";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// A wall 8 x 4 in the plane z = 0 facing +Z, as an OBJ named wall (x in [-4, 4], y in [0, 4]).
+std::string writeWall(const std::string& dir) {
+    const std::string path = dir + "/wall.obj";
+    std::ofstream f(path);
+    f << "v -4 0 0\nv 4 0 0\nv 4 4 0\nv -4 4 0\nf 1 2 3\nf 1 3 4\n";
+    return path;
+}
+
+// One spatter-place record: a decal of size s on `object` at (x, y, 0), facing +Z.
+std::string record(double x, double y, double s, const std::string& object = "wall") {
+    std::ostringstream r;
+    r << R"({"ray":0,"status":"placed","reason":"","object":")" << object
+      << R"(","object_id":0,"decal_id":5,"position":[)" << x << "," << y
+      << R"(,0],"normal":[0,0,1],"tangent":[1,0,0],"bitangent":[0,1,0],"size":[)" << s << "," << s
+      << R"(],"half_depth":0.2,"max_angle_deg":80,"proxy_error_bound":0})";
+    return r.str();
+}
+
+bool white(const Image& im, int x, int y) {
+    return im.rgba[(size_t(y) * size_t(im.width) + size_t(x)) * 4] > 127;
+}
+
+} // namespace
+
+TEST(SpatterRender, PixelRowsStartAtTheTopAndShowTheRayThroughTheirCentre) {
+    const std::string dir = test::scratchDir("tool-pixels");
+    const std::string wall = writeWall(dir);
+    {
+        std::ofstream f(dir + "/decals.jsonl");
+        f << record(-2.0, 3.0, 0.6) << "\n"
+          << R"({"ray":1,"status":"missed","reason":"no hit"})"
+          << "\n";
+    }
+    const std::string camera = "eye=0.5,2,6;target=0,2,0;fov=50";
+    const int w = 160, h = 90;
+    ASSERT_EQ(runTool(wall + " --decals " + dir + "/decals.jsonl --camera '" + camera +
+                      "' --size 160x90 --view coverage --out " + dir + "/cov.png --stats " + dir +
+                      "/stats.json"),
+              0);
+    Result<Image> im = loadImage(dir + "/cov.png");
+    ASSERT_TRUE(im.ok()) << im.error();
+    ASSERT_EQ(im->width, w);
+    ASSERT_EQ(im->height, h);
+    // Where the ray through each pixel centre meets the plane z = 0 decides its colour.
+    const Camera cam = parseCamera(camera).value();
+    size_t checked = 0;
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) {
+            const glm::dvec3 d = pixelDirection(cam, w, h, i, j);
+            const glm::dvec3 p = cam.eye + d * (-cam.eye.z / d.z);
+            const double dx = std::fabs(p.x + 2.0), dy = std::fabs(p.y - 3.0);
+            if (dx < 0.28 && dy < 0.28) {
+                EXPECT_TRUE(white(im.value(), i, j)) << i << "," << j;
+                ++checked;
+            } else if (dx > 0.32 || dy > 0.32) {
+                EXPECT_FALSE(white(im.value(), i, j)) << i << "," << j;
+            }
+        }
+    EXPECT_GT(checked, 50u);
+
+    std::ifstream s(dir + "/stats.json");
+    const nlohmann::json stats = nlohmann::json::parse(s, nullptr, false);
+    ASSERT_TRUE(stats.is_object());
+    EXPECT_EQ(stats["decals_drawn"], 1);
+    EXPECT_EQ(stats["input_records"], 2);
+    EXPECT_EQ(stats["input_placed"], 1);
+    EXPECT_EQ(stats["view"], "coverage");
+    EXPECT_TRUE(stats["gpu_ms"]["decals"].is_number());
+    EXPECT_TRUE(stats["gl_renderer"].is_string());
+}
+
+TEST(SpatterRender, PlacesRaysAndHonoursTranslate) {
+    const std::string dir = test::scratchDir("tool-rays");
+    const std::string wall = writeWall(dir);
+    {
+        std::ofstream f(dir + "/rays.txt");
+        f << "# two shots at the wall\n0 2 5 0 0 -1\n1 1 5 0 0 -1\nnot a ray\n";
+    }
+    ASSERT_EQ(runTool(wall + " --rays " + dir +
+                      "/rays.txt --decal-size 1 --camera 'eye=0,2,6;target=0,2,0' --size 96x64" +
+                      " --view coverage --out " + dir + "/a.png --stats " + dir + "/a.json"),
+              0);
+    // The same, with scene, rays and camera 1000 units along x.
+    {
+        std::ofstream f(dir + "/rays-moved.txt");
+        f << "1000 2 5 0 0 -1\n1001 1 5 0 0 -1\n";
+    }
+    ASSERT_EQ(runTool(wall + " --translate 1000,0,0 --rays " + dir + "/rays-moved.txt --decal-size 1" +
+                      " --camera 'eye=1000,2,6;target=1000,2,0' --size 96x64 --view coverage --out " + dir +
+                      "/b.png"),
+              0);
+    Result<Image> a = loadImage(dir + "/a.png");
+    Result<Image> b = loadImage(dir + "/b.png");
+    ASSERT_TRUE(a.ok() && b.ok());
+    size_t covered = 0, same = 0;
+    for (size_t i = 0; i < a->rgba.size(); i += 4) {
+        covered += a->rgba[i] > 127 ? 1 : 0;
+        same += (a->rgba[i] > 127) == (b->rgba[i] > 127) ? 1 : 0;
+    }
+    EXPECT_GT(covered, 120u);
+    EXPECT_GE(double(same) / double(a->rgba.size() / 4), 0.995);
+    std::ifstream s(dir + "/a.json");
+    const nlohmann::json stats = nlohmann::json::parse(s, nullptr, false);
+    ASSERT_TRUE(stats.is_object());
+    EXPECT_EQ(stats["input_records"], 3);
+    EXPECT_EQ(stats["input_placed"], 2);
+    EXPECT_EQ(stats["decals_drawn"], 2);
+}
+
+TEST(SpatterRender, ReportsBadInputThroughItsExitCode) {
+    const std::string dir = test::scratchDir("tool-bad");
+    const std::string wall = writeWall(dir);
+    EXPECT_EQ(runTool("--help"), 0);
+    EXPECT_EQ(runTool(""), 2);                                           // no scene
+    EXPECT_EQ(runTool(wall + " --size 10"), 2);                          // not WxH
+    EXPECT_EQ(runTool(wall + " --view shiny"), 2);                       // unknown view
+    EXPECT_EQ(runTool(wall + " --camera 'eye=0,0,1'"), 2);               // no target
+    EXPECT_EQ(runTool(wall + " --decals a --rays b"), 2);                // both
+    EXPECT_EQ(runTool(wall + " --frobnicate"), 2);                       // unknown option
+    EXPECT_EQ(runTool(dir + "/missing.obj --out " + dir + "/x.png"), 1); // no such scene
+    {
+        std::ofstream f(dir + "/bad.jsonl");
+        f << record(0, 1, 0.5) << "\n{\"status\":\"placed\",\"object\":\"wall\"}\n";
+    }
+    EXPECT_EQ(runTool(wall + " --decals " + dir + "/bad.jsonl --out " + dir + "/x.png"),
+              1); // incomplete record
+    {
+        std::ofstream f(dir + "/other.jsonl");
+        f << record(0, 1, 0.5, "nothing") << "\n";
+    }
+    EXPECT_EQ(runTool(wall + " --decals " + dir + "/other.jsonl --out " + dir + "/x.png"),
+              1); // unknown object
+}
