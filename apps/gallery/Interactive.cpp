@@ -147,6 +147,8 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
 
     bool captured = true;
     glfwSetInputMode(window, GLFW_CURSOR, GLFW_CURSOR_DISABLED);
+    // A key pressed and released between two polls (or while the proxies were built) still counts.
+    glfwSetInputMode(window, GLFW_STICKY_KEYS, GLFW_TRUE);
     double mx = 0.0, my = 0.0;
     glfwGetCursorPos(window, &mx, &my);
     bool tabWasDown = false, scorchWasDown = false;
@@ -230,7 +232,8 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         context.swapBuffers();
 
-        if (options.quitAfterFrames > 0 && ++frames >= options.quitAfterFrames)
+        if (++frames == 1) std::cout << "spatter-gallery: first frame shown" << std::endl;
+        if (options.quitAfterFrames > 0 && frames >= options.quitAfterFrames)
             glfwSetWindowShouldClose(window, GLFW_TRUE);
     }
 

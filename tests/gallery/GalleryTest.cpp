@@ -1,0 +1,118 @@
+// The shooting-gallery demo, run as a user runs it: headless with a scripted session, and in a
+// window under Xvfb quitting on a real key press.
+
+#include "spatter/core/Image.hpp"
+
+#include "TestData.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <sys/wait.h>
+
+using namespace spatter;
+using nlohmann::json;
+
+namespace {
+
+struct CommandRun {
+    int exitCode = -1;
+    std::string output;
+};
+
+CommandRun runCommand(const std::string& command, const std::string& dir) {
+    const std::string log = dir + "/command.log";
+    const int status = std::system((command + " >" + log + " 2>&1").c_str());
+    std::ifstream in(log);
+    std::stringstream text;
+    text << in.rdbuf();
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+// Runs the headless gallery into `dir` (small image, coarse proxies for speed) and returns its JSON.
+json runHeadless(const std::string& dir, int shots, int seed) {
+    const std::string cmd = std::string(SPATTER_GALLERY_EXE) + " --headless --size 320x180 --tolerance 2" +
+                            " --shots " + std::to_string(shots) + " --seed " + std::to_string(seed) +
+                            " --out " + dir + " --cache " + dir + "/cache";
+    const CommandRun run = runCommand(cmd, dir);
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+    std::ifstream in(dir + "/gallery.json");
+    if (!in) return json();
+    return json::parse(in, nullptr, false);
+}
+
+} // namespace
+
+TEST(Gallery, HeadlessRunWritesConsistentStatsAndAPicture) {
+    const std::string dir = test::scratchDir("gallery-headless");
+    const json j = runHeadless(dir, 100, 1);
+    ASSERT_TRUE(j.is_object());
+    for (const char* key :
+         {"shots", "placed", "rejected", "evicted", "on_moving_targets", "alive", "frames",
+          "placement_us_per_shot", "gpu_ms_per_frame", "render_triangles", "proxy_triangles", "error_bound"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    EXPECT_EQ(j["shots"].get<int>(), 100);
+    EXPECT_EQ(j["placed"].get<int>() + j["rejected"].get<int>(), j["shots"].get<int>());
+    EXPECT_GT(j["on_moving_targets"].get<int>(), 0);
+    EXPECT_GT(j["evicted"].get<int>(), 0) << "bursts of automatic fire fill area cells";
+    EXPECT_LE(j["alive"].get<int>(), j["placed"].get<int>());
+    EXPECT_GT(j["frames"].get<int>(), 1);
+    EXPECT_LT(j["proxy_triangles"].get<size_t>(), j["render_triangles"].get<size_t>());
+    EXPECT_GT(j["error_bound"].get<double>(), 0.0);
+
+    Result<Image> image = loadImage(dir + "/gallery.png");
+    ASSERT_TRUE(image.ok()) << image.error();
+    EXPECT_EQ(image->width, 320);
+    std::set<uint32_t> colours;
+    for (size_t i = 0; i + 3 < image->rgba.size(); i += 4)
+        colours.insert(uint32_t(image->rgba[i]) << 16 | uint32_t(image->rgba[i + 1]) << 8 |
+                       image->rgba[i + 2]);
+    EXPECT_GT(colours.size(), 500u) << "the picture is blank or flat";
+}
+
+TEST(Gallery, DecalOnAMovingTargetMovesWithItInTheImage) {
+    const std::string dir = test::scratchDir("gallery-track");
+    const json j = runHeadless(dir, 60, 2);
+    ASSERT_TRUE(j.is_object());
+    const json& t = j["tracked_decal"];
+    ASSERT_FALSE(t.contains("error")) << t.dump();
+    EXPECT_TRUE(t["on_target_after_move"].get<bool>());
+    EXPECT_GT(t["world_moved_m"].get<double>(), 0.01);
+    ASSERT_TRUE(t["image_moved_px"].is_number()) << "the followed decal was not visible in the image";
+    EXPECT_GT(t["image_moved_px"].get<double>(), 0.5);
+    EXPECT_LT(t["image_motion_error_px"].get<double>(), 2.0);
+}
+
+TEST(Gallery, SameSeedGivesTheSameSession) {
+    const std::string a = test::scratchDir("gallery-seed-a"), b = test::scratchDir("gallery-seed-b");
+    const json ja = runHeadless(a, 40, 5), jb = runHeadless(b, 40, 5);
+    ASSERT_TRUE(ja.is_object() && jb.is_object());
+    for (const char* key : {"placed", "rejected", "evicted", "on_moving_targets", "alive", "proxy_triangles"})
+        EXPECT_EQ(ja[key], jb[key]) << key;
+    EXPECT_EQ(ja["tracked_decal"]["decal_id"], jb["tracked_decal"]["decal_id"]);
+}
+
+TEST(Gallery, RejectsBadOptionsWithAMessage) {
+    const std::string dir = test::scratchDir("gallery-bad");
+    const CommandRun run = runCommand(std::string(SPATTER_GALLERY_EXE) + " --shots lots", dir);
+    EXPECT_EQ(run.exitCode, 2);
+    EXPECT_THAT(run.output, ::testing::HasSubstr("--shots"));
+    const CommandRun missing =
+        runCommand(std::string(SPATTER_GALLERY_EXE) + " --headless --scene /nonexistent.glb", dir);
+    EXPECT_EQ(missing.exitCode, 1);
+    EXPECT_THAT(missing.output, ::testing::HasSubstr("/nonexistent.glb"));
+}
+
+TEST(Gallery, WindowedModeRendersAndQuitsOnEscape) {
+    const std::string dir = test::scratchDir("gallery-window");
+    const CommandRun run = runCommand(
+        std::string("bash ") + SPATTER_WINDOWED_SCRIPT + " " + SPATTER_GALLERY_EXE + " " + dir, dir);
+    if (run.exitCode == 77 && !test::runningInCi()) GTEST_SKIP() << run.output;
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_THAT(run.output, ::testing::ContainsRegex("decals placed in [1-9][0-9]* frames"));
+}
