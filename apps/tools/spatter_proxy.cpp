@@ -16,7 +16,8 @@
 #include <string>
 #include <unistd.h>
 
-static const char* kUsage = R"(usage: spatter-proxy build MESH --tolerance T[%] [--backend openmesh|meshopt|auto]
+static const char* kUsage =
+    R"(usage: spatter-proxy build MESH --tolerance T[%] [--backend openmesh|meshopt|auto]
                            --out PROXY.obj [--report REPORT.json] [--cache DIR]
                            [--max-triangles N] [--quiet]
 
@@ -63,7 +64,8 @@ spatter::Mesh mergeWorld(const spatter::Scene& scene) {
         const uint32_t base = uint32_t(out.positions.size());
         for (const glm::vec3& p : o.mesh.positions)
             out.positions.push_back(glm::vec3(o.transform * glm::dvec4(glm::dvec3(p), 1.0)));
-        for (uint32_t i : o.mesh.indices) out.indices.push_back(base + i);
+        for (uint32_t i : o.mesh.indices)
+            out.indices.push_back(base + i);
     }
     spatter::computeNormals(out);
     return out;
@@ -76,8 +78,10 @@ bool writeObj(const std::string& path, const spatter::Proxy& proxy) {
     std::fprintf(f, "# spatter-proxy: %zu vertices, %zu triangles, source %s, backend %s, h = %.9g\n",
                  m.positions.size(), m.triangleCount(), spatter::proxySourceName(proxy.source),
                  spatter::proxyBackendName(proxy.backend), proxy.errorBound);
-    for (const glm::vec3& p : m.positions) std::fprintf(f, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
-    for (const glm::vec3& n : m.normals) std::fprintf(f, "vn %.9g %.9g %.9g\n", n.x, n.y, n.z);
+    for (const glm::vec3& p : m.positions)
+        std::fprintf(f, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
+    for (const glm::vec3& n : m.normals)
+        std::fprintf(f, "vn %.9g %.9g %.9g\n", n.x, n.y, n.z);
     for (size_t t = 0; t < m.triangleCount(); ++t) {
         const uint32_t a = m.indices[3 * t] + 1, b = m.indices[3 * t + 1] + 1, c = m.indices[3 * t + 2] + 1;
         std::fprintf(f, "f %u//%u %u//%u %u//%u\n", a, a, b, b, c, c);
@@ -142,10 +146,14 @@ int main(int argc, char** argv) {
             if (!value(toleranceText)) return usageError("--tolerance needs a value");
         } else if (arg == "--backend") {
             if (!value(v)) return usageError("--backend needs a value");
-            if (v == "openmesh") settings.backend = spatter::ProxyBackend::OpenMesh;
-            else if (v == "meshopt") settings.backend = spatter::ProxyBackend::MeshOpt;
-            else if (v == "auto") settings.backend = spatter::ProxyBackend::Auto;
-            else return usageError("unknown backend '" + v + "' (openmesh, meshopt or auto)");
+            if (v == "openmesh")
+                settings.backend = spatter::ProxyBackend::OpenMesh;
+            else if (v == "meshopt")
+                settings.backend = spatter::ProxyBackend::MeshOpt;
+            else if (v == "auto")
+                settings.backend = spatter::ProxyBackend::Auto;
+            else
+                return usageError("unknown backend '" + v + "' (openmesh, meshopt or auto)");
         } else if (arg == "--out") {
             if (!value(out)) return usageError("--out needs a file");
         } else if (arg == "--report") {
@@ -167,7 +175,8 @@ int main(int argc, char** argv) {
     if (out.empty()) return usageError("--out is required");
     const bool percent = toleranceText.back() == '%';
     double tolerance = 0.0;
-    if (!parseNumber(percent ? toleranceText.substr(0, toleranceText.size() - 1) : toleranceText, tolerance) ||
+    if (!parseNumber(percent ? toleranceText.substr(0, toleranceText.size() - 1) : toleranceText,
+                     tolerance) ||
         tolerance < 0.0)
         return usageError("--tolerance needs a number >= 0, optionally followed by %");
     settings.tolerance = float(percent ? tolerance / 100.0 : tolerance);
@@ -194,7 +203,8 @@ int main(int argc, char** argv) {
         return 1;
     }
     if (!quiet)
-        for (const std::string& note : proxy->notes) std::cerr << "spatter-proxy: note: " << note << "\n";
+        for (const std::string& note : proxy->notes)
+            std::cerr << "spatter-proxy: note: " << note << "\n";
     if (!writeObj(out, proxy.value())) {
         std::cerr << "spatter-proxy: cannot write " << out << "\n";
         return 1;
@@ -219,9 +229,10 @@ int main(int argc, char** argv) {
         }
     }
     if (!quiet)
-        std::cerr << "spatter-proxy: " << proxy->inputTriangles << " -> " << proxy->proxyTriangles << " triangles ("
-                  << spatter::proxySourceName(proxy->source) << ", " << spatter::proxyBackendName(proxy->backend)
-                  << "), h = " << proxy->errorBound << " (tolerance " << proxy->tolerance << "), "
-                  << proxy->seconds << " s" << (proxy->cached ? ", cached" : "") << "\n";
+        std::cerr << "spatter-proxy: " << proxy->inputTriangles << " -> " << proxy->proxyTriangles
+                  << " triangles (" << spatter::proxySourceName(proxy->source) << ", "
+                  << spatter::proxyBackendName(proxy->backend) << "), h = " << proxy->errorBound
+                  << " (tolerance " << proxy->tolerance << "), " << proxy->seconds << " s"
+                  << (proxy->cached ? ", cached" : "") << "\n";
     return 0;
 }

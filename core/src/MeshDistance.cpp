@@ -58,7 +58,8 @@ std::vector<uint32_t> surfaceTriangles(const Mesh& mesh) {
 
 // Closest point to `p` on the triangle (a, b, c) (Ericson, Real-Time Collision Detection, 5.1.5).
 // The triangle has non-zero area.
-glm::dvec3 closestOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+glm::dvec3 closestOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                             const glm::dvec3& c) {
     const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
     const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
     if (d1 <= 0.0 && d2 <= 0.0) return a;
@@ -111,9 +112,11 @@ bool parallelChunks(size_t count, size_t chunk, unsigned workers, Body&& body, R
         }
     };
     std::vector<std::thread> threads;
-    for (unsigned w = 1; w < workers && w < chunks; ++w) threads.emplace_back(run, w);
+    for (unsigned w = 1; w < workers && w < chunks; ++w)
+        threads.emplace_back(run, w);
     run(0);
-    for (std::thread& t : threads) t.join();
+    for (std::thread& t : threads)
+        t.join();
     return !cancelled.load();
 }
 
@@ -181,17 +184,18 @@ Result<ClosestPointQuery> ClosestPointQuery::create(const Mesh& mesh) {
     impl->triangleIds = surface;
     impl->corners.reserve(3 * surface.size());
     for (uint32_t t : surface)
-        for (int k = 0; k < 3; ++k) impl->corners.push_back(corner(mesh, t, k));
+        for (int k = 0; k < 3; ++k)
+            impl->corners.push_back(corner(mesh, t, k));
     if (surface.empty()) return ClosestPointQuery(std::move(impl));
 
     impl->device = rtcNewDevice(nullptr);
     if (!impl->device) return fail("Embree could not create a device");
     impl->scene = rtcNewScene(impl->device);
     RTCGeometry geom = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                 3 * sizeof(float), mesh.positions.size()));
-    auto* indices = static_cast<uint32_t*>(
-        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), surface.size()));
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), surface.size()));
     if (!vertices || !indices) {
         rtcReleaseGeometry(geom);
         return fail("Embree could not allocate buffers for " + std::to_string(surface.size()) + " triangles");
@@ -202,13 +206,15 @@ Result<ClosestPointQuery> ClosestPointQuery::create(const Mesh& mesh) {
         vertices[3 * i + 2] = mesh.positions[i].z;
     }
     for (size_t i = 0; i < surface.size(); ++i)
-        for (int k = 0; k < 3; ++k) indices[3 * i + size_t(k)] = mesh.indices[3 * size_t(surface[i]) + size_t(k)];
+        for (int k = 0; k < 3; ++k)
+            indices[3 * i + size_t(k)] = mesh.indices[3 * size_t(surface[i]) + size_t(k)];
     rtcCommitGeometry(geom);
     rtcAttachGeometry(impl->scene, geom);
     rtcReleaseGeometry(geom);
     rtcCommitScene(impl->scene);
     if (const RTCError err = rtcGetDeviceError(impl->device); err != RTC_ERROR_NONE)
-        return fail("Embree failed to build the closest-point structure (error " + std::to_string(int(err)) + ")");
+        return fail("Embree failed to build the closest-point structure (error " + std::to_string(int(err)) +
+                    ")");
     return ClosestPointQuery(std::move(impl));
 }
 
@@ -235,7 +241,9 @@ std::optional<ClosestPoint> ClosestPointQuery::closest(const glm::dvec3& p) cons
     return out;
 }
 
-size_t ClosestPointQuery::surfaceTriangleCount() const { return impl_->triangleIds.size(); }
+size_t ClosestPointQuery::surfaceTriangleCount() const {
+    return impl_->triangleIds.size();
+}
 
 // ---------------------------------------------------------------------------------------------
 // One-sided distance
@@ -256,17 +264,21 @@ void quarter(const Piece& t, const glm::dvec3 (&m)[3], const double (&dm)[3], Pi
     out[3] = {{m[0], m[1], m[2]}, {dm[0], dm[1], dm[2]}};
 }
 
-double largestOf(const double (&d)[3]) { return std::max({d[0], d[1], d[2]}); }
+double largestOf(const double (&d)[3]) {
+    return std::max({d[0], d[1], d[2]});
+}
 
 } // namespace
 
 Result<OneSidedDistance> measureOneSidedDistance(const Mesh& from, const ClosestPointQuery& to,
-                                                 const SurfaceSampling& sampling, const ProgressCallback& progress) {
+                                                 const SurfaceSampling& sampling,
+                                                 const ProgressCallback& progress) {
     if (Status s = checkTriangles(from); !s) return fail(s.error());
     const std::vector<uint32_t> surface = surfaceTriangles(from);
     OneSidedDistance out;
     if (surface.empty()) return out;
-    if (to.surfaceTriangleCount() == 0) return fail("the target mesh has no surface (no triangle of non-zero area)");
+    if (to.surfaceTriangleCount() == 0)
+        return fail("the target mesh has no surface (no triangle of non-zero area)");
 
     // Vertices of the surface triangles, each measured once.
     std::vector<uint32_t> vertexSlot(from.positions.size(), UINT32_MAX);
@@ -293,10 +305,13 @@ Result<OneSidedDistance> measureOneSidedDistance(const Mesh& from, const Closest
     };
     // Progress: vertices, midpoints and random samples are known amounts of work; the cutting is
     // reported per triangle done.
+    // A restart of the cutting reports no less than before, so the fraction never goes back.
     const double stages = 4.0;
+    double reported = 0.0;
     auto reporter = [&](double stage) {
-        return [&progress, stage, stages](double fraction) {
-            return !progress || progress(float((stage + fraction) / stages), "measure");
+        return [&progress, &reported, stage, stages](double fraction) {
+            reported = std::max(reported, (stage + fraction) / stages);
+            return !progress || progress(float(reported), "measure");
         };
     };
 
@@ -338,7 +353,8 @@ Result<OneSidedDistance> measureOneSidedDistance(const Mesh& from, const Closest
         reporter(1.0));
     if (!ok) return fail("cancelled");
     double level = 0.0; // M1
-    for (const Accumulator& a : acc) level = std::max(level, a.measured);
+    for (const Accumulator& a : acc)
+        level = std::max(level, a.measured);
 
     // 2. Cutting, with r doubled until it fits the sample budget.
     double radius = sampling.radius > 0.0 ? sampling.radius : 0.0;
@@ -425,12 +441,13 @@ Result<OneSidedDistance> measureOneSidedDistance(const Mesh& from, const Closest
         Rng rng(sampling.seed);
         for (glm::dvec3& p : points) {
             const double pick = double(rng.uniform()) * total;
-            const size_t i = std::min(size_t(std::upper_bound(cumulative.begin(), cumulative.end(), pick) -
-                                             cumulative.begin()),
-                                      surface.size() - 1);
+            const size_t i = std::min(
+                size_t(std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin()),
+                surface.size() - 1);
             const double su = std::sqrt(double(rng.uniform())), v = double(rng.uniform());
             const uint32_t t = surface[i];
-            p = corner(from, t, 0) * (1.0 - su) + corner(from, t, 1) * (su * (1.0 - v)) + corner(from, t, 2) * (su * v);
+            p = corner(from, t, 0) * (1.0 - su) + corner(from, t, 1) * (su * (1.0 - v)) +
+                corner(from, t, 2) * (su * v);
         }
         ok = parallelChunks(
             points.size(), 1024, workers,
@@ -444,6 +461,7 @@ Result<OneSidedDistance> measureOneSidedDistance(const Mesh& from, const Closest
         if (!ok) return fail("cancelled");
     }
 
+    if (progress && !progress(1.0f, "measure")) return fail("cancelled");
     double scale = 0.0;
     for (uint32_t v : vertices) {
         const glm::vec3& p = from.positions[v];
@@ -454,7 +472,8 @@ Result<OneSidedDistance> measureOneSidedDistance(const Mesh& from, const Closest
         out.bound = std::max(out.bound, a.bound);
         out.samples += a.samples;
     }
-    out.bound = std::max(out.bound, out.measuredMax) * (1.0 + kRoundingAllowance) + kRoundingAllowance * scale;
+    out.bound =
+        std::max(out.bound, out.measuredMax) * (1.0 + kRoundingAllowance) + kRoundingAllowance * scale;
     out.margin = out.bound - out.measuredMax;
     return out;
 }

@@ -42,10 +42,12 @@ uint64_t doubleBits(double d) {
 struct Writer {
     std::vector<unsigned char> bytes;
     void u32(uint32_t v) {
-        for (int i = 0; i < 4; ++i) bytes.push_back((unsigned char)(v >> (8 * i)));
+        for (int i = 0; i < 4; ++i)
+            bytes.push_back((unsigned char)(v >> (8 * i)));
     }
     void u64(uint64_t v) {
-        for (int i = 0; i < 8; ++i) bytes.push_back((unsigned char)(v >> (8 * i)));
+        for (int i = 0; i < 8; ++i)
+            bytes.push_back((unsigned char)(v >> (8 * i)));
     }
     void f32(float v) { u32(floatBits(v)); }
     void f64(double v) { u64(doubleBits(v)); }
@@ -58,14 +60,16 @@ struct Reader {
     bool u32(uint32_t& v) {
         if (size - at < 4) return false;
         v = 0;
-        for (int i = 0; i < 4; ++i) v |= uint32_t(data[at + size_t(i)]) << (8 * i);
+        for (int i = 0; i < 4; ++i)
+            v |= uint32_t(data[at + size_t(i)]) << (8 * i);
         at += 4;
         return true;
     }
     bool u64(uint64_t& v) {
         if (size - at < 8) return false;
         v = 0;
-        for (int i = 0; i < 8; ++i) v |= uint64_t(data[at + size_t(i)]) << (8 * i);
+        for (int i = 0; i < 8; ++i)
+            v |= uint64_t(data[at + size_t(i)]) << (8 * i);
         at += 8;
         return true;
     }
@@ -88,12 +92,14 @@ struct Hasher {
     uint64_t h = kFnvOffset;
     void u32(uint32_t v) {
         unsigned char b[4];
-        for (int i = 0; i < 4; ++i) b[i] = (unsigned char)(v >> (8 * i));
+        for (int i = 0; i < 4; ++i)
+            b[i] = (unsigned char)(v >> (8 * i));
         h = fnv1a(b, 4, h);
     }
     void u64(uint64_t v) {
         unsigned char b[8];
-        for (int i = 0; i < 8; ++i) b[i] = (unsigned char)(v >> (8 * i));
+        for (int i = 0; i < 8; ++i)
+            b[i] = (unsigned char)(v >> (8 * i));
         h = fnv1a(b, 8, h);
     }
     void f32(float v) { u32(floatBits(v)); }
@@ -105,7 +111,8 @@ struct Hasher {
             f32(p.z);
         }
         u64(m.indices.size());
-        for (uint32_t i : m.indices) u32(i);
+        for (uint32_t i : m.indices)
+            u32(i);
     }
 };
 
@@ -135,7 +142,7 @@ uint64_t proxyCacheKey(const Mesh& render, const ProxySettings& s, const Mesh* a
     h.u32(s.keepSharpFeatures);
     h.f32(s.featureAngleDegrees);
     h.u32(s.smallMeshTriangles);
-    h.f32(s.coverageFraction);
+    h.f32(s.marginFraction);
     h.u32(s.maxSamples);
     h.u32(s.randomSamples);
     h.u64(s.seed);
@@ -160,7 +167,9 @@ Result<Proxy> loadCachedProxy(const std::string& directory, uint64_t key) {
     std::vector<unsigned char> bytes(static_cast<size_t>(fileSize));
     in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
     if (size_t(in.gcount()) != bytes.size()) return fail("cache entry " + path + " cannot be read");
-    auto corrupt = [&](const std::string& what) { return fail("cache entry " + path + " is corrupt: " + what); };
+    auto corrupt = [&](const std::string& what) {
+        return fail("cache entry " + path + " is corrupt: " + what);
+    };
     if (bytes.size() < kHeaderSize + kChecksumSize)
         return corrupt("truncated (" + std::to_string(bytes.size()) + " bytes)");
     if (std::memcmp(bytes.data(), kMagic, 4) != 0) return corrupt("bad magic");
@@ -187,24 +196,30 @@ Result<Proxy> loadCachedProxy(const std::string& directory, uint64_t key) {
     r.u32(indexCount);
     if (version != kFormatVersion) return corrupt("format version " + std::to_string(version));
     if (storedKey != key) return corrupt("it holds another key");
-    const uint64_t expected = uint64_t(kHeaderSize) + uint64_t(vertexCount) * 24u + uint64_t(indexCount) * 4u + kChecksumSize;
+    const uint64_t expected =
+        uint64_t(kHeaderSize) + uint64_t(vertexCount) * 24u + uint64_t(indexCount) * 4u + kChecksumSize;
     if (expected != bytes.size())
-        return corrupt(std::to_string(bytes.size()) + " bytes where its counts need " + std::to_string(expected));
+        return corrupt(std::to_string(bytes.size()) + " bytes where its counts need " +
+                       std::to_string(expected));
     const size_t payload = bytes.size() - kChecksumSize;
     Reader tail{bytes.data(), bytes.size(), payload};
     uint64_t checksum = 0;
     tail.u64(checksum);
     if (checksum != fnv1a(bytes.data(), payload)) return corrupt("checksum mismatch");
 
-    if (source > uint32_t(ProxySource::AuthoredCollider)) return corrupt("unknown source " + std::to_string(source));
+    if (source > uint32_t(ProxySource::AuthoredCollider))
+        return corrupt("unknown source " + std::to_string(source));
     if (backend > uint32_t(ProxyBackend::None)) return corrupt("unknown backend " + std::to_string(backend));
     if (indexCount % 3 != 0) return corrupt("index count is not a multiple of 3");
     p.mesh.positions.resize(vertexCount);
     p.mesh.normals.resize(vertexCount);
     p.mesh.indices.resize(indexCount);
-    for (glm::vec3& v : p.mesh.positions) r.f32(v.x), r.f32(v.y), r.f32(v.z);
-    for (glm::vec3& v : p.mesh.normals) r.f32(v.x), r.f32(v.y), r.f32(v.z);
-    for (uint32_t& i : p.mesh.indices) r.u32(i);
+    for (glm::vec3& v : p.mesh.positions)
+        r.f32(v.x), r.f32(v.y), r.f32(v.z);
+    for (glm::vec3& v : p.mesh.normals)
+        r.f32(v.x), r.f32(v.y), r.f32(v.z);
+    for (uint32_t& i : p.mesh.indices)
+        r.u32(i);
     for (uint32_t i : p.mesh.indices)
         if (i >= vertexCount) return corrupt("index past the vertex count");
     for (size_t i = 0; i < p.mesh.positions.size(); ++i) {
@@ -235,7 +250,8 @@ Status storeCachedProxy(const std::string& directory, uint64_t key, const Proxy&
         return fail("cache entry " + path + " not written: the proxy is too large");
     Writer w;
     w.bytes.reserve(kHeaderSize + m.positions.size() * 24 + m.indices.size() * 4 + kChecksumSize);
-    for (char c : kMagic) w.bytes.push_back((unsigned char)c);
+    for (char c : kMagic)
+        w.bytes.push_back((unsigned char)c);
     w.u32(kFormatVersion);
     w.u64(key);
     w.u32(uint32_t(proxy.source));
@@ -251,9 +267,12 @@ Status storeCachedProxy(const std::string& directory, uint64_t key, const Proxy&
     w.f64(proxy.samplingMargin);
     w.u32(uint32_t(m.positions.size()));
     w.u32(uint32_t(m.indices.size()));
-    for (const glm::vec3& v : m.positions) w.f32(v.x), w.f32(v.y), w.f32(v.z);
-    for (const glm::vec3& v : m.normals) w.f32(v.x), w.f32(v.y), w.f32(v.z);
-    for (uint32_t i : m.indices) w.u32(i);
+    for (const glm::vec3& v : m.positions)
+        w.f32(v.x), w.f32(v.y), w.f32(v.z);
+    for (const glm::vec3& v : m.normals)
+        w.f32(v.x), w.f32(v.y), w.f32(v.z);
+    for (uint32_t i : m.indices)
+        w.u32(i);
     w.u64(fnv1a(w.bytes.data(), w.bytes.size()));
 
     std::error_code ec;

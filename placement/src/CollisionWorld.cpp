@@ -217,13 +217,18 @@ struct CollisionWorld::Impl {
                 return false;
             }
         }
-        if (!(lo <= hi)) return false;
+        // A clip distance that overflows (an origin near the double limit) cannot be traced: the hit
+        // distance would not be representable either.
+        if (!(lo <= hi) || !std::isfinite(hi)) return false;
         p.start = lo;
         p.length = length;
         const glm::dvec3 start = o + u * lo;
         rh.ray.org_x = float(start.x);
         rh.ray.org_y = float(start.y);
         rh.ray.org_z = float(start.z);
+        // An origin so far away that cancellation leaves the start outside the float range.
+        if (!std::isfinite(rh.ray.org_x) || !std::isfinite(rh.ray.org_y) || !std::isfinite(rh.ray.org_z))
+            return false;
         rh.ray.dir_x = float(u.x);
         rh.ray.dir_y = float(u.y);
         rh.ray.dir_z = float(u.z);
@@ -346,7 +351,7 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
             ProxySettings measure;
             measure.tolerance = 0.05f;
             measure.toleranceRelative = true;
-            measure.coverageFraction = 0.2f;
+            measure.marginFraction = 0.2f;
             measure.maxSamples = 200'000;
             measure.randomSamples = 1024;
             Result<Proxy> measured = buildProxy(so.mesh, measure, &*so.collider);

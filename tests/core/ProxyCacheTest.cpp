@@ -46,7 +46,9 @@ void writeAll(const std::string& path, const std::vector<char>& bytes) {
     f.write(bytes.data(), std::streamsize(bytes.size()));
 }
 
-Mesh tetrahedron() { return sampleProxy().mesh; }
+Mesh tetrahedron() {
+    return sampleProxy().mesh;
+}
 
 } // namespace
 

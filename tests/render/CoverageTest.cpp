@@ -159,7 +159,7 @@ TEST(Coverage, DecalsPlacedThroughACoarseProxyCoverTheDrawnSurface) {
     ProxySettings ps;
     ps.tolerance = 0.02f;
     ps.backend = ProxyBackend::MeshOpt;
-    ps.coverageFraction = 0.5f; // a looser (still certified) bound keeps the measurement quick
+    ps.marginFraction = 0.5f; // a looser (still certified) bound keeps the measurement quick
     ps.maxSamples = 200000;
     ps.randomSamples = 2048;
     std::vector<std::optional<Proxy>> proxies(scene.objects.size());

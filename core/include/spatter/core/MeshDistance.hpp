@@ -98,7 +98,9 @@ struct MeshDistance {
     OneSidedDistance aToB; // sup over the surface of A of the distance to B
     OneSidedDistance bToA;
     // The true two-sided Hausdorff distance lies in [lowerBound(), upperBound()].
-    double lowerBound() const { return aToB.measuredMax > bToA.measuredMax ? aToB.measuredMax : bToA.measuredMax; }
+    double lowerBound() const {
+        return aToB.measuredMax > bToA.measuredMax ? aToB.measuredMax : bToA.measuredMax;
+    }
     double upperBound() const { return aToB.bound > bToA.bound ? aToB.bound : bToA.bound; }
 };
 

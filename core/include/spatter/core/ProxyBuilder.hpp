@@ -9,14 +9,16 @@
 //  - a simplification of the render mesh (ProxySource::Simplified) by OpenMesh's Decimater or
 //    meshoptimizer's simplifier, h measured.
 //
-// The bound. h = max(bound(proxy -> render), bound(render -> proxy)), where each one-sided bound is
-// computed by measureOneSidedDistance (MeshDistance.hpp): exact closest-point distances at every
-// vertex, on a grid over every triangle (edge midpoints included) and at random area-weighted
-// samples, plus the covering radius r of the grid. Because the distance to a surface is 1-Lipschitz
-// and every surface point lies within r of a grid sample, h >= the true two-sided Hausdorff distance
-// between the proxy and the render mesh; and max(proxyToRenderMax, renderToProxyMax), being attained
-// at actual surface points, is <= it. The grid is refined until r <= coverageFraction * tolerance
-// (so h <= measured + coverageFraction * tolerance), unless maxSamples forces a coarser one.
+// The bound. h = max(bound(proxy -> render), bound(render -> proxy)), each one-sided bound computed by
+// measureOneSidedDistance (MeshDistance.hpp, where the derivation is written out): exact closest-point
+// distances (Embree rtcPointQuery) at every vertex, every edge midpoint, the corners of an adaptive
+// cutting of every triangle, and random area-weighted samples; plus, per piece of the cutting, the
+// radius of its smallest enclosing circle. Because the distance to a surface is 1-Lipschitz and every
+// point of a piece lies within that radius of one of the piece's corners, h >= the true two-sided
+// Hausdorff distance between the proxy and the render mesh; and max(proxyToRenderMax,
+// renderToProxyMax), being attained at actual surface points, is <= it. The cutting goes on until
+// h <= max(proxyToRenderMax, renderToProxyMax) + marginFraction * tolerance, unless maxSamples
+// forces it to stop earlier (samplingMargin reports the margin reached).
 //
 // The tolerance is the target for h; the triangle budget is a hard limit. A backend is run with an
 // internal tolerance below the target; if the measured h exceeds the target, it is run again with a
@@ -79,9 +81,10 @@ struct ProxySettings {
     float featureAngleDegrees = 45.0f;
     // A render mesh with fewer triangles than this is its own proxy (h = 0).
     uint32_t smallMeshTriangles = 512;
-    // Error measurement: the grid's covering radius target as a fraction of the absolute tolerance
-    // (in (0, 1)), the sample budget and random samples per direction, and their seed.
-    float coverageFraction = 0.2f;
+    // Error measurement: the sampling margin allowed (h minus the largest sampled distance) as a
+    // fraction of the absolute tolerance, in (0, 1); the sample budget and the random samples per
+    // direction, and their seed.
+    float marginFraction = 0.2f;
     uint32_t maxSamples = 2'000'000;
     uint32_t randomSamples = 16384;
     uint64_t seed = 1;
@@ -95,36 +98,36 @@ struct Proxy {
     Mesh mesh; // positions, unit normals, indices; no UVs, tangents or submeshes
     ProxySource source = ProxySource::OwnMesh;
     ProxyBackend backend = ProxyBackend::None; // OpenMesh or MeshOpt when source == Simplified
-    double tolerance = 0.0;                     // the absolute tolerance asked for
-    bool toleranceMet = true;                   // errorBound <= tolerance (always true for OwnMesh)
-    double errorBound = 0.0;                    // h: >= the true two-sided Hausdorff distance
-    double proxyToRenderMax = 0.0;              // largest sampled proxy-to-render distance
-    double renderToProxyMax = 0.0;              // largest sampled render-to-proxy distance
+    double tolerance = 0.0;                    // the absolute tolerance asked for
+    bool toleranceMet = true;                  // errorBound <= tolerance (always true for OwnMesh)
+    double errorBound = 0.0;                   // h: >= the true two-sided Hausdorff distance
+    double proxyToRenderMax = 0.0;             // largest sampled proxy-to-render distance
+    double renderToProxyMax = 0.0;             // largest sampled render-to-proxy distance
     // errorBound <= max(proxyToRenderMax, renderToProxyMax) + samplingMargin; the margin is at most
-    // coverageFraction * tolerance unless maxSamples forced coarser sampling.
+    // marginFraction * tolerance unless maxSamples forced coarser sampling.
     double samplingMargin = 0.0;
-    size_t samples = 0;                         // closest-point queries made for the final proxy
-    size_t inputTriangles = 0;                  // render mesh triangles
+    size_t samples = 0;        // closest-point queries made for the final proxy
+    size_t inputTriangles = 0; // render mesh triangles
     size_t proxyTriangles = 0;
-    uint32_t attempts = 0;   // simplification runs (0 when nothing was simplified)
-    double seconds = 0.0;    // wall time of this buildProxy call
-    bool cached = false;     // loaded from the cache: nothing was simplified or measured
+    uint32_t attempts = 0;          // simplification runs (0 when nothing was simplified)
+    double seconds = 0.0;           // wall time of this buildProxy call
+    bool cached = false;            // loaded from the cache: nothing was simplified or measured
     std::vector<std::string> notes; // what happened besides the plain path (cache misses, fallbacks)
 };
 
-// The backend Auto starts with: OpenMesh for meshes of at most 8,000 triangles whose tolerance is at
-// most 1% of the diagonal (there its decimation costs well under a second and often gives the
-// smaller proxy), meshoptimizer otherwise (tens of times faster, and its cost does not grow with the
-// tolerance). Under Auto, when OpenMesh misses the tolerance, meshoptimizer runs as well and the
-// better proxy is kept (within the tolerance first, then the smaller h). Any backend other than Auto
-// is returned unchanged.
+// The backend Auto starts with. For meshes of at most 8,000 triangles whose tolerance is at most 2%
+// of the diagonal it is OpenMesh, and buildProxy then runs meshoptimizer as well and keeps the better
+// proxy (within the tolerance first, then fewer triangles, then the smaller h): there both cost well
+// under a second and each wins on some meshes. Otherwise it is meshoptimizer alone: tens of times
+// faster on large meshes, and OpenMesh's cost grows with the tolerance (each remaining face re-tests
+// every vertex removed under it). Any backend other than Auto is returned unchanged.
 ProxyBackend resolveProxyBackend(ProxyBackend requested, size_t triangles, double absoluteTolerance,
                                  double diagonal);
 
 // Builds the proxy of `render` (see the top of this file). `authoredCollider`, when given, is used as
 // the proxy instead of simplifying; it is not modified or kept. `progress` is called with the stages
 // "cache", "simplify" and "measure"; returning false cancels the build (error "cancelled").
-Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& settings, const Mesh* authoredCollider = nullptr,
-                         const ProgressCallback& progress = {});
+Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& settings,
+                         const Mesh* authoredCollider = nullptr, const ProgressCallback& progress = {});
 
 } // namespace spatter

@@ -1,0 +1,250 @@
+#include "spatter/core/MeshDistance.hpp"
+
+#include "spatter/core/Random.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+using namespace spatter;
+using ::testing::HasSubstr;
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+Mesh triangleMesh(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices) {
+    Mesh m;
+    m.positions = positions;
+    m.indices = indices;
+    computeNormals(m);
+    return m;
+}
+
+// A sphere of latitude/longitude quads split into triangles, closed.
+Mesh sphere(float radius, uint32_t stacks, uint32_t slices) {
+    Mesh m;
+    m.positions.push_back({0, 0, radius});
+    for (uint32_t i = 1; i < stacks; ++i) {
+        const float theta = kPi * float(i) / float(stacks);
+        for (uint32_t j = 0; j < slices; ++j) {
+            const float phi = 2.0f * kPi * float(j) / float(slices);
+            m.positions.push_back(radius * glm::vec3(std::sin(theta) * std::cos(phi),
+                                                     std::sin(theta) * std::sin(phi), std::cos(theta)));
+        }
+    }
+    m.positions.push_back({0, 0, -radius});
+    const uint32_t south = uint32_t(m.positions.size() - 1);
+    auto ring = [&](uint32_t i, uint32_t j) { return 1 + (i - 1) * slices + j % slices; };
+    for (uint32_t j = 0; j < slices; ++j)
+        m.indices.insert(m.indices.end(), {0, ring(1, j), ring(1, j + 1)});
+    for (uint32_t i = 1; i + 1 < stacks; ++i)
+        for (uint32_t j = 0; j < slices; ++j)
+            m.indices.insert(m.indices.end(), {ring(i, j), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j),
+                                               ring(i + 1, j + 1), ring(i, j + 1)});
+    for (uint32_t j = 0; j < slices; ++j)
+        m.indices.insert(m.indices.end(), {ring(stacks - 1, j), south, ring(stacks - 1, j + 1)});
+    computeNormals(m);
+    return m;
+}
+
+double segmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+    const glm::dvec3 d = b - a;
+    const double len2 = glm::dot(d, d);
+    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+    return glm::length(p - (a + t * d));
+}
+
+// Point-triangle distance by projection onto the plane and, outside the triangle, the nearest edge:
+// deliberately a different method from the library's.
+double bruteTriangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                             const glm::dvec3& c) {
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const double len = glm::length(n);
+    const double edges =
+        std::min({segmentDistance(p, a, b), segmentDistance(p, b, c), segmentDistance(p, c, a)});
+    if (len == 0.0) return edges;
+    const glm::dvec3 u = n / len;
+    const double height = glm::dot(p - a, u);
+    const glm::dvec3 q = p - height * u;
+    const double wa = glm::dot(glm::cross(b - q, c - q), u), wb = glm::dot(glm::cross(c - q, a - q), u),
+                 wc = glm::dot(glm::cross(a - q, b - q), u);
+    if (wa >= 0.0 && wb >= 0.0 && wc >= 0.0) return std::fabs(height);
+    return edges;
+}
+
+double bruteMeshDistance(const glm::dvec3& p, const Mesh& m) {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t t = 0; t < m.triangleCount(); ++t)
+        best = std::min(best, bruteTriangleDistance(p, glm::dvec3(m.positions[m.indices[3 * t]]),
+                                                    glm::dvec3(m.positions[m.indices[3 * t + 1]]),
+                                                    glm::dvec3(m.positions[m.indices[3 * t + 2]])));
+    return best;
+}
+
+} // namespace
+
+TEST(ClosestPointQuery, MatchesBruteForceOnASphere) {
+    const Mesh m = sphere(1.0f, 12, 16);
+    Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
+    ASSERT_TRUE(q) << q.error();
+    Rng rng(7);
+    for (int i = 0; i < 500; ++i) {
+        const glm::dvec3 p(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
+        const std::optional<ClosestPoint> c = q->closest(p);
+        ASSERT_TRUE(c);
+        EXPECT_NEAR(c->distance, bruteMeshDistance(p, m), 1e-9);
+        EXPECT_NEAR(glm::length(c->point - p), c->distance, 1e-12);
+        const uint32_t t = c->triangle;
+        ASSERT_LT(t, m.triangleCount());
+        EXPECT_NEAR(bruteTriangleDistance(p, glm::dvec3(m.positions[m.indices[3 * t]]),
+                                          glm::dvec3(m.positions[m.indices[3 * t + 1]]),
+                                          glm::dvec3(m.positions[m.indices[3 * t + 2]])),
+                    c->distance, 1e-9);
+    }
+}
+
+TEST(ClosestPointQuery, ExactAtFaceEdgeAndCornerOfOneTriangle) {
+    const Mesh m = triangleMesh({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}, {0, 1, 2});
+    Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
+    ASSERT_TRUE(q) << q.error();
+    EXPECT_DOUBLE_EQ(q->closest({0.5, 0.5, 3.0})->distance, 3.0);
+    EXPECT_DOUBLE_EQ(q->closest({1.0, -4.0, 0.0})->distance, 4.0);
+    EXPECT_DOUBLE_EQ(q->closest({-3.0, -4.0, 0.0})->distance, 5.0);
+    EXPECT_EQ(q->closest({-3.0, -4.0, 0.0})->point, glm::dvec3(0.0));
+}
+
+TEST(ClosestPointQuery, IgnoresDegenerateTriangles) {
+    // A zero-area triangle (collinear corners) and one with a repeated index, far from the real one.
+    const Mesh m = triangleMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {10, 0, 0}, {11, 0, 0}, {12, 0, 0}},
+                                {0, 1, 2, 3, 4, 5, 3, 3, 4});
+    Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
+    ASSERT_TRUE(q) << q.error();
+    EXPECT_EQ(q->surfaceTriangleCount(), 1u);
+    EXPECT_NEAR(q->closest({11, 0, 0})->distance, 10.0, 1e-12);
+}
+
+TEST(ClosestPointQuery, MeshWithoutSurfaceAnswersNothing) {
+    const Mesh m = triangleMesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {0, 1, 2});
+    Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
+    ASSERT_TRUE(q) << q.error();
+    EXPECT_FALSE(q->closest({0, 0, 0}));
+}
+
+TEST(ClosestPointQuery, RejectsNonFinitePositionAndBadIndex) {
+    Mesh m = triangleMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});
+    m.positions[1].y = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_THAT(ClosestPointQuery::create(m).error(), HasSubstr("position 1 is not finite"));
+    m.positions[1].y = 0.0f;
+    m.indices[2] = 3;
+    EXPECT_THAT(ClosestPointQuery::create(m).error(), HasSubstr("past the vertex count"));
+}
+
+TEST(ClosestPointQuery, NonFiniteQueryPointAnswersNothing) {
+    const Mesh m = triangleMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});
+    Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
+    ASSERT_TRUE(q);
+    EXPECT_FALSE(q->closest({std::numeric_limits<double>::infinity(), 0, 0}));
+}
+
+TEST(MeshDistance, ParallelSquaresAreTheirOffsetApart) {
+    const Mesh a = triangleMesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {0, 1, 2, 0, 2, 3});
+    const Mesh b =
+        triangleMesh({{0, 0, 0.25f}, {1, 0, 0.25f}, {1, 1, 0.25f}, {0, 1, 0.25f}}, {0, 1, 2, 0, 2, 3});
+    SurfaceSampling sampling;
+    sampling.radius = 0.01;
+    Result<MeshDistance> d = measureMeshDistance(a, b, sampling);
+    ASSERT_TRUE(d) << d.error();
+    EXPECT_NEAR(d->aToB.measuredMax, 0.25, 1e-7);
+    EXPECT_NEAR(d->bToA.measuredMax, 0.25, 1e-7);
+    EXPECT_GE(d->upperBound(), 0.25);
+    EXPECT_LE(d->upperBound(), 0.25 + 0.01 + 1e-6);
+}
+
+// The largest distance lies strictly between samples: A is a long sliver along x in [0, 3], B two
+// tiny triangles near x = 0 and x = 2.2, so the distance from A peaks near x = 1.1.
+TEST(MeshDistance, BoundCoversAMaximumBetweenSamples) {
+    const Mesh a = triangleMesh({{0, -0.01f, 0}, {3, 0, 0}, {0, 0.01f, 0}}, {0, 1, 2});
+    const Mesh b = triangleMesh(
+        {{0, 0, 0}, {0.001f, 0, 0}, {0, 0.001f, 0}, {2.2f, 0, 0}, {2.201f, 0, 0}, {2.2f, 0.001f, 0}},
+        {0, 1, 2, 3, 4, 5});
+    double truth = 0.0; // dense brute force along the sliver's axis
+    for (int i = 0; i <= 300000; ++i)
+        truth = std::max(truth, bruteMeshDistance({3.0 * i / 300000.0, 0, 0}, b));
+    Result<ClosestPointQuery> qb = ClosestPointQuery::create(b);
+    ASSERT_TRUE(qb);
+    for (double radius : {0.2, 0.05, 0.001}) {
+        SurfaceSampling sampling;
+        sampling.radius = radius;
+        sampling.randomSamples = 0;
+        Result<OneSidedDistance> d = measureOneSidedDistance(a, qb.value(), sampling);
+        ASSERT_TRUE(d) << d.error();
+        EXPECT_GE(d->bound, truth) << "radius " << radius;
+        EXPECT_LE(d->measuredMax, truth + 1e-4); // off-axis points of the sliver are slightly farther
+        EXPECT_LE(d->bound, d->measuredMax + radius + 1e-6);
+        EXPECT_NEAR(d->margin, d->bound - d->measuredMax, 1e-12);
+    }
+}
+
+TEST(MeshDistance, BoundHoldsWhenTheSampleBudgetCoarsensTheCutting) {
+    const Mesh a = sphere(1.0f, 6, 8);
+    const Mesh b = sphere(1.1f, 40, 60);
+    Result<ClosestPointQuery> qb = ClosestPointQuery::create(b);
+    ASSERT_TRUE(qb);
+    SurfaceSampling fine;
+    fine.radius = 1e-4;
+    fine.maxSamples = 100;
+    fine.randomSamples = 0;
+    Result<OneSidedDistance> d = measureOneSidedDistance(a, qb.value(), fine);
+    ASSERT_TRUE(d) << d.error();
+    // Dense independent estimate of the true distance from a to b.
+    Rng rng(3);
+    double estimate = 0.0;
+    for (int i = 0; i < 3000; ++i) {
+        const size_t t = rng.below(uint32_t(a.triangleCount()));
+        float u = rng.uniform(), v = rng.uniform();
+        if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+        const glm::dvec3 p0(a.positions[a.indices[3 * t]]), p1(a.positions[a.indices[3 * t + 1]]),
+            p2(a.positions[a.indices[3 * t + 2]]);
+        estimate =
+            std::max(estimate, bruteMeshDistance(p0 + double(u) * (p1 - p0) + double(v) * (p2 - p0), b));
+    }
+    EXPECT_GE(d->bound, estimate);
+    EXPECT_GT(d->margin, 1e-4); // the budget forced a coarser cutting than asked for
+}
+
+TEST(MeshDistance, ReportsProgressAndCancels) {
+    const Mesh a = sphere(1.0f, 20, 30);
+    const Mesh b = sphere(1.05f, 20, 30);
+    SurfaceSampling sampling;
+    sampling.radius = 0.01;
+    sampling.maxSamples = 20000; // forces a restart of the cutting with a larger radius
+    float last = -1.0f;
+    bool monotone = true;
+    Result<MeshDistance> d = measureMeshDistance(a, b, sampling, [&](float f, const char* stage) {
+        monotone = monotone && f >= last && f <= 1.0f && std::string(stage) == "measure";
+        last = f;
+        return true;
+    });
+    ASSERT_TRUE(d) << d.error();
+    EXPECT_TRUE(monotone);
+    EXPECT_GT(last, 0.9f);
+    Result<MeshDistance> cancelled =
+        measureMeshDistance(a, b, sampling, [](float, const char*) { return false; });
+    ASSERT_FALSE(cancelled);
+    EXPECT_EQ(cancelled.error(), "cancelled");
+}
+
+TEST(MeshDistance, FailsWhenOnlyOneMeshHasASurface) {
+    const Mesh a = triangleMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});
+    const Mesh empty;
+    Result<MeshDistance> d = measureMeshDistance(a, empty, {});
+    ASSERT_FALSE(d);
+    EXPECT_THAT(d.error(), HasSubstr("no surface"));
+    Result<MeshDistance> none = measureMeshDistance(empty, empty, {});
+    ASSERT_TRUE(none);
+    EXPECT_EQ(none->upperBound(), 0.0);
+}
