@@ -2,10 +2,12 @@
 
 #include "spatter/core/SceneLoader.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <glm/gtc/matrix_transform.hpp>
+#include <thread>
 
 namespace spatter::gallery {
 
@@ -105,15 +107,31 @@ Status GallerySim::rebuildProxies(float tolerancePercent) {
     settings.tolerance = tolerancePercent / 100.0f;
     settings.toleranceRelative = true;
     settings.cacheDirectory = options_.cacheDir;
+    // The fast path, one object per thread: a cold start builds the whole gallery in seconds.
+    settings.backend = ProxyBackend::MeshOpt;
     std::vector<std::optional<Proxy>> proxies(scene_.objects.size());
-    for (size_t i = 0; i < scene_.objects.size(); ++i) {
-        const SceneObject& o = scene_.objects[i];
-        if (!o.receivesDecals) continue;
-        const Mesh* collider = o.collider ? &*o.collider : nullptr;
-        Result<Proxy> proxy = buildProxy(o.mesh, settings, collider);
-        if (!proxy) return fail("proxy of " + o.name + ": " + proxy.error());
-        proxies[i] = std::move(proxy).value();
-    }
+    std::vector<std::string> errors(scene_.objects.size());
+    std::atomic<size_t> next{0};
+    auto work = [&]() {
+        for (size_t i = next++; i < scene_.objects.size(); i = next++) {
+            const SceneObject& o = scene_.objects[i];
+            if (!o.receivesDecals) continue;
+            const Mesh* collider = o.collider ? &*o.collider : nullptr;
+            Result<Proxy> proxy = buildProxy(o.mesh, settings, collider);
+            if (proxy)
+                proxies[i] = std::move(proxy).value();
+            else
+                errors[i] = "proxy of " + o.name + ": " + proxy.error();
+        }
+    };
+    std::vector<std::thread> threads(std::max(1u, std::min(8u, std::thread::hardware_concurrency())) - 1);
+    for (std::thread& t : threads)
+        t = std::thread(work);
+    work();
+    for (std::thread& t : threads)
+        t.join();
+    for (const std::string& e : errors)
+        if (!e.empty()) return fail(e);
     Result<CollisionWorld> world = CollisionWorld::build(scene_, proxies);
     if (!world) return fail(world.error());
     DecalSettings decalSettings;
