@@ -90,6 +90,17 @@ vec3 worldPositionFromDepth(vec2 fragCoord, float depth) {
     return mat3(u_invView) * viewPositionFromDepth(fragCoord, depth);
 }
 
+// Colour of an 8-bit object decal ID (sRGB-encoded): ID 0, static geometry, dark grey; every other
+// ID a bright hashed colour. The ids view and the overlays use it.
+vec3 idColor(uint id) {
+    if (id == 0u) return vec3(0.25);
+    uint h = id * 2654435761u;
+    h ^= h >> 13;
+    h *= 0x5bd1e995u;
+    h ^= h >> 15;
+    return 0.35 + 0.65 * vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) / 255.0;
+}
+
 // Linear to sRGB-encoded colour, for the output image (an RGBA8 target, encoded in the shader so
 // that readback gives exactly these bytes).
 vec3 linearToSrgb(vec3 c) {

@@ -2,8 +2,10 @@
 // G-buffer. Each fragment reads the scene depth, rebuilds the camera-relative position, moves it
 // into the unit box and keeps it only when
 //   - it lies inside the box,
-//   - the pixel's object decal ID equals the decal's (IDS),
-//   - the pixel's normal is within the decal's largest angle of the decal axis,
+//   - the pixel's object decal ID equals the decal's (IDS; left out when the scene has no dynamic
+//     objects or ID clipping is switched off),
+//   - the pixel's normal is within the decal's largest angle of the decal axis (NO_ANGLE: the
+//     angle rejection is switched off),
 //   - (WRAP) the footprint, with texture coordinates pushed outward by the surface slope
 //     (Listing 20.4), lies inside the decal's rectangle.
 // COVERAGE writes 1 for every such pixel; otherwise the decal's albedo is blended by its alpha
@@ -70,7 +72,9 @@ void main() {
 #ifdef IDS
     keep = keep && texelFetch(s_ids, pixel, 0).r == v_info.x;
 #endif
+#ifndef NO_ANGLE
     keep = keep && dot(n, v_normal.xyz) >= v_params.x;
+#endif
     if (!keep) discard;
 
 #ifdef COVERAGE

@@ -8,15 +8,6 @@ layout(location = 0) uniform int u_viewMode; // 1 albedo, 2 normal, 3 depth, 4 i
 in vec2 v_uv;
 layout(location = 0) out vec4 o_color;
 
-vec3 idColor(uint id) {
-    if (id == 0u) return vec3(0.25);
-    uint h = id * 2654435761u;
-    h ^= h >> 13;
-    h *= 0x5bd1e995u;
-    h ^= h >> 15;
-    return 0.35 + 0.65 * vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) / 255.0;
-}
-
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     float depth = texelFetch(s_depth, pixel, 0).r;

@@ -132,6 +132,9 @@ Status GallerySim::rebuildProxies(float tolerancePercent) {
         t.join();
     for (const std::string& e : errors)
         if (!e.empty()) return fail(e);
+    proxyMeshes_.assign(scene_.objects.size(), Mesh{});
+    for (size_t i = 0; i < proxies.size(); ++i)
+        if (proxies[i]) proxyMeshes_[i] = proxies[i]->mesh;
     Result<CollisionWorld> world = CollisionWorld::build(scene_, proxies);
     if (!world) return fail(world.error());
     DecalSettings decalSettings;

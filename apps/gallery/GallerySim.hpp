@@ -65,6 +65,10 @@ public:
     double proxySeconds() const { return proxySeconds_; }
     double time() const { return time_; }
 
+    // The collision mesh of every object (object space; empty for objects that receive no decals),
+    // for the proxy wireframe overlay.
+    const std::vector<Mesh>& proxyMeshes() const { return proxyMeshes_; }
+
     // Types set in the HUD: wrap-around on the paint types.
     void setPaintWrapAround(bool on);
 
@@ -77,6 +81,7 @@ private:
     std::optional<DecalSystem> system_;
     std::vector<DecalType> types_;
     std::vector<uint16_t> typeOf_[3]; // registry indices per ShotKind
+    std::vector<Mesh> proxyMeshes_;
     std::vector<Rail> rails_;
     ShotCounters counters_;
     Rng rng_{1};

@@ -31,6 +31,7 @@ Ray rayThrough(const Camera& camera, double aspect, double x, double y) {
 
 Status prepareRenderer(Renderer& renderer, const GallerySim& sim) {
     if (Status s = renderer.setScene(sim.scene()); !s) return s;
+    if (Status s = renderer.setOverlayMeshes(sim.proxyMeshes()); !s) return s;
     renderer.setDecalTypes(sim.types());
     return renderer.setObjectIds(sim.objectIds());
 }

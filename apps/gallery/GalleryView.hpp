@@ -17,7 +17,8 @@ Camera startCamera(const Scene& scene);
 // The ray from the camera through normalised device coordinates (x, y) in [-1, 1].
 Ray rayThrough(const Camera& camera, double aspect, double x, double y);
 
-// Uploads the scene, types and object IDs once.
+// Uploads the scene, the proxy wireframes, the types and the object IDs (again after the proxies
+// are rebuilt).
 Status prepareRenderer(Renderer& renderer, const GallerySim& sim);
 // Uploads the moving targets' transforms and the live decals for the next frame.
 void syncRenderer(Renderer& renderer, const GallerySim& sim);

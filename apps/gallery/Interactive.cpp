@@ -51,7 +51,7 @@ struct Trigger {
 };
 
 struct Hud {
-    View view = View::Final;
+    RenderOptions options;
     bool wrapAround = true;
     float tolerance = 0.5f;
     double lastPlacementUs = 0.0;
@@ -82,9 +82,15 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
     ImGui::Separator();
     int viewIndex = 0;
     for (int i = 0; i < 6; ++i)
-        if (kViews[i] == hud.view) viewIndex = i;
+        if (kViews[i] == hud.options.view) viewIndex = i;
     if (ImGui::Combo("view", &viewIndex, "final\0albedo\0normal\0depth\0ids\0coverage\0"))
-        hud.view = kViews[viewIndex];
+        hud.options.view = kViews[viewIndex];
+    ImGui::Checkbox("proxy wireframe", &hud.options.overlays.proxyWireframe);
+    ImGui::SameLine();
+    ImGui::Checkbox("decal boxes", &hud.options.overlays.decalBoxes);
+    ImGui::Checkbox("ID clipping", &hud.options.decals.idClipping);
+    ImGui::SameLine();
+    ImGui::Checkbox("angle reject", &hud.options.decals.angleReject);
     if (ImGui::Checkbox("paint wraps around corners", &hud.wrapAround)) {
         sim.setPaintWrapAround(hud.wrapAround);
         renderer.setDecalTypes(sim.types());
@@ -220,7 +226,7 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
             if (fbw != renderer->settings().width || fbh != renderer->settings().height)
                 renderer->resize(fbw, fbh);
             syncRenderer(renderer.value(), sim.value());
-            if (Result<FrameStats> st = renderer->render(camera, hud.view); st) frame = st.value();
+            if (Result<FrameStats> st = renderer->render(camera, hud.options); st) frame = st.value();
             renderer->present(fbw, fbh);
         }
 

@@ -56,7 +56,13 @@ Status GBuffer::create(int width, int height, bool withIds) {
     glNamedFramebufferTexture(outputFbo_.get(), GL_COLOR_ATTACHMENT0, output_.get(), 0);
     glNamedFramebufferDrawBuffer(outputFbo_.get(), GL_COLOR_ATTACHMENT0);
     glNamedFramebufferReadBuffer(outputFbo_.get(), GL_COLOR_ATTACHMENT0);
-    return checkComplete(outputFbo_.get(), "output");
+    if (Status s = checkComplete(outputFbo_.get(), "output"); !s) return s;
+
+    overlayFbo_ = createFramebuffer();
+    glNamedFramebufferTexture(overlayFbo_.get(), GL_COLOR_ATTACHMENT0, output_.get(), 0);
+    glNamedFramebufferTexture(overlayFbo_.get(), GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+    glNamedFramebufferDrawBuffer(overlayFbo_.get(), GL_COLOR_ATTACHMENT0);
+    return checkComplete(overlayFbo_.get(), "overlay");
 }
 
 } // namespace spatter::render_detail

@@ -8,7 +8,8 @@
 //   attachment 4  coverage  GL_R8            decal coverage (coverage view)
 //   depth                   GL_DEPTH_COMPONENT32F, reversed-Z (cleared to 0)
 // plus `normalCopy` (GL_RG16F), the normals the decal pass reads while it writes `normal`, and the
-// output image (GL_RGBA8, sRGB-encoded by the shaders) in its own framebuffer.
+// output image (GL_RGBA8, sRGB-encoded by the shaders) in its own framebuffer, and the overlay
+// framebuffer: the output image with the G-buffer depth, for lines depth-tested against the scene.
 
 #include "GlObjects.hpp"
 
@@ -27,6 +28,7 @@ public:
 
     GLuint framebuffer() const { return fbo_.get(); }
     GLuint outputFramebuffer() const { return outputFbo_.get(); }
+    GLuint overlayFramebuffer() const { return overlayFbo_.get(); }
     GLuint albedo() const { return albedo_.get(); }
     GLuint normal() const { return normal_.get(); }
     GLuint normalCopy() const { return normalCopy_.get(); }
@@ -40,7 +42,7 @@ private:
     int width_ = 0;
     int height_ = 0;
     GlTexture albedo_, normal_, normalCopy_, material_, ids_, coverage_, depth_, output_;
-    GlFramebuffer fbo_, outputFbo_;
+    GlFramebuffer fbo_, outputFbo_, overlayFbo_;
 };
 
 } // namespace spatter::render_detail

@@ -38,6 +38,7 @@ void GpuTimers::read(Slot& slot) {
         latest_.decalsMs = ms[int(GpuPass::Decals)];
         latest_.lateMs = ms[int(GpuPass::Late)];
         latest_.lightingMs = ms[int(GpuPass::Lighting)];
+        latest_.overlayMs = ms[int(GpuPass::Overlay)];
     }
     slot.frame = -1;
 }

@@ -12,7 +12,7 @@
 
 namespace spatter::render_detail {
 
-enum class GpuPass { Geometry = 0, Decals, Late, Lighting, Count };
+enum class GpuPass { Geometry = 0, Decals, Late, Lighting, Overlay, Count };
 
 class GpuTimers {
 public:

@@ -6,6 +6,7 @@
 #include "GlObjects.hpp"
 #include "GpuLayouts.hpp"
 #include "GpuTimers.hpp"
+#include "OverlayMeshes.hpp"
 #include "SceneGpu.hpp"
 #include "ShaderProgram.hpp"
 
@@ -29,6 +30,7 @@ enum Variant : uint32_t {
     kVariantFade = 8u,
     kVariantCoverage = 16u,
     kVariantDepthFrame = 32u,
+    kVariantNoAngle = 64u, // angle rejection switched off (DecalSwitches::angleReject)
 };
 
 std::vector<std::string> variantDefines(uint32_t bits) {
@@ -39,6 +41,7 @@ std::vector<std::string> variantDefines(uint32_t bits) {
     if (bits & kVariantFade) d.push_back("FADE");
     if (bits & kVariantCoverage) d.push_back("COVERAGE");
     if (bits & kVariantDepthFrame) d.push_back("DEPTH_FRAME");
+    if (bits & kVariantNoAngle) d.push_back("NO_ANGLE");
     return d;
 }
 
@@ -104,6 +107,8 @@ struct Renderer::Impl {
 
     GlProgram geometryProgram, lightingProgram, viewProgram;
     std::map<uint32_t, GlProgram> decalPrograms;
+    GlProgram meshOverlayProgram, boxOverlayProgram; // built on first use
+    OverlayMeshes overlayMeshes;
 
     GlBuffer frameBuffer;
     GlBuffer objectBuffer;
@@ -132,6 +137,16 @@ struct Renderer::Impl {
         const GLuint name = p->get();
         decalPrograms.emplace(bits, std::move(p.value()));
         return name;
+    }
+
+    // The overlay program with vertex stage `vert`, built into `slot` on first use.
+    static Result<GLuint> overlayProgram(GlProgram& slot, const char* vert) {
+        if (slot) return slot.get();
+        Result<GlProgram> p =
+            buildProgram({{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "overlay.frag"}}, {});
+        if (!p) return fail("renderer: " + p.error());
+        slot = std::move(p.value());
+        return slot.get();
     }
 
     void bindBuffers() const {
@@ -291,6 +306,37 @@ struct Renderer::Impl {
         }
         glDrawArrays(GL_TRIANGLES, 0, 3);
         ++drawCalls;
+    }
+
+    // Pass 5: line overlays over the output image, depth-tested against the scene unless always
+    // on top. `meshProgram` draws the wireframes and `boxProgram` `boxes` decal boxes (the first
+    // entries of the visible list); either may be 0 to skip it. Returns the lines drawn.
+    size_t overlayPass(const RenderOverlays& o, GLuint meshProgram, GLuint boxProgram, size_t boxes) {
+        baseState(gbuffer.overlayFramebuffer());
+        if (!o.alwaysOnTop) {
+            glEnable(GL_DEPTH_TEST);
+            glDepthFunc(GL_GEQUAL); // reversed-Z: not behind the scene
+        }
+        const float depthScale = o.alwaysOnTop ? 1.0f : 1.0f - o.depthBias;
+        size_t lines = 0;
+        if (meshProgram != 0) {
+            glUseProgram(meshProgram);
+            glUniform1f(0, depthScale);
+            glBindVertexArray(overlayMeshes.vertexArray());
+            glDrawElements(GL_LINES, GLsizei(overlayMeshes.indexCount()), GL_UNSIGNED_INT, nullptr);
+            ++drawCalls;
+            lines += overlayMeshes.lineCount();
+        }
+        if (boxProgram != 0) {
+            glUseProgram(boxProgram);
+            glUniform1f(0, depthScale);
+            glBindVertexArray(emptyVao.get());
+            glDrawArraysInstanced(GL_LINES, 0, 24, GLsizei(boxes));
+            ++drawCalls;
+            lines += 12 * boxes;
+        }
+        glDisable(GL_DEPTH_TEST);
+        return lines;
     }
 
     void uploadFrame(const Camera& camera) {
@@ -467,6 +513,7 @@ Status Renderer::setScene(const Scene& scene) {
                              GL_DYNAMIC_STORAGE_BIT);
     }
     m.batch.setDecals({}, n);
+    m.overlayMeshes.clear();
     return {};
 }
 
@@ -522,6 +569,10 @@ int Renderer::decalTextureLayers() const {
     return impl_->decalTextures.layers();
 }
 
+Status Renderer::setOverlayMeshes(const std::vector<Mesh>& meshes) {
+    return impl_->overlayMeshes.set(meshes, impl_->transforms.size());
+}
+
 Status Renderer::resize(int width, int height) {
     RendererSettings s = impl_->settings;
     s.width = width;
@@ -546,8 +597,19 @@ const RendererSettings& Renderer::settings() const {
 }
 
 Result<FrameStats> Renderer::render(const Camera& camera, View view) {
+    RenderOptions options;
+    options.view = view;
+    return render(camera, options);
+}
+
+Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& options) {
     Impl& m = *impl_;
     if (Status s = validateCamera(camera); !s) return fail("renderer: " + s.error());
+    const RenderOverlays& overlays = options.overlays;
+    if (!std::isfinite(overlays.depthBias) || overlays.depthBias < 0.0f || overlays.depthBias > 0.5f)
+        return fail("renderer: overlay depth bias " + std::to_string(overlays.depthBias) +
+                    " is outside [0, 0.5]");
+    const View view = options.view;
     const auto start = std::chrono::steady_clock::now();
     const bool coverage = view == View::Coverage;
     m.drawCalls = 0;
@@ -574,7 +636,8 @@ Result<FrameStats> Renderer::render(const Camera& camera, View view) {
     GLuint decalProgram = 0;
     if (!stats.decalPassSkipped) {
         uint32_t bits = 0;
-        if (m.gbuffer.hasIds()) bits |= kVariantIds;
+        if (m.gbuffer.hasIds() && options.decals.idClipping) bits |= kVariantIds;
+        if (!options.decals.angleReject) bits |= kVariantNoAngle;
         if (vis.flags & kDecalWrap) bits |= kVariantWrap;
         if (coverage) {
             bits |= kVariantCoverage;
@@ -589,6 +652,17 @@ Result<FrameStats> Renderer::render(const Camera& camera, View view) {
         if (!program) return fail(program.error());
         decalProgram = program.value();
         stats.decalVariant = join(variantDefines(bits));
+    }
+    GLuint meshOverlay = 0, boxOverlay = 0;
+    if (overlays.proxyWireframe && m.overlayMeshes.indexCount() > 0) {
+        Result<GLuint> p = Impl::overlayProgram(m.meshOverlayProgram, "overlay_mesh.vert");
+        if (!p) return fail(p.error());
+        meshOverlay = p.value();
+    }
+    if (overlays.decalBoxes && stats.decalsDrawn > 0) {
+        Result<GLuint> p = Impl::overlayProgram(m.boxOverlayProgram, "overlay_box.vert");
+        if (!p) return fail(p.error());
+        boxOverlay = p.value();
     }
 
     m.timers.beginFrame(m.frame);
@@ -611,6 +685,11 @@ Result<FrameStats> Renderer::render(const Camera& camera, View view) {
     m.timers.begin(GpuPass::Lighting);
     m.outputPass(view);
     m.timers.end();
+    if (meshOverlay != 0 || boxOverlay != 0) {
+        m.timers.begin(GpuPass::Overlay);
+        stats.overlayLines = m.overlayPass(overlays, meshOverlay, boxOverlay, stats.decalsDrawn);
+        m.timers.end();
+    }
     stats.gpu = m.timers.endFrame(m.settings.waitForTimers);
 
     glBindVertexArray(0);

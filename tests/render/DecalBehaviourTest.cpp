@@ -160,6 +160,51 @@ TEST(DecalPass, IdClippingKeepsTheWallBehindAMovingTargetClean) {
     }
 }
 
+TEST(DecalPass, IdClippingOffLetsADecalOnATargetReachTheWallBehind) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    const Camera cam = camera({0.4, 1.8, 3.0}, {0.0, 1.5, 0.0});
+    ASSERT_TRUE(r->setScene(wallAndTarget(true)).ok());
+    ASSERT_TRUE(r->setObjectIds({0, 9}).ok());
+    r->setDecalTypes({type()});
+    const Image ids = renderView(r.value(), cam, View::Ids);
+    std::vector<uint8_t> wall(size_t(kW * kH));
+    for (size_t i = 0; i < wall.size(); ++i)
+        wall[i] = (px(ids, i)[0] == 64 && px(ids, i)[1] == 64 && px(ids, i)[2] == 64) ? 1 : 0;
+    ASSERT_GT(test::countSet(wall), size_t(kW * kH) / 3);
+    const Image cleanFinal = renderView(r.value(), cam, View::Final);
+    // The decal of IdClippingKeepsTheWallBehindAMovingTargetClean: on the target, its box reaching
+    // back through the wall's face.
+    r->setDecals({decal(1, {0.0f, 0.0f, 0.05f}, {0, 0, 1}, {1, 0, 0}, {1.4f, 1.4f}, 0.6f, 0, 9)});
+
+    for (bool clipping : {true, false}) {
+        SCOPED_TRACE(clipping ? "ID clipping on" : "ID clipping off");
+        RenderOptions options;
+        options.decals.idClipping = clipping;
+        options.view = View::Coverage;
+        Result<FrameStats> st = r->render(cam, options);
+        ASSERT_TRUE(st.ok()) << st.error();
+        const std::vector<uint8_t> cov = test::whiteMask(r->readback().value());
+        options.view = View::Final;
+        ASSERT_TRUE(r->render(cam, options).ok());
+        const Image final = r->readback().value();
+        size_t wallCovered = 0, wallChanged = 0;
+        for (size_t i = 0; i < cov.size(); ++i) {
+            wallCovered += (wall[i] && cov[i]) ? 1 : 0;
+            wallChanged += (wall[i] && std::memcmp(px(final, i), px(cleanFinal, i), 4) != 0) ? 1 : 0;
+        }
+        EXPECT_EQ(st->decalVariant.find("IDS") != std::string::npos, clipping) << st->decalVariant;
+        if (clipping) {
+            EXPECT_EQ(wallCovered, 0u);
+            EXPECT_EQ(wallChanged, 0u);
+        } else {
+            EXPECT_GT(wallCovered, 200u);
+            EXPECT_GT(wallChanged, 100u);
+        }
+    }
+}
+
 TEST(DecalPass, CameraInsideADecalBoxStillDrawsIt) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
@@ -267,6 +312,40 @@ TEST(DecalPass, BackSideOfAThinWallStaysClean) {
     // The box does reach the back face: only the angle test keeps it clean.
     r->setDecalTypes({type(DecalTexture::Paint, false, 180.0f)});
     EXPECT_GT(test::countSet(test::whiteMask(renderView(r.value(), behind, View::Coverage))), 500u);
+}
+
+TEST(DecalPass, AngleRejectOffLetsADecalMarkTheBackOfAThinWall) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    Scene scene;
+    scene.objects.push_back(object("thin wall", {1.0f, 1.0f, 0.01f}, {0.0, 0.0, 0.0}));
+    ASSERT_TRUE(r->setScene(scene).ok());
+    const Camera behind = camera({0.3, 0.2, -2.0}, {0.0, 0.0, 0.0});
+    r->setDecalTypes({type(DecalTexture::Paint)});
+    const Image cleanBack = renderView(r.value(), behind, View::Final);
+    r->setDecals({decal(0, {0.0f, 0.0f, 0.01f}, {0, 0, 1}, {1, 0, 0}, {1.0f, 1.0f}, 0.3f)});
+
+    for (bool reject : {true, false}) {
+        SCOPED_TRACE(reject ? "angle rejection on" : "angle rejection off");
+        RenderOptions options;
+        options.decals.angleReject = reject;
+        options.view = View::Coverage;
+        Result<FrameStats> st = r->render(behind, options);
+        ASSERT_TRUE(st.ok()) << st.error();
+        const size_t covered = test::countSet(test::whiteMask(r->readback().value()));
+        options.view = View::Final;
+        ASSERT_TRUE(r->render(behind, options).ok());
+        const Image final = r->readback().value();
+        EXPECT_EQ(st->decalVariant.find("NO_ANGLE") == std::string::npos, reject) << st->decalVariant;
+        if (reject) {
+            EXPECT_EQ(covered, 0u);
+            EXPECT_EQ(final.rgba, cleanBack.rgba);
+        } else {
+            EXPECT_GT(covered, 500u);
+            EXPECT_NE(final.rgba, cleanBack.rgba);
+        }
+    }
 }
 
 TEST(DecalPass, ObjectsThatTakeNoDecalsAreDrawnOverThem) {

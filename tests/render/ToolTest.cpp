@@ -4,6 +4,7 @@
 
 #include "spatter/core/Image.hpp"
 #include "spatter/render/Camera.hpp"
+#include "spatter/render/GlContext.hpp"
 
 #include <gtest/gtest.h>
 
@@ -45,6 +46,21 @@ std::string record(double x, double y, double s, const std::string& object = "wa
     return r.str();
 }
 
+// Why the tool cannot render here (no headless GL context), or an empty string.
+std::string noGl() {
+    static const std::string why = [] {
+        Result<GlContext> gl = GlContext::createHeadless();
+        return gl.ok() ? std::string() : gl.error();
+    }();
+    return why;
+}
+
+#define SPATTER_REQUIRE_TOOL_GL()                                                                            \
+    if (!noGl().empty()) {                                                                                   \
+        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();                 \
+        GTEST_SKIP() << "no headless OpenGL 4.5 context (" << noGl() << ")";                                 \
+    }
+
 bool white(const Image& im, int x, int y) {
     return im.rgba[(size_t(y) * size_t(im.width) + size_t(x)) * 4] > 127;
 }
@@ -52,6 +68,7 @@ bool white(const Image& im, int x, int y) {
 } // namespace
 
 TEST(SpatterRender, PixelRowsStartAtTheTopAndShowTheRayThroughTheirCentre) {
+    SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("tool-pixels");
     const std::string wall = writeWall(dir);
     {
@@ -99,6 +116,7 @@ TEST(SpatterRender, PixelRowsStartAtTheTopAndShowTheRayThroughTheirCentre) {
 }
 
 TEST(SpatterRender, PlacesRaysAndHonoursTranslate) {
+    SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("tool-rays");
     const std::string wall = writeWall(dir);
     {

@@ -19,7 +19,8 @@ struct GpuPassTimes {
     double decalsMs = 0.0;   // normal copy and decal pass (or the coverage variant)
     double lateMs = 0.0;     // objects that receive no decals, drawn after the decals
     double lightingMs = 0.0; // lighting and tone mapping, or the debug view
-    double totalMs() const { return geometryMs + decalsMs + lateMs + lightingMs; }
+    double overlayMs = 0.0;  // line overlays (RenderOverlays)
+    double totalMs() const { return geometryMs + decalsMs + lateMs + lightingMs + overlayMs; }
 };
 
 struct FrameStats {
@@ -36,6 +37,7 @@ struct FrameStats {
     size_t decalBytesUploaded = 0; // instance and visibility data sent to the GPU this frame
     bool decalPassSkipped = true;  // no visible decal: no normal copy, no decal pass
     std::string decalVariant;      // features of the decal shader used, e.g. "IDS WRAP NORMAL_MAP FADE"
+    size_t overlayLines = 0;       // line segments drawn by the overlays (RenderOverlays)
 
     size_t drawCalls = 0; // every draw of the frame
     size_t triangles = 0; // scene triangles drawn in the geometry passes
@@ -48,7 +50,7 @@ struct FrameStats {
 };
 
 // One JSON object with every field above ("gpu_ms": {"geometry", "decals", "late", "lighting",
-// "total", "frame"}).
+// "overlay", "total", "frame"}).
 std::string toJson(const FrameStats& stats);
 
 } // namespace spatter

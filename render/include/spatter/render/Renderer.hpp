@@ -13,7 +13,9 @@
 //                 G-buffer, so that decals are lit like everything else;
 //   3. late       objects that receive no decals, drawn over the decals;
 //   4. lighting   one directional light, ambient, GGX specular, tone mapping, sRGB output
-//                 (or one of the debug views).
+//                 (or one of the debug views);
+//   5. overlays   only when RenderOptions asks for them: the collision proxies' wireframes and the
+//                 decal boxes as lines over the output image, depth-tested against the scene.
 // Positions reach the GPU relative to the eye: object transforms stay double on the CPU and have
 // the eye subtracted before they become float.
 //
@@ -25,6 +27,14 @@
 //   r->setDecals(decalSystem.decals());  // every frame; only changed instances are uploaded
 //   Result<FrameStats> stats = r->render(camera, View::Final);
 //   Result<Image> image = r->readback();
+//
+// Debugging aids (RenderOptions.hpp):
+//   r->setOverlayMeshes(proxyMeshes);    // after setScene: one object-space mesh per object
+//   RenderOptions o;
+//   o.view = View::Ids;
+//   o.overlays.proxyWireframe = o.overlays.decalBoxes = true;
+//   o.decals.idClipping = false;         // decals on targets also show on the wall behind
+//   r->render(camera, o);
 //
 // Every call needs the context current on the calling thread; the context must outlive the
 // renderer. Invalid input (a decal naming a missing object or type, NaN in a transform, a size
@@ -39,6 +49,7 @@
 #include "spatter/render/Camera.hpp"
 #include "spatter/render/FrameStats.hpp"
 #include "spatter/render/GlContext.hpp"
+#include "spatter/render/RenderOptions.hpp"
 #include "spatter/render/View.hpp"
 
 #include <cstdint>
@@ -93,8 +104,8 @@ public:
     ~Renderer();
 
     // Uploads the scene's meshes, materials and textures and copies its transforms (validated with
-    // validateScene; on failure the previous scene stays). Clears decals and object IDs. The ID
-    // target exists exactly when the scene has dynamic objects.
+    // validateScene; on failure the previous scene stays). Clears decals, object IDs and overlay
+    // meshes. The ID target exists exactly when the scene has dynamic objects.
     Status setScene(const Scene& scene);
     // Moves an object (double precision, like SceneObject::transform). Fails for an index out of
     // range or a transform that is not finite and invertible.
@@ -117,6 +128,15 @@ public:
     Result<int> addDecalTextureFile(const std::string& albedoPath, const std::string& normalMapPath = "");
     int decalTextureLayers() const;
 
+    // Wireframes for RenderOverlays::proxyWireframe, typically the collision proxies (Proxy::mesh):
+    // one mesh per scene object, in that object's space (an empty mesh draws nothing for its
+    // object), or an empty vector to remove them all. Each is welded by position and reduced to its
+    // unique edges here, once; a frame then draws every wireframe in one draw, each with its
+    // object's current transform (setObjectTransform). Fails, keeping the previous meshes, when the
+    // count is not the scene's object count or a mesh fails validateMesh (the error names the
+    // object).
+    Status setOverlayMeshes(const std::vector<Mesh>& meshes);
+
     // Resizes the G-buffer and the output.
     Status resize(int width, int height);
     // Fails, changing nothing, on a non-finite value or a zero direction.
@@ -125,6 +145,9 @@ public:
 
     // Renders one frame of `view` from `camera` into the output image.
     Result<FrameStats> render(const Camera& camera, View view = View::Final);
+    // The same with overlays and decal-pass debug switches. Fails, drawing nothing, on an invalid
+    // camera, a depth bias outside [0, 0.5] or a shader that does not build.
+    Result<FrameStats> render(const Camera& camera, const RenderOptions& options);
     // The output image of the last render, RGBA8, row 0 at the top.
     Result<Image> readback() const;
     // Copies the output image into the current default framebuffer (a window) of the given size.
