@@ -24,7 +24,7 @@ static std::vector<std::pair<ShotKind, DecalType>> galleryTypes() {
     std::vector<std::pair<ShotKind, DecalType>> types;
     DecalType bullet;
     bullet.name = "bullet_hole";
-    bullet.size = {0.09f, 0.09f};
+    bullet.size = {0.15f, 0.15f};
     bullet.sizeJitter = 0.25f;
     bullet.maxAngleDeg = 85.0f;
     bullet.fadeOutTime = 1.5f;

@@ -7,7 +7,7 @@ namespace spatter::gallery {
 Camera startCamera(const Scene& scene) {
     Camera camera;
     if (scene.source == "builtin:gallery") {
-        camera.eye = {0.0, 1.8, 5.5};
+        camera.eye = {0.0, 1.7, 4.2};
         camera.target = {0.0, 1.3, -3.6};
         return camera;
     }
