@@ -18,8 +18,23 @@ struct ObjectData {
     mat4 model;         // object -> camera-relative world
     mat4 normalMatrix;  // upper left 3x3: inverse transpose of model
     mat4 worldToObject; // camera-relative world -> object
-    uvec4 info;         // x: object decal ID, y: 1 when model mirrors
+    uvec4 info;         // x: object decal ID, y: 1 when model mirrors, z: 1 with a decal layer
+    vec4 deformA;       // xyz: displacement direction * amplitude (0: none); w: frequency
+    vec4 deformB;       // xyz: unit wave direction; w: phase at this frame's time
 };
+
+// The object's vertex animation (spatter/render/Deformation.hpp) applied to the object-space point
+// p: returns the moved point and carries the normal n and tangent t with the map's Jacobian
+// J = I + a g^T (a: displacement, g: gradient of the wave), n by J^-T (Sherman-Morrison).
+vec3 deformPoint(ObjectData o, vec3 p, inout vec3 n, inout vec3 t) {
+    vec3 a = o.deformA.xyz;
+    if (dot(a, a) == 0.0) return p;
+    float theta = o.deformA.w * dot(o.deformB.xyz, p) + o.deformB.w;
+    vec3 g = o.deformA.w * cos(theta) * o.deformB.xyz;
+    t += a * dot(g, t);
+    n -= g * (dot(a, n) / max(1.0 + dot(a, g), 1e-3));
+    return p + a * sin(theta);
+}
 
 layout(std430, binding = 1) readonly buffer ObjectBuffer {
     ObjectData objects[];

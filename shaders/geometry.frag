@@ -1,4 +1,7 @@
 // Geometry pass: fills the G-buffer. Surfaces are two-sided: a back face gets the reversed normal.
+// Objects with texture-space decals (info.z) lay their decal texture over the material: albedo is
+// premultiplied with coverage in alpha, the normal layer holds the decal's normal in the surface's
+// tangent frame (premultiplied by its own coverage), so both follow any deformation of the mesh.
 #include "common.glsl"
 
 layout(location = 0) uniform uint u_object;
@@ -6,6 +9,8 @@ layout(location = 1) uniform uint u_material;
 
 layout(binding = 0) uniform sampler2D s_baseColor;
 layout(binding = 1) uniform sampler2D s_normalMap;
+layout(binding = 2) uniform sampler2D s_decalLayerAlbedo;
+layout(binding = 3) uniform sampler2D s_decalLayerNormal;
 
 in vec3 v_normal;
 in vec2 v_uv;
@@ -36,6 +41,23 @@ void main() {
             tn.xy *= m.params.z;
             vec3 mapped = t * tn.x + b * tn.y + n * max(tn.z, 1e-3);
             n = normalize(mapped);
+        }
+    }
+
+    if (o.info.z != 0u) {
+        vec4 layer = texture(s_decalLayerAlbedo, v_uv);
+        base.rgb = base.rgb * (1.0 - layer.a) + layer.rgb;
+        vec4 ln = texture(s_decalLayerNormal, v_uv);
+        if (ln.a > 1e-3) {
+            vec3 ng = normalize(v_normal);
+            if (!front) ng = -ng;
+            vec3 t = v_tangent.xyz - ng * dot(ng, v_tangent.xyz);
+            if (dot(t, t) < 1e-12) t = abs(ng.x) < 0.9 ? cross(ng, vec3(1, 0, 0)) : cross(ng, vec3(0, 1, 0));
+            t = normalize(t);
+            vec3 b = cross(ng, t) * (v_tangent.w < 0.0 ? -1.0 : 1.0);
+            vec3 tn = ln.rgb / ln.a * 2.0 - 1.0;
+            vec3 mapped = normalize(t * tn.x + b * tn.y + ng * tn.z);
+            n = normalize(mix(n, mapped, clamp(ln.a, 0.0, 1.0)));
         }
     }
 

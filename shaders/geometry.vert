@@ -1,4 +1,5 @@
-// Geometry pass: one object's render mesh, positions relative to the eye.
+// Geometry pass: one object's render mesh, positions relative to the eye, after the object's
+// vertex animation (deformPoint) when it has one.
 #include "common.glsl"
 
 layout(location = 0) in vec3 a_position;
@@ -14,8 +15,11 @@ out vec4 v_tangent;
 
 void main() {
     ObjectData o = objects[u_object];
-    gl_Position = u_viewProj * (o.model * vec4(a_position, 1.0));
-    v_normal = mat3(o.normalMatrix) * a_normal;
-    v_tangent = vec4(mat3(o.model) * a_tangent.xyz, a_tangent.w);
+    vec3 n = a_normal;
+    vec3 t = a_tangent.xyz;
+    vec3 p = deformPoint(o, a_position, n, t);
+    gl_Position = u_viewProj * (o.model * vec4(p, 1.0));
+    v_normal = mat3(o.normalMatrix) * n;
+    v_tangent = vec4(mat3(o.model) * t, a_tangent.w);
     v_uv = a_uv;
 }

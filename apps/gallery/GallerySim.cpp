@@ -61,6 +61,10 @@ static std::vector<std::pair<ShotKind, DecalType>> galleryTypes() {
     return types;
 }
 
+bool isBanner(const SceneObject& object) {
+    return object.name.rfind("banner_", 0) == 0;
+}
+
 Result<GallerySim> GallerySim::create(const GalleryOptions& options) {
     Result<Scene> scene = loadScene(options.scene);
     if (!scene) return fail(scene.error());
@@ -70,10 +74,13 @@ Result<GallerySim> GallerySim::create(const GalleryOptions& options) {
     sim.scene_ = std::move(scene).value();
     sim.rng_ = Rng(options.seed, 0x9a11e7);
 
-    // Rails: every dynamic receiver slides along world X and turns about the vertical.
+    // Rails: every dynamic receiver slides along world X and turns about the vertical; the
+    // gallery's banners wave in place instead (GalleryView).
     for (uint32_t i = 0; i < sim.scene_.objects.size(); ++i) {
         const SceneObject& o = sim.scene_.objects[i];
         if (!o.dynamic || !o.receivesDecals) continue;
+        sim.moving_.push_back(i);
+        if (isBanner(o)) continue;
         const Bounds b = o.mesh.bounds();
         Rail rail;
         rail.object = i;

@@ -19,6 +19,9 @@ namespace spatter::gallery {
 
 enum class ShotKind { Bullet, Paint, Scorch };
 
+// The builtin gallery's cloth banners ("banner_*"): they wave instead of riding a rail.
+bool isBanner(const SceneObject& object);
+
 // A dynamic object sliding along its rail and turning about the vertical through its origin.
 struct Rail {
     uint32_t object = 0;
@@ -51,6 +54,8 @@ public:
     const Scene& scene() const { return scene_; }
     const DecalSystem& decals() const { return *system_; }
     const std::vector<Rail>& rails() const { return rails_; }
+    // Dynamic decal receivers: the targets on rails and the waving banners.
+    const std::vector<uint32_t>& movingObjects() const { return moving_; }
     const ShotCounters& counters() const { return counters_; }
     // Decal types in registry order (Decal::type indexes them), for the renderer.
     const std::vector<DecalType>& types() const { return types_; }
@@ -83,6 +88,7 @@ private:
     std::vector<uint16_t> typeOf_[3]; // registry indices per ShotKind
     std::vector<Mesh> proxyMeshes_;
     std::vector<Rail> rails_;
+    std::vector<uint32_t> moving_;
     ShotCounters counters_;
     Rng rng_{1};
     float tolerancePercent_ = 0.0f;

@@ -32,11 +32,27 @@ Ray rayThrough(const Camera& camera, double aspect, double x, double y) {
 Status prepareRenderer(Renderer& renderer, const GallerySim& sim) {
     if (Status s = renderer.setScene(sim.scene()); !s) return s;
     if (Status s = renderer.setOverlayMeshes(sim.proxyMeshes()); !s) return s;
+    // Banners wave on the GPU: banner_0 takes texture-space decals, which follow the cloth; the
+    // others keep projected decals, which the cloth slides under.
+    for (uint32_t i = 0; i < sim.scene().objects.size(); ++i) {
+        const SceneObject& o = sim.scene().objects[i];
+        if (!isBanner(o)) continue;
+        Deformation wave;
+        wave.amplitude = 0.07f;
+        wave.frequency = 4.0f;
+        wave.phase = 1.7f * float(i);
+        wave.speed = 2.5f;
+        wave.waveDirection = glm::vec3(0.8f, -0.6f, 0.0f);
+        if (Status s = renderer.setObjectDeformation(i, wave); !s) return s;
+        if (o.name == "banner_0")
+            if (Status s = renderer.setObjectDecalMode(i, DecalMode::TextureSpace, 512); !s) return s;
+    }
     renderer.setDecalTypes(sim.types());
     return renderer.setObjectIds(sim.objectIds());
 }
 
 void syncRenderer(Renderer& renderer, const GallerySim& sim) {
+    renderer.setTime(sim.time());
     for (const Rail& rail : sim.rails())
         renderer.setObjectTransform(rail.object, sim.transform(rail.object));
     renderer.setDecals(sim.decals().decals());

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -38,9 +39,10 @@ public:
             return {rayThrough(camera, aspect, aim.x, aim.y), ShotKind::Bullet};
         }
         Ray ray;
-        if (!sim.rails().empty() && rng_.uniform() < 0.45f) {
+        const std::vector<uint32_t>& moving = sim.movingObjects();
+        if (!moving.empty() && rng_.uniform() < 0.45f) {
             // At a target: its current bounds, jittered inside them.
-            const uint32_t object = sim.rails()[rng_.below(uint32_t(sim.rails().size()))].object;
+            const uint32_t object = moving[rng_.below(uint32_t(moving.size()))];
             const DBounds b = sim.decals().world().worldBounds(object);
             const glm::dvec3 jitter(rng_.uniform(-0.3f, 0.3f), rng_.uniform(-0.3f, 0.3f), 0.0);
             ray.origin = camera.eye;
@@ -90,14 +92,17 @@ const Decal* findDecal(const DecalSystem& system, uint32_t id) {
     return nullptr;
 }
 
-// Follows a decal on a moving target (the largest fully visible one, so that it covers pixels;
-// the newest among equals) across frames of motion, in the world and in the rendered coverage
-// image, and checks it still lies on its target's collision surface.
+// Follows a decal on a target riding its rail (the smallest fully visible one, which its target does
+// not clip, so that the centre of its pixels moves like its centre; the newest among equals) across
+// frames of motion, in the world and in the rendered coverage image, and checks it still lies on its
+// target's collision surface.
 Result<nlohmann::ordered_json> trackTargetDecal(GallerySim& sim, Renderer& renderer, const Camera& camera) {
     const Decal* followed = nullptr;
     for (const Decal& d : sim.decals().decals()) {
-        if (!sim.scene().objects[d.object].dynamic || d.opacity < 1.0f) continue;
-        if (!followed || d.size.x > followed->size.x ||
+        const bool onRail = std::any_of(sim.rails().begin(), sim.rails().end(),
+                                        [&](const Rail& rail) { return rail.object == d.object; });
+        if (!onRail || d.opacity < 1.0f) continue;
+        if (!followed || d.size.x < followed->size.x ||
             (d.size.x == followed->size.x && d.spawnTime > followed->spawnTime))
             followed = &d;
     }

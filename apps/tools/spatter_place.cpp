@@ -4,6 +4,7 @@
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/placement/DecalSystem.hpp"
+#include "spatter/placement/RayParser.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -17,12 +18,14 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 namespace {
 
 const char* kUsage = R"(usage: spatter-place SCENE [--rays FILE|-] [--seed N] [--size W[,H]] [--max-angle DEG]
-                     [--proxy render|auto|TOL] [--translate X,Y,Z] [--out FILE] [--summary]
+                     [--proxy render|auto|TOL] [--cache DIR] [--translate X,Y,Z] [--out FILE]
+                     [--summary]
 
 Casts rays at SCENE (builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file) through the
 decal system and prints one JSON object per input ray, in input order (JSON Lines), on stdout or
@@ -56,12 +59,18 @@ Options:
                     default), auto (the proxy builder's defaults: h target 0.5% of each object's
                     bounding diagonal), or a tolerance TOL for h, absolute (0.01) or relative to
                     each object's bounding diagonal (1%). With auto and TOL an object's authored
-                    collider, where it has one, is its proxy; h is certified by the proxy builder
+                    collider, where it has one, is its proxy; h is certified by the proxy builder.
+                    On a terminal, stderr shows the progress of the builds
+  --cache DIR       with auto and TOL: reuse proxies stored in DIR and store new ones there, keyed
+                    by a hash of the object's mesh, its collider and the proxy settings (a second
+                    run simplifies and measures nothing; a corrupt entry is rebuilt). Without it
+                    nothing is cached
   --translate X,Y,Z move the whole scene by this offset before building the collision world (the
                     rays are given in the moved world)
   --out FILE        write the records to FILE instead of stdout
   --summary         print one JSON object on stderr: rays, placed, missed, rejected by reason,
-                    render_triangles, proxy_triangles, seconds
+                    render_triangles, proxy_triangles, proxies_built, proxies_cached,
+                    proxy_seconds, trace_seconds, seconds
   --help            this text
 
 No area limits apply: every ray gets its own decal. Exit code 0 when the scene loads (whatever
@@ -100,37 +109,6 @@ std::vector<std::string> split(const std::string& s, char sep) {
     return parts;
 }
 
-// A ray line, or an error message.
-struct ParsedLine {
-    bool isRay = false; // false: blank or comment only
-    bool ok = false;
-    spatter::Ray ray;
-    std::string error;
-};
-
-ParsedLine parseRayLine(const std::string& raw, size_t lineNumber) {
-    ParsedLine p;
-    const std::string line = raw.substr(0, raw.find('#'));
-    std::istringstream in(line);
-    std::vector<std::string> tokens;
-    for (std::string tok; in >> tok;)
-        tokens.push_back(tok);
-    if (tokens.empty()) return p;
-    p.isRay = true;
-    double v[6];
-    bool good = tokens.size() == 6;
-    for (size_t i = 0; good && i < 6; ++i)
-        good = parseDouble(tokens[i], v[i]);
-    if (!good) {
-        p.error = "line " + std::to_string(lineNumber) + ": expected 6 numbers \"ox oy oz dx dy dz\"";
-        return p;
-    }
-    p.ok = true;
-    p.ray.origin = glm::dvec3(v[0], v[1], v[2]);
-    p.ray.direction = glm::dvec3(v[3], v[4], v[5]);
-    return p;
-}
-
 int usageError(const std::string& message) {
     std::cerr << "spatter-place: " << message << "\n(see spatter-place --help)\n";
     return 2;
@@ -142,7 +120,7 @@ int main(int argc, char** argv) {
     using Clock = std::chrono::steady_clock;
     const Clock::time_point start = Clock::now();
 
-    std::string scenePath, raysPath = "-", outPath, proxyMode = "render";
+    std::string scenePath, raysPath = "-", outPath, proxyMode = "render", cacheDir;
     uint64_t seed = 1;
     float width = 0.1f, height = 0.1f, maxAngle = 80.0f;
     glm::dvec3 translate(0.0);
@@ -166,6 +144,8 @@ int main(int argc, char** argv) {
             if (!value(outPath)) return usageError("--out needs a file");
         } else if (a == "--proxy") {
             if (!value(proxyMode)) return usageError("--proxy needs render, auto or a tolerance");
+        } else if (a == "--cache") {
+            if (!value(cacheDir) || cacheDir.empty()) return usageError("--cache needs a directory");
         } else if (a == "--seed") {
             char* end = nullptr;
             if (!value(v) || v.empty() || v[0] == '-')
@@ -211,6 +191,8 @@ int main(int argc, char** argv) {
             return usageError("--proxy needs render, auto or a tolerance (0.01 or 1%)");
         proxySettings.tolerance = float(proxySettings.toleranceRelative ? tolerance / 100.0 : tolerance);
     }
+    if (!cacheDir.empty() && proxyMode == "render") return usageError("--cache needs --proxy auto or TOL");
+    proxySettings.cacheDirectory = cacheDir;
 
     spatter::Result<spatter::Scene> scene = spatter::loadScene(scenePath);
     if (!scene) {
@@ -220,20 +202,36 @@ int main(int argc, char** argv) {
     scene->translate(translate);
 
     std::vector<std::optional<spatter::Proxy>> proxies;
+    size_t proxiesBuilt = 0, proxiesCached = 0;
+    const Clock::time_point proxyStart = Clock::now();
     if (proxyMode != "render") {
         proxies.resize(scene->objects.size());
+        const bool terminal = isatty(fileno(stderr)) != 0;
         for (size_t i = 0; i < scene->objects.size(); ++i) {
             const spatter::SceneObject& o = scene->objects[i];
             if (!o.receivesDecals) continue;
+            // On a terminal: one line, rewritten in place, cleared when the builds are done.
+            spatter::ProgressCallback progress;
+            if (terminal)
+                progress = [&](float fraction, const char* stage) {
+                    std::fprintf(stderr, "\rspatter-place: proxy %zu/%zu '%.40s': %s %3d%%\033[K", i + 1,
+                                 scene->objects.size(), o.name.c_str(), stage, int(100.0f * fraction));
+                    return true;
+                };
             spatter::Result<spatter::Proxy> proxy =
-                spatter::buildProxy(o.mesh, proxySettings, o.collider ? &*o.collider : nullptr);
+                spatter::buildProxy(o.mesh, proxySettings, o.collider ? &*o.collider : nullptr, progress);
             if (!proxy) {
+                if (terminal) std::fputs("\r\033[K", stderr);
                 std::cerr << "spatter-place: proxy of object '" << o.name << "': " << proxy.error() << "\n";
                 return 1;
             }
+            proxiesBuilt += proxy->cached ? 0 : 1;
+            proxiesCached += proxy->cached ? 1 : 0;
             proxies[i] = std::move(proxy).value();
         }
+        if (terminal) std::fputs("\r\033[K", stderr);
     }
+    const double proxySeconds = std::chrono::duration<double>(Clock::now() - proxyStart).count();
     spatter::WorldSettings worldSettings;
     worldSettings.useColliders = false; // --proxy render: the render meshes as they are
     spatter::Result<spatter::CollisionWorld> world =
@@ -268,11 +266,11 @@ int main(int argc, char** argv) {
         if (!file) return usageError("cannot read " + raysPath);
         in = &file;
     }
-    std::vector<ParsedLine> lines;
+    std::vector<spatter::RayLine> lines;
     std::vector<spatter::Ray> rays;
     size_t lineNumber = 0;
     for (std::string raw; std::getline(*in, raw);) {
-        ParsedLine p = parseRayLine(raw, ++lineNumber);
+        spatter::RayLine p = spatter::parseRayLine(raw, ++lineNumber);
         if (!p.isRay) continue;
         if (p.ok) rays.push_back(p.ray);
         lines.push_back(std::move(p));
@@ -349,6 +347,9 @@ int main(int argc, char** argv) {
         s["rejected"] = std::move(rejected);
         s["render_triangles"] = scene->triangleCount();
         s["proxy_triangles"] = system->world().triangleCount();
+        s["proxies_built"] = proxiesBuilt;
+        s["proxies_cached"] = proxiesCached;
+        s["proxy_seconds"] = proxySeconds;
         s["trace_seconds"] = traceSeconds;
         s["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();
         std::cerr << s.dump() << "\n";

@@ -2,6 +2,7 @@
 
 #include "spatter/core/MeshBuilder.hpp"
 #include "spatter/core/Random.hpp"
+#include "spatter/core/UvOverlap.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -25,7 +26,18 @@ constexpr float kPlateY = 1.5f, kPlateRadius = 0.4f, kPlateHalfDepth = 0.03f;
 constexpr float kTargetSpan = 5.0f; // targets spread over x in [-kTargetSpan, kTargetSpan]
 constexpr int kMaxTargets = 8;
 
-enum MaterialId { BrickRed, BrickGrey, Concrete, Wood, Metal, Stone, TargetWhite, TargetRed, SteelDark };
+enum MaterialId {
+    BrickRed,
+    BrickGrey,
+    Concrete,
+    Wood,
+    Metal,
+    Stone,
+    TargetWhite,
+    TargetRed,
+    SteelDark,
+    Cloth
+};
 
 std::vector<Material> makeMaterials() {
     auto m = [](const char* name, glm::vec3 color, float roughness, float metallic) {
@@ -45,7 +57,8 @@ std::vector<Material> makeMaterials() {
             m("stone", {0.72f, 0.67f, 0.58f}, 0.8f, 0.0f),
             m("target_white", {0.92f, 0.92f, 0.9f}, 0.5f, 0.0f),
             m("target_red", {0.8f, 0.07f, 0.05f}, 0.45f, 0.0f),
-            m("steel_dark", {0.2f, 0.21f, 0.23f}, 0.5f, 1.0f)};
+            m("steel_dark", {0.2f, 0.21f, 0.23f}, 0.5f, 1.0f),
+            m("cloth", {0.2f, 0.32f, 0.55f}, 0.9f, 0.0f)};
 }
 
 // ---- deterministic noise -------------------------------------------------------------------------
@@ -545,6 +558,24 @@ Mesh makeTarget(const Resolution& res) {
     return mesh;
 }
 
+// ---- banners -------------------------------------------------------------------------------------
+
+// A cloth banner 1 m wide and 1.4 m long, hanging down from its origin in the x-y plane and facing
+// +Z; its UVs map it once onto the unit square (no overlap), for texture-space decals.
+Mesh makeBanner(const Resolution& res) {
+    const float step = res.detail == 0 ? 0.1f : 0.04f;
+    Mesh grid = makeGrid(makeSamples(-0.5f, 0.5f, step), makeSamples(0.0f, 1.4f, step));
+    Mesh mesh;
+    // Rotating +90 degrees about X takes the grid's +Y normal to +Z and its z to -y (hanging down).
+    appendMesh(mesh, grid,
+               glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0, 0, 1, 0), glm::vec4(0, -1, 0, 0),
+                         glm::vec4(0, 0, 0, 1)));
+    fitUvsToUnitSquare(mesh);
+    computeTangents(mesh);
+    setMaterial(mesh, Cloth);
+    return mesh;
+}
+
 } // namespace
 
 Scene makeGalleryScene(const GallerySettings& settings) {
@@ -620,6 +651,11 @@ Scene makeGalleryScene(const GallerySettings& settings) {
         scene.objects.push_back(
             object("target_" + std::to_string(i), target, translation(x, 0.0, kTargetZ), true));
     }
+
+    const Mesh banner = makeBanner(res);
+    for (int i = 0; i < std::clamp(settings.bannerCount, 0, 2); ++i)
+        scene.objects.push_back(
+            object("banner_" + std::to_string(i), banner, translation(i == 0 ? -6.0 : 6.0, 3.4, -2.6), true));
     return scene;
 }
 

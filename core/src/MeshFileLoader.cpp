@@ -2,6 +2,8 @@
 
 #include "spatter/core/SceneLoader.hpp"
 
+#include "MeshFileGuard.hpp"
+
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
@@ -26,6 +28,7 @@ Result<Scene> loadMeshFile(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return fail(path + ": file not found");
     if (std::filesystem::file_size(path, ec) == 0) return fail(path + ": file is empty");
+    if (Status st = detail::checkMeshFileForOpenMesh(path); !st) return fail(path + ": " + st.error());
 
     ReadMesh om;
     om.request_vertex_normals();
@@ -34,9 +37,11 @@ Result<Scene> loadMeshFile(const std::string& path) {
     opt += OpenMesh::IO::Options::VertexNormal;
     opt += OpenMesh::IO::Options::VertexTexCoord;
     bool read = false;
-    {
+    try {
         QuietOpenMesh quiet;
         read = OpenMesh::IO::read_mesh(om, path, opt);
+    } catch (const std::exception& e) {
+        return fail(path + ": cannot be read as a mesh (" + e.what() + ")");
     }
     if (!read) return fail(path + ": cannot be read as a mesh (unsupported or malformed file)");
     if (om.n_faces() == 0) return fail(path + ": contains no faces");

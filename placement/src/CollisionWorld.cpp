@@ -16,6 +16,8 @@ struct ObjectData {
     CollisionObject info;
     std::vector<glm::vec3> positions; // collision mesh, object space
     std::vector<uint32_t> indices;
+    std::vector<glm::vec3> traced; // the vertices Embree sees: float frame (static) or object space
+    double reach = 0.0;            // largest |ray origin| in the space of `traced` that the boxes allow
     glm::dmat4 inverse{1.0};
     RTCScene scene = nullptr;     // dynamic objects: their own object-space scene
     unsigned geomId = kInvalidId; // static: geometry in the static scene; dynamic: instance in the top scene
@@ -113,11 +115,121 @@ DBounds transformBounds(const Bounds& b, const glm::dmat4& m) {
     return out;
 }
 
-Bounds meshBounds(const std::vector<glm::vec3>& positions) {
+// Bounds of the vertices the triangles use: an unreferenced vertex is no part of the surface and
+// must not move the origin of the float frame (one far away would cost the geometry its precision).
+Bounds meshBounds(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices) {
     Bounds b;
-    for (const glm::vec3& p : positions)
-        b.extend(p);
+    for (uint32_t i : indices)
+        b.extend(positions[i]);
     return b;
+}
+
+// The collision triangles are Embree user geometry intersected with the watertight test of Woop,
+// Benthin and Wald 2013 ("Watertight Ray/Triangle Intersection", JCGT 2(1)). Embree 3's robust
+// triangle test (Pluecker coordinates) is watertight along shared edges but not around shared
+// vertices: when the ray starts far from a triangle compared with its size, rounding can reject the
+// ray in every triangle around a vertex, and a ray aimed at the vertex passes through. Here every
+// vertex is sheared into the ray's space in float, giving the same values in every triangle that
+// shares it, and the edge functions are evaluated in double, where products of floats are exact: their
+// signs are exact, so neighbouring triangles agree along every edge and around every vertex.
+bool watertightHit(const glm::vec3& org, const glm::vec3& dir, const glm::vec3& p0, const glm::vec3& p1,
+                   const glm::vec3& p2, float tnear, float tfar, float& t, float& u, float& v) {
+    const glm::vec3 ad = glm::abs(dir);
+    const int kz = ad.x > ad.y ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    if (dir[kz] < 0.0f) std::swap(kx, ky); // keeps the winding of the sheared triangle
+    const float sx = dir[kx] / dir[kz], sy = dir[ky] / dir[kz], sz = 1.0f / dir[kz];
+    const glm::vec3 a = p0 - org, b = p1 - org, c = p2 - org;
+    const float ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
+    const float bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
+    const float cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
+    const double U = double(cx) * double(by) - double(cy) * double(bx);
+    const double V = double(ax) * double(cy) - double(ay) * double(cx);
+    const double W = double(bx) * double(ay) - double(by) * double(ax);
+    if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
+    const double det = U + V + W;
+    if (det == 0.0) return false;
+    const double T = U * (double(sz) * double(a[kz])) + V * (double(sz) * double(b[kz])) +
+                     W * (double(sz) * double(c[kz]));
+    const double hit = T / det;
+    if (!(hit >= double(tnear) && hit <= double(tfar))) return false;
+    t = float(hit);
+    u = float(V / det);
+    v = float(W / det);
+    return true;
+}
+
+void triangleBounds(const RTCBoundsFunctionArguments* args) {
+    const auto* od = static_cast<const ObjectData*>(args->geometryUserPtr);
+    const uint32_t* tri = &od->indices[size_t(args->primID) * 3];
+    const glm::vec3 p0 = od->traced[tri[0]], p1 = od->traced[tri[1]], p2 = od->traced[tri[2]];
+    // Embree 3 traverses user geometry without its robust mode: a box test is off by a few float steps
+    // of |box| + |ray origin|. Every box grows by 2^-18 of that (about 32 steps), with |ray origin| at
+    // most `reach`, so that no rounding culls a ray through a corner or along an edge.
+    const glm::vec3 lo = glm::min(glm::min(p0, p1), p2), hi = glm::max(glm::max(p0, p1), p2);
+    const glm::vec3 grow = (glm::max(glm::abs(lo), glm::abs(hi)) + float(od->reach)) * std::ldexp(1.0f, -18);
+    args->bounds_o->lower_x = lo.x - grow.x;
+    args->bounds_o->lower_y = lo.y - grow.y;
+    args->bounds_o->lower_z = lo.z - grow.z;
+    args->bounds_o->upper_x = hi.x + grow.x;
+    args->bounds_o->upper_y = hi.y + grow.y;
+    args->bounds_o->upper_z = hi.z + grow.z;
+}
+
+// Intersects the rays of a packet with one triangle and offers each hit to closestHitFilter, as
+// Embree offers the hits of its own triangles (tfar holds the candidate's distance meanwhile).
+void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
+    constexpr unsigned kMaxPacket = 16; // Embree's widest packet
+    const auto* od = static_cast<const ObjectData*>(args->geometryUserPtr);
+    const uint32_t* tri = &od->indices[size_t(args->primID) * 3];
+    const glm::vec3 p0 = od->traced[tri[0]], p1 = od->traced[tri[1]], p2 = od->traced[tri[2]];
+    const unsigned n = args->N;
+    if (n > kMaxPacket) return;
+    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, n);
+    RTCHitN* committed = RTCRayHitN_HitN(args->rayhit, n);
+    for (unsigned i = 0; i < n; ++i) {
+        if (args->valid[i] == 0) continue;
+        const glm::vec3 org(RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i));
+        const glm::vec3 dir(RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i));
+        float t, u, v;
+        if (!watertightHit(org, dir, p0, p1, p2, RTCRayN_tnear(ray, n, i), RTCRayN_tfar(ray, n, i), t, u, v))
+            continue;
+        const glm::vec3 ng = glm::cross(p1 - p0, p2 - p0);
+        alignas(64) unsigned char buffer[kMaxPacket * sizeof(RTCHit)];
+        RTCHitN* candidate = reinterpret_cast<RTCHitN*>(buffer);
+        RTCHitN_Ng_x(candidate, n, i) = ng.x;
+        RTCHitN_Ng_y(candidate, n, i) = ng.y;
+        RTCHitN_Ng_z(candidate, n, i) = ng.z;
+        RTCHitN_u(candidate, n, i) = u;
+        RTCHitN_v(candidate, n, i) = v;
+        RTCHitN_primID(candidate, n, i) = args->primID;
+        RTCHitN_geomID(candidate, n, i) = args->geomID;
+        RTCHitN_instID(candidate, n, i, 0) = args->context->instID[0];
+        int valid[kMaxPacket] = {};
+        valid[i] = -1;
+        const float previous = RTCRayN_tfar(ray, n, i);
+        RTCRayN_tfar(ray, n, i) = t;
+        RTCFilterFunctionNArguments filter;
+        filter.valid = valid;
+        filter.geometryUserPtr = args->geometryUserPtr;
+        filter.context = args->context;
+        filter.ray = ray;
+        filter.hit = candidate;
+        filter.N = n;
+        closestHitFilter(&filter);
+        if (valid[i] == 0) {
+            RTCRayN_tfar(ray, n, i) = previous;
+            continue;
+        }
+        RTCHitN_Ng_x(committed, n, i) = ng.x;
+        RTCHitN_Ng_y(committed, n, i) = ng.y;
+        RTCHitN_Ng_z(committed, n, i) = ng.z;
+        RTCHitN_u(committed, n, i) = u;
+        RTCHitN_v(committed, n, i) = v;
+        RTCHitN_primID(committed, n, i) = args->primID;
+        RTCHitN_geomID(committed, n, i) = args->geomID;
+        RTCHitN_instID(committed, n, i, 0) = args->context->instID[0];
+    }
 }
 
 // What a prepared ray needs to map Embree's answer back onto the caller's ray.
@@ -156,25 +268,20 @@ struct CollisionWorld::Impl {
             self->deviceError = std::string("Embree: ") + errorName(code) + ": " + (message ? message : "");
     }
 
-    RTCGeometry triangleGeometry(const std::vector<glm::vec3>& positions,
-                                 const std::vector<uint32_t>& indices, const glm::dmat4* toFrame) {
-        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        const size_t triCount = indices.size() / 3;
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                              3 * sizeof(float), positions.size()));
-        auto* ix = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triCount));
-        if (v && ix) {
-            for (size_t i = 0; i < positions.size(); ++i) {
-                glm::dvec3 p(positions[i]);
-                if (toFrame) p = glm::dvec3(*toFrame * glm::dvec4(p, 1.0)) - origin;
-                v[3 * i + 0] = float(p.x);
-                v[3 * i + 1] = float(p.y);
-                v[3 * i + 2] = float(p.z);
-            }
-            std::copy(indices.begin(), indices.begin() + triCount * 3, ix);
+    // The collision triangles of `od` as Embree user geometry (watertightHit), their vertices moved
+    // into the float frame by `toFrame` (static objects) or left in object space (dynamic ones).
+    RTCGeometry triangleGeometry(ObjectData& od, const glm::dmat4* toFrame) {
+        od.traced.resize(od.positions.size());
+        for (size_t i = 0; i < od.positions.size(); ++i) {
+            glm::dvec3 p(od.positions[i]);
+            if (toFrame) p = glm::dvec3(*toFrame * glm::dvec4(p, 1.0)) - origin;
+            od.traced[i] = glm::vec3(p);
         }
-        rtcSetGeometryIntersectFilterFunction(g, closestHitFilter);
+        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(g, unsigned(od.indices.size() / 3));
+        rtcSetGeometryUserData(g, &od);
+        rtcSetGeometryBoundsFunction(g, triangleBounds, nullptr);
+        rtcSetGeometryIntersectFunction(g, intersectTriangle);
         rtcCommitGeometry(g);
         return g;
     }
@@ -197,6 +304,46 @@ struct CollisionWorld::Impl {
         traceBounds.extend(lo - pad);
         traceBounds.extend(hi + pad);
         slack = float(1e-6 * (size + magnitude) + 1e-30);
+        regrowBoxes();
+    }
+
+    // Largest |ray origin| in the space of od.traced for a traced ray starting inside `frame` (frame
+    // coordinates): the frame itself for static objects, object space for dynamic ones.
+    double reachOf(const ObjectData& od, const DBounds& frame) const {
+        double r = 0.0;
+        for (int i = 0; i < 8; ++i) {
+            const glm::dvec3 c((i & 1) ? frame.max.x : frame.min.x, (i & 2) ? frame.max.y : frame.min.y,
+                               (i & 4) ? frame.max.z : frame.min.z);
+            r = std::max(
+                r, glm::length(od.info.dynamic ? glm::dvec3(od.inverse * glm::dvec4(c + origin, 1.0)) : c));
+        }
+        return r;
+    }
+
+    // Rays start inside traceBounds: the boxes of objects grown for a smaller world (see
+    // triangleBounds) are grown again and their scenes rebuilt.
+    void regrowBoxes() {
+        bool staticsChanged = false, changed = false;
+        for (ObjectData& od : objects) {
+            if (!od.info.inWorld || od.geomId == kInvalidId) continue;
+            const double needed = reachOf(od, traceBounds);
+            if (needed <= od.reach) continue;
+            od.reach = 2.0 * needed;
+            changed = true;
+            if (od.info.dynamic) {
+                rtcCommitGeometry(rtcGetGeometry(od.scene, 0));
+                rtcCommitScene(od.scene);
+                rtcCommitGeometry(rtcGetGeometry(top, od.geomId));
+            } else {
+                rtcCommitGeometry(rtcGetGeometry(statics, od.geomId));
+                staticsChanged = true;
+            }
+        }
+        if (staticsChanged) {
+            rtcCommitScene(statics);
+            rtcCommitGeometry(rtcGetGeometry(top, staticInstance));
+        }
+        if (changed) rtcCommitScene(top);
     }
 
     // Normalises `ray`, clips it to the world bounds and moves it into the float frame. False when
@@ -226,8 +373,11 @@ struct CollisionWorld::Impl {
         rh.ray.org_x = float(start.x);
         rh.ray.org_y = float(start.y);
         rh.ray.org_z = float(start.z);
-        // An origin so far away that cancellation leaves the start outside the float range.
-        if (!std::isfinite(rh.ray.org_x) || !std::isfinite(rh.ray.org_y) || !std::isfinite(rh.ray.org_z))
+        // Embree takes ray origins within +-1.844e18 (its FLT_LARGE; beyond, an assertion aborts). A
+        // start farther out (cancellation from an origin near 1e300, or geometry that far) is a miss.
+        const float largest = 1.844e18f;
+        if (!(std::fabs(rh.ray.org_x) <= largest && std::fabs(rh.ray.org_y) <= largest &&
+              std::fabs(rh.ray.org_z) <= largest))
             return false;
         rh.ray.dir_x = float(u.x);
         rh.ray.dir_y = float(u.y);
@@ -364,7 +514,7 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         od.positions = mesh->positions;
         od.indices.assign(mesh->indices.begin(), mesh->indices.begin() + mesh->triangleCount() * 3);
         od.info.triangles = mesh->triangleCount();
-        od.info.localBounds = meshBounds(od.positions);
+        od.info.localBounds = meshBounds(od.positions, od.indices);
         const DBounds wb = transformBounds(od.info.localBounds, so.transform);
         allBounds.extend(wb);
         if (!so.dynamic) staticBounds.extend(wb);
@@ -373,6 +523,14 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         impl->origin = staticBounds.center();
     else if (!allBounds.empty())
         impl->origin = allBounds.center();
+    // Box growth for ray starts anywhere in the world, with room to spare (regrowBoxes).
+    if (!allBounds.empty()) {
+        DBounds frame;
+        frame.extend(allBounds.min - impl->origin);
+        frame.extend(allBounds.max - impl->origin);
+        for (ObjectData& od : impl->objects)
+            od.reach = 2.0 * impl->reachOf(od, frame);
+    }
 
     impl->top = impl->newScene();
     rtcSetSceneFlags(impl->top, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
@@ -384,7 +542,7 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         if (!od.info.inWorld || od.info.triangles == 0) continue;
         impl->triangles += od.info.triangles;
         if (!od.info.dynamic) {
-            RTCGeometry g = impl->triangleGeometry(od.positions, od.indices, &od.info.transform);
+            RTCGeometry g = impl->triangleGeometry(od, &od.info.transform);
             od.geomId = rtcAttachGeometry(impl->statics, g);
             rtcReleaseGeometry(g);
             if (impl->staticGeomToObject.size() <= od.geomId)
@@ -393,7 +551,7 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
             anyStatic = true;
         } else {
             od.scene = impl->newScene();
-            RTCGeometry g = impl->triangleGeometry(od.positions, od.indices, nullptr);
+            RTCGeometry g = impl->triangleGeometry(od, nullptr);
             rtcAttachGeometry(od.scene, g);
             rtcReleaseGeometry(g);
             rtcCommitScene(od.scene);
@@ -440,38 +598,13 @@ std::optional<Hit> CollisionWorld::intersect(const Ray& ray) const {
 }
 
 std::vector<std::optional<Hit>> CollisionWorld::intersectBatch(const std::vector<Ray>& rays) const {
-    std::vector<std::optional<Hit>> hits(rays.size());
-    std::vector<RTCRayHit> stream;
-    std::vector<Prepared> prepared;
-    std::vector<size_t> source;
-    stream.reserve(rays.size());
-    prepared.reserve(rays.size());
-    source.reserve(rays.size());
-    for (size_t i = 0; i < rays.size(); ++i) {
-        if (rayProblem(rays[i])) continue;
-        RTCRayHit rh;
-        Prepared p;
-        if (!impl_->prepare(rays[i], unsigned(stream.size()), rh, p)) continue;
-        stream.push_back(rh);
-        prepared.push_back(p);
-        source.push_back(i);
-    }
-    if (stream.empty()) return hits;
-    std::vector<float> best(stream.size());
-    for (size_t k = 0; k < stream.size(); ++k)
-        best[k] = stream[k].ray.tfar;
-    TraceContext ctx;
-    rtcInitIntersectContext(&ctx.embree);
-    ctx.bestT = best.data();
-    ctx.slack = impl_->slack;
-    // Streams of at most 2^31 rays per call (Embree counts them in unsigned int).
-    const size_t chunk = size_t(1) << 31;
-    for (size_t first = 0; first < stream.size(); first += chunk) {
-        const unsigned count = unsigned(std::min(chunk, stream.size() - first));
-        rtcIntersect1M(impl_->top, &ctx.embree, stream.data() + first, count, sizeof(RTCRayHit));
-    }
-    for (size_t k = 0; k < stream.size(); ++k)
-        hits[source[k]] = impl_->finish(rays[source[k]], prepared[k], stream[k], best[k]);
+    // Ray by ray with rtcIntersect1: on these user-geometry triangles Embree's stream and packet paths
+    // (rtcIntersect1M, rtcIntersect16) took 1.3 to 3.5 times as long per ray, coherent rays included
+    // (spatter-bench placement, docs/BENCHMARKS.md).
+    std::vector<std::optional<Hit>> hits;
+    hits.reserve(rays.size());
+    for (const Ray& ray : rays)
+        hits.push_back(intersect(ray));
     return hits;
 }
 

@@ -8,6 +8,9 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <mutex>
+#include <system_error>
+#include <thread>
 
 namespace spatter {
 
@@ -18,6 +21,14 @@ constexpr double kPi = 3.14159265358979323846;
 
 bool finite3(const glm::dvec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// A non-zero magnitude below the normal range: too small to divide by or normalise reliably.
+bool denormal(double v) {
+    return v != 0.0 && std::fabs(v) < std::numeric_limits<double>::min();
+}
+bool denormal(float v) {
+    return v != 0.0f && std::fabs(v) < std::numeric_limits<float>::min();
 }
 
 // Largest column length of the linear part: the largest scale factor of a TRS transform.
@@ -35,6 +46,17 @@ std::string formatNumber(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.6g", v);
     return buf;
+}
+
+// A decal the renderer can use: finite centre and frame, size and half-depth finite and at least the
+// smallest normal float (a box of zero, denormal or infinite extent cannot be inverted).
+bool soundBox(const Decal& d) {
+    auto finite = [](const glm::vec3& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
+    auto extent = [](float v) { return std::isfinite(v) && v >= std::numeric_limits<float>::min(); };
+    return finite(d.center) && finite(d.frame.tangent) && finite(d.frame.bitangent) &&
+           finite(d.frame.normal) && extent(d.size.x) && extent(d.size.y) && extent(d.halfDepth);
 }
 
 struct Meta {
@@ -59,7 +81,8 @@ uint64_t DecalStats::rejectedTotal() const {
 
 bool DecalStats::operator==(const DecalStats& o) const {
     return placed == o.placed && rejected == o.rejected && evicted == o.evicted && expired == o.expired &&
-           removed == o.removed && alive == o.alive && sharedObjectIds == o.sharedObjectIds;
+           removed == o.removed && alive == o.alive && fading == o.fading &&
+           sharedObjectIds == o.sharedObjectIds;
 }
 
 struct DecalSystem::Impl {
@@ -75,6 +98,7 @@ struct DecalSystem::Impl {
     std::vector<uint32_t> freeSlots;
     AreaLimits limits;
     DecalStats stats;
+    std::mutex mutex; // held by every mutation
 
     Impl(CollisionWorld w, const DecalSettings& s)
         : world(std::move(w)), settings(s), rng(s.seed), limits(world.objectCount()) {}
@@ -114,6 +138,7 @@ struct DecalSystem::Impl {
 
     void removeDense(uint32_t dense) {
         const uint32_t slot = meta[dense].slot;
+        if (meta[dense].fading) stats.fading--;
         limits.unlink(slot);
         slots[slot].dense = kNone;
         slots[slot].generation++;
@@ -137,6 +162,7 @@ struct DecalSystem::Impl {
             limits.unlink(slot);
             meta[dense].fading = true;
             meta[dense].evictedAt = time;
+            stats.fading++;
         } else {
             removeDense(dense);
         }
@@ -169,15 +195,13 @@ struct DecalSystem::Impl {
     }
 
     // Places a decal of `typeIndex` on `objectIndex` at `local` (object space) facing `worldNormal`
-    // (unit), its tangent from `worldHint`. Every check but the limits has passed.
+    // (unit), its tangent from `worldHint`. Every check but the box and the limits has passed. The
+    // random numbers are drawn first and given back (the generator restored) when a check fails.
     SpawnResult place(uint32_t objectIndex, const glm::dvec3& local, const glm::dvec3& worldNormal,
                       const glm::dvec3& worldHint, uint16_t typeIndex) {
         const CollisionObject& o = object(objectIndex);
         const DecalType& t = types[typeIndex];
-        const CellKey key = cellKey(objectIndex, local);
-        if (std::string why = makeRoom(key, objectIndex); !why.empty())
-            return reject(SpawnStatus::AreaLimit, std::move(why));
-
+        const Rng unused = rng;
         const uint32_t id = rng.next();
         const float angle = t.randomRotation ? rng.uniform() * float(2.0 * kPi) : 0.0f;
         const float scale = t.sizeJitter > 0.0f ? 1.0f + rng.uniform(-t.sizeJitter, t.sizeJitter) : 1.0f;
@@ -210,6 +234,19 @@ struct DecalSystem::Impl {
         d.type = typeIndex;
         d.spawnTime = time;
         d.opacity = 1.0f;
+        if (!soundBox(d)) {
+            rng = unused;
+            return reject(SpawnStatus::InvalidArgument,
+                          "the box of a decal of type '" + t.name + "' on '" + o.name +
+                              "' is degenerate in the object's space (size " + formatNumber(d.size.x) +
+                              " x " + formatNumber(d.size.y) + ", half-depth " + formatNumber(d.halfDepth) +
+                              "): the size, depthMargin or the object's scale is too small or too large");
+        }
+        const CellKey key = cellKey(objectIndex, local);
+        if (std::string why = makeRoom(key, objectIndex); !why.empty()) {
+            rng = unused;
+            return reject(SpawnStatus::AreaLimit, std::move(why));
+        }
 
         uint32_t slot;
         if (!freeSlots.empty()) {
@@ -251,6 +288,38 @@ struct DecalSystem::Impl {
         return place(hit->object, hit->localPosition, hit->normal, dir, typeIndex);
     }
 
+    // world.intersectBatch(rays), traced in slices by up to settings.batchThreads threads (each
+    // slice's hits are exactly those of the whole batch: every ray is traced on its own).
+    std::vector<std::optional<Hit>> traceBatch(const std::vector<Ray>& rays) const {
+        constexpr size_t kMinRaysPerThread = 4096;
+        size_t threads = settings.batchThreads != 0 ? settings.batchThreads
+                                                    : std::max(1u, std::thread::hardware_concurrency());
+        threads = std::min(threads, std::max<size_t>(1, rays.size() / kMinRaysPerThread));
+        if (threads <= 1) return world.intersectBatch(rays);
+        std::vector<std::optional<Hit>> hits(rays.size());
+        auto traceSlice = [&](size_t k) {
+            const size_t begin = rays.size() * k / threads, end = rays.size() * (k + 1) / threads;
+            const std::vector<Ray> slice(rays.begin() + std::ptrdiff_t(begin),
+                                         rays.begin() + std::ptrdiff_t(end));
+            std::vector<std::optional<Hit>> sliceHits = world.intersectBatch(slice);
+            std::move(sliceHits.begin(), sliceHits.end(), hits.begin() + std::ptrdiff_t(begin));
+        };
+        std::vector<std::thread> workers;
+        size_t started = 1;
+        try {
+            for (; started < threads; ++started)
+                workers.emplace_back(traceSlice, started);
+        } catch (const std::system_error&) {
+            // No more threads: the calling thread traces the slices left.
+        }
+        for (size_t k = started; k < threads; ++k)
+            traceSlice(k);
+        traceSlice(0);
+        for (std::thread& w : workers)
+            w.join();
+        return hits;
+    }
+
     WorldDecal toWorld(const Decal& d) const {
         const CollisionObject* o = world.object(d.object);
         const glm::dmat4 xf = o ? o->transform : glm::dmat4(1.0);
@@ -279,15 +348,15 @@ DecalSystem& DecalSystem::operator=(DecalSystem&&) noexcept = default;
 DecalSystem::~DecalSystem() = default;
 
 Result<DecalSystem> DecalSystem::create(CollisionWorld world, const DecalSettings& s) {
-    if (!std::isfinite(s.cellSize) || !(s.cellSize > 0.0f))
-        return fail("decal settings: cellSize must be finite and > 0");
+    if (!std::isfinite(s.cellSize) || !(s.cellSize > 0.0f) || denormal(s.cellSize))
+        return fail("decal settings: cellSize must be finite, > 0 and not denormal");
     if (s.maxPerCell < 1) return fail("decal settings: maxPerCell must be >= 1");
     if (s.budget < 1) return fail("decal settings: budget must be >= 1");
     if (s.maxPerObject < 1) return fail("decal settings: maxPerObject must be >= 1");
-    if (!std::isfinite(s.idSeparation) || s.idSeparation < 0.0)
-        return fail("decal settings: idSeparation must be finite and >= 0");
-    if (!std::isfinite(s.depthMargin) || s.depthMargin < 0.0f)
-        return fail("decal settings: depthMargin must be finite and >= 0");
+    if (!std::isfinite(s.idSeparation) || s.idSeparation < 0.0 || denormal(s.idSeparation))
+        return fail("decal settings: idSeparation must be finite, >= 0 and not denormal");
+    if (!std::isfinite(s.depthMargin) || s.depthMargin < 0.0f || denormal(s.depthMargin))
+        return fail("decal settings: depthMargin must be finite, >= 0 and not denormal");
     auto impl = std::make_unique<Impl>(std::move(world), s);
     const size_t n = impl->world.objectCount();
     std::vector<DBounds> bounds(n);
@@ -309,23 +378,27 @@ Result<DecalSystem> DecalSystem::create(const Scene& scene, const DecalSettings&
 }
 
 Result<uint16_t> DecalSystem::registerType(const DecalType& t) {
+    const std::lock_guard<std::mutex> lock(impl_->mutex);
     const std::string where = "decal type '" + t.name + "': ";
     if (t.name.empty()) return fail("decal type: empty name");
     for (const DecalType& other : impl_->types)
         if (other.name == t.name) return fail(where + "a type of that name is already registered");
     if (impl_->types.size() >= 65535) return fail(where + "65535 types are registered already");
-    if (!std::isfinite(t.size.x) || !std::isfinite(t.size.y) || !(t.size.x > 0.0f) || !(t.size.y > 0.0f))
-        return fail(where + "size must be finite and > 0");
-    if (!std::isfinite(t.sizeJitter) || t.sizeJitter < 0.0f || !(t.sizeJitter < 1.0f))
-        return fail(where + "sizeJitter must be in [0, 1)");
-    if (!std::isfinite(t.maxAngleDeg) || !(t.maxAngleDeg > 0.0f) || t.maxAngleDeg > 90.0f)
-        return fail(where + "maxAngleDeg must be in (0, 90]");
-    if (!std::isfinite(t.lifetime) || t.lifetime < 0.0f)
-        return fail(where + "lifetime must be finite and >= 0");
-    if (!std::isfinite(t.fadeOutTime) || t.fadeOutTime < 0.0f)
-        return fail(where + "fadeOutTime must be finite and >= 0");
-    if (!std::isfinite(t.halfDepth) || t.halfDepth < 0.0f)
-        return fail(where + "halfDepth must be finite and >= 0");
+    if (!std::isfinite(t.size.x) || !std::isfinite(t.size.y) || !(t.size.x > 0.0f) || !(t.size.y > 0.0f) ||
+        denormal(t.size.x) || denormal(t.size.y))
+        return fail(where + "size must be finite, > 0 and not denormal");
+    if (!std::isfinite(t.sizeJitter) || t.sizeJitter < 0.0f || !(t.sizeJitter < 1.0f) ||
+        denormal(t.sizeJitter))
+        return fail(where + "sizeJitter must be in [0, 1) and not denormal");
+    if (!std::isfinite(t.maxAngleDeg) || !(t.maxAngleDeg > 0.0f) || t.maxAngleDeg > 90.0f ||
+        denormal(t.maxAngleDeg))
+        return fail(where + "maxAngleDeg must be in (0, 90] and not denormal");
+    if (!std::isfinite(t.lifetime) || t.lifetime < 0.0f || denormal(t.lifetime))
+        return fail(where + "lifetime must be finite, >= 0 and not denormal");
+    if (!std::isfinite(t.fadeOutTime) || t.fadeOutTime < 0.0f || denormal(t.fadeOutTime))
+        return fail(where + "fadeOutTime must be finite, >= 0 and not denormal");
+    if (!std::isfinite(t.halfDepth) || t.halfDepth < 0.0f || denormal(t.halfDepth))
+        return fail(where + "halfDepth must be finite, >= 0 and not denormal");
     if (t.texture < 0) return fail(where + "texture must be >= 0");
     if (!std::isfinite(t.tint.x) || !std::isfinite(t.tint.y) || !std::isfinite(t.tint.z) ||
         !std::isfinite(t.tint.w))
@@ -350,6 +423,7 @@ size_t DecalSystem::typeCount() const {
 }
 
 SpawnResult DecalSystem::spawn(const Ray& ray, uint16_t type) {
+    const std::lock_guard<std::mutex> lock(impl_->mutex);
     if (type >= impl_->types.size()) return impl_->reject(SpawnStatus::InvalidType, impl_->typeError(type));
     if (const char* problem = rayProblem(ray)) return impl_->reject(SpawnStatus::InvalidRay, problem);
     return impl_->fromHit(ray, impl_->world.intersect(ray), type);
@@ -357,6 +431,7 @@ SpawnResult DecalSystem::spawn(const Ray& ray, uint16_t type) {
 
 SpawnResult DecalSystem::spawnAt(const glm::dvec3& position, const glm::dvec3& normal, uint16_t type) {
     Impl& s = *impl_;
+    const std::lock_guard<std::mutex> lock(s.mutex);
     if (type >= s.types.size()) return s.reject(SpawnStatus::InvalidType, s.typeError(type));
     if (!finite3(position)) return s.reject(SpawnStatus::InvalidArgument, "spawnAt: position is not finite");
     if (!finite3(normal)) return s.reject(SpawnStatus::InvalidArgument, "spawnAt: normal is not finite");
@@ -391,6 +466,7 @@ SpawnResult DecalSystem::spawnAt(const glm::dvec3& position, const glm::dvec3& n
 SpawnResult DecalSystem::spawnAttached(uint32_t objectIndex, const glm::vec3& localPosition,
                                        const glm::vec3& localNormal, uint16_t type) {
     Impl& s = *impl_;
+    const std::lock_guard<std::mutex> lock(s.mutex);
     if (type >= s.types.size()) return s.reject(SpawnStatus::InvalidType, s.typeError(type));
     const CollisionObject* o = s.world.object(objectIndex);
     if (!o)
@@ -402,6 +478,9 @@ SpawnResult DecalSystem::spawnAttached(uint32_t objectIndex, const glm::vec3& lo
         return s.reject(SpawnStatus::InvalidArgument, "spawnAttached: local position is not finite");
     if (!finite3(ln))
         return s.reject(SpawnStatus::InvalidArgument, "spawnAttached: local normal is not finite");
+    if (std::max({std::fabs(localNormal.x), std::fabs(localNormal.y), std::fabs(localNormal.z)}) <
+        std::numeric_limits<float>::min())
+        return s.reject(SpawnStatus::InvalidArgument, "spawnAttached: local normal is zero or denormal");
     const glm::dmat3 m(o->transform);
     const glm::dvec3 wn = glm::transpose(glm::inverse(m)) * ln;
     const double len2 = glm::dot(wn, wn);
@@ -419,6 +498,7 @@ SpawnResult DecalSystem::spawnAttached(uint32_t objectIndex, const glm::vec3& lo
 
 void DecalSystem::spawnBatch(const std::vector<Ray>& rays, uint16_t type, std::vector<SpawnResult>& results) {
     Impl& s = *impl_;
+    const std::lock_guard<std::mutex> lock(s.mutex);
     results.clear();
     results.reserve(rays.size());
     if (type >= s.types.size()) {
@@ -426,7 +506,7 @@ void DecalSystem::spawnBatch(const std::vector<Ray>& rays, uint16_t type, std::v
             results.push_back(s.reject(SpawnStatus::InvalidType, s.typeError(type)));
         return;
     }
-    const std::vector<std::optional<Hit>> hits = s.world.intersectBatch(rays);
+    const std::vector<std::optional<Hit>> hits = s.traceBatch(rays);
     for (size_t i = 0; i < rays.size(); ++i) {
         if (const char* problem = rayProblem(rays[i]))
             results.push_back(s.reject(SpawnStatus::InvalidRay, problem));
@@ -436,8 +516,10 @@ void DecalSystem::spawnBatch(const std::vector<Ray>& rays, uint16_t type, std::v
 }
 
 Status DecalSystem::update(double dt) {
-    if (!std::isfinite(dt) || dt < 0.0) return fail("update: dt must be finite and >= 0");
+    if (!std::isfinite(dt) || dt < 0.0 || denormal(dt))
+        return fail("update: dt must be finite, >= 0 and not denormal");
     Impl& s = *impl_;
+    const std::lock_guard<std::mutex> lock(s.mutex);
     s.time += dt;
     for (size_t i = s.decals.size(); i-- > 0;) {
         Decal& d = s.decals[i];
@@ -473,9 +555,11 @@ Status DecalSystem::update(double dt) {
 
 bool DecalSystem::remove(DecalHandle handle) {
     Impl& s = *impl_;
+    const std::lock_guard<std::mutex> lock(s.mutex);
     if (!get(handle)) return false;
-    s.removeDense(s.slots[handle.slot].dense);
-    s.stats.removed++;
+    const uint32_t dense = s.slots[handle.slot].dense;
+    if (!s.meta[dense].fading) s.stats.removed++; // a fading decal is counted in evicted already
+    s.removeDense(dense);
     return true;
 }
 
@@ -502,16 +586,18 @@ const std::vector<Decal>& DecalSystem::decals() const {
 }
 
 Status DecalSystem::setTransform(uint32_t object, const glm::dmat4& transform) {
+    const std::lock_guard<std::mutex> lock(impl_->mutex);
     return impl_->world.setTransform(object, transform);
 }
 
 Status DecalSystem::removeObject(uint32_t object) {
     Impl& s = *impl_;
+    const std::lock_guard<std::mutex> lock(s.mutex);
     if (Status st = s.world.removeObject(object); !st) return st;
     for (size_t i = s.decals.size(); i-- > 0;) {
         if (s.decals[i].object != object) continue;
+        if (!s.meta[i].fading) s.stats.removed++; // a fading decal is counted in evicted already
         s.removeDense(uint32_t(i));
-        s.stats.removed++;
     }
     return {};
 }

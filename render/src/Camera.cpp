@@ -106,9 +106,13 @@ std::string formatCamera(const Camera& c) {
 Status validateCamera(const Camera& c) {
     if (!finite(c.eye) || !finite(c.target) || !finite(c.up))
         return fail("camera: eye, target and up must be finite");
-    if (!std::isfinite(c.fovYDeg) || c.fovYDeg <= 0.0 || c.fovYDeg >= 180.0)
-        return fail("camera: fov " + number(c.fovYDeg) + " is outside (0, 180) degrees");
-    if (!std::isfinite(c.nearPlane) || c.nearPlane <= 0.0) return fail("camera: near plane must be positive");
+    // Below kMinFovDeg the float projection overflows; below kMinNearPlane reversed-Z depths of
+    // ordinary distances become denormal floats and lose their precision.
+    if (!std::isfinite(c.fovYDeg) || c.fovYDeg < kMinFovDeg || c.fovYDeg >= 180.0)
+        return fail("camera: fov " + number(c.fovYDeg) + " is outside [" + number(kMinFovDeg) +
+                    ", 180) degrees");
+    if (!std::isfinite(c.nearPlane) || c.nearPlane < kMinNearPlane)
+        return fail("camera: near plane " + number(c.nearPlane) + " is below " + number(kMinNearPlane));
     if (!std::isfinite(c.farPlane) || (c.farPlane != 0.0 && c.farPlane <= c.nearPlane))
         return fail("camera: far plane must be 0 (infinite) or beyond the near plane");
     const glm::dvec3 dir = c.target - c.eye;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace spatter::render_detail {
 
@@ -58,7 +59,9 @@ bool DecalBatch::build(const Decal& d, DecalGpu& out) const {
         !finite(d.center) || !std::isfinite(d.size.x) || !std::isfinite(d.size.y) ||
         !std::isfinite(d.halfDepth) || !std::isfinite(d.opacity))
         return false;
-    if (!(d.size.x > 0.0f) || !(d.size.y > 0.0f) || !(d.halfDepth > 0.0f)) return false;
+    // Denormal extents cannot be inverted into a box transform: treat them like zero.
+    constexpr float kMinExtent = std::numeric_limits<float>::min();
+    if (!(d.size.x >= kMinExtent) || !(d.size.y >= kMinExtent) || !(d.halfDepth >= kMinExtent)) return false;
     if (type.texture < 0 || type.texture >= layerCount_ || !finite(type.tint) ||
         !std::isfinite(type.maxAngleDeg) || !std::isfinite(type.roughness))
         return false;

@@ -33,6 +33,8 @@ public:
 
     size_t size() const { return gpu_.size(); }
     size_t invalidCount() const { return invalid_; }
+    // Whether instance i can be drawn (invalid instances are zero).
+    bool valid(size_t i) const { return i < valid_.size() && valid_[i] != 0; }
     const std::vector<DecalGpu>& instances() const { return gpu_; }
     // Ranges [begin, end) of instances() changed since markUploaded().
     const std::vector<std::pair<size_t, size_t>>& dirty() const { return dirty_; }

@@ -39,6 +39,7 @@ void GpuTimers::read(Slot& slot) {
         latest_.lateMs = ms[int(GpuPass::Late)];
         latest_.lightingMs = ms[int(GpuPass::Lighting)];
         latest_.overlayMs = ms[int(GpuPass::Overlay)];
+        latest_.splatMs = ms[int(GpuPass::Splat)];
     }
     slot.frame = -1;
 }

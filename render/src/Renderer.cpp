@@ -9,12 +9,16 @@
 #include "OverlayMeshes.hpp"
 #include "SceneGpu.hpp"
 #include "ShaderProgram.hpp"
+#include "TextureSpaceDecals.hpp"
+
+#include "spatter/core/UvOverlap.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
+#include <unordered_set>
 
 namespace spatter {
 
@@ -87,6 +91,29 @@ void distanceRange(const DBounds& b, const glm::dvec3& p, double& nearest, doubl
     farthest = glm::length(far);
 }
 
+// What identifies a decal for splatting: the same decal given again is not splatted twice.
+uint64_t decalKey(const Decal& d) {
+    uint64_t h = 1469598103934665603ull;
+    auto mix = [&h](const void* data, size_t n) {
+        const unsigned char* p = static_cast<const unsigned char*>(data);
+        for (size_t i = 0; i < n; ++i)
+            h = (h ^ p[i]) * 1099511628211ull;
+    };
+    mix(&d.id, sizeof d.id);
+    mix(&d.object, sizeof d.object);
+    mix(&d.type, sizeof d.type);
+    mix(&d.center, sizeof d.center);
+    mix(&d.frame.normal, sizeof d.frame.normal);
+    mix(&d.frame.tangent, sizeof d.frame.tangent);
+    mix(&d.size, sizeof d.size);
+    mix(&d.halfDepth, sizeof d.halfDepth);
+    return h;
+}
+
+bool finiteDirection(const glm::vec3& v) {
+    return finiteVec(v) && glm::length(v) > 1e-12f;
+}
+
 } // namespace
 
 struct Renderer::Impl {
@@ -104,6 +131,19 @@ struct Renderer::Impl {
 
     DecalBatch batch;
     DecalTextureArray decalTextures;
+
+    // Texture-space decals and deformation, per object.
+    std::vector<Mesh> meshes; // render meshes, for the UV check of setObjectDecalMode
+    std::vector<std::string> names;
+    std::vector<DecalMode> modes;
+    std::vector<Deformation> deformations;
+    double time = 0.0;
+    TextureSpaceDecals textureSpace;
+    DecalBatch splatBatch;
+    std::vector<Decal> pendingSplats;
+    std::vector<std::unordered_set<uint64_t>> splatted; // keys of the decals splatted per object
+    size_t decalsTextureSpace = 0;
+    GlBuffer splatBuffer, splatLists;
 
     GlProgram geometryProgram, lightingProgram, viewProgram;
     std::map<uint32_t, GlProgram> decalPrograms;
@@ -184,6 +224,8 @@ struct Renderer::Impl {
             if (mesh.triangles == 0) continue;
             glBindVertexArray(mesh.vao.get());
             glUniform1ui(0, GLuint(i));
+            glBindTextureUnit(2, textureSpace.albedo(i));
+            glBindTextureUnit(3, textureSpace.normal(i));
             for (const GpuSubmesh& sm : mesh.submeshes) {
                 if (sm.indexCount == 0) continue;
                 glUniform1ui(1, sm.material);
@@ -381,11 +423,46 @@ struct Renderer::Impl {
             o.normalMatrix = glm::mat4(glm::mat3(glm::transpose(glm::inverse(glm::dmat3(transforms[i])))));
             o.worldToObject = glm::mat4(glm::inverse(rel));
             o.info = glm::uvec4(gbuffer.hasIds() ? objectIds[i] : 0u,
-                                glm::determinant(glm::dmat3(transforms[i])) < 0.0 ? 1u : 0u, 0u, 0u);
+                                glm::determinant(glm::dmat3(transforms[i])) < 0.0 ? 1u : 0u,
+                                textureSpace.enabled(i) ? 1u : 0u, 0u);
+            const Deformation& d = deformations[i];
+            if (d.amplitude != 0.0f) {
+                o.deformA = glm::vec4(glm::normalize(d.displacement) * d.amplitude, d.frequency);
+                const double phase = double(d.phase) + double(d.speed) * time;
+                o.deformB = glm::vec4(glm::normalize(d.waveDirection),
+                                      float(std::fmod(phase, 2.0 * 3.14159265358979323846)));
+            }
         }
         if (!objects.empty())
             glNamedBufferSubData(objectBuffer.get(), 0, GLsizeiptr(objects.size() * sizeof(ObjectGpu)),
                                  objects.data());
+    }
+
+    // Splats the pending decals of texture-space objects into their textures, one instanced draw per
+    // object, then dilates each; returns the decals splatted.
+    Result<size_t> splatPending(size_t& invalid) {
+        if (pendingSplats.empty()) return size_t(0);
+        splatBatch.setDecals(pendingSplats, transforms.size());
+        pendingSplats.clear();
+        invalid = splatBatch.invalidCount();
+        std::vector<std::vector<uint32_t>> perObject(transforms.size());
+        const std::vector<DecalGpu>& inst = splatBatch.instances();
+        for (size_t i = 0; i < inst.size(); ++i)
+            if (splatBatch.valid(i)) perObject[inst[i].info.x].push_back(uint32_t(i));
+        std::vector<uint32_t> lists;
+        for (const auto& l : perObject)
+            lists.insert(lists.end(), l.begin(), l.end());
+        if (lists.empty()) return size_t(0);
+        splatBuffer = createBuffer();
+        glNamedBufferStorage(splatBuffer.get(), GLsizeiptr(inst.size() * sizeof(DecalGpu)), inst.data(), 0);
+        splatLists = createBuffer();
+        glNamedBufferStorage(splatLists.get(), GLsizeiptr(lists.size() * sizeof(uint32_t)), lists.data(), 0);
+        splatBatch.markUploaded();
+        Result<size_t> n = textureSpace.splat(perObject, scene, splatBuffer.get(), splatLists.get(),
+                                              decalTextures.albedoTexture(), decalTextures.normalTexture(),
+                                              settings.fadeStart, drawCalls);
+        splatBatch.setDecals({}, transforms.size());
+        return n;
     }
 
     // Sends changed decal instances and this frame's visible list; returns the bytes sent.
@@ -460,6 +537,7 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
     if (Status s = impl->decalTextures.create(settings.decalTextureSize); !s)
         return fail("renderer: " + s.error());
     impl->batch.configure(settings.wrapMaxAngleDeg, impl->decalTextures.layers());
+    impl->splatBatch.configure(settings.wrapMaxAngleDeg, impl->decalTextures.layers());
 
     impl->frameBuffer = createBuffer();
     glNamedBufferStorage(impl->frameBuffer.get(), sizeof(FrameGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -494,8 +572,18 @@ Status Renderer::setScene(const Scene& scene) {
     m.localBounds.resize(n);
     m.hasDynamic = false;
     m.hasLate = false;
+    m.meshes.resize(n);
+    m.names.resize(n);
+    m.modes.assign(n, DecalMode::Projected);
+    m.deformations.assign(n, Deformation{});
+    m.splatted.assign(n, {});
+    m.pendingSplats.clear();
+    m.decalsTextureSpace = 0;
+    m.textureSpace.reset(n);
     for (size_t i = 0; i < n; ++i) {
         const SceneObject& o = scene.objects[i];
+        m.meshes[i] = o.mesh;
+        m.names[i] = o.name;
         m.transforms[i] = o.transform;
         m.receivers[i] = o.receivesDecals ? 1 : 0;
         m.localBounds[i] = o.mesh.bounds();
@@ -539,17 +627,95 @@ Status Renderer::setObjectIds(const std::vector<uint8_t>& ids) {
     return {};
 }
 
+Status Renderer::setObjectDecalMode(uint32_t object, DecalMode mode, int textureSize) {
+    Impl& m = *impl_;
+    if (object >= m.transforms.size())
+        return fail("renderer: object " + std::to_string(object) + " is out of range (" +
+                    std::to_string(m.transforms.size()) + " objects)");
+    const std::string name = "renderer: object " + std::to_string(object) + " (" + m.names[object] + ")";
+    if (mode == DecalMode::Projected) {
+        m.textureSpace.disable(object);
+        m.splatted[object].clear();
+        m.modes[object] = mode;
+        return {};
+    }
+    if (textureSize < 16 || textureSize > 4096 || (textureSize & (textureSize - 1)) != 0)
+        return fail(name + ": decal texture size " + std::to_string(textureSize) +
+                    " is not a power of two in [16, 4096]");
+    Result<UvOverlapReport> uv = findUvOverlaps(m.meshes[object]);
+    if (!uv) return fail(name + " cannot take texture-space decals: " + uv.error());
+    if (!uv->usable()) return fail(name + " cannot take texture-space decals: its UVs have " + uv->summary());
+    if (Status s = m.textureSpace.enable(object, textureSize, m.scene.mesh(object)); !s)
+        return fail("renderer: " + s.error());
+    m.splatted[object].clear();
+    m.modes[object] = mode;
+    return {};
+}
+
+DecalMode Renderer::objectDecalMode(uint32_t object) const {
+    return object < impl_->modes.size() ? impl_->modes[object] : DecalMode::Projected;
+}
+
+Status Renderer::clearObjectDecals(uint32_t object) {
+    Impl& m = *impl_;
+    if (object >= m.transforms.size() || !m.textureSpace.enabled(object))
+        return fail("renderer: object " + std::to_string(object) + " has no texture-space decals to clear");
+    m.textureSpace.clear(object);
+    return {};
+}
+
+Status Renderer::setObjectDeformation(uint32_t object, const Deformation& d) {
+    Impl& m = *impl_;
+    if (object >= m.transforms.size())
+        return fail("renderer: object " + std::to_string(object) + " is out of range (" +
+                    std::to_string(m.transforms.size()) + " objects)");
+    if (!std::isfinite(d.amplitude) || !std::isfinite(d.frequency) || !std::isfinite(d.phase) ||
+        !std::isfinite(d.speed) || !finiteDirection(d.displacement) || !finiteDirection(d.waveDirection))
+        return fail("renderer: deformation of object " + std::to_string(object) +
+                    " must be finite with non-zero directions");
+    m.deformations[object] = d;
+    return {};
+}
+
+Status Renderer::setTime(double seconds) {
+    if (!std::isfinite(seconds)) return fail("renderer: time must be finite");
+    impl_->time = seconds;
+    return {};
+}
+
 void Renderer::setDecalTypes(const std::vector<DecalType>& types) {
     impl_->batch.setTypes(types);
+    impl_->splatBatch.setTypes(types);
 }
 
 void Renderer::setDecals(const std::vector<Decal>& decals) {
-    impl_->batch.setDecals(decals, impl_->transforms.size());
+    Impl& m = *impl_;
+    const size_t n = m.transforms.size();
+    if (m.textureSpace.objectCount() == 0) {
+        m.decalsTextureSpace = 0;
+        m.batch.setDecals(decals, n);
+        return;
+    }
+    std::vector<Decal> projected;
+    projected.reserve(decals.size());
+    m.decalsTextureSpace = 0;
+    for (const Decal& d : decals) {
+        if (d.object >= n || m.modes[d.object] != DecalMode::TextureSpace) {
+            projected.push_back(d);
+            continue;
+        }
+        ++m.decalsTextureSpace;
+        if (m.splatted[d.object].insert(decalKey(d)).second) m.pendingSplats.push_back(d);
+    }
+    m.batch.setDecals(projected, n);
 }
 
 Result<int> Renderer::addDecalTexture(const Image& albedo, const Image& normalMap) {
     Result<int> layer = impl_->decalTextures.add(albedo, normalMap);
-    if (layer) impl_->batch.configure(impl_->settings.wrapMaxAngleDeg, impl_->decalTextures.layers());
+    if (layer) {
+        impl_->batch.configure(impl_->settings.wrapMaxAngleDeg, impl_->decalTextures.layers());
+        impl_->splatBatch.configure(impl_->settings.wrapMaxAngleDeg, impl_->decalTextures.layers());
+    }
     return layer;
 }
 
@@ -666,6 +832,21 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
     }
 
     m.timers.beginFrame(m.frame);
+    if (!m.pendingSplats.empty()) {
+        m.timers.begin(GpuPass::Splat);
+        size_t invalid = 0;
+        Result<size_t> splatted = m.splatPending(invalid);
+        m.timers.end();
+        if (!splatted) {
+            m.timers.endFrame(false);
+            return fail(splatted.error());
+        }
+        stats.decalsSplatted = splatted.value();
+        stats.decalsInvalid += invalid;
+    }
+    stats.decalsTextureSpace = m.decalsTextureSpace;
+    stats.textureSpaceObjects = m.textureSpace.objectCount();
+    stats.textureSpaceBytes = m.textureSpace.bytes();
     m.uploadFrame(camera);
     stats.decalBytesUploaded = m.uploadDecals(vis);
 

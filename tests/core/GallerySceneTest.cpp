@@ -1,4 +1,5 @@
 #include "spatter/core/GalleryScene.hpp"
+#include "spatter/core/UvOverlap.hpp"
 
 #include <gtest/gtest.h>
 
@@ -120,14 +121,16 @@ TEST(GalleryScene, HasNamedStaticObjectsAndDynamicTargets) {
     const Scene& scene = coarseScene();
     EXPECT_EQ(scene.source, "builtin:gallery");
     for (const char* name : {"floor", "wall_back", "wall_left", "wall_right", "pillar_0", "pillar_3",
-                             "crate_0", "crate_5", "arch", "target_0", "target_2"}) {
+                             "crate_0", "crate_5", "arch", "target_0", "target_2", "banner_0", "banner_1"}) {
         const SceneObject* o = find(scene, name);
         ASSERT_NE(o, nullptr) << name;
-        EXPECT_EQ(o->dynamic, std::string(name).rfind("target_", 0) == 0) << name;
+        EXPECT_EQ(o->dynamic,
+                  std::string(name).rfind("target_", 0) == 0 || std::string(name).rfind("banner_", 0) == 0)
+            << name;
         EXPECT_GT(o->mesh.triangleCount(), 0u) << name;
         EXPECT_TRUE(o->receivesDecals) << name;
     }
-    EXPECT_EQ(scene.dynamicObjectCount(), 3u);
+    EXPECT_EQ(scene.dynamicObjectCount(), 5u);
     std::set<std::string> names;
     for (const SceneObject& o : scene.objects)
         EXPECT_TRUE(names.insert(o.name).second) << "duplicate " << o.name;
@@ -135,6 +138,7 @@ TEST(GalleryScene, HasNamedStaticObjectsAndDynamicTargets) {
 
 TEST(GalleryScene, TargetCountFollowsSettingsWithinLimits) {
     GallerySettings s = coarse();
+    s.bannerCount = 0;
     s.targetCount = 5;
     EXPECT_EQ(makeGalleryScene(s).dynamicObjectCount(), 5u);
     s.targetCount = -3;
@@ -190,7 +194,7 @@ TEST(GalleryScene, DefaultDetailIsDenseValidAndWellFormed) {
 TEST(GalleryScene, ClosedObjectsAreClosedAtEveryDetail) {
     for (const Scene* scene : {&coarseScene(), &defaultScene()})
         for (const SceneObject& o : scene->objects) {
-            if (o.name == "floor") continue;
+            if (o.name == "floor" || o.name.rfind("banner_", 0) == 0) continue;
             EXPECT_TRUE(closed(o.mesh)) << o.name;
         }
 }
@@ -221,7 +225,7 @@ TEST(GalleryScene, TargetsStandInFrontOfBackWallWithGap) {
     const DBounds wall = worldBounds(*find(scene, "wall_back"));
     int targets = 0;
     for (const SceneObject& o : scene.objects) {
-        if (!o.dynamic) continue;
+        if (o.name.rfind("target_", 0) != 0) continue;
         ++targets;
         const DBounds b = worldBounds(o);
         EXPECT_GE(b.min.z - wallFront, 0.25) << o.name;
@@ -270,7 +274,7 @@ TEST(GalleryScene, PlayerSeesTargetsAndBackWall) {
     const Scene& scene = coarseScene();
     const glm::dvec3 eye(0.0, 1.7, 8.0);
     for (const SceneObject& o : scene.objects) {
-        if (!o.dynamic) continue;
+        if (o.name.rfind("target_", 0) != 0) continue;
         const glm::dvec3 plate = glm::dvec3(o.transform * glm::dvec4(0.0, 1.5, 0.0, 1.0));
         const Hit hit = castRay(scene, eye, glm::normalize(plate - eye));
         ASSERT_NE(hit.object, nullptr) << o.name;
@@ -303,4 +307,15 @@ TEST(GalleryScene, DetailAddsRelief) {
     EXPECT_EQ(grooved(coarseWall->mesh), 0u);
     EXPECT_GT(grooved(mediumWall->mesh), 1000u);
     EXPECT_GT(medium.triangleCount(), coarseScene().triangleCount());
+}
+
+TEST(GalleryScene, BannersHaveUvsThatCanCarryTextureSpaceDecals) {
+    for (const char* name : {"banner_0", "banner_1"}) {
+        const SceneObject* banner = find(defaultScene(), name);
+        ASSERT_NE(banner, nullptr) << name;
+        Result<UvOverlapReport> report = findUvOverlaps(banner->mesh);
+        ASSERT_TRUE(report.ok()) << report.error();
+        EXPECT_TRUE(report->usable()) << name << ": " << report->summary();
+        EXPECT_EQ(report->degenerate, 0u) << name;
+    }
 }

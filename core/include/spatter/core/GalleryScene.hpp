@@ -16,8 +16,11 @@
 // - "target_0".."target_{n-1}" (dynamic): bullseye plates (radius 0.4 m, centre 1.5 m up) on stands,
 //   origins at (x, 0, -3.1) spread over x in [-5, 5]; every target lies in z in [-3.3, -2.99], so at
 //   least 0.3 m in front of the back wall. Submeshes: white plate, red rings, dark steel stand.
+// - "banner_0".."banner_{n-1}" (dynamic): cloth banners 1 m wide and 1.4 m long hanging from
+//   (+-6, 3.4, -2.6), facing +Z: open single-sided grids whose UVs map them once onto the unit
+//   square, so they can carry texture-space decals; the demo waves them on the GPU.
 // Every object's mesh is built around its own origin and placed by its transform. Closed meshes
-// (every edge used by two triangles): walls, pillars, crates, arch, targets. All meshes have unit
+// (every edge used by two triangles): walls, pillars, crates, arch, targets (not the floor and banners). All meshes have unit
 // normals from the displaced geometry, UVs in metres and tangents. World bounds lie inside
 // x in [-10, 10], y in [-0.1, 4.25], z in [-4, 8].
 // Triangles in total (3 targets): detail 0 a few thousand, detail 2 (default) between 40k and 150k.
@@ -33,6 +36,7 @@ struct GallerySettings {
     int detail = 2;      // subdivision level of relief, clamped to [0, 3]; 0 is coarse without brick,
                          // plank and joint relief (fast tests), 2 the default
     int targetCount = 3; // dynamic targets in front of the back wall, clamped to [0, 8]
+    int bannerCount = 2; // dynamic cloth banners, clamped to [0, 2]
 };
 
 Scene makeGalleryScene(const GallerySettings& settings = {});

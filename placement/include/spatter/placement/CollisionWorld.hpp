@@ -15,7 +15,9 @@
 // moved into the float frame, traced (mask 0xFFFFFFFF, geomID and instID starting invalid), and the
 // hit is refined in double on the hit triangle in object space. Among hits at exactly the same
 // distance the one with the smallest (instance, geometry, primitive) wins whatever the traversal
-// order, so intersectBatch (Embree ray streams) returns exactly what intersect returns ray by ray.
+// order.
+// Triangles are intersected with the watertight test of Woop, Benthin and Wald 2013 (as Embree user
+// geometry): a ray through an edge or a vertex shared by triangles always meets one of them.
 //
 // Threading: intersect and intersectBatch are const and may run concurrently from any number of
 // threads; setTransform and removeObject must not run concurrently with anything else.
@@ -87,7 +89,8 @@ public:
     // Closest hit along `ray` with t in [tnear, tfar], or nothing (also for a ray that rayProblem
     // rejects).
     std::optional<Hit> intersect(const Ray& ray) const;
-    // The hits of `rays`, traced as Embree ray streams; element i equals intersect(rays[i]) exactly.
+    // The hits of `rays`; element i equals intersect(rays[i]) exactly (each ray is traced with
+    // rtcIntersect1: Embree's stream and packet paths are slower on the watertight user geometry).
     std::vector<std::optional<Hit>> intersectBatch(const std::vector<Ray>& rays) const;
 
     // Moves a dynamic object (its instance transform; only the top level is recommitted). Fails for

@@ -17,8 +17,11 @@
 // - Same settings (seed), same types and same calls give bit-identical decals.
 // - Decal::center and Decal::frame are in the space of the decal's object (static objects too), so
 //   decals follow their object when it moves and go with it when it is removed.
-// - Mutations (register, spawn*, update, remove, setTransform, removeObject) are single-threaded and
-//   must not overlap other calls on the same system; const calls may run concurrently with each other.
+// - Mutations (registerType, spawn*, update, remove, setTransform, removeObject) may be called from
+//   any number of threads at once: they take the system's lock and run one at a time, each seeing
+//   the world as the previous one left it (a spawn traces against the objects where they are while
+//   it holds the lock). Const calls take no lock: they may run concurrently with each other, but
+//   not with a mutation (decals() and get() return references into state that mutations change).
 
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalType.hpp"
@@ -56,8 +59,12 @@ struct DecalSettings {
     double idSeparation = 1.0;    // dynamic objects whose bounds are closer than this (world units)
                                   // get different object IDs while 255 IDs allow it (>= 0)
     float depthMargin = 0.25f;    // half_depth = max(type.halfDepth, h + depthMargin * max(w, h)) (>= 0)
+    uint32_t batchThreads = 1;    // threads spawnBatch traces with: 1 the calling thread only, 0 one per
+                                  // hardware thread; each traces at least 4096 rays of the batch
 };
 
+// Every decal placed is in exactly one of: alive and not fading, evicted, expired, removed:
+//   placed == alive - fading + evicted + expired + removed.
 struct DecalStats {
     uint64_t placed = 0;
     std::array<uint64_t, kSpawnStatusCount> rejected{}; // calls that placed nothing, by SpawnStatus
@@ -65,6 +72,7 @@ struct DecalStats {
     uint64_t expired = 0;         // decals removed at the end of their type's lifetime
     uint64_t removed = 0;         // decals removed by remove() or removeObject()
     size_t alive = 0;             // decals in decals(), fading ones included
+    size_t fading = 0;            // decals in decals() fading out after an eviction (already in evicted)
     uint32_t sharedObjectIds = 0; // pairs of neighbouring dynamic objects that had to share an object ID
 
     uint64_t rejectedTotal() const;
@@ -85,9 +93,9 @@ struct WorldDecal {
 
 class DecalSystem {
 public:
-    // Takes ownership of `world`. Fails on settings out of the ranges documented in DecalSettings.
-    // Object IDs are assigned here, once, from the objects' bounds at this moment (assignObjectIds
-    // with settings.idSeparation and settings.seed), and stay fixed when objects move.
+    // Takes ownership of `world`. Fails on settings out of the ranges documented in DecalSettings, and
+    // on denormal ones. Object IDs are assigned here, once, from the objects' bounds at this moment
+    // (assignObjectIds with settings.idSeparation and settings.seed), and stay fixed when objects move.
     static Result<DecalSystem> create(CollisionWorld world, const DecalSettings& settings = {});
     // Builds the collision world of `scene` (CollisionWorld::build with no proxies) and the system.
     static Result<DecalSystem> create(const Scene& scene, const DecalSettings& settings = {});
@@ -99,7 +107,8 @@ public:
     // Registers a type and returns its index. Fails (naming the type and field) on an empty or
     // duplicate name, a size that is not finite and positive, sizeJitter outside [0, 1),
     // maxAngleDeg outside (0, 90], a lifetime, fadeOutTime or halfDepth that is negative or not
-    // finite, a negative texture, a non-finite tint or roughness, or more than 65535 types.
+    // finite, a denormal size, sizeJitter, maxAngleDeg, lifetime, fadeOutTime or halfDepth, a
+    // negative texture, a non-finite tint or roughness, or more than 65535 types.
     Result<uint16_t> registerType(const DecalType& type);
     // Index of the type named `name`, or an error naming it.
     Result<uint16_t> typeIndex(const std::string& name) const;
@@ -110,7 +119,9 @@ public:
     // Traces `ray` and places a decal of `type` where it hits. Checks, in order: type (InvalidType),
     // ray (InvalidRay), hit (Missed), object (NotReceiver for a dynamic object when the type has
     // onDynamic == false), angle between -direction and the surface normal (GrazingAngle when above
-    // maxAngleDeg), limits (AreaLimit under LimitPolicy::Reject). The decal's frame: normal = the
+    // maxAngleDeg), the decal's box (InvalidArgument when its size or half-depth in the object's
+    // space is zero, denormal or not finite), limits (AreaLimit under LimitPolicy::Reject); the last
+    // two apply to spawnAt and spawnAttached as well. The decal's frame: normal = the
     // hit's geometric normal (facing the ray); tangent = the ray direction projected onto the surface
     // (frameFromNormalAndHint: then world X, then Duff et al.), turned by a random angle.
     SpawnResult spawn(const Ray& ray, uint16_t type);
@@ -123,22 +134,25 @@ public:
     SpawnResult spawnAt(const glm::dvec3& position, const glm::dvec3& normal, uint16_t type);
 
     // Places a decal on `object` at `localPosition` facing `localNormal` (object space; no ray, no
-    // angle check). InvalidArgument for an index out of range or non-finite or zero vectors;
+    // angle check). InvalidArgument for an index out of range, a non-finite vector, or a normal whose
+    // components are all zero or denormal;
     // NotReceiver for an object not in the world, or dynamic with a type that has onDynamic == false.
     // The tangent starts along the object's X axis, so the result does not depend on where the
     // object is at the time.
     SpawnResult spawnAttached(uint32_t object, const glm::vec3& localPosition, const glm::vec3& localNormal,
                               uint16_t type);
 
-    // Spawns one decal per ray, tracing them together as Embree ray streams. `results` is replaced
+    // Spawns one decal per ray, tracing them with CollisionWorld::intersectBatch. `results` is replaced
     // by one result per ray, and everything (results, decals, IDs, random numbers, limits, stats)
-    // ends exactly as if spawn had been called on each ray in order.
+    // ends exactly as if spawn had been called on each ray in order. With settings().batchThreads != 1
+    // the rays are traced by several threads (CollisionWorld::intersectBatch on slices of the batch),
+    // which changes nothing in the result.
     void spawnBatch(const std::vector<Ray>& rays, uint16_t type, std::vector<SpawnResult>& results);
 
-    // Advances the clock by `dt` seconds (finite, >= 0): a decal whose type has a lifetime stays
-    // opaque until the last fadeOutTime seconds of it, fades linearly to 0, and is removed (expired)
-    // when its age reaches the lifetime; a decal evicted under FadeOldest fades over fadeOutTime from
-    // its eviction and is then removed. Fails, changing nothing, on a bad dt.
+    // Advances the clock by `dt` seconds (finite, >= 0, not denormal): a decal whose type has a
+    // lifetime stays opaque until the last fadeOutTime seconds of it, fades linearly to 0, and is
+    // removed (expired) when its age reaches the lifetime; a decal evicted under FadeOldest fades over
+    // fadeOutTime from its eviction and is then removed. Fails, changing nothing, on a bad dt.
     Status update(double dt);
 
     // Removes a decal. False for a stale or invalid handle.

@@ -16,7 +16,10 @@ enum class SpawnStatus : uint8_t {
                      // while the type has onDynamic == false
     InvalidRay,      // rayProblem rejected the ray
     InvalidType,     // no decal type has that index
-    InvalidArgument, // spawnAt / spawnAttached: non-finite or zero vector, object index out of range
+    InvalidArgument, // spawnAt / spawnAttached: non-finite or zero vector, object index out of range;
+                     // any spawn: the decal's box would be degenerate in its object's space (a size or
+                     // half-depth that is zero, denormal or infinite there: extreme type sizes, a zero
+                     // depthMargin on an exact collision mesh, extreme object scales)
     AreaLimit,       // a limit was reached under LimitPolicy::Reject
 };
 constexpr size_t kSpawnStatusCount = 8;

@@ -36,9 +36,13 @@ Result<Camera> parseCamera(const std::string& text);
 // The camera as parseCamera reads it.
 std::string formatCamera(const Camera& camera);
 
+// Smallest field of view and near plane validateCamera accepts.
+constexpr double kMinFovDeg = 1e-3;
+constexpr double kMinNearPlane = 1e-6;
+
 // Fails when a value is not finite, eye equals target, up is zero or parallel to the view
-// direction, the field of view is outside (0, 180), the near plane is not positive, or a far plane
-// is set (non-zero) but not beyond the near plane.
+// direction, the field of view is outside [kMinFovDeg, 180), the near plane is below
+// kMinNearPlane, or a far plane is set (non-zero) but not beyond the near plane.
 Status validateCamera(const Camera& camera);
 
 // Unit axes of the camera in world space: right (+X), up (+Y) and back (+Z; the view direction

@@ -20,7 +20,8 @@ struct GpuPassTimes {
     double lateMs = 0.0;     // objects that receive no decals, drawn after the decals
     double lightingMs = 0.0; // lighting and tone mapping, or the debug view
     double overlayMs = 0.0;  // line overlays (RenderOverlays)
-    double totalMs() const { return geometryMs + decalsMs + lateMs + lightingMs + overlayMs; }
+    double splatMs = 0.0;    // texture-space decals rendered into their objects' textures, and dilation
+    double totalMs() const { return geometryMs + decalsMs + lateMs + lightingMs + overlayMs + splatMs; }
 };
 
 struct FrameStats {
@@ -39,6 +40,13 @@ struct FrameStats {
     std::string decalVariant;      // features of the decal shader used, e.g. "IDS WRAP NORMAL_MAP FADE"
     size_t overlayLines = 0;       // line segments drawn by the overlays (RenderOverlays)
 
+    // Texture-space decals (DecalMode::TextureSpace objects).
+    size_t decalsTextureSpace = 0;  // decals given to setDecals that lie on texture-space objects
+                                    // (not in `decals`: the decal pass never draws them)
+    size_t decalsSplatted = 0;      // of those, rendered into their object's decal texture this frame
+    size_t textureSpaceObjects = 0; // objects in texture-space mode
+    size_t textureSpaceBytes = 0;   // GPU memory of their decal textures, UV masks and dilation scratch
+
     size_t drawCalls = 0; // every draw of the frame
     size_t triangles = 0; // scene triangles drawn in the geometry passes
     double cpuMs = 0.0;   // wall time of render() on the CPU
@@ -50,7 +58,7 @@ struct FrameStats {
 };
 
 // One JSON object with every field above ("gpu_ms": {"geometry", "decals", "late", "lighting",
-// "overlay", "total", "frame"}).
+// "overlay", "splat", "total", "frame"}).
 std::string toJson(const FrameStats& stats);
 
 } // namespace spatter

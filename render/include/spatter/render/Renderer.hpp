@@ -1,7 +1,11 @@
 #pragma once
 // Renderer: the deferred renderer and its decal projector (Krassnigg, "A Deferred Decal Rendering
 // Technique", Game Engine Gems 2). A frame is
-//   1. geometry   the render meshes of every decal receiver fill the G-buffer (albedo, octahedral
+//   0. splats     only when decals have arrived for texture-space objects (DecalMode.hpp): each is
+//                 rendered once into its object's decal texture through the UVs, then the texture's
+//                 UV islands are dilated by a texel;
+//   1. geometry   the render meshes of every decal receiver, moved by their Deformation and with
+//                 their texture-space decal layer, fill the G-buffer (albedo, octahedral
 //                 normal, roughness/metallic, reversed-Z float depth, and object decal IDs when the
 //                 scene has dynamic objects);
 //   2. decals     one instanced unit cube per visible decal, one draw for the boxes that may contain
@@ -25,6 +29,12 @@
 //   r->setDecalTypes(types);             // appearance, indexed by Decal::type
 //   r->setObjectIds(ids);                // the decal system's 8-bit object IDs
 //   r->setDecals(decalSystem.decals());  // every frame; only changed instances are uploaded
+//
+// Texture-space decals (DecalMode.hpp) and vertex animation (Deformation.hpp), per object:
+//   r->setObjectDecalMode(target, DecalMode::TextureSpace, 512); // fails on overlapping UVs
+//   r->setObjectDeformation(target, {0.08f, 2.0f, 0.0f, 3.0f});  // amplitude, frequency, phase, speed
+//   r->setTime(seconds);                                          // every frame
+//   r->setDecals(decalSystem.decals()); // decals on `target` are splatted once, when first seen
 //   Result<FrameStats> stats = r->render(camera, View::Final);
 //   Result<Image> image = r->readback();
 //
@@ -47,6 +57,8 @@
 #include "spatter/core/Result.hpp"
 #include "spatter/core/Scene.hpp"
 #include "spatter/render/Camera.hpp"
+#include "spatter/render/DecalMode.hpp"
+#include "spatter/render/Deformation.hpp"
 #include "spatter/render/FrameStats.hpp"
 #include "spatter/render/GlContext.hpp"
 #include "spatter/render/RenderOptions.hpp"
@@ -115,11 +127,30 @@ public:
     // IDs are not compared. Before this call every object has ID 0.
     Status setObjectIds(const std::vector<uint8_t>& ids);
 
+    // How the decals of `object` are drawn (DecalMode.hpp). TextureSpace creates the object's decal
+    // textures at textureSize x textureSize (a power of two in [16, 4096]), cleared, and renders its
+    // UV mask; it fails, changing nothing, when the object's render mesh has no UVs or its UV layout
+    // is not usable (findUvOverlaps: overlapping triangles or UVs outside [0, 1]; the error names the
+    // object and the first overlapping pair). Projected frees them. Decals already given to setDecals
+    // are routed anew by the next setDecals call (on a texture-space object: splatted).
+    Status setObjectDecalMode(uint32_t object, DecalMode mode, int textureSize = 512);
+    DecalMode objectDecalMode(uint32_t object) const; // Projected for an index out of range
+    // Erases the texture-space decals splatted on `object` so far (decals still given to setDecals
+    // are not splatted again). Fails for an index out of range or an object not in TextureSpace mode.
+    Status clearObjectDecals(uint32_t object);
+    // The object's vertex animation (Deformation.hpp); amplitude 0 switches it off. Fails, changing
+    // nothing, for an index out of range, a non-finite value or a zero direction.
+    Status setObjectDeformation(uint32_t object, const Deformation& deformation);
+    // The time, in seconds, at which deformations are evaluated. Fails on a non-finite value.
+    Status setTime(double seconds);
+
     // Decal appearance, indexed by Decal::type. Layers (DecalType::texture) refer to the decal
     // texture array: 0..3 are the built-in DecalTexture values.
     void setDecalTypes(const std::vector<DecalType>& types);
     // The decals to draw (object space, as DecalSystem::decals() gives them). Only instances whose
-    // data changed since the last frame are uploaded.
+    // data changed since the last frame are uploaded. Decals on texture-space objects are not drawn
+    // by the decal pass: each is splatted into its object's decal texture by the next render call
+    // after it first appears (recognised by its ID, object, type, frame and size), and stays there.
     void setDecals(const std::vector<Decal>& decals);
     // Adds a decal texture layer (resized to the layer size); `normalMap` may be empty for a flat
     // one. Returns its layer index.

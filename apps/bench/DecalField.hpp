@@ -1,0 +1,60 @@
+#pragma once
+// DecalField: the render benchmarks' scene. A large flat floor seen straight from above, and decals
+// laid on it directly (no ray tracing): a chosen number inside the view, the rest outside the view
+// frustum, each covering a chosen fraction of the screen height. Optionally a small dynamic object in
+// view, which gives the scene an object-ID target (the renderer's IDS variant).
+
+#include "BenchSupport.hpp"
+
+#include "spatter/core/Decal.hpp"
+#include "spatter/core/DecalType.hpp"
+#include "spatter/core/Scene.hpp"
+#include "spatter/render/Camera.hpp"
+#include "spatter/render/FrameStats.hpp"
+#include "spatter/render/RenderOptions.hpp"
+#include "spatter/render/Renderer.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace spatter::bench {
+
+struct DecalFieldView {
+    Camera camera;         // above the origin, looking straight down
+    double halfWidth = 0;  // half extents of the floor area in view (x, z), for the aspect given
+    double halfHeight = 0;
+};
+
+// The view of the floor from 10 units up with a 60 degree vertical field of view.
+DecalFieldView decalFieldView(double aspect);
+
+// The floor (object 0, static, 2 triangles, 200 view widths across) and, with `dynamicObject`, a
+// dynamic 1-unit cube standing on it near a corner of the view (object 1).
+Scene decalFieldScene(const DecalFieldView& view, bool dynamicObject);
+
+// `total` decals of `type` on the floor, `visible` of them with centres inside the view (their boxes
+// entirely in it), the others entirely outside the frustum. Each is a square of `screenFraction`
+// times the visible floor height, randomly turned about the floor normal, half-depth a quarter of its
+// size. Same seed, same decals; visible decals come first.
+std::vector<Decal> decalField(const DecalFieldView& view, size_t total, size_t visible, double screenFraction,
+                              uint16_t type, uint64_t seed);
+
+// GPU pass times of frames rendered with RendererSettings::waitForTimers: medians over the frames.
+struct FrameTimes {
+    double decalsMs = 0, geometryMs = 0, lightingMs = 0, totalMs = 0, cpuMs = 0;
+    size_t frames = 0;
+    bool capped = false;    // stopped by the time limit before the frames asked for
+    FrameStats last;        // the stats of the last frame
+};
+
+// Renders `warmup` frames, then up to `frames` frames, stopping once `maxSeconds` of wall time have
+// passed (at least one timed frame). Fails when a frame fails.
+Result<FrameTimes> timeFrames(Renderer& renderer, const Camera& camera, const RenderOptions& options,
+                              size_t warmup, size_t frames, double maxSeconds);
+
+// Resolutions by name: 720p, 1080p, 4k (16:9).
+bool resolutionByName(const std::string& name, int& width, int& height);
+
+} // namespace spatter::bench

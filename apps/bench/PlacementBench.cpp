@@ -1,0 +1,374 @@
+#include "PlacementBench.hpp"
+
+#include "BenchSupport.hpp"
+#include "RawEmbree.hpp"
+
+#include "spatter/core/GalleryScene.hpp"
+#include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/placement/DecalSystem.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace spatter::bench {
+
+namespace {
+
+const char* kCommand = "placement";
+
+const char* kUsage = R"(usage: spatter-bench placement [MESH] [--backend meshopt|openmesh|auto|render] [--tolerance T%]
+                               [--rays N] [--batches N] [--batch-size N] [--cone DEG] [--min-time S]
+                               [--repetitions N] [--seed N] [--quick] [--json FILE]
+
+What spawning costs over tracing the same ray with raw Embree, on the same collision proxy and the
+same rays, measured in one run with Google Benchmark (repetitions randomly interleaved, medians):
+
+  raw_single    rtcIntersect1 per ray on an Embree triangle scene of the proxy
+  raw_packet    rtcIntersect16 on packets of 16 consecutive rays of the set
+  world_single  CollisionWorld::intersect (validation, double-precision clipping and refinement,
+                watertight user-geometry triangles, order-independent closest hit)
+  world_batch   CollisionWorld::intersectBatch on batches of --batch-size rays
+  spawn         DecalSystem::spawn (the above plus the decal: frame, size, limits, handle)
+  spawn_batch   DecalSystem::spawnBatch on batches of --batch-size rays, one thread
+
+Two ray sets: 'scattered' (rays from random points around the mesh to random surface points) and
+'shotgun' (--batches shots, each --batch-size rays from one origin in a --cone degree cone).
+Targets: spawn within 1.25x of raw_single on scattered rays (spawn_over_raw); spawn_batch at least
+1.3x faster per decal than spawn on shotgun batches (batch_speedup).
+
+MESH       anything loadScene reads, or a file in the shared data (default: stanford-bunny.obj when
+           the shared data is there, else builtin:gallery; with --quick, a coarse gallery)
+--backend  proxy backend (default meshopt); 'render' traces the render mesh itself
+--tolerance proxy tolerance, % of the bounding diagonal (default 0.5%)
+--rays N   scattered rays (default 4096)        --batches N  shotgun shots (default 256)
+--batch-size N  rays per batch (default 16)     --cone DEG   shotgun cone apex angle (default 10)
+--min-time S    Google Benchmark's minimum time per repetition (default 0.3)
+--repetitions N repetitions of each measurement (default 7)
+--quick    small and short: for the smoke test (256 rays, 16 shots, 3 repetitions of 0.01 s)
+--embree-config CONFIG  Embree device configuration for both sides, e.g. "isa=avx2" (default: Embree's)
+--filter REGEX  run only the measurements whose "set/method" name matches (for profiling)
+--json FILE     the numbers as JSON: raw_single_ns, raw_packet_ns, spawn_ns, spawn_batch_ns,
+                spawn_over_raw, batch_speedup and the details
+)";
+
+// Collects the per-iteration real time (ns) of every repetition, by benchmark name.
+class Collector : public benchmark::BenchmarkReporter {
+public:
+    bool ReportContext(const Context&) override { return true; }
+    void ReportRuns(const std::vector<Run>& runs) override {
+        for (const Run& r : runs) {
+            if (r.run_type != Run::RT_Iteration || r.error_occurred) continue;
+            times[r.run_name.function_name].push_back(r.GetAdjustedCPUTime());
+        }
+    }
+    std::map<std::string, std::vector<double>> times;
+};
+
+struct RaySet {
+    std::string name;
+    std::vector<Ray> rays;
+    std::vector<std::vector<Ray>> batches; // consecutive slices of batch-size rays
+};
+
+std::vector<std::vector<Ray>> slices(const std::vector<Ray>& rays, size_t size) {
+    std::vector<std::vector<Ray>> out;
+    for (size_t i = 0; i < rays.size(); i += size)
+        out.emplace_back(rays.begin() + std::ptrdiff_t(i),
+                         rays.begin() + std::ptrdiff_t(std::min(rays.size(), i + size)));
+    return out;
+}
+
+struct Method {
+    const char* key;
+    const char* label;
+};
+constexpr std::array<Method, 6> kMethods{{
+    {"raw_single", "raw rtcIntersect1"},
+    {"raw_packet", "raw rtcIntersect16"},
+    {"world_single", "CollisionWorld::intersect"},
+    {"world_batch", "CollisionWorld::intersectBatch"},
+    {"spawn", "DecalSystem::spawn"},
+    {"spawn_batch", "DecalSystem::spawnBatch"},
+}};
+
+} // namespace
+
+int runPlacementCommand(int argc, char** argv) {
+    Result<Args> parsed = parseArgs(argc, argv,
+                                    {"--backend", "--tolerance", "--rays", "--batches", "--batch-size", "--cone",
+                                     "--min-time", "--repetitions", "--seed", "--filter", "--embree-config", "--json"},
+                                    {"--quick", "--help", "-h"});
+    if (!parsed) return usageError(kCommand, parsed.error());
+    const Args& args = parsed.value();
+    if (args.has("--help")) {
+        std::cout << kUsage;
+        return 0;
+    }
+    if (args.positional.size() > 1) return usageError(kCommand, "at most one MESH");
+    const bool quick = args.has("--quick");
+
+    auto count = [&](const std::string& name, uint64_t fallback) -> Result<uint64_t> {
+        return args.has(name) ? parseCount(args.value(name), name) : Result<uint64_t>(fallback);
+    };
+    Result<uint64_t> rayCount = count("--rays", quick ? 256 : 4096);
+    Result<uint64_t> batchCount = count("--batches", quick ? 16 : 256);
+    Result<uint64_t> batchSize = count("--batch-size", 16);
+    Result<uint64_t> repetitions = count("--repetitions", quick ? 3 : 7);
+    Result<uint64_t> seed = count("--seed", 1);
+    Result<double> cone = parseNumber(args.value("--cone", "10"), "--cone");
+    Result<double> minTime = parseNumber(args.value("--min-time", quick ? "0.01" : "0.3"), "--min-time");
+    std::string tolText = args.value("--tolerance", "0.5%");
+    if (!tolText.empty() && tolText.back() == '%') tolText.pop_back();
+    Result<double> tolerance = parseNumber(tolText, "--tolerance");
+    for (const std::string& e : {rayCount.error(), batchCount.error(), batchSize.error(), repetitions.error(),
+                                 seed.error(), cone.error(), minTime.error(), tolerance.error()})
+        if (!e.empty()) return usageError(kCommand, e);
+    if (rayCount.value() == 0 || batchCount.value() == 0 || batchSize.value() == 0 || repetitions.value() == 0)
+        return usageError(kCommand, "counts must be positive");
+    if (!(cone.value() > 0.0 && cone.value() < 180.0)) return usageError(kCommand, "--cone must be in (0, 180)");
+    if (!(minTime.value() > 0.0)) return usageError(kCommand, "--min-time must be positive");
+    if (!(tolerance.value() > 0.0 && tolerance.value() < 100.0))
+        return usageError(kCommand, "--tolerance must be in (0, 100)%");
+    const std::string backendName = args.value("--backend", "meshopt");
+    std::optional<ProxyBackend> backend;
+    if (backendName == "meshopt")
+        backend = ProxyBackend::MeshOpt;
+    else if (backendName == "openmesh")
+        backend = ProxyBackend::OpenMesh;
+    else if (backendName == "auto")
+        backend = ProxyBackend::Auto;
+    else if (backendName != "render")
+        return usageError(kCommand, "--backend must be meshopt, openmesh, auto or render");
+
+    // The mesh.
+    InputMesh input;
+    if (!args.positional.empty() || !quick) {
+        std::string spec = args.positional.empty() ? std::string("stanford-bunny.obj") : args.positional[0];
+        if (args.positional.empty() && resolveInput(spec).empty()) spec = "builtin:gallery";
+        Result<InputMesh> loaded = loadInputMesh(spec, 0);
+        if (!loaded) {
+            std::cerr << "spatter-bench placement: " << loaded.error() << "\n";
+            return 1;
+        }
+        input = std::move(loaded).value();
+    } else {
+        GallerySettings coarse;
+        coarse.detail = 0;
+        input.name = "gallery-detail0";
+        input.source = "builtin:gallery (detail 0)";
+        input.mesh = mergeReceivers(makeGalleryScene(coarse));
+        input.diagonal = referencedDiagonal(input.mesh);
+    }
+
+    // The proxy both sides trace.
+    Mesh proxyMesh = input.mesh;
+    double errorBound = 0.0;
+    if (backend) {
+        ProxySettings ps;
+        ps.backend = *backend;
+        ps.tolerance = float(tolerance.value() / 100.0);
+        Result<Proxy> proxy = buildProxy(input.mesh, ps);
+        if (!proxy) {
+            std::cerr << "spatter-bench placement: proxy of " << input.name << ": " << proxy.error() << "\n";
+            return 1;
+        }
+        proxyMesh = proxy->mesh;
+        errorBound = proxy->errorBound;
+    }
+    const Scene scene = singleObjectScene(proxyMesh, input.name);
+    std::vector<std::optional<Proxy>> noProxies;
+
+    std::vector<RaySet> sets(2);
+    sets[0].name = "scattered";
+    sets[0].rays = scatteredRays(input.mesh, rayCount.value(), seed.value());
+    sets[1].name = "shotgun";
+    sets[1].rays = shotgunRays(input.mesh, batchCount.value(), batchSize.value(), cone.value(), seed.value() + 1);
+    for (RaySet& s : sets)
+        s.batches = slices(s.rays, batchSize.value());
+
+    DecalSettings ds;
+    ds.seed = seed.value();
+    ds.cellSize = float(input.diagonal / 40.0);
+    DecalType type;
+    type.name = "bench";
+    type.size = glm::vec2(float(0.02 * input.diagonal));
+
+    // One decal system per ray set and spawning method, so that neither sees the other's decals.
+    struct Setup {
+        std::optional<RawEmbree> raw;
+        std::vector<DecalSystem> systems; // spawn, spawn_batch, statuses
+        uint16_t type = 0;
+    };
+    std::vector<Setup> setups(sets.size());
+    for (size_t k = 0; k < sets.size(); ++k) {
+        Result<RawEmbree> raw = RawEmbree::build(proxyMesh, RawGeometry::Triangles, args.value("--embree-config"));
+        if (!raw) {
+            std::cerr << "spatter-bench placement: " << raw.error() << "\n";
+            return 1;
+        }
+        setups[k].raw.emplace(std::move(raw).value());
+        setups[k].raw->prepare(sets[k].rays);
+        for (int s = 0; s < 3; ++s) {
+            WorldSettings ws;
+            ws.deviceConfig = args.value("--embree-config");
+            Result<CollisionWorld> world = CollisionWorld::build(scene, {}, ws);
+            if (!world) {
+                std::cerr << "spatter-bench placement: " << world.error() << "\n";
+                return 1;
+            }
+            Result<DecalSystem> sys = DecalSystem::create(std::move(world).value(), ds);
+            if (!sys) {
+                std::cerr << "spatter-bench placement: " << sys.error() << "\n";
+                return 1;
+            }
+            setups[k].type = sys->registerType(type).value();
+            setups[k].systems.push_back(std::move(sys).value());
+        }
+    }
+
+    // What the rays do (untimed): hits of each path, and the spawn statuses.
+    Json setJson = Json::object();
+    std::vector<std::array<size_t, kSpawnStatusCount>> statuses(sets.size());
+    for (size_t k = 0; k < sets.size(); ++k) {
+        Setup& su = setups[k];
+        DecalSystem& sys = su.systems[2];
+        std::array<size_t, kSpawnStatusCount>& st = statuses[k];
+        st.fill(0);
+        size_t worldHits = 0;
+        for (const Ray& r : sets[k].rays) {
+            worldHits += sys.world().intersect(r).has_value();
+            st[size_t(sys.spawn(r, su.type).status)]++;
+        }
+        Json j;
+        j["rays"] = sets[k].rays.size();
+        j["raw_hits"] = su.raw->traceSingle();
+        j["world_hits"] = worldHits;
+        Json sj = Json::object();
+        for (size_t s = 0; s < kSpawnStatusCount; ++s)
+            if (st[s]) sj[toString(SpawnStatus(s))] = st[s];
+        j["spawn_statuses"] = sj;
+        setJson[sets[k].name] = j;
+    }
+
+    // The measurements.
+    std::vector<std::string> gbArgs = {"spatter-bench", "--benchmark_min_time=" + fmt(minTime.value(), 6),
+                                       "--benchmark_repetitions=" + std::to_string(repetitions.value()),
+                                       "--benchmark_enable_random_interleaving=true"};
+    if (args.has("--filter")) gbArgs.push_back("--benchmark_filter=" + args.value("--filter"));
+    std::vector<char*> gbArgv;
+    for (std::string& a : gbArgs)
+        gbArgv.push_back(a.data());
+    int gbArgc = int(gbArgv.size());
+    benchmark::Initialize(&gbArgc, gbArgv.data());
+    for (size_t k = 0; k < sets.size(); ++k) {
+        RaySet& set = sets[k];
+        Setup& su = setups[k];
+        auto add = [&](const char* method, std::function<void()> body) {
+            const std::string name = set.name + "/" + method;
+            benchmark::RegisterBenchmark(name.c_str(), [body](benchmark::State& state) {
+                for (auto _ : state)
+                    body();
+            })->Unit(benchmark::kNanosecond);
+        };
+        add("raw_single", [&] { benchmark::DoNotOptimize(su.raw->traceSingle()); });
+        add("raw_packet", [&] { benchmark::DoNotOptimize(su.raw->tracePackets()); });
+        add("world_single", [&] {
+            const CollisionWorld& w = su.systems[0].world();
+            for (const Ray& r : set.rays)
+                benchmark::DoNotOptimize(w.intersect(r));
+        });
+        add("world_batch", [&] {
+            const CollisionWorld& w = su.systems[0].world();
+            for (const std::vector<Ray>& b : set.batches)
+                benchmark::DoNotOptimize(w.intersectBatch(b));
+        });
+        add("spawn", [&] {
+            for (const Ray& r : set.rays)
+                benchmark::DoNotOptimize(su.systems[0].spawn(r, su.type));
+        });
+        add("spawn_batch", [&] {
+            std::vector<SpawnResult> results;
+            for (const std::vector<Ray>& b : set.batches) {
+                su.systems[1].spawnBatch(b, su.type, results);
+                benchmark::DoNotOptimize(results.data());
+            }
+        });
+    }
+    std::printf("spatter-bench placement: %s, %zu proxy triangles (%s), %s\n", input.name.c_str(),
+                proxyMesh.triangleCount(), backendName.c_str(), describe(machineInfo()).c_str());
+    std::fflush(stdout);
+    Collector collector;
+    benchmark::RunSpecifiedBenchmarks(&collector);
+    benchmark::ClearRegisteredBenchmarks();
+
+    auto perRay = [&](size_t k, const char* method) {
+        auto it = collector.times.find(sets[k].name + "/" + method);
+        if (it == collector.times.end() || it->second.empty()) return std::nan("");
+        return median(it->second) / double(sets[k].rays.size());
+    };
+    std::vector<std::vector<std::string>> table;
+    for (size_t k = 0; k < sets.size(); ++k) {
+        const double raw = perRay(k, "raw_single");
+        Json& j = setJson[sets[k].name];
+        for (const Method& m : kMethods) {
+            const double ns = perRay(k, m.key);
+            j[std::string(m.key) + "_ns"] = number(ns);
+            table.push_back({sets[k].name, m.label, fixed(ns, 1), fixed(ns / raw, 2) + "x"});
+        }
+        j["spawn_over_raw"] = number(perRay(k, "spawn") / raw);
+        j["batch_speedup"] = number(perRay(k, "spawn") / perRay(k, "spawn_batch"));
+    }
+    const double spawnOverRaw = perRay(0, "spawn") / perRay(0, "raw_single");
+    const double batchSpeedup = perRay(1, "spawn") / perRay(1, "spawn_batch");
+    std::printf("\n");
+    printTable({"rays", "method", "ns/ray", "vs raw single"}, table);
+    std::printf("\nspawn_over_raw (scattered) %.2fx, target <= 1.25x: %s\n", spawnOverRaw,
+                spawnOverRaw <= 1.25 ? "met" : "missed");
+    std::printf("batch_speedup (shotgun, %u rays per shot in a %g degree cone) %.2fx, target >= 1.3x: %s\n",
+                unsigned(batchSize.value()), cone.value(), batchSpeedup, batchSpeedup >= 1.3 ? "met" : "missed");
+    for (size_t k = 0; k < sets.size(); ++k) {
+        std::printf("%s: %zu rays, spawn statuses:", sets[k].name.c_str(), sets[k].rays.size());
+        for (size_t s = 0; s < kSpawnStatusCount; ++s)
+            if (statuses[k][s]) std::printf(" %s %zu", toString(SpawnStatus(s)), statuses[k][s]);
+        std::printf("\n");
+    }
+
+    if (args.has("--json")) {
+        Json j;
+        j["command"] = "placement";
+        j["machine"] = toJson(machineInfo());
+        j["mesh"] = input.name;
+        j["render_triangles"] = input.mesh.triangleCount();
+        j["backend"] = backendName;
+        j["tolerance_rel"] = backend ? tolerance.value() / 100.0 : 0.0;
+        j["proxy_triangles"] = proxyMesh.triangleCount();
+        j["error_bound_rel"] = errorBound / input.diagonal;
+        j["batch_size"] = batchSize.value();
+        j["cone_deg"] = cone.value();
+        j["repetitions"] = repetitions.value();
+        j["min_time_s"] = minTime.value();
+        j["embree_config"] = args.value("--embree-config");
+        j["raw_single_ns"] = number(perRay(0, "raw_single"));
+        j["raw_packet_ns"] = number(perRay(1, "raw_packet"));
+        j["spawn_ns"] = number(perRay(0, "spawn"));
+        j["spawn_batch_ns"] = number(perRay(1, "spawn_batch"));
+        j["spawn_over_raw"] = number(spawnOverRaw);
+        j["batch_speedup"] = number(batchSpeedup);
+        j["sets"] = setJson;
+        if (Status s = writeJson(j, args.value("--json")); !s) {
+            std::cerr << "spatter-bench placement: " << s.error() << "\n";
+            return 1;
+        }
+    }
+    return 0;
+}
+
+} // namespace spatter::bench

@@ -1,0 +1,240 @@
+#include "StressReport.hpp"
+
+#include "StressCase.hpp"
+
+#include "spatter/render/GlContext.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace spatter::bench {
+
+namespace {
+
+namespace fs = std::filesystem;
+using stress::StressCase;
+using stress::StressConfig;
+using stress::StressResult;
+using stress::StressRow;
+
+const char* kUsage = R"(usage: spatter-bench stress [--json FILE] [--quick] [--case NAME]... [--data DIR]
+                            [--place-tool PATH] [--seed N] [--no-gpu]
+
+Runs the numerical stress cases at full size (the `stress` tests run the same code at CI size) and
+prints one line per measurement: the case, what is measured, the largest error measured, its bound,
+the number of samples, and pass, FAIL or info (shown for comparison, no bound).
+
+Options:
+  --json FILE        also write every number (and the first failing inputs) as JSON
+  --quick            the CI sizes instead of the full ones
+  --case NAME        run only this case (repeatable); names are listed below
+  --data DIR         the shared data directory (fandisk); default $SPATTER_SHARED_DATA or ../shared/data
+  --place-tool PATH  the spatter-place binary; default: next to spatter-bench, else the build's
+  --seed N           seed of every random input (default 1)
+  --no-gpu           do not create an OpenGL context (the GPU cases are skipped)
+
+Exit code 0 when every case passes, 1 when one fails, 2 on bad options.
+
+Cases:
+)";
+
+bool exists(const std::string& path) {
+    std::error_code ec;
+    return !path.empty() && fs::exists(path, ec);
+}
+
+std::string selfDirectory() {
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string() : self.parent_path().string();
+}
+
+std::string defaultPlaceTool() {
+    const std::string sibling = selfDirectory() + "/spatter-place";
+    if (exists(sibling)) return sibling;
+    return exists(SPATTER_BENCH_PLACE_TOOL) ? SPATTER_BENCH_PLACE_TOOL : "";
+}
+
+std::string defaultDataDir() {
+    if (const char* env = std::getenv("SPATTER_SHARED_DATA"); env && *env) return env;
+    return exists(SPATTER_BENCH_SHARED_DATA) ? fs::path(SPATTER_BENCH_SHARED_DATA).lexically_normal().string()
+                                             : "";
+}
+
+const char* verdict(const StressRow& row) {
+    if (row.informational) return "info";
+    return row.pass() ? "pass" : "FAIL";
+}
+
+nlohmann::ordered_json number(double v) {
+    if (std::isfinite(v)) return v;
+    return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
+}
+
+void printCase(const StressResult& r) {
+    if (!r.skipped.empty()) {
+        std::printf("%-22s skipped: %s\n", r.name.c_str(), r.skipped.c_str());
+        return;
+    }
+    for (const StressRow& row : r.rows)
+        std::printf("%-22s %-92s %-11.3g %-9.3g %-9zu %s\n", r.name.c_str(), row.metric.c_str(), row.worst,
+                    row.bound, row.samples, verdict(row));
+    for (const std::string& f : r.failures)
+        if (!r.pass()) std::printf("%-22s   failing input: %s\n", r.name.c_str(), f.c_str());
+    std::fflush(stdout);
+}
+
+nlohmann::ordered_json toJson(const StressResult& r) {
+    nlohmann::ordered_json j;
+    j["name"] = r.name;
+    j["technique"] = r.technique;
+    j["seconds"] = r.seconds;
+    j["skipped"] = r.skipped;
+    j["pass"] = r.pass();
+    j["rows"] = nlohmann::ordered_json::array();
+    for (const StressRow& row : r.rows) {
+        nlohmann::ordered_json x;
+        x["metric"] = row.metric;
+        x["worst"] = number(row.worst);
+        x["bound"] = number(row.bound);
+        x["samples"] = row.samples;
+        x["note"] = row.note;
+        x["informational"] = row.informational;
+        x["verdict"] = verdict(row);
+        j["rows"].push_back(std::move(x));
+    }
+    j["failures"] = r.failures;
+    return j;
+}
+
+int usageError(const std::string& message) {
+    std::cerr << "spatter-bench stress: " << message << "\n(see spatter-bench stress --help)\n";
+    return 2;
+}
+
+} // namespace
+
+int runStressCommand(int argc, char** argv) {
+    StressConfig config;
+    config.full = true;
+    config.dataDir = defaultDataDir();
+    config.placeTool = defaultPlaceTool();
+    std::string jsonPath;
+    std::vector<std::string> only;
+    bool gpu = true;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&](std::string& out) {
+            if (i + 1 >= argc) return false;
+            out = argv[++i];
+            return true;
+        };
+        if (a == "--help" || a == "-h") {
+            std::cout << kUsage;
+            for (const StressCase& c : stress::stressCases())
+                std::printf("  %-22s %s\n", c.name, c.summary);
+            return 0;
+        } else if (a == "--json") {
+            if (!value(jsonPath)) return usageError("--json needs a file");
+        } else if (a == "--quick") {
+            config.full = false;
+        } else if (a == "--case") {
+            std::string name;
+            if (!value(name)) return usageError("--case needs a name");
+            bool known = false;
+            for (const StressCase& c : stress::stressCases())
+                known = known || name == c.name;
+            if (!known) return usageError("no case named '" + name + "'");
+            only.push_back(name);
+        } else if (a == "--data") {
+            if (!value(config.dataDir)) return usageError("--data needs a directory");
+        } else if (a == "--place-tool") {
+            if (!value(config.placeTool)) return usageError("--place-tool needs a path");
+        } else if (a == "--seed") {
+            std::string v;
+            if (!value(v)) return usageError("--seed needs a number");
+            char* end = nullptr;
+            errno = 0;
+            config.seed = std::strtoull(v.c_str(), &end, 10);
+            if (v.empty() || end != v.c_str() + v.size() || errno == ERANGE || v[0] == '-')
+                return usageError("--seed needs a non-negative integer");
+        } else if (a == "--no-gpu") {
+            gpu = false;
+        } else {
+            return usageError("unknown option " + a);
+        }
+    }
+
+    std::optional<GlContext> context;
+    if (gpu) {
+        Result<GlContext> gl = GlContext::createHeadless();
+        if (gl) {
+            context.emplace(std::move(gl).value());
+            config.gl = &*context;
+        } else {
+            config.glError = gl.error();
+        }
+    } else {
+        config.glError = "--no-gpu";
+    }
+    const fs::path scratch = fs::temp_directory_path() / ("spatter-bench-stress-" + std::to_string(getpid()));
+    std::error_code ec;
+    fs::remove_all(scratch, ec);
+    fs::create_directories(scratch, ec);
+    if (ec) return usageError("cannot create " + scratch.string() + ": " + ec.message());
+    config.scratchDir = scratch.string();
+
+    std::printf("spatter-bench stress: %s size, seed %llu\n", config.full ? "full" : "CI",
+                static_cast<unsigned long long>(config.seed));
+    std::printf("  GL: %s\n",
+                config.gl ? (config.gl->info().renderer + " (" + config.gl->info().platform + ")").c_str()
+                          : ("none: " + config.glError).c_str());
+    std::printf("  shared data: %s\n", config.dataDir.empty() ? "none" : config.dataDir.c_str());
+    std::printf("  spatter-place: %s\n\n", config.placeTool.empty() ? "none" : config.placeTool.c_str());
+    std::printf("%-22s %-92s %-11s %-9s %-9s %s\n", "case", "measured", "worst", "bound", "samples",
+                "result");
+
+    nlohmann::ordered_json report;
+    report["size"] = config.full ? "full" : "ci";
+    report["seed"] = config.seed;
+    report["gl_renderer"] = config.gl ? config.gl->info().renderer : "";
+    report["gl_version"] = config.gl ? config.gl->info().version : "";
+    report["cases"] = nlohmann::ordered_json::array();
+    bool allPass = true;
+    for (const StressCase& c : stress::stressCases()) {
+        bool wanted = only.empty();
+        for (const std::string& name : only)
+            wanted = wanted || name == c.name;
+        if (!wanted) continue;
+        const StressResult r = stress::runCase(c, config);
+        printCase(r);
+        allPass = allPass && r.pass();
+        report["cases"].push_back(toJson(r));
+    }
+    fs::remove_all(scratch, ec);
+    report["pass"] = allPass;
+    if (!jsonPath.empty()) {
+        std::ofstream out(jsonPath);
+        out << report.dump(2) << "\n";
+        if (!out) {
+            std::cerr << "spatter-bench stress: cannot write " << jsonPath << "\n";
+            return 1;
+        }
+    }
+    std::printf("\n%s\n", allPass ? "every case passes" : "SOME CASES FAIL");
+    return allPass ? 0 : 1;
+}
+
+} // namespace spatter::bench

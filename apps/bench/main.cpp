@@ -1,0 +1,52 @@
+// spatter-bench COMMAND [ARGS...]: benchmarks and reports. Each command is one entry of kCommands;
+// adding one is adding its entry (and its file).
+
+#include "PlacementBench.hpp"
+#include "StressReport.hpp"
+#include "Tradeoff.hpp"
+
+#include <cstdio>
+#include <cstring>
+
+namespace {
+
+struct Command {
+    const char* name;
+    const char* summary;
+    int (*run)(int argc, char** argv); // argv[0] is the command's name
+};
+
+const Command kCommands[] = {
+    {"stress", "numerical stress cases at full size: a report table (--json FILE for the numbers)",
+     spatter::bench::runStressCommand},
+    {"placement", "spawn and spawnBatch against raw Embree on the same proxy and rays (--json FILE)",
+     spatter::bench::runPlacementCommand},
+    {"tradeoff", "run time against error: render mesh and proxies per backend and tolerance, three.js peer",
+     spatter::bench::runTradeoffCommand},
+};
+
+void usage(std::FILE* out) {
+    std::fprintf(out, "usage: spatter-bench COMMAND [ARGS...]\n\ncommands:\n");
+    for (const Command& c : kCommands)
+        std::fprintf(out, "  %-12s %s\n", c.name, c.summary);
+    std::fprintf(out, "\n'spatter-bench COMMAND --help' describes a command.\n");
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0 ||
+        std::strcmp(argv[1], "help") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    for (const Command& c : kCommands)
+        if (std::strcmp(argv[1], c.name) == 0) return c.run(argc - 1, argv + 1);
+    std::fprintf(stderr, "spatter-bench: unknown command '%s'\n", argv[1]);
+    usage(stderr);
+    return 2;
+}

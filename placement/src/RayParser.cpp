@@ -1,0 +1,39 @@
+#include "spatter/placement/RayParser.hpp"
+
+#include <cstdlib>
+#include <sstream>
+#include <vector>
+
+namespace spatter {
+
+static bool parseNumber(const std::string& s, double& out) {
+    if (s.empty()) return false;
+    char* end = nullptr;
+    out = std::strtod(s.c_str(), &end);
+    return end == s.c_str() + s.size();
+}
+
+RayLine parseRayLine(const std::string& raw, size_t lineNumber) {
+    RayLine p;
+    const std::string line = raw.substr(0, raw.find('#'));
+    std::istringstream in(line);
+    std::vector<std::string> tokens;
+    for (std::string tok; in >> tok;)
+        tokens.push_back(tok);
+    if (tokens.empty()) return p;
+    p.isRay = true;
+    double v[6];
+    bool good = tokens.size() == 6;
+    for (size_t i = 0; good && i < 6; ++i)
+        good = parseNumber(tokens[i], v[i]);
+    if (!good) {
+        p.error = "line " + std::to_string(lineNumber) + ": expected 6 numbers \"ox oy oz dx dy dz\"";
+        return p;
+    }
+    p.ok = true;
+    p.ray.origin = glm::dvec3(v[0], v[1], v[2]);
+    p.ray.direction = glm::dvec3(v[3], v[4], v[5]);
+    return p;
+}
+
+} // namespace spatter
