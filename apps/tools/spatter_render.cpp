@@ -29,6 +29,7 @@ const char* kUsage = R"(usage: spatter-render SCENE [--decals FILE.jsonl | --ray
                       [--camera "eye=x,y,z;target=x,y,z;up=x,y,z;fov=DEG"] [--size WxH]
                       [--view final|albedo|normal|depth|ids|coverage] [--out FILE.png]
                       [--stats FILE.json] [--translate X,Y,Z] [--texture NAME]
+                      [--texture-space OBJECT[:SIZE]]...
                       [--decal-size W[,H]] [--max-angle DEG] [--seed N]
 
 Renders SCENE (builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file) with the deferred
@@ -56,6 +57,12 @@ View:
   --view V        final (lit, default), albedo, normal, depth, ids, or coverage: white where at
                   least one decal writes the pixel (inside its box, object ID matching, within its
                   max angle), black elsewhere
+  --texture-space OBJECT[:SIZE]
+                  draw the decals of the named object in texture space (rendered once into its own
+                  SIZE x SIZE decal texture through its UVs, default 512) instead of projecting
+                  them; repeatable. The object's UVs must not overlap and must lie in [0, 1]: a
+                  mesh that breaks this is reported (first overlapping triangles) and the tool
+                  exits with 1.
   --translate X,Y,Z  move the scene by this offset first; decals, rays and camera are given in the
                   moved world
 Output:
@@ -350,6 +357,7 @@ int main(int argc, char** argv) {
     glm::dvec3 translate(0.0);
     double decalW = 0.3, decalH = 0.3, maxAngle = 80.0;
     uint64_t seed = 1;
+    std::vector<std::pair<std::string, int>> textureSpace; // object name, texture size
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         std::string v;
@@ -393,6 +401,14 @@ int main(int argc, char** argv) {
         } else if (a == "--translate") {
             if (!value() || !parseVec3(v, translate))
                 return usageError("--translate needs three finite numbers X,Y,Z");
+        } else if (a == "--texture-space") {
+            if (!value() || v.empty()) return usageError("--texture-space needs OBJECT[:SIZE]");
+            const size_t colon = v.rfind(':');
+            double size = 512.0;
+            if (colon != std::string::npos &&
+                (!parseDouble(v.substr(colon + 1), size) || size != std::floor(size) || size < 1.0))
+                return usageError("--texture-space needs OBJECT[:SIZE] with a whole SIZE");
+            textureSpace.push_back({v.substr(0, colon), int(size)});
         } else if (a == "--texture") {
             if (!value()) return usageError("--texture needs bullet_hole, blood, paint, scorch or mixed");
             textureName = v;
@@ -462,6 +478,16 @@ int main(int argc, char** argv) {
     if (spatter::Status s = renderer->setScene(scene.value()); !s) return failure(s.error());
     if (!loaded.objectIds.empty())
         if (spatter::Status s = renderer->setObjectIds(loaded.objectIds); !s) return failure(s.error());
+    for (const auto& [name, size] : textureSpace) {
+        uint32_t object = 0;
+        while (object < scene->objects.size() && scene->objects[object].name != name)
+            ++object;
+        if (object == scene->objects.size())
+            return failure("--texture-space: no object named '" + name + "'");
+        if (spatter::Status s = renderer->setObjectDecalMode(object, spatter::DecalMode::TextureSpace, size);
+            !s)
+            return failure(s.error());
+    }
     renderer->setDecalTypes(loaded.types);
     renderer->setDecals(loaded.decals);
     spatter::Result<spatter::FrameStats> stats = renderer->render(camera, view);

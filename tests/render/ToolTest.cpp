@@ -178,3 +178,27 @@ TEST(SpatterRender, ReportsBadInputThroughItsExitCode) {
     EXPECT_EQ(runTool(wall + " --decals " + dir + "/other.jsonl --out " + dir + "/x.png"),
               1); // unknown object
 }
+
+TEST(SpatterRender, TextureSpaceModeReportsOverlappingUvsAndSplatsOnUsableMeshes) {
+    SPATTER_REQUIRE_TOOL_GL();
+    const std::string dir = test::scratchDir("render-tool-texture-space");
+    // The wall's UVs are missing: it cannot take texture-space decals.
+    EXPECT_EQ(runTool(writeWall(dir) + " --texture-space wall --out " + dir + "/a.png"), 1);
+    EXPECT_EQ(runTool(writeWall(dir) + " --texture-space nothing --out " + dir + "/a.png"), 1);
+    EXPECT_EQ(runTool(writeWall(dir) + " --texture-space wall:0.5 --out " + dir + "/a.png"), 2);
+    // A quad with UVs that fold back over themselves (two triangles on the same texels).
+    const std::string folded = dir + "/folded.obj";
+    std::ofstream(folded) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                             "f 1/1 2/2 3/3\nf 1/1 3/3 4/2\n";
+    EXPECT_EQ(runTool(folded + " --texture-space folded --out " + dir + "/b.png"), 1);
+    // The gallery's first banner has a usable layout: a shot at it is splatted into its texture.
+    std::ofstream(dir + "/rays.txt") << "0 1.7 4 -6 1.0 -6.6\n";
+    ASSERT_EQ(runTool("builtin:gallery --texture-space banner_0:256 --size 96x54 --rays " + dir +
+                      "/rays.txt --out " + dir + "/c.png --stats " + dir + "/c.json"),
+              0);
+    std::ifstream in(dir + "/c.json");
+    const nlohmann::json stats = nlohmann::json::parse(in, nullptr, false);
+    ASSERT_TRUE(stats.is_object());
+    EXPECT_EQ(stats["texture_space_objects"], 1);
+    EXPECT_EQ(stats["decals_splatted"], 1);
+}
