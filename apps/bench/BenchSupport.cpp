@@ -166,7 +166,8 @@ Mesh mergeReceivers(const Scene& scene) {
         const bool mirrored = glm::determinant(glm::dmat3(o.transform)) < 0.0;
         for (size_t t = 0; t + 2 < o.mesh.indices.size(); t += 3) {
             const uint32_t a = o.mesh.indices[t], b = o.mesh.indices[t + 1], c = o.mesh.indices[t + 2];
-            out.indices.insert(out.indices.end(), {base + a, base + (mirrored ? c : b), base + (mirrored ? b : c)});
+            out.indices.insert(out.indices.end(),
+                               {base + a, base + (mirrored ? c : b), base + (mirrored ? b : c)});
         }
     }
     computeNormals(out);
@@ -219,7 +220,8 @@ Status writeObj(const Mesh& mesh, const std::string& path) {
     for (const glm::vec3& p : mesh.positions)
         std::fprintf(f, "v %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z));
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
-        std::fprintf(f, "f %u %u %u\n", mesh.indices[t] + 1, mesh.indices[t + 1] + 1, mesh.indices[t + 2] + 1);
+        std::fprintf(f, "f %u %u %u\n", mesh.indices[t] + 1, mesh.indices[t + 1] + 1,
+                     mesh.indices[t + 2] + 1);
     const bool ok = std::fclose(f) == 0;
     return ok ? Status() : Status(fail("cannot write '" + path + "'"));
 }
@@ -421,7 +423,8 @@ Status writeJson(const Json& j, const std::string& path) {
 
 std::string scratchDirectory(const std::string& name) {
     std::error_code ec;
-    const fs::path dir = fs::temp_directory_path(ec) / ("spatter-bench-" + std::to_string(getpid()) + "-" + name);
+    const fs::path dir =
+        fs::temp_directory_path(ec) / ("spatter-bench-" + std::to_string(getpid()) + "-" + name);
     fs::remove_all(dir, ec);
     fs::create_directories(dir, ec);
     return dir.string();

@@ -84,7 +84,9 @@ Result<FrameTimes> timeFrames(Renderer& renderer, const Camera& camera, const Re
                               size_t warmup, size_t frames, double maxSeconds) {
     FrameTimes t;
     const double start = now();
-    for (size_t i = 0; i < warmup; ++i) {
+    // Warm-up: `warmup` frames, and more (up to 20) until 0.3 s have passed, so that a GPU leaves its
+    // idle clocks; a slow renderer stops after the first once half the time is spent.
+    for (size_t i = 0; i < warmup || (i < 20 && now() - start < 0.3); ++i) {
         Result<FrameStats> s = renderer.render(camera, options);
         if (!s) return fail(s.error());
         if (now() - start > 0.5 * maxSeconds) break;

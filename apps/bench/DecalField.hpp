@@ -22,8 +22,8 @@
 namespace spatter::bench {
 
 struct DecalFieldView {
-    Camera camera;         // above the origin, looking straight down
-    double halfWidth = 0;  // half extents of the floor area in view (x, z), for the aspect given
+    Camera camera;        // above the origin, looking straight down
+    double halfWidth = 0; // half extents of the floor area in view (x, z), for the aspect given
     double halfHeight = 0;
 };
 
@@ -45,12 +45,13 @@ std::vector<Decal> decalField(const DecalFieldView& view, size_t total, size_t v
 struct FrameTimes {
     double decalsMs = 0, geometryMs = 0, lightingMs = 0, totalMs = 0, cpuMs = 0;
     size_t frames = 0;
-    bool capped = false;    // stopped by the time limit before the frames asked for
-    FrameStats last;        // the stats of the last frame
+    bool capped = false; // stopped by the time limit before the frames asked for
+    FrameStats last;     // the stats of the last frame
 };
 
-// Renders `warmup` frames, then up to `frames` frames, stopping once `maxSeconds` of wall time have
-// passed (at least one timed frame). Fails when a frame fails.
+// Renders `warmup` frames (more, up to 20, until 0.3 s have passed), then up to `frames` frames,
+// stopping once `maxSeconds` of wall time have passed (at least one timed frame). Fails when a frame
+// fails.
 Result<FrameTimes> timeFrames(Renderer& renderer, const Camera& camera, const RenderOptions& options,
                               size_t warmup, size_t frames, double maxSeconds);
 

@@ -62,8 +62,14 @@ Result<Mesh> loopSubdivide(const Mesh& mesh, int steps, size_t& dropped) {
             ++added;
     }
     if (added == 0) return fail("Loop subdivision: no face of the mesh could be added");
+    om.request_vertex_status();
+    om.request_edge_status();
+    om.request_face_status();
     om.delete_isolated_vertices();
     om.garbage_collection();
+    om.release_vertex_status();
+    om.release_edge_status();
+    om.release_face_status();
     OpenMesh::Subdivider::Uniform::LoopT<LoopMesh> loop;
     loop.attach(om);
     loop(size_t(steps));

@@ -24,7 +24,8 @@ namespace {
 
 const char* kCommand = "placement";
 
-const char* kUsage = R"(usage: spatter-bench placement [MESH] [--backend meshopt|openmesh|auto|render] [--tolerance T%]
+const char* kUsage =
+    R"(usage: spatter-bench placement [MESH] [--backend meshopt|openmesh|auto|render] [--tolerance T%]
                                [--rays N] [--batches N] [--batch-size N] [--cone DEG] [--min-time S]
                                [--repetitions N] [--seed N] [--quick] [--json FILE]
 
@@ -102,10 +103,11 @@ constexpr std::array<Method, 6> kMethods{{
 } // namespace
 
 int runPlacementCommand(int argc, char** argv) {
-    Result<Args> parsed = parseArgs(argc, argv,
-                                    {"--backend", "--tolerance", "--rays", "--batches", "--batch-size", "--cone",
-                                     "--min-time", "--repetitions", "--seed", "--filter", "--embree-config", "--json"},
-                                    {"--quick", "--help", "-h"});
+    Result<Args> parsed =
+        parseArgs(argc, argv,
+                  {"--backend", "--tolerance", "--rays", "--batches", "--batch-size", "--cone", "--min-time",
+                   "--repetitions", "--seed", "--filter", "--embree-config", "--json"},
+                  {"--quick", "--help", "-h"});
     if (!parsed) return usageError(kCommand, parsed.error());
     const Args& args = parsed.value();
     if (args.has("--help")) {
@@ -131,9 +133,11 @@ int runPlacementCommand(int argc, char** argv) {
     for (const std::string& e : {rayCount.error(), batchCount.error(), batchSize.error(), repetitions.error(),
                                  seed.error(), cone.error(), minTime.error(), tolerance.error()})
         if (!e.empty()) return usageError(kCommand, e);
-    if (rayCount.value() == 0 || batchCount.value() == 0 || batchSize.value() == 0 || repetitions.value() == 0)
+    if (rayCount.value() == 0 || batchCount.value() == 0 || batchSize.value() == 0 ||
+        repetitions.value() == 0)
         return usageError(kCommand, "counts must be positive");
-    if (!(cone.value() > 0.0 && cone.value() < 180.0)) return usageError(kCommand, "--cone must be in (0, 180)");
+    if (!(cone.value() > 0.0 && cone.value() < 180.0))
+        return usageError(kCommand, "--cone must be in (0, 180)");
     if (!(minTime.value() > 0.0)) return usageError(kCommand, "--min-time must be positive");
     if (!(tolerance.value() > 0.0 && tolerance.value() < 100.0))
         return usageError(kCommand, "--tolerance must be in (0, 100)%");
@@ -190,7 +194,8 @@ int runPlacementCommand(int argc, char** argv) {
     sets[0].name = "scattered";
     sets[0].rays = scatteredRays(input.mesh, rayCount.value(), seed.value());
     sets[1].name = "shotgun";
-    sets[1].rays = shotgunRays(input.mesh, batchCount.value(), batchSize.value(), cone.value(), seed.value() + 1);
+    sets[1].rays =
+        shotgunRays(input.mesh, batchCount.value(), batchSize.value(), cone.value(), seed.value() + 1);
     for (RaySet& s : sets)
         s.batches = slices(s.rays, batchSize.value());
 
@@ -209,7 +214,8 @@ int runPlacementCommand(int argc, char** argv) {
     };
     std::vector<Setup> setups(sets.size());
     for (size_t k = 0; k < sets.size(); ++k) {
-        Result<RawEmbree> raw = RawEmbree::build(proxyMesh, RawGeometry::Triangles, args.value("--embree-config"));
+        Result<RawEmbree> raw =
+            RawEmbree::build(proxyMesh, RawGeometry::Triangles, args.value("--embree-config"));
         if (!raw) {
             std::cerr << "spatter-bench placement: " << raw.error() << "\n";
             return 1;
@@ -333,7 +339,8 @@ int runPlacementCommand(int argc, char** argv) {
     std::printf("\nspawn_over_raw (scattered) %.2fx, target <= 1.25x: %s\n", spawnOverRaw,
                 spawnOverRaw <= 1.25 ? "met" : "missed");
     std::printf("batch_speedup (shotgun, %u rays per shot in a %g degree cone) %.2fx, target >= 1.3x: %s\n",
-                unsigned(batchSize.value()), cone.value(), batchSpeedup, batchSpeedup >= 1.3 ? "met" : "missed");
+                unsigned(batchSize.value()), cone.value(), batchSpeedup,
+                batchSpeedup >= 1.3 ? "met" : "missed");
     for (size_t k = 0; k < sets.size(); ++k) {
         std::printf("%s: %zu rays, spawn statuses:", sets[k].name.c_str(), sets[k].rays.size());
         for (size_t s = 0; s < kSpawnStatusCount; ++s)

@@ -61,7 +61,8 @@ RawEmbree::~RawEmbree() = default;
 Result<RawEmbree> RawEmbree::build(const Mesh& mesh, RawGeometry geometry, const std::string& deviceConfig) {
     auto impl = std::make_unique<Impl>();
     impl->device = rtcNewDevice(deviceConfig.empty() ? nullptr : deviceConfig.c_str());
-    if (!impl->device) return fail("raw Embree: cannot create a device with configuration \"" + deviceConfig + "\"");
+    if (!impl->device)
+        return fail("raw Embree: cannot create a device with configuration \"" + deviceConfig + "\"");
     rtcSetDeviceMemoryMonitorFunction(impl->device, countBytes, &impl->bytes);
     impl->scene = rtcNewScene(impl->device);
     rtcSetSceneFlags(impl->scene, RTC_SCENE_FLAG_ROBUST);
@@ -71,8 +72,8 @@ Result<RawEmbree> RawEmbree::build(const Mesh& mesh, RawGeometry geometry, const
         g = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_TRIANGLE);
         auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                               3 * sizeof(float), mesh.positions.size()));
-        auto* t = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(uint32_t), triangles));
+        auto* t = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triangles));
         if (!v || !t) {
             rtcReleaseGeometry(g);
             return fail("raw Embree: cannot allocate the geometry buffers");

@@ -38,7 +38,8 @@ std::string lastLines(const std::string& path, size_t count) {
 } // namespace
 
 PeerRun runThreejsPeer(const std::string& objPath, const std::string& raysPath, double decalSize,
-                       double maxSeconds, uint64_t seed, const std::string& workDir, const std::string& peerDir) {
+                       double maxSeconds, uint64_t seed, const std::string& workDir,
+                       const std::string& peerDir) {
     PeerRun run;
     const std::string dir = peerDir.empty() ? std::string(SPATTER_BENCH_PEER_DIR) : peerDir;
     std::error_code ec;
@@ -62,9 +63,9 @@ PeerRun runThreejsPeer(const std::string& objPath, const std::string& raysPath, 
     const std::string out = workDir + "/peer.json";
     std::ostringstream cmd;
     cmd.precision(17);
-    cmd << "node " << quote(dir + "/decals.mjs") << " --mesh " << quote(objPath) << " --rays " << quote(raysPath)
-        << " --size " << decalSize << " --max-seconds " << maxSeconds << " --seed " << seed << " --json "
-        << quote(out) << " >" << quote(log) << " 2>&1";
+    cmd << "node " << quote(dir + "/decals.mjs") << " --mesh " << quote(objPath) << " --rays "
+        << quote(raysPath) << " --size " << decalSize << " --max-seconds " << maxSeconds << " --seed " << seed
+        << " --json " << quote(out) << " >" << quote(log) << " 2>&1";
     if (std::system(cmd.str().c_str()) != 0) {
         run.skipped = "the peer failed: " + lastLines(log, 2);
         return run;

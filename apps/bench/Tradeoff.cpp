@@ -27,7 +27,8 @@ namespace {
 
 const char* kCommand = "tradeoff";
 
-const char* kUsage = R"(usage: spatter-bench tradeoff MESH|SCENE [--subdivide N] [--backends LIST] [--tolerances LIST]
+const char* kUsage =
+    R"(usage: spatter-bench tradeoff MESH|SCENE [--subdivide N] [--backends LIST] [--tolerances LIST]
                               [--rays N] [--batch-size N] [--passes N] [--cap-seconds S]
                               [--openmesh-max-triangles N] [--coverage-decals N] [--size WxH]
                               [--camera SPEC] [--no-render] [--no-peer] [--peer-seconds S]
@@ -138,7 +139,8 @@ public:
             shot.origin = seen->position + randomConeDirection(toEye, kPi / 3.0, rng) * (0.5 * diagonal);
             shot.direction = seen->position - shot.origin;
             const std::optional<Hit> lands = renderWorld.intersect(shot);
-            if (lands && glm::length(lands->position - seen->position) <= 1e-6 * diagonal) p.rays_.push_back(shot);
+            if (lands && glm::length(lands->position - seen->position) <= 1e-6 * diagonal)
+                p.rays_.push_back(shot);
         }
         return p;
     }
@@ -309,11 +311,12 @@ std::vector<std::string> tableRow(const Row& r) {
 } // namespace
 
 int runTradeoffCommand(int argc, char** argv) {
-    Result<Args> parsed = parseArgs(
-        argc, argv,
-        {"--subdivide", "--backends", "--tolerances", "--rays", "--batch-size", "--passes", "--cap-seconds",
-         "--openmesh-max-triangles", "--coverage-decals", "--size", "--camera", "--peer-seconds", "--seed", "--json"},
-        {"--no-render", "--no-peer", "--quick", "--help", "-h"});
+    Result<Args> parsed =
+        parseArgs(argc, argv,
+                  {"--subdivide", "--backends", "--tolerances", "--rays", "--batch-size", "--passes",
+                   "--cap-seconds", "--openmesh-max-triangles", "--coverage-decals", "--size", "--camera",
+                   "--peer-seconds", "--seed", "--json"},
+                  {"--no-render", "--no-peer", "--quick", "--help", "-h"});
     if (!parsed) return usageError(kCommand, parsed.error());
     const Args& args = parsed.value();
     if (args.has("--help") || args.has("-h")) {
@@ -345,11 +348,14 @@ int runTradeoffCommand(int argc, char** argv) {
     const uint64_t seed = count("--seed", 1);
     const double cap = real("--cap-seconds", 120.0);
     const double peerSeconds = real("--peer-seconds", quick ? 5.0 : 30.0);
-    std::vector<double> tolerances = quick ? std::vector<double>{0.5, 2} : std::vector<double>{0.05, 0.1, 0.5, 1, 2, 5};
+    std::vector<double> tolerances =
+        quick ? std::vector<double>{0.5, 2} : std::vector<double>{0.05, 0.1, 0.5, 1, 2, 5};
     if (args.has("--tolerances")) {
         Result<std::vector<double>> t = parseNumberList(args.value("--tolerances"), "--tolerances");
-        if (!t) errors.push_back(t.error());
-        else tolerances = t.value();
+        if (!t)
+            errors.push_back(t.error());
+        else
+            tolerances = t.value();
     }
     std::vector<ProxyBackend> backends = {ProxyBackend::OpenMesh, ProxyBackend::MeshOpt};
     if (args.has("--backends")) {
@@ -357,17 +363,22 @@ int runTradeoffCommand(int argc, char** argv) {
         std::string list = args.value("--backends") + ",";
         for (size_t a = 0, b; (b = list.find(',', a)) != std::string::npos; a = b + 1) {
             const std::string name = list.substr(a, b - a);
-            if (name == "openmesh") backends.push_back(ProxyBackend::OpenMesh);
-            else if (name == "meshopt") backends.push_back(ProxyBackend::MeshOpt);
-            else errors.push_back("--backends: unknown backend '" + name + "' (openmesh, meshopt)");
+            if (name == "openmesh")
+                backends.push_back(ProxyBackend::OpenMesh);
+            else if (name == "meshopt")
+                backends.push_back(ProxyBackend::MeshOpt);
+            else
+                errors.push_back("--backends: unknown backend '" + name + "' (openmesh, meshopt)");
         }
     }
     int width = 640, height = 480;
     if (args.has("--size") && std::sscanf(args.value("--size").c_str(), "%dx%d", &width, &height) != 2)
         errors.push_back("--size must be WxH");
     if (!errors.empty()) return usageError(kCommand, errors.front());
-    if (subdivide > 4) return usageError(kCommand, "--subdivide at most 4 (each step makes 4 times the triangles)");
-    if (rayCount == 0 || batchSize == 0 || passes == 0) return usageError(kCommand, "counts must be positive");
+    if (subdivide > 4)
+        return usageError(kCommand, "--subdivide at most 4 (each step makes 4 times the triangles)");
+    if (rayCount == 0 || batchSize == 0 || passes == 0)
+        return usageError(kCommand, "counts must be positive");
     if (width < 16 || height < 16 || width > 8192 || height > 8192)
         return usageError(kCommand, "--size must be between 16x16 and 8192x8192");
     for (double t : tolerances)
@@ -387,9 +398,9 @@ int runTradeoffCommand(int argc, char** argv) {
     std::printf("spatter-bench tradeoff: %s (%s), %zu triangles, diagonal %.6g, loaded in %.1f s%s\n",
                 input.name.c_str(), input.source.c_str(), input.mesh.triangleCount(), diagonal,
                 now() - loadStart,
-                input.droppedFaces ? (", " + std::to_string(input.droppedFaces) + " non-manifold faces left out")
-                                         .c_str()
-                                   : "");
+                input.droppedFaces
+                    ? (", " + std::to_string(input.droppedFaces) + " non-manifold faces left out").c_str()
+                    : "");
     std::printf("machine: %s\n", describe(machine).c_str());
     std::fflush(stdout);
 
@@ -494,8 +505,8 @@ int runTradeoffCommand(int argc, char** argv) {
                 ps.tolerance = float(tol / 100.0);
                 ps.cacheDirectory = work + "/cache";
                 const double buildStart = now();
-                Result<Proxy> proxy = buildProxy(input.mesh, ps, nullptr,
-                                                 [&](float, const char*) { return now() - buildStart < cap; });
+                Result<Proxy> proxy = buildProxy(
+                    input.mesh, ps, nullptr, [&](float, const char*) { return now() - buildStart < cap; });
                 if (!proxy) {
                     r.status = proxy.error() == "cancelled" ? "capped" : "failed: " + proxy.error();
                     skipRest = proxy.error() == "cancelled";
@@ -514,8 +525,8 @@ int runTradeoffCommand(int argc, char** argv) {
                     if (!world) {
                         r.status = "failed: " + world.error();
                     } else {
-                        measureErrors(world->intersectBatch(rays), renderHits, rays, renderQuery.value(), diagonal,
-                                      r);
+                        measureErrors(world->intersectBatch(rays), renderHits, rays, renderQuery.value(),
+                                      diagonal, r);
                         Result<Timing> t =
                             timePlacement(scene, proxies, rays, type, diagonal, batchSize, passes, seed);
                         if (t) {
@@ -571,12 +582,12 @@ int runTradeoffCommand(int argc, char** argv) {
             return p.contains(key) && p[key].is_number() ? p[key].get<double>() : std::nan("");
         };
         table.push_back({"three.js", "0", std::to_string(input.mesh.triangleCount()), "0", "-",
-                         fixed(get("bvh_build_s"), 3), fixed(get("per_decal_ns"), 0), "-", "0", "0", "0", "0", "0",
-                         "0", "-", "0"});
+                         fixed(get("bvh_build_s"), 3), fixed(get("per_decal_ns"), 0), "-", "0", "0", "0", "0",
+                         "0", "0", "-", "0"});
     }
     std::printf("\n");
-    printTable({"backend", "tol%", "tris", "build s", "reload s", "bvh s", "spawn ns", "batch ns", "d50%", "d99%",
-                "dmax%", "off99%", "n99 deg", "disagree%", "IoU", "h%"},
+    printTable({"backend", "tol%", "tris", "build s", "reload s", "bvh s", "spawn ns", "batch ns", "d50%",
+                "d99%", "dmax%", "off99%", "n99 deg", "disagree%", "IoU", "h%"},
                table);
 
     if (args.has("--json")) {

@@ -1,7 +1,10 @@
 // spatter-bench COMMAND [ARGS...]: benchmarks and reports. Each command is one entry of kCommands;
 // adding one is adding its entry (and its file).
 
+#include "Memory.hpp"
 #include "PlacementBench.hpp"
+#include "RenderBench.hpp"
+#include "SkipBench.hpp"
 #include "StressReport.hpp"
 #include "Tradeoff.hpp"
 
@@ -23,6 +26,12 @@ const Command kCommands[] = {
      spatter::bench::runPlacementCommand},
     {"tradeoff", "run time against error: render mesh and proxies per backend and tolerance, three.js peer",
      spatter::bench::runTradeoffCommand},
+    {"render", "GPU time of the decal pass: count, visible fraction, coverage, resolution, features",
+     spatter::bench::runRenderCommand},
+    {"memory", "bytes per decal (CPU, GPU) and per object (proxy, BVH, decal textures)",
+     spatter::bench::runMemoryCommand},
+    {"skip", "what each skip of the design saves: on against forced off, in one run",
+     spatter::bench::runSkipCommand},
 };
 
 void usage(std::FILE* out) {

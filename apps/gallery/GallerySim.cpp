@@ -32,6 +32,13 @@ static std::vector<std::pair<ShotKind, DecalType>> galleryTypes() {
     bullet.roughness = 0.9f;
     types.push_back({ShotKind::Bullet, bullet});
 
+    // A bullet hole with real depth: a crater behind a stencil-cut hole in the surface.
+    DecalType crater = bullet;
+    crater.name = "bullet_crater";
+    crater.size = {0.12f, 0.12f};
+    crater.volumetric = true;
+    types.push_back({ShotKind::Crater, crater});
+
     const glm::vec4 paints[] = {
         {0.95f, 0.2f, 0.15f, 1.0f}, {0.15f, 0.55f, 0.95f, 1.0f}, {0.95f, 0.8f, 0.1f, 1.0f}};
     const char* paintNames[] = {"paint_red", "paint_blue", "paint_yellow"};

@@ -17,7 +17,7 @@
 
 namespace spatter::gallery {
 
-enum class ShotKind { Bullet, Paint, Scorch };
+enum class ShotKind { Bullet, Paint, Scorch, Crater };
 
 // The builtin gallery's cloth banners ("banner_*"): they wave instead of riding a rail.
 bool isBanner(const SceneObject& object);
@@ -85,7 +85,7 @@ private:
     Scene scene_;
     std::optional<DecalSystem> system_;
     std::vector<DecalType> types_;
-    std::vector<uint16_t> typeOf_[3]; // registry indices per ShotKind
+    std::vector<uint16_t> typeOf_[4]; // registry indices per ShotKind
     std::vector<Mesh> proxyMeshes_;
     std::vector<Rail> rails_;
     std::vector<uint32_t> moving_;

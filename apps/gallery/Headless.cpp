@@ -21,7 +21,8 @@ namespace {
 constexpr double kShotInterval = 1.0 / 20.0; // seconds of motion between two shots
 
 // The scripted shooter: single shots over the gallery and at the targets, and every 40 shots a
-// burst of automatic fire at one spot, which fills its area cell so the oldest decals give way.
+// burst of automatic fire (volumetric bullet holes) at one spot, which fills its area cell so the
+// oldest decals give way.
 class Script {
 public:
     explicit Script(Rng& rng) : rng_(rng) {}
@@ -36,7 +37,7 @@ public:
             --burst_;
             const glm::dvec2 spread(rng_.uniform(-0.01f, 0.01f), rng_.uniform(-0.01f, 0.01f));
             const glm::dvec2 aim = burstAim_ + spread;
-            return {rayThrough(camera, aspect, aim.x, aim.y), ShotKind::Bullet};
+            return {rayThrough(camera, aspect, aim.x, aim.y), ShotKind::Crater};
         }
         Ray ray;
         const std::vector<uint32_t>& moving = sim.movingObjects();

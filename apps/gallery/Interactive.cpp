@@ -53,6 +53,7 @@ struct Trigger {
 struct Hud {
     RenderOptions options;
     bool wrapAround = true;
+    bool volumetricBullets = true;
     float tolerance = 0.5f;
     double lastPlacementUs = 0.0;
     std::string lastResult;
@@ -75,8 +76,9 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
     ImGui::Text("placement: last %.1f us, mean %.1f us per shot", hud.lastPlacementUs, avgUs);
     ImGui::Text("last shot: %s", hud.lastResult.c_str());
     ImGui::Text("GPU: decal pass %.3f ms, frame %.3f ms", frame.gpu.decalsMs, frame.gpu.totalMs());
-    ImGui::Text("decals drawn %zu, culled %zu, camera inside %zu", frame.decalsDrawn, frame.decalsCulled,
-                frame.decalsInside);
+    ImGui::Text("decals drawn %zu, culled %zu, camera inside %zu, volumetric %zu (%.3f ms)",
+                frame.decalsDrawn, frame.decalsCulled, frame.decalsInside, frame.decalsVolumetric,
+                frame.gpu.volumetricMs);
     ImGui::Text("triangles: render %zu, proxy %zu", sim.renderTriangles(), sim.proxyTriangles());
     ImGui::Text("proxy error bound h = %.4f m", sim.errorBound());
     ImGui::Separator();
@@ -95,6 +97,7 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
         sim.setPaintWrapAround(hud.wrapAround);
         renderer.setDecalTypes(sim.types());
     }
+    ImGui::Checkbox("volumetric bullet holes", &hud.volumetricBullets);
     ImGui::SliderFloat("proxy tolerance %", &hud.tolerance, 0.0f, 5.0f, "%.2f");
     if (ImGui::Button("rebuild proxies (clears decals)")) {
         const Status s = sim.rebuildProxies(hud.tolerance);
@@ -215,7 +218,7 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
             hud.lastResult = r.placed() ? "placed" : toString(r.status);
         };
         if (bullet.fire(shooting && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS, dt))
-            fire(ShotKind::Bullet);
+            fire(hud.volumetricBullets ? ShotKind::Crater : ShotKind::Bullet);
         if (paint.fire(shooting && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS, dt))
             fire(ShotKind::Paint);
         const bool scorchDown = glfwGetKey(window, GLFW_KEY_F) == GLFW_PRESS;

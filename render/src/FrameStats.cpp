@@ -56,6 +56,7 @@ std::string toJson(const FrameStats& s) {
     field("overlay_lines", std::to_string(s.overlayLines));
     field("decals_texture_space", std::to_string(s.decalsTextureSpace));
     field("decals_splatted", std::to_string(s.decalsSplatted));
+    field("decals_volumetric", std::to_string(s.decalsVolumetric));
     field("texture_space_objects", std::to_string(s.textureSpaceObjects));
     field("texture_space_bytes", std::to_string(s.textureSpaceBytes));
     field("draw_calls", std::to_string(s.drawCalls));
@@ -63,7 +64,7 @@ std::string toJson(const FrameStats& s) {
     field("cpu_ms", number(s.cpuMs));
     field("gpu_ms", "{\"geometry\":" + number(s.gpu.geometryMs) + ",\"decals\":" + number(s.gpu.decalsMs) +
                         ",\"late\":" + number(s.gpu.lateMs) + ",\"lighting\":" + number(s.gpu.lightingMs) +
-                        ",\"overlay\":" + number(s.gpu.overlayMs) + ",\"splat\":" + number(s.gpu.splatMs) +
+                        ",\"overlay\":" + number(s.gpu.overlayMs) + ",\"splat\":" + number(s.gpu.splatMs) + ",\"volumetric\":" + number(s.gpu.volumetricMs) +
                         ",\"total\":" + number(s.gpu.totalMs()) +
                         ",\"frame\":" + std::to_string(s.gpu.frame) + "}");
     field("gl_renderer", quoted(s.glRenderer));

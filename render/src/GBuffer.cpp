@@ -40,7 +40,7 @@ Status GBuffer::create(int width, int height, bool withIds) {
     material_ = makeTarget(GL_RG8, width, height);
     ids_ = withIds ? makeTarget(GL_R8UI, width, height) : GlTexture();
     coverage_ = makeTarget(GL_R8, width, height);
-    depth_ = makeTarget(GL_DEPTH_COMPONENT32F, width, height);
+    depth_ = makeTarget(GL_DEPTH32F_STENCIL8, width, height);
     output_ = makeTarget(GL_RGBA8, width, height);
 
     fbo_ = createFramebuffer();
@@ -49,7 +49,7 @@ Status GBuffer::create(int width, int height, bool withIds) {
     glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT2, material_.get(), 0);
     if (ids_) glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT3, ids_.get(), 0);
     glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT4, coverage_.get(), 0);
-    glNamedFramebufferTexture(fbo_.get(), GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+    glNamedFramebufferTexture(fbo_.get(), GL_DEPTH_STENCIL_ATTACHMENT, depth_.get(), 0);
     if (Status s = checkComplete(fbo_.get(), "G-buffer"); !s) return s;
 
     outputFbo_ = createFramebuffer();
@@ -60,7 +60,7 @@ Status GBuffer::create(int width, int height, bool withIds) {
 
     overlayFbo_ = createFramebuffer();
     glNamedFramebufferTexture(overlayFbo_.get(), GL_COLOR_ATTACHMENT0, output_.get(), 0);
-    glNamedFramebufferTexture(overlayFbo_.get(), GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+    glNamedFramebufferTexture(overlayFbo_.get(), GL_DEPTH_STENCIL_ATTACHMENT, depth_.get(), 0);
     glNamedFramebufferDrawBuffer(overlayFbo_.get(), GL_COLOR_ATTACHMENT0);
     return checkComplete(overlayFbo_.get(), "overlay");
 }

@@ -6,7 +6,8 @@
 //   attachment 2  material  GL_RG8           roughness, metallic
 //   attachment 3  ids       GL_R8UI          object decal IDs (only when the scene has dynamic objects)
 //   attachment 4  coverage  GL_R8            decal coverage (coverage view)
-//   depth                   GL_DEPTH_COMPONENT32F, reversed-Z (cleared to 0)
+//   depth                   GL_DEPTH32F_STENCIL8, reversed-Z (cleared to 0); the stencil marks
+//                           the holes of volumetric decals
 // plus `normalCopy` (GL_RG16F), the normals the decal pass reads while it writes `normal`, and the
 // output image (GL_RGBA8, sRGB-encoded by the shaders) in its own framebuffer, and the overlay
 // framebuffer: the output image with the G-buffer depth, for lines depth-tested against the scene.

@@ -40,6 +40,7 @@ void GpuTimers::read(Slot& slot) {
         latest_.lightingMs = ms[int(GpuPass::Lighting)];
         latest_.overlayMs = ms[int(GpuPass::Overlay)];
         latest_.splatMs = ms[int(GpuPass::Splat)];
+        latest_.volumetricMs = ms[int(GpuPass::Volumetric)];
     }
     slot.frame = -1;
 }

@@ -12,7 +12,7 @@
 
 namespace spatter::render_detail {
 
-enum class GpuPass { Geometry = 0, Decals, Late, Lighting, Overlay, Splat, Count };
+enum class GpuPass { Geometry = 0, Decals, Late, Lighting, Overlay, Splat, Volumetric, Count };
 
 class GpuTimers {
 public:

@@ -10,6 +10,7 @@
 #include "SceneGpu.hpp"
 #include "ShaderProgram.hpp"
 #include "TextureSpaceDecals.hpp"
+#include "VolumetricDecals.hpp"
 
 #include "spatter/core/UvOverlap.hpp"
 
@@ -130,6 +131,8 @@ struct Renderer::Impl {
     bool hasLate = false;
 
     DecalBatch batch;
+    VolumetricDecals volumetric;
+    std::vector<DecalType> types; // as given to setDecalTypes, for routing volumetric decals
     DecalTextureArray decalTextures;
 
     // Texture-space decals and deformation, per object.
@@ -556,6 +559,7 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
     glTextureSubImage2D(impl->zeroIds.get(), 0, 0, 0, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
     glTextureParameteri(impl->zeroIds.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(impl->zeroIds.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    if (Status s = impl->volumetric.create(); !s) return fail("renderer: " + s.error());
     impl->timers.create();
 
     Renderer r(std::move(impl));
@@ -601,6 +605,7 @@ Status Renderer::setScene(const Scene& scene) {
                              GL_DYNAMIC_STORAGE_BIT);
     }
     m.batch.setDecals({}, n);
+    m.volumetric.setDecals({}, m.types, n);
     m.overlayMeshes.clear();
     return {};
 }
@@ -684,6 +689,7 @@ Status Renderer::setTime(double seconds) {
 }
 
 void Renderer::setDecalTypes(const std::vector<DecalType>& types) {
+    impl_->types = types;
     impl_->batch.setTypes(types);
     impl_->splatBatch.setTypes(types);
 }
@@ -691,15 +697,26 @@ void Renderer::setDecalTypes(const std::vector<DecalType>& types) {
 void Renderer::setDecals(const std::vector<Decal>& decals) {
     Impl& m = *impl_;
     const size_t n = m.transforms.size();
+    std::vector<Decal> volumetric, flat;
+    for (const Decal& d : decals)
+        if (d.type < m.types.size() && m.types[d.type].volumetric) volumetric.push_back(d);
+    m.volumetric.setDecals(volumetric, m.types, n);
+    const std::vector<Decal>* rest = &decals;
+    if (!volumetric.empty()) {
+        flat.reserve(decals.size() - volumetric.size());
+        for (const Decal& d : decals)
+            if (!(d.type < m.types.size() && m.types[d.type].volumetric)) flat.push_back(d);
+        rest = &flat;
+    }
     if (m.textureSpace.objectCount() == 0) {
         m.decalsTextureSpace = 0;
-        m.batch.setDecals(decals, n);
+        m.batch.setDecals(*rest, n);
         return;
     }
     std::vector<Decal> projected;
-    projected.reserve(decals.size());
+    projected.reserve(rest->size());
     m.decalsTextureSpace = 0;
-    for (const Decal& d : decals) {
+    for (const Decal& d : *rest) {
         if (d.object >= n || m.modes[d.object] != DecalMode::TextureSpace) {
             projected.push_back(d);
             continue;
@@ -853,6 +870,15 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
     m.timers.begin(GpuPass::Geometry);
     m.geometryPass();
     m.timers.end();
+    stats.decalsVolumetric = m.volumetric.size();
+    stats.decalsInvalid += m.volumetric.invalidCount();
+    if (m.volumetric.size() > 0) {
+        m.timers.begin(GpuPass::Volumetric);
+        m.baseState(m.gbuffer.framebuffer());
+        const bool compareIds = m.gbuffer.hasIds() && options.decals.idClipping;
+        m.drawCalls += m.volumetric.draw(m.gbuffer, m.idTexture(), compareIds, m.transforms, camera.eye);
+        m.timers.end();
+    }
     if (!stats.decalPassSkipped) {
         m.timers.begin(GpuPass::Decals);
         m.decalPass(decalProgram, vis, coverage);

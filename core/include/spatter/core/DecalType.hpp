@@ -35,6 +35,9 @@ struct DecalType {
     DepthFade depthFade = DepthFade::Smooth;
     bool normalMap = true;   // blend the texture's normal map into the G-buffer normal
     float roughness = -1.0f; // roughness written under the decal; < 0 keeps the surface's
+    // Volumetric: instead of the projected texture, a crater model is drawn behind a stencil hole in
+    // the surface (Renderer.hpp), with the surface's material continued into it.
+    bool volumetric = false;
 };
 
 } // namespace spatter

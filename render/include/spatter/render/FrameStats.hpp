@@ -21,7 +21,10 @@ struct GpuPassTimes {
     double lightingMs = 0.0; // lighting and tone mapping, or the debug view
     double overlayMs = 0.0;  // line overlays (RenderOverlays)
     double splatMs = 0.0;    // texture-space decals rendered into their objects' textures, and dilation
-    double totalMs() const { return geometryMs + decalsMs + lateMs + lightingMs + overlayMs + splatMs; }
+    double volumetricMs = 0.0; // volumetric decals: footprints into the stencil, craters into the G-buffer
+    double totalMs() const {
+        return geometryMs + decalsMs + lateMs + lightingMs + overlayMs + splatMs + volumetricMs;
+    }
 };
 
 struct FrameStats {
@@ -44,6 +47,7 @@ struct FrameStats {
     size_t decalsTextureSpace = 0;  // decals given to setDecals that lie on texture-space objects
                                     // (not in `decals`: the decal pass never draws them)
     size_t decalsSplatted = 0;      // of those, rendered into their object's decal texture this frame
+    size_t decalsVolumetric = 0;    // volumetric decals drawn (two draws each; not counted in decals)
     size_t textureSpaceObjects = 0; // objects in texture-space mode
     size_t textureSpaceBytes = 0;   // GPU memory of their decal textures, UV masks and dilation scratch
 

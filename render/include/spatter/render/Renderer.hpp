@@ -8,6 +8,10 @@
 //                 their texture-space decal layer, fill the G-buffer (albedo, octahedral
 //                 normal, roughness/metallic, reversed-Z float depth, and object decal IDs when the
 //                 scene has dynamic objects);
+//   1b. volumetric only with decals of a volumetric type (DecalType::volumetric): each crater's
+//                 footprint marks the stencil where the surface is visible (and the ID matches),
+//                 then the crater mesh, behind the surface, replaces it there in the G-buffer with the
+//                 surface's material continued into the hole (docs/RENDERING.md, "Volumetric decals");
 //   2. decals     one instanced unit cube per visible decal, one draw for the boxes that may contain
 //                 the eye (front faces culled, no depth test) and one for the rest (back faces
 //                 culled, depth test GL_GEQUAL, which is "not behind the scene" under reversed-Z).
@@ -147,9 +151,10 @@ public:
     // Decal appearance, indexed by Decal::type. Layers (DecalType::texture) refer to the decal
     // texture array: 0..3 are the built-in DecalTexture values.
     void setDecalTypes(const std::vector<DecalType>& types);
-    // The decals to draw (object space, as DecalSystem::decals() gives them). Only instances whose
-    // data changed since the last frame are uploaded. Decals on texture-space objects are not drawn
-    // by the decal pass: each is splatted into its object's decal texture by the next render call
+    // The decals to draw (object space, as DecalSystem::decals() gives them). Decals whose type,
+    // as last given to setDecalTypes, is volumetric are drawn as holes, not by the decal pass.
+    // Only instances whose data changed since the last frame are uploaded. Decals on texture-space
+    // objects are not drawn by the decal pass: each is splatted into its object's decal texture by the next render call
     // after it first appears (recognised by its ID, object, type, frame and size), and stays there.
     void setDecals(const std::vector<Decal>& decals);
     // Adds a decal texture layer (resized to the layer size); `normalMap` may be empty for a flat

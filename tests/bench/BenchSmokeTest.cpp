@@ -1,0 +1,137 @@
+#include "TestData.hpp"
+
+#include "spatter/core/MeshBuilder.hpp"
+#include "spatter/render/GlContext.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+using namespace spatter;
+
+namespace {
+
+// Runs spatter-bench with `args`, its output into `log`; returns the exit code (-1 when it did not
+// exit normally).
+int runBench(const std::string& args, const std::string& log) {
+    const std::string cmd = std::string(SPATTER_BENCH_TOOL) + " " + args + " >" + log + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string readAll(const std::string& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+nlohmann::json readJson(const std::string& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in, nullptr, false);
+}
+
+// A sphere of 2,048 triangles as an OBJ file.
+std::string writeSphere(const std::string& dir) {
+    const Mesh m = makeSphere(1.0f, 17, 64);
+    const std::string path = dir + "/sphere.obj";
+    std::ofstream f(path);
+    for (const glm::vec3& p : m.positions)
+        f << "v " << p.x << " " << p.y << " " << p.z << "\n";
+    for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
+        f << "f " << m.indices[t] + 1 << " " << m.indices[t + 1] + 1 << " " << m.indices[t + 2] + 1 << "\n";
+    return path;
+}
+
+std::string noGl() {
+    static const std::string why = [] {
+        Result<GlContext> gl = GlContext::createHeadless();
+        return gl.ok() ? std::string() : gl.error();
+    }();
+    return why;
+}
+
+} // namespace
+
+TEST(BenchSmoke, PlacementQuickWritesTheContractKeys) {
+    const std::string dir = test::scratchDir("bench-placement");
+    ASSERT_EQ(runBench("placement --quick --json " + dir + "/p.json", dir + "/log"), 0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/p.json");
+    ASSERT_TRUE(j.is_object()) << readAll(dir + "/p.json");
+    for (const char* key : {"raw_single_ns", "raw_packet_ns", "spawn_ns", "spawn_batch_ns", "spawn_over_raw",
+                            "batch_speedup"}) {
+        ASSERT_TRUE(j.contains(key) && j[key].is_number()) << key;
+        EXPECT_GT(j[key].get<double>(), 0.0) << key;
+    }
+    // Every ray of both sets was spawned: the statuses add up to the rays.
+    for (const char* set : {"scattered", "shotgun"}) {
+        size_t total = 0;
+        for (const auto& [status, count] : j["sets"][set]["spawn_statuses"].items())
+            total += count.get<size_t>();
+        EXPECT_EQ(total, j["sets"][set]["rays"].get<size_t>()) << set;
+    }
+}
+
+TEST(BenchSmoke, TradeoffWritesOneRowPerBackendAndTolerance) {
+    const std::string dir = test::scratchDir("bench-tradeoff");
+    const std::string mesh = writeSphere(dir);
+    ASSERT_EQ(runBench("tradeoff " + mesh +
+                           " --subdivide 1 --backends meshopt --tolerances 1,5 --rays 300 --passes 1 "
+                           "--no-render --no-peer "
+                           "--json " +
+                           dir + "/t.json",
+                       dir + "/log"),
+              0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/t.json");
+    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << readAll(dir + "/t.json");
+    ASSERT_EQ(j["rows"].size(), 3u); // the render mesh, then meshopt at 1% and 5%
+    EXPECT_EQ(j["rows"][0]["backend"], "render");
+    EXPECT_EQ(j["rows"][0]["proxy_triangles"], 4 * 2048); // one Loop step
+    for (const auto& row : j["rows"])
+        for (const char* key : {"backend", "tolerance_rel", "proxy_triangles", "build_s", "placement_ns",
+                                "batch_ns", "dist_p50_rel", "dist_p99_rel", "dist_max_rel", "normal_deg_p99",
+                                "disagree_rate", "coverage_iou"})
+            EXPECT_TRUE(row.contains(key)) << key;
+    const nlohmann::json& coarse = j["rows"][2];
+    EXPECT_EQ(coarse["backend"], "meshopt");
+    EXPECT_DOUBLE_EQ(coarse["tolerance_rel"].get<double>(), 0.05);
+    EXPECT_LT(coarse["proxy_triangles"].get<int>(), 2048);
+    EXPECT_EQ(j["mesh"], "sphere-loop1");
+    // Proxy hits lie within the certified bound of the render surface.
+    EXPECT_LE(coarse["dist_max_rel"].get<double>(),
+              coarse["error_bound_rel"].get<double>() * 1.000001 + 1e-9);
+    EXPECT_TRUE(coarse["coverage_iou"].is_null()); // --no-render
+}
+
+TEST(BenchSmoke, MemoryQuickReportsBytesPerDecal) {
+    const std::string dir = test::scratchDir("bench-memory");
+    ASSERT_EQ(runBench("memory --quick --no-gpu --json " + dir + "/m.json", dir + "/log"), 0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/m.json");
+    ASSERT_TRUE(j.is_object()) << readAll(dir + "/m.json");
+    // At least the Decal record itself per decal.
+    EXPECT_GE(j["cpu_bytes_per_decal"].get<double>(), j["decal_record_bytes"].get<double>());
+    EXPECT_GT(j["objects"]["proxy"]["bvh_user_bytes"].get<double>(), 0.0);
+}
+
+TEST(BenchSmoke, RenderQuickTimesTheDecalPass) {
+    if (!noGl().empty()) {
+        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
+        GTEST_SKIP() << "no headless OpenGL 4.5 context (" << noGl() << ")";
+    }
+    const std::string dir = test::scratchDir("bench-render");
+    ASSERT_EQ(runBench("render --quick --groups count --frames 1 --json " + dir + "/r.json", dir + "/log"), 0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/r.json");
+    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << readAll(dir + "/r.json");
+    ASSERT_EQ(j["rows"].size(), 2u);
+    for (const auto& row : j["rows"]) {
+        EXPECT_EQ(row["decals_drawn"], row["visible"]);
+        EXPECT_FALSE(row["decal_pass_skipped"].get<bool>());
+        EXPECT_GE(row["decal_ms"].get<double>(), 0.0);
+    }
+}

@@ -1,0 +1,143 @@
+#!/usr/bin/env perl
+# make_corpus.pl OUT_DIR [SHARED_DATA_DIR]: writes the seed corpora of the fuzz targets into
+# OUT_DIR/<target>/ (existing files are kept, so corpora grow across runs). Seeds are small files
+# generated here, plus, when the shared data directory exists, files derived from it: its small
+# GLB files as they are, its .gltf files with their buffers embedded as data URIs, and the first
+# faces of each OBJ written as OBJ, PLY (ASCII and binary), OFF and STL (ASCII and binary).
+use strict;
+use warnings;
+use File::Path qw(make_path);
+use File::Basename qw(basename dirname);
+use MIME::Base64 qw(encode_base64);
+
+my ($out, $shared) = @ARGV;
+die "usage: make_corpus.pl OUT_DIR [SHARED_DATA_DIR]\n" unless defined $out;
+
+sub put {
+    my ($target, $name, $bytes) = @_;
+    make_path("$out/$target");
+    open(my $f, '>:raw', "$out/$target/$name") or die "$out/$target/$name: $!\n";
+    print $f $bytes;
+    close($f);
+}
+
+sub slurp {
+    my ($path) = @_;
+    open(my $f, '<:raw', $path) or die "$path: $!\n";
+    local $/;
+    my $bytes = <$f>;
+    close($f);
+    return $bytes;
+}
+
+# --- meshes: one small mesh in every format the mesh loader reads ------------------------------
+# The first byte of a fuzz_mesh_file input picks the extension: 0 obj, 1 ply, 2 off, 3 stl.
+sub mesh_seeds {
+    my ($name, $v, $f) = @_;    # vertices [[x,y,z]...], triangles [[a,b,c]...] (0-based)
+    my $nv = @$v;
+    my $nf = @$f;
+    my $obj = join('', map { "v @$_\n" } @$v) . join('', map { 'f ' . join(' ', map { $_ + 1 } @$_) . "\n" } @$f);
+    put('mesh_file', "$name.obj", "\x00" . $obj);
+    my $ply = "ply\nformat ascii 1.0\nelement vertex $nv\nproperty float x\nproperty float y\nproperty float z\n"
+        . "element face $nf\nproperty list uchar int vertex_indices\nend_header\n"
+        . join('', map { "@$_\n" } @$v) . join('', map { "3 @$_\n" } @$f);
+    put('mesh_file', "$name-ascii.ply", "\x01" . $ply);
+    my $bply = "ply\nformat binary_little_endian 1.0\nelement vertex $nv\nproperty float x\nproperty float y\n"
+        . "property float z\nelement face $nf\nproperty list uchar int vertex_indices\nend_header\n"
+        . join('', map { pack('f<3', @$_) } @$v) . join('', map { pack('C l<3', 3, @$_) } @$f);
+    put('mesh_file', "$name-binary.ply", "\x01" . $bply);
+    my $off = "OFF\n$nv $nf 0\n" . join('', map { "@$_\n" } @$v) . join('', map { "3 @$_\n" } @$f);
+    put('mesh_file', "$name.off", "\x02" . $off);
+    my $stl = "solid $name\n";
+    my $bstl = pack('a80 L<', "binary $name", $nf);
+    for my $t (@$f) {
+        my @p = map { $v->[$_] } @$t;
+        $stl .= " facet normal 0 0 0\n  outer loop\n" . join('', map { "   vertex @$_\n" } @p) . "  endloop\n endfacet\n";
+        $bstl .= pack('f<3', 0, 0, 0) . join('', map { pack('f<3', @$_) } @p) . pack('S<', 0);
+    }
+    put('mesh_file', "$name-ascii.stl", "\x03" . $stl . "endsolid $name\n");
+    put('mesh_file', "$name-binary.stl", "\x03" . $bstl);
+}
+
+mesh_seeds('quad', [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [[0, 1, 2], [0, 2, 3]]);
+mesh_seeds('tetra', [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]]);
+put('mesh_file', 'polygon-uv-normal.obj',
+    "\x00# a quad with texture coordinates and normals\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+      . "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1 4/4/1\nf -4 -3 -2\n");
+
+# --- glTF: a triangle with a node hierarchy, extras and a collider -----------------------------
+my $tri = pack('f<9', 0, 0, 0, 1, 0, 0, 0, 1, 0) . pack('S<3', 0, 1, 2) . "\0\0";
+my $uri = 'data:application/octet-stream;base64,' . encode_base64($tri, '');
+my $gltf = <<"JSON";
+{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],
+ "nodes":[{"name":"root","mesh":0,"children":[1,2],"extras":{"dynamic":true}},
+          {"name":"UCX_root","mesh":0,"translation":[0,0,0.1]},
+          {"name":"child","mesh":0,"matrix":[1,0,0,0,0,1,0,0,0,0,1,0,2,0,0,1],"extras":{"decals":false}}],
+ "meshes":[{"name":"tri","primitives":[{"attributes":{"POSITION":0},"indices":1,"material":0}]}],
+ "materials":[{"name":"m","pbrMetallicRoughness":{"baseColorFactor":[1,0.5,0.5,1]}}],
+ "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+              {"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}],
+ "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],
+ "buffers":[{"byteLength":44,"uri":"$uri"}]}
+JSON
+put('gltf', 'triangle.gltf', $gltf);
+(my $external = $gltf) =~ s/"uri":"[^"]*"/"uri":"buffer.bin"/;
+put('gltf', 'triangle-external.gltf', $external);
+# The same as GLB: header, JSON chunk (padded with blanks), BIN chunk.
+(my $json = $gltf) =~ s/,"uri":"[^"]*"//;
+$json .= ' ' x ((4 - length($json) % 4) % 4);
+my $bin = $tri;
+put('gltf', 'triangle.glb',
+    pack('a4 L< L<', 'glTF', 2, 12 + 8 + length($json) + 8 + length($bin))
+      . pack('L< a4', length($json), 'JSON') . $json . pack('L< a4', length($bin), "BIN\0") . $bin);
+
+# --- ray lines ----------------------------------------------------------------------------------
+put('ray_parser', 'rays.txt',
+    "# origin and direction\n0 1 5 0 0 -1\n  -3.5e2\t1e-3 +7   0x1p-3 -0X1.8P+1 1  # hex\n\n"
+      . "nan inf -inf 1 2 3\n1 2 3 4 5\n1 2 3 4 5 6 7\n0 0 0 1e-320 0 0\n1,2,3 4 5 6\n# only a comment\n");
+put('ray_parser', 'crlf.txt', "0 0 0 0 0 -1\r\n1 1 1 1 1 1\r\n");
+
+# --- spawn programs: deterministic pseudo-random bytes --------------------------------------------
+my $state = 12345;
+for my $k (1 .. 8) {
+    my $bytes = '';
+    for (1 .. 64 * $k) {
+        $state = ($state * 1103515245 + 12345) % 2147483648;
+        $bytes .= chr(($state >> 16) & 255);
+    }
+    put('spawn', "program-$k.bin", $bytes);
+}
+
+exit 0 unless defined $shared && -d $shared;
+
+# --- derived from the shared data -----------------------------------------------------------------
+for my $glb (glob("$shared/gltf/*/*.glb"), glob("$shared/gltf/*/models/*.glb")) {
+    next if -s $glb > 256 * 1024;    # large files make every execution slow
+    put('gltf', basename($glb), slurp($glb));
+}
+for my $path (glob("$shared/gltf/*/*.gltf")) {
+    my $dir = dirname($path);
+    my $text = slurp($path);
+    $text =~ s{"uri"\s*:\s*"([^"]+\.bin)"}{
+        my $file = "$dir/$1";
+        -f $file ? '"uri": "data:application/octet-stream;base64,' . encode_base64(slurp($file), '') . '"' : "\"uri\": \"$1\""
+    }ge;
+    next if length($text) > 256 * 1024;
+    put('gltf', basename($path), $text);
+}
+for my $path (glob("$shared/meshes/*.obj")) {
+    my (@v, @f);
+    open(my $in, '<', $path) or die "$path: $!\n";
+    while (my $line = <$in>) {
+        if ($line =~ /^v\s+(\S+)\s+(\S+)\s+(\S+)/) { push @v, [$1, $2, $3]; }
+        elsif ($line =~ /^f\s+(\d+)\S*\s+(\d+)\S*\s+(\d+)/) { push @f, [$1 - 1, $2 - 1, $3 - 1]; last if @f >= 48; }
+    }
+    close($in);
+    my (%map, @sv, @sf);
+    for my $t (@f) {
+        next if grep { $_ > $#v } @$t;
+        push @sf, [map { $map{$_} //= do { push @sv, $v[$_]; $#sv } } @$t];
+    }
+    (my $name = basename($path)) =~ s/\.obj$//;
+    mesh_seeds($name, \@sv, \@sf) if @sf;
+}

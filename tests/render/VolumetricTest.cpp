@@ -1,0 +1,291 @@
+// Volumetric decals: a crater behind a stencil hole in the wall, on a scene with known geometry.
+
+#include "RenderTestSupport.hpp"
+
+#include "TestData.hpp"
+
+#include "spatter/core/CraterMesh.hpp"
+#include "spatter/core/MeshBuilder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+using namespace spatter;
+
+namespace {
+
+constexpr int kW = 160;
+constexpr int kH = 120;
+constexpr float kRadius = 0.3f; // crater radius (half the decal size)
+
+// The wall's front face is the plane z = 0, around (0, 1.5).
+SceneObject box(const std::string& name, const glm::vec3& halfExtents, const glm::dvec3& position) {
+    SceneObject o;
+    o.name = name;
+    o.mesh = makeBox(halfExtents, 4);
+    o.transform = glm::translate(glm::dmat4(1.0), position);
+    return o;
+}
+
+Scene wallScene(bool redBehind) {
+    Scene s;
+    s.materials.push_back({});
+    s.materials[0].name = "grey";
+    s.materials[0].baseColorFactor = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
+    s.objects.push_back(box("wall", {2.0f, 1.5f, 0.1f}, {0.0, 1.5, -0.1}));
+    s.objects[0].mesh.submeshes = {{0, uint32_t(s.objects[0].mesh.indices.size()), 0}};
+    if (redBehind) {
+        Material red;
+        red.name = "red";
+        red.baseColorFactor = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+        s.materials.push_back(red);
+        SceneObject back = box("red", {2.5f, 2.0f, 0.05f}, {0.0, 1.5, -0.35});
+        back.mesh.submeshes = {{0, uint32_t(back.mesh.indices.size()), 1}};
+        s.objects.push_back(back);
+    }
+    return s;
+}
+
+// A volumetric decal on the wall's front face at world (x, y, 0).
+Decal crater(float x, float y, uint32_t id = 1) {
+    Decal d;
+    d.object = 0;
+    d.center = {x, y - 1.5f, 0.1f};
+    d.frame.normal = {0, 0, 1};
+    d.frame.tangent = {1, 0, 0};
+    d.frame.bitangent = {0, 1, 0};
+    d.size = glm::vec2(2.0f * kRadius);
+    d.halfDepth = 0.2f;
+    d.id = id;
+    return d;
+}
+
+std::vector<DecalType> types() {
+    DecalType t;
+    t.name = "hole";
+    t.volumetric = true;
+    return {t};
+}
+
+Camera frontCamera() {
+    Camera c;
+    c.eye = {0.35, 1.8, 2.0};
+    c.target = {0.0, 1.5, 0.0};
+    return c;
+}
+
+Image renderView(Renderer& r, const Camera& cam, View view, FrameStats* stats = nullptr) {
+    Result<FrameStats> st = r.render(cam, view);
+    EXPECT_TRUE(st.ok()) << (st ? "" : st.error());
+    if (stats && st) *stats = st.value();
+    Result<Image> im = r.readback();
+    EXPECT_TRUE(im.ok()) << im.error();
+    return im ? im.value() : Image{};
+}
+
+// Where the ray through pixel (i, j) (row 0 at the top) meets the plane z = 0.
+glm::dvec3 wallPoint(const Camera& cam, int i, int j) {
+    const glm::dvec3 dir = pixelDirection(cam, kW, kH, i, j);
+    return cam.eye + dir * (-cam.eye.z / dir.z);
+}
+
+// Smallest distance from p to the centres, in the wall plane.
+double nearestCentre(const glm::dvec3& p, const std::vector<glm::dvec2>& centres) {
+    double best = 1e30;
+    for (const glm::dvec2& c : centres)
+        best = std::min(best, glm::length(glm::dvec2(p) - c));
+    return best;
+}
+
+// Depth view value: brighter is nearer.
+int depthAt(const Image& im, int i, int j) {
+    return im.rgba[(size_t(j) * size_t(kW) + size_t(i)) * 4];
+}
+
+} // namespace
+
+TEST(VolumetricDecal, DepthLiesBehindTheWallInsideTheFootprintOnly) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    ASSERT_TRUE(r->setScene(wallScene(false)).ok());
+    r->setDecalTypes(types());
+    const Camera cam = frontCamera();
+    const Image before = renderView(r.value(), cam, View::Depth);
+    r->setDecals({crater(0.0f, 1.5f)});
+    FrameStats stats;
+    const Image after = renderView(r.value(), cam, View::Depth, &stats);
+    EXPECT_EQ(stats.decalsVolumetric, 1u);
+    EXPECT_EQ(stats.decalsDrawn, 0u); // not drawn as a flat decal
+
+    size_t inside = 0, deeper = 0, outside = 0;
+    const CraterShape shape;
+    for (int j = 0; j < kH; ++j)
+        for (int i = 0; i < kW; ++i) {
+            const double d = nearestCentre(wallPoint(cam, i, j), {{0.0, 1.5}});
+            // Well inside the chipped rim: the crater; beyond the unit rim: the untouched wall.
+            if (d < kRadius * (1.0 - shape.chip) * 0.8) {
+                ++inside;
+                if (depthAt(after, i, j) < depthAt(before, i, j)) ++deeper;
+            } else if (d > kRadius * 1.05) {
+                ++outside;
+                ASSERT_EQ(depthAt(after, i, j), depthAt(before, i, j)) << "pixel " << i << ", " << j;
+            }
+        }
+    ASSERT_GT(inside, 200u);
+    EXPECT_GT(outside, 5000u);
+    // Every pixel well inside is behind the wall (the rim region near the centre line of sight may
+    // round to the same 8-bit depth only at the very edge, which is excluded above).
+    EXPECT_GE(double(deeper), 0.97 * double(inside));
+}
+
+TEST(VolumetricDecal, NothingBehindTheWallShowsThroughTheHole) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    ASSERT_TRUE(r->setScene(wallScene(true)).ok());
+    r->setDecalTypes(types());
+    // Overlapping craters, and one seen at a grazing angle.
+    r->setDecals({crater(0.0f, 1.5f, 1), crater(0.25f, 1.55f, 2), crater(-0.6f, 1.2f, 3)});
+    Camera cam = frontCamera();
+    for (const glm::dvec3 eye :
+         {glm::dvec3(0.35, 1.8, 2.0), glm::dvec3(-1.8, 1.4, 0.5), glm::dvec3(0.0, 3.0, 0.6)}) {
+        cam.eye = eye;
+        const Image albedo = renderView(r.value(), cam, View::Albedo);
+        const Image normal = renderView(r.value(), cam, View::Normal);
+        size_t red = 0, tilted = 0;
+        for (size_t p = 0; p < size_t(kW * kH); ++p) {
+            // Only around the craters: the red board shows below the wall's lower edge elsewhere.
+            const glm::dvec3 onWall = wallPoint(cam, int(p % size_t(kW)), int(p / size_t(kW)));
+            if (nearestCentre(onWall, {{0.0, 1.5}, {0.25, 1.55}, {-0.6, 1.2}}) > 1.5 * kRadius) continue;
+            const uint8_t* a = &albedo.rgba[p * 4];
+            if (a[0] > 150 && a[1] < 60 && a[2] < 60) ++red;
+            // The wall's normal is +z (128, 128, 255); the craters' walls are tilted.
+            const uint8_t* n = &normal.rgba[p * 4];
+            if (std::abs(int(n[0]) - 128) > 20 || std::abs(int(n[1]) - 128) > 20) ++tilted;
+        }
+        EXPECT_EQ(red, 0u) << "eye " << eye.x << ", " << eye.y << ", " << eye.z;
+        EXPECT_GT(tilted, 30u) << "the craters must be drawn (eye " << eye.x << ", " << eye.y << ", " << eye.z
+                               << ")";
+    }
+}
+
+TEST(VolumetricDecal, OverlappingCratersMakeOneHoleWithoutWallInside) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    ASSERT_TRUE(r->setScene(wallScene(false)).ok());
+    r->setDecalTypes(types());
+    Camera cam = frontCamera();
+    cam.eye = {0.1, 1.5, 1.6};
+    const Image before = renderView(r.value(), cam, View::Depth);
+    const std::vector<glm::dvec2> centres = {{-0.12, 1.5}, {0.12, 1.5}};
+    r->setDecals({crater(float(centres[0].x), 1.5f, 1), crater(float(centres[1].x), 1.5f, 2)});
+    const Image after = renderView(r.value(), cam, View::Depth);
+    // Between the two centres, where both footprints overlap, the depth stays behind the wall: no
+    // cup wall rises back to the surface inside the union of the holes.
+    size_t overlap = 0, flush = 0;
+    const CraterShape shape;
+    for (int j = 0; j < kH; ++j)
+        for (int i = 0; i < kW; ++i) {
+            const glm::dvec3 p = wallPoint(cam, i, j);
+            const double inner = kRadius * (1.0 - shape.chip) * 0.8;
+            if (glm::length(glm::dvec2(p) - centres[0]) < inner &&
+                glm::length(glm::dvec2(p) - centres[1]) < inner) {
+                ++overlap;
+                if (depthAt(after, i, j) >= depthAt(before, i, j)) ++flush;
+            }
+        }
+    ASSERT_GT(overlap, 100u);
+    EXPECT_EQ(flush, 0u);
+}
+
+TEST(VolumetricDecal, IdClippingKeepsTheHoleOffAnotherObject) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    Scene s = wallScene(false);
+    // A dynamic plate just in front of the wall (closer than the footprint tolerance) over the
+    // crater's right half.
+    SceneObject plate = box("plate", {0.3f, 0.5f, 0.01f}, {0.3, 1.5, 0.02});
+    plate.dynamic = true;
+    plate.mesh.submeshes = {{0, uint32_t(plate.mesh.indices.size()), 0}};
+    s.objects.push_back(plate);
+    ASSERT_TRUE(r->setScene(s).ok());
+    ASSERT_TRUE(r->setObjectIds({0, 7}).ok());
+    r->setDecalTypes(types());
+    Camera cam = frontCamera();
+    cam.eye = {0.0, 1.5, 2.0};
+    const Image before = renderView(r.value(), cam, View::Depth);
+    r->setDecals({crater(0.0f, 1.5f)});
+    const Image after = renderView(r.value(), cam, View::Depth);
+    size_t onPlate = 0, holeLeft = 0;
+    for (int j = 0; j < kH; ++j)
+        for (int i = 0; i < kW; ++i) {
+            const glm::dvec3 p = wallPoint(cam, i, j);
+            if (glm::length(glm::dvec2(p) - glm::dvec2(0.0, 1.5)) > kRadius * 0.6) continue;
+            if (p.x > 0.05) {
+                ++onPlate;
+                EXPECT_EQ(depthAt(after, i, j), depthAt(before, i, j)) << "pixel " << i << ", " << j;
+            } else if (p.x < -0.05 && depthAt(after, i, j) < depthAt(before, i, j)) {
+                ++holeLeft;
+            }
+        }
+    EXPECT_GT(onPlate, 60u);
+    EXPECT_GT(holeLeft, 60u);
+}
+
+TEST(VolumetricDecal, InvalidDecalsAreCountedNotDrawn) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    ASSERT_TRUE(r->setScene(wallScene(false)).ok());
+    r->setDecalTypes(types());
+    Decal nan = crater(0.0f, 1.5f);
+    nan.center.x = std::nanf("");
+    Decal missing = crater(0.0f, 1.5f);
+    missing.object = 5;
+    r->setDecals({nan, missing, crater(0.5f, 1.5f)});
+    Result<FrameStats> st = r->render(frontCamera(), View::Final);
+    ASSERT_TRUE(st.ok()) << st.error();
+    EXPECT_EQ(st->decalsVolumetric, 1u);
+    EXPECT_EQ(st->decalsInvalid, 2u);
+    EXPECT_GE(st->drawCalls, 2u + 2u); // wall, lighting, and the crater's two draws
+}
+
+TEST(VolumetricDecal, CraterAtACornerLeavesTheAdjacentFloorAlone) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    Scene s = wallScene(false);
+    // A floor whose top face y = 0 meets the wall's front face along the line y = 0, z = 0.
+    SceneObject floor = box("floor", {2.0f, 0.1f, 1.5f}, {0.0, -0.1, 1.5});
+    floor.mesh.submeshes = {{0, uint32_t(floor.mesh.indices.size()), 0}};
+    s.objects.push_back(floor);
+    ASSERT_TRUE(r->setScene(s).ok());
+    r->setDecalTypes(types());
+    Camera cam;
+    cam.eye = {0.2, 0.9, 1.4};
+    cam.target = {0.0, 0.1, 0.0};
+    const Image before = renderView(r.value(), cam, View::Depth);
+    // The footprint reaches 0.2 below the corner line, behind the floor.
+    r->setDecals({crater(0.0f, 0.1f)});
+    const Image after = renderView(r.value(), cam, View::Depth);
+    size_t floorNear = 0, wallDeeper = 0;
+    for (int j = 0; j < kH; ++j)
+        for (int i = 0; i < kW; ++i) {
+            const glm::dvec3 dir = pixelDirection(cam, kW, kH, i, j);
+            if (dir.y >= 0.0) continue;
+            const glm::dvec3 onFloor = cam.eye + dir * (-cam.eye.y / dir.y);
+            if (onFloor.z > 1e-3 && std::fabs(onFloor.x) < kRadius && onFloor.z < 0.5) {
+                ++floorNear;
+                EXPECT_EQ(depthAt(after, i, j), depthAt(before, i, j)) << "floor pixel " << i << ", " << j;
+            } else if (onFloor.z < -1e-3 && depthAt(after, i, j) < depthAt(before, i, j)) {
+                ++wallDeeper;
+            }
+        }
+    EXPECT_GT(floorNear, 200u);
+    EXPECT_GT(wallDeeper, 100u);
+}
