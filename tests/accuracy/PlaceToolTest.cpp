@@ -1,0 +1,142 @@
+// spatter-place --proxy TOL% [--cache DIR]: the same proxies as buildProxy with a tolerance relative
+// to each object's diagonal, and a cache that makes a second run build nothing.
+
+#include "TestData.hpp"
+
+#include "spatter/core/MeshBuilder.hpp"
+#include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/core/SceneLoader.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+using namespace spatter;
+
+namespace {
+
+#ifdef SPATTER_PLACE_TOOL
+const char* kTool = SPATTER_PLACE_TOOL;
+#else
+const char* kTool = nullptr;
+#endif
+
+// Writes a bumpy sphere (9,120 triangles, above the own-mesh threshold) as OBJ.
+void writeBumpySphere(const std::string& path) {
+    Mesh m = makeSphere(2.0f, 48, 96);
+    displace(m, [](const glm::vec3& p, const glm::vec3&) {
+        return 0.06f * std::sin(4.5f * p.x) * std::cos(3.5f * p.y);
+    });
+    std::ofstream out(path);
+    char line[128];
+    for (const glm::vec3& p : m.positions) {
+        std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z));
+        out << line;
+    }
+    for (size_t t = 0; t < m.triangleCount(); ++t)
+        out << "f " << m.indices[3 * t] + 1 << ' ' << m.indices[3 * t + 1] + 1 << ' '
+            << m.indices[3 * t + 2] + 1 << '\n';
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+struct ToolRun {
+    int status = -1;
+    std::string records;    // stdout: JSON Lines
+    nlohmann::json summary; // the --summary object from stderr
+};
+
+ToolRun place(const std::string& dir, const std::string& scene, const std::string& extra) {
+    const std::string out = dir + "/records.jsonl", err = dir + "/summary.json";
+    const std::string command = std::string("'") + kTool + "' '" + scene + "' --rays '" + dir +
+                                "/rays.txt' --proxy 1% --summary " + extra + " > '" + out + "' 2> '" + err +
+                                "'";
+    ToolRun r;
+    r.status = std::system(command.c_str());
+    r.records = readFile(out);
+    r.summary = nlohmann::json::parse(readFile(err), nullptr, false);
+    return r;
+}
+
+TEST(SpatterPlaceProxy, UsesTheBuildersBoundAndTheCacheMakesTheSecondRunBuildNothing) {
+    if (!kTool) GTEST_SKIP() << "spatter-place is not built (SPATTER_BUILD_APPS=OFF)";
+    const std::string dir = test::scratchDir("accuracy-place-tool");
+    const std::string scene = dir + "/sphere.obj", cache = dir + "/cache";
+    writeBumpySphere(scene);
+    {
+        std::ofstream rays(dir + "/rays.txt");
+        rays << "0 0 10 0 0 -1\n5 1 0 -1 0 0\n0.3 -8 0.2 0 1 0\n";
+    }
+
+    // The proxy spatter-place builds is buildProxy's with a tolerance of 1% of the diagonal.
+    Result<Scene> loaded = loadScene(scene);
+    ASSERT_TRUE(loaded) << loaded.error();
+    ProxySettings settings;
+    settings.tolerance = 0.01f;
+    settings.toleranceRelative = true;
+    Result<Proxy> proxy = buildProxy(loaded->objects.at(0).mesh, settings);
+    ASSERT_TRUE(proxy) << proxy.error();
+    ASSERT_EQ(proxy->source, ProxySource::Simplified);
+
+    const ToolRun first = place(dir, scene, "--cache '" + cache + "'");
+    ASSERT_EQ(first.status, 0) << first.records;
+    ASSERT_TRUE(first.summary.is_object());
+    EXPECT_EQ(first.summary["proxies_built"], 1);
+    EXPECT_EQ(first.summary["proxies_cached"], 0);
+    EXPECT_EQ(first.summary["proxy_triangles"].get<size_t>(), proxy->proxyTriangles);
+    size_t placed = 0;
+    std::istringstream lines(first.records);
+    for (std::string line; std::getline(lines, line);) {
+        const nlohmann::json rec = nlohmann::json::parse(line, nullptr, false);
+        ASSERT_TRUE(rec.is_object()) << line;
+        if (rec["status"] != "placed") continue;
+        placed++;
+        EXPECT_EQ(rec["proxy_error_bound"].get<double>(), proxy->errorBound);
+        EXPECT_GE(rec["half_depth"].get<double>(), proxy->errorBound);
+    }
+    EXPECT_EQ(placed, 3u);
+
+    const ToolRun second = place(dir, scene, "--cache '" + cache + "'");
+    ASSERT_EQ(second.status, 0);
+    EXPECT_EQ(second.summary["proxies_built"], 0);
+    EXPECT_EQ(second.summary["proxies_cached"], 1);
+    EXPECT_EQ(second.records, first.records);
+
+    // A corrupt entry is rebuilt, with the same result.
+    size_t entries = 0;
+    for (const auto& e : std::filesystem::directory_iterator(cache)) {
+        std::ofstream(e.path(), std::ios::binary | std::ios::trunc) << "corrupt";
+        entries++;
+    }
+    ASSERT_EQ(entries, 1u);
+    const ToolRun third = place(dir, scene, "--cache '" + cache + "'");
+    ASSERT_EQ(third.status, 0);
+    EXPECT_EQ(third.summary["proxies_built"], 1);
+    EXPECT_EQ(third.records, first.records);
+
+    // Without --cache nothing is cached; --cache needs a proxy mode that builds proxies.
+    const ToolRun uncached = place(dir, scene, "");
+    EXPECT_EQ(uncached.summary["proxies_built"], 1);
+    EXPECT_EQ(uncached.records, first.records);
+    const std::string bad =
+        std::string("'") + kTool + "' '" + scene + "' --cache '" + cache + "' < /dev/null > /dev/null 2>&1";
+    const int status = std::system(bad.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 2);
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+}
+
+} // namespace
