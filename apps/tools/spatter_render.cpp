@@ -29,7 +29,7 @@ const char* kUsage = R"(usage: spatter-render SCENE [--decals FILE.jsonl | --ray
                       [--camera "eye=x,y,z;target=x,y,z;up=x,y,z;fov=DEG"] [--size WxH]
                       [--view final|albedo|normal|depth|ids|coverage] [--out FILE.png]
                       [--stats FILE.json] [--translate X,Y,Z] [--texture NAME]
-                      [--texture-space OBJECT[:SIZE]]...
+                      [--texture-space OBJECT[:SIZE]]... [--volumetric]
                       [--decal-size W[,H]] [--max-angle DEG] [--seed N]
 
 Renders SCENE (builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file) with the deferred
@@ -57,6 +57,8 @@ View:
   --view V        final (lit, default), albedo, normal, depth, ids, or coverage: white where at
                   least one decal writes the pixel (inside its box, object ID matching, within its
                   max angle), black elsewhere
+  --volumetric    the decals are volumetric bullet holes: a crater drawn behind a hole cut into
+                  the surface (stencil), instead of a flat texture
   --texture-space OBJECT[:SIZE]
                   draw the decals of the named object in texture space (rendered once into its own
                   SIZE x SIZE decal texture through its UVs, default 512) instead of projecting
@@ -358,6 +360,7 @@ int main(int argc, char** argv) {
     double decalW = 0.3, decalH = 0.3, maxAngle = 80.0;
     uint64_t seed = 1;
     std::vector<std::pair<std::string, int>> textureSpace; // object name, texture size
+    bool volumetric = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         std::string v;
@@ -401,6 +404,8 @@ int main(int argc, char** argv) {
         } else if (a == "--translate") {
             if (!value() || !parseVec3(v, translate))
                 return usageError("--translate needs three finite numbers X,Y,Z");
+        } else if (a == "--volumetric") {
+            volumetric = true;
         } else if (a == "--texture-space") {
             if (!value() || v.empty()) return usageError("--texture-space needs OBJECT[:SIZE]");
             const size_t colon = v.rfind(':');
@@ -459,6 +464,7 @@ int main(int argc, char** argv) {
     type.name = "spatter-render";
     type.size = glm::vec2(float(decalW), float(decalH));
     type.maxAngleDeg = float(maxAngle);
+    type.volumetric = volumetric;
 
     LoadedDecals loaded;
     std::string error;

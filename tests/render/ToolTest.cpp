@@ -202,3 +202,19 @@ TEST(SpatterRender, TextureSpaceModeReportsOverlappingUvsAndSplatsOnUsableMeshes
     EXPECT_EQ(stats["texture_space_objects"], 1);
     EXPECT_EQ(stats["decals_splatted"], 1);
 }
+
+TEST(SpatterRender, VolumetricOptionDrawsCratersInsteadOfFlatDecals) {
+    SPATTER_REQUIRE_TOOL_GL();
+    const std::string dir = test::scratchDir("render-tool-volumetric");
+    std::ofstream(dir + "/rays.txt") << "0 2 5 0 0 -1\n";
+    const std::string common = writeWall(dir) + " --rays " + dir + "/rays.txt --decal-size 1 --size 64x48" +
+                               " --camera 'eye=0,2,5;target=0,2,0'";
+    ASSERT_EQ(runTool(common + " --volumetric --out " + dir + "/v.png --stats " + dir + "/v.json"), 0);
+    ASSERT_EQ(runTool(common + " --out " + dir + "/f.png --stats " + dir + "/f.json"), 0);
+    std::ifstream vin(dir + "/v.json"), fin(dir + "/f.json");
+    const nlohmann::json v = nlohmann::json::parse(vin, nullptr, false),
+                         f = nlohmann::json::parse(fin, nullptr, false);
+    ASSERT_TRUE(v.is_object() && f.is_object());
+    EXPECT_EQ(v["decals_volumetric"], 1);
+    EXPECT_EQ(f["decals_volumetric"], 0);
+}
