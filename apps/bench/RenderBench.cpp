@@ -304,6 +304,7 @@ int runRenderCommand(int argc, char** argv) {
             row.config = c;
         } else if (const double est = estimateMs(c); est > 1000.0 * maxSeconds.value()) {
             row.config = c;
+            resolutionByName(c.resolution, row.width, row.height);
             row.error = "skipped: about " + fixed(est / 1000.0, 0) + " s per frame expected (--max-seconds " +
                         fmt(maxSeconds.value()) + ")";
             done[c.key()] = row;
@@ -329,7 +330,7 @@ int runRenderCommand(int argc, char** argv) {
         const Config& c = r.config;
         if (!r.error.empty()) {
             table.push_back({c.group, c.resolution, std::to_string(c.world), std::to_string(c.visible),
-                             fixed(c.size * r.height, 0), c.feature, "error: " + r.error});
+                             fixed(c.size * r.height, 0), c.feature, "-", "-", "-", "-", "-", "-", r.error});
             continue;
         }
         table.push_back({c.group, c.resolution, std::to_string(c.world), std::to_string(c.visible),
