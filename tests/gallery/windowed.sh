@@ -6,12 +6,14 @@ set -u
 exe=$1 cache=$2
 command -v Xvfb >/dev/null && command -v xdotool >/dev/null || { echo "SKIP: Xvfb or xdotool missing"; exit 77; }
 
-for n in $(seq 90 140); do [[ -e /tmp/.X11-unix/X$n || -e /tmp/.X$n-lock ]] || break; done
-Xvfb ":$n" -screen 0 800x600x24 -nolisten tcp >/dev/null 2>&1 &
-xvfb=$!
+# Xvfb picks a free display itself (-displayfd) and writes its number once it accepts clients.
+Xvfb -displayfd 3 -screen 0 800x600x24 -nolisten tcp 3>"$cache/display" >/dev/null 2>&1 &
+xvfb=$! app=""
 trap 'kill $xvfb 2>/dev/null; kill $app 2>/dev/null' EXIT
+for _ in $(seq 300); do [[ -s $cache/display ]] && break; sleep 0.1; done
+n=$(head -n 1 "$cache/display")
+[[ -n $n ]] || { echo "FAIL: Xvfb did not start"; exit 1; }
 export DISPLAY=":$n"
-for _ in $(seq 50); do xdotool getmouselocation >/dev/null 2>&1 && break; sleep 0.1; done
 
 "$exe" --size 320x200 --tolerance 2 --cache "$cache" >"$cache/out.txt" 2>&1 &
 app=$!
