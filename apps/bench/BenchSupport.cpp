@@ -14,7 +14,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <malloc.h>
 #include <sstream>
 #include <thread>
 #include <unistd.h>
@@ -82,6 +81,23 @@ int usageError(const std::string& command, const std::string& message) {
     std::cerr << "spatter-bench " << command << ": " << message << "\n(see spatter-bench " << command
               << " --help)\n";
     return 2;
+}
+
+std::optional<Args> commandArgs(int argc, char** argv, const std::string& command, const std::string& usage,
+                                const std::set<std::string>& valued, std::set<std::string> switches,
+                                int& exitCode) {
+    switches.insert({"--help", "-h"});
+    Result<Args> parsed = parseArgs(argc, argv, valued, switches);
+    if (!parsed) {
+        exitCode = usageError(command, parsed.error());
+        return std::nullopt;
+    }
+    if (parsed->has("--help") || parsed->has("-h")) {
+        std::cout << usage;
+        exitCode = 0;
+        return std::nullopt;
+    }
+    return std::move(parsed).value();
 }
 
 // ---- Statistics ------------------------------------------------------------------------------
@@ -339,20 +355,6 @@ Status writeRays(const std::vector<Ray>& rays, const std::string& path) {
                      r.direction.x, r.direction.y, r.direction.z);
     const bool ok = std::fclose(f) == 0;
     return ok ? Status() : Status(fail("cannot write '" + path + "'"));
-}
-
-// ---- Memory ----------------------------------------------------------------------------------
-
-size_t heapBytes() {
-    const struct mallinfo2 m = mallinfo2();
-    return m.uordblks + m.hblkhd;
-}
-
-size_t residentBytes() {
-    std::ifstream statm("/proc/self/statm");
-    size_t pages = 0, resident = 0;
-    if (!(statm >> pages >> resident)) return 0;
-    return resident * size_t(sysconf(_SC_PAGESIZE));
 }
 
 // ---- Output ----------------------------------------------------------------------------------

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -51,6 +52,13 @@ Result<std::vector<double>> parseNumberList(const std::string& text, const std::
 
 // Prints "spatter-bench COMMAND: message" and the hint to --help on stderr; returns 2.
 int usageError(const std::string& command, const std::string& message);
+
+// How every command starts: argv parsed by parseArgs, with --help and -h added to `switches`.
+// Returns the arguments; or nothing, with `exitCode` set to what the command returns at once: 0
+// after printing `usage` on stdout for --help or -h, 2 after a usage error (usageError).
+std::optional<Args> commandArgs(int argc, char** argv, const std::string& command, const std::string& usage,
+                                const std::set<std::string>& valued, std::set<std::string> switches,
+                                int& exitCode);
 
 // ---- Clocks and statistics -------------------------------------------------------------------
 
@@ -142,13 +150,6 @@ glm::dvec3 randomConeDirection(const glm::dvec3& axis, double halfAngle, Rng& rn
 
 // Writes rays as the ray files of spatter-place read them: "ox oy oz dx dy dz" per line.
 Status writeRays(const std::vector<Ray>& rays, const std::string& path);
-
-// ---- Memory ----------------------------------------------------------------------------------
-
-// Bytes the C heap has handed out and not taken back (glibc mallinfo2: arena and mmapped blocks).
-size_t heapBytes();
-// Resident set size of the process.
-size_t residentBytes();
 
 // ---- Output ----------------------------------------------------------------------------------
 

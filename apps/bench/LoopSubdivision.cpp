@@ -4,6 +4,7 @@
 #include <OpenMesh/Core/System/omstream.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 
+#include <algorithm>
 #include <cstring>
 #include <unordered_map>
 
@@ -70,7 +71,13 @@ Result<Mesh> loopSubdivide(const Mesh& mesh, int steps, size_t& dropped) {
     om.release_vertex_status();
     om.release_edge_status();
     om.release_face_status();
+    // The subdivider's weight table is indexed by valence (50 entries by default); subdivision
+    // keeps the valence of old vertices and gives new ones 6, so size it for the largest now.
+    size_t maxValence = 6;
+    for (const LoopMesh::VertexHandle v : om.vertices())
+        maxValence = std::max(maxValence, size_t(om.valence(v)));
     OpenMesh::Subdivider::Uniform::LoopT<LoopMesh> loop;
+    loop.init_weights(maxValence + 1);
     loop.attach(om);
     loop(size_t(steps));
     loop.detach();

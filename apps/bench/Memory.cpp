@@ -5,6 +5,7 @@
 #include "RawEmbree.hpp"
 
 #include "spatter/core/MeshBuilder.hpp"
+#include "spatter/core/ProcessMemory.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/render/DecalTextures.hpp"
@@ -30,9 +31,10 @@ const char* kUsage = R"(usage: spatter-bench memory [MESH] [--decals N] [--no-gp
 
 Bytes per decal and per object, measured:
 
-  decal system   C heap (glibc mallinfo2) taken by N decals spawned with spawnAttached, spread so
-                 that a cell of the area grid holds about 8: the decal records, the per-decal
-                 bookkeeping, the area grid and the handle slots (the containers' growth included)
+  decal system   C heap (glibc mallinfo2, or ASan's statistics in an ASan build) taken by N
+                 decals spawned with spawnAttached, spread so that a cell of the area grid holds
+                 about 8: the decal records, the per-decal bookkeeping, the area grid and the
+                 handle slots (the containers' growth included)
   renderer CPU   C heap taken by Renderer::setDecals (its copies of the decals and their instances)
   renderer GPU   instance bytes uploaded in the first frame (FrameStats), and the GPU memory the
                  driver reports gone (GL_NVX_gpu_memory_info) where the driver has it, else the

@@ -7,6 +7,7 @@
 #include "SkipBench.hpp"
 #include "StressReport.hpp"
 #include "Tradeoff.hpp"
+#include "VolumetricBench.hpp"
 
 #include <cstdio>
 #include <cstring>
@@ -32,6 +33,8 @@ const Command kCommands[] = {
      spatter::bench::runMemoryCommand},
     {"skip", "what each skip of the design saves: on against forced off, in one run",
      spatter::bench::runSkipCommand},
+    {"volumetric", "GPU time of volumetric decals against flat ones, 1 to 4096 in view (--json FILE)",
+     spatter::bench::runVolumetricCommand},
 };
 
 void usage(std::FILE* out) {

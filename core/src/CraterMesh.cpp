@@ -12,6 +12,7 @@ namespace spatter {
 namespace {
 
 constexpr float kPi = 3.14159265358979323846f;
+constexpr float kMaxTilt = 0.25f; // the bowl is up to this much deeper on one side
 
 // A smooth periodic profile in [0, 1] over `segments` samples: a few random harmonics, with a
 // couple of sharp notches for chips.
@@ -58,8 +59,8 @@ Result<Mesh> makeCraterMesh(uint32_t variant, const CraterShape& s) {
     const int n = s.segments;
     // Rim radius 1 - chip * noise: the largest radius is exactly 1.
     const std::vector<float> rim = periodicNoise(rng, n, 5, 2);
-    const float squash = rng.uniform(0.85f, 1.0f); // slight anisotropy of the depth profile
-    const float tilt = rng.uniform(-0.25f, 0.25f); // off-centre deepest point
+    const float squash = rng.uniform(0.85f, 1.0f);       // slight anisotropy of the depth profile
+    const float tilt = rng.uniform(-kMaxTilt, kMaxTilt); // off-centre deepest point
 
     Mesh m;
     // Ring 0 is the rim, rings 1..rings-1 go down, then the bottom vertex.
@@ -96,6 +97,12 @@ Result<Mesh> makeCraterMesh(uint32_t variant, const CraterShape& s) {
         m.indices.insert(m.indices.end(), {at(s.rings - 1, i), at(s.rings - 1, i + 1), bottom});
     computeNormals(m);
     return m;
+}
+
+float craterDepthBound(const CraterShape& s) {
+    // depth * squash (<= 1) * skew (<= 1 + kMaxTilt) * (1 + roughness * bump (<= 1)); the bottom
+    // vertex is shallower than that.
+    return s.depth * (1.0f + kMaxTilt) * (1.0f + s.roughness);
 }
 
 } // namespace spatter

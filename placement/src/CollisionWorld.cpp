@@ -435,7 +435,8 @@ struct CollisionWorld::Impl {
         h.localPosition = lo + t * ld;
         const glm::dmat3 normalMatrix = glm::transpose(glm::dmat3(od.inverse));
         glm::dvec3 wn = glm::normalize(normalMatrix * n);
-        if (glm::dot(wn, ray.direction) > 0.0) {
+        h.frontFace = glm::dot(wn, ray.direction) < 0.0;
+        if (!h.frontFace) {
             wn = -wn;
             n = -n;
         }

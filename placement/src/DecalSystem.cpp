@@ -1,6 +1,7 @@
 #include "spatter/placement/DecalSystem.hpp"
 
 #include "AreaLimits.hpp"
+#include "CraterClipping.hpp"
 #include "spatter/core/Random.hpp"
 #include "spatter/placement/ObjectIds.hpp"
 
@@ -247,6 +248,8 @@ struct DecalSystem::Impl {
             rng = unused;
             return reject(SpawnStatus::AreaLimit, std::move(why));
         }
+
+        if (t.volumetric) findCraterClips(world, o.transform, h, d);
 
         uint32_t slot;
         if (!freeSlots.empty()) {

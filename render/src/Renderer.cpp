@@ -166,6 +166,7 @@ struct Renderer::Impl {
     GpuTimers timers;
     uint64_t frame = 0;
     bool rendered = false;
+    glm::dvec2 depthProjection{0.0}; // A, B of the last frame's projection: view z = -B / (depth + A)
 
     // Per-frame counters.
     size_t drawCalls = 0;
@@ -393,6 +394,7 @@ struct Renderer::Impl {
         f.view = glm::mat4(view);
         f.invView = glm::mat4(glm::transpose(view));
         f.projection = glm::vec4(float(proj[0][0]), float(proj[1][1]), float(proj[2][2]), float(proj[3][2]));
+        depthProjection = glm::dvec2(proj[2][2], proj[3][2]);
         f.viewport = glm::vec4(float(gbuffer.width()), float(gbuffer.height()), 1.0f / float(gbuffer.width()),
                                1.0f / float(gbuffer.height()));
         const LightSettings& l = settings.light;
@@ -876,7 +878,8 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
         m.timers.begin(GpuPass::Volumetric);
         m.baseState(m.gbuffer.framebuffer());
         const bool compareIds = m.gbuffer.hasIds() && options.decals.idClipping;
-        m.drawCalls += m.volumetric.draw(m.gbuffer, m.idTexture(), compareIds, m.transforms, camera.eye);
+        m.drawCalls +=
+            m.volumetric.draw(m.gbuffer, m.idTexture(), compareIds, coverage, m.transforms, camera.eye);
         m.timers.end();
     }
     if (!stats.decalPassSkipped) {
@@ -927,6 +930,24 @@ Result<Image> Renderer::readback() const {
     for (int y = 0; y < h; ++y) // GL row 0 is the bottom
         std::copy_n(&pixels[size_t(h - 1 - y) * row], row, &image.rgba[size_t(y) * row]);
     return image;
+}
+
+Result<std::vector<float>> Renderer::readbackDepth() const {
+    const Impl& m = *impl_;
+    if (!m.rendered) return fail("renderer: nothing rendered yet");
+    const int w = m.gbuffer.width(), h = m.gbuffer.height();
+    std::vector<float> depth(size_t(w) * size_t(h));
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(m.gbuffer.depth(), 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                      GLsizei(depth.size() * sizeof(float)), depth.data());
+    std::vector<float> distance(depth.size(), 0.0f);
+    const glm::dvec2 p = m.depthProjection;
+    for (int y = 0; y < h; ++y) // GL row 0 is the bottom
+        for (int x = 0; x < w; ++x) {
+            const double d = depth[size_t(h - 1 - y) * size_t(w) + size_t(x)];
+            if (d > 0.0) distance[size_t(y) * size_t(w) + size_t(x)] = float(p.y / (d + p.x));
+        }
+    return distance;
 }
 
 void Renderer::present(int framebufferWidth, int framebufferHeight) const {

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 namespace spatter::render_detail {
 
@@ -22,16 +21,22 @@ bool finite3(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-// Uniform locations shared by the crater programs (crater.vert).
-enum : GLint {
-    kModel = 0,     // crater -> camera-relative world
-    kNormal = 1,    // inverse transpose of the model's 3x3 part
-    kPlane = 2,     // xyz: unit decal axis (world); w: its dot with the rim centre (camera-relative)
-    kId = 3,        // object decal ID of the decal
-    kTolerance = 4, // largest view-depth difference between the footprint and the surface
-    kDepth = 5,     // depth of the crater's deepest point, in crater units
-    kCosAngle = 6,  // cosine of the largest angle between the surface normal and the decal axis
+// One record per crater (shaders/crater.glsl, std430).
+struct CraterRecord {
+    glm::mat4 model;
+    glm::mat4 normal;
+    glm::vec4 plane;
+    glm::vec4 clips[2];
+    float tolerance = 0.0f;
+    float cosAngle = 0.0f;
+    float depth = 0.0f;
+    uint32_t id = 0;
 };
+static_assert(sizeof(CraterRecord) == 192, "CraterRecord must match shaders/crater.glsl");
+
+constexpr GLint kBase = 0;                               // uniform: the draw's first record (crater.vert)
+constexpr GLuint kRecordSlot = 5;                        // shader storage binding of the records
+constexpr int kGroups = 2 * VolumetricDecals::kVariants; // by variant and winding
 
 GlTexture makeCopy(GLenum format, int width, int height) {
     GlTexture t = createTexture(GL_TEXTURE_2D);
@@ -123,7 +128,7 @@ void VolumetricDecals::setDecals(const std::vector<Decal>& decals, const std::ve
     }
 }
 
-size_t VolumetricDecals::draw(const GBuffer& gbuffer, GLuint idTexture, bool compareIds,
+size_t VolumetricDecals::draw(const GBuffer& gbuffer, GLuint idTexture, bool compareIds, bool coverage,
                               const std::vector<glm::dmat4>& transforms, const glm::dvec3& eye) {
     if (decals_.empty()) return 0;
     const int w = gbuffer.width(), h = gbuffer.height();
@@ -138,18 +143,8 @@ size_t VolumetricDecals::draw(const GBuffer& gbuffer, GLuint idTexture, bool com
     glCopyImageSubData(gbuffer.material(), GL_TEXTURE_2D, 0, 0, 0, 0, materialCopy_.get(), GL_TEXTURE_2D, 0,
                        0, 0, 0, w, h, 1);
 
-    // Per decal: crater space (unit radius, depth along -z) to camera-relative world.
-    struct Placed {
-        glm::mat4 model, normal;
-        glm::vec4 plane;
-        float tolerance;
-        bool mirrored;
-        const Variant* variant;
-        uint32_t id;
-        float cosAngle;
-    };
-    std::vector<Placed> placed;
-    placed.reserve(decals_.size());
+    // Records grouped by variant and winding (a mirrored transform turns the crater inside out).
+    std::vector<CraterRecord> groups[kGroups];
     const glm::dmat4 toEye = glm::translate(glm::dmat4(1.0), -eye);
     for (size_t k = 0; k < decals_.size(); ++k) {
         const Decal& d = decals_[k];
@@ -163,22 +158,41 @@ size_t VolumetricDecals::draw(const GBuffer& gbuffer, GLuint idTexture, bool com
         const glm::dmat3 m3(rel);
         const double det = glm::determinant(m3);
         if (!(std::fabs(det) > 1e-30) || !std::isfinite(det)) continue;
-        Placed p;
-        p.model = glm::mat4(rel);
-        p.normal = glm::mat4(glm::mat3(glm::transpose(glm::inverse(m3))));
-        const glm::dvec3 axis = glm::normalize(glm::transpose(glm::inverse(m3)) * glm::dvec3(0.0, 0.0, 1.0));
-        const glm::dvec3 origin(rel[3]);
-        p.plane = glm::vec4(glm::vec3(axis), float(glm::dot(axis, origin)));
+        const int variant = int(d.id % kVariants);
+        CraterRecord r;
+        r.model = glm::mat4(rel);
+        const glm::dmat3 normal = glm::transpose(glm::inverse(m3));
+        r.normal = glm::mat4(glm::mat3(normal));
+        const glm::dvec3 axis = glm::normalize(normal * glm::dvec3(0.0, 0.0, 1.0));
+        r.plane = glm::vec4(glm::vec3(axis), float(glm::dot(axis, glm::dvec3(rel[3]))));
+        r.clips[0] = unpackCraterClip(d.clips[0]);
+        r.clips[1] = unpackCraterClip(d.clips[1]);
         // The footprint and the surface agree on a flat wall; allow a quarter of the radius for
         // curvature and depth precision.
         const double radius = std::max(glm::length(glm::dvec3(rel[0])), glm::length(glm::dvec3(rel[1])));
-        p.tolerance = float(0.25 * radius);
-        p.mirrored = det < 0.0;
-        p.variant = &variants_[d.id % kVariants];
-        p.id = d.objectId;
-        p.cosAngle = cosMaxAngle_[k];
-        placed.push_back(p);
+        r.tolerance = float(0.25 * radius);
+        r.cosAngle = cosMaxAngle_[k];
+        r.depth = variants_[variant].depth;
+        r.id = d.objectId;
+        groups[2 * variant + (det < 0.0 ? 1 : 0)].push_back(r);
     }
+    std::vector<CraterRecord> records;
+    records.reserve(decals_.size());
+    GLuint first[kGroups], count[kGroups];
+    for (int g = 0; g < kGroups; ++g) {
+        first[g] = GLuint(records.size());
+        count[g] = GLuint(groups[g].size());
+        records.insert(records.end(), groups[g].begin(), groups[g].end());
+    }
+    if (records.empty()) return 0;
+    const size_t bytes = records.size() * sizeof(CraterRecord);
+    if (bytes > recordCapacity_) {
+        recordCapacity_ = std::max(bytes, 2 * recordCapacity_);
+        records_ = createBuffer();
+        glNamedBufferStorage(records_.get(), GLsizeiptr(recordCapacity_), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    glNamedBufferSubData(records_.get(), 0, GLsizeiptr(bytes), records.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRecordSlot, records_.get());
 
     glBindFramebuffer(GL_FRAMEBUFFER, gbuffer.framebuffer());
     glBindVertexArray(vao_.get());
@@ -186,7 +200,23 @@ size_t VolumetricDecals::draw(const GBuffer& gbuffer, GLuint idTexture, bool com
     glStencilMask(0xff);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
+    glEnable(GL_CLIP_DISTANCE0);
+    glEnable(GL_CLIP_DISTANCE1);
     size_t draws = 0;
+    // One instanced draw per group of the index range `first`, `count` of each variant.
+    auto drawGroups = [&](uint32_t Variant::*firstIndex, uint32_t Variant::*indexCount) {
+        for (int g = 0; g < kGroups; ++g) {
+            if (count[g] == 0) continue;
+            const Variant& v = variants_[g / 2];
+            glFrontFace(g % 2 == 1 ? GL_CW : GL_CCW);
+            glUniform1ui(kBase, first[g]);
+            glDrawElementsInstanced(
+                GL_TRIANGLES, GLsizei(v.*indexCount), GL_UNSIGNED_INT,
+                reinterpret_cast<const void*>(uintptr_t(v.*firstIndex) * sizeof(uint32_t)),
+                GLsizei(count[g]));
+            ++draws;
+        }
+    };
 
     // Mark: footprints into the stencil, no colour or depth writes.
     const GLenum none[5] = {GL_NONE, GL_NONE, GL_NONE, GL_NONE, GL_NONE};
@@ -199,22 +229,11 @@ size_t VolumetricDecals::draw(const GBuffer& gbuffer, GLuint idTexture, bool com
     glBindTextureUnit(0, gbuffer.depth());
     glBindTextureUnit(1, gbuffer.normal());
     glBindTextureUnit(2, idTexture);
-    for (const Placed& p : placed) {
-        glFrontFace(p.mirrored ? GL_CW : GL_CCW);
-        glUniformMatrix4fv(kModel, 1, GL_FALSE, glm::value_ptr(p.model));
-        glUniform4fv(kPlane, 1, glm::value_ptr(p.plane));
-        if (compareIds) glUniform1ui(kId, p.id);
-        glUniform1f(kTolerance, p.tolerance);
-        glUniform1f(kCosAngle, p.cosAngle);
-        glDrawElements(
-            GL_TRIANGLES, GLsizei(p.variant->footprintCount), GL_UNSIGNED_INT,
-            reinterpret_cast<const void*>(uintptr_t(p.variant->footprintFirst) * sizeof(uint32_t)));
-        ++draws;
-    }
+    drawGroups(&Variant::footprintFirst, &Variant::footprintCount);
 
     // Craters: inside the marked pixels, farther wins.
     const GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_NONE,
-                               GL_NONE};
+                               GLenum(coverage ? GL_COLOR_ATTACHMENT4 : GL_NONE)};
     glDrawBuffers(5, buffers);
     glEnable(GL_FRAMEBUFFER_SRGB);
     glEnable(GL_DEPTH_TEST);
@@ -225,16 +244,10 @@ size_t VolumetricDecals::draw(const GBuffer& gbuffer, GLuint idTexture, bool com
     glUseProgram(craterProgram_.get());
     glBindTextureUnit(1, albedoCopy_.get());
     glBindTextureUnit(3, materialCopy_.get());
-    for (const Placed& p : placed) {
-        glFrontFace(p.mirrored ? GL_CW : GL_CCW);
-        glUniformMatrix4fv(kModel, 1, GL_FALSE, glm::value_ptr(p.model));
-        glUniformMatrix4fv(kNormal, 1, GL_FALSE, glm::value_ptr(p.normal));
-        glUniform4fv(kPlane, 1, glm::value_ptr(p.plane));
-        glUniform1f(kDepth, p.variant->depth);
-        glDrawElements(GL_TRIANGLES, GLsizei(p.variant->indexCount), GL_UNSIGNED_INT,
-                       reinterpret_cast<const void*>(uintptr_t(p.variant->firstIndex) * sizeof(uint32_t)));
-        ++draws;
-    }
+    drawGroups(&Variant::firstIndex, &Variant::indexCount);
+
+    glDisable(GL_CLIP_DISTANCE0);
+    glDisable(GL_CLIP_DISTANCE1);
     glDisable(GL_STENCIL_TEST);
     glDisable(GL_CULL_FACE);
     glFrontFace(GL_CCW);

@@ -135,3 +135,22 @@ TEST(BenchSmoke, RenderQuickTimesTheDecalPass) {
         EXPECT_GE(row["decal_ms"].get<double>(), 0.0);
     }
 }
+
+TEST(BenchSmoke, VolumetricQuickDrawsEveryCraterInAFewInstancedDraws) {
+    if (!noGl().empty()) {
+        if (test::runningInCi()) FAIL() << "CI=true but no headless OpenGL 4.5 context: " << noGl();
+        GTEST_SKIP() << "no headless OpenGL 4.5 context (" << noGl() << ")";
+    }
+    const std::string dir = test::scratchDir("bench-volumetric");
+    ASSERT_EQ(runBench("volumetric --quick --frames 1 --json " + dir + "/v.json", dir + "/log"), 0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/v.json");
+    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << readAll(dir + "/v.json");
+    ASSERT_EQ(j["rows"].size(), 2u);
+    for (const auto& row : j["rows"]) {
+        // Geometry and lighting, then two draws per crater variant and winding in use (4 variants).
+        EXPECT_LE(row["volumetric_draws"].get<int>(), 2 + 2 * 4) << row.dump();
+        EXPECT_GT(row["volumetric_pass_ms"].get<double>(), 0.0) << row.dump();
+        EXPECT_GT(row["ratio"].get<double>(), 0.0) << row.dump();
+    }
+}

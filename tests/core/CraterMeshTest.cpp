@@ -95,3 +95,18 @@ TEST(CraterMesh, RejectsShapesOutOfRange) {
     ASSERT_FALSE(r);
     EXPECT_NE(r.error().find("chip"), std::string::npos);
 }
+
+TEST(CraterMesh, DepthBoundHoldsForEveryVariantAndShape) {
+    for (const float depth : {0.2f, 0.45f, 1.5f})
+        for (const float roughness : {0.0f, 0.08f, 0.5f}) {
+            CraterShape shape;
+            shape.depth = depth;
+            shape.roughness = roughness;
+            for (uint32_t v = 0; v < 32; ++v) {
+                const Result<Mesh> m = makeCraterMesh(v, shape);
+                ASSERT_TRUE(m.ok()) << m.error();
+                for (const glm::vec3& p : m.value().positions)
+                    EXPECT_LE(-p.z, craterDepthBound(shape)) << "variant " << v;
+            }
+        }
+}

@@ -4,6 +4,7 @@
 // docs/RELIABILITY.md records a run of ten million.
 
 #include "spatter/core/MeshBuilder.hpp"
+#include "spatter/core/ProcessMemory.hpp"
 #include "spatter/core/Random.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
@@ -15,11 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <malloc.h>
 #include <string>
-#include <sys/resource.h>
-#include <unistd.h>
 #include <vector>
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -31,38 +28,11 @@
 #endif
 #ifdef SPATTER_ASAN
 #include <sanitizer/lsan_interface.h>
-// From sanitizer/allocator_interface.h, which GCC does not install: the bytes ASan's allocator has
-// handed out and not got back.
-extern "C" size_t __sanitizer_get_current_allocated_bytes();
 #endif
 
 using namespace spatter;
 
 namespace {
-
-// Resident size now, in bytes (/proc/self/statm), and the process's peak (getrusage).
-size_t residentBytes() {
-    std::ifstream statm("/proc/self/statm");
-    size_t pages = 0, resident = 0;
-    statm >> pages >> resident;
-    return resident * size_t(sysconf(_SC_PAGESIZE));
-}
-
-size_t peakResidentBytes() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return size_t(u.ru_maxrss) * 1024;
-}
-
-// Bytes the allocator has handed out and not got back (the process's heap in use).
-size_t heapInUse() {
-#ifdef SPATTER_ASAN
-    return __sanitizer_get_current_allocated_bytes(); // ASan's allocator replaces malloc's statistics
-#else
-    const struct mallinfo2 m = mallinfo2();
-    return m.uordblks + m.hblkhd;
-#endif
-}
 
 uint64_t soakSpawns(uint64_t ciDefault) {
     const char* env = std::getenv("SPATTER_SOAK_SPAWNS");
@@ -162,7 +132,7 @@ SoakFigures soak(DecalSystem& sys, const std::vector<uint16_t>& types, uint64_t 
         f.maxAlive = std::max(f.maxAlive, st.alive);
         f.maxCounted = std::max(f.maxCounted, counted);
         if (f.frames % 64 == 0) {
-            const size_t rss = residentBytes(), heap = heapInUse();
+            const size_t rss = residentBytes(), heap = heapBytes();
             if (!warm && f.spawns >= spawns / 10) {
                 warm = true;
                 f.residentWarm = rss;

@@ -6,6 +6,7 @@
 
 #include "spatter/core/CraterMesh.hpp"
 #include "spatter/core/MeshBuilder.hpp"
+#include "spatter/placement/DecalSystem.hpp"
 
 #include <gtest/gtest.h>
 
@@ -288,4 +289,112 @@ TEST(VolumetricDecal, CraterAtACornerLeavesTheAdjacentFloorAlone) {
         }
     EXPECT_GT(floorNear, 200u);
     EXPECT_GT(wallDeeper, 100u);
+}
+
+namespace {
+
+// A pillar |x| <= 0.3, |z| <= 0.3, 0 <= y <= 3, with volumetric decals placed by the decal system
+// near the edge between its front (z = 0.3) and right (x = 0.3) faces and at its top corner.
+struct PillarShots {
+    Scene scene;
+    std::vector<Decal> decals;
+};
+
+PillarShots pillarShots() {
+    PillarShots out;
+    out.scene = wallScene(false);
+    out.scene.objects[0] = box("pillar", {0.3f, 1.5f, 0.3f}, {0.0, 1.5, 0.0});
+    out.scene.objects[0].mesh.submeshes = {{0, uint32_t(out.scene.objects[0].mesh.indices.size()), 0}};
+    Result<DecalSystem> sys = DecalSystem::create(out.scene);
+    EXPECT_TRUE(sys.ok()) << sys.error();
+    DecalType t = types()[0];
+    t.size = glm::vec2(0.3f);
+    EXPECT_TRUE(sys->registerType(t).ok());
+    for (const glm::dvec3 target :
+         {glm::dvec3(0.24, 1.5, 0.3), glm::dvec3(0.25, 2.0, 0.3), glm::dvec3(0.24, 2.95, 0.3)}) {
+        Ray r;
+        r.origin = target + glm::dvec3(0.0, 0.0, 2.0);
+        r.direction = {0.0, 0.0, -1.0};
+        const SpawnResult res = sys->spawn(r, 0);
+        EXPECT_TRUE(res.placed()) << res.reason;
+    }
+    out.decals = sys->decals();
+    return out;
+}
+
+// The largest distance by which a pixel whose depth the craters changed lies outside the pillar.
+double pokeOut(Renderer& r, const Camera& cam, const std::vector<Decal>& decals, size_t& changed) {
+    r.setDecals({});
+    renderView(r, cam, View::Depth);
+    const std::vector<float> before = r.readbackDepth().value();
+    r.setDecals(decals);
+    renderView(r, cam, View::Depth);
+    const std::vector<float> after = r.readbackDepth().value();
+    const glm::dvec3 forward = -cameraBasis(cam).back;
+    double worst = 0.0;
+    changed = 0;
+    for (int j = 0; j < kH; ++j)
+        for (int i = 0; i < kW; ++i) {
+            const size_t k = size_t(j) * kW + size_t(i);
+            if (after[k] == before[k] || after[k] <= 0.0f) continue;
+            ++changed;
+            const glm::dvec3 dir = pixelDirection(cam, kW, kH, i, j);
+            const glm::dvec3 p = cam.eye + dir * (double(after[k]) / glm::dot(dir, forward));
+            worst = std::max({worst, p.x - 0.3, p.z - 0.3, p.y - 3.0});
+        }
+    return worst;
+}
+
+} // namespace
+
+TEST(VolumetricDecal, CraterAtAnEdgeOrCornerDoesNotPokeOutOfTheAdjacentFace) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    PillarShots shots = pillarShots();
+    ASSERT_EQ(shots.decals.size(), 3u);
+    for (const Decal& d : shots.decals)
+        ASSERT_TRUE(d.clips[0].active())
+            << "no clip plane for the decal at " << d.center.x << ", " << d.center.y;
+    ASSERT_TRUE(r->setScene(shots.scene).ok());
+    r->setDecalTypes(types());
+    // From the front left and from above, looking into the holes towards the right face and the top.
+    for (const glm::dvec3 eye : {glm::dvec3(-1.2, 2.2, 1.6), glm::dvec3(-0.8, 4.2, 1.2)}) {
+        Camera cam;
+        cam.eye = eye;
+        cam.target = {0.25, 2.2, 0.3};
+        cam.fovYDeg = 40.0;
+        size_t changed = 0;
+        EXPECT_LE(pokeOut(r.value(), cam, shots.decals, changed), 2e-3) << "eye " << eye.x << ", " << eye.y;
+        EXPECT_GT(changed, 100u);
+        // The control: without their clip planes the same craters do poke out.
+        std::vector<Decal> unclipped = shots.decals;
+        for (Decal& d : unclipped)
+            d.clips[0] = d.clips[1] = CraterClip{};
+        EXPECT_GT(pokeOut(r.value(), cam, unclipped, changed), 0.01) << "eye " << eye.x << ", " << eye.y;
+    }
+}
+
+TEST(VolumetricDecal, CoverageViewShowsTheHolesAndNothingElse) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    ASSERT_TRUE(r->setScene(wallScene(false)).ok());
+    r->setDecalTypes(types());
+    r->setDecals({crater(0.0f, 1.5f, 1), crater(-0.6f, 1.2f, 2)});
+    const Camera cam = frontCamera();
+    const Image coverage = renderView(r.value(), cam, View::Coverage);
+    size_t inside = 0, covered = 0;
+    for (int j = 0; j < kH; ++j)
+        for (int i = 0; i < kW; ++i) {
+            const bool white = coverage.rgba[(size_t(j) * kW + size_t(i)) * 4] > 128;
+            const double d = nearestCentre(wallPoint(cam, i, j), {{0.0, 1.5}, {-0.6, 1.2}});
+            if (white) {
+                ++covered;
+                EXPECT_LT(d, 1.02 * kRadius) << "pixel " << i << ", " << j;
+            }
+            if (d < 0.5 * kRadius) inside += white ? 1 : 0;
+        }
+    EXPECT_GT(covered, 200u);
+    EXPECT_GT(inside, 100u);
 }

@@ -28,4 +28,8 @@ struct CraterShape {
 // shape outside the ranges above.
 Result<Mesh> makeCraterMesh(uint32_t variant, const CraterShape& shape = {});
 
+// An upper bound of the depth of every crater of `shape`, in units of the radius (a shape's variants
+// differ in depth by up to a quarter and by their roughness).
+float craterDepthBound(const CraterShape& shape = {});
+
 } // namespace spatter

@@ -36,7 +36,8 @@ struct DecalType {
     bool normalMap = true;   // blend the texture's normal map into the G-buffer normal
     float roughness = -1.0f; // roughness written under the decal; < 0 keeps the surface's
     // Volumetric: instead of the projected texture, a crater model is drawn behind a stencil hole in
-    // the surface (Renderer.hpp), with the surface's material continued into it.
+    // the surface (Renderer.hpp), with the surface's material continued into it; the decal system
+    // clips it where the solid ends around the hit (Decal::clips).
     bool volumetric = false;
 };
 

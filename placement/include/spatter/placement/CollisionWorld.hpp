@@ -70,6 +70,9 @@ struct Hit {
     glm::dvec3 normal{0.0};        // world space, through the object's normal matrix
     glm::dvec3 localPosition{0.0}; // object space
     glm::dvec3 localNormal{0.0};   // object space
+    // The ray meets the side the triangle's winding faces (counter-clockwise seen from that side,
+    // through the normal matrix): for a closed mesh wound outwards, the ray enters it there.
+    bool frontFace = true;
 };
 
 class CollisionWorld {

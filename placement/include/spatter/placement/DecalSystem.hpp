@@ -123,7 +123,9 @@ public:
     // space is zero, denormal or not finite), limits (AreaLimit under LimitPolicy::Reject); the last
     // two apply to spawnAt and spawnAttached as well. The decal's frame: normal = the
     // hit's geometric normal (facing the ray); tangent = the ray direction projected onto the surface
-    // (frameFromNormalAndHint: then world X, then Duff et al.), turned by a random angle.
+    // (frameFromNormalAndHint: then world X, then Duff et al.), turned by a random angle. A decal of
+    // a volumetric type gets the clip planes of its crater from the collision proxy around it, in
+    // all three spawn calls (Decal::clips, placement/src/CraterClipping.hpp).
     SpawnResult spawn(const Ray& ray, uint16_t type);
 
     // Places a decal centred on the collision surface at `position`, facing `normal` (world space,

@@ -47,7 +47,7 @@ struct FrameStats {
     size_t decalsTextureSpace = 0;  // decals given to setDecals that lie on texture-space objects
                                     // (not in `decals`: the decal pass never draws them)
     size_t decalsSplatted = 0;      // of those, rendered into their object's decal texture this frame
-    size_t decalsVolumetric = 0;    // volumetric decals drawn (two draws each; not counted in decals)
+    size_t decalsVolumetric = 0;    // volumetric decals drawn (instanced; not counted in decals)
     size_t textureSpaceObjects = 0; // objects in texture-space mode
     size_t textureSpaceBytes = 0;   // GPU memory of their decal textures, UV masks and dilation scratch
 

@@ -154,8 +154,9 @@ public:
     // The decals to draw (object space, as DecalSystem::decals() gives them). Decals whose type,
     // as last given to setDecalTypes, is volumetric are drawn as holes, not by the decal pass.
     // Only instances whose data changed since the last frame are uploaded. Decals on texture-space
-    // objects are not drawn by the decal pass: each is splatted into its object's decal texture by the next render call
-    // after it first appears (recognised by its ID, object, type, frame and size), and stays there.
+    // objects are not drawn by the decal pass: each is splatted into its object's decal texture by the next
+    // render call after it first appears (recognised by its ID, object, type, frame and size), and stays
+    // there.
     void setDecals(const std::vector<Decal>& decals);
     // Adds a decal texture layer (resized to the layer size); `normalMap` may be empty for a flat
     // one. Returns its layer index.
@@ -186,6 +187,9 @@ public:
     Result<FrameStats> render(const Camera& camera, const RenderOptions& options);
     // The output image of the last render, RGBA8, row 0 at the top.
     Result<Image> readback() const;
+    // The view depth of every pixel of the last render (distance from the eye along the view
+    // direction, world units; 0 for the background), row 0 at the top, width * height values.
+    Result<std::vector<float>> readbackDepth() const;
     // Copies the output image into the current default framebuffer (a window) of the given size.
     void present(int framebufferWidth, int framebufferHeight) const;
 

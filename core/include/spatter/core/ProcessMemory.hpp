@@ -1,0 +1,19 @@
+#pragma once
+
+#include <cstddef>
+
+namespace spatter {
+
+// Memory of the running process, for benchmarks and soak tests.
+
+// Resident set size now (/proc/self/statm), in bytes; 0 where it cannot be read.
+size_t residentBytes();
+
+// Largest resident set size the process has had (getrusage), in bytes.
+size_t peakResidentBytes();
+
+// Heap bytes handed out and not taken back: glibc's mallinfo2 (arena and mmapped blocks), or the
+// allocator's own statistics under AddressSanitizer, which replaces malloc.
+size_t heapBytes();
+
+} // namespace spatter
