@@ -34,12 +34,12 @@ Result<Args> parseArgs(int argc, char** argv, const std::set<std::string>& value
     Args args;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a.size() > 2 && a.compare(0, 2, "--") == 0) {
+        if (switches.count(a)) {
+            args.flags.insert(a);
+        } else if (a.size() > 2 && a.compare(0, 2, "--") == 0) {
             if (valued.count(a)) {
                 if (i + 1 >= argc) return fail(a + " needs a value");
                 args.values[a] = argv[++i];
-            } else if (switches.count(a)) {
-                args.flags.insert(a);
             } else {
                 return fail("unknown option " + a);
             }

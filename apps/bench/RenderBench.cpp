@@ -239,14 +239,12 @@ const Row* findRow(const std::vector<Row>& rows, const std::string& resolution, 
 } // namespace
 
 int runRenderCommand(int argc, char** argv) {
-    Result<Args> parsed = parseArgs(argc, argv, {"--groups", "--frames", "--max-seconds", "--json"},
-                                    {"--quick", "--help", "-h"});
-    if (!parsed) return usageError(kCommand, parsed.error());
-    const Args& args = parsed.value();
-    if (args.has("--help") || args.has("-h")) {
-        std::cout << kUsage;
-        return 0;
-    }
+    int exitCode = 0;
+    const std::optional<Args> parsed =
+        commandArgs(argc, argv, kCommand, kUsage, {"--groups", "--frames", "--max-seconds", "--json"},
+                    {"--quick"}, exitCode);
+    if (!parsed) return exitCode;
+    const Args& args = *parsed;
     if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
     const bool quick = args.has("--quick");
     Result<uint64_t> frames = parseCount(args.value("--frames", quick ? "2" : "7"), "--frames");

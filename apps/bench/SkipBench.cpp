@@ -303,14 +303,11 @@ void cpuSkips(bool quick, std::vector<Skip>& out) {
 } // namespace
 
 int runSkipCommand(int argc, char** argv) {
-    Result<Args> parsed =
-        parseArgs(argc, argv, {"--decals", "--frames", "--json"}, {"--no-gpu", "--quick", "--help", "-h"});
-    if (!parsed) return usageError(kCommand, parsed.error());
-    const Args& args = parsed.value();
-    if (args.has("--help") || args.has("-h")) {
-        std::cout << kUsage;
-        return 0;
-    }
+    int exitCode = 0;
+    const std::optional<Args> parsed = commandArgs(
+        argc, argv, kCommand, kUsage, {"--decals", "--frames", "--json"}, {"--no-gpu", "--quick"}, exitCode);
+    if (!parsed) return exitCode;
+    const Args& args = *parsed;
     if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
     const bool quick = args.has("--quick");
     Result<uint64_t> decals = parseCount(args.value("--decals", quick ? "1000" : "10000"), "--decals");

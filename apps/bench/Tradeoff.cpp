@@ -311,18 +311,15 @@ std::vector<std::string> tableRow(const Row& r) {
 } // namespace
 
 int runTradeoffCommand(int argc, char** argv) {
-    Result<Args> parsed =
-        parseArgs(argc, argv,
-                  {"--subdivide", "--backends", "--tolerances", "--rays", "--batch-size", "--passes",
-                   "--cap-seconds", "--openmesh-max-triangles", "--coverage-decals", "--size", "--camera",
-                   "--peer-seconds", "--seed", "--json"},
-                  {"--no-render", "--no-peer", "--quick", "--help", "-h"});
-    if (!parsed) return usageError(kCommand, parsed.error());
-    const Args& args = parsed.value();
-    if (args.has("--help") || args.has("-h")) {
-        std::cout << kUsage;
-        return 0;
-    }
+    int exitCode = 0;
+    const std::optional<Args> parsed =
+        commandArgs(argc, argv, kCommand, kUsage,
+                    {"--subdivide", "--backends", "--tolerances", "--rays", "--batch-size", "--passes",
+                     "--cap-seconds", "--openmesh-max-triangles", "--coverage-decals", "--size", "--camera",
+                     "--peer-seconds", "--seed", "--json"},
+                    {"--no-render", "--no-peer", "--quick"}, exitCode);
+    if (!parsed) return exitCode;
+    const Args& args = *parsed;
     if (args.positional.size() != 1) return usageError(kCommand, "one MESH|SCENE is needed");
     const bool quick = args.has("--quick");
 

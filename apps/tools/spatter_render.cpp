@@ -4,7 +4,9 @@
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalType.hpp"
 #include "spatter/core/SceneLoader.hpp"
+#include "spatter/core/TextFields.hpp"
 #include "spatter/placement/DecalSystem.hpp"
+#include "spatter/placement/RayParser.hpp"
 #include "spatter/render/Camera.hpp"
 #include "spatter/render/GlContext.hpp"
 #include "spatter/render/Renderer.hpp"
@@ -19,7 +21,6 @@
 #include <iostream>
 #include <limits>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -86,31 +87,14 @@ int failure(const std::string& message) {
     return 1;
 }
 
-bool parseDouble(const std::string& s, double& out) {
-    if (s.empty()) return false;
-    char* end = nullptr;
-    out = std::strtod(s.c_str(), &end);
-    return end == s.c_str() + s.size() && std::isfinite(out);
-}
-
-std::vector<std::string> split(const std::string& s, char sep) {
-    std::vector<std::string> parts;
-    std::string cur;
-    for (char c : s) {
-        if (c == sep) {
-            parts.push_back(cur);
-            cur.clear();
-        } else {
-            cur += c;
-        }
-    }
-    parts.push_back(cur);
-    return parts;
+// A finite number (one that underflows reads as zero or a subnormal).
+bool parseFinite(const std::string& s, double& out) {
+    return spatter::parseNumber(s, out, spatter::OutOfRange::Accept) && std::isfinite(out);
 }
 
 bool parseVec3(const std::string& s, glm::dvec3& out) {
-    const std::vector<std::string> p = split(s, ',');
-    return p.size() == 3 && parseDouble(p[0], out.x) && parseDouble(p[1], out.y) && parseDouble(p[2], out.z);
+    const std::vector<std::string> p = spatter::splitFields(s, ',');
+    return p.size() == 3 && parseFinite(p[0], out.x) && parseFinite(p[1], out.y) && parseFinite(p[2], out.z);
 }
 
 bool jsonVec3(const nlohmann::json& j, const char* key, glm::dvec3& out) {
@@ -292,22 +276,12 @@ bool placeRays(const std::string& path, const spatter::Scene& scene, const spatt
     std::vector<spatter::Ray> rays;
     size_t lineNumber = 0;
     for (std::string raw; std::getline(in, raw);) {
-        ++lineNumber;
-        std::istringstream line(raw.substr(0, raw.find('#')));
-        std::vector<std::string> tokens;
-        for (std::string tok; line >> tok;)
-            tokens.push_back(tok);
-        if (tokens.empty()) continue;
-        double v[6];
-        bool good = tokens.size() == 6;
-        for (size_t k = 0; good && k < 6; ++k)
-            good = parseDouble(tokens[k], v[k]);
+        const spatter::RayLine line = spatter::parseRayLine(raw, ++lineNumber);
+        if (!line.isRay) continue;
         ++out.records;
-        if (!good) continue; // an unparseable ray places nothing, as in spatter-place
-        spatter::Ray r;
-        r.origin = {v[0], v[1], v[2]};
-        r.direction = {v[3], v[4], v[5]};
-        rays.push_back(r);
+        // An unparseable ray places nothing, as in spatter-place; one with values that are not finite
+        // is rejected by the decal system (rayProblem) and places nothing either.
+        if (line.ok) rays.push_back(line.ray);
     }
     spatter::DecalSettings settings;
     settings.seed = seed;
@@ -384,8 +358,8 @@ int main(int argc, char** argv) {
         } else if (a == "--size") {
             const size_t x = value() ? v.find('x') : std::string::npos;
             double w = 0.0, h = 0.0;
-            if (x == std::string::npos || !parseDouble(v.substr(0, x), w) ||
-                !parseDouble(v.substr(x + 1), h) || w < 1.0 || h < 1.0 || w > 16384.0 || h > 16384.0 ||
+            if (x == std::string::npos || !parseFinite(v.substr(0, x), w) ||
+                !parseFinite(v.substr(x + 1), h) || w < 1.0 || h < 1.0 || w > 16384.0 || h > 16384.0 ||
                 w != std::floor(w) || h != std::floor(h))
                 return usageError("--size needs WxH, whole numbers in 1..16384");
             width = int(w);
@@ -411,20 +385,21 @@ int main(int argc, char** argv) {
             const size_t colon = v.rfind(':');
             double size = 512.0;
             if (colon != std::string::npos &&
-                (!parseDouble(v.substr(colon + 1), size) || size != std::floor(size) || size < 1.0))
+                (!parseFinite(v.substr(colon + 1), size) || size != std::floor(size) || size < 1.0))
                 return usageError("--texture-space needs OBJECT[:SIZE] with a whole SIZE");
             textureSpace.push_back({v.substr(0, colon), int(size)});
         } else if (a == "--texture") {
             if (!value()) return usageError("--texture needs bullet_hole, blood, paint, scorch or mixed");
             textureName = v;
         } else if (a == "--decal-size") {
-            const std::vector<std::string> p = value() ? split(v, ',') : std::vector<std::string>();
-            if (p.empty() || p.size() > 2 || !parseDouble(p[0], decalW) ||
-                (p.size() == 2 && !parseDouble(p[1], decalH)))
+            const std::vector<std::string> p =
+                value() ? spatter::splitFields(v, ',') : std::vector<std::string>();
+            if (p.empty() || p.size() > 2 || !parseFinite(p[0], decalW) ||
+                (p.size() == 2 && !parseFinite(p[1], decalH)))
                 return usageError("--decal-size needs W or W,H");
             if (p.size() == 1) decalH = decalW;
         } else if (a == "--max-angle") {
-            if (!value() || !parseDouble(v, maxAngle))
+            if (!value() || !parseFinite(v, maxAngle))
                 return usageError("--max-angle needs a number of degrees");
         } else if (a == "--seed") {
             char* end = nullptr;

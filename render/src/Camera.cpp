@@ -1,9 +1,9 @@
 #include "spatter/render/Camera.hpp"
 
-#include <cerrno>
+#include "spatter/core/TextFields.hpp"
+
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <vector>
 
 namespace spatter {
@@ -11,37 +11,6 @@ namespace spatter {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-std::string trim(const std::string& s) {
-    size_t a = s.find_first_not_of(" \t\r\n");
-    if (a == std::string::npos) return "";
-    size_t b = s.find_last_not_of(" \t\r\n");
-    return s.substr(a, b - a + 1);
-}
-
-std::vector<std::string> split(const std::string& s, char sep) {
-    std::vector<std::string> parts;
-    std::string cur;
-    for (char c : s) {
-        if (c == sep) {
-            parts.push_back(cur);
-            cur.clear();
-        } else {
-            cur += c;
-        }
-    }
-    parts.push_back(cur);
-    return parts;
-}
-
-bool parseNumber(const std::string& text, double& out) {
-    const std::string t = trim(text);
-    if (t.empty()) return false;
-    char* end = nullptr;
-    errno = 0;
-    out = std::strtod(t.c_str(), &end);
-    return end == t.c_str() + t.size() && errno != ERANGE;
-}
 
 bool finite(const glm::dvec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -58,18 +27,18 @@ std::string number(double v) {
 Result<Camera> parseCamera(const std::string& text) {
     Camera cam;
     bool haveEye = false, haveTarget = false, haveUp = false, haveFov = false;
-    for (const std::string& rawItem : split(text, ';')) {
-        const std::string item = trim(rawItem);
+    for (const std::string& rawItem : splitFields(text, ';')) {
+        const std::string item = trimBlanks(rawItem);
         if (item.empty()) continue;
         const size_t eq = item.find('=');
         if (eq == std::string::npos) return fail("camera: item '" + item + "' is not key=value");
-        const std::string key = trim(item.substr(0, eq));
+        const std::string key = trimBlanks(item.substr(0, eq));
         const std::string value = item.substr(eq + 1);
         if (key == "fov") {
             if (haveFov) return fail("camera: fov given twice");
             haveFov = true;
-            if (!parseNumber(value, cam.fovYDeg))
-                return fail("camera: fov '" + trim(value) + "' is not a number");
+            const std::string field = trimBlanks(value);
+            if (!parseNumber(field, cam.fovYDeg)) return fail("camera: fov '" + field + "' is not a number");
             continue;
         }
         struct Slot {
@@ -86,11 +55,13 @@ Result<Camera> parseCamera(const std::string& text) {
         if (*slot->seen) return fail("camera: " + key + " given twice");
         *slot->seen = true;
         glm::dvec3* dst = slot->value;
-        const std::vector<std::string> parts = split(value, ',');
+        const std::vector<std::string> parts = splitFields(value, ',');
         if (parts.size() != 3) return fail("camera: " + key + " needs three comma-separated numbers");
-        for (int k = 0; k < 3; ++k)
-            if (!parseNumber(parts[size_t(k)], (*dst)[k]))
-                return fail("camera: " + key + " component '" + trim(parts[size_t(k)]) + "' is not a number");
+        for (int k = 0; k < 3; ++k) {
+            const std::string field = trimBlanks(parts[size_t(k)]);
+            if (!parseNumber(field, (*dst)[k]))
+                return fail("camera: " + key + " component '" + field + "' is not a number");
+        }
     }
     if (!haveEye) return fail("camera: eye=x,y,z is missing");
     if (!haveTarget) return fail("camera: target=x,y,z is missing");

@@ -2,19 +2,19 @@
 
 #include "spatter/core/Random.hpp"
 
+#include "ReferenceGeometry.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 using namespace spatter;
+using namespace spatter::test;
 using ::testing::HasSubstr;
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
 
 Mesh triangleMesh(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices) {
     Mesh m;
@@ -24,71 +24,10 @@ Mesh triangleMesh(const std::vector<glm::vec3>& positions, const std::vector<uin
     return m;
 }
 
-// A sphere of latitude/longitude quads split into triangles, closed.
-Mesh sphere(float radius, uint32_t stacks, uint32_t slices) {
-    Mesh m;
-    m.positions.push_back({0, 0, radius});
-    for (uint32_t i = 1; i < stacks; ++i) {
-        const float theta = kPi * float(i) / float(stacks);
-        for (uint32_t j = 0; j < slices; ++j) {
-            const float phi = 2.0f * kPi * float(j) / float(slices);
-            m.positions.push_back(radius * glm::vec3(std::sin(theta) * std::cos(phi),
-                                                     std::sin(theta) * std::sin(phi), std::cos(theta)));
-        }
-    }
-    m.positions.push_back({0, 0, -radius});
-    const uint32_t south = uint32_t(m.positions.size() - 1);
-    auto ring = [&](uint32_t i, uint32_t j) { return 1 + (i - 1) * slices + j % slices; };
-    for (uint32_t j = 0; j < slices; ++j)
-        m.indices.insert(m.indices.end(), {0, ring(1, j), ring(1, j + 1)});
-    for (uint32_t i = 1; i + 1 < stacks; ++i)
-        for (uint32_t j = 0; j < slices; ++j)
-            m.indices.insert(m.indices.end(), {ring(i, j), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j),
-                                               ring(i + 1, j + 1), ring(i, j + 1)});
-    for (uint32_t j = 0; j < slices; ++j)
-        m.indices.insert(m.indices.end(), {ring(stacks - 1, j), south, ring(stacks - 1, j + 1)});
-    computeNormals(m);
-    return m;
-}
-
-double segmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
-    const glm::dvec3 d = b - a;
-    const double len2 = glm::dot(d, d);
-    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
-    return glm::length(p - (a + t * d));
-}
-
-// Point-triangle distance by projection onto the plane and, outside the triangle, the nearest edge:
-// deliberately a different method from the library's.
-double bruteTriangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
-                             const glm::dvec3& c) {
-    const glm::dvec3 n = glm::cross(b - a, c - a);
-    const double len = glm::length(n);
-    const double edges =
-        std::min({segmentDistance(p, a, b), segmentDistance(p, b, c), segmentDistance(p, c, a)});
-    if (len == 0.0) return edges;
-    const glm::dvec3 u = n / len;
-    const double height = glm::dot(p - a, u);
-    const glm::dvec3 q = p - height * u;
-    const double wa = glm::dot(glm::cross(b - q, c - q), u), wb = glm::dot(glm::cross(c - q, a - q), u),
-                 wc = glm::dot(glm::cross(a - q, b - q), u);
-    if (wa >= 0.0 && wb >= 0.0 && wc >= 0.0) return std::fabs(height);
-    return edges;
-}
-
-double bruteMeshDistance(const glm::dvec3& p, const Mesh& m) {
-    double best = std::numeric_limits<double>::infinity();
-    for (size_t t = 0; t < m.triangleCount(); ++t)
-        best = std::min(best, bruteTriangleDistance(p, glm::dvec3(m.positions[m.indices[3 * t]]),
-                                                    glm::dvec3(m.positions[m.indices[3 * t + 1]]),
-                                                    glm::dvec3(m.positions[m.indices[3 * t + 2]])));
-    return best;
-}
-
 } // namespace
 
 TEST(ClosestPointQuery, MatchesBruteForceOnASphere) {
-    const Mesh m = sphere(1.0f, 12, 16);
+    const Mesh m = latLongSphere(1.0f, 12, 16);
     Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
     ASSERT_TRUE(q) << q.error();
     Rng rng(7);
@@ -100,9 +39,9 @@ TEST(ClosestPointQuery, MatchesBruteForceOnASphere) {
         EXPECT_NEAR(glm::length(c->point - p), c->distance, 1e-12);
         const uint32_t t = c->triangle;
         ASSERT_LT(t, m.triangleCount());
-        EXPECT_NEAR(bruteTriangleDistance(p, glm::dvec3(m.positions[m.indices[3 * t]]),
-                                          glm::dvec3(m.positions[m.indices[3 * t + 1]]),
-                                          glm::dvec3(m.positions[m.indices[3 * t + 2]])),
+        EXPECT_NEAR(triangleDistance(p, glm::dvec3(m.positions[m.indices[3 * t]]),
+                                     glm::dvec3(m.positions[m.indices[3 * t + 1]]),
+                                     glm::dvec3(m.positions[m.indices[3 * t + 2]])),
                     c->distance, 1e-9);
     }
 }
@@ -190,8 +129,8 @@ TEST(MeshDistance, BoundCoversAMaximumBetweenSamples) {
 }
 
 TEST(MeshDistance, BoundHoldsWhenTheSampleBudgetCoarsensTheCutting) {
-    const Mesh a = sphere(1.0f, 6, 8);
-    const Mesh b = sphere(1.1f, 40, 60);
+    const Mesh a = latLongSphere(1.0f, 6, 8);
+    const Mesh b = latLongSphere(1.1f, 40, 60);
     Result<ClosestPointQuery> qb = ClosestPointQuery::create(b);
     ASSERT_TRUE(qb);
     SurfaceSampling fine;
@@ -217,8 +156,8 @@ TEST(MeshDistance, BoundHoldsWhenTheSampleBudgetCoarsensTheCutting) {
 }
 
 TEST(MeshDistance, ReportsProgressAndCancels) {
-    const Mesh a = sphere(1.0f, 20, 30);
-    const Mesh b = sphere(1.05f, 20, 30);
+    const Mesh a = latLongSphere(1.0f, 20, 30);
+    const Mesh b = latLongSphere(1.05f, 20, 30);
     SurfaceSampling sampling;
     sampling.radius = 0.01;
     sampling.maxSamples = 20000; // forces a restart of the cutting with a larger radius

@@ -4,6 +4,7 @@
 #include "spatter/core/Random.hpp"
 #include "spatter/core/SceneLoader.hpp"
 
+#include "ReferenceGeometry.hpp"
 #include "TestData.hpp"
 
 #include <gmock/gmock.h>
@@ -19,39 +20,10 @@
 #include <string>
 
 using namespace spatter;
+using namespace spatter::test;
 using ::testing::HasSubstr;
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
-
-// A sphere of latitude/longitude quads split into triangles, closed; `bump` displaces the radius by
-// bump * sin(8 theta) * sin(8 phi).
-Mesh sphere(float radius, uint32_t stacks, uint32_t slices, float bump = 0.0f) {
-    Mesh m;
-    auto at = [&](float theta, float phi) {
-        const float r = radius * (1.0f + bump * std::sin(8.0f * theta) * std::sin(8.0f * phi));
-        return r *
-               glm::vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
-    };
-    m.positions.push_back({0, 0, radius});
-    for (uint32_t i = 1; i < stacks; ++i)
-        for (uint32_t j = 0; j < slices; ++j)
-            m.positions.push_back(at(kPi * float(i) / float(stacks), 2.0f * kPi * float(j) / float(slices)));
-    m.positions.push_back({0, 0, -radius});
-    const uint32_t south = uint32_t(m.positions.size() - 1);
-    auto ring = [&](uint32_t i, uint32_t j) { return 1 + (i - 1) * slices + j % slices; };
-    for (uint32_t j = 0; j < slices; ++j)
-        m.indices.insert(m.indices.end(), {0, ring(1, j), ring(1, j + 1)});
-    for (uint32_t i = 1; i + 1 < stacks; ++i)
-        for (uint32_t j = 0; j < slices; ++j)
-            m.indices.insert(m.indices.end(), {ring(i, j), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j),
-                                               ring(i + 1, j + 1), ring(i, j + 1)});
-    for (uint32_t j = 0; j < slices; ++j)
-        m.indices.insert(m.indices.end(), {ring(stacks - 1, j), south, ring(stacks - 1, j + 1)});
-    computeNormals(m);
-    return m;
-}
 
 // An open height field z = amplitude * sin(3x) cos(2y) over [0, 2]^2, n x n quads.
 Mesh displacedGrid(uint32_t n, float amplitude) {
@@ -79,29 +51,6 @@ Mesh box(float h) {
                  2, 6, 7, 2, 7, 3, 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6};
     computeNormals(m);
     return m;
-}
-
-double segmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
-    const glm::dvec3 d = b - a;
-    const double len2 = glm::dot(d, d);
-    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
-    return glm::length(p - (a + t * d));
-}
-
-// Point-triangle distance by projection onto the plane and, outside the triangle, the nearest edge.
-double triangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-    const glm::dvec3 n = glm::cross(b - a, c - a);
-    const double len = glm::length(n);
-    const double edges =
-        std::min({segmentDistance(p, a, b), segmentDistance(p, b, c), segmentDistance(p, c, a)});
-    if (len == 0.0) return edges;
-    const glm::dvec3 u = n / len;
-    const double height = glm::dot(p - a, u);
-    const glm::dvec3 q = p - height * u;
-    if (glm::dot(glm::cross(b - q, c - q), u) >= 0.0 && glm::dot(glm::cross(c - q, a - q), u) >= 0.0 &&
-        glm::dot(glm::cross(a - q, b - q), u) >= 0.0)
-        return std::fabs(height);
-    return edges;
 }
 
 glm::dvec3 corner(const Mesh& m, size_t t, int k) {
@@ -141,12 +90,8 @@ std::vector<glm::dvec3> surfacePoints(const Mesh& m, size_t count, uint64_t seed
 // triangle of `to` (independent of the library's closest-point code).
 double bruteOneSided(const Mesh& from, const Mesh& to, size_t samples, uint64_t seed) {
     double worst = 0.0;
-    for (const glm::dvec3& p : surfacePoints(from, samples, seed)) {
-        double best = std::numeric_limits<double>::infinity();
-        for (size_t t = 0; t < to.triangleCount(); ++t)
-            best = std::min(best, triangleDistance(p, corner(to, t, 0), corner(to, t, 1), corner(to, t, 2)));
-        worst = std::max(worst, best);
-    }
+    for (const glm::dvec3& p : surfacePoints(from, samples, seed))
+        worst = std::max(worst, bruteMeshDistance(p, to));
     return worst;
 }
 
@@ -195,7 +140,7 @@ TEST(ProxyBuilder, SmallMeshIsItsOwnProxy) {
 }
 
 TEST(ProxyBuilder, ZeroToleranceKeepsTheRenderMesh) {
-    const Mesh render = sphere(1.0f, 30, 40);
+    const Mesh render = latLongSphere(1.0f, 30, 40);
     ProxySettings s;
     s.tolerance = 0.0f;
     Result<Proxy> p = buildProxy(render, s);
@@ -208,7 +153,7 @@ TEST(ProxyBuilder, ZeroToleranceKeepsTheRenderMesh) {
 // A cube of half-size 1 around the unit sphere: the farthest collider points are its corners, at
 // sqrt(3) - 1 from the sphere (a little more from the inscribed polyhedron).
 TEST(ProxyBuilder, AuthoredColliderIsUsedAsGivenWithItsBoundMeasured) {
-    const Mesh render = sphere(1.0f, 40, 60);
+    const Mesh render = latLongSphere(1.0f, 40, 60);
     const Mesh collider = box(1.0f);
     Result<Proxy> p = buildProxy(render, ProxySettings{}, &collider);
     ASSERT_TRUE(p) << p.error();
@@ -226,7 +171,7 @@ TEST(ProxyBuilder, AuthoredColliderIsUsedAsGivenWithItsBoundMeasured) {
 }
 
 TEST_P(ProxyBackends, SimplifiesASphereWithACertifiedBound) {
-    const Mesh render = sphere(1.0f, 40, 60, 0.03f);
+    const Mesh render = latLongSphere(1.0f, 40, 60, 0.03f);
     Result<Proxy> p = buildProxy(render, settingsFor(GetParam(), 0.01f));
     ASSERT_TRUE(p) << p.error();
     EXPECT_EQ(p->source, ProxySource::Simplified);
@@ -272,7 +217,7 @@ TEST_P(ProxyBackends, SimplifiesAnOpenDisplacedGridWithACertifiedBound) {
 }
 
 TEST_P(ProxyBackends, RespectsTheTriangleBudget) {
-    const Mesh render = sphere(1.0f, 60, 80, 0.05f);
+    const Mesh render = latLongSphere(1.0f, 60, 80, 0.05f);
     ProxySettings s = settingsFor(GetParam(), 0.0005f);
     s.maxTriangles = 150;
     Result<Proxy> p = buildProxy(render, s);
@@ -285,7 +230,7 @@ TEST_P(ProxyBackends, RespectsTheTriangleBudget) {
 }
 
 TEST_P(ProxyBackends, SurvivesDegenerateInput) {
-    Mesh render = sphere(1.0f, 30, 40);
+    Mesh render = latLongSphere(1.0f, 30, 40);
     const uint32_t n = uint32_t(render.positions.size());
     // Duplicate vertices: a copy of a whole band of triangles on its own vertex copies.
     for (size_t t = 100; t < 140; ++t)
@@ -316,7 +261,7 @@ TEST_P(ProxyBackends, SurvivesDegenerateInput) {
 }
 
 TEST_P(ProxyBackends, SameInputGivesTheSameProxy) {
-    const Mesh render = sphere(1.0f, 30, 40, 0.05f);
+    const Mesh render = latLongSphere(1.0f, 30, 40, 0.05f);
     Result<Proxy> a = buildProxy(render, settingsFor(GetParam(), 0.01f));
     Result<Proxy> b = buildProxy(render, settingsFor(GetParam(), 0.01f));
     ASSERT_TRUE(a && b);
@@ -333,7 +278,7 @@ INSTANTIATE_TEST_SUITE_P(Backends, ProxyBackends,
                          });
 
 TEST(ProxyBuilder, RejectsNonFinitePositionsWithAClearError) {
-    Mesh render = sphere(1.0f, 30, 40);
+    Mesh render = latLongSphere(1.0f, 30, 40);
     render.positions[17].z = std::numeric_limits<float>::quiet_NaN();
     Result<Proxy> p = buildProxy(render, ProxySettings{});
     ASSERT_FALSE(p);
@@ -341,13 +286,13 @@ TEST(ProxyBuilder, RejectsNonFinitePositionsWithAClearError) {
 
     Mesh collider = box(1.0f);
     collider.positions[2].x = std::numeric_limits<float>::infinity();
-    Result<Proxy> c = buildProxy(sphere(1.0f, 30, 40), ProxySettings{}, &collider);
+    Result<Proxy> c = buildProxy(latLongSphere(1.0f, 30, 40), ProxySettings{}, &collider);
     ASSERT_FALSE(c);
     EXPECT_THAT(c.error(), HasSubstr("authored collider: position 2 is not finite"));
 }
 
 TEST(ProxyBuilder, RejectsIndexPastTheVertexCount) {
-    Mesh render = sphere(1.0f, 30, 40);
+    Mesh render = latLongSphere(1.0f, 30, 40);
     render.indices[40] = uint32_t(render.positions.size());
     Result<Proxy> p = buildProxy(render, ProxySettings{});
     ASSERT_FALSE(p);
@@ -355,7 +300,7 @@ TEST(ProxyBuilder, RejectsIndexPastTheVertexCount) {
 }
 
 TEST(ProxyBuilder, RejectsInvalidSettings) {
-    const Mesh render = sphere(1.0f, 30, 40);
+    const Mesh render = latLongSphere(1.0f, 30, 40);
     ProxySettings s;
     s.tolerance = -1.0f;
     EXPECT_THAT(buildProxy(render, s).error(), HasSubstr("tolerance"));
@@ -371,7 +316,7 @@ TEST(ProxyBuilder, RejectsInvalidSettings) {
 }
 
 TEST(ProxyBuilder, ProgressCanCancel) {
-    const Mesh render = sphere(1.0f, 40, 60);
+    const Mesh render = latLongSphere(1.0f, 40, 60);
     std::set<std::string> stages;
     Result<Proxy> p = buildProxy(render, settingsFor(ProxyBackend::MeshOpt, 0.01f), nullptr,
                                  [&](float f, const char* stage) {
@@ -396,7 +341,7 @@ TEST(ProxyBuilder, AutoPicksByTriangleCountAndTolerance) {
     EXPECT_EQ(resolveProxyBackend(ProxyBackend::Auto, 50000, 0.005, 1.0), ProxyBackend::MeshOpt);
     EXPECT_EQ(resolveProxyBackend(ProxyBackend::OpenMesh, 50000, 0.05, 1.0), ProxyBackend::OpenMesh);
     // On a small mesh Auto runs both backends and keeps the smaller proxy within the tolerance.
-    const Mesh render = sphere(1.0f, 30, 40, 0.03f);
+    const Mesh render = latLongSphere(1.0f, 30, 40, 0.03f);
     Result<Proxy> p = buildProxy(render, settingsFor(ProxyBackend::Auto, 0.01f));
     Result<Proxy> meshopt = buildProxy(render, settingsFor(ProxyBackend::MeshOpt, 0.01f));
     Result<Proxy> openmesh = buildProxy(render, settingsFor(ProxyBackend::OpenMesh, 0.01f));
@@ -410,7 +355,7 @@ TEST(ProxyBuilder, AutoPicksByTriangleCountAndTolerance) {
 
 TEST(ProxyBuilder, SecondBuildComesFromTheCacheWithoutSimplifying) {
     const std::string dir = test::scratchDir("proxy-cache-hit");
-    const Mesh render = sphere(1.0f, 40, 60, 0.03f);
+    const Mesh render = latLongSphere(1.0f, 40, 60, 0.03f);
     ProxySettings s = settingsFor(ProxyBackend::MeshOpt, 0.01f);
     s.cacheDirectory = dir;
     Result<Proxy> first = buildProxy(render, s);
@@ -444,7 +389,7 @@ TEST(ProxyBuilder, SecondBuildComesFromTheCacheWithoutSimplifying) {
 
 TEST(ProxyBuilder, CorruptCacheEntryIsDetectedAndRebuilt) {
     const std::string dir = test::scratchDir("proxy-cache-corrupt");
-    const Mesh render = sphere(1.0f, 40, 60, 0.03f);
+    const Mesh render = latLongSphere(1.0f, 40, 60, 0.03f);
     ProxySettings s = settingsFor(ProxyBackend::MeshOpt, 0.01f);
     s.cacheDirectory = dir;
     Result<Proxy> first = buildProxy(render, s);
@@ -480,7 +425,7 @@ TEST(ProxyBuilder, CorruptCacheEntryIsDetectedAndRebuilt) {
 }
 
 TEST(ProxyBuilder, HundredThousandTrianglesToOnePercentOnTheFastPath) {
-    const Mesh render = sphere(1.0f, 201, 250, 0.05f);
+    const Mesh render = latLongSphere(1.0f, 201, 250, 0.05f);
     ASSERT_EQ(render.triangleCount(), 100000u);
     ProxySettings s = settingsFor(ProxyBackend::MeshOpt, 0.05f);
     s.maxTriangles = 1000;

@@ -9,10 +9,14 @@
 #include "spatter/placement/CollisionWorld.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
+#include <embree3/rtcore.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -143,5 +147,78 @@ inline DecalType plainType(const std::string& name = "hole", glm::vec2 size = gl
     t.size = size;
     return t;
 }
+
+// The same scene traced with nothing but Embree: world-space float triangles, rtcIntersect1; what
+// CollisionWorld and the decal system are checked against.
+struct RawEmbree {
+    RTCDevice device = rtcNewDevice(nullptr);
+    RTCScene scene = rtcNewScene(device);
+    std::vector<uint32_t> geomToObject;
+
+    explicit RawEmbree(const Scene& s) {
+        rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+        for (size_t i = 0; i < s.objects.size(); ++i) {
+            const SceneObject& o = s.objects[i];
+            RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+                g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), o.mesh.positions.size()));
+            for (size_t k = 0; k < o.mesh.positions.size(); ++k) {
+                const glm::dvec3 p =
+                    glm::dvec3(o.transform * glm::dvec4(glm::dvec3(o.mesh.positions[k]), 1.0));
+                v[3 * k] = float(p.x);
+                v[3 * k + 1] = float(p.y);
+                v[3 * k + 2] = float(p.z);
+            }
+            auto* ix = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), o.mesh.triangleCount()));
+            std::copy(o.mesh.indices.begin(), o.mesh.indices.end(), ix);
+            rtcCommitGeometry(g);
+            const unsigned id = rtcAttachGeometry(scene, g);
+            rtcReleaseGeometry(g);
+            geomToObject.resize(std::max<size_t>(geomToObject.size(), id + 1));
+            geomToObject[id] = uint32_t(i);
+        }
+        rtcCommitScene(scene);
+    }
+    ~RawEmbree() {
+        rtcReleaseScene(scene);
+        rtcReleaseDevice(device);
+    }
+
+    struct RawHit {
+        uint32_t object, primitive;
+        float t;
+        glm::dvec3 position, normal;
+    };
+    std::optional<RawHit> intersect(const Ray& r) const {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        RTCRayHit rh;
+        rh.ray.org_x = float(r.origin.x);
+        rh.ray.org_y = float(r.origin.y);
+        rh.ray.org_z = float(r.origin.z);
+        rh.ray.dir_x = float(r.direction.x);
+        rh.ray.dir_y = float(r.direction.y);
+        rh.ray.dir_z = float(r.direction.z);
+        rh.ray.tnear = 0.0f;
+        rh.ray.tfar = std::numeric_limits<float>::infinity();
+        rh.ray.time = 0.0f;
+        rh.ray.mask = 0xFFFFFFFFu;
+        rh.ray.id = 0;
+        rh.ray.flags = 0;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene, &ctx, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+        RawHit h;
+        h.object = geomToObject[rh.hit.geomID];
+        h.primitive = rh.hit.primID;
+        h.t = rh.ray.tfar;
+        h.position = r.origin + double(rh.ray.tfar) * r.direction;
+        h.normal = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+        if (glm::dot(h.normal, r.direction) > 0.0) h.normal = -h.normal;
+        return h;
+    }
+};
 
 } // namespace spatter::test

@@ -6,10 +6,7 @@
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
-#include <embree3/rtcore.h>
 #include <gtest/gtest.h>
-
-#include <limits>
 
 using namespace spatter;
 using namespace spatter::test;
@@ -42,58 +39,6 @@ std::vector<Ray> cameraRays(const glm::dvec3& eye, int w, int h, double fovDeg) 
         }
     return rays;
 }
-
-// The hit of `r` on a single mesh, traced with nothing but Embree (world-space float triangles).
-struct RawMeshTracer {
-    RTCDevice device = rtcNewDevice(nullptr);
-    RTCScene scene = rtcNewScene(device);
-
-    explicit RawMeshTracer(const Mesh& m) {
-        rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
-        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                              3 * sizeof(float), m.positions.size()));
-        for (size_t k = 0; k < m.positions.size(); ++k) {
-            v[3 * k] = m.positions[k].x;
-            v[3 * k + 1] = m.positions[k].y;
-            v[3 * k + 2] = m.positions[k].z;
-        }
-        auto* ix = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), m.triangleCount()));
-        std::copy(m.indices.begin(), m.indices.end(), ix);
-        rtcCommitGeometry(g);
-        rtcAttachGeometry(scene, g);
-        rtcReleaseGeometry(g);
-        rtcCommitScene(scene);
-    }
-    ~RawMeshTracer() {
-        rtcReleaseScene(scene);
-        rtcReleaseDevice(device);
-    }
-    // {primitive, t} or {invalid, inf}.
-    std::pair<unsigned, float> intersect(const Ray& r) const {
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        RTCRayHit rh;
-        rh.ray.org_x = float(r.origin.x);
-        rh.ray.org_y = float(r.origin.y);
-        rh.ray.org_z = float(r.origin.z);
-        rh.ray.dir_x = float(r.direction.x);
-        rh.ray.dir_y = float(r.direction.y);
-        rh.ray.dir_z = float(r.direction.z);
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = std::numeric_limits<float>::infinity();
-        rh.ray.time = 0.0f;
-        rh.ray.mask = 0xFFFFFFFFu;
-        rh.ray.id = 0;
-        rh.ray.flags = 0;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene, &ctx, &rh);
-        return {rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? RTC_INVALID_GEOMETRY_ID : rh.hit.primID,
-                rh.ray.tfar};
-    }
-};
 
 } // namespace
 
@@ -150,7 +95,7 @@ TEST(PlacementOnSharedData, FandiskHitsMatchRawEmbree) {
     SPATTER_REQUIRE_SHARED(path, "meshes/fandisk.obj");
     const Scene scene = load(path);
     ASSERT_EQ(scene.objects.size(), 1u);
-    const RawMeshTracer raw(scene.objects[0].mesh);
+    const RawEmbree tracer(scene);
     DecalSystem s = makeSystem(scene);
     DecalType t = plainType("hole", glm::vec2(0.02f));
     t.maxAngleDeg = 90.0f;
@@ -159,15 +104,15 @@ TEST(PlacementOnSharedData, FandiskHitsMatchRawEmbree) {
     const std::vector<Ray> rays = rayFan(3000, b.center(), 2.0 * b.diagonal(), 0.3 * b.diagonal(), 21);
     size_t hits = 0;
     for (size_t i = 0; i < rays.size(); ++i) {
-        const auto [prim, rawT] = raw.intersect(rays[i]);
+        const auto raw = tracer.intersect(rays[i]);
         const std::optional<Hit> h = s.world().intersect(rays[i]);
-        ASSERT_EQ(h.has_value(), prim != RTC_INVALID_GEOMETRY_ID) << "ray " << i;
+        ASSERT_EQ(h.has_value(), raw.has_value()) << "ray " << i;
         const SpawnResult r = s.spawn(rays[i], 0);
         ASSERT_EQ(r.placed(), h.has_value()) << "ray " << i << ": " << r.reason;
         if (!h) continue;
         ++hits;
-        EXPECT_EQ(h->primitive, prim) << "ray " << i;
-        EXPECT_NEAR(h->t, rawT, 1e-5 * rawT) << "ray " << i;
+        EXPECT_EQ(h->primitive, raw->primitive) << "ray " << i;
+        EXPECT_NEAR(h->t, raw->t, 1e-5 * raw->t) << "ray " << i;
         const WorldDecal w = *s.worldBox(r.handle);
         EXPECT_LT(glm::length(w.center - h->position), 1e-5 * b.diagonal());
         EXPECT_LT(glm::length(glm::dvec3(w.frame.normal) - h->normal), 1e-6);

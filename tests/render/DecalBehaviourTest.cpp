@@ -75,25 +75,62 @@ DecalType type(DecalTexture tex = DecalTexture::Paint, bool wrap = false, float 
     return t;
 }
 
-Camera camera(glm::dvec3 eye, glm::dvec3 target) {
-    Camera c;
-    c.eye = eye;
-    c.target = target;
-    c.nearPlane = 0.05;
-    return c;
-}
-
-Image renderView(Renderer& r, const Camera& cam, View view, FrameStats* stats = nullptr) {
-    Result<FrameStats> st = r.render(cam, view);
-    EXPECT_TRUE(st.ok()) << st.error();
-    if (stats && st) *stats = st.value();
-    Result<Image> im = r.readback();
-    EXPECT_TRUE(im.ok()) << im.error();
-    return im ? im.value() : Image{};
+// One view of the current decals with `options` (its view aside): the coverage mask, the final
+// image, and the stats of the coverage frame.
+struct DecalFrame {
+    std::vector<uint8_t> coverage;
+    Image final;
+    FrameStats stats;
+};
+DecalFrame coverageAndFinal(Renderer& r, const Camera& cam, RenderOptions options = {}) {
+    DecalFrame f;
+    options.view = View::Coverage;
+    f.coverage = test::whiteMask(test::renderView(r, cam, options, &f.stats));
+    options.view = View::Final;
+    f.final = test::renderView(r, cam, options);
+    return f;
 }
 
 const uint8_t* px(const Image& im, size_t i) {
     return &im.rgba[i * 4];
+}
+
+// Pixels of `region` that a decal covers (`coverage`) and whose final colour it changes (`final`
+// against `clean`, the same view without the decal).
+struct Marks {
+    size_t covered = 0;
+    size_t changed = 0;
+};
+Marks marksIn(const std::vector<uint8_t>& region, const std::vector<uint8_t>& coverage, const Image& final,
+              const Image& clean) {
+    Marks m;
+    for (size_t i = 0; i < coverage.size(); ++i) {
+        m.covered += (region[i] && coverage[i]) ? 1 : 0;
+        m.changed += (region[i] && std::memcmp(px(final, i), px(clean, i), 4) != 0) ? 1 : 0;
+    }
+    return m;
+}
+
+// A scene of one static box.
+Scene oneBox(const std::string& name, const glm::vec3& halfExtents, const glm::dvec3& position) {
+    Scene s;
+    s.objects.push_back(object(name, halfExtents, position));
+    return s;
+}
+
+// A static floor whose top is the plane y = 0, 40 x 40 around the origin.
+Scene floorScene() {
+    return oneBox("floor", {20.0f, 0.1f, 20.0f}, {0.0, -0.1, 0.0});
+}
+
+// A static wall whose front face is the plane z = 0, 6 x 6 around (0, 1.5).
+Scene wallScene() {
+    return oneBox("wall", {3.0f, 3.0f, 0.1f}, {0.0, 1.5, -0.1});
+}
+
+// A static wall 2 cm thick, 2 x 2 around the origin: front face z = 0.01, back face z = -0.01.
+Scene thinWallScene() {
+    return oneBox("thin wall", {1.0f, 1.0f, 0.01f}, {0.0, 0.0, 0.0});
 }
 
 // Scene: a static wall whose front face is the plane z = 0 and a dynamic target plate in front.
@@ -104,26 +141,56 @@ Scene wallAndTarget(bool targetDynamic) {
     return s;
 }
 
+// Puts wallAndTarget(dynamic) on `r`, the target with object ID 9 when dynamic (0 otherwise).
+::testing::AssertionResult showWallAndTarget(Renderer& r, bool dynamic) {
+    if (Status st = r.setScene(wallAndTarget(dynamic)); !st)
+        return ::testing::AssertionFailure() << st.error();
+    if (Status st = r.setObjectIds({0, uint8_t(dynamic ? 9 : 0)}); !st)
+        return ::testing::AssertionFailure() << st.error();
+    return ::testing::AssertionSuccess();
+}
+
+// Pixels of wallAndTarget's ID view that show ID 0 (dark grey): the wall.
+std::vector<uint8_t> wallPixels(const Image& ids) {
+    std::vector<uint8_t> wall(ids.rgba.size() / 4);
+    for (size_t i = 0; i < wall.size(); ++i)
+        wall[i] = (px(ids, i)[0] == 64 && px(ids, i)[1] == 64 && px(ids, i)[2] == 64) ? 1 : 0;
+    return wall;
+}
+
+// A decal on wallAndTarget's target, on its front face (z = 0.45 in the world), whose box reaches
+// back through the wall's face at z = 0 and overhangs the target on every side; object ID 9.
+Decal decalReachingTheWall() {
+    return decal(1, {0.0f, 0.0f, 0.05f}, {0, 0, 1}, {1, 0, 0}, {1.4f, 1.4f}, 0.6f, 0, 9);
+}
+
+// The wall behind the target as decalReachingTheWall leaves it: untouched where the decal is kept
+// off it, clearly marked where it is not.
+void expectWallMarks(const Marks& wall, bool keptOff) {
+    if (keptOff) {
+        EXPECT_EQ(wall.covered, 0u);
+        EXPECT_EQ(wall.changed, 0u);
+    } else {
+        EXPECT_GT(wall.covered, 200u);
+        EXPECT_GT(wall.changed, 100u);
+    }
+}
+
 } // namespace
 
 TEST(DecalPass, IdClippingKeepsTheWallBehindAMovingTargetClean) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    const Camera cam = camera({0.4, 1.8, 3.0}, {0.0, 1.5, 0.0});
-    // A decal on the target's front face (z = 0.45 in the world) whose box reaches back through the
-    // wall's face at z = 0, and overhangs the target on every side.
-    const std::vector<Decal> decals = {
-        decal(1, {0.0f, 0.0f, 0.05f}, {0, 0, 1}, {1, 0, 0}, {1.4f, 1.4f}, 0.6f, 0, 9)};
+    const Camera cam = test::lookAt({0.4, 1.8, 3.0}, {0.0, 1.5, 0.0});
 
     // Pixel classes from the ID view of the scene with a dynamic target: ID 0 (the wall) is dark grey.
-    ASSERT_TRUE(r->setScene(wallAndTarget(true)).ok());
-    ASSERT_TRUE(r->setObjectIds({0, 9}).ok());
-    const Image ids = renderView(r.value(), cam, View::Ids);
-    std::vector<uint8_t> wall(size_t(kW * kH)), target(size_t(kW * kH));
-    for (size_t i = 0; i < wall.size(); ++i) {
+    ASSERT_TRUE(showWallAndTarget(r.value(), true));
+    const Image ids = test::renderView(r.value(), cam, View::Ids);
+    const std::vector<uint8_t> wall = wallPixels(ids);
+    std::vector<uint8_t> target(size_t(kW * kH));
+    for (size_t i = 0; i < target.size(); ++i) {
         const uint8_t* id = px(ids, i);
-        wall[i] = (id[0] == 64 && id[1] == 64 && id[2] == 64) ? 1 : 0;
         target[i] = (id[0] > 70 || id[1] > 70 || id[2] > 70) ? 1 : 0;
     }
     ASSERT_GT(test::countSet(wall), size_t(kW * kH) / 3);
@@ -131,32 +198,16 @@ TEST(DecalPass, IdClippingKeepsTheWallBehindAMovingTargetClean) {
 
     for (bool dynamic : {true, false}) {
         SCOPED_TRACE(dynamic ? "dynamic target" : "static target");
-        ASSERT_TRUE(r->setScene(wallAndTarget(dynamic)).ok());
-        ASSERT_TRUE(r->setObjectIds({0, uint8_t(dynamic ? 9 : 0)}).ok());
+        ASSERT_TRUE(showWallAndTarget(r.value(), dynamic));
         r->setDecalTypes({type()});
-        const Image cleanFinal = renderView(r.value(), cam, View::Final);
-        r->setDecals(decals);
-        FrameStats st;
-        const std::vector<uint8_t> cov = test::whiteMask(renderView(r.value(), cam, View::Coverage, &st));
-        const Image final = renderView(r.value(), cam, View::Final);
-        EXPECT_EQ(st.decalVariant.find("IDS") != std::string::npos, dynamic) << st.decalVariant;
-
-        size_t wallCovered = 0, targetCovered = 0, wallChanged = 0;
-        for (size_t i = 0; i < cov.size(); ++i) {
-            if (wall[i] && cov[i]) ++wallCovered;
-            if (target[i] && cov[i]) ++targetCovered;
-            if (wall[i] && std::memcmp(px(final, i), px(cleanFinal, i), 4) != 0) ++wallChanged;
-        }
-        test::dumpImage(dynamic ? "idclip-dynamic" : "idclip-static", final);
-        EXPECT_GT(targetCovered, 250u);
-        if (dynamic) {
-            EXPECT_EQ(wallCovered, 0u);
-            EXPECT_EQ(wallChanged, 0u);
-        } else {
-            // Without IDs the same box does reach the wall: the clipping above is the IDs' doing.
-            EXPECT_GT(wallCovered, 200u);
-            EXPECT_GT(wallChanged, 100u);
-        }
+        const Image cleanFinal = test::renderView(r.value(), cam, View::Final);
+        r->setDecals({decalReachingTheWall()});
+        const DecalFrame f = coverageAndFinal(r.value(), cam);
+        EXPECT_EQ(f.stats.decalVariant.find("IDS") != std::string::npos, dynamic) << f.stats.decalVariant;
+        test::dumpImage(dynamic ? "idclip-dynamic" : "idclip-static", f.final);
+        EXPECT_GT(marksIn(target, f.coverage, f.final, cleanFinal).covered, 250u);
+        // Without IDs the same box does reach the wall: the clipping with them is the IDs' doing.
+        expectWallMarks(marksIn(wall, f.coverage, f.final, cleanFinal), dynamic);
     }
 }
 
@@ -164,44 +215,21 @@ TEST(DecalPass, IdClippingOffLetsADecalOnATargetReachTheWallBehind) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    const Camera cam = camera({0.4, 1.8, 3.0}, {0.0, 1.5, 0.0});
-    ASSERT_TRUE(r->setScene(wallAndTarget(true)).ok());
-    ASSERT_TRUE(r->setObjectIds({0, 9}).ok());
+    const Camera cam = test::lookAt({0.4, 1.8, 3.0}, {0.0, 1.5, 0.0});
+    ASSERT_TRUE(showWallAndTarget(r.value(), true));
     r->setDecalTypes({type()});
-    const Image ids = renderView(r.value(), cam, View::Ids);
-    std::vector<uint8_t> wall(size_t(kW * kH));
-    for (size_t i = 0; i < wall.size(); ++i)
-        wall[i] = (px(ids, i)[0] == 64 && px(ids, i)[1] == 64 && px(ids, i)[2] == 64) ? 1 : 0;
+    const std::vector<uint8_t> wall = wallPixels(test::renderView(r.value(), cam, View::Ids));
     ASSERT_GT(test::countSet(wall), size_t(kW * kH) / 3);
-    const Image cleanFinal = renderView(r.value(), cam, View::Final);
-    // The decal of IdClippingKeepsTheWallBehindAMovingTargetClean: on the target, its box reaching
-    // back through the wall's face.
-    r->setDecals({decal(1, {0.0f, 0.0f, 0.05f}, {0, 0, 1}, {1, 0, 0}, {1.4f, 1.4f}, 0.6f, 0, 9)});
+    const Image cleanFinal = test::renderView(r.value(), cam, View::Final);
+    r->setDecals({decalReachingTheWall()});
 
     for (bool clipping : {true, false}) {
         SCOPED_TRACE(clipping ? "ID clipping on" : "ID clipping off");
         RenderOptions options;
         options.decals.idClipping = clipping;
-        options.view = View::Coverage;
-        Result<FrameStats> st = r->render(cam, options);
-        ASSERT_TRUE(st.ok()) << st.error();
-        const std::vector<uint8_t> cov = test::whiteMask(r->readback().value());
-        options.view = View::Final;
-        ASSERT_TRUE(r->render(cam, options).ok());
-        const Image final = r->readback().value();
-        size_t wallCovered = 0, wallChanged = 0;
-        for (size_t i = 0; i < cov.size(); ++i) {
-            wallCovered += (wall[i] && cov[i]) ? 1 : 0;
-            wallChanged += (wall[i] && std::memcmp(px(final, i), px(cleanFinal, i), 4) != 0) ? 1 : 0;
-        }
-        EXPECT_EQ(st->decalVariant.find("IDS") != std::string::npos, clipping) << st->decalVariant;
-        if (clipping) {
-            EXPECT_EQ(wallCovered, 0u);
-            EXPECT_EQ(wallChanged, 0u);
-        } else {
-            EXPECT_GT(wallCovered, 200u);
-            EXPECT_GT(wallChanged, 100u);
-        }
+        const DecalFrame f = coverageAndFinal(r.value(), cam, options);
+        EXPECT_EQ(f.stats.decalVariant.find("IDS") != std::string::npos, clipping) << f.stats.decalVariant;
+        expectWallMarks(marksIn(wall, f.coverage, f.final, cleanFinal), clipping);
     }
 }
 
@@ -209,8 +237,7 @@ TEST(DecalPass, CameraInsideADecalBoxStillDrawsIt) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    Scene scene;
-    scene.objects.push_back(object("wall", {3.0f, 3.0f, 0.1f}, {0.0, 1.5, -0.1}));
+    const Scene scene = wallScene();
     ASSERT_TRUE(r->setScene(scene).ok());
     test::CoverageInputs in;
     in.types = {type(DecalTexture::Blood)};
@@ -222,9 +249,9 @@ TEST(DecalPass, CameraInsideADecalBoxStillDrawsIt) {
     size_t insideFrames = 0;
     for (double z : {3.0, 1.5, 1.2 + 0.02, 1.2, 0.9, 0.6, 0.3}) {
         SCOPED_TRACE(z);
-        const Camera cam = camera({0.15, 1.6, z}, {0.0, 1.45, z - 2.0});
+        const Camera cam = test::lookAt({0.15, 1.6, z}, {0.0, 1.45, z - 2.0});
         FrameStats st;
-        const Image cov = renderView(r.value(), cam, View::Coverage, &st);
+        const Image cov = test::renderView(r.value(), cam, View::Coverage, &st);
         const std::vector<uint8_t> gpu = test::whiteMask(cov);
         const std::vector<uint8_t> cpu = test::referenceCoverage(scene, in, cam, kW, kH);
         ASSERT_GT(test::countSet(cpu), 500u);
@@ -245,13 +272,12 @@ TEST(DecalPass, WrapAroundCoversBothFacesOfACorner) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    Scene scene;
-    scene.objects.push_back(object("cube", {0.5f, 0.5f, 0.5f}, {0.0, 0.0, 0.0}));
+    Scene scene = oneBox("cube", {0.5f, 0.5f, 0.5f}, {0.0, 0.0, 0.0});
     scene.objects[0].mesh = flatBox({0.5f, 0.5f, 0.5f});
     ASSERT_TRUE(r->setScene(scene).ok());
-    const Camera cam = camera({1.9, 0.5, 1.9}, {0.35, 0.0, 0.35});
+    const Camera cam = test::lookAt({1.9, 0.5, 1.9}, {0.35, 0.0, 0.35});
     // Face classes from the normals before any decal: +X side face and +Z front face.
-    const Image normals = renderView(r.value(), cam, View::Normal);
+    const Image normals = test::renderView(r.value(), cam, View::Normal);
     std::vector<uint8_t> side(size_t(kW * kH)), front(size_t(kW * kH));
     for (size_t i = 0; i < side.size(); ++i) {
         side[i] = px(normals, i)[0] > 245 ? 1 : 0;
@@ -269,7 +295,8 @@ TEST(DecalPass, WrapAroundCoversBothFacesOfACorner) {
         r->setDecalTypes(in.types);
         r->setDecals(in.decals);
         FrameStats st;
-        const std::vector<uint8_t> cov = test::whiteMask(renderView(r.value(), cam, View::Coverage, &st));
+        const std::vector<uint8_t> cov =
+            test::whiteMask(test::renderView(r.value(), cam, View::Coverage, &st));
         size_t onSide = 0, onFront = 0;
         for (size_t i = 0; i < cov.size(); ++i) {
             onSide += (cov[i] && side[i]) ? 1 : 0;
@@ -285,7 +312,7 @@ TEST(DecalPass, WrapAroundCoversBothFacesOfACorner) {
         }
         const std::vector<uint8_t> cpu = test::referenceCoverage(scene, in, cam, kW, kH);
         EXPECT_GE(test::iou(cov, cpu), 0.97);
-        test::dumpImage(wrap ? "wrap-final" : "flat-final", renderView(r.value(), cam, View::Final));
+        test::dumpImage(wrap ? "wrap-final" : "flat-final", test::renderView(r.value(), cam, View::Final));
     }
 }
 
@@ -293,57 +320,48 @@ TEST(DecalPass, BackSideOfAThinWallStaysClean) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    Scene scene;
-    scene.objects.push_back(object("thin wall", {1.0f, 1.0f, 0.01f}, {0.0, 0.0, 0.0}));
-    ASSERT_TRUE(r->setScene(scene).ok());
+    ASSERT_TRUE(r->setScene(thinWallScene()).ok());
     // On the front face (+Z); the box goes right through the 2 cm wall.
     const std::vector<Decal> decals = {
         decal(0, {0.0f, 0.0f, 0.01f}, {0, 0, 1}, {1, 0, 0}, {1.0f, 1.0f}, 0.3f)};
-    const Camera behind = camera({0.3, 0.2, -2.0}, {0.0, 0.0, 0.0});
-    const Camera before = camera({0.3, 0.2, 2.0}, {0.0, 0.0, 0.0});
+    const Camera behind = test::lookAt({0.3, 0.2, -2.0}, {0.0, 0.0, 0.0});
+    const Camera before = test::lookAt({0.3, 0.2, 2.0}, {0.0, 0.0, 0.0});
 
     r->setDecalTypes({type(DecalTexture::Paint)});
-    const Image cleanBack = renderView(r.value(), behind, View::Final);
+    const Image cleanBack = test::renderView(r.value(), behind, View::Final);
     r->setDecals(decals);
-    EXPECT_EQ(test::countSet(test::whiteMask(renderView(r.value(), behind, View::Coverage))), 0u);
-    EXPECT_EQ(renderView(r.value(), behind, View::Final).rgba, cleanBack.rgba);
-    EXPECT_GT(test::countSet(test::whiteMask(renderView(r.value(), before, View::Coverage))), 500u);
+    EXPECT_EQ(test::countSet(test::whiteMask(test::renderView(r.value(), behind, View::Coverage))), 0u);
+    EXPECT_EQ(test::renderView(r.value(), behind, View::Final).rgba, cleanBack.rgba);
+    EXPECT_GT(test::countSet(test::whiteMask(test::renderView(r.value(), before, View::Coverage))), 500u);
 
     // The box does reach the back face: only the angle test keeps it clean.
     r->setDecalTypes({type(DecalTexture::Paint, false, 180.0f)});
-    EXPECT_GT(test::countSet(test::whiteMask(renderView(r.value(), behind, View::Coverage))), 500u);
+    EXPECT_GT(test::countSet(test::whiteMask(test::renderView(r.value(), behind, View::Coverage))), 500u);
 }
 
 TEST(DecalPass, AngleRejectOffLetsADecalMarkTheBackOfAThinWall) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    Scene scene;
-    scene.objects.push_back(object("thin wall", {1.0f, 1.0f, 0.01f}, {0.0, 0.0, 0.0}));
-    ASSERT_TRUE(r->setScene(scene).ok());
-    const Camera behind = camera({0.3, 0.2, -2.0}, {0.0, 0.0, 0.0});
+    ASSERT_TRUE(r->setScene(thinWallScene()).ok());
+    const Camera behind = test::lookAt({0.3, 0.2, -2.0}, {0.0, 0.0, 0.0});
     r->setDecalTypes({type(DecalTexture::Paint)});
-    const Image cleanBack = renderView(r.value(), behind, View::Final);
+    const Image cleanBack = test::renderView(r.value(), behind, View::Final);
     r->setDecals({decal(0, {0.0f, 0.0f, 0.01f}, {0, 0, 1}, {1, 0, 0}, {1.0f, 1.0f}, 0.3f)});
 
     for (bool reject : {true, false}) {
         SCOPED_TRACE(reject ? "angle rejection on" : "angle rejection off");
         RenderOptions options;
         options.decals.angleReject = reject;
-        options.view = View::Coverage;
-        Result<FrameStats> st = r->render(behind, options);
-        ASSERT_TRUE(st.ok()) << st.error();
-        const size_t covered = test::countSet(test::whiteMask(r->readback().value()));
-        options.view = View::Final;
-        ASSERT_TRUE(r->render(behind, options).ok());
-        const Image final = r->readback().value();
-        EXPECT_EQ(st->decalVariant.find("NO_ANGLE") == std::string::npos, reject) << st->decalVariant;
+        const DecalFrame f = coverageAndFinal(r.value(), behind, options);
+        const size_t covered = test::countSet(f.coverage);
+        EXPECT_EQ(f.stats.decalVariant.find("NO_ANGLE") == std::string::npos, reject) << f.stats.decalVariant;
         if (reject) {
             EXPECT_EQ(covered, 0u);
-            EXPECT_EQ(final.rgba, cleanBack.rgba);
+            EXPECT_EQ(f.final.rgba, cleanBack.rgba);
         } else {
             EXPECT_GT(covered, 500u);
-            EXPECT_NE(final.rgba, cleanBack.rgba);
+            EXPECT_NE(f.final.rgba, cleanBack.rgba);
         }
     }
 }
@@ -362,13 +380,13 @@ TEST(DecalPass, ObjectsThatTakeNoDecalsAreDrawnOverThem) {
     // On the wall, with a box deep enough to take in the plate 0.35 to 0.45 in front of it.
     in.decals = {decal(0, {0.0f, 0.0f, 0.1f}, {0, 0, 1}, {1, 0, 0}, {1.2f, 1.2f}, 0.6f)};
     r->setDecalTypes(in.types);
-    const Camera cam = camera({0.3, 1.7, 3.0}, {0.0, 1.5, 0.0});
-    const Image clean = renderView(r.value(), cam, View::Final);
+    const Camera cam = test::lookAt({0.3, 1.7, 3.0}, {0.0, 1.5, 0.0});
+    const Image clean = test::renderView(r.value(), cam, View::Final);
     r->setDecals(in.decals);
     FrameStats st;
-    const Image final = renderView(r.value(), cam, View::Final, &st);
+    const Image final = test::renderView(r.value(), cam, View::Final, &st);
     EXPECT_GT(st.gpu.lateMs, 0.0);
-    const std::vector<uint8_t> gpu = test::whiteMask(renderView(r.value(), cam, View::Coverage));
+    const std::vector<uint8_t> gpu = test::whiteMask(test::renderView(r.value(), cam, View::Coverage));
     const std::vector<uint8_t> cpu = test::referenceCoverage(scene, in, cam, kW, kH);
     EXPECT_GE(test::iou(gpu, cpu), 0.99);
 
@@ -377,7 +395,7 @@ TEST(DecalPass, ObjectsThatTakeNoDecalsAreDrawnOverThem) {
     plateOnly.objects[0].transform =
         glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 1.5, 50.0)); // behind the eye
     ASSERT_TRUE(r->setScene(plateOnly).ok());
-    const Image ids = renderView(r.value(), cam, View::Ids);
+    const Image ids = test::renderView(r.value(), cam, View::Ids);
     size_t platePixels = 0, plateCovered = 0, plateChanged = 0, wallCovered = 0;
     for (size_t i = 0; i < gpu.size(); ++i) {
         const bool plate = px(ids, i)[0] != 0; // everything else is background here
@@ -396,13 +414,11 @@ TEST(DecalPass, CullsDecalsOutsideTheViewAndSkipsThePassWithoutVisibleDecals) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    Scene scene;
-    scene.objects.push_back(object("floor", {20.0f, 0.1f, 20.0f}, {0.0, -0.1, 0.0}));
-    ASSERT_TRUE(r->setScene(scene).ok());
+    ASSERT_TRUE(r->setScene(floorScene()).ok());
     r->setDecalTypes({type()});
-    const Camera cam = camera({0.0, 2.0, 5.0}, {0.0, 0.0, 0.0});
+    const Camera cam = test::lookAt({0.0, 2.0, 5.0}, {0.0, 0.0, 0.0});
     FrameStats st;
-    renderView(r.value(), cam, View::Final, &st);
+    test::renderView(r.value(), cam, View::Final, &st);
     EXPECT_TRUE(st.decalPassSkipped);
     EXPECT_EQ(st.decalsDrawn, 0u);
     EXPECT_TRUE(st.decalVariant.empty());
@@ -412,7 +428,7 @@ TEST(DecalPass, CullsDecalsOutsideTheViewAndSkipsThePassWithoutVisibleDecals) {
     r->setDecals({decal(0, {0.0f, 0.1f, 0.0f}, {0, 1, 0}, {1, 0, 0}, {1, 1}, 0.2f),
                   decal(0, {0.0f, 0.1f, 15.0f}, {0, 1, 0}, {1, 0, 0}, {1, 1}, 0.2f),
                   decal(0, {19.0f, 0.1f, -1.0f}, {0, 1, 0}, {1, 0, 0}, {1, 1}, 0.2f)});
-    renderView(r.value(), cam, View::Final, &st);
+    test::renderView(r.value(), cam, View::Final, &st);
     EXPECT_FALSE(st.decalPassSkipped);
     EXPECT_EQ(st.decals, 3u);
     EXPECT_EQ(st.decalsDrawn, 1u);
@@ -420,8 +436,8 @@ TEST(DecalPass, CullsDecalsOutsideTheViewAndSkipsThePassWithoutVisibleDecals) {
     EXPECT_EQ(st.drawCalls, drawsWithout + 1); // one instanced draw for all visible decals
 
     // Every decal out of view: no pass at all.
-    const Camera away = camera({0.0, 2.0, 5.0}, {-20.0, 2.0, 5.0});
-    renderView(r.value(), away, View::Final, &st);
+    const Camera away = test::lookAt({0.0, 2.0, 5.0}, {-20.0, 2.0, 5.0});
+    test::renderView(r.value(), away, View::Final, &st);
     EXPECT_TRUE(st.decalPassSkipped);
     EXPECT_EQ(st.decalsCulled, 3u);
 }
@@ -430,33 +446,31 @@ TEST(DecalPass, UploadsOnlyChangedInstances) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    Scene scene;
-    scene.objects.push_back(object("floor", {20.0f, 0.1f, 20.0f}, {0.0, -0.1, 0.0}));
-    ASSERT_TRUE(r->setScene(scene).ok());
+    ASSERT_TRUE(r->setScene(floorScene()).ok());
     r->setDecalTypes({type()});
     std::vector<Decal> decals;
     for (int i = 0; i < 50; ++i)
         decals.push_back(decal(0, {float(i % 10) - 5.0f, 0.1f, float(i / 10) - 2.0f}, {0, 1, 0}, {1, 0, 0},
                                {0.5f, 0.5f}, 0.2f));
-    const Camera cam = camera({0.0, 6.0, 8.0}, {0.0, 0.0, 0.0});
+    const Camera cam = test::lookAt({0.0, 6.0, 8.0}, {0.0, 0.0, 0.0});
     r->setDecals(decals);
     FrameStats st;
-    renderView(r.value(), cam, View::Final, &st);
+    test::renderView(r.value(), cam, View::Final, &st);
     const size_t instance = 192, visible = st.decalsDrawn * sizeof(uint32_t);
     ASSERT_EQ(st.decalsDrawn, 50u);
     EXPECT_EQ(st.decalBytesUploaded, 50 * instance + visible);
 
     r->setDecals(decals); // nothing changed
-    renderView(r.value(), cam, View::Final, &st);
+    test::renderView(r.value(), cam, View::Final, &st);
     EXPECT_EQ(st.decalBytesUploaded, visible);
 
     decals[17].opacity = 0.5f; // one decal fading
     r->setDecals(decals);
-    renderView(r.value(), cam, View::Final, &st);
+    test::renderView(r.value(), cam, View::Final, &st);
     EXPECT_EQ(st.decalBytesUploaded, instance + visible);
 
     // The camera moving changes no instance either: they are stored in object space.
-    renderView(r.value(), camera({1.0, 5.0, 9.0}, {0.0, 0.0, 0.0}), View::Final, &st);
+    test::renderView(r.value(), test::lookAt({1.0, 5.0, 9.0}, {0.0, 0.0, 0.0}), View::Final, &st);
     EXPECT_EQ(st.decalBytesUploaded, st.decalsDrawn * sizeof(uint32_t));
 }
 
@@ -464,28 +478,26 @@ TEST(DecalPass, ShaderVariantFollowsTheFeaturesInUse) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    Scene scene;
-    scene.objects.push_back(object("floor", {20.0f, 0.1f, 20.0f}, {0.0, -0.1, 0.0}));
-    ASSERT_TRUE(r->setScene(scene).ok());
+    ASSERT_TRUE(r->setScene(floorScene()).ok());
     DecalType plain = type();
     plain.normalMap = false;
     plain.depthFade = DepthFade::None;
     DecalType wrap = type(DecalTexture::Blood, true);
     r->setDecalTypes({plain, wrap});
-    const Camera cam = camera({0.0, 2.0, 5.0}, {0.0, 0.0, 0.0});
+    const Camera cam = test::lookAt({0.0, 2.0, 5.0}, {0.0, 0.0, 0.0});
     Decal a = decal(0, {0.0f, 0.1f, 0.0f}, {0, 1, 0}, {1, 0, 0}, {1, 1}, 0.2f, 0);
     Decal b = decal(0, {0.0f, 0.1f, 30.0f}, {0, 1, 0}, {1, 0, 0}, {1, 1}, 0.2f, 1); // behind the camera
     r->setDecals({a, b});
     FrameStats st;
-    renderView(r.value(), cam, View::Final, &st);
+    test::renderView(r.value(), cam, View::Final, &st);
     EXPECT_EQ(st.decalVariant, ""); // no feature beyond the basic projection
     EXPECT_FALSE(st.decalPassSkipped);
 
     b.center.z = 1.0f; // the wrap-around decal comes into view
     r->setDecals({a, b});
-    renderView(r.value(), cam, View::Final, &st);
+    test::renderView(r.value(), cam, View::Final, &st);
     EXPECT_EQ(st.decalVariant, "WRAP NORMAL_MAP FADE");
-    renderView(r.value(), cam, View::Coverage, &st);
+    test::renderView(r.value(), cam, View::Coverage, &st);
     EXPECT_EQ(st.decalVariant, "WRAP COVERAGE");
 }
 
@@ -493,9 +505,7 @@ TEST(DecalPass, SkipsInvalidDecalsWithoutCrashing) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    Scene scene;
-    scene.objects.push_back(object("floor", {20.0f, 0.1f, 20.0f}, {0.0, -0.1, 0.0}));
-    ASSERT_TRUE(r->setScene(scene).ok());
+    ASSERT_TRUE(r->setScene(floorScene()).ok());
     DecalType badTexture = type();
     badTexture.texture = 99;
     r->setDecalTypes({type(), badTexture});
@@ -511,7 +521,8 @@ TEST(DecalPass, SkipsInvalidDecalsWithoutCrashing) {
     decals[8].opacity = INFINITY;        // not finite
     r->setDecals(decals);
     FrameStats st;
-    const Image im = renderView(r.value(), camera({0.0, 2.0, 3.0}, {0.0, 0.0, 0.0}), View::Coverage, &st);
+    const Image im =
+        test::renderView(r.value(), test::lookAt({0.0, 2.0, 3.0}, {0.0, 0.0, 0.0}), View::Coverage, &st);
     EXPECT_EQ(st.decalsInvalid, 8u);
     EXPECT_EQ(st.decalsDrawn, 1u);
     EXPECT_GT(test::countSet(test::whiteMask(im)), 100u);
@@ -531,11 +542,11 @@ TEST(DecalPass, DecalFollowsItsMovingObject) {
     in.objectIds = {0, 3};
     r->setDecalTypes(in.types);
     r->setDecals(in.decals);
-    const Camera cam = camera({0.0, 1.5, 3.0}, {0.0, 1.5, 0.0});
+    const Camera cam = test::lookAt({0.0, 1.5, 3.0}, {0.0, 1.5, 0.0});
     for (double x : {0.0, -0.8, 0.9}) {
         scene.objects[1].transform = glm::translate(glm::dmat4(1.0), glm::dvec3(x, 1.4, 0.5));
         ASSERT_TRUE(r->setObjectTransform(1, scene.objects[1].transform).ok());
-        const std::vector<uint8_t> gpu = test::whiteMask(renderView(r.value(), cam, View::Coverage));
+        const std::vector<uint8_t> gpu = test::whiteMask(test::renderView(r.value(), cam, View::Coverage));
         const std::vector<uint8_t> cpu = test::referenceCoverage(scene, in, cam, kW, kH);
         ASSERT_GT(test::countSet(cpu), 60u);
         EXPECT_GE(test::iou(gpu, cpu), 0.97) << x;
@@ -551,26 +562,25 @@ TEST(DecalPass, DecalsChangeAlbedoNormalsAndRoughnessBeforeLighting) {
         settings.normalFrame = frame;
         Result<Renderer> r = test::makeRenderer(kW, kH, settings);
         ASSERT_TRUE(r.ok()) << r.error();
-        Scene scene;
-        scene.objects.push_back(object("wall", {3.0f, 3.0f, 0.1f}, {0.0, 1.5, -0.1}));
-        ASSERT_TRUE(r->setScene(scene).ok());
-        const Camera cam = camera({0.3, 1.6, 2.0}, {0.0, 1.5, 0.0});
+        ASSERT_TRUE(r->setScene(wallScene()).ok());
+        const Camera cam = test::lookAt({0.3, 1.6, 2.0}, {0.0, 1.5, 0.0});
         DecalType paint = type(DecalTexture::Paint);
         paint.tint = {0.9f, 0.05f, 0.05f, 1.0f};
         paint.roughness = 0.1f;
         DecalType flat = paint;
         flat.normalMap = false;
         r->setDecalTypes({paint, flat});
-        const Image albedo0 = renderView(r.value(), cam, View::Albedo);
-        const Image normal0 = renderView(r.value(), cam, View::Normal);
-        const Image final0 = renderView(r.value(), cam, View::Final);
+        const Image albedo0 = test::renderView(r.value(), cam, View::Albedo);
+        const Image normal0 = test::renderView(r.value(), cam, View::Normal);
+        const Image final0 = test::renderView(r.value(), cam, View::Final);
 
         for (uint16_t t : {uint16_t(0), uint16_t(1)}) {
             r->setDecals({decal(0, {0.0f, 0.0f, 0.1f}, {0, 0, 1}, {1, 0, 0}, {1.2f, 1.2f}, 0.2f, t)});
-            const std::vector<uint8_t> cov = test::whiteMask(renderView(r.value(), cam, View::Coverage));
-            const Image albedo = renderView(r.value(), cam, View::Albedo);
-            const Image normal = renderView(r.value(), cam, View::Normal);
-            const Image final = renderView(r.value(), cam, View::Final);
+            const std::vector<uint8_t> cov =
+                test::whiteMask(test::renderView(r.value(), cam, View::Coverage));
+            const Image albedo = test::renderView(r.value(), cam, View::Albedo);
+            const Image normal = test::renderView(r.value(), cam, View::Normal);
+            const Image final = test::renderView(r.value(), cam, View::Final);
             size_t red = 0, normalChanged = 0, finalChanged = 0, outsideChanged = 0;
             for (size_t i = 0; i < cov.size(); ++i) {
                 const bool changedA = std::memcmp(px(albedo, i), px(albedo0, i), 3) != 0;
@@ -600,10 +610,8 @@ TEST(DecalPass, DepthFadeWeakensTheDecalAwayFromItsPlane) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    Scene scene;
-    scene.objects.push_back(object("wall", {3.0f, 3.0f, 0.1f}, {0.0, 1.5, -0.1}));
-    ASSERT_TRUE(r->setScene(scene).ok());
-    const Camera cam = camera({0.0, 1.5, 2.0}, {0.0, 1.5, 0.0});
+    ASSERT_TRUE(r->setScene(wallScene()).ok());
+    const Camera cam = test::lookAt({0.0, 1.5, 2.0}, {0.0, 1.5, 0.0});
     DecalType solid = type(DecalTexture::Scorch);
     solid.normalMap = false;
     // Decal plane 0.8 half-depths in front of the wall: the wall is at |z| = 0.8 of the box.
@@ -611,7 +619,7 @@ TEST(DecalPass, DepthFadeWeakensTheDecalAwayFromItsPlane) {
     auto darkness = [&](DepthFade fade) {
         solid.depthFade = fade;
         r->setDecalTypes({solid});
-        const Image albedo = renderView(r.value(), cam, View::Albedo);
+        const Image albedo = test::renderView(r.value(), cam, View::Albedo);
         const uint8_t* centre = px(albedo, size_t(kH / 2) * kW + kW / 2);
         return 255 - int(centre[0]);
     };
@@ -632,7 +640,7 @@ TEST(DecalPass, GpuTimersReportEveryPass) {
     r->setDecalTypes({type()});
     r->setDecals({decal(0, {0.0f, 0.0f, 0.1f}, {0, 0, 1}, {1, 0, 0}, {1.0f, 1.0f}, 0.2f)});
     FrameStats st;
-    renderView(r.value(), camera({0.0, 1.5, 3.0}, {0.0, 1.5, 0.0}), View::Final, &st);
+    test::renderView(r.value(), test::lookAt({0.0, 1.5, 3.0}, {0.0, 1.5, 0.0}), View::Final, &st);
     EXPECT_EQ(st.gpu.frame, int64_t(st.frame));
     EXPECT_GT(st.gpu.geometryMs, 0.0);
     EXPECT_GT(st.gpu.decalsMs, 0.0);
@@ -646,7 +654,7 @@ TEST(DecalPass, GpuTimersReportEveryPass) {
     ASSERT_TRUE(r2->setScene(wallAndTarget(false)).ok());
     FrameStats later;
     for (int f = 0; f < 8; ++f) {
-        later = r2->render(camera({0.0, 1.5, 3.0}, {0.0, 1.5, 0.0}), View::Final).value();
+        later = r2->render(test::lookAt({0.0, 1.5, 3.0}, {0.0, 1.5, 0.0}), View::Final).value();
         EXPECT_LE(later.gpu.frame, int64_t(later.frame));
     }
     EXPECT_GE(later.gpu.frame, 0);
@@ -674,15 +682,14 @@ TEST(DecalPass, PngImagesBecomeDecalTextureLayers) {
     EXPECT_EQ(layer.value(), layers);
     EXPECT_FALSE(r->addDecalTextureFile(path + ".missing").ok());
 
-    Scene scene;
-    scene.objects.push_back(object("wall", {3.0f, 3.0f, 0.1f}, {0.0, 1.5, -0.1}));
-    ASSERT_TRUE(r->setScene(scene).ok());
+    ASSERT_TRUE(r->setScene(wallScene()).ok());
     DecalType t = type();
     t.texture = layer.value();
     t.depthFade = DepthFade::None;
     r->setDecalTypes({t});
     r->setDecals({decal(0, {0.0f, 0.0f, 0.1f}, {0, 0, 1}, {1, 0, 0}, {1.0f, 1.0f}, 0.2f)});
-    const Image albedo = renderView(r.value(), camera({0.0, 1.5, 2.0}, {0.0, 1.5, 0.0}), View::Albedo);
+    const Image albedo =
+        test::renderView(r.value(), test::lookAt({0.0, 1.5, 2.0}, {0.0, 1.5, 0.0}), View::Albedo);
     const uint8_t* centre = px(albedo, size_t(kH / 2) * kW + kW / 2);
     EXPECT_NEAR(centre[0], 20, 3);
     EXPECT_NEAR(centre[1], 220, 3);

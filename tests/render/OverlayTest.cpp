@@ -21,14 +21,6 @@ namespace {
 constexpr int kW = 128;
 constexpr int kH = 96;
 
-Camera camera(glm::dvec3 eye, glm::dvec3 target) {
-    Camera c;
-    c.eye = eye;
-    c.target = target;
-    c.nearPlane = 0.05;
-    return c;
-}
-
 // A static wall whose front face is the plane z = 0, and a dynamic plate 0.4 in front of it.
 Scene wallAndTarget() {
     Scene s;
@@ -44,15 +36,6 @@ Scene wallAndTarget() {
     target.dynamic = true;
     s.objects.push_back(target);
     return s;
-}
-
-Image renderImage(Renderer& r, const Camera& cam, const RenderOptions& options, FrameStats* stats = nullptr) {
-    Result<FrameStats> st = r.render(cam, options);
-    EXPECT_TRUE(st.ok()) << st.error();
-    if (stats && st) *stats = st.value();
-    Result<Image> im = r.readback();
-    EXPECT_TRUE(im.ok()) << im.error();
-    return im ? im.value() : Image{};
 }
 
 RenderOptions overlays(bool wireframe, bool boxes, bool onTop = false) {
@@ -97,7 +80,7 @@ size_t countOutside(const std::vector<uint8_t>& mask, const std::vector<uint8_t>
 std::vector<uint8_t> targetPixels(Renderer& r, const Camera& cam) {
     RenderOptions o;
     o.view = View::Ids;
-    const Image ids = renderImage(r, cam, o);
+    const Image ids = test::renderView(r, cam, o);
     std::vector<uint8_t> mask(size_t(kW * kH), 0);
     for (size_t i = 0; i < mask.size(); ++i)
         mask[i] = (ids.rgba[i * 4] > 70 || ids.rgba[i * 4 + 1] > 70 || ids.rgba[i * 4 + 2] > 70) ? 1 : 0;
@@ -139,14 +122,14 @@ TEST(Overlays, OffDrawNothingExtra) {
         p->setDecals({d});
     }
     ASSERT_TRUE(r->setOverlayMeshes({scene.objects[0].mesh, scene.objects[1].mesh}).ok());
-    const Camera cam = camera({0.5, 1.9, 3.0}, {0.0, 1.4, 0.0});
+    const Camera cam = test::lookAt({0.5, 1.9, 3.0}, {0.0, 1.4, 0.0});
     for (View view : {View::Final, View::Albedo, View::Coverage}) {
         SCOPED_TRACE(toString(view));
         FrameStats sp, so;
         RenderOptions off;
         off.view = view;
-        const Image a = renderImage(plain.value(), cam, off, &sp);
-        const Image b = renderImage(r.value(), cam, off, &so);
+        const Image a = test::renderView(plain.value(), cam, off, &sp);
+        const Image b = test::renderView(r.value(), cam, off, &so);
         EXPECT_EQ(a.rgba, b.rgba);
         EXPECT_EQ(so.drawCalls, sp.drawCalls);
         EXPECT_EQ(so.overlayLines, 0u);
@@ -165,7 +148,7 @@ TEST(Overlays, ProxyWireframeDrawsOverItsObjectAndFollowsItWhenItMoves) {
     // Only the target has a wireframe: its render mesh, so every line lies on the drawn surface and
     // shows only through the depth bias.
     ASSERT_TRUE(r->setOverlayMeshes({Mesh{}, scene.objects[1].mesh}).ok());
-    const Camera cam = camera({0.3, 1.8, 3.0}, {0.0, 1.5, 0.0});
+    const Camera cam = test::lookAt({0.3, 1.8, 3.0}, {0.0, 1.5, 0.0});
 
     std::vector<uint8_t> before;
     for (double x : {-0.6, 0.7}) {
@@ -174,8 +157,8 @@ TEST(Overlays, ProxyWireframeDrawsOverItsObjectAndFollowsItWhenItMoves) {
         const std::vector<uint8_t> target = targetPixels(r.value(), cam);
         ASSERT_GT(test::countSet(target), 300u);
         FrameStats off, on;
-        const Image clean = renderImage(r.value(), cam, RenderOptions{}, &off);
-        const Image wire = renderImage(r.value(), cam, overlays(true, false), &on);
+        const Image clean = test::renderView(r.value(), cam, RenderOptions{}, &off);
+        const Image wire = test::renderView(r.value(), cam, overlays(true, false), &on);
         const std::vector<uint8_t> lines = changed(clean, wire);
         test::dumpImage(x < 0 ? "wire-left" : "wire-right", wire);
         // makeBox with 2 x 2 squares per face: 48 triangles, each edge shared by two of them.
@@ -205,18 +188,18 @@ TEST(Overlays, WireframeDrawsEachUniqueEdgeOnce) {
     cube.mesh = makeUnitCube();
     scene.objects.push_back(cube);
     ASSERT_TRUE(r->setScene(scene).ok());
-    const Camera cam = camera({1.5, 1.2, 2.0}, {0.0, 0.0, 0.0});
+    const Camera cam = test::lookAt({1.5, 1.2, 2.0}, {0.0, 0.0, 0.0});
     // 12 box edges and 6 face diagonals, whether the triangles share vertices or not.
     for (const Mesh& m : {makeUnitCube(), unweldedCube()}) {
         ASSERT_TRUE(r->setOverlayMeshes({m}).ok());
         FrameStats st;
-        renderImage(r.value(), cam, overlays(true, false), &st);
+        test::renderView(r.value(), cam, overlays(true, false), &st);
         EXPECT_EQ(st.overlayLines, 18u);
     }
     // A new scene drops them.
     ASSERT_TRUE(r->setScene(scene).ok());
     FrameStats st;
-    renderImage(r.value(), cam, overlays(true, false), &st);
+    test::renderView(r.value(), cam, overlays(true, false), &st);
     EXPECT_EQ(st.overlayLines, 0u);
 }
 
@@ -241,7 +224,7 @@ TEST(Overlays, DecalBoxesAreDrawnWhereTheDecalIs) {
     d.size = {0.8f, 0.8f};
     d.halfDepth = 0.2f;
     r->setDecals({d});
-    const Camera cam = camera({-0.5, 2.1, 2.0}, {0.3, 1.4, 0.0});
+    const Camera cam = test::lookAt({-0.5, 2.1, 2.0}, {0.3, 1.4, 0.0});
 
     // Screen rectangle of the box's corners.
     const glm::dmat4 viewProj = projection(cam, double(kW) / kH) * viewRotation(cam);
@@ -260,9 +243,9 @@ TEST(Overlays, DecalBoxesAreDrawnWhereTheDecalIs) {
     ASSERT_GT(test::countSet(rect), 400u);
 
     FrameStats st;
-    const Image clean = renderImage(r.value(), cam, RenderOptions{});
-    const Image tested = renderImage(r.value(), cam, overlays(false, true), &st);
-    const Image onTop = renderImage(r.value(), cam, overlays(false, true, true));
+    const Image clean = test::renderView(r.value(), cam, RenderOptions{});
+    const Image tested = test::renderView(r.value(), cam, overlays(false, true), &st);
+    const Image onTop = test::renderView(r.value(), cam, overlays(false, true, true));
     test::dumpImage("boxes-tested", tested);
     test::dumpImage("boxes-on-top", onTop);
     EXPECT_EQ(st.overlayLines, 12u);
@@ -282,7 +265,7 @@ TEST(Overlays, DecalBoxesAreDrawnWhereTheDecalIs) {
 
     // No decal in view: no boxes and no overlay pass.
     r->setDecals({});
-    renderImage(r.value(), cam, overlays(false, true), &st);
+    test::renderView(r.value(), cam, overlays(false, true), &st);
     EXPECT_EQ(st.overlayLines, 0u);
     EXPECT_EQ(gl.debugErrorCount(), 0u);
 }
@@ -308,9 +291,9 @@ TEST(Overlays, RejectsBadMeshesAndDepthBias) {
     EXPECT_FALSE(r->setOverlayMeshes({nan, Mesh{}}).ok());
 
     // The meshes set before the failures are still drawn.
-    const Camera cam = camera({0.0, 1.8, 3.0}, {0.0, 1.5, 0.0});
+    const Camera cam = test::lookAt({0.0, 1.8, 3.0}, {0.0, 1.5, 0.0});
     FrameStats st;
-    renderImage(r.value(), cam, overlays(true, false), &st);
+    test::renderView(r.value(), cam, overlays(true, false), &st);
     EXPECT_EQ(st.overlayLines, 72u);
 
     for (float bias : {-0.1f, 0.8f, float(NAN)}) {

@@ -30,6 +30,14 @@ GlContext* headlessContext(std::string& why) {
     return context.get();
 }
 
+Camera lookAt(const glm::dvec3& eye, const glm::dvec3& target) {
+    Camera c;
+    c.eye = eye;
+    c.target = target;
+    c.nearPlane = 0.05;
+    return c;
+}
+
 Result<Renderer> makeRenderer(int width, int height, RendererSettings settings) {
     std::string why;
     GlContext* gl = headlessContext(why);
@@ -37,6 +45,21 @@ Result<Renderer> makeRenderer(int width, int height, RendererSettings settings) 
     settings.width = width;
     settings.height = height;
     return Renderer::create(*gl, settings);
+}
+
+Image renderView(Renderer& r, const Camera& camera, const RenderOptions& options, FrameStats* stats) {
+    Result<FrameStats> st = r.render(camera, options);
+    EXPECT_TRUE(st.ok()) << st.error();
+    if (stats && st) *stats = st.value();
+    Result<Image> im = r.readback();
+    EXPECT_TRUE(im.ok()) << im.error();
+    return im ? im.value() : Image{};
+}
+
+Image renderView(Renderer& r, const Camera& camera, View view, FrameStats* stats) {
+    RenderOptions options;
+    options.view = view;
+    return renderView(r, camera, options, stats);
 }
 
 std::vector<uint8_t> whiteMask(const Image& image) {

@@ -1,6 +1,6 @@
 #pragma once
 // Shared pieces of the render tests: one headless GL context per test process, a renderer factory,
-// and the CPU reference for decal coverage.
+// rendering one frame to an image, and the CPU reference for decal coverage.
 
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalType.hpp"
@@ -22,8 +22,18 @@ namespace spatter::test {
 // `why` set when none can be created.
 GlContext* headlessContext(std::string& why);
 
+// A camera at `eye` looking at `target`, up +Y, near plane 0.05, the default field of view.
+Camera lookAt(const glm::dvec3& eye, const glm::dvec3& target);
+
 // A renderer on the shared context.
 Result<Renderer> makeRenderer(int width, int height, RendererSettings settings = {});
+
+// One frame of `r` seen by `camera` with `options` (or the default options and `view`), read back;
+// `stats` (when given) receives its stats. A failed render or readback fails the calling test and
+// gives an empty image.
+Image renderView(Renderer& r, const Camera& camera, const RenderOptions& options,
+                 FrameStats* stats = nullptr);
+Image renderView(Renderer& r, const Camera& camera, View view, FrameStats* stats = nullptr);
 
 // Pixels of a readback that are white (> 127 in red), one byte per pixel, row 0 at the top.
 std::vector<uint8_t> whiteMask(const Image& image);

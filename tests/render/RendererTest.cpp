@@ -31,14 +31,6 @@ SceneObject box(const std::string& name, glm::vec3 half, glm::dvec3 position, in
     return o;
 }
 
-Image render(Renderer& r, const Camera& cam, View view) {
-    Result<FrameStats> st = r.render(cam, view);
-    EXPECT_TRUE(st.ok()) << st.error();
-    Result<Image> im = r.readback();
-    EXPECT_TRUE(im.ok()) << im.error();
-    return im ? im.value() : Image{};
-}
-
 const uint8_t* at(const Image& im, int x, int y) {
     return &im.rgba[(size_t(y) * size_t(im.width) + size_t(x)) * 4];
 }
@@ -64,7 +56,7 @@ TEST(Renderer, RendersGalleryWithoutGlErrors) {
     cam.eye = {0.0, 1.7, 6.0};
     cam.target = {0.0, 1.2, -3.0};
     for (View v : {View::Final, View::Albedo, View::Normal, View::Depth, View::Ids, View::Coverage}) {
-        const Image im = render(r.value(), cam, v);
+        const Image im = test::renderView(r.value(), cam, v);
         test::dumpImage(std::string("gallery-") + toString(v), im);
         std::set<uint32_t> colours;
         for (size_t i = 0; i < im.rgba.size(); i += 4)
@@ -101,31 +93,31 @@ TEST(Renderer, ViewsShowWhatTheyName) {
     const glm::ivec2 farPx = project(cam, kW, kH, {0.8, 0.3, -2.7});
     const glm::ivec2 skyPx{kW / 2, 0};
 
-    const Image albedo = render(r.value(), cam, View::Albedo);
+    const Image albedo = test::renderView(r.value(), cam, View::Albedo);
     // sRGB of (0.8, 0.3, 0.05): 231, 149, 63.
     EXPECT_NEAR(at(albedo, floorPx.x, floorPx.y)[0], 231, 2);
     EXPECT_NEAR(at(albedo, floorPx.x, floorPx.y)[1], 149, 2);
     EXPECT_NEAR(at(albedo, floorPx.x, floorPx.y)[2], 63, 2);
 
-    const Image normal = render(r.value(), cam, View::Normal);
+    const Image normal = test::renderView(r.value(), cam, View::Normal);
     EXPECT_NEAR(at(normal, floorPx.x, floorPx.y)[0], 128, 2); // (0, 1, 0) * 0.5 + 0.5
     EXPECT_NEAR(at(normal, floorPx.x, floorPx.y)[1], 255, 2);
     EXPECT_NEAR(at(normal, floorPx.x, floorPx.y)[2], 128, 2);
     EXPECT_EQ(at(normal, skyPx.x, skyPx.y)[1], 0);
 
-    const Image depth = render(r.value(), cam, View::Depth);
+    const Image depth = test::renderView(r.value(), cam, View::Depth);
     EXPECT_GT(at(depth, nearPx.x, nearPx.y)[0], at(depth, floorPx.x, floorPx.y)[0]);
     EXPECT_GT(at(depth, floorPx.x, floorPx.y)[0], at(depth, farPx.x, farPx.y)[0]);
     EXPECT_EQ(at(depth, skyPx.x, skyPx.y)[0], 0);
 
-    const Image ids = render(r.value(), cam, View::Ids);
+    const Image ids = test::renderView(r.value(), cam, View::Ids);
     EXPECT_EQ(at(ids, floorPx.x, floorPx.y)[0], 64); // static: dark grey
     EXPECT_EQ(at(ids, farPx.x, farPx.y)[0], 64);
     const uint8_t* dyn = at(ids, nearPx.x, nearPx.y);
     EXPECT_TRUE(dyn[0] != 64 || dyn[1] != 64 || dyn[2] != 64);
     EXPECT_EQ(at(ids, skyPx.x, skyPx.y)[0], 0);
 
-    const Image final = render(r.value(), cam, View::Final);
+    const Image final = test::renderView(r.value(), cam, View::Final);
     EXPECT_GT(at(final, skyPx.x, skyPx.y)[2], 100);                                    // a sky, not black
     EXPECT_GT(at(final, floorPx.x, floorPx.y)[0], at(final, floorPx.x, floorPx.y)[2]); // orange floor, lit
 }
@@ -206,7 +198,7 @@ TEST(Renderer, CoverageHoldsFarFromTheOrigin) {
         ASSERT_TRUE(r->setObjectIds(ids).ok());
         r->setDecalTypes({t});
         r->setDecals(sys->decals()); // object space: unchanged by the move
-        const std::vector<uint8_t> mask = test::whiteMask(render(r.value(), c, View::Coverage));
+        const std::vector<uint8_t> mask = test::whiteMask(test::renderView(r.value(), c, View::Coverage));
         if (offset == 0.0) {
             reference = mask;
             ASSERT_GT(test::countSet(reference), size_t(kW * kH) / 20);
@@ -231,7 +223,7 @@ TEST(Renderer, RendersTexturedSharedGltfScenes) {
         cam.target = b.center();
         cam.eye = b.center() + glm::dvec3(0.3, 0.2, 1.0) * b.diagonal();
         cam.nearPlane = b.diagonal() * 1e-3;
-        const Image albedo = render(r.value(), cam, View::Albedo);
+        const Image albedo = test::renderView(r.value(), cam, View::Albedo);
         test::dumpImage(std::string(file).substr(5, 4) + "-albedo", albedo);
         // Textured: many different colours where the model is.
         std::set<uint32_t> colours;

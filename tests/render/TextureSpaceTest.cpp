@@ -94,12 +94,7 @@ DecalType whiteType(Renderer& r) {
 }
 
 Image albedo(Renderer& r, FrameStats* stats = nullptr) {
-    Result<FrameStats> st = r.render(topDown(), View::Albedo);
-    EXPECT_TRUE(st) << st.error();
-    if (st && stats) *stats = st.value();
-    Result<Image> im = r.readback();
-    EXPECT_TRUE(im) << im.error();
-    return im ? im.value() : Image{};
+    return test::renderView(r, topDown(), View::Albedo, stats);
 }
 
 uint8_t red(const Image& im, int x, int y) {

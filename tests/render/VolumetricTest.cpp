@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 using namespace spatter;
+using spatter::test::renderView;
 
 namespace {
 
@@ -75,15 +76,6 @@ Camera frontCamera() {
     c.eye = {0.35, 1.8, 2.0};
     c.target = {0.0, 1.5, 0.0};
     return c;
-}
-
-Image renderView(Renderer& r, const Camera& cam, View view, FrameStats* stats = nullptr) {
-    Result<FrameStats> st = r.render(cam, view);
-    EXPECT_TRUE(st.ok()) << (st ? "" : st.error());
-    if (stats && st) *stats = st.value();
-    Result<Image> im = r.readback();
-    EXPECT_TRUE(im.ok()) << im.error();
-    return im ? im.value() : Image{};
 }
 
 // Where the ray through pixel (i, j) (row 0 at the top) meets the plane z = 0.

@@ -123,20 +123,9 @@ StressResult runExtremeSizesRender(const StressConfig& cfg) {
     StressResult r;
     r.technique = "decal instances in object space, box inverse in double on the CPU, camera-relative "
                   "positions; the decal pass clips each pixel to the box";
-    if (!cfg.gl) {
-        r.skipped = "no headless OpenGL context: " + cfg.glError;
-        return r;
-    }
     const int width = cfg.full ? 320 : 128, height = cfg.full ? 240 : 96;
-    RendererSettings rs;
-    rs.width = width;
-    rs.height = height;
-    Result<Renderer> renderer = Renderer::create(*cfg.gl, rs);
-    if (!renderer) {
-        r.failure(renderer.error());
-        r.row("renderer", INFINITY, 0.0, 0);
-        return r;
-    }
+    Result<Renderer> renderer = caseRenderer(cfg, width, height, r);
+    if (!renderer) return r;
     const Scene scene = planeScene(5.0); // 10 m wide
     Camera cam;
     cam.eye = {0.0, 4.0, 9.0};

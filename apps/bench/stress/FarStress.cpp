@@ -298,20 +298,9 @@ StressResult runFarRender(const StressConfig& cfg) {
     StressResult r;
     r.technique = "camera-relative rendering: transforms stay double on the CPU and have the eye subtracted "
                   "before they become float; decals in object space; reversed-Z float depth";
-    if (!cfg.gl) {
-        r.skipped = "no headless OpenGL context: " + cfg.glError;
-        return r;
-    }
     const int width = cfg.full ? 320 : 128, height = cfg.full ? 240 : 96;
-    RendererSettings rs;
-    rs.width = width;
-    rs.height = height;
-    Result<Renderer> renderer = Renderer::create(*cfg.gl, rs);
-    if (!renderer) {
-        r.failure(renderer.error());
-        r.row("renderer", INFINITY, 0.0, 0);
-        return r;
-    }
+    Result<Renderer> renderer = caseRenderer(cfg, width, height, r);
+    if (!renderer) return r;
     GallerySettings gs = gallerySettings(cfg);
     gs.detail = 0;
     const Scene scene = makeGalleryScene(gs);

@@ -432,17 +432,11 @@ StressResult runNonFiniteRender(const StressConfig& cfg) {
     StressResult r;
     r.technique = "validateScene, validateCamera and transform checks before any state changes; invalid "
                   "decals skipped and counted";
-    if (!cfg.gl) {
-        r.skipped = "no headless OpenGL context: " + cfg.glError;
-        return r;
-    }
-    RendererSettings rs;
-    rs.width = 96;
-    rs.height = 72;
-    Result<Renderer> renderer = Renderer::create(*cfg.gl, rs);
+    Result<Renderer> renderer = caseRenderer(cfg, 96, 72, r);
+    if (!renderer) return r;
     const Scene scene = targetScene();
-    if (!renderer || !renderer->setScene(scene)) {
-        r.failure(renderer ? "setScene failed" : renderer.error());
+    if (!renderer->setScene(scene)) {
+        r.failure("setScene failed");
         r.row("renderer", INFINITY, 0.0, 0);
         return r;
     }

@@ -203,6 +203,22 @@ bool closedMesh(const Mesh& mesh) {
     return true;
 }
 
+Result<Renderer> caseRenderer(const StressConfig& cfg, int width, int height, StressResult& r) {
+    if (!cfg.gl) {
+        r.skipped = "no headless OpenGL context: " + cfg.glError;
+        return fail(r.skipped);
+    }
+    RendererSettings rs;
+    rs.width = width;
+    rs.height = height;
+    Result<Renderer> renderer = Renderer::create(*cfg.gl, rs);
+    if (!renderer) {
+        r.failure(renderer.error());
+        r.row("renderer", INFINITY, 0.0, 0);
+    }
+    return renderer;
+}
+
 std::string num(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.6g", v);

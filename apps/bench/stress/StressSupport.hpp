@@ -1,6 +1,7 @@
 #pragma once
 // Pieces the stress cases share: scenes with known geometry, the checks every placed decal must
-// pass, shared edges of meshes, and number formatting for failure messages.
+// pass, shared edges of meshes, the renderer of the render cases, and number formatting for failure
+// messages.
 
 #include "StressCase.hpp"
 #include "spatter/core/Decal.hpp"
@@ -9,6 +10,7 @@
 #include "spatter/core/Random.hpp"
 #include "spatter/core/Scene.hpp"
 #include "spatter/placement/DecalSystem.hpp"
+#include "spatter/render/Renderer.hpp"
 
 #include <glm/glm.hpp>
 #include <string>
@@ -74,6 +76,11 @@ std::vector<InteriorVertex> interiorVertices(const Mesh& mesh);
 
 // True when every edge is used exactly twice, once in each direction.
 bool closedMesh(const Mesh& mesh);
+
+// A width x height renderer on cfg's headless context for a render case. Fails when there is none:
+// without a context `r` is marked skipped (saying why); when the renderer cannot be created `r`
+// records the failure and an infinite "renderer" row. On failure the case returns `r` as it is.
+Result<Renderer> caseRenderer(const StressConfig& cfg, int width, int height, StressResult& r);
 
 // "%.6g" and "(x, y, z)" with 17 digits.
 std::string num(double v);

@@ -1,0 +1,70 @@
+#include "ReferenceGeometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace spatter::test {
+
+namespace {
+constexpr float kPi = 3.14159265358979f;
+} // namespace
+
+Mesh latLongSphere(float radius, uint32_t stacks, uint32_t slices, float bump) {
+    Mesh m;
+    auto at = [&](float theta, float phi) {
+        const float r = radius * (1.0f + bump * std::sin(8.0f * theta) * std::sin(8.0f * phi));
+        return r *
+               glm::vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    };
+    m.positions.push_back({0, 0, radius});
+    for (uint32_t i = 1; i < stacks; ++i)
+        for (uint32_t j = 0; j < slices; ++j)
+            m.positions.push_back(at(kPi * float(i) / float(stacks), 2.0f * kPi * float(j) / float(slices)));
+    m.positions.push_back({0, 0, -radius});
+    const uint32_t south = uint32_t(m.positions.size() - 1);
+    auto ring = [&](uint32_t i, uint32_t j) { return 1 + (i - 1) * slices + j % slices; };
+    for (uint32_t j = 0; j < slices; ++j)
+        m.indices.insert(m.indices.end(), {0, ring(1, j), ring(1, j + 1)});
+    for (uint32_t i = 1; i + 1 < stacks; ++i)
+        for (uint32_t j = 0; j < slices; ++j)
+            m.indices.insert(m.indices.end(), {ring(i, j), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j),
+                                               ring(i + 1, j + 1), ring(i, j + 1)});
+    for (uint32_t j = 0; j < slices; ++j)
+        m.indices.insert(m.indices.end(), {ring(stacks - 1, j), south, ring(stacks - 1, j + 1)});
+    computeNormals(m);
+    return m;
+}
+
+double segmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+    const glm::dvec3 d = b - a;
+    const double len2 = glm::dot(d, d);
+    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+    return glm::length(p - (a + t * d));
+}
+
+double triangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const double len = glm::length(n);
+    const double edges =
+        std::min({segmentDistance(p, a, b), segmentDistance(p, b, c), segmentDistance(p, c, a)});
+    if (len == 0.0) return edges;
+    const glm::dvec3 u = n / len;
+    const double height = glm::dot(p - a, u);
+    const glm::dvec3 q = p - height * u;
+    if (glm::dot(glm::cross(b - q, c - q), u) >= 0.0 && glm::dot(glm::cross(c - q, a - q), u) >= 0.0 &&
+        glm::dot(glm::cross(a - q, b - q), u) >= 0.0)
+        return std::fabs(height);
+    return edges;
+}
+
+double bruteMeshDistance(const glm::dvec3& p, const Mesh& m) {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t t = 0; t < m.triangleCount(); ++t)
+        best = std::min(best, triangleDistance(p, glm::dvec3(m.positions[m.indices[3 * t]]),
+                                               glm::dvec3(m.positions[m.indices[3 * t + 1]]),
+                                               glm::dvec3(m.positions[m.indices[3 * t + 2]])));
+    return best;
+}
+
+} // namespace spatter::test

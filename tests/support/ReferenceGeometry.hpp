@@ -1,0 +1,27 @@
+#pragma once
+// Reference geometry for the mesh-distance and proxy tests: a closed sphere of known shape, and
+// point-to-surface distances found by brute force with a method independent of the library's
+// closest-point code (ClosestPointQuery), to check it and the proxy error bounds against.
+
+#include "spatter/core/Mesh.hpp"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+
+namespace spatter::test {
+
+// A closed sphere of latitude/longitude quads split into triangles, poles on the z axis, with
+// normals; `bump` displaces the radius by bump * sin(8 theta) * sin(8 phi) (0: a plain sphere).
+Mesh latLongSphere(float radius, uint32_t stacks, uint32_t slices, float bump = 0.0f);
+
+// Distance from `p` to the segment [a, b] (a point where a == b).
+double segmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b);
+
+// Distance from `p` to the triangle (a, b, c), by projection onto its plane and, outside the
+// triangle, the nearest edge; a zero-area triangle counts as its edges.
+double triangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+
+// Distance from `p` to the nearest triangle of `m`, over every triangle; infinity for no triangles.
+double bruteMeshDistance(const glm::dvec3& p, const Mesh& m);
+
+} // namespace spatter::test
