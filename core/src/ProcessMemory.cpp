@@ -5,13 +5,6 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#if defined(__SANITIZE_ADDRESS__)
-#define SPATTER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SPATTER_ASAN 1
-#endif
-#endif
 #ifdef SPATTER_ASAN
 // From sanitizer/allocator_interface.h, which GCC does not install.
 extern "C" size_t __sanitizer_get_current_allocated_bytes();

@@ -78,13 +78,8 @@ void findCraterClips(const CollisionWorld& world, const glm::dmat4& objectToWorl
                      Decal& decal) {
     for (CraterClip& c : decal.clips)
         c = CraterClip{};
-    const double sx = 0.5 * double(decal.size.x), sy = 0.5 * double(decal.size.y);
-    const double sz = std::min(sx, sy);
-    const glm::dmat4 local(glm::dvec4(glm::dvec3(decal.frame.tangent) * sx, 0.0),
-                           glm::dvec4(glm::dvec3(decal.frame.bitangent) * sy, 0.0),
-                           glm::dvec4(glm::dvec3(decal.frame.normal) * sz, 0.0),
-                           glm::dvec4(glm::dvec3(decal.center), 1.0));
-    CraterSpace cs{objectToWorld * local, glm::dmat3(objectToWorld * local)};
+    const glm::dmat4 toWorld = objectToWorld * craterToObject(decal);
+    const CraterSpace cs{toWorld, glm::dmat3(toWorld)};
     // One crater unit along the normal, in world units: the scale of h and of the gap in crater space.
     const double unit = glm::length(cs.linear[2]);
     if (!(unit > 0.0) || !std::isfinite(unit)) return;

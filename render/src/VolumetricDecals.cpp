@@ -148,13 +148,7 @@ size_t VolumetricDecals::draw(const GBuffer& gbuffer, GLuint idTexture, bool com
     const glm::dmat4 toEye = glm::translate(glm::dmat4(1.0), -eye);
     for (size_t k = 0; k < decals_.size(); ++k) {
         const Decal& d = decals_[k];
-        const double sx = 0.5 * double(d.size.x), sy = 0.5 * double(d.size.y);
-        const double sz = std::min(sx, sy);
-        const glm::dmat4 local(glm::dvec4(glm::dvec3(d.frame.tangent) * sx, 0.0),
-                               glm::dvec4(glm::dvec3(d.frame.bitangent) * sy, 0.0),
-                               glm::dvec4(glm::dvec3(d.frame.normal) * sz, 0.0),
-                               glm::dvec4(glm::dvec3(d.center), 1.0));
-        const glm::dmat4 rel = toEye * transforms[d.object] * local;
+        const glm::dmat4 rel = toEye * transforms[d.object] * craterToObject(d);
         const glm::dmat3 m3(rel);
         const double det = glm::determinant(m3);
         if (!(std::fabs(det) > 1e-30) || !std::isfinite(det)) continue;

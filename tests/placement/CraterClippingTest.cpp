@@ -53,18 +53,9 @@ int activeClips(const Decal& d) {
     return int(d.clips[0].active()) + int(d.clips[1].active());
 }
 
-// Crater space (CraterClip.hpp) of `d` to world, on an object at `objectToWorld`.
-glm::dmat4 craterToWorld(const Decal& d, const glm::dmat4& objectToWorld) {
-    const double sx = 0.5 * double(d.size.x), sy = 0.5 * double(d.size.y), sz = std::min(sx, sy);
-    return objectToWorld * glm::dmat4(glm::dvec4(glm::dvec3(d.frame.tangent) * sx, 0.0),
-                                      glm::dvec4(glm::dvec3(d.frame.bitangent) * sy, 0.0),
-                                      glm::dvec4(glm::dvec3(d.frame.normal) * sz, 0.0),
-                                      glm::dvec4(glm::dvec3(d.center), 1.0));
-}
-
 // World positions of the vertices of every crater variant placed by `d`, with or without its clips.
 std::vector<glm::dvec3> craterPoints(const Decal& d, const glm::dmat4& objectToWorld, bool clipped) {
-    const glm::dmat4 m = craterToWorld(d, objectToWorld);
+    const glm::dmat4 m = objectToWorld * craterToObject(d);
     std::vector<glm::dvec3> out;
     for (uint32_t v = 0; v < 4; ++v) {
         const Result<Mesh> crater = makeCraterMesh(v);
@@ -112,7 +103,7 @@ TEST(CraterClipping, CraterNearConvexEdgeIsCutAtTheSideFace) {
     EXPECT_LE(outside(craterPoints(d, glm::dmat4(1.0), true), {0, 0, 0}, half), 1e-6);
     // The plane is the side face: its normal along +x in the world, at x = 0.5 within quantisation.
     const glm::vec4 p = unpackCraterClip(d.clips[0]);
-    const glm::dmat3 toWorld(craterToWorld(d, glm::dmat4(1.0)));
+    const glm::dmat3 toWorld(craterToObject(d));
     const glm::dvec3 n = glm::normalize(glm::transpose(glm::inverse(toWorld)) * glm::dvec3(p));
     EXPECT_GT(n.x, 0.999);
 }

@@ -19,13 +19,6 @@
 #include <string>
 #include <vector>
 
-#if defined(__SANITIZE_ADDRESS__)
-#define SPATTER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SPATTER_ASAN 1
-#endif
-#endif
 #ifdef SPATTER_ASAN
 #include <sanitizer/lsan_interface.h>
 #endif

@@ -21,6 +21,8 @@
 
 namespace spatter {
 
+struct Decal;
+
 constexpr float kCraterClipReach = 2.0f;
 
 struct CraterClip {
@@ -30,6 +32,10 @@ struct CraterClip {
 
     bool active() const { return offset != kNone; }
 };
+
+// Crater space of `decal` to the space of its object (the decal's frame scaled by half its width,
+// half its height and the smaller of the two, translated to its centre).
+glm::dmat4 craterToObject(const Decal& decal);
 
 // The plane dot(normal, p) <= offset (offset in crater units), or an inactive clip when the plane
 // keeps the whole crater or when the normal is zero or not finite or the offset not finite.

@@ -2,6 +2,15 @@
 
 #include <cstddef>
 
+// SPATTER_ASAN: defined in a build with AddressSanitizer (GCC or clang).
+#if defined(__SANITIZE_ADDRESS__)
+#define SPATTER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SPATTER_ASAN 1
+#endif
+#endif
+
 namespace spatter {
 
 // Memory of the running process, for benchmarks and soak tests.
