@@ -126,6 +126,15 @@ Ray pickRay(FuzzedDataProvider& in) {
     return r;
 }
 
+// A ray of a shotgun burst: from the origin of `previous`, its direction nudged by up to about 2
+// degrees (spawnBatch traces such runs as Embree packets), sometimes with a range of its own.
+Ray burstRay(FuzzedDataProvider& in, const Ray& previous) {
+    Ray r = previous;
+    r.direction += glm::length(previous.direction) * pickVec(in, -0.02, 0.02);
+    if (in.ConsumeIntegralInRange<int>(0, 7) == 0) r.tfar = pickDouble(in, 0.0, 100.0);
+    return r;
+}
+
 glm::dmat4 pickTransform(FuzzedDataProvider& in) {
     if (in.ConsumeIntegralInRange<int>(0, 3) == 0) { // any affine matrix
         glm::dmat4 m(1.0);
@@ -204,8 +213,8 @@ std::vector<Op> decode(FuzzedDataProvider& in) {
             break;
         case Op::SpawnBatch:
             op.rays.resize(in.ConsumeIntegralInRange<size_t>(0, 24));
-            for (Ray& r : op.rays)
-                r = pickRay(in);
+            for (size_t k = 0; k < op.rays.size(); ++k)
+                op.rays[k] = k == 0 || in.ConsumeBool() ? pickRay(in) : burstRay(in, op.rays[k - 1]);
             break;
         case Op::Move:
             op.transform = pickTransform(in);

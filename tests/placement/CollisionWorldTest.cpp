@@ -1,5 +1,7 @@
 #include "PlacementTestUtil.hpp"
+#include "TestData.hpp"
 
+#include "spatter/core/SceneLoader.hpp"
 #include "spatter/placement/CollisionWorld.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
@@ -42,6 +44,50 @@ Scene rawComparisonScene() {
     t = glm::rotate(t, 0.7, glm::normalize(glm::dvec3(1.0, 2.0, 0.5)));
     s.objects.push_back(makeObject("box", makeBox(glm::vec3(0.6f, 0.4f, 0.8f), 3), t));
     return s;
+}
+
+// Every element of intersectBatch(rays) equals intersect() of its ray bit for bit, front face
+// included; `hits` counts the rays that hit.
+::testing::AssertionResult batchEqualsSingle(const CollisionWorld& w, const std::vector<Ray>& rays,
+                                             size_t& hits) {
+    const std::vector<std::optional<Hit>> batch = w.intersectBatch(rays);
+    if (batch.size() != rays.size()) return ::testing::AssertionFailure() << batch.size() << " results";
+    hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const std::optional<Hit> single = w.intersect(rays[i]);
+        if (::testing::AssertionResult same = sameHit(single, batch[i]); !same)
+            return same << " (ray " << i << ")";
+        if (single && single->frontFace != batch[i]->frontFace)
+            return ::testing::AssertionFailure() << "front faces differ (ray " << i << ")";
+        hits += single.has_value();
+    }
+    return ::testing::AssertionSuccess();
+}
+
+// Rays that cannot be traced: a zero direction, a NaN origin, a negative tnear, tfar below tnear.
+std::vector<Ray> invalidRays(const Ray& like) {
+    std::vector<Ray> bad(4, like);
+    bad[0].direction = glm::dvec3(0.0);
+    bad[1].origin.x = std::numeric_limits<double>::quiet_NaN();
+    bad[2].tnear = -1.0;
+    bad[3].tnear = 2.0;
+    bad[3].tfar = 1.0;
+    return bad;
+}
+
+// The gallery with every dynamic object moved away from where it was built.
+CollisionWorld movedGallery() {
+    Result<Scene> scene = loadScene("builtin:gallery");
+    EXPECT_TRUE(scene.ok()) << scene.error();
+    CollisionWorld w = buildWorld(scene.value());
+    for (uint32_t i = 0; i < w.objectCount(); ++i) {
+        const CollisionObject& o = *w.object(i);
+        if (!o.dynamic || !o.inWorld) continue;
+        const glm::dmat4 moved = glm::rotate(glm::translate(glm::dmat4(1.0), glm::dvec3(0.3 * i, 0.1, -0.2)),
+                                             0.2 + 0.1 * i, glm::normalize(glm::dvec3(0.2, 1.0, 0.1)));
+        EXPECT_TRUE(w.setTransform(i, moved * o.transform).ok());
+    }
+    return w;
 }
 
 } // namespace
@@ -186,6 +232,7 @@ TEST(CollisionWorld, BatchEqualsSingleOnEveryInstructionSet) {
     Scene s = rangeScene(4);
     s.objects.push_back(rawComparisonScene().objects[0]);
     const std::vector<Ray> rays = rayFan(3000, glm::dvec3(3.0, 1.0, -1.0), 10.0, 5.0, 23);
+    const std::vector<Ray> burstRays = bursts(100, 19, glm::dvec3(3.0, 1.0, -1.0), 10.0, 3.0, 2.0, 29);
     size_t tested = 0;
     for (const char* isa : {"isa=sse2", "isa=sse4.2", "isa=avx", "isa=avx2", "isa=avx512"}) {
         WorldSettings settings;
@@ -196,9 +243,10 @@ TEST(CollisionWorld, BatchEqualsSingleOnEveryInstructionSet) {
         ASSERT_TRUE(built.ok()) << built.error();
         ++tested;
         const CollisionWorld& w = built.value();
-        const std::vector<std::optional<Hit>> batch = w.intersectBatch(rays);
-        for (size_t i = 0; i < rays.size(); ++i)
-            ASSERT_TRUE(sameHit(w.intersect(rays[i]), batch[i])) << isa << " ray " << i;
+        size_t hits = 0;
+        ASSERT_TRUE(batchEqualsSingle(w, rays, hits)) << isa;
+        ASSERT_TRUE(batchEqualsSingle(w, burstRays, hits)) << isa;
+        EXPECT_GT(hits, burstRays.size() / 2) << isa;
     }
     EXPECT_GE(tested, 2u); // SSE2 and SSE4.2 at least, on any x86-64 CPU that runs Embree
     WorldSettings bad;
@@ -263,6 +311,98 @@ TEST(CollisionWorld, RaysThroughSharedEdgesAndVerticesAgreeInEveryTraversal) {
             << "ray " << i << " hit triangle " << h->primitive;
         EXPECT_TRUE(sameHit(h, batch[i])) << "ray " << i;
     }
+}
+
+TEST(CollisionWorld, BatchTracesBurstsAsSingleRaysOnTheGallery) {
+    const CollisionWorld w = movedGallery();
+    // Narrow bursts go into packets, wide ones ray by ray; burst sizes that are no multiple of a
+    // packet width, and a burst of one.
+    for (const double cone : {0.5, 2.0, 4.0, 9.0, 30.0})
+        for (const size_t perBurst : {1u, 3u, 5u, 16u, 17u, 31u}) {
+            std::vector<Ray> rays =
+                bursts(40, perBurst, glm::dvec3(0.0, 1.5, -1.0), 6.0, 3.0, cone, 7 + perBurst);
+            size_t hits = 0;
+            ASSERT_TRUE(batchEqualsSingle(w, rays, hits)) << "cone " << cone << ", bursts of " << perBurst;
+            EXPECT_GT(hits, rays.size() / 2) << "cone " << cone << ", bursts of " << perBurst;
+        }
+}
+
+TEST(CollisionWorld, BatchSkipsInvalidRaysInsideBursts) {
+    const CollisionWorld w = movedGallery();
+    std::vector<Ray> rays = bursts(60, 16, glm::dvec3(0.0, 1.5, -1.0), 6.0, 3.0, 2.0, 5);
+    std::vector<size_t> badAt;
+    for (size_t at = 3; at < rays.size(); at += 37) {
+        const std::vector<Ray> bad = invalidRays(rays[at]);
+        rays.insert(rays.begin() + std::ptrdiff_t(at), bad.begin(), bad.end());
+        for (size_t k = 0; k < bad.size(); ++k)
+            badAt.push_back(at + k);
+    }
+    size_t hits = 0;
+    ASSERT_TRUE(batchEqualsSingle(w, rays, hits));
+    const std::vector<std::optional<Hit>> batch = w.intersectBatch(rays);
+    for (size_t i : badAt)
+        EXPECT_FALSE(batch[i].has_value()) << "ray " << i;
+    EXPECT_GT(hits, rays.size() / 2);
+}
+
+TEST(CollisionWorld, BatchOfScatteredRaysEqualsSingleRaysOnTheGallery) {
+    const CollisionWorld w = movedGallery();
+    size_t hits = 0;
+    ASSERT_TRUE(batchEqualsSingle(w, rayFan(5000, glm::dvec3(0.0, 1.5, -1.0), 8.0, 4.0, 31), hits));
+    EXPECT_GT(hits, 2000u);
+}
+
+TEST(CollisionWorld, BatchEqualsSingleRaysOnASharedMesh) {
+    SPATTER_REQUIRE_SHARED(path, "meshes/stanford-bunny.obj");
+    Result<Scene> scene = loadScene(path);
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    const CollisionWorld w = buildWorld(scene.value());
+    const DBounds b = w.worldBounds(0);
+    const double size = glm::length(b.max - b.min);
+    for (const double cone : {1.0, 3.0, 10.0}) {
+        size_t hits = 0;
+        ASSERT_TRUE(batchEqualsSingle(w, bursts(200, 16, b.center(), 0.75 * size, 0.2 * size, cone, 3), hits))
+            << "cone " << cone;
+        EXPECT_GT(hits, 1600u) << "cone " << cone;
+    }
+    size_t hits = 0;
+    ASSERT_TRUE(batchEqualsSingle(w, rayFan(3000, b.center(), 0.75 * size, 0.3 * size, 9), hits));
+    EXPECT_GT(hits, 1000u);
+}
+
+TEST(CollisionWorld, BurstsAimedAtSharedVerticesAndEdgesNeverLeak) {
+    // A closed sphere seen from near and far: bursts aimed exactly at the vertices of a triangle fan
+    // and at the midpoints of its edges all hit, in the batch as alone.
+    const Scene s = sphereScene(40, 80);
+    const CollisionWorld w = buildWorld(s);
+    const Mesh& m = s.objects[0].mesh;
+    size_t rays = 0;
+    for (const double distance : {4.0, 50.0, 3e3})
+        for (uint32_t centre = 0; centre < m.positions.size(); centre += 97) {
+            const glm::dvec3 c(m.positions[centre]);
+            const glm::dvec3 from = glm::normalize(c + glm::dvec3(0.05, -0.03, 0.02)) * distance;
+            std::vector<Ray> burst;
+            for (uint32_t t = 0; t < m.triangleCount(); ++t) {
+                const uint32_t* tri = &m.indices[3 * t];
+                if (tri[0] != centre && tri[1] != centre && tri[2] != centre) continue;
+                for (int k = 0; k < 3; ++k) {
+                    const glm::dvec3 a(m.positions[tri[k]]), b(m.positions[tri[(k + 1) % 3]]);
+                    burst.push_back(ray(from, a - from));
+                    burst.push_back(ray(from, 0.5 * (a + b) - from));
+                }
+            }
+            size_t hits = 0;
+            ASSERT_TRUE(batchEqualsSingle(w, burst, hits))
+                << "vertex " << centre << ", distance " << distance;
+            EXPECT_EQ(hits, burst.size()) << "vertex " << centre << ", distance " << distance;
+            rays += burst.size();
+        }
+    EXPECT_GT(rays, 1000u);
+}
+
+TEST(CollisionWorld, EmptyBatchGivesNoHits) {
+    const CollisionWorld w = buildWorld(boxScene());
+    EXPECT_TRUE(w.intersectBatch({}).empty());
 }
 
 TEST(CollisionWorld, MovingADynamicObjectMovesItsHits) {

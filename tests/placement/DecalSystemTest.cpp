@@ -1,5 +1,6 @@
 #include "PlacementTestUtil.hpp"
 
+#include "spatter/core/SceneLoader.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/placement/ObjectIds.hpp"
 
@@ -649,6 +650,43 @@ TEST(DecalSystem, BatchSpawnEqualsSpawningOneByOne) {
     for (const SpawnResult& r : out)
         EXPECT_EQ(r.status, SpawnStatus::InvalidType);
     EXPECT_EQ(s.stats().rejected[size_t(SpawnStatus::InvalidType)], rays.size());
+}
+
+TEST(DecalSystem, BatchSpawnOfShotgunBurstsEqualsSpawningOneByOne) {
+    Result<Scene> scene = loadScene("builtin:gallery");
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    for (const double cone : {2.0, 10.0}) {
+        DecalSettings settings;
+        settings.maxPerCell = 4; // limits act inside the batch
+        DecalSystem one = makeSystem(scene.value(), settings), many = makeSystem(scene.value(), settings);
+        addType(one, plainType());
+        addType(many, plainType());
+        for (uint32_t i = 0; i < one.world().objectCount(); ++i) {
+            const CollisionObject& o = *one.world().object(i);
+            if (!o.dynamic || !o.inWorld) continue;
+            const glm::dmat4 moved =
+                glm::translate(glm::dmat4(1.0), glm::dvec3(0.2, 0.0, 0.1 * i)) * o.transform;
+            ASSERT_TRUE(one.setTransform(i, moved).ok());
+            ASSERT_TRUE(many.setTransform(i, moved).ok());
+        }
+        std::vector<Ray> rays = bursts(150, 16, glm::dvec3(0.0, 1.5, -1.0), 6.0, 3.0, cone, 41);
+        rays[21].direction = glm::dvec3(0.0); // invalid rays inside bursts
+        rays[100].tnear = -1.0;
+        std::vector<SpawnResult> single;
+        for (const Ray& r : rays)
+            single.push_back(one.spawn(r, 0));
+        std::vector<SpawnResult> batch;
+        many.spawnBatch(rays, 0, batch);
+        ASSERT_EQ(batch.size(), rays.size());
+        for (size_t i = 0; i < rays.size(); ++i) {
+            ASSERT_EQ(batch[i].status, single[i].status) << "cone " << cone << ", ray " << i;
+            ASSERT_EQ(batch[i].handle, single[i].handle) << "cone " << cone << ", ray " << i;
+        }
+        EXPECT_EQ(batch[21].status, SpawnStatus::InvalidRay);
+        EXPECT_TRUE(sameDecals(one.decals(), many.decals())) << "cone " << cone;
+        EXPECT_EQ(one.stats(), many.stats()) << "cone " << cone;
+        EXPECT_GT(one.stats().placed, 1000u) << "cone " << cone;
+    }
 }
 
 TEST(DecalSystem, LifetimeFadesThenExpires) {

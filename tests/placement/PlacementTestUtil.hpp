@@ -119,6 +119,15 @@ inline ::testing::AssertionResult sameHit(const std::optional<Hit>& a, const std
            << b->primitive << ", t " << a->t << "/" << b->t;
 }
 
+// A random point in the unit ball, not too near its centre.
+inline glm::dvec3 inUnitBall(Rng& rng) {
+    glm::dvec3 d;
+    do {
+        d = glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    } while (glm::dot(d, d) > 1.0 || glm::dot(d, d) < 1e-3);
+    return d;
+}
+
 // Rays from random points on a sphere of radius `radius` around `center` towards random points
 // within `spread` of it.
 inline std::vector<Ray> rayFan(size_t count, const glm::dvec3& center, double radius, double spread,
@@ -126,17 +135,35 @@ inline std::vector<Ray> rayFan(size_t count, const glm::dvec3& center, double ra
     Rng rng(seed);
     std::vector<Ray> rays;
     for (size_t i = 0; i < count; ++i) {
-        glm::dvec3 d;
-        do {
-            d = glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-        } while (glm::dot(d, d) > 1.0 || glm::dot(d, d) < 1e-3);
-        const glm::dvec3 from = center + glm::normalize(d) * radius;
+        const glm::dvec3 from = center + glm::normalize(inUnitBall(rng)) * radius;
         const glm::dvec3 to =
             center + spread * glm::dvec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
         Ray r;
         r.origin = from;
         r.direction = (to - from) * double(0.5f + rng.uniform()); // not unit length
         rays.push_back(r);
+    }
+    return rays;
+}
+
+// `count` bursts of `perBurst` rays, each from one point at distance `radius` of `center`, aimed at a
+// random point within `spread` of `center`, spread over a cone of `coneDeg` degrees (the apex angle).
+inline std::vector<Ray> bursts(size_t count, size_t perBurst, const glm::dvec3& center, double radius,
+                               double spread, double coneDeg, uint64_t seed) {
+    Rng rng(seed);
+    const double tanHalf = std::tan(0.5 * glm::radians(coneDeg));
+    std::vector<Ray> rays;
+    for (size_t b = 0; b < count; ++b) {
+        const glm::dvec3 from = center + glm::normalize(inUnitBall(rng)) * radius;
+        const glm::dvec3 aim = glm::normalize(center + spread * inUnitBall(rng) - from);
+        const glm::dvec3 side = glm::normalize(
+            glm::cross(aim, std::fabs(aim.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+        const glm::dvec3 up = glm::cross(aim, side);
+        for (size_t i = 0; i < perBurst; ++i) {
+            const double r = tanHalf * std::sqrt(double(rng.uniform())),
+                         phi = 6.283185307179586 * rng.uniform();
+            rays.push_back(Ray{from, (aim + r * (std::cos(phi) * side + std::sin(phi) * up)) * 3.0});
+        }
     }
     return rays;
 }

@@ -1,6 +1,7 @@
 // Concurrency: the threading model of docs/PLACEMENT.md. Several threads spawn through every entry
-// point while one moves the targets and another ages and removes decals; spawnBatch traces on several
-// threads. Built with ThreadSanitizer by `./spatter test` (build-tsan), where a data race fails it.
+// point while one moves the targets and another ages and removes decals; spawnBatch traces single
+// rays and packets on several threads. Built with ThreadSanitizer by `./spatter test` (build-tsan),
+// where a data race fails it.
 
 #include "spatter/core/MeshBuilder.hpp"
 #include "spatter/core/Random.hpp"
@@ -73,6 +74,24 @@ Ray randomShot(Rng& rng) {
     return Ray{eye, aim - eye};
 }
 
+// `count` shots in groups of 8: every other group a shotgun burst, 8 rays from one point within about
+// 2 degrees (spawnBatch traces those as Embree packets), the others 8 single shots.
+std::vector<Ray> shotsAndBursts(Rng& rng, size_t count) {
+    std::vector<Ray> rays(count);
+    for (size_t i = 0; i < count; ++i) {
+        const bool burst = (i / 8) % 2 == 1 && i % 8 != 0;
+        if (!burst) {
+            rays[i] = randomShot(rng);
+            continue;
+        }
+        const Ray& first = rays[i - i % 8];
+        const glm::dvec3 jitter(rng.uniform(-0.01f, 0.01f), rng.uniform(-0.01f, 0.01f),
+                                rng.uniform(-0.01f, 0.01f));
+        rays[i] = Ray{first.origin, glm::normalize(first.direction) + jitter};
+    }
+    return rays;
+}
+
 // What one spawning thread saw.
 struct Tally {
     uint64_t placed = 0, rejected = 0, removed = 0;
@@ -128,9 +147,7 @@ TEST(Concurrency, ThreadsSpawnWhileObjectsMoveAndDecalsAge) {
                 tally.add(sys.spawnAt({rng.uniform(-6.0f, 6.0f), 0.0, rng.uniform(-3.0f, 3.0f)},
                                       {0.0, 1.0, 0.0}, type));
                 if (round % 10 == 0) {
-                    rays.resize(64);
-                    for (Ray& r : rays)
-                        r = randomShot(rng);
+                    rays = shotsAndBursts(rng, 64);
                     sys.spawnBatch(rays, type, results);
                     for (const SpawnResult& r : results)
                         tally.add(r);
@@ -193,10 +210,8 @@ TEST(Concurrency, ThreadsSpawnWhileObjectsMoveAndDecalsAge) {
 }
 
 TEST(Concurrency, ThreadedSpawnBatchEqualsSerialBitForBit) {
-    std::vector<Ray> rays(20000);
     Rng rng(9);
-    for (Ray& r : rays)
-        r = randomShot(rng);
+    const std::vector<Ray> rays = shotsAndBursts(rng, 20000);
     std::vector<std::vector<Decal>> decals;
     std::vector<DecalStats> stats;
     for (uint32_t threads : {1u, 0u, 3u}) {

@@ -289,3 +289,44 @@ TEST(FuzzRegression, OffCountsBeyondTheFileAreRejectedNotReserved) {
     EXPECT_THAT(loadInChild("cut.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), HasSubstr("truncated"));
     EXPECT_EQ(loadInChild("fine.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), "finished");
 }
+
+TEST(FuzzRegression, BurstsFromInsideABoxHitItsFarFacesAsSingleRaysDo) {
+    // Embree's coherent (frustum) packet traversal skipped the far faces of the floor for these
+    // bursts, which start on its top face or inside it; alone, each ray hits the face at z = 10.
+    Scene s;
+    s.source = "test:floor";
+    SceneObject floor;
+    floor.name = "floor";
+    floor.mesh = makeBox(glm::vec3(10.0f, 0.1f, 10.0f), 2);
+    floor.transform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.1, 0.0));
+    s.objects.push_back(floor);
+    Result<CollisionWorld> w = CollisionWorld::build(s);
+    ASSERT_TRUE(w) << w.error();
+    for (const double y : {1e-45, -0.05}) {
+        const glm::dvec3 o(1e-45, y, 1e-45);
+        const std::vector<Ray> rays = {
+            {o, {-6.2232053867062281e-39, -7.3068642468443462e-39, -6.2232053867062281e-39}},
+            {o, {-6.2232053867062281e-39, -7.3068642468443462e-39, 1.1438830171484802e-08}},
+            {o, {-6.2232053867062281e-39, -1.626851594628444e-10, 1.1438830171484802e-08}},
+            {o, {-6.2232053867062163e-39, -1.626851594628444e-10, 1.1438830171484802e-08}},
+            {o, {-6.2232053867062046e-39, -1.626851594628444e-10, 1.1438830171484802e-08}},
+            {o, {-6.2232053867061928e-39, 3.8976905463837465e-11, 1.1287004760204579e-08}},
+            {o, {-0.3, -0.01, 1.0}},
+            {o, {-0.31, -0.012, 1.0}},
+            {o, {-0.29, -0.009, 1.0}},
+            {o, {-0.3, -0.011, 0.99}},
+        };
+        const std::vector<std::optional<Hit>> batch = w->intersectBatch(rays);
+        ASSERT_EQ(batch.size(), rays.size());
+        for (size_t i = 0; i < rays.size(); ++i) {
+            const std::optional<Hit> single = w->intersect(rays[i]);
+            ASSERT_EQ(single.has_value(), batch[i].has_value()) << "ray " << i << ", origin y " << y;
+            if (!single) continue;
+            EXPECT_EQ(single->t, batch[i]->t) << "ray " << i << ", origin y " << y;
+            EXPECT_EQ(single->primitive, batch[i]->primitive) << "ray " << i << ", origin y " << y;
+            if (i != 0 && i != 5) {
+                EXPECT_NEAR(batch[i]->position.z, 10.0, 1e-9) << "ray " << i << ", origin y " << y;
+            }
+        }
+    }
+}

@@ -92,8 +92,14 @@ public:
     // Closest hit along `ray` with t in [tnear, tfar], or nothing (also for a ray that rayProblem
     // rejects).
     std::optional<Hit> intersect(const Ray& ray) const;
-    // The hits of `rays`; element i equals intersect(rays[i]) exactly (each ray is traced with
-    // rtcIntersect1: Embree's stream and packet paths are slower on the watertight user geometry).
+    // The hits of `rays`; element i equals intersect(rays[i]) exactly, bit for bit (bad rays hit
+    // nothing; an empty batch gives an empty vector). Consecutive rays that start at one point
+    // (within 1e-3 of the world's extent) in a narrow bundle, at least 4 of them within 3 degrees of
+    // their mean direction (a shotgun burst), are traced together as an Embree packet (rtcIntersect4,
+    // 8 or 16: the widest the device runs natively); other rays one by one with rtcIntersect1, which
+    // is faster for them. The batch is not reordered: list the rays of a burst together. A burst of
+    // 16 rays in a 3 degree cone takes about 0.7 of the time per ray of intersect; scattered rays and
+    // cones of 7 degrees or more about the same time (docs/BENCHMARKS.md).
     std::vector<std::optional<Hit>> intersectBatch(const std::vector<Ray>& rays) const;
 
     // Moves a dynamic object (its instance transform; only the top level is recommitted). Fails for
