@@ -4,6 +4,7 @@
 #include "DecalTextureArray.hpp"
 #include "GBuffer.hpp"
 #include "GlObjects.hpp"
+#include "GlState.hpp"
 #include "GpuLayouts.hpp"
 #include "GpuTimers.hpp"
 #include "OverlayMeshes.hpp"
@@ -205,18 +206,7 @@ struct Renderer::Impl {
 
     // State every pass starts from.
     void baseState(GLuint framebuffer) const {
-        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-        glViewport(0, 0, gbuffer.width(), gbuffer.height());
-        glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-        glDisable(GL_SCISSOR_TEST);
-        glDisable(GL_STENCIL_TEST);
-        glDisable(GL_BLEND);
-        glDisable(GL_CULL_FACE);
-        glDisable(GL_DEPTH_TEST);
-        glDepthMask(GL_FALSE);
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glFrontFace(GL_CCW);
-        glDisable(GL_FRAMEBUFFER_SRGB);
+        resetPassState(framebuffer, gbuffer.width(), gbuffer.height(), false);
         bindBuffers();
     }
 

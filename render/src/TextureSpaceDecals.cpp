@@ -1,5 +1,6 @@
 #include "TextureSpaceDecals.hpp"
 
+#include "GlState.hpp"
 #include "ShaderProgram.hpp"
 
 namespace spatter::render_detail {
@@ -25,19 +26,10 @@ GlFramebuffer makeFramebuffer(GLuint colour0, GLuint colour1) {
     return f;
 }
 
-// State every texture-space pass starts from: the whole square of `size` texels, nothing tested.
+// State every texture-space pass starts from: the whole square of `size` texels, nothing tested,
+// sRGB-encoded writes.
 void baseState(GLuint framebuffer, int size) {
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-    glViewport(0, 0, size, size);
-    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_STENCIL_TEST);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_DEPTH_TEST);
-    glDepthMask(GL_FALSE);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glEnable(GL_FRAMEBUFFER_SRGB);
+    resetPassState(framebuffer, size, size, true);
 }
 
 void drawMesh(const GpuMesh& mesh, GLsizei instances) {

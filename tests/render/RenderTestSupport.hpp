@@ -2,6 +2,8 @@
 // Shared pieces of the render tests: one headless GL context per test process, a renderer factory,
 // rendering one frame to an image, and the CPU reference for decal coverage.
 
+#include "HeadlessGl.hpp"
+
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalType.hpp"
 #include "spatter/core/Image.hpp"
@@ -17,10 +19,6 @@
 #include <vector>
 
 namespace spatter::test {
-
-// The process's headless context (debug output on, so GL errors are counted), or nullptr with
-// `why` set when none can be created.
-GlContext* headlessContext(std::string& why);
 
 // A camera at `eye` looking at `target`, up +Y, near plane 0.05, the default field of view.
 Camera lookAt(const glm::dvec3& eye, const glm::dvec3& target);

@@ -3,45 +3,24 @@
 // inputs. Rows that fail because of a known bug outside this suite are checked by their own test,
 // which is skipped with the bug's description while it persists.
 
+#include "HeadlessGl.hpp"
 #include "TestData.hpp"
 
 #include "StressCase.hpp"
 
-#include "spatter/render/GlContext.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <memory>
 #include <string>
 
 namespace spatter::stress {
 namespace {
 
-// One headless context per test process, with debug output on so that GL errors are counted.
-GlContext* headless(std::string& why) {
-    static std::unique_ptr<GlContext> context;
-    static std::string error;
-    static bool tried = false;
-    if (!tried) {
-        tried = true;
-        HeadlessSettings settings;
-        settings.debug = DebugOutput::On;
-        Result<GlContext> c = GlContext::createHeadless(settings);
-        if (c)
-            context = std::make_unique<GlContext>(std::move(c).value());
-        else
-            error = c.error();
-    }
-    why = error;
-    return context.get();
-}
-
 StressConfig ciConfig(const std::string& name) {
     StressConfig c;
     c.full = false;
     c.scratchDir = test::scratchDir("stress-" + name);
-    c.gl = headless(c.glError);
+    c.gl = test::headlessContext(c.glError);
 #ifdef SPATTER_PLACE_TOOL
     c.placeTool = SPATTER_PLACE_TOOL;
 #endif
