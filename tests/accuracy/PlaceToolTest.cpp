@@ -1,6 +1,7 @@
 // spatter-place --proxy TOL% [--cache DIR]: the same proxies as buildProxy with a tolerance relative
 // to each object's diagonal, and a cache that makes a second run build nothing.
 
+#include "PlaceToolRun.hpp"
 #include "TestData.hpp"
 
 #include "spatter/core/MeshBuilder.hpp"
@@ -15,7 +16,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -23,12 +23,6 @@
 using namespace spatter;
 
 namespace {
-
-#ifdef SPATTER_PLACE_TOOL
-const char* kTool = SPATTER_PLACE_TOOL;
-#else
-const char* kTool = nullptr;
-#endif
 
 // Writes a bumpy sphere (9,120 triangles, above the own-mesh threshold) as OBJ.
 void writeBumpySphere(const std::string& path) {
@@ -47,31 +41,13 @@ void writeBumpySphere(const std::string& path) {
             << m.indices[3 * t + 2] + 1 << '\n';
 }
 
-std::string readFile(const std::string& path) {
-    std::ifstream in(path);
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-struct ToolRun {
-    int status = -1;
-    std::string records;    // stdout: JSON Lines
-    nlohmann::json summary; // the --summary object from stderr
-};
-
-ToolRun place(const std::string& dir, const std::string& scene, const std::string& extra) {
-    const std::string out = dir + "/records.jsonl", err = dir + "/summary.json";
-    const std::string command = std::string("'") + kTool + "' '" + scene + "' --rays '" + dir +
-                                "/rays.txt' --proxy 1% --summary " + extra + " > '" + out + "' 2> '" + err +
-                                "'";
-    ToolRun r;
-    r.status = std::system(command.c_str());
-    r.records = readFile(out);
-    r.summary = nlohmann::json::parse(readFile(err), nullptr, false);
-    return r;
+test::PlaceToolRun place(const std::string& dir, const std::string& scene, const std::string& extra) {
+    return test::runPlaceTool("'" + scene + "' --rays '" + dir + "/rays.txt' --proxy 1% --summary " + extra,
+                              dir);
 }
 
 TEST(SpatterPlaceProxy, UsesTheBuildersBoundAndTheCacheMakesTheSecondRunBuildNothing) {
-    if (!kTool) GTEST_SKIP() << "spatter-place is not built (SPATTER_BUILD_APPS=OFF)";
+    if (!test::kPlaceTool) GTEST_SKIP() << "spatter-place is not built (SPATTER_BUILD_APPS=OFF)";
     const std::string dir = test::scratchDir("accuracy-place-tool");
     const std::string scene = dir + "/sphere.obj", cache = dir + "/cache";
     writeBumpySphere(scene);
@@ -90,7 +66,7 @@ TEST(SpatterPlaceProxy, UsesTheBuildersBoundAndTheCacheMakesTheSecondRunBuildNot
     ASSERT_TRUE(proxy) << proxy.error();
     ASSERT_EQ(proxy->source, ProxySource::Simplified);
 
-    const ToolRun first = place(dir, scene, "--cache '" + cache + "'");
+    const test::PlaceToolRun first = place(dir, scene, "--cache '" + cache + "'");
     ASSERT_EQ(first.status, 0) << first.records;
     ASSERT_TRUE(first.summary.is_object());
     EXPECT_EQ(first.summary["proxies_built"], 1);
@@ -108,7 +84,7 @@ TEST(SpatterPlaceProxy, UsesTheBuildersBoundAndTheCacheMakesTheSecondRunBuildNot
     }
     EXPECT_EQ(placed, 3u);
 
-    const ToolRun second = place(dir, scene, "--cache '" + cache + "'");
+    const test::PlaceToolRun second = place(dir, scene, "--cache '" + cache + "'");
     ASSERT_EQ(second.status, 0);
     EXPECT_EQ(second.summary["proxies_built"], 0);
     EXPECT_EQ(second.summary["proxies_cached"], 1);
@@ -121,17 +97,17 @@ TEST(SpatterPlaceProxy, UsesTheBuildersBoundAndTheCacheMakesTheSecondRunBuildNot
         entries++;
     }
     ASSERT_EQ(entries, 1u);
-    const ToolRun third = place(dir, scene, "--cache '" + cache + "'");
+    const test::PlaceToolRun third = place(dir, scene, "--cache '" + cache + "'");
     ASSERT_EQ(third.status, 0);
     EXPECT_EQ(third.summary["proxies_built"], 1);
     EXPECT_EQ(third.records, first.records);
 
     // Without --cache nothing is cached; --cache needs a proxy mode that builds proxies.
-    const ToolRun uncached = place(dir, scene, "");
+    const test::PlaceToolRun uncached = place(dir, scene, "");
     EXPECT_EQ(uncached.summary["proxies_built"], 1);
     EXPECT_EQ(uncached.records, first.records);
-    const std::string bad =
-        std::string("'") + kTool + "' '" + scene + "' --cache '" + cache + "' < /dev/null > /dev/null 2>&1";
+    const std::string bad = std::string("'") + test::kPlaceTool + "' '" + scene + "' --cache '" + cache +
+                            "' < /dev/null > /dev/null 2>&1";
     const int status = std::system(bad.c_str());
     ASSERT_TRUE(WIFEXITED(status));
     EXPECT_EQ(WEXITSTATUS(status), 2);
