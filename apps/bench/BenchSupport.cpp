@@ -230,18 +230,6 @@ Scene singleObjectScene(const Mesh& mesh, const std::string& name) {
     return scene;
 }
 
-Status writeObj(const Mesh& mesh, const std::string& path) {
-    std::FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) return fail("cannot write '" + path + "'");
-    for (const glm::vec3& p : mesh.positions)
-        std::fprintf(f, "v %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z));
-    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
-        std::fprintf(f, "f %u %u %u\n", mesh.indices[t] + 1, mesh.indices[t + 1] + 1,
-                     mesh.indices[t + 2] + 1);
-    const bool ok = std::fclose(f) == 0;
-    return ok ? Status() : Status(fail("cannot write '" + path + "'"));
-}
-
 // ---- Rays ------------------------------------------------------------------------------------
 
 SurfaceSampler::SurfaceSampler(const Mesh& mesh) : mesh_(mesh) {

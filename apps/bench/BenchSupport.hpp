@@ -117,9 +117,6 @@ double referencedDiagonal(const Mesh& mesh);
 // A scene with `mesh` as its one static object.
 Scene singleObjectScene(const Mesh& mesh, const std::string& name);
 
-// Writes positions and faces ("v", "f") as a Wavefront OBJ file.
-Status writeObj(const Mesh& mesh, const std::string& path);
-
 // ---- Rays ------------------------------------------------------------------------------------
 
 // Area-weighted random points on a mesh's surface.

@@ -6,6 +6,7 @@
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/Random.hpp"
+#include "spatter/core/SceneLoader.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/render/Camera.hpp"
 #include "spatter/render/GlContext.hpp"

@@ -136,15 +136,6 @@ void setMaterial(Mesh& mesh, int material) {
     mesh.submeshes = {Submesh{0, uint32_t(mesh.indices.size()), material}};
 }
 
-SceneObject object(std::string name, Mesh mesh, const glm::dmat4& transform, bool dynamic = false) {
-    SceneObject o;
-    o.name = std::move(name);
-    o.mesh = std::move(mesh);
-    o.transform = transform;
-    o.dynamic = dynamic;
-    return o;
-}
-
 // Detail-dependent resolution.
 struct Resolution {
     int detail;
@@ -203,7 +194,7 @@ SceneObject makeFloor(const Resolution& res, uint32_t seed) {
         return h + groove(std::min(dx, dz), kJointHalf, -kJointDepth, settle);
     });
     setMaterial(mesh, Concrete);
-    return object("floor", std::move(mesh), translation(0.0, 0.0, centerZ));
+    return makeSceneObject("floor", std::move(mesh), translation(0.0, 0.0, centerZ));
 }
 
 // ---- walls ---------------------------------------------------------------------------------------
@@ -602,7 +593,7 @@ Scene makeGalleryScene(const GallerySettings& settings) {
     for (const WallSpec& w : walls) {
         Mesh mesh = makeWall(w, res, rng.next());
         setMaterial(mesh, w.material);
-        scene.objects.push_back(object(w.name, std::move(mesh), w.transform));
+        scene.objects.push_back(makeSceneObject(w.name, std::move(mesh), w.transform));
     }
 
     const glm::vec2 pillarSpots[4] = {{-7.5f, -2.0f}, {7.5f, -2.0f}, {-7.5f, 3.5f}, {7.5f, 3.5f}};
@@ -610,8 +601,8 @@ Scene makeGalleryScene(const GallerySettings& settings) {
         const double yaw = kPi + rng.uniform(-0.3f, 0.3f);
         Mesh mesh = makePillar(res, rng.next());
         setMaterial(mesh, Metal);
-        scene.objects.push_back(object("pillar_" + std::to_string(i), std::move(mesh),
-                                       placed(pillarSpots[i].x, 0.0, pillarSpots[i].y, yaw)));
+        scene.objects.push_back(makeSceneObject("pillar_" + std::to_string(i), std::move(mesh),
+                                                placed(pillarSpots[i].x, 0.0, pillarSpots[i].y, yaw)));
     }
 
     struct CrateSpot {
@@ -636,26 +627,26 @@ Scene makeGalleryScene(const GallerySettings& settings) {
         crateCenter[i] = center;
         Mesh mesh = makeCrate(c.half, res, rng.next());
         setMaterial(mesh, Wood);
-        scene.objects.push_back(
-            object("crate_" + std::to_string(i), std::move(mesh), placed(center.x, center.y, center.z, yaw)));
+        scene.objects.push_back(makeSceneObject("crate_" + std::to_string(i), std::move(mesh),
+                                                placed(center.x, center.y, center.z, yaw)));
     }
 
     Mesh arch = makeArch(res, rng.next());
     setMaterial(arch, Stone);
-    scene.objects.push_back(object("arch", std::move(arch), translation(0.0, 0.0, -1.0)));
+    scene.objects.push_back(makeSceneObject("arch", std::move(arch), translation(0.0, 0.0, -1.0)));
 
     const Mesh target = makeTarget(res);
     for (int i = 0; i < targetCount; ++i) {
         const float x =
             targetCount == 1 ? 0.0f : -kTargetSpan + 2.0f * kTargetSpan * float(i) / float(targetCount - 1);
         scene.objects.push_back(
-            object("target_" + std::to_string(i), target, translation(x, 0.0, kTargetZ), true));
+            makeSceneObject("target_" + std::to_string(i), target, translation(x, 0.0, kTargetZ), true));
     }
 
     const Mesh banner = makeBanner(res);
     for (int i = 0; i < std::clamp(settings.bannerCount, 0, 2); ++i)
-        scene.objects.push_back(
-            object("banner_" + std::to_string(i), banner, translation(i == 0 ? -6.0 : 6.0, 3.4, -2.6), true));
+        scene.objects.push_back(makeSceneObject("banner_" + std::to_string(i), banner,
+                                                translation(i == 0 ? -6.0 : 6.0, 3.4, -2.6), true));
     return scene;
 }
 

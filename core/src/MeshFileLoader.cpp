@@ -8,6 +8,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include <cstdio>
 #include <filesystem>
 
 namespace spatter {
@@ -23,6 +24,18 @@ struct QuietOpenMesh {
 };
 
 } // namespace
+
+Status writeObj(const Mesh& mesh, const std::string& path) {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f) return fail("cannot write '" + path + "'");
+    for (const glm::vec3& p : mesh.positions)
+        std::fprintf(f, "v %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z));
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+        std::fprintf(f, "f %u %u %u\n", mesh.indices[t] + 1, mesh.indices[t + 1] + 1,
+                     mesh.indices[t + 2] + 1);
+    const bool ok = std::ferror(f) == 0;
+    return std::fclose(f) == 0 && ok ? Status() : Status(fail("cannot write '" + path + "'"));
+}
 
 Result<Scene> loadMeshFile(const std::string& path) {
     std::error_code ec;

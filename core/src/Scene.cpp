@@ -1,8 +1,18 @@
 #include "spatter/core/Scene.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace spatter {
+
+SceneObject makeSceneObject(std::string name, Mesh mesh, const glm::dmat4& transform, bool dynamic) {
+    SceneObject o;
+    o.name = std::move(name);
+    o.mesh = std::move(mesh);
+    o.transform = transform;
+    o.dynamic = dynamic;
+    return o;
+}
 
 size_t Scene::triangleCount() const {
     size_t n = 0;

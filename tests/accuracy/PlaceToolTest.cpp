@@ -25,20 +25,12 @@ using namespace spatter;
 namespace {
 
 // Writes a bumpy sphere (9,120 triangles, above the own-mesh threshold) as OBJ.
-void writeBumpySphere(const std::string& path) {
+Status writeBumpySphere(const std::string& path) {
     Mesh m = makeSphere(2.0f, 48, 96);
     displace(m, [](const glm::vec3& p, const glm::vec3&) {
         return 0.06f * std::sin(4.5f * p.x) * std::cos(3.5f * p.y);
     });
-    std::ofstream out(path);
-    char line[128];
-    for (const glm::vec3& p : m.positions) {
-        std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z));
-        out << line;
-    }
-    for (size_t t = 0; t < m.triangleCount(); ++t)
-        out << "f " << m.indices[3 * t] + 1 << ' ' << m.indices[3 * t + 1] + 1 << ' '
-            << m.indices[3 * t + 2] + 1 << '\n';
+    return writeObj(m, path);
 }
 
 test::PlaceToolRun place(const std::string& dir, const std::string& scene, const std::string& extra) {
@@ -50,7 +42,7 @@ TEST(SpatterPlaceProxy, UsesTheBuildersBoundAndTheCacheMakesTheSecondRunBuildNot
     if (!test::kPlaceTool) GTEST_SKIP() << "spatter-place is not built (SPATTER_BUILD_APPS=OFF)";
     const std::string dir = test::scratchDir("accuracy-place-tool");
     const std::string scene = dir + "/sphere.obj", cache = dir + "/cache";
-    writeBumpySphere(scene);
+    ASSERT_TRUE(writeBumpySphere(scene));
     {
         std::ofstream rays(dir + "/rays.txt");
         rays << "0 0 10 0 0 -1\n5 1 0 -1 0 0\n0.3 -8 0.2 0 1 0\n";

@@ -28,33 +28,23 @@ using namespace spatter;
     std::abort();
 }
 
-SceneObject object(const char* name, Mesh mesh, const glm::dmat4& transform, bool dynamic,
-                   bool receives = true) {
-    SceneObject o;
-    o.name = name;
-    o.mesh = std::move(mesh);
-    o.transform = transform;
-    o.dynamic = dynamic;
-    o.receivesDecals = receives;
-    return o;
-}
-
 // A floor, a static sphere, a dynamic crate, a dynamic non-receiver and a dynamic scaled sphere.
 Scene makeScene() {
     Scene s;
     s.source = "fuzz:spawn";
     const glm::dmat4 id(1.0);
-    s.objects.push_back(object("floor", makeBox(glm::vec3(10.0f, 0.1f, 10.0f), 2),
-                               glm::translate(id, glm::dvec3(0.0, -0.1, 0.0)), false));
+    s.objects.push_back(makeSceneObject("floor", makeBox(glm::vec3(10.0f, 0.1f, 10.0f), 2),
+                                        glm::translate(id, glm::dvec3(0.0, -0.1, 0.0)), false));
     s.objects.push_back(
-        object("pillar", makeSphere(1.0f, 8, 12), glm::translate(id, glm::dvec3(3, 1, 0)), false));
+        makeSceneObject("pillar", makeSphere(1.0f, 8, 12), glm::translate(id, glm::dvec3(3, 1, 0)), false));
     s.objects.push_back(
-        object("crate", makeBox(glm::vec3(0.5f), 1), glm::translate(id, glm::dvec3(0, 1, 0)), true));
-    s.objects.push_back(
-        object("ghost", makeBox(glm::vec3(0.5f), 1), glm::translate(id, glm::dvec3(-3, 1, 0)), true, false));
-    s.objects.push_back(object("ball", makeSphere(0.5f, 6, 8),
-                               glm::scale(glm::translate(id, glm::dvec3(0, 1, 3)), glm::dvec3(1.0, 2.0, 0.5)),
-                               true));
+        makeSceneObject("crate", makeBox(glm::vec3(0.5f), 1), glm::translate(id, glm::dvec3(0, 1, 0)), true));
+    s.objects.push_back(makeSceneObject("ghost", makeBox(glm::vec3(0.5f), 1),
+                                        glm::translate(id, glm::dvec3(-3, 1, 0)), true));
+    s.objects.back().receivesDecals = false;
+    s.objects.push_back(makeSceneObject(
+        "ball", makeSphere(0.5f, 6, 8),
+        glm::scale(glm::translate(id, glm::dvec3(0, 1, 3)), glm::dvec3(1.0, 2.0, 0.5)), true));
     return s;
 }
 

@@ -39,10 +39,10 @@ Scene rawComparisonScene() {
     displace(bumpy, [](const glm::vec3& p, const glm::vec3&) {
         return 0.08f * std::sin(7.0f * p.x) * std::cos(5.0f * p.y + 2.0f * p.z);
     });
-    s.objects.push_back(makeObject("bumpy", std::move(bumpy)));
+    s.objects.push_back(makeSceneObject("bumpy", std::move(bumpy)));
     glm::dmat4 t = glm::translate(glm::dmat4(1.0), glm::dvec3(2.2, -0.3, 0.4));
     t = glm::rotate(t, 0.7, glm::normalize(glm::dvec3(1.0, 2.0, 0.5)));
-    s.objects.push_back(makeObject("box", makeBox(glm::vec3(0.6f, 0.4f, 0.8f), 3), t));
+    s.objects.push_back(makeSceneObject("box", makeBox(glm::vec3(0.6f, 0.4f, 0.8f), 3), t));
     return s;
 }
 
@@ -259,12 +259,12 @@ TEST(CollisionWorld, CoincidentSurfacesResolveTheSameWayInEveryTraversal) {
     // between two objects, which Embree would settle by traversal order.
     Scene s;
     s.source = "test:coincident";
-    s.objects.push_back(makeObject("static_a", makeBox(glm::vec3(0.5f), 3)));
-    s.objects.push_back(makeObject("static_b", makeBox(glm::vec3(0.5f), 3)));
+    s.objects.push_back(makeSceneObject("static_a", makeBox(glm::vec3(0.5f), 3)));
+    s.objects.push_back(makeSceneObject("static_b", makeBox(glm::vec3(0.5f), 3)));
     const glm::dmat4 t = glm::rotate(glm::translate(glm::dmat4(1.0), glm::dvec3(30.0, 0.0, 0.0)), 0.4,
                                      glm::dvec3(0.0, 1.0, 0.0));
-    s.objects.push_back(makeObject("dynamic_a", makeBox(glm::vec3(0.5f), 3), t, true));
-    s.objects.push_back(makeObject("dynamic_b", makeBox(glm::vec3(0.5f), 3), t, true));
+    s.objects.push_back(makeSceneObject("dynamic_a", makeBox(glm::vec3(0.5f), 3), t, true));
+    s.objects.push_back(makeSceneObject("dynamic_b", makeBox(glm::vec3(0.5f), 3), t, true));
     const CollisionWorld w = buildWorld(s);
     for (const glm::dvec3 center : {glm::dvec3(0.0), glm::dvec3(30.0, 0.0, 0.0)}) {
         const std::vector<Ray> rays = rayFan(3000, center, 4.0, 0.3, 19);

@@ -15,7 +15,8 @@ constexpr float kSize = 0.2f; // crater radius 0.1, depth up to about 0.06
 
 // A box with half extents `half` centred at `centre`, faces cut into 4 x 4.
 SceneObject box(std::string name, glm::dvec3 centre, glm::vec3 half, bool dynamic = false) {
-    return makeObject(std::move(name), makeBox(half, 4), glm::translate(glm::dmat4(1.0), centre), dynamic);
+    return makeSceneObject(std::move(name), makeBox(half, 4), glm::translate(glm::dmat4(1.0), centre),
+                           dynamic);
 }
 
 struct Fixture {

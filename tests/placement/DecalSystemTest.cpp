@@ -193,7 +193,7 @@ TEST(DecalSystem, RenderSurfaceLiesInsideTheBoxOfASimplifiedProxy) {
     });
     glm::dmat4 t = glm::translate(glm::dmat4(1.0), glm::dvec3(5.0, 1.0, -2.0));
     t = glm::scale(glm::rotate(t, 0.6, glm::dvec3(0.0, 0.0, 1.0)), glm::dvec3(1.5));
-    scene.objects.push_back(makeObject("bumpy", bumpy, t, true));
+    scene.objects.push_back(makeSceneObject("bumpy", bumpy, t, true));
     ProxySettings ps;
     ps.tolerance = 0.04f;
     ps.toleranceRelative = false;
@@ -538,9 +538,9 @@ TEST(DecalSystem, NeighbouringDynamicObjectsGetDifferentIds) {
     Scene scene = rangeScene(0);
     // A 6 x 6 grid of crates 0.8 apart (bounds 0.3 apart, within the default separation).
     for (int i = 0; i < 36; ++i)
-        scene.objects.push_back(
-            makeObject("crate_" + std::to_string(i), makeBox(glm::vec3(0.25f), 1),
-                       glm::translate(glm::dmat4(1.0), glm::dvec3(0.8 * (i % 6), 1.0, 0.8 * (i / 6))), true));
+        scene.objects.push_back(makeSceneObject(
+            "crate_" + std::to_string(i), makeBox(glm::vec3(0.25f), 1),
+            glm::translate(glm::dmat4(1.0), glm::dvec3(0.8 * (i % 6), 1.0, 0.8 * (i / 6))), true));
     const DecalSystem s = makeSystem(scene);
     EXPECT_EQ(s.objectId(0), 0);
     EXPECT_EQ(s.objectId(1), 0);

@@ -22,21 +22,11 @@
 
 namespace spatter::test {
 
-inline SceneObject makeObject(std::string name, Mesh mesh, const glm::dmat4& transform = glm::dmat4(1.0),
-                              bool dynamic = false) {
-    SceneObject o;
-    o.name = std::move(name);
-    o.mesh = std::move(mesh);
-    o.transform = transform;
-    o.dynamic = dynamic;
-    return o;
-}
-
 // One static box [-0.5, 0.5]^3 at the origin, faces cut into 2 x 2 squares.
 inline Scene boxScene() {
     Scene s;
     s.source = "test:box";
-    s.objects.push_back(makeObject("box", makeBox(glm::vec3(0.5f), 2)));
+    s.objects.push_back(makeSceneObject("box", makeBox(glm::vec3(0.5f), 2)));
     return s;
 }
 
@@ -44,7 +34,7 @@ inline Scene boxScene() {
 inline Scene sphereScene(int rings = 48, int segments = 96) {
     Scene s;
     s.source = "test:sphere";
-    s.objects.push_back(makeObject("sphere", makeSphere(1.0f, rings, segments)));
+    s.objects.push_back(makeSceneObject("sphere", makeSphere(1.0f, rings, segments)));
     return s;
 }
 
@@ -53,15 +43,16 @@ inline Scene sphereScene(int rings = 48, int segments = 96) {
 inline Scene rangeScene(int targets = 3) {
     Scene s;
     s.source = "test:range";
-    s.objects.push_back(makeObject("floor", makeBox(glm::vec3(10.0f, 0.1f, 10.0f), 4),
-                                   glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.1, 0.0))));
-    s.objects.push_back(makeObject("wall", makeBox(glm::vec3(10.0f, 2.0f, 0.1f), 4),
-                                   glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 2.0, -5.1))));
+    s.objects.push_back(makeSceneObject("floor", makeBox(glm::vec3(10.0f, 0.1f, 10.0f), 4),
+                                        glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.1, 0.0))));
+    s.objects.push_back(makeSceneObject("wall", makeBox(glm::vec3(10.0f, 2.0f, 0.1f), 4),
+                                        glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 2.0, -5.1))));
     for (int i = 0; i < targets; ++i) {
         glm::dmat4 t = glm::translate(glm::dmat4(1.0), glm::dvec3(2.0 * i, 1.0, 0.0));
         t = glm::rotate(t, 0.3 + 0.2 * i, glm::dvec3(0.0, 1.0, 0.0));
         t = glm::scale(t, glm::dvec3(0.5 + 0.25 * i));
-        s.objects.push_back(makeObject("target_" + std::to_string(i), makeBox(glm::vec3(0.5f), 1), t, true));
+        s.objects.push_back(
+            makeSceneObject("target_" + std::to_string(i), makeBox(glm::vec3(0.5f), 1), t, true));
     }
     return s;
 }

@@ -35,24 +35,13 @@ glm::dmat4 targetTransform(int i, double time) {
 Scene rangeScene() {
     Scene s;
     s.source = "test:concurrency";
-    SceneObject floor;
-    floor.name = "floor";
-    floor.mesh = makeBox(glm::vec3(8.0f, 0.1f, 8.0f), 4);
-    floor.transform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.1, 0.0));
-    s.objects.push_back(floor);
-    SceneObject wall;
-    wall.name = "wall";
-    wall.mesh = makeBox(glm::vec3(8.0f, 2.0f, 0.1f), 4);
-    wall.transform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 2.0, -4.0));
-    s.objects.push_back(wall);
-    for (int i = 0; i < kTargets; ++i) {
-        SceneObject t;
-        t.name = "target_" + std::to_string(i);
-        t.mesh = makeBox(glm::vec3(0.5f), 2);
-        t.transform = targetTransform(i, 0.0);
-        t.dynamic = true;
-        s.objects.push_back(t);
-    }
+    s.objects.push_back(makeSceneObject("floor", makeBox(glm::vec3(8.0f, 0.1f, 8.0f), 4),
+                                        glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.1, 0.0))));
+    s.objects.push_back(makeSceneObject("wall", makeBox(glm::vec3(8.0f, 2.0f, 0.1f), 4),
+                                        glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 2.0, -4.0))));
+    for (int i = 0; i < kTargets; ++i)
+        s.objects.push_back(makeSceneObject("target_" + std::to_string(i), makeBox(glm::vec3(0.5f), 2),
+                                            targetTransform(i, 0.0), true));
     return s;
 }
 

@@ -295,11 +295,8 @@ TEST(FuzzRegression, BurstsFromInsideABoxHitItsFarFacesAsSingleRaysDo) {
     // bursts, which start on its top face or inside it; alone, each ray hits the face at z = 10.
     Scene s;
     s.source = "test:floor";
-    SceneObject floor;
-    floor.name = "floor";
-    floor.mesh = makeBox(glm::vec3(10.0f, 0.1f, 10.0f), 2);
-    floor.transform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.1, 0.0));
-    s.objects.push_back(floor);
+    s.objects.push_back(makeSceneObject("floor", makeBox(glm::vec3(10.0f, 0.1f, 10.0f), 2),
+                                        glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.1, 0.0))));
     Result<CollisionWorld> w = CollisionWorld::build(s);
     ASSERT_TRUE(w) << w.error();
     for (const double y : {1e-45, -0.05}) {

@@ -37,15 +37,6 @@ uint64_t soakSpawns(uint64_t ciDefault) {
 #endif
 }
 
-SceneObject makeObject(std::string name, Mesh mesh, const glm::dmat4& transform, bool dynamic) {
-    SceneObject o;
-    o.name = std::move(name);
-    o.mesh = std::move(mesh);
-    o.transform = transform;
-    o.dynamic = dynamic;
-    return o;
-}
-
 glm::dmat4 targetTransform(int i, double time) {
     glm::dmat4 t =
         glm::translate(glm::dmat4(1.0), glm::dvec3(-6.0 + 3.0 * i + std::sin(time + i), 1.0, -2.0));
@@ -56,13 +47,13 @@ glm::dmat4 targetTransform(int i, double time) {
 Scene soakScene() {
     Scene s;
     s.source = "test:soak";
-    s.objects.push_back(makeObject("floor", makeBox(glm::vec3(12.0f, 0.1f, 12.0f), 8),
-                                   glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.1, 0.0)), false));
-    s.objects.push_back(makeObject("wall", makeBox(glm::vec3(12.0f, 3.0f, 0.1f), 8),
-                                   glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 3.0, -8.0)), false));
+    s.objects.push_back(makeSceneObject("floor", makeBox(glm::vec3(12.0f, 0.1f, 12.0f), 8),
+                                        glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.1, 0.0)), false));
+    s.objects.push_back(makeSceneObject("wall", makeBox(glm::vec3(12.0f, 3.0f, 0.1f), 8),
+                                        glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 3.0, -8.0)), false));
     for (int i = 0; i < 4; ++i)
-        s.objects.push_back(makeObject("target_" + std::to_string(i), makeSphere(0.6f, 12, 24),
-                                       targetTransform(i, 0.0), true));
+        s.objects.push_back(makeSceneObject("target_" + std::to_string(i), makeSphere(0.6f, 12, 24),
+                                            targetTransform(i, 0.0), true));
     return s;
 }
 

@@ -89,20 +89,6 @@ Mesh degenerateSphere() {
     return m;
 }
 
-bool writeObj(const Mesh& m, const std::string& path) {
-    std::ofstream out(path);
-    out << "# degenerate sphere\n";
-    char line[128];
-    for (const glm::vec3& p : m.positions) {
-        std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z));
-        out << line;
-    }
-    for (size_t t = 0; t < m.triangleCount(); ++t)
-        out << "f " << m.indices[3 * t] + 1 << ' ' << m.indices[3 * t + 1] + 1 << ' '
-            << m.indices[3 * t + 2] + 1 << '\n';
-    return bool(out);
-}
-
 // glTF with an external buffer: positions, the given normals (some zero, some not unit) and 32-bit
 // indices.
 bool writeGltf(const Mesh& m, const std::string& dir, const std::string& name) {
@@ -306,11 +292,11 @@ StressResult runDegenerate(const StressConfig& cfg) {
 
     Scene memory;
     memory.source = "stress:degenerate";
-    memory.objects.push_back(makeObject("degenerate", mesh));
+    memory.objects.push_back(makeSceneObject("degenerate", mesh));
     survey("in memory", memory, cfg, totals, r);
 
     const std::string obj = cfg.scratchDir + "/degenerate.obj";
-    const bool written = writeObj(mesh, obj) && writeGltf(mesh, cfg.scratchDir, "degenerate");
+    const bool written = writeObj(mesh, obj).ok() && writeGltf(mesh, cfg.scratchDir, "degenerate");
     if (!written) {
         totals.loadFailures++;
         r.failure("cannot write into " + cfg.scratchDir);

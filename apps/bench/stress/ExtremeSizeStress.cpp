@@ -49,11 +49,11 @@ StressResult runExtremeSizes(const StressConfig& cfg) {
     for (double s : scales) {
         // A plane 10 s wide, a static sphere of radius s above it, a dynamic one scaled by s.
         Scene scene = planeScene(5.0 * s);
-        scene.objects.push_back(makeObject("sphere", makeSphere(float(s), 16, 32),
-                                           glm::translate(glm::dmat4(1.0), glm::dvec3(0, 2 * s, 0))));
+        scene.objects.push_back(makeSceneObject("sphere", makeSphere(float(s), 16, 32),
+                                                glm::translate(glm::dmat4(1.0), glm::dvec3(0, 2 * s, 0))));
         glm::dmat4 dyn = glm::translate(glm::dmat4(1.0), glm::dvec3(3 * s, 1.5 * s, 0));
         dyn = glm::scale(glm::rotate(dyn, 0.4, glm::dvec3(0, 0, 1)), glm::dvec3(s));
-        scene.objects.push_back(makeObject("dynamic_sphere", makeSphere(1.0f, 16, 32), dyn, true));
+        scene.objects.push_back(makeSceneObject("dynamic_sphere", makeSphere(1.0f, 16, 32), dyn, true));
         Result<DecalSystem> sys = DecalSystem::create(scene, unlimitedSettings(cfg.seed));
         if (!sys) {
             r.failure(sys.error());

@@ -135,8 +135,8 @@ StressResult runFrames(const StressConfig& cfg) {
     glm::dmat4 b = glm::translate(glm::dmat4(1.0), glm::dvec3(3.0, 0.0, -1.0));
     b = glm::rotate(b, -2.1, glm::normalize(glm::dvec3(-1.0, 0.5, 0.25)));
     b = glm::scale(b, glm::dvec3(1.5));
-    scene.objects.push_back(makeObject("static_sphere", makeSphere(1.0f, 24, 48), a));
-    scene.objects.push_back(makeObject("dynamic_sphere", makeSphere(1.0f, 24, 48), b, true));
+    scene.objects.push_back(makeSceneObject("static_sphere", makeSphere(1.0f, 24, 48), a));
+    scene.objects.push_back(makeSceneObject("dynamic_sphere", makeSphere(1.0f, 24, 48), b, true));
     Result<DecalSystem> sys = DecalSystem::create(scene, unlimitedSettings(cfg.seed));
     if (!sys) {
         r.failure("decal system: " + sys.error());

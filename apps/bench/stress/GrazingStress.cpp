@@ -43,7 +43,7 @@ StressResult runGrazing(const StressConfig& cfg) {
     boxXf = glm::scale(boxXf, glm::dvec3(2.0));
     Scene boxScene;
     boxScene.source = "stress:box";
-    boxScene.objects.push_back(makeObject("box", makeUnitCube(), boxXf));
+    boxScene.objects.push_back(makeSceneObject("box", makeUnitCube(), boxXf));
     const Scene scenes[2] = {planeScene(5.0), boxScene};
 
     std::vector<Patch> patches; // patch 0 on the plane, 1..6 on the box

@@ -40,7 +40,7 @@ constexpr float kDenormalf = 1e-40f;
 Scene targetScene() {
     Scene s = planeScene(5.0);
     s.objects.push_back(
-        makeObject("cube", makeUnitCube(), glm::translate(glm::dmat4(1.0), glm::dvec3(1, 1, 0)), true));
+        makeSceneObject("cube", makeUnitCube(), glm::translate(glm::dmat4(1.0), glm::dvec3(1, 1, 0)), true));
     return s;
 }
 

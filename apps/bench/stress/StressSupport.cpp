@@ -11,20 +11,11 @@
 
 namespace spatter::stress {
 
-SceneObject makeObject(std::string name, Mesh mesh, const glm::dmat4& transform, bool dynamic) {
-    SceneObject o;
-    o.name = std::move(name);
-    o.mesh = std::move(mesh);
-    o.transform = transform;
-    o.dynamic = dynamic;
-    return o;
-}
-
 Scene planeScene(double half) {
     const std::vector<float> s = makeSamples(float(-half), float(half), float(half / 2.0));
     Scene scene;
     scene.source = "stress:plane";
-    scene.objects.push_back(makeObject("plane", makeGrid(s, s)));
+    scene.objects.push_back(makeSceneObject("plane", makeGrid(s, s)));
     return scene;
 }
 

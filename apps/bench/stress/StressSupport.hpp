@@ -20,9 +20,6 @@ namespace spatter::stress {
 
 constexpr double kPi = 3.14159265358979323846;
 
-SceneObject makeObject(std::string name, Mesh mesh, const glm::dmat4& transform = glm::dmat4(1.0),
-                       bool dynamic = false);
-
 // A static square on the plane y = 0 spanning [-half, half] in x and z, facing +Y, cut into
 // 4 x 4 squares (open).
 Scene planeScene(double half);

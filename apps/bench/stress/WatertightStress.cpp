@@ -153,14 +153,14 @@ StressResult runWatertight(const StressConfig& cfg) {
     {
         Scene scene;
         scene.source = "stress:cubes";
-        scene.objects.push_back(makeObject("cube", makeUnitCube()));
+        scene.objects.push_back(makeSceneObject("cube", makeUnitCube()));
         glm::dmat4 turned = glm::translate(glm::dmat4(1.0), glm::dvec3(3.0, 0.5, -2.0));
         turned = glm::rotate(turned, 0.61, glm::normalize(glm::dvec3(0.3, 1.0, -0.2)));
         turned = glm::scale(turned, glm::dvec3(1.7, 0.6, 2.3));
-        scene.objects.push_back(makeObject("turned_cube", makeUnitCube(), turned));
+        scene.objects.push_back(makeSceneObject("turned_cube", makeUnitCube(), turned));
         glm::dmat4 moving = glm::translate(glm::dmat4(1.0), glm::dvec3(-3.0, 1.0, 1.0));
         moving = glm::rotate(moving, -1.3, glm::normalize(glm::dvec3(1.0, 0.2, 0.7)));
-        scene.objects.push_back(makeObject("dynamic_cube", makeUnitCube(), moving, true));
+        scene.objects.push_back(makeSceneObject("dynamic_cube", makeUnitCube(), moving, true));
         Result<CollisionWorld> world = CollisionWorld::build(scene);
         if (!world) {
             r.failure("cube world: " + world.error());
@@ -182,7 +182,7 @@ StressResult runWatertight(const StressConfig& cfg) {
     {
         Scene scene = planeScene(5.0);
         const glm::dmat4 near = glm::translate(glm::dmat4(1.0), glm::dvec3(1.0, 1.0, -1.0));
-        scene.objects.push_back(makeObject("dynamic_cube", makeUnitCube(), near, true));
+        scene.objects.push_back(makeSceneObject("dynamic_cube", makeUnitCube(), near, true));
         Result<CollisionWorld> world = CollisionWorld::build(scene);
         Tally moved;
         if (!world ||

@@ -33,6 +33,10 @@ struct SceneObject {
     std::optional<Mesh> collider; // authored collision proxy (UCX_ / -col), object space
 };
 
+// An object of `mesh` placed by `transform`, static or dynamic, receiving decals.
+SceneObject makeSceneObject(std::string name, Mesh mesh, const glm::dmat4& transform = glm::dmat4(1.0),
+                            bool dynamic = false);
+
 struct Scene {
     std::string source; // path or builtin name it was made from
     std::vector<SceneObject> objects;

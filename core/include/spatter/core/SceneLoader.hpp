@@ -22,4 +22,8 @@ Result<Scene> loadGltf(const std::string& path);
 // OBJ, PLY, OFF or STL through OpenMesh, as one static object named after the file.
 Result<Scene> loadMeshFile(const std::string& path);
 
+// Writes the positions and triangles of `mesh` as OBJ (9 significant digits, so floats read back
+// exactly); the error names the file.
+Status writeObj(const Mesh& mesh, const std::string& path);
+
 } // namespace spatter
