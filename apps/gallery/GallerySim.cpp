@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <glm/gtc/matrix_transform.hpp>
 #include <thread>
@@ -151,6 +152,8 @@ Status GallerySim::rebuildProxies(float tolerancePercent) {
         if (proxies[i]) proxyMeshes_[i] = proxies[i]->mesh;
     Result<CollisionWorld> world = CollisionWorld::build(scene_, proxies);
     if (!world) return fail(world.error());
+    for (const std::string& warning : world->warnings())
+        std::fprintf(stderr, "spatter-gallery: warning: %s\n", warning.c_str());
     DecalSettings decalSettings;
     decalSettings.seed = options_.seed;
     decalSettings.cellSize = 0.5f;

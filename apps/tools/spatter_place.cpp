@@ -73,6 +73,10 @@ Options:
                     proxy_seconds, trace_seconds, seconds
   --help            this text
 
+An object whose transform single-precision ray tracing cannot use (singular or nearly so in float,
+scaled beyond 2^+-25, or more than 2^32 from the world's centre) is left out (rays pass through it)
+with a warning on stderr that names it and says why; the rest of the scene is traced as usual.
+
 No area limits apply: every ray gets its own decal. Exit code 0 when the scene loads (whatever
 happens to the rays), 1 when it cannot be loaded (or a proxy cannot be built), 2 on bad options or
 unreadable files.
@@ -240,6 +244,8 @@ int main(int argc, char** argv) {
         std::cerr << "spatter-place: " << world.error() << "\n";
         return 1;
     }
+    for (const std::string& warning : world->warnings())
+        std::cerr << "spatter-place: warning: " << warning << "\n";
     spatter::DecalSettings settings;
     settings.seed = seed;
     settings.maxPerCell = std::numeric_limits<uint32_t>::max();

@@ -74,6 +74,10 @@ Output:
                   the GL renderer, and what was loaded
   --help          this text
 
+With --rays, an object whose transform single-precision ray tracing cannot use (singular or nearly
+so in float, scaled beyond 2^+-25, or more than 2^32 from the world's centre) is left out of the
+trace (rays pass through it; it is still drawn) with a warning on stderr that names it and says why.
+
 Exit code 0 on success, 1 when the scene, the decals or the GL context fail, 2 on bad options.
 )";
 
@@ -293,6 +297,8 @@ bool placeRays(const std::string& path, const spatter::Scene& scene, const spatt
         error = sys.error();
         return false;
     }
+    for (const std::string& warning : sys->world().warnings())
+        std::cerr << "spatter-render: warning: " << warning << "\n";
     spatter::Result<uint16_t> index = sys->registerType(type);
     if (!index) {
         error = index.error();

@@ -834,9 +834,10 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
     }
     for (const Placement& p : colliders) {
         SceneObject& owner = scene.objects[size_t(p.owner)];
-        if (Status s =
-                appendCollider(owner.collider, *meshes[p.mesh], glm::inverse(owner.transform) * p.world);
-            !s)
+        // An owner scaled by 0 has no object space to put a collider in; it is not traced either.
+        const glm::dmat4 toOwner = glm::inverse(owner.transform) * p.world;
+        if (!transformProblem(toOwner).empty()) continue;
+        if (Status s = appendCollider(owner.collider, *meshes[p.mesh], toOwner); !s)
             return fail("collider " + named("node", p.node, model.nodes[p.node].name) + " " + s.error());
     }
     for (SceneObject& o : scene.objects)

@@ -41,11 +41,13 @@ void Scene::translate(const glm::dvec3& offset) {
         o.transform[3] += glm::dvec4(offset, 0.0);
 }
 
-static bool finiteMatrix(const glm::dmat4& m) {
+std::string transformProblem(const glm::dmat4& m) {
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    return true;
+            if (!std::isfinite(m[c][r])) return "transform is not finite";
+    if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
+        return "transform is not affine";
+    return {};
 }
 
 Status validateScene(const Scene& scene) {
@@ -55,10 +57,8 @@ Status validateScene(const Scene& scene) {
         if (Status s = validateMesh(o.mesh); !s) return fail(what + ": render mesh " + s.error());
         if (o.collider)
             if (Status s = validateMesh(*o.collider); !s) return fail(what + ": collider " + s.error());
-        if (!finiteMatrix(o.transform)) return fail(what + ": transform is not finite");
-        const double det = glm::determinant(glm::dmat3(o.transform));
-        if (!(std::fabs(det) > 1e-30) || !std::isfinite(det))
-            return fail(what + ": transform is not invertible");
+        if (const std::string problem = transformProblem(o.transform); !problem.empty())
+            return fail(what + ": " + problem);
         for (const Submesh& sm : o.mesh.submeshes)
             if (sm.material < -1 || sm.material >= int(scene.materials.size()))
                 return fail(what + ": submesh material " + std::to_string(sm.material) + " does not exist");

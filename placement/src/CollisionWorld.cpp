@@ -1,5 +1,7 @@
 #include "spatter/placement/CollisionWorld.hpp"
 
+#include "spatter/placement/TraceTransform.hpp"
+
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -48,18 +50,6 @@ const char* errorName(RTCError code) {
     default:
         return "unknown error";
     }
-}
-
-bool finiteMatrix(const glm::dmat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    return true;
-}
-
-// Bottom row (0, 0, 0, 1).
-bool affine(const glm::dmat4& m) {
-    return m[0][3] == 0.0 && m[1][3] == 0.0 && m[2][3] == 0.0 && m[3][3] == 1.0;
 }
 
 // Object-to-frame transform as Embree's 3x4 column-major floats.
@@ -521,7 +511,9 @@ struct CollisionWorld::Impl {
     }
 
     // Largest |ray origin| in the space of od.traced for a traced ray starting inside `frame` (frame
-    // coordinates): the frame itself for static objects, object space for dynamic ones.
+    // coordinates): the frame itself for static objects, object space for dynamic ones. With the rule
+    // of TraceTransform.hpp (objects within 2^32 of the origin, inverse norms at most 2^25) it stays
+    // below 2^59, inside Embree's range of +-1.844e18 (about 2^60.7) for instance-space origins.
     double reachOf(const ObjectData& od, const DBounds& frame) const {
         double r = 0.0;
         for (int i = 0; i < 8; ++i) {
@@ -538,7 +530,7 @@ struct CollisionWorld::Impl {
     void regrowBoxes() {
         bool staticsChanged = false, changed = false;
         for (ObjectData& od : objects) {
-            if (!od.info.inWorld || od.geomId == kInvalidId) continue;
+            if (!od.info.traced || od.geomId == kInvalidId) continue;
             const double needed = reachOf(od, traceBounds);
             if (needed <= od.reach) continue;
             od.reach = 2.0 * needed;
@@ -557,6 +549,27 @@ struct CollisionWorld::Impl {
             rtcCommitGeometry(rtcGetGeometry(top, staticInstance));
         }
         if (changed) rtcCommitScene(top);
+    }
+
+    // Applies the rule of TraceTransform.hpp, with the frame's origin known, to every object in the
+    // world, and sizes the box growth of the traced ones for ray starts anywhere in the world, with
+    // room to spare (regrowBoxes).
+    void decideTraced() {
+        DBounds frame;
+        for (ObjectData& od : objects) {
+            if (!od.info.inWorld) continue;
+            if (od.info.untraced.empty())
+                od.info.untraced = traceTransformProblem(od.info.transform, od.info.localBounds, origin);
+            od.info.traced = od.info.untraced.empty();
+            if (!od.info.traced) continue;
+            od.inverse = glm::inverse(od.info.transform);
+            const DBounds wb = transformBounds(od.info.localBounds, od.info.transform);
+            frame.extend(wb.min - origin);
+            frame.extend(wb.max - origin);
+        }
+        if (frame.empty()) return;
+        for (ObjectData& od : objects)
+            if (od.info.traced) od.reach = 2.0 * reachOf(od, frame);
     }
 
     // Normalises `ray`, clips it to the world bounds and moves it into the float frame. False when
@@ -578,7 +591,9 @@ struct CollisionWorld::Impl {
             }
         }
         // A clip distance that overflows (an origin near the double limit) cannot be traced: the hit
-        // distance would not be representable either.
+        // distance would not be representable either. What Embree gets is valid by construction:
+        // the origin is finite and within its range (below), the direction unit, tnear 0 and tfar
+        // finite (lo <= hi, both inside the finite trace bounds).
         if (!(lo <= hi) || !std::isfinite(hi)) return false;
         p.start = lo;
         p.length = length;
@@ -605,6 +620,12 @@ struct CollisionWorld::Impl {
         rh.hit.primID = kInvalidId;
         rh.hit.instID[0] = kInvalidId;
         return true;
+    }
+
+    // The warning line of an object in the world that is not traced.
+    std::string untracedLine(uint32_t i) const {
+        const CollisionObject& o = objects[i].info;
+        return "object " + std::to_string(i) + " (" + o.name + "): " + o.untraced + "; not traced";
     }
 
     // The closest hit of one prepared ray, traced with rtcIntersect1.
@@ -752,8 +773,6 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         od.info.name = so.name;
         od.info.dynamic = so.dynamic;
         od.info.transform = so.transform;
-        od.inverse = glm::inverse(so.transform);
-        if (!affine(so.transform)) return fail(where + ": object '" + so.name + "': transform is not affine");
         if (!so.receivesDecals) {
             od.info.localBounds = so.mesh.bounds();
             continue;
@@ -782,6 +801,9 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         od.indices.assign(mesh->indices.begin(), mesh->indices.begin() + mesh->triangleCount() * 3);
         od.info.triangles = mesh->triangleCount();
         od.info.localBounds = meshBounds(od.positions, od.indices);
+        // The frame's origin comes from the objects whose scale and condition the trace can use.
+        od.info.untraced = traceTransformProblem(so.transform, Bounds(), glm::dvec3(0.0));
+        if (!od.info.untraced.empty()) continue;
         const DBounds wb = transformBounds(od.info.localBounds, so.transform);
         allBounds.extend(wb);
         if (!so.dynamic) staticBounds.extend(wb);
@@ -790,14 +812,7 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         impl->origin = staticBounds.center();
     else if (!allBounds.empty())
         impl->origin = allBounds.center();
-    // Box growth for ray starts anywhere in the world, with room to spare (regrowBoxes).
-    if (!allBounds.empty()) {
-        DBounds frame;
-        frame.extend(allBounds.min - impl->origin);
-        frame.extend(allBounds.max - impl->origin);
-        for (ObjectData& od : impl->objects)
-            od.reach = 2.0 * impl->reachOf(od, frame);
-    }
+    impl->decideTraced();
 
     impl->top = impl->newScene();
     rtcSetSceneFlags(impl->top, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
@@ -808,6 +823,7 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         ObjectData& od = impl->objects[i];
         if (!od.info.inWorld || od.info.triangles == 0) continue;
         impl->triangles += od.info.triangles;
+        if (!od.info.dynamic && !od.info.traced) continue;
         if (!od.info.dynamic) {
             RTCGeometry g = impl->triangleGeometry(od, &od.info.transform);
             od.geomId = rtcAttachGeometry(impl->statics, g);
@@ -822,11 +838,14 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
             rtcAttachGeometry(od.scene, g);
             rtcReleaseGeometry(g);
             rtcCommitScene(od.scene);
+            // An untraced object's instance holds the identity, which Embree can invert, and is
+            // disabled until setTransform gives the object a usable transform.
             RTCGeometry inst = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_INSTANCE);
             rtcSetGeometryInstancedScene(inst, od.scene);
             float xfm[12];
-            toEmbreeTransform(od.info.transform, impl->origin, xfm);
+            toEmbreeTransform(od.info.traced ? od.info.transform : glm::dmat4(1.0), impl->origin, xfm);
             rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+            if (!od.info.traced) rtcDisableGeometry(inst);
             rtcCommitGeometry(inst);
             od.geomId = rtcAttachGeometry(impl->top, inst);
             rtcReleaseGeometry(inst);
@@ -889,33 +908,38 @@ std::vector<std::optional<Hit>> CollisionWorld::intersectBatch(const std::vector
     return hits;
 }
 
-Status CollisionWorld::setTransform(uint32_t object, const glm::dmat4& transform) {
+Result<TransformUpdate> CollisionWorld::setTransform(uint32_t object, const glm::dmat4& transform) {
     if (object >= impl_->objects.size())
         return fail("setTransform: object " + std::to_string(object) + " out of range");
     ObjectData& od = impl_->objects[object];
     if (!od.info.dynamic) return fail("setTransform: object '" + od.info.name + "' is static");
     if (!od.info.inWorld)
         return fail("setTransform: object '" + od.info.name + "' is not in the collision world");
-    const double det = glm::determinant(glm::dmat3(transform));
-    if (!finiteMatrix(transform) || !std::isfinite(det) || !(std::fabs(det) > 1e-30) || !affine(transform))
-        return fail("setTransform: transform of object '" + od.info.name +
-                    "' is not a finite invertible affine matrix");
-    const glm::dmat4 inverse = glm::inverse(transform);
-    if (!finiteMatrix(inverse))
-        return fail("setTransform: transform of object '" + od.info.name +
-                    "' is not invertible in double precision");
+    if (const std::string problem = transformProblem(transform); !problem.empty())
+        return fail("setTransform: object '" + od.info.name + "': " + problem);
+    const bool wasTraced = od.info.traced;
     od.info.transform = transform;
-    od.inverse = inverse;
-    if (od.geomId != kInvalidId) {
-        float xfm[12];
-        toEmbreeTransform(transform, impl_->origin, xfm);
+    od.info.untraced = traceTransformProblem(transform, od.info.localBounds, impl_->origin);
+    od.info.traced = od.info.untraced.empty();
+    if (od.info.traced) od.inverse = glm::inverse(transform);
+    if (od.geomId != kInvalidId && (od.info.traced || wasTraced)) {
         RTCGeometry inst = rtcGetGeometry(impl_->top, od.geomId);
-        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+        if (od.info.traced) {
+            float xfm[12];
+            toEmbreeTransform(transform, impl_->origin, xfm);
+            rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+            if (!wasTraced) rtcEnableGeometry(inst);
+        } else {
+            rtcDisableGeometry(inst);
+        }
         rtcCommitGeometry(inst);
         rtcCommitScene(impl_->top);
         impl_->updateTraceBounds();
     }
-    return {};
+    TransformUpdate update;
+    update.traced = od.info.traced;
+    if (!update.traced) update.warning = impl_->untracedLine(object);
+    return update;
 }
 
 Status CollisionWorld::removeObject(uint32_t object) {
@@ -925,6 +949,8 @@ Status CollisionWorld::removeObject(uint32_t object) {
     if (!od.info.inWorld)
         return fail("removeObject: object '" + od.info.name + "' is not in the collision world");
     od.info.inWorld = false;
+    od.info.traced = false;
+    od.info.untraced.clear();
     if (od.geomId != kInvalidId) {
         impl_->triangles -= od.info.triangles;
         if (od.info.dynamic) {
@@ -961,6 +987,14 @@ double CollisionWorld::worldErrorBound(uint32_t index) const {
     const CollisionObject& o = impl_->objects[index].info;
     const glm::dmat3 m(o.transform);
     return o.errorBound * std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+}
+
+std::vector<std::string> CollisionWorld::warnings() const {
+    std::vector<std::string> lines;
+    for (uint32_t i = 0; i < impl_->objects.size(); ++i)
+        if (impl_->objects[i].info.inWorld && !impl_->objects[i].info.traced)
+            lines.push_back(impl_->untracedLine(i));
+    return lines;
 }
 
 glm::dvec3 CollisionWorld::origin() const {

@@ -330,6 +330,11 @@ struct DecalSystem::Impl {
         const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(m));
         WorldDecal w;
         w.center = glm::dvec3(xf * glm::dvec4(glm::dvec3(d.center), 1.0));
+        if (!(finite3(normalMatrix[0]) && finite3(normalMatrix[1]) &&
+              finite3(normalMatrix[2]))) { // a singular transform: the object, and the box, collapse
+            w.frame = d.frame;
+            return w;
+        }
         const glm::dvec3 nScaled = normalMatrix * glm::dvec3(d.frame.normal);
         const glm::dvec3 n = glm::normalize(nScaled);
         const glm::dvec3 tScaled = m * glm::dvec3(d.frame.tangent);
@@ -484,14 +489,15 @@ SpawnResult DecalSystem::spawnAttached(uint32_t objectIndex, const glm::vec3& lo
     if (std::max({std::fabs(localNormal.x), std::fabs(localNormal.y), std::fabs(localNormal.z)}) <
         std::numeric_limits<float>::min())
         return s.reject(SpawnStatus::InvalidArgument, "spawnAttached: local normal is zero or denormal");
+    if (!o->inWorld)
+        return s.reject(SpawnStatus::NotReceiver, "object '" + o->name + "' is not in the collision world");
+    if (!o->traced) return s.reject(SpawnStatus::NotReceiver, "object '" + o->name + "': " + o->untraced);
     const glm::dmat3 m(o->transform);
     const glm::dvec3 wn = glm::transpose(glm::inverse(m)) * ln;
     const double len2 = glm::dot(wn, wn);
     if (!(len2 >= std::numeric_limits<double>::min()) || !std::isfinite(len2))
         return s.reject(SpawnStatus::InvalidArgument,
                         "spawnAttached: local normal is zero or cannot be normalised");
-    if (!o->inWorld)
-        return s.reject(SpawnStatus::NotReceiver, "object '" + o->name + "' is not in the collision world");
     const DecalType& t = s.types[type];
     if (o->dynamic && !t.onDynamic)
         return s.reject(SpawnStatus::NotReceiver,
@@ -588,7 +594,7 @@ const std::vector<Decal>& DecalSystem::decals() const {
     return impl_->decals;
 }
 
-Status DecalSystem::setTransform(uint32_t object, const glm::dmat4& transform) {
+Result<TransformUpdate> DecalSystem::setTransform(uint32_t object, const glm::dmat4& transform) {
     const std::lock_guard<std::mutex> lock(impl_->mutex);
     return impl_->world.setTransform(object, transform);
 }

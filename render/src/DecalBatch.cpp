@@ -145,6 +145,9 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
         const Decal& d = decals_[i];
         if (d.object >= objectTransforms.size()) continue;
         const glm::dmat4 boxToWorld = objectTransforms[d.object] * boxToObject(d);
+        // On an object with a singular transform (a scale of 0) the box collapses: nothing to draw.
+        const double det = glm::determinant(glm::dmat3(boxToWorld));
+        if (!(std::fabs(det) > 0.0) || !std::isfinite(det)) continue;
 
         // Frustum: the box is outside when all eight corners lie beyond one clip plane.
         int outside[6] = {0, 0, 0, 0, 0, 0};

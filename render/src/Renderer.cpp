@@ -65,6 +65,14 @@ bool finiteMatrix(const glm::dmat4& m) {
     return true;
 }
 
+// The inverse transpose of `m`; for a singular m (an object flattened by a scale of 0) the cofactor
+// matrix, which maps normals in the same directions wherever the inverse exists and stays finite.
+glm::dmat3 normalMatrix(const glm::dmat3& m) {
+    const glm::dmat3 inverseTranspose = glm::transpose(glm::inverse(m));
+    if (finiteMatrix(glm::dmat4(inverseTranspose))) return inverseTranspose;
+    return glm::dmat3(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1]));
+}
+
 bool finiteVec(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -415,8 +423,8 @@ struct Renderer::Impl {
             const glm::dmat4 rel = toEye * transforms[i];
             ObjectGpu& o = objects[i];
             o.model = glm::mat4(rel);
-            o.normalMatrix = glm::mat4(glm::mat3(glm::transpose(glm::inverse(glm::dmat3(transforms[i])))));
-            o.worldToObject = glm::mat4(glm::inverse(rel));
+            o.normalMatrix = glm::mat4(glm::mat3(normalMatrix(glm::dmat3(transforms[i]))));
+            o.worldToObject = glm::mat4(glm::inverse(rel)); // read only by decals, none on a singular one
             o.info = glm::uvec4(gbuffer.hasIds() ? objectIds[i] : 0u,
                                 glm::determinant(glm::dmat3(transforms[i])) < 0.0 ? 1u : 0u,
                                 textureSpace.enabled(i) ? 1u : 0u, 0u);
@@ -607,10 +615,8 @@ Status Renderer::setObjectTransform(uint32_t object, const glm::dmat4& transform
     if (object >= m.transforms.size())
         return fail("renderer: object " + std::to_string(object) + " is out of range (" +
                     std::to_string(m.transforms.size()) + " objects)");
-    const double det = glm::determinant(glm::dmat3(transform));
-    if (!finiteMatrix(transform) || !(std::fabs(det) > 1e-30) || !std::isfinite(det))
-        return fail("renderer: transform of object " + std::to_string(object) +
-                    " is not finite and invertible");
+    if (const std::string problem = transformProblem(transform); !problem.empty())
+        return fail("renderer: object " + std::to_string(object) + ": " + problem);
     m.transforms[object] = transform;
     return {};
 }

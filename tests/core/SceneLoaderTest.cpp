@@ -3,6 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+#include <limits>
+
 using namespace spatter;
 using ::testing::HasSubstr;
 
@@ -34,7 +37,7 @@ TEST(SceneLoader, TranslateMovesEveryObjectInDoublePrecision) {
     EXPECT_EQ(scene.objects[1].transform[3], glm::dvec4(1e6 + 1.0, 2.5, 3.0 - 1e6, 1.0));
 }
 
-TEST(SceneLoader, ValidateSceneRejectsSingularTransform) {
+TEST(SceneLoader, ValidateSceneRejectsNonFiniteAndProjectiveTransformsButTakesSingularOnes) {
     Scene scene;
     SceneObject o;
     o.name = "flat";
@@ -43,7 +46,12 @@ TEST(SceneLoader, ValidateSceneRejectsSingularTransform) {
     computeNormals(o.mesh);
     o.transform = glm::dmat4(0.0);
     scene.objects.push_back(o);
-    EXPECT_THAT(validateScene(scene).error(), HasSubstr("not invertible"));
+    EXPECT_THAT(validateScene(scene).error(), HasSubstr("object 0 (flat): transform is not affine"));
+    scene.objects[0].transform = glm::dmat4(1.0);
+    scene.objects[0].transform[3][1] = std::numeric_limits<double>::infinity();
+    EXPECT_THAT(validateScene(scene).error(), HasSubstr("transform is not finite"));
+    scene.objects[0].transform = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0, 1.0, 0.0)); // hides the node
+    EXPECT_TRUE(validateScene(scene).ok());
 }
 
 TEST(SceneLoader, ValidateSceneRejectsMissingMaterial) {

@@ -1,9 +1,13 @@
 // libFuzzer target: the glTF 2.0 loader (loadGltf), .gltf JSON and .glb alike (told apart by
 // content). A loaded scene must pass validateScene and have unit normals; a failure must name the file.
+// A loaded scene is then traced as a game would: its collision world is built (render meshes) and
+// shot at every object, with single rays and with a burst (an Embree packet), so that node transforms
+// the trace cannot use (TraceTransform.hpp) reach Embree if the world let them through.
 
 #include "FuzzSupport.hpp"
 
 #include "spatter/core/SceneLoader.hpp"
+#include "spatter/placement/CollisionWorld.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -22,6 +26,26 @@ bool sceneIsSound(const spatter::Scene& scene) {
         if (o.collider && !spatter::validateMesh(*o.collider)) return false;
     }
     return true;
+}
+
+// Shoots at the centre of each of the first 16 objects from outside its bounds: one ray, then a burst
+// of 8 rays around it in one batch.
+void shootAt(const spatter::Scene& scene) {
+    spatter::WorldSettings settings;
+    settings.useColliders = false;
+    spatter::Result<spatter::CollisionWorld> world = spatter::CollisionWorld::build(scene, {}, settings);
+    if (!world) std::abort(); // a scene that validates must build
+    for (uint32_t i = 0; i < world->objectCount() && i < 16; ++i) {
+        const spatter::DBounds b = world->worldBounds(i);
+        if (b.empty()) continue;
+        const glm::dvec3 target = b.center();
+        const glm::dvec3 from = target + glm::dvec3(0.3, 1.0, 0.6) * (b.diagonal() + 1.0);
+        std::vector<spatter::Ray> burst;
+        for (int k = 0; k < 8; ++k)
+            burst.push_back(spatter::Ray{from, target - from + glm::dvec3(0.01 * k, 0.0, -0.01 * k)});
+        (void)world->intersect(burst[0]);
+        (void)world->intersectBatch(burst);
+    }
 }
 
 } // namespace
@@ -44,5 +68,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     spatter::fuzz::writeFile(path, data, size);
     spatter::Result<spatter::Scene> scene = spatter::loadGltf(path);
     if (scene ? !sceneIsSound(scene.value()) : scene.error().rfind(path + ": ", 0) != 0) std::abort();
+    if (scene) shootAt(scene.value());
     return 0;
 }

@@ -125,8 +125,34 @@ Ray burstRay(FuzzedDataProvider& in, const Ray& previous) {
     return r;
 }
 
+// A transform that single precision can barely use or not at all (TraceTransform.hpp): two columns
+// that differ only past float's seventh digit, a column scaled by 2^-80 to 2^80, a strong shear, or a
+// mirror, on a placed object.
+glm::dmat4 pickFloatSingular(FuzzedDataProvider& in) {
+    glm::dmat4 m = glm::translate(glm::dmat4(1.0), pickVec(in, -12.0, 12.0));
+    const int c = in.ConsumeIntegralInRange<int>(0, 2);
+    const int d = (c + in.ConsumeIntegralInRange<int>(1, 2)) % 3;
+    switch (in.ConsumeIntegralInRange<int>(0, 3)) {
+    case 0:
+        m[d] = m[c] + glm::dvec4(pickVec(in, -1e-6, 1e-6), 0.0);
+        break;
+    case 1:
+        m[c] *= std::ldexp(1.0, in.ConsumeIntegralInRange<int>(-80, 80));
+        break;
+    case 2:
+        m[d] += glm::dvec4(pickVec(in, -1e7, 1e7), 0.0);
+        break;
+    default:
+        m[c] *= -pickDouble(in, 1e-9, 1.0);
+        break;
+    }
+    return m;
+}
+
 glm::dmat4 pickTransform(FuzzedDataProvider& in) {
-    if (in.ConsumeIntegralInRange<int>(0, 3) == 0) { // any affine matrix
+    const int kind = in.ConsumeIntegralInRange<int>(0, 3);
+    if (kind == 1) return pickFloatSingular(in);
+    if (kind == 0) { // any affine matrix
         glm::dmat4 m(1.0);
         for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 3; ++r)

@@ -91,6 +91,24 @@ put('gltf', 'triangle.glb',
     pack('a4 L< L<', 'glTF', 2, 12 + 8 + length($json) + 8 + length($bin))
       . pack('L< a4', length($json), 'JSON') . $json . pack('L< a4', length($bin), "BIN\0") . $bin);
 
+# Nodes whose transforms single precision cannot trace (TraceTransform.hpp), one dynamic and one
+# static beside a usable floor: the collision world must leave them out instead of handing them to
+# Embree.
+my %untraceable = (
+    'columns-equal-in-float' => '"matrix":[1,1,0,0,1,1.000000001,0,0,0,0,1,0,0,2,0,1]',
+    'nearly-singular'        => '"matrix":[1,0,0,0,1,0.00001,0,0,0,0,1,0,0,2,0,1]',
+    'strong-shear'           => '"matrix":[1,0,0,0,1000000,1,0,0,0,0,1,0,0,2,0,1]',
+    'scale-0'                => '"scale":[0,0,0],"translation":[0,2,0]',
+    'scale-1e-20'            => '"scale":[1e-20,1e-20,1e-20]',
+    'scale-1e20'             => '"scale":[1e20,1e20,1e20]',
+    'mirrored-flat'          => '"scale":[-1,1,1e-9]');
+for my $name (sort keys %untraceable) {
+    my $t = $untraceable{$name};
+    (my $doc = $gltf) =~ s/"scenes":\[\{"nodes":\[0\]\}\]/"scenes":[{"nodes":[0,1,2]}]/;
+    $doc =~ s/"nodes":\[\{"name":"root".*?\}\],\n/"nodes":[{"name":"floor","mesh":0,"scale":[10,10,10]},{"name":"crate","mesh":0,$t,"extras":{"dynamic":true}},{"name":"prop","mesh":0,$t}],\n/s;
+    put('gltf', "untraceable-$name.gltf", $doc);
+}
+
 # --- ray lines ----------------------------------------------------------------------------------
 put('ray_parser', 'rays.txt',
     "# origin and direction\n0 1 5 0 0 -1\n  -3.5e2\t1e-3 +7   0x1p-3 -0X1.8P+1 1  # hex\n\n"

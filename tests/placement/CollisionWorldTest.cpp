@@ -440,7 +440,7 @@ TEST(CollisionWorld, SetTransformRejectsBadRequests) {
     glm::dmat4 projective(1.0);
     projective[0][3] = 0.5;
     EXPECT_FALSE(w.setTransform(2, projective).ok());
-    const Status s = w.setTransform(0, glm::dmat4(1.0));
+    const auto s = w.setTransform(0, glm::dmat4(1.0));
     EXPECT_NE(s.error().find("floor"), std::string::npos) << s.error();
 }
 

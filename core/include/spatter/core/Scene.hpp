@@ -50,7 +50,13 @@ struct Scene {
     void translate(const glm::dvec3& offset);
 };
 
-// Checks every mesh (validateMesh), every transform (finite, invertible), and every material's
+// Empty when `transform` can place an object: every entry finite and the bottom row (0, 0, 0, 1);
+// otherwise "transform is not finite" or "transform is not affine". A singular transform is allowed
+// (glTF hides nodes with a scale of 0): it draws nothing, and the collision world leaves out of its
+// trace every transform that single precision cannot use (spatter/placement/TraceTransform.hpp).
+std::string transformProblem(const glm::dmat4& transform);
+
+// Checks every mesh (validateMesh), every transform (transformProblem), and every material's
 // texture indices. The error names the object or material.
 Status validateScene(const Scene& scene);
 

@@ -11,6 +11,14 @@
 // the dynamic instances, so moving an object only updates its instance and recommits the top level.
 // Objects with receivesDecals == false are not in the world (shots pass through them).
 //
+// Transforms: Embree traces in single precision, so an object is traced only while its transform
+// keeps the rule of TraceTransform.hpp (its float matrix has a finite inverse, a condition number of
+// at most 2^16 and scales within 2^+-25, and the object lies within 2^32 of origin()). An object in
+// the world whose transform breaks it is left out of the trace (CollisionObject::traced is false,
+// `untraced` says why, warnings() lists it) until setTransform gives it a usable one; no matrix that
+// breaks the rule ever reaches Embree. Every ray handed to Embree is valid by construction: finite
+// origin within +-1.844e18, unit finite direction, 0 = tnear <= tfar finite.
+//
 // Queries: rays are validated (rayProblem), normalised and clipped to the world bounds in double,
 // moved into the float frame, traced (mask 0xFFFFFFFF, geomID and instID starting invalid), and the
 // hit is refined in double on the hit triangle in object space. Among hits at exactly the same
@@ -54,6 +62,8 @@ struct CollisionObject {
     std::string name;
     bool dynamic = false;
     bool inWorld = false;      // receives decals and has not been removed
+    bool traced = false;       // in the world and its transform keeps the rule of TraceTransform.hpp
+    std::string untraced;      // why an object in the world is not traced; empty when traced
     glm::dmat4 transform{1.0}; // object to world, current
     double errorBound = 0.0;   // h, object-space units
     size_t triangles = 0;      // collision triangles (0 when not in the world)
@@ -75,12 +85,21 @@ struct Hit {
     bool frontFace = true;
 };
 
+// What setTransform did with a transform it accepted.
+struct TransformUpdate {
+    bool traced = true;  // false: the transform breaks the rule of TraceTransform.hpp; shots pass
+                         // through the object until a later setTransform gives it a usable one
+    std::string warning; // why it is not traced, naming the object; empty when traced
+};
+
 class CollisionWorld {
 public:
     // Builds the world for `scene` (validated with validateScene first). `proxies` is empty or has
     // one entry per Scene object; a present entry (from buildProxy) replaces that object's collision
     // mesh: its `mesh` (object space, validated with validateMesh) and `errorBound` (object-space
-    // units, finite and >= 0) are used, the other fields are not. Errors name the object.
+    // units, finite and >= 0) are used, the other fields are not. Errors name the object. An object
+    // whose transform breaks the rule of TraceTransform.hpp is no error: it is built untraced and
+    // warnings() names it.
     static Result<CollisionWorld> build(const Scene& scene,
                                         const std::vector<std::optional<Proxy>>& proxies = {},
                                         const WorldSettings& settings = {});
@@ -102,10 +121,12 @@ public:
     // cones of 7 degrees or more about the same time (docs/BENCHMARKS.md).
     std::vector<std::optional<Hit>> intersectBatch(const std::vector<Ray>& rays) const;
 
-    // Moves a dynamic object (its instance transform; only the top level is recommitted). Fails for
-    // an index out of range, a static object, an object not in the world, or a transform that is
-    // not finite and invertible.
-    Status setTransform(uint32_t object, const glm::dmat4& transform);
+    // Moves a dynamic object (its instance transform; only the top level is recommitted). Fails, and
+    // changes nothing, for an index out of range, a static object, an object not in the world, or a
+    // transform that is not finite and affine (transformProblem). A transform that breaks the rule
+    // of TraceTransform.hpp is taken: the object keeps it (its decals follow it) but is left out of
+    // the trace until a later call gives it a usable one, and the result says so.
+    Result<TransformUpdate> setTransform(uint32_t object, const glm::dmat4& transform);
     // Takes an object out of the world (later rays pass through it). Fails for an index out of range
     // or an object not in the world.
     Status removeObject(uint32_t object);
@@ -121,6 +142,9 @@ public:
     // largest column length of the transform's linear part (its largest scale for TRS transforms).
     // 0 for an index out of range.
     double worldErrorBound(uint32_t index) const;
+    // One line per object in the world that is not traced: "object 3 (crate): transform is singular
+    // in single precision (condition number 4e+09, limit 65536); not traced".
+    std::vector<std::string> warnings() const;
     // Origin of the single-precision frame the static geometry is stored in.
     glm::dvec3 origin() const;
     // Collision triangles of the objects in the world.

@@ -161,15 +161,19 @@ public:
     bool remove(DecalHandle handle);
     // The decal, or nullptr for a stale or invalid handle. The pointer is valid until the next mutation.
     const Decal* get(DecalHandle handle) const;
-    // The decal's box in world space under its object's current transform.
+    // The decal's box in world space under its object's current transform. On an object whose
+    // transform is singular (a scale of 0: it draws nothing) the box has size and half-depth 0, its
+    // frame the decal's object-space one.
     std::optional<WorldDecal> worldBox(DecalHandle handle) const;
     WorldDecal worldBox(const Decal& decal) const;
 
     // The live decals, contiguous, for the renderer. Order is deterministic but changes on removals.
     const std::vector<Decal>& decals() const;
 
-    // Moves a dynamic object (CollisionWorld::setTransform); its decals follow.
-    Status setTransform(uint32_t object, const glm::dmat4& transform);
+    // Moves a dynamic object (CollisionWorld::setTransform); its decals follow. A transform the trace
+    // cannot use (TraceTransform.hpp) takes the object out of the trace until a usable one, and the
+    // result says so; its decals stay.
+    Result<TransformUpdate> setTransform(uint32_t object, const glm::dmat4& transform);
     // Removes an object from the world together with its decals (counted in stats().removed).
     Status removeObject(uint32_t object);
     // The 8-bit object decal ID of an object (0 for static objects and indices out of range).
