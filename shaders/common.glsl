@@ -1,5 +1,6 @@
-// Shared declarations: the per-frame block, the object, material and decal buffers, and the helpers
-// every pass uses. Mirrored on the C++ side by render/src/GpuLayouts.hpp (keep both in step).
+// Shared declarations of spatter's renderer: the per-frame block, the object and material buffers,
+// the decal data (decal_data.glsl, shared with the projector) and the helpers every pass uses.
+// Mirrored on the C++ side by render/src/GpuLayouts.hpp (keep both in step).
 
 layout(std140, binding = 0) uniform FrameBlock {
     mat4 u_viewProj;       // camera-relative world -> clip (reversed-Z)
@@ -50,47 +51,7 @@ layout(std430, binding = 2) readonly buffer MaterialBuffer {
     MaterialData materials[];
 };
 
-const uint DECAL_WRAP = 1u;
-const uint DECAL_NORMAL_MAP = 2u;
-const uint DECAL_FADE_LINEAR = 4u;
-const uint DECAL_FADE_SMOOTH = 8u;
-const uint DECAL_ROUGHNESS = 16u;
-const uint DECAL_MIRRORED = 32u;
-
-struct DecalData {
-    vec4 objectToBox[3]; // rows: object -> unit box
-    vec4 boxToObject[3]; // rows: unit box -> object
-    vec4 tangent;        // xyz: object-space unit tangent; w: half width
-    vec4 bitangent;      // w: half height
-    vec4 normal;         // w: half depth
-    vec4 tint;           // rgb tint; a: tint alpha * opacity
-    uvec4 info;          // x: object index, y: object decal ID, z: texture layer, w: DECAL_* flags
-    vec4 params;         // x: cosine of the largest accepted angle; y: roughness written
-};
-
-layout(std430, binding = 3) readonly buffer DecalBuffer {
-    DecalData decals[];
-};
-
-layout(std430, binding = 4) readonly buffer VisibleBuffer {
-    uint visibleDecals[];
-};
-
-// Octahedral normal encoding (Cigolle et al. 2014): unit vector <-> [-1, 1]^2.
-vec2 signNotZero(vec2 v) {
-    return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0);
-}
-
-vec2 encodeNormal(vec3 n) {
-    vec2 p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
-    return n.z <= 0.0 ? (1.0 - abs(p.yx)) * signNotZero(p) : p;
-}
-
-vec3 decodeNormal(vec2 e) {
-    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-    if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * signNotZero(n.xy);
-    return normalize(n);
-}
+#include "decal_data.glsl"
 
 // View-space position of the scene point behind window position `fragCoord` with reversed-Z
 // depth `depth` (> 0).

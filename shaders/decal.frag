@@ -1,6 +1,6 @@
 // Decal pass (Krassnigg, "A Deferred Decal Rendering Technique"): the box is a window onto the
-// G-buffer. Each fragment reads the scene depth, rebuilds the camera-relative position, moves it
-// into the unit box and keeps it only when
+// host's G-buffer. Each fragment reads the host's depth, rebuilds the camera-relative position (in
+// the host's conventions, projector.glsl), moves it into the unit box and keeps it only when
 //   - it lies inside the box,
 //   - the pixel's object decal ID equals the decal's (IDS; left out when the scene has no dynamic
 //     objects or ID clipping is switched off),
@@ -8,12 +8,14 @@
 //     angle rejection is switched off),
 //   - (WRAP) the footprint, with texture coordinates pushed outward by the surface slope
 //     (Listing 20.4), lies inside the decal's rectangle.
-// COVERAGE writes 1 for every such pixel; otherwise the decal's albedo is blended by its alpha
+// COVERAGE writes 1 for every such pixel (location 0, the host's coverage texture); otherwise the decal's albedo is blended by its alpha
 // (texture alpha x tint x opacity x depth fade), its normal map is blended into the G-buffer normal
 // (Whiteout) in the decal frame (or, with DEPTH_FRAME, in a per-pixel frame from depth
 // derivatives), and roughness is replaced where the type sets one. Normals are read from a copy of
-// the G-buffer taken before the pass, so every decal tests the surface, not other decals.
-#include "common.glsl"
+// the G-buffer taken before the pass, so every decal tests the surface, not other decals. With
+// NO_NORMALS (the host has none) the surface normal comes from depth derivatives and nothing writes
+// normals. Roughness goes to every colour channel of location 2; the colour mask picks the host's.
+#include "projector.glsl"
 
 layout(binding = 0) uniform sampler2D s_depth;
 layout(binding = 1) uniform sampler2D s_normal;
@@ -30,7 +32,7 @@ flat in uvec4 v_info;
 flat in vec2 v_params;
 
 #ifdef COVERAGE
-layout(location = 4) out vec4 o_coverage;
+layout(location = 0) out vec4 o_coverage;
 #else
 layout(location = 0) out vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
@@ -40,10 +42,21 @@ layout(location = 2) out vec4 o_material;
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     float depth = texelFetch(s_depth, pixel, 0).r;
-    vec3 p = worldPositionFromDepth(gl_FragCoord.xy, max(depth, 1e-20));
+    bool surface = !isBackground(depth);
+#ifdef DEPTH_LINEAR
+    vec3 p = hostPosition(gl_FragCoord.xy, surface ? depth : 1.0);
+#else
+    vec3 p = hostPosition(gl_FragCoord.xy, surface ? depth : 0.5);
+#endif
     vec4 ph = vec4(p, 1.0);
     vec3 box = vec3(dot(v_worldToBox[0], ph), dot(v_worldToBox[1], ph), dot(v_worldToBox[2], ph));
-    vec3 n = decodeNormal(texelFetch(s_normal, pixel, 0).rg);
+#ifdef NO_NORMALS
+    vec3 geometric = cross(dFdx(p), dFdy(p));
+    vec3 n = dot(geometric, geometric) > 1e-30 ? normalize(geometric) : normalize(-p);
+    if (dot(n, -p) < 0.0) n = -n;
+#else
+    vec3 n = decodeHostNormal(texelFetch(s_normal, pixel, 0));
+#endif
     uint flags = v_info.z;
 
     vec2 uv = box.xy;
@@ -68,7 +81,7 @@ void main() {
 #endif
 #endif
 
-    bool keep = depth > 0.0 && all(lessThanEqual(abs(box), vec3(1.0))) && all(lessThanEqual(abs(uv), vec2(1.0)));
+    bool keep = surface && all(lessThanEqual(abs(box), vec3(1.0))) && all(lessThanEqual(abs(uv), vec2(1.0)));
 #ifdef IDS
     keep = keep && texelFetch(s_ids, pixel, 0).r == v_info.x;
 #endif
@@ -82,7 +95,7 @@ void main() {
 #else
     float fade = 1.0;
 #ifdef FADE
-    float f = clamp((1.0 - abs(box.z)) / max(1.0 - u_depthRange.z, 1e-4), 0.0, 1.0);
+    float f = clamp((1.0 - abs(box.z)) / max(1.0 - u_params.x, 1e-4), 0.0, 1.0);
     if ((flags & DECAL_FADE_LINEAR) != 0u) fade = f;
     else if ((flags & DECAL_FADE_SMOOTH) != 0u) fade = f * f * (3.0 - 2.0 * f);
 #endif
@@ -113,9 +126,9 @@ void main() {
         vec3 base = vec3(dot(n, T), dot(n, B), dot(n, N));
         vec3 r = normalize(vec3(base.xy + detail.xy, base.z * detail.z));
         vec3 blended = normalize(T * r.x + B * r.y + N * r.z);
-        o_normal = vec4(encodeNormal(blended), 0.0, alpha);
+        o_normal = vec4(encodeHostNormal(blended).xyz, alpha);
     }
 #endif
-    o_material = vec4(v_params.y, 0.0, 0.0, (flags & DECAL_ROUGHNESS) != 0u ? alpha : 0.0);
+    o_material = vec4(vec3(v_params.y), (flags & DECAL_ROUGHNESS) != 0u ? alpha : 0.0);
 #endif
 }

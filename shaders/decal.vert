@@ -2,7 +2,7 @@
 // visible list (u_firstInstance + gl_InstanceID); its object-space box is carried to camera-relative
 // world space by its object's transform, and the inverse, world -> unit box, goes to the fragment
 // shader together with the decal frame in world space.
-#include "common.glsl"
+#include "projector.glsl"
 
 layout(location = 0) uniform uint u_firstInstance;
 
@@ -21,7 +21,7 @@ const int kCubeIndices[36] = int[36](0, 4, 6, 0, 6, 2,  1, 3, 7, 1, 7, 5,  0, 1,
 
 void main() {
     DecalData d = decals[visibleDecals[u_firstInstance + uint(gl_InstanceID)]];
-    ObjectData o = objects[d.info.x];
+    ProjectorObject o = objects[d.info.x];
 
     int corner = kCubeIndices[gl_VertexID];
     vec3 c = vec3((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0, (corner & 4) != 0 ? 1.0 : -1.0);

@@ -60,6 +60,13 @@ bool soundBox(const Decal& d) {
            finite(d.frame.normal) && extent(d.size.x) && extent(d.size.y) && extent(d.halfDepth);
 }
 
+// The box in world space can be described in float: a size at float's limit in one space can round
+// past it in the other.
+bool soundWorldBox(const WorldDecal& w) {
+    return std::isfinite(w.size.x) && std::isfinite(w.size.y) && std::isfinite(w.halfDepth) &&
+           std::isfinite(w.center.x) && std::isfinite(w.center.y) && std::isfinite(w.center.z);
+}
+
 struct Meta {
     uint32_t slot = kNone;
     bool fading = false;    // evicted under FadeOldest, no longer counted by the limits
@@ -235,12 +242,13 @@ struct DecalSystem::Impl {
         d.type = typeIndex;
         d.spawnTime = time;
         d.opacity = 1.0f;
-        if (!soundBox(d)) {
+        if (!soundBox(d) || !soundWorldBox(toWorld(d))) {
             rng = unused;
             return reject(SpawnStatus::InvalidArgument,
                           "the box of a decal of type '" + t.name + "' on '" + o.name +
-                              "' is degenerate in the object's space (size " + formatNumber(d.size.x) +
-                              " x " + formatNumber(d.size.y) + ", half-depth " + formatNumber(d.halfDepth) +
+                              "' is degenerate in the object's or the world's space (size " +
+                              formatNumber(d.size.x) + " x " + formatNumber(d.size.y) + ", half-depth " +
+                              formatNumber(d.halfDepth) +
                               "): the size, depthMargin or the object's scale is too small or too large");
         }
         const CellKey key = cellKey(objectIndex, local);

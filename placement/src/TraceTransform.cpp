@@ -72,16 +72,24 @@ std::string traceTransformProblem(const glm::dmat4& transform, const Bounds& loc
         return "transform scales by less than single precision allows (inverse norm " + number(inverse) +
                ", limit " + limit(kTraceMaxScale) + ")";
     if (local.empty()) return {};
-    double reach = 0.0;
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (int i = 0; i < 8; ++i) {
         const glm::dvec3 p((i & 1) ? local.max.x : local.min.x, (i & 2) ? local.max.y : local.min.y,
                            (i & 4) ? local.max.z : local.min.z);
         const glm::dvec3 f = glm::dvec3(transform * glm::dvec4(p, 1.0)) - frameOrigin;
-        reach = std::fmax(reach, std::fmax(std::fabs(f.x), std::fmax(std::fabs(f.y), std::fabs(f.z))));
+        lo = glm::min(lo, f);
+        hi = glm::max(hi, f);
     }
+    const glm::dvec3 far = glm::max(glm::abs(lo), glm::abs(hi)), size = hi - lo;
+    const double reach = std::fmax(far.x, std::fmax(far.y, far.z));
+    const double extent = std::fmax(size.x, std::fmax(size.y, size.z));
     if (!(reach <= kTraceMaxFrameExtent))
         return "object lies " + number(reach) + " from the collision world's origin, beyond the " +
                limit(kTraceMaxFrameExtent) + " single precision keeps";
+    if (!(extent > 0.0)) return "collision mesh is a single point";
+    if (extent < kTraceMinRelativeSize * reach)
+        return "object is too small for single precision at its place (size " + number(extent) + " at " +
+               number(reach) + " from the collision world's origin)";
     return {};
 }
 

@@ -51,6 +51,12 @@ void DecalBatch::setDecals(const std::vector<Decal>& decals, size_t objectCount)
     rebuild();
 }
 
+void DecalBatch::setObjectCount(size_t objectCount) {
+    if (objectCount == objectCount_) return;
+    objectCount_ = objectCount;
+    rebuild();
+}
+
 bool DecalBatch::build(const Decal& d, DecalGpu& out) const {
     out = DecalGpu{};
     if (d.object >= objectCount_ || d.type >= types_.size()) return false;
@@ -135,11 +141,10 @@ void DecalBatch::rebuild() {
     std::sort(dirty_.begin(), dirty_.end());
 }
 
-DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms, const Camera& camera,
-                                 double aspect) const {
+DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms,
+                                 const CullView& view) const {
     DecalVisibility vis;
-    const glm::dmat4 viewProj = projection(camera, aspect) * viewRotation(camera);
-    const double radius = nearPlaneRadius(camera, aspect) * 1.01;
+    const double radius = view.nearRadius * 1.01;
     for (size_t i = 0; i < decals_.size(); ++i) {
         if (!valid_[i]) continue;
         const Decal& d = decals_[i];
@@ -153,14 +158,15 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
         int outside[6] = {0, 0, 0, 0, 0, 0};
         for (int c = 0; c < 8; ++c) {
             const glm::dvec4 corner((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0, 1.0);
-            const glm::dvec3 rel = glm::dvec3(boxToWorld * corner) - camera.eye;
-            const glm::dvec4 clip = viewProj * glm::dvec4(rel, 1.0);
+            const glm::dvec3 rel = glm::dvec3(boxToWorld * corner) - view.eye;
+            const glm::dvec4 clip = view.viewProj * glm::dvec4(rel, 1.0);
+            const double low = view.clipMinusOne ? -clip.w : 0.0; // the low end of clip depth
             outside[0] += clip.x < -clip.w;
             outside[1] += clip.x > clip.w;
             outside[2] += clip.y < -clip.w;
             outside[3] += clip.y > clip.w;
-            outside[4] += clip.z > clip.w; // in front of the near plane (reversed-Z)
-            outside[5] += clip.z < 0.0;    // beyond the far plane (never with an infinite one)
+            outside[4] += view.reversedZ ? clip.z > clip.w : clip.z < low; // in front of the near plane
+            outside[5] += view.reversedZ ? clip.z < low : clip.z > clip.w; // beyond the far plane
         }
         if (std::any_of(outside, outside + 6, [](int n) { return n == 8; })) {
             ++vis.culled;
@@ -171,7 +177,7 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
         // the inverse maps world offsets to box coordinate r, so the sphere reaches |u_r| <= 1 only
         // if |u_r| <= 1 + radius * |row r|.
         const glm::dmat4 worldToBox = glm::inverse(boxToWorld);
-        const glm::dvec3 u = glm::dvec3(worldToBox * glm::dvec4(camera.eye, 1.0));
+        const glm::dvec3 u = glm::dvec3(worldToBox * glm::dvec4(view.eye, 1.0));
         bool inside = true;
         for (int r = 0; r < 3 && inside; ++r) {
             const double rowLength =

@@ -8,7 +8,8 @@
 
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalType.hpp"
-#include "spatter/render/Camera.hpp"
+
+#include <glm/glm.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -24,12 +25,23 @@ struct DecalVisibility {
     size_t culled = 0;             // valid decals outside the view
 };
 
+// The view the decals are culled against, in the host's clip conventions.
+struct CullView {
+    glm::dmat4 viewProj{1.0};  // camera-relative world -> clip
+    glm::dvec3 eye{0.0};       // world
+    bool reversedZ = true;     // near at clip depth w, far at the low end
+    bool clipMinusOne = false; // clip depth range [-w, w] (GL's default), else [0, w]
+    double nearRadius = 0.0;   // radius of a sphere around the eye holding the near plane's rectangle
+};
+
 class DecalBatch {
 public:
     // Settings that shape the instance data; a change rebuilds every instance.
     void configure(float wrapMaxAngleDeg, int layerCount);
     void setTypes(std::vector<DecalType> types);
     void setDecals(const std::vector<Decal>& decals, size_t objectCount);
+    // Decals naming an object at or past `objectCount` are invalid.
+    void setObjectCount(size_t objectCount);
 
     size_t size() const { return gpu_.size(); }
     size_t invalidCount() const { return invalid_; }
@@ -41,9 +53,8 @@ public:
     void markUploaded() { dirty_.clear(); }
 
     // Frustum culling of the valid decals under the current object transforms (world space,
-    // double) and camera, for a viewport of the given aspect ratio.
-    DecalVisibility cull(const std::vector<glm::dmat4>& objectTransforms, const Camera& camera,
-                         double aspect) const;
+    // double) against `view`.
+    DecalVisibility cull(const std::vector<glm::dmat4>& objectTransforms, const CullView& view) const;
 
 private:
     void rebuild();

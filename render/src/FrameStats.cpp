@@ -64,9 +64,9 @@ std::string toJson(const FrameStats& s) {
     field("cpu_ms", number(s.cpuMs));
     field("gpu_ms", "{\"geometry\":" + number(s.gpu.geometryMs) + ",\"decals\":" + number(s.gpu.decalsMs) +
                         ",\"late\":" + number(s.gpu.lateMs) + ",\"lighting\":" + number(s.gpu.lightingMs) +
-                        ",\"overlay\":" + number(s.gpu.overlayMs) + ",\"splat\":" + number(s.gpu.splatMs) + ",\"volumetric\":" + number(s.gpu.volumetricMs) +
-                        ",\"total\":" + number(s.gpu.totalMs()) +
-                        ",\"frame\":" + std::to_string(s.gpu.frame) + "}");
+                        ",\"overlay\":" + number(s.gpu.overlayMs) + ",\"splat\":" + number(s.gpu.splatMs) +
+                        ",\"volumetric\":" + number(s.gpu.volumetricMs) + ",\"total\":" +
+                        number(s.gpu.totalMs()) + ",\"frame\":" + std::to_string(s.gpu.frame) + "}");
     field("gl_renderer", quoted(s.glRenderer));
     field("gl_vendor", quoted(s.glVendor));
     field("gl_version", quoted(s.glVersion));

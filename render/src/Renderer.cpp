@@ -1,13 +1,14 @@
 #include "spatter/render/Renderer.hpp"
 
 #include "DecalBatch.hpp"
-#include "DecalTextureArray.hpp"
 #include "GBuffer.hpp"
 #include "GlObjects.hpp"
 #include "GlState.hpp"
 #include "GpuLayouts.hpp"
 #include "GpuTimers.hpp"
+#include "NormalMatrix.hpp"
 #include "OverlayMeshes.hpp"
+#include "RendererShaders.hpp"
 #include "SceneGpu.hpp"
 #include "ShaderProgram.hpp"
 #include "TextureSpaceDecals.hpp"
@@ -20,6 +21,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
+#include <optional>
 #include <unordered_set>
 
 namespace spatter {
@@ -27,51 +29,6 @@ namespace spatter {
 using namespace render_detail;
 
 namespace {
-
-// Decal shader variant bits: the features a frame's visible decals use.
-enum Variant : uint32_t {
-    kVariantIds = 1u,
-    kVariantWrap = 2u,
-    kVariantNormalMap = 4u,
-    kVariantFade = 8u,
-    kVariantCoverage = 16u,
-    kVariantDepthFrame = 32u,
-    kVariantNoAngle = 64u, // angle rejection switched off (DecalSwitches::angleReject)
-};
-
-std::vector<std::string> variantDefines(uint32_t bits) {
-    std::vector<std::string> d;
-    if (bits & kVariantIds) d.push_back("IDS");
-    if (bits & kVariantWrap) d.push_back("WRAP");
-    if (bits & kVariantNormalMap) d.push_back("NORMAL_MAP");
-    if (bits & kVariantFade) d.push_back("FADE");
-    if (bits & kVariantCoverage) d.push_back("COVERAGE");
-    if (bits & kVariantDepthFrame) d.push_back("DEPTH_FRAME");
-    if (bits & kVariantNoAngle) d.push_back("NO_ANGLE");
-    return d;
-}
-
-std::string join(const std::vector<std::string>& parts) {
-    std::string s;
-    for (const std::string& p : parts)
-        s += (s.empty() ? "" : " ") + p;
-    return s;
-}
-
-bool finiteMatrix(const glm::dmat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    return true;
-}
-
-// The inverse transpose of `m`; for a singular m (an object flattened by a scale of 0) the cofactor
-// matrix, which maps normals in the same directions wherever the inverse exists and stays finite.
-glm::dmat3 normalMatrix(const glm::dmat3& m) {
-    const glm::dmat3 inverseTranspose = glm::transpose(glm::inverse(m));
-    if (finiteMatrix(glm::dmat4(inverseTranspose))) return inverseTranspose;
-    return glm::dmat3(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1]));
-}
 
 bool finiteVec(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -139,10 +96,9 @@ struct Renderer::Impl {
     bool hasDynamic = false;
     bool hasLate = false;
 
-    DecalBatch batch;
+    std::optional<DecalProjector> projector; // the decal pass, as any host uses it
     VolumetricDecals volumetric;
     std::vector<DecalType> types; // as given to setDecalTypes, for routing volumetric decals
-    DecalTextureArray decalTextures;
 
     // Texture-space decals and deformation, per object.
     std::vector<Mesh> meshes; // render meshes, for the UV check of setObjectDecalMode
@@ -158,17 +114,12 @@ struct Renderer::Impl {
     GlBuffer splatBuffer, splatLists;
 
     GlProgram geometryProgram, lightingProgram, viewProgram;
-    std::map<uint32_t, GlProgram> decalPrograms;
     GlProgram meshOverlayProgram, boxOverlayProgram; // built on first use
     OverlayMeshes overlayMeshes;
 
     GlBuffer frameBuffer;
     GlBuffer objectBuffer;
     size_t objectCapacity = 0;
-    GlBuffer decalBuffer;
-    size_t decalCapacity = 0;
-    GlBuffer visibleBuffer;
-    size_t visibleCapacity = 0;
     GlVertexArray emptyVao;
     GlTexture zeroIds; // bound as s_ids when there is no ID target
 
@@ -181,22 +132,12 @@ struct Renderer::Impl {
     size_t drawCalls = 0;
     size_t triangles = 0;
 
-    Result<GLuint> decalProgram(uint32_t bits) {
-        auto it = decalPrograms.find(bits);
-        if (it != decalPrograms.end()) return it->second.get();
-        Result<GlProgram> p = buildProgram(
-            {{GL_VERTEX_SHADER, "decal.vert"}, {GL_FRAGMENT_SHADER, "decal.frag"}}, variantDefines(bits));
-        if (!p) return fail("renderer: " + p.error());
-        const GLuint name = p->get();
-        decalPrograms.emplace(bits, std::move(p.value()));
-        return name;
-    }
-
     // The overlay program with vertex stage `vert`, built into `slot` on first use.
     static Result<GLuint> overlayProgram(GlProgram& slot, const char* vert) {
         if (slot) return slot.get();
         Result<GlProgram> p =
-            buildProgram({{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "overlay.frag"}}, {});
+            buildProgram(shaderLibrary(kRendererShaders),
+                         {{GL_VERTEX_SHADER, vert}, {GL_FRAGMENT_SHADER, "overlay.frag"}}, {});
         if (!p) return fail("renderer: " + p.error());
         slot = std::move(p.value());
         return slot.get();
@@ -206,8 +147,9 @@ struct Renderer::Impl {
         glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBlock, frameBuffer.get());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBuffer, objectBuffer.get());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBuffer, scene.materialBuffer());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBuffer, decalBuffer.get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBuffer, visibleBuffer.get());
+        const ProjectorResources decals = projector->resources();
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBuffer, decals.decals);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBuffer, decals.visible);
     }
 
     GLuint idTexture() const { return gbuffer.hasIds() ? gbuffer.ids() : zeroIds.get(); }
@@ -267,55 +209,20 @@ struct Renderer::Impl {
         drawObjects(true);
     }
 
-    // Pass 2: the decal boxes over the G-buffer (or their coverage).
-    void decalPass(GLuint program, const DecalVisibility& vis, bool coverage) {
-        baseState(gbuffer.framebuffer());
-        if (!coverage) {
-            glCopyImageSubData(gbuffer.normal(), GL_TEXTURE_2D, 0, 0, 0, 0, gbuffer.normalCopy(),
-                               GL_TEXTURE_2D, 0, 0, 0, 0, gbuffer.width(), gbuffer.height(), 1);
-            const GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                       GL_NONE, GL_NONE};
-            glDrawBuffers(5, buffers);
-            glEnable(GL_BLEND);
-            glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-            glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);   // albedo; keep the surface's alpha
-            glColorMaski(1, GL_TRUE, GL_TRUE, GL_FALSE, GL_FALSE);  // octahedral normal
-            glColorMaski(2, GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE); // roughness; keep metallic
-            glEnable(GL_FRAMEBUFFER_SRGB);
-        } else {
-            const GLenum buffers[5] = {GL_NONE, GL_NONE, GL_NONE, GL_NONE, GL_COLOR_ATTACHMENT4};
-            glDrawBuffers(5, buffers);
-        }
-        glBindTextureUnit(0, gbuffer.depth());
-        // The coverage variant reads the live normals: nothing writes them during it.
-        glBindTextureUnit(1, coverage ? gbuffer.normal() : gbuffer.normalCopy());
-        glBindTextureUnit(2, idTexture());
-        glBindTextureUnit(3, decalTextures.albedoTexture());
-        glBindTextureUnit(4, decalTextures.normalTexture());
-        glUseProgram(program);
-        glBindVertexArray(emptyVao.get());
-        glEnable(GL_CULL_FACE);
-
-        // Boxes in front of the eye: back faces culled, depth test "box face not behind the scene".
-        if (!vis.outside.empty()) {
-            glCullFace(GL_BACK);
-            glEnable(GL_DEPTH_TEST);
-            glDepthFunc(GL_GEQUAL);
-            glUniform1ui(0, 0u);
-            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(vis.outside.size()));
-            ++drawCalls;
-        }
-        // Boxes that may hold the eye or cross the near plane: their far faces, no depth test.
-        if (!vis.inside.empty()) {
-            glCullFace(GL_FRONT);
-            glDisable(GL_DEPTH_TEST);
-            glUniform1ui(0, GLuint(vis.outside.size()));
-            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(vis.inside.size()));
-            ++drawCalls;
-        }
-        glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glColorMaski(2, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    // The G-buffer as the projector's host frame (pass 2: the decals, or their coverage).
+    HostFrame hostFrame(const Camera& camera) const {
+        HostFrame f;
+        f.width = gbuffer.width();
+        f.height = gbuffer.height();
+        f.view = viewRotation(camera) * glm::translate(glm::dmat4(1.0), -camera.eye);
+        f.projection = projection(camera, double(f.width) / double(f.height));
+        f.eye = camera.eye;
+        f.depth = {gbuffer.depth(), DepthEncoding::Window, ClipDepth::ZeroToOne, true};
+        f.normals = {gbuffer.normal(), NormalEncoding::OctahedralWorld};
+        f.albedoTexture = gbuffer.albedo();
+        f.roughness = {gbuffer.material(), 0};
+        f.objectIdTexture = gbuffer.hasIds() ? gbuffer.ids() : 0;
+        return f;
     }
 
     // Pass 3: objects that take no decals, over whatever the decals wrote.
@@ -461,52 +368,11 @@ struct Renderer::Impl {
         splatLists = createBuffer();
         glNamedBufferStorage(splatLists.get(), GLsizeiptr(lists.size() * sizeof(uint32_t)), lists.data(), 0);
         splatBatch.markUploaded();
-        Result<size_t> n = textureSpace.splat(perObject, scene, splatBuffer.get(), splatLists.get(),
-                                              decalTextures.albedoTexture(), decalTextures.normalTexture(),
-                                              settings.fadeStart, drawCalls);
+        Result<size_t> n = textureSpace.splat(
+            perObject, scene, splatBuffer.get(), splatLists.get(), projector->resources().albedoLayers,
+            projector->resources().normalLayers, settings.fadeStart, drawCalls);
         splatBatch.setDecals({}, transforms.size());
         return n;
-    }
-
-    // Sends changed decal instances and this frame's visible list; returns the bytes sent.
-    size_t uploadDecals(const DecalVisibility& vis) {
-        size_t bytes = 0;
-        const std::vector<DecalGpu>& inst = batch.instances();
-        if (inst.size() > decalCapacity) {
-            decalCapacity = std::max<size_t>(64, decalCapacity);
-            while (decalCapacity < inst.size())
-                decalCapacity *= 2;
-            decalBuffer = createBuffer();
-            glNamedBufferStorage(decalBuffer.get(), GLsizeiptr(decalCapacity * sizeof(DecalGpu)), nullptr,
-                                 GL_DYNAMIC_STORAGE_BIT);
-            glNamedBufferSubData(decalBuffer.get(), 0, GLsizeiptr(inst.size() * sizeof(DecalGpu)),
-                                 inst.data());
-            bytes += inst.size() * sizeof(DecalGpu);
-        } else {
-            for (const auto& r : batch.dirty()) {
-                glNamedBufferSubData(decalBuffer.get(), GLintptr(r.first * sizeof(DecalGpu)),
-                                     GLsizeiptr((r.second - r.first) * sizeof(DecalGpu)), &inst[r.first]);
-                bytes += (r.second - r.first) * sizeof(DecalGpu);
-            }
-        }
-        batch.markUploaded();
-
-        const size_t count = vis.outside.size() + vis.inside.size();
-        if (count == 0) return bytes;
-        if (count > visibleCapacity) {
-            visibleCapacity = std::max<size_t>(64, visibleCapacity);
-            while (visibleCapacity < count)
-                visibleCapacity *= 2;
-            visibleBuffer = createBuffer();
-            glNamedBufferStorage(visibleBuffer.get(), GLsizeiptr(visibleCapacity * sizeof(uint32_t)), nullptr,
-                                 GL_DYNAMIC_STORAGE_BIT);
-        }
-        std::vector<uint32_t> list;
-        list.reserve(count);
-        list.insert(list.end(), vis.outside.begin(), vis.outside.end());
-        list.insert(list.end(), vis.inside.begin(), vis.inside.end());
-        glNamedBufferSubData(visibleBuffer.get(), 0, GLsizeiptr(list.size() * sizeof(uint32_t)), list.data());
-        return bytes + list.size() * sizeof(uint32_t);
     }
 };
 
@@ -523,13 +389,16 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
     impl->settings = settings;
 
     Result<GlProgram> geometry =
-        buildProgram({{GL_VERTEX_SHADER, "geometry.vert"}, {GL_FRAGMENT_SHADER, "geometry.frag"}}, {});
+        buildProgram(shaderLibrary(kRendererShaders),
+                     {{GL_VERTEX_SHADER, "geometry.vert"}, {GL_FRAGMENT_SHADER, "geometry.frag"}}, {});
     if (!geometry) return fail("renderer: " + geometry.error());
     Result<GlProgram> lighting =
-        buildProgram({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}}, {});
+        buildProgram(shaderLibrary(kRendererShaders),
+                     {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "lighting.frag"}}, {});
     if (!lighting) return fail("renderer: " + lighting.error());
     Result<GlProgram> view =
-        buildProgram({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "view.frag"}}, {});
+        buildProgram(shaderLibrary(kRendererShaders),
+                     {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "view.frag"}}, {});
     if (!view) return fail("renderer: " + view.error());
     impl->geometryProgram = std::move(geometry.value());
     impl->lightingProgram = std::move(lighting.value());
@@ -537,20 +406,22 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
 
     if (Status s = impl->gbuffer.create(settings.width, settings.height, false); !s)
         return fail("renderer: " + s.error());
-    if (Status s = impl->decalTextures.create(settings.decalTextureSize); !s)
-        return fail("renderer: " + s.error());
-    impl->batch.configure(settings.wrapMaxAngleDeg, impl->decalTextures.layers());
-    impl->splatBatch.configure(settings.wrapMaxAngleDeg, impl->decalTextures.layers());
+    ProjectorSettings projector;
+    projector.wrapMaxAngleDeg = settings.wrapMaxAngleDeg;
+    projector.fadeStart = settings.fadeStart;
+    projector.normalFrame = settings.normalFrame;
+    projector.decalTextureSize = settings.decalTextureSize;
+    projector.waitForTimers = settings.waitForTimers;
+    Result<DecalProjector> p = DecalProjector::create(projector);
+    if (!p) return fail("renderer: " + p.error());
+    impl->projector.emplace(std::move(p).value());
+    impl->splatBatch.configure(settings.wrapMaxAngleDeg, impl->projector->decalTextureLayers());
 
     impl->frameBuffer = createBuffer();
     glNamedBufferStorage(impl->frameBuffer.get(), sizeof(FrameGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
     // Placeholders so that every binding point has a buffer before the first scene.
     impl->objectBuffer = createBuffer();
     glNamedBufferStorage(impl->objectBuffer.get(), sizeof(ObjectGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    impl->decalBuffer = createBuffer();
-    glNamedBufferStorage(impl->decalBuffer.get(), sizeof(DecalGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    impl->visibleBuffer = createBuffer();
-    glNamedBufferStorage(impl->visibleBuffer.get(), sizeof(uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
     impl->emptyVao = createVertexArray();
     impl->zeroIds = createTexture(GL_TEXTURE_2D);
     glTextureStorage2D(impl->zeroIds.get(), 1, GL_R8UI, 1, 1);
@@ -604,7 +475,7 @@ Status Renderer::setScene(const Scene& scene) {
         glNamedBufferStorage(m.objectBuffer.get(), GLsizeiptr(m.objectCapacity * sizeof(ObjectGpu)), nullptr,
                              GL_DYNAMIC_STORAGE_BIT);
     }
-    m.batch.setDecals({}, n);
+    m.projector->setDecals({});
     m.volumetric.setDecals({}, m.types, n);
     m.overlayMeshes.clear();
     return {};
@@ -688,7 +559,7 @@ Status Renderer::setTime(double seconds) {
 
 void Renderer::setDecalTypes(const std::vector<DecalType>& types) {
     impl_->types = types;
-    impl_->batch.setTypes(types);
+    impl_->projector->setDecalTypes(types);
     impl_->splatBatch.setTypes(types);
 }
 
@@ -708,7 +579,7 @@ void Renderer::setDecals(const std::vector<Decal>& decals) {
     }
     if (m.textureSpace.objectCount() == 0) {
         m.decalsTextureSpace = 0;
-        m.batch.setDecals(*rest, n);
+        m.projector->setDecals(*rest);
         return;
     }
     std::vector<Decal> projected;
@@ -722,15 +593,13 @@ void Renderer::setDecals(const std::vector<Decal>& decals) {
         ++m.decalsTextureSpace;
         if (m.splatted[d.object].insert(decalKey(d)).second) m.pendingSplats.push_back(d);
     }
-    m.batch.setDecals(projected, n);
+    m.projector->setDecals(projected);
 }
 
 Result<int> Renderer::addDecalTexture(const Image& albedo, const Image& normalMap) {
-    Result<int> layer = impl_->decalTextures.add(albedo, normalMap);
-    if (layer) {
-        impl_->batch.configure(impl_->settings.wrapMaxAngleDeg, impl_->decalTextures.layers());
-        impl_->splatBatch.configure(impl_->settings.wrapMaxAngleDeg, impl_->decalTextures.layers());
-    }
+    Result<int> layer = impl_->projector->addDecalTexture(albedo, normalMap);
+    if (layer)
+        impl_->splatBatch.configure(impl_->settings.wrapMaxAngleDeg, impl_->projector->decalTextureLayers());
     return layer;
 }
 
@@ -747,7 +616,7 @@ Result<int> Renderer::addDecalTextureFile(const std::string& albedoPath, const s
 }
 
 int Renderer::decalTextureLayers() const {
-    return impl_->decalTextures.layers();
+    return impl_->projector->decalTextureLayers();
 }
 
 Status Renderer::setOverlayMeshes(const std::vector<Mesh>& meshes) {
@@ -805,42 +674,13 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
     stats.glVendor = m.info.vendor;
     stats.glVersion = m.info.version;
 
-    // Decide the decal work first: a shader that fails to build fails the frame before any GL work.
-    const double aspect = double(m.gbuffer.width()) / double(m.gbuffer.height());
-    const DecalVisibility vis = m.batch.cull(m.transforms, camera, aspect);
-    stats.decals = m.batch.size();
-    stats.decalsInvalid = m.batch.invalidCount();
-    stats.decalsCulled = vis.culled;
-    stats.decalsDrawn = vis.outside.size() + vis.inside.size();
-    stats.decalsInside = vis.inside.size();
-    stats.decalPassSkipped = stats.decalsDrawn == 0;
-    GLuint decalProgram = 0;
-    if (!stats.decalPassSkipped) {
-        uint32_t bits = 0;
-        if (m.gbuffer.hasIds() && options.decals.idClipping) bits |= kVariantIds;
-        if (!options.decals.angleReject) bits |= kVariantNoAngle;
-        if (vis.flags & kDecalWrap) bits |= kVariantWrap;
-        if (coverage) {
-            bits |= kVariantCoverage;
-        } else {
-            if (vis.flags & kDecalNormalMap) {
-                bits |= kVariantNormalMap;
-                if (m.settings.normalFrame == DecalNormalFrame::DepthDerivatives) bits |= kVariantDepthFrame;
-            }
-            if (vis.flags & (kDecalFadeLinear | kDecalFadeSmooth)) bits |= kVariantFade;
-        }
-        Result<GLuint> program = m.decalProgram(bits);
-        if (!program) return fail(program.error());
-        decalProgram = program.value();
-        stats.decalVariant = join(variantDefines(bits));
-    }
     GLuint meshOverlay = 0, boxOverlay = 0;
     if (overlays.proxyWireframe && m.overlayMeshes.indexCount() > 0) {
         Result<GLuint> p = Impl::overlayProgram(m.meshOverlayProgram, "overlay_mesh.vert");
         if (!p) return fail(p.error());
         meshOverlay = p.value();
     }
-    if (overlays.decalBoxes && stats.decalsDrawn > 0) {
+    if (overlays.decalBoxes) {
         Result<GLuint> p = Impl::overlayProgram(m.boxOverlayProgram, "overlay_box.vert");
         if (!p) return fail(p.error());
         boxOverlay = p.value();
@@ -863,7 +703,6 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
     stats.textureSpaceObjects = m.textureSpace.objectCount();
     stats.textureSpaceBytes = m.textureSpace.bytes();
     m.uploadFrame(camera);
-    stats.decalBytesUploaded = m.uploadDecals(vis);
 
     m.timers.begin(GpuPass::Geometry);
     m.geometryPass();
@@ -878,11 +717,29 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
             m.volumetric.draw(m.gbuffer, m.idTexture(), compareIds, coverage, m.transforms, camera.eye);
         m.timers.end();
     }
-    if (!stats.decalPassSkipped) {
-        m.timers.begin(GpuPass::Decals);
-        m.decalPass(decalProgram, vis, coverage);
-        m.timers.end();
+    // Pass 2, by the projector (it times itself: GL timer queries do not nest).
+    ProjectorDraw draw;
+    draw.coverageTexture = coverage ? m.gbuffer.coverage() : 0;
+    draw.idClipping = options.decals.idClipping;
+    draw.angleReject = options.decals.angleReject;
+    if (Status s = m.projector->setObjects(m.transforms, m.objectIds); !s) {
+        m.timers.endFrame(false);
+        return fail("renderer: " + s.error());
     }
+    Result<ProjectorStats> decals = m.projector->draw(m.hostFrame(camera), draw);
+    if (!decals) {
+        m.timers.endFrame(false);
+        return fail("renderer: " + decals.error());
+    }
+    stats.decals = decals->decals;
+    stats.decalsInvalid += decals->invalid;
+    stats.decalsCulled = decals->culled;
+    stats.decalsDrawn = decals->drawn;
+    stats.decalsInside = decals->inside;
+    stats.decalBytesUploaded = decals->bytesUploaded;
+    stats.decalPassSkipped = decals->skipped;
+    stats.decalVariant = decals->variant;
+    m.drawCalls += decals->drawCalls;
     if (m.hasLate) {
         m.timers.begin(GpuPass::Late);
         m.latePass(coverage);
@@ -891,12 +748,14 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
     m.timers.begin(GpuPass::Lighting);
     m.outputPass(view);
     m.timers.end();
+    if (stats.decalsDrawn == 0) boxOverlay = 0;
     if (meshOverlay != 0 || boxOverlay != 0) {
         m.timers.begin(GpuPass::Overlay);
         stats.overlayLines = m.overlayPass(overlays, meshOverlay, boxOverlay, stats.decalsDrawn);
         m.timers.end();
     }
     stats.gpu = m.timers.endFrame(m.settings.waitForTimers);
+    stats.gpu.decalsMs = decals->gpuMs;
 
     glBindVertexArray(0);
     glUseProgram(0);

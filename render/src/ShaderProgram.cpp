@@ -1,7 +1,5 @@
 #include "ShaderProgram.hpp"
 
-#include "ShaderSources.hpp"
-
 #include <algorithm>
 #include <set>
 #include <sstream>
@@ -12,20 +10,21 @@ namespace {
 
 constexpr int kMaxIncludeDepth = 8;
 
-int findSource(const std::string& name) {
-    for (size_t i = 0; i < sizeof(kShaderSources) / sizeof(kShaderSources[0]); ++i)
-        if (name == kShaderSources[i].name) return int(i);
+int findSource(const ShaderLibrary& lib, const std::string& name) {
+    for (size_t i = 0; i < lib.count; ++i)
+        if (name == lib.files[i].name) return int(i);
     return -1;
 }
 
-std::string sourceList() {
+std::string sourceList(const ShaderLibrary& lib) {
     std::string s;
-    for (size_t i = 0; i < sizeof(kShaderSources) / sizeof(kShaderSources[0]); ++i)
-        s += (i ? ", " : "") + std::to_string(i) + " = " + kShaderSources[i].name;
+    for (size_t i = 0; i < lib.count; ++i)
+        s += (i ? ", " : "") + std::to_string(i) + " = " + lib.files[i].name;
     return s;
 }
 
-Status expand(int index, std::set<int>& included, int depth, std::string& out) {
+Status expand(const ShaderLibrary& lib, int index, std::set<int>& included, int depth, std::string& out) {
+    const ShaderSource* kShaderSources = lib.files;
     if (depth > kMaxIncludeDepth)
         return fail(std::string("shader ") + kShaderSources[index].name + ": includes nest too deep");
     std::istringstream in(kShaderSources[index].text);
@@ -41,12 +40,12 @@ Status expand(int index, std::set<int>& included, int depth, std::string& out) {
                 return fail(std::string("shader ") + kShaderSources[index].name + ":" +
                             std::to_string(lineNo) + ": malformed #include");
             const std::string name = line.substr(a + 1, b - a - 1);
-            const int inc = findSource(name);
+            const int inc = findSource(lib, name);
             if (inc < 0)
                 return fail(std::string("shader ") + kShaderSources[index].name + ":" +
                             std::to_string(lineNo) + ": no embedded file '" + name + "'");
             if (included.insert(inc).second) {
-                if (Status s = expand(inc, included, depth + 1, out); !s) return s;
+                if (Status s = expand(lib, inc, included, depth + 1, out); !s) return s;
             }
             out += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
             continue;
@@ -57,7 +56,8 @@ Status expand(int index, std::set<int>& included, int depth, std::string& out) {
     return {};
 }
 
-Result<GlShader> compile(GLenum type, const std::string& file, const std::string& text) {
+Result<GlShader> compile(const ShaderLibrary& lib, GLenum type, const std::string& file,
+                         const std::string& text) {
     GlShader shader(glCreateShader(type));
     const char* src = text.c_str();
     glShaderSource(shader.get(), 1, &src, nullptr);
@@ -71,33 +71,35 @@ Result<GlShader> compile(GLenum type, const std::string& file, const std::string
         GLsizei written = 0;
         glGetShaderInfoLog(shader.get(), GLsizei(log.size()), &written, log.data());
         log.resize(size_t(std::max(written, 0)));
-        return fail("shader " + file + " does not compile (source strings: " + sourceList() + "):\n" + log);
+        return fail("shader " + file + " does not compile (source strings: " + sourceList(lib) + "):\n" +
+                    log);
     }
     return shader;
 }
 
 } // namespace
 
-Result<std::string> expandShader(const std::string& file, const std::vector<std::string>& defines) {
-    const int index = findSource(file);
+Result<std::string> expandShader(const ShaderLibrary& library, const std::string& file,
+                                 const std::vector<std::string>& defines) {
+    const int index = findSource(library, file);
     if (index < 0) return fail("no embedded shader file '" + file + "'");
     std::string out = "#version 450 core\n";
     for (const std::string& d : defines)
         out += "#define " + d + " 1\n";
     std::set<int> included{index};
-    if (Status s = expand(index, included, 0, out); !s) return fail(s.error());
+    if (Status s = expand(library, index, included, 0, out); !s) return fail(s.error());
     return out;
 }
 
-Result<GlProgram> buildProgram(const std::vector<ShaderStage>& stages,
+Result<GlProgram> buildProgram(const ShaderLibrary& library, const std::vector<ShaderStage>& stages,
                                const std::vector<std::string>& defines) {
     GlProgram program(glCreateProgram());
     std::vector<GlShader> shaders;
     std::string names;
     for (const ShaderStage& st : stages) {
-        Result<std::string> text = expandShader(st.file, defines);
+        Result<std::string> text = expandShader(library, st.file, defines);
         if (!text) return fail(text.error());
-        Result<GlShader> sh = compile(st.type, st.file, text.value());
+        Result<GlShader> sh = compile(library, st.type, st.file, text.value());
         if (!sh) return fail(sh.error());
         glAttachShader(program.get(), sh->get());
         shaders.push_back(std::move(sh.value()));

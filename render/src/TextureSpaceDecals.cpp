@@ -1,6 +1,7 @@
 #include "TextureSpaceDecals.hpp"
 
 #include "GlState.hpp"
+#include "RendererShaders.hpp"
 #include "ShaderProgram.hpp"
 
 namespace spatter::render_detail {
@@ -48,13 +49,16 @@ void TextureSpaceDecals::reset(size_t objectCount) {
 Status TextureSpaceDecals::buildPrograms() {
     if (maskProgram_) return {};
     Result<GlProgram> mask =
-        buildProgram({{GL_VERTEX_SHADER, "splat.vert"}, {GL_FRAGMENT_SHADER, "splat.frag"}}, {"MASK"});
+        buildProgram(shaderLibrary(kRendererShaders),
+                     {{GL_VERTEX_SHADER, "splat.vert"}, {GL_FRAGMENT_SHADER, "splat.frag"}}, {"MASK"});
     if (!mask) return fail("texture-space decals: " + mask.error());
     Result<GlProgram> splat =
-        buildProgram({{GL_VERTEX_SHADER, "splat.vert"}, {GL_FRAGMENT_SHADER, "splat.frag"}}, {});
+        buildProgram(shaderLibrary(kRendererShaders),
+                     {{GL_VERTEX_SHADER, "splat.vert"}, {GL_FRAGMENT_SHADER, "splat.frag"}}, {});
     if (!splat) return fail("texture-space decals: " + splat.error());
     Result<GlProgram> dilate =
-        buildProgram({{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "dilate.frag"}}, {});
+        buildProgram(shaderLibrary(kRendererShaders),
+                     {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "dilate.frag"}}, {});
     if (!dilate) return fail("texture-space decals: " + dilate.error());
     maskProgram_ = std::move(mask.value());
     splatProgram_ = std::move(splat.value());

@@ -1,5 +1,6 @@
 #include "VolumetricDecals.hpp"
 
+#include "RendererShaders.hpp"
 #include "ShaderProgram.hpp"
 
 #include "spatter/core/CraterMesh.hpp"
@@ -94,13 +95,14 @@ Status VolumetricDecals::create() {
 
     const std::vector<ShaderStage> mark = {{GL_VERTEX_SHADER, "crater.vert"},
                                            {GL_FRAGMENT_SHADER, "crater_mark.frag"}};
-    Result<GlProgram> p = buildProgram(mark, {});
+    Result<GlProgram> p = buildProgram(shaderLibrary(kRendererShaders), mark, {});
     if (!p) return fail("volumetric decals: " + p.error());
     markProgram_ = std::move(p.value());
-    p = buildProgram(mark, {"IDS"});
+    p = buildProgram(shaderLibrary(kRendererShaders), mark, {"IDS"});
     if (!p) return fail("volumetric decals: " + p.error());
     markIdsProgram_ = std::move(p.value());
-    p = buildProgram({{GL_VERTEX_SHADER, "crater.vert"}, {GL_FRAGMENT_SHADER, "crater.frag"}}, {});
+    p = buildProgram(shaderLibrary(kRendererShaders),
+                     {{GL_VERTEX_SHADER, "crater.vert"}, {GL_FRAGMENT_SHADER, "crater.frag"}}, {});
     if (!p) return fail("volumetric decals: " + p.error());
     craterProgram_ = std::move(p.value());
     return {};

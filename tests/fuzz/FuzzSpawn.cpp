@@ -94,15 +94,17 @@ glm::dvec3 pickVec(FuzzedDataProvider& in, double lo, double hi) {
     return {x, y, pickDouble(in, lo, hi)};
 }
 
-Ray pickRay(FuzzedDataProvider& in) {
+// A ray; half of them aimed at a point near an object's place (`places`: where the program has
+// moved each object so far), exactly at it one time in four (a collapsed object is only a point, a
+// line or a plane there), from somewhere around the scene.
+Ray pickRay(FuzzedDataProvider& in, const std::vector<glm::dvec3>& places) {
     Ray r;
-    if (in.ConsumeBool()) { // aimed at a point near an object, from somewhere around the scene
-        const auto& objects = scene().objects;
-        const SceneObject& o = objects[in.ConsumeIntegralInRange<size_t>(0, objects.size() - 1)];
-        const glm::dvec3 target =
-            glm::dvec3(o.transform[3]) + glm::dvec3(in.ConsumeFloatingPointInRange(-1.0, 1.0),
-                                                    in.ConsumeFloatingPointInRange(-1.0, 1.0),
-                                                    in.ConsumeFloatingPointInRange(-1.0, 1.0));
+    if (in.ConsumeBool()) {
+        glm::dvec3 target = places[in.ConsumeIntegralInRange<size_t>(0, places.size() - 1)];
+        if (in.ConsumeIntegralInRange<int>(0, 3) != 0)
+            target += glm::dvec3(in.ConsumeFloatingPointInRange(-1.0, 1.0),
+                                 in.ConsumeFloatingPointInRange(-1.0, 1.0),
+                                 in.ConsumeFloatingPointInRange(-1.0, 1.0));
         r.origin = pickVec(in, -15.0, 15.0);
         r.direction = (target - r.origin) * pickDouble(in, 0.5, 2.0);
     } else {
@@ -126,15 +128,17 @@ Ray burstRay(FuzzedDataProvider& in, const Ray& previous) {
 }
 
 // A transform that single precision can barely use or not at all (TraceTransform.hpp): two columns
-// that differ only past float's seventh digit, a column scaled by 2^-80 to 2^80, a strong shear, or a
-// mirror, on a placed object.
+// that differ by 2^-10 to 2^-60 (past float's seventh digit from 2^-24 on), a column scaled by 2^-80 to 2^80,
+// a strong shear, or a mirror, on a placed object.
 glm::dmat4 pickFloatSingular(FuzzedDataProvider& in) {
     glm::dmat4 m = glm::translate(glm::dmat4(1.0), pickVec(in, -12.0, 12.0));
     const int c = in.ConsumeIntegralInRange<int>(0, 2);
     const int d = (c + in.ConsumeIntegralInRange<int>(1, 2)) % 3;
     switch (in.ConsumeIntegralInRange<int>(0, 3)) {
     case 0:
-        m[d] = m[c] + glm::dvec4(pickVec(in, -1e-6, 1e-6), 0.0);
+        m[d] = m[c] +
+               glm::dvec4(pickVec(in, -1.0, 1.0) * std::ldexp(1.0, -in.ConsumeIntegralInRange<int>(10, 60)),
+                          0.0);
         break;
     case 1:
         m[c] *= std::ldexp(1.0, in.ConsumeIntegralInRange<int>(-80, 80));
@@ -203,6 +207,9 @@ struct Op {
 std::vector<Op> decode(FuzzedDataProvider& in) {
     std::vector<Op> ops;
     const uint32_t objects = uint32_t(scene().objects.size());
+    std::vector<glm::dvec3> places;
+    for (const SceneObject& o : scene().objects)
+        places.push_back(glm::dvec3(o.transform[3]));
     while (in.remaining_bytes() > 0 && ops.size() < 48) {
         Op op;
         op.kind = Op::Kind(in.ConsumeIntegralInRange<int>(0, 8));
@@ -217,7 +224,7 @@ std::vector<Op> decode(FuzzedDataProvider& in) {
             op.type = pickType(in, ops.size());
             break;
         case Op::Spawn:
-            op.ray = pickRay(in);
+            op.ray = pickRay(in, places);
             break;
         case Op::SpawnAt:
             op.position = pickVec(in, -10.0, 10.0);
@@ -230,10 +237,11 @@ std::vector<Op> decode(FuzzedDataProvider& in) {
         case Op::SpawnBatch:
             op.rays.resize(in.ConsumeIntegralInRange<size_t>(0, 24));
             for (size_t k = 0; k < op.rays.size(); ++k)
-                op.rays[k] = k == 0 || in.ConsumeBool() ? pickRay(in) : burstRay(in, op.rays[k - 1]);
+                op.rays[k] = k == 0 || in.ConsumeBool() ? pickRay(in, places) : burstRay(in, op.rays[k - 1]);
             break;
         case Op::Move:
             op.transform = pickTransform(in);
+            if (op.object < objects) places[op.object] = glm::dvec3(op.transform[3]);
             break;
         case Op::RemoveObject:
             break;

@@ -43,7 +43,7 @@ std::vector<Linear> traceable() {
             {"shear", glm::dmat3(glm::dvec3(1, 0, 0), glm::dvec3(3, 1, 0), glm::dvec3(0, 0.5, 1))},
             {"squashed", glm::dmat3(glm::dvec3(100, 0, 0), glm::dvec3(0, 0.01, 0), glm::dvec3(0, 0, 100))},
             {"mirrored", glm::dmat3(glm::dvec3(-1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1))},
-            {"scale 1e-6", glm::dmat3(1e-6)},
+            {"scale 1e-5", glm::dmat3(1e-5)},
             {"scale 1e6", glm::dmat3(1e6)}};
 }
 

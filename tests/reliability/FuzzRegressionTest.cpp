@@ -1,5 +1,6 @@
 // Regressions of what the fuzz targets (tests/fuzz) found; docs/RELIABILITY.md lists each finding.
 
+#include "GltfBuilder.hpp"
 #include "TestData.hpp"
 
 #include "spatter/core/MeshBuilder.hpp"
@@ -13,6 +14,7 @@
 
 #include <cfloat>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <fstream>
 #include <limits>
@@ -326,4 +328,90 @@ TEST(FuzzRegression, BurstsFromInsideABoxHitItsFarFacesAsSingleRaysDo) {
             }
         }
     }
+}
+
+// fuzz_gltf, once it traced what it loads: a node matrix whose bottom row is not (0, 0, 0, 1) passed
+// validateScene, and then CollisionWorld::build refused the scene, so a file every loader took could
+// not be traced by any tool. validateScene now refuses such a transform, naming the object.
+TEST(FuzzRegression, NodeMatrixThatIsNotAffineIsRejectedWhenLoading) {
+    test::GltfBuilder g;
+    const Mesh box = makeBox(glm::vec3(1.0f), 1);
+    g.addMesh(box.positions, box.indices);
+    g.push("nodes", {{"children", {1}}, {"matrix", {1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 2}}});
+    g.push("nodes", {{"mesh", 0}});
+    g.doc["scenes"] = {{{"nodes", {0}}}};
+    g.doc["scene"] = 0;
+    const Result<Scene> scene = loadScene(g.writeGltf(test::scratchDir("fuzz-affine"), "projective"));
+    ASSERT_FALSE(scene.ok());
+    EXPECT_THAT(scene.error(), HasSubstr("transform is not affine"));
+}
+
+// fuzz_spawn, once its rays aimed at moved objects: a type as wide as float allows (FLT_MAX)
+// attached to a scaled sphere gave a decal whose object-space box was sound but whose world box,
+// rounded back, overflowed to infinity. Such a spawn is now degenerate (InvalidArgument).
+TEST(FuzzRegression, DecalWhoseWorldBoxOverflowsIsRejectedAsDegenerate) {
+    Scene s;
+    s.source = "fuzz:spawn";
+    const glm::dmat4 id(1.0);
+    s.objects.push_back(makeSceneObject("floor", makeBox(glm::vec3(10.0f, 0.1f, 10.0f), 2),
+                                        glm::translate(id, glm::dvec3(0.0, -0.1, 0.0))));
+    s.objects.push_back(
+        makeSceneObject("pillar", makeSphere(1.0f, 8, 12), glm::translate(id, glm::dvec3(3, 1, 0))));
+    s.objects.push_back(
+        makeSceneObject("crate", makeBox(glm::vec3(0.5f), 1), glm::translate(id, glm::dvec3(0, 1, 0)), true));
+    s.objects.push_back(makeSceneObject("ghost", makeBox(glm::vec3(0.5f), 1),
+                                        glm::translate(id, glm::dvec3(-3, 1, 0)), true));
+    s.objects.back().receivesDecals = false;
+    s.objects.push_back(
+        makeSceneObject("ball", makeSphere(0.5f, 6, 8),
+                        glm::scale(glm::translate(id, glm::dvec3(0, 1, 3)), glm::dvec3(1, 2, 0.5)), true));
+    DecalSettings settings;
+    settings.seed = 11732013733571554261ull;
+    settings.cellSize = 3.56594253f;
+    settings.maxPerCell = 5;
+    settings.budget = 6;
+    settings.maxPerObject = 10;
+    settings.depthMargin = 0.25f;
+    settings.idSeparation = 5.2772501708131694;
+    for (bool rotate : {false, true}) {
+        Result<DecalSystem> sys = DecalSystem::create(s, settings);
+        ASSERT_TRUE(sys) << sys.error();
+        DecalType t = namedType("t0");
+        t.size = glm::vec2(1.943503f, FLT_MAX);
+        t.maxAngleDeg = 86.689056f;
+        t.fadeOutTime = 3.052714f;
+        t.randomRotation = rotate;
+        const uint16_t type = sys->registerType(t).value();
+        const SpawnResult r = sys->spawnAttached(4, glm::vec3(0.34855151f, 0.23637171f, -0.2709063f),
+                                                 glm::vec3(-1.0f, 1.0f, -0.1294175f), type);
+        if (r.placed()) {
+            const WorldDecal w = sys->worldBox(*sys->get(r.handle));
+            EXPECT_TRUE(std::isfinite(w.size.x) && std::isfinite(w.size.y) && std::isfinite(w.halfDepth));
+        } else {
+            EXPECT_EQ(r.status, SpawnStatus::InvalidArgument) << r.reason;
+            EXPECT_THAT(r.reason, HasSubstr("degenerate"));
+        }
+    }
+}
+
+// fuzz_gltf, once it traced what it loads: a dynamic node and its dynamic child whose collision meshes
+// were single points at one place (indices read from a float buffer, all 0) gave the world a top
+// level whose every instance box was that point, and Embree's BVH builder asserted
+// (diag[dim] > 0). An object whose collision bounds are a point, or too small for float at their
+// place, is now left out of the trace (TraceTransform.hpp, rule 4).
+TEST(FuzzRegression, CollisionMeshesThatAreOnePointAreLeftOutInsteadOfAborting) {
+    Scene s;
+    s.source = "fuzz:points";
+    Mesh point;
+    point.positions = {glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)};
+    point.indices = {0, 0, 0, 0, 0, 0};
+    computeNormals(point);
+    s.objects.push_back(makeSceneObject("root", point, glm::dmat4(1.0), true));
+    s.objects.push_back(makeSceneObject("child", point, glm::dmat4(1.0), true));
+    Result<CollisionWorld> w = CollisionWorld::build(s);
+    ASSERT_TRUE(w) << w.error();
+    ASSERT_EQ(w->warnings().size(), 2u);
+    EXPECT_THAT(w->warnings()[0], HasSubstr("collision mesh is a single point"));
+    EXPECT_FALSE(w->intersect(Ray{{0.0, 0.0, 5.0}, {0.0, 0.0, -1.0}}));
+    EXPECT_FALSE(w->intersectBatch({Ray{{0.0, 0.0, 5.0}, {0.0, 0.0, -1.0}}})[0]);
 }

@@ -1,9 +1,10 @@
 // A shader that fails to compile must be reported with its file and line. The library's shader
-// builder (render/src/ShaderProgram.cpp) is compiled here against test shaders (shaders/), embedded
-// like the real ones; the driver's log names source strings by number, and the message maps the
+// builder (render/src/ShaderProgram.cpp) builds test shaders (shaders/) here, embedded like the real
+// ones; the driver's log names source strings by number, and the message maps the
 // numbers to file names.
 
 #include "ShaderProgram.hpp"
+#include "ShaderSources.hpp"
 
 #include "TestData.hpp"
 
@@ -58,7 +59,7 @@ protected:
 } // namespace
 
 TEST_F(ShaderErrors, CompileErrorNamesTheFileAndLine) {
-    Result<GlProgram> program = buildProgram({{GL_FRAGMENT_SHADER, "broken.frag"}}, {});
+    Result<GlProgram> program = buildProgram(shaderLibrary(kShaderSources), {{GL_FRAGMENT_SHADER, "broken.frag"}}, {});
     ASSERT_FALSE(program.ok());
     const std::string& message = program.error();
     EXPECT_NE(message.find("shader broken.frag does not compile"), std::string::npos) << message;
@@ -67,7 +68,7 @@ TEST_F(ShaderErrors, CompileErrorNamesTheFileAndLine) {
 }
 
 TEST_F(ShaderErrors, ErrorInAnIncludedFileNamesThatFileAndLine) {
-    Result<GlProgram> program = buildProgram({{GL_FRAGMENT_SHADER, "uses_broken_lib.frag"}}, {});
+    Result<GlProgram> program = buildProgram(shaderLibrary(kShaderSources), {{GL_FRAGMENT_SHADER, "uses_broken_lib.frag"}}, {});
     ASSERT_FALSE(program.ok());
     const std::string& message = program.error();
     EXPECT_NE(message.find("shader uses_broken_lib.frag does not compile"), std::string::npos) << message;
@@ -76,7 +77,7 @@ TEST_F(ShaderErrors, ErrorInAnIncludedFileNamesThatFileAndLine) {
 }
 
 TEST_F(ShaderErrors, MissingFileIsNamed) {
-    Result<GlProgram> program = buildProgram({{GL_FRAGMENT_SHADER, "absent.frag"}}, {});
+    Result<GlProgram> program = buildProgram(shaderLibrary(kShaderSources), {{GL_FRAGMENT_SHADER, "absent.frag"}}, {});
     ASSERT_FALSE(program.ok());
     EXPECT_NE(program.error().find("absent.frag"), std::string::npos) << program.error();
 }

@@ -1,6 +1,8 @@
 // Decal coverage of the GPU decal pass against the CPU reference (rays through every pixel centre
-// against the render meshes, the same inclusion rule in double precision).
+// against the render meshes, the same inclusion rule in double precision), in spatter's renderer and
+// in a foreign host of the projector (ForeignHost: standard Z, 24-bit depth, RGB10A2 world normals).
 
+#include "ForeignHost.hpp"
 #include "RenderTestSupport.hpp"
 
 #include "TestData.hpp"
@@ -89,20 +91,52 @@ std::vector<uint8_t> renderCoverage(const Scene& scene, const test::CoverageInpu
     return im ? test::whiteMask(im.value()) : std::vector<uint8_t>{};
 }
 
-// Renders the coverage view and compares it with the reference.
+// The coverage of the same decals projected into the foreign host's frame.
+std::vector<uint8_t> foreignCoverage(const Scene& scene, const test::CoverageInputs& in, const Camera& cam) {
+    Result<test::ForeignHost> host = test::ForeignHost::create(kWidth, kHeight);
+    Result<DecalProjector> projector = DecalProjector::create();
+    EXPECT_TRUE(host.ok() && projector.ok());
+    if (!host || !projector) return {};
+    std::vector<glm::dmat4> transforms;
+    for (const SceneObject& o : scene.objects)
+        transforms.push_back(o.transform);
+    std::vector<uint8_t> ids = in.objectIds;
+    ids.resize(transforms.size(), 0);
+    host->setScene(scene);
+    host->draw(transforms, ids, cam);
+    host->clearCoverage();
+    EXPECT_TRUE(projector->setObjects(transforms, ids).ok());
+    projector->setDecalTypes(in.types);
+    projector->setDecals(in.decals);
+    ProjectorDraw draw;
+    draw.coverageTexture = host->coverageTexture();
+    Result<ProjectorStats> st = projector->draw(host->frame(cam, scene.dynamicObjectCount() > 0), draw);
+    EXPECT_TRUE(st.ok()) << st.error();
+    return test::whiteMask(host->read(host->coverageTexture()));
+}
+
+// Compares one coverage mask with the reference.
+void expectMaskMatches(const std::string& name, const std::vector<uint8_t>& gpu,
+                       const std::vector<uint8_t>& cpu, size_t decals, double minIou) {
+    test::dumpMask(name, gpu, kWidth, kHeight);
+    const double v = test::iou(gpu, cpu);
+    std::printf("%s: IoU %.4f (gpu %zu px, cpu %zu px, %zu decals)\n", name.c_str(), v, test::countSet(gpu),
+                test::countSet(cpu), decals);
+    EXPECT_GE(v, minIou) << name << ": gpu " << test::countSet(gpu) << " px, cpu " << test::countSet(cpu)
+                         << " px";
+}
+
+// Renders the coverage view in spatter's renderer and in the foreign host and compares each with the
+// reference.
 void expectCoverageMatches(const std::string& name, const Scene& scene, const Placed& placed,
                            const Camera& cam, double minIou) {
-    const std::vector<uint8_t> gpu = renderCoverage(scene, placed.inputs, cam);
     const std::vector<uint8_t> cpu = test::referenceCoverage(scene, placed.inputs, cam, kWidth, kHeight);
-    test::dumpMask(name + "-gpu", gpu, kWidth, kHeight);
     test::dumpMask(name + "-cpu", cpu, kWidth, kHeight);
     // Enough covered pixels for the ratio to mean something.
     EXPECT_GT(test::countSet(cpu), size_t(kWidth * kHeight) / 20) << name;
-    const double v = test::iou(gpu, cpu);
-    std::printf("%s: IoU %.4f (gpu %zu px, cpu %zu px, %zu decals)\n", name.c_str(), v, test::countSet(gpu),
-                test::countSet(cpu), placed.inputs.decals.size());
-    EXPECT_GE(v, minIou) << name << ": gpu " << test::countSet(gpu) << " px, cpu " << test::countSet(cpu)
-                         << " px";
+    const size_t decals = placed.inputs.decals.size();
+    expectMaskMatches(name + "-gpu", renderCoverage(scene, placed.inputs, cam), cpu, decals, minIou);
+    expectMaskMatches(name + "-foreign", foreignCoverage(scene, placed.inputs, cam), cpu, decals, minIou);
 }
 
 Camera cameraFor(const Scene& scene, const glm::dvec3& direction) {

@@ -10,7 +10,8 @@
 #include "StressCase.hpp"
 #include "StressSupport.hpp"
 
-#include "StressCommonGlsl.hpp"
+#include "RendererShaders.hpp"
+#include "ShaderProgram.hpp"
 #include "spatter/render/Camera.hpp"
 
 #include <epoxy/gl.h>
@@ -94,7 +95,13 @@ GLuint compile(GLenum stage, const std::string& source, std::string& log) {
 }
 
 GLuint link(const std::string& vert, const std::string& frag, std::string& log) {
-    const std::string header = "#version 450 core\n" + std::string(kCommonGlsl) + "\n";
+    using namespace render_detail;
+    const Result<std::string> common = expandShader(shaderLibrary(kRendererShaders), "common.glsl", {});
+    if (!common) {
+        log += common.error();
+        return 0;
+    }
+    const std::string header = common.value() + "\n";
     const GLuint vs = compile(GL_VERTEX_SHADER, header + vert, log);
     const GLuint fs = compile(GL_FRAGMENT_SHADER, header + frag, log);
     if (!vs || !fs) {

@@ -20,6 +20,9 @@
 //      14,142 and is traced; (1000, 1000, 0.001) has 1.4e6 and is not.
 //   3. the object's collision bounds, transformed, lie within 2^32 (4.3e9) of the world's float-frame
 //      origin (CollisionWorld::origin): the float frame stays within range for every ray.
+//   4. those bounds are not a single point, and their largest extent is at least 2^-21 of their
+//      distance from the origin (a few float steps there): Embree's float bounds of the object keep
+//      a size, which its BVH builders assert. A 1 cm object is traced up to about 20 km out.
 // A transform whose entries are not finite, or whose bottom row is not (0, 0, 0, 1), is refused
 // outright (validateScene, setTransform). One that is finite and affine but breaks the rule is not
 // an error: the object is left out of the trace (shots pass through it) with a warning that names it
@@ -33,9 +36,10 @@
 namespace spatter {
 
 // Limits of the rule above.
-constexpr double kTraceMaxScale = 33554432.0;         // 2^25, for |A|_F and |A^-1|_F
-constexpr double kTraceMaxCondition = 65536.0;        // 2^16
-constexpr double kTraceMaxFrameExtent = 4294967296.0; // 2^32
+constexpr double kTraceMaxScale = 33554432.0;             // 2^25, for |A|_F and |A^-1|_F
+constexpr double kTraceMaxCondition = 65536.0;            // 2^16
+constexpr double kTraceMaxFrameExtent = 4294967296.0;     // 2^32
+constexpr double kTraceMinRelativeSize = 1.0 / 2097152.0; // 2^-21
 
 // The condition number |A|_F * |A^-1|_F of the linear part of `transform` rounded to float;
 // infinity when the float matrix is singular or its inverse overflows.

@@ -15,12 +15,12 @@ namespace spatter {
 // until the first results arrive.
 struct GpuPassTimes {
     int64_t frame = -1;
-    double geometryMs = 0.0; // G-buffer fill (receivers)
-    double decalsMs = 0.0;   // normal copy and decal pass (or the coverage variant)
-    double lateMs = 0.0;     // objects that receive no decals, drawn after the decals
-    double lightingMs = 0.0; // lighting and tone mapping, or the debug view
-    double overlayMs = 0.0;  // line overlays (RenderOverlays)
-    double splatMs = 0.0;    // texture-space decals rendered into their objects' textures, and dilation
+    double geometryMs = 0.0;   // G-buffer fill (receivers)
+    double decalsMs = 0.0;     // normal copy and decal pass (or the coverage variant)
+    double lateMs = 0.0;       // objects that receive no decals, drawn after the decals
+    double lightingMs = 0.0;   // lighting and tone mapping, or the debug view
+    double overlayMs = 0.0;    // line overlays (RenderOverlays)
+    double splatMs = 0.0;      // texture-space decals rendered into their objects' textures, and dilation
     double volumetricMs = 0.0; // volumetric decals: footprints into the stencil, craters into the G-buffer
     double totalMs() const {
         return geometryMs + decalsMs + lateMs + lightingMs + overlayMs + splatMs + volumetricMs;

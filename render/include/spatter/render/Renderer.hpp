@@ -62,6 +62,7 @@
 #include "spatter/core/Scene.hpp"
 #include "spatter/render/Camera.hpp"
 #include "spatter/render/DecalMode.hpp"
+#include "spatter/render/DecalProjector.hpp"
 #include "spatter/render/Deformation.hpp"
 #include "spatter/render/FrameStats.hpp"
 #include "spatter/render/GlContext.hpp"
@@ -75,13 +76,6 @@
 #include <vector>
 
 namespace spatter {
-
-// The frame in which a decal's normal map is applied.
-enum class DecalNormalFrame {
-    DecalAxes,        // the decal's tangent, bitangent and axis (Krassnigg 20.7)
-    DepthDerivatives, // per pixel: the drawn surface's normal from depth derivatives, with the
-                      // decal's tangent projected into it (follows curvature and wrapped corners)
-};
 
 struct LightSettings {
     glm::vec3 direction{-0.35f, 0.8f, 0.5f}; // towards the light, world space (normalised on use)

@@ -1,0 +1,239 @@
+#pragma once
+// DecalProjector: spatter's deferred decal projector (Krassnigg, "A Deferred Decal Rendering
+// Technique", Game Engine Gems 2) as a component that any OpenGL 4.5 renderer hosts. It draws one
+// box per visible decal over the host's frame: each pixel inside a box is rebuilt from the host's
+// depth, kept when it lies inside the box, belongs to the decal's object (object IDs) and faces the
+// decal within its type's angle, and gets the decal's albedo, normal and roughness blended into the
+// host's G-buffer before the host's lighting runs.
+//
+// It owns the decal instances (object space, uploaded when they change), the decal texture array
+// (built-in layers and addDecalTexture*), the shader variants and the GPU timer of its pass. It knows
+// nothing of scenes, meshes, materials or lighting: per frame the host hands it the decals (as
+// DecalSystem::decals() gives them), the object transforms (double precision), the objects' 8-bit
+// decal IDs and a HostFrame describing its textures, their conventions and the camera.
+//
+//   Result<DecalProjector> projector = DecalProjector::create();  // a GL 4.5 context is current
+//   projector->setDecalTypes(types);                                 // appearance, by Decal::type
+//   each frame, after the host's geometry pass and before its lighting:
+//     projector->setObjects(transforms, ids);                        // one entry per object
+//     projector->setDecals(decalSystem.decals());                    // changed instances are uploaded
+//     HostFrame f;                                                   // see HostFrame below
+//     f.width = w; f.height = h; f.view = view; f.projection = proj; f.eye = eye;
+//     f.depth = {depthTexture, DepthEncoding::Window, ClipDepth::ZeroToOne, /*reversedZ*/ true};
+//     f.normals = {normalTexture, NormalEncoding::OctahedralWorld};
+//     f.albedoTexture = albedo; f.roughness = {materialTexture, 0}; f.objectIdTexture = ids;
+//     Result<ProjectorStats> stats = projector->draw(f);
+//
+// Which host input each feature needs (a feature whose input is not supplied is off, never an
+// error at draw time):
+//   depth (required)       the box test, distance fading
+//   normals                wrap-around (WRAP types), the angle test by the drawn surface's normal,
+//                          normal maps blended into the host's normals; without them the angle test
+//                          uses the normal of the depth buffer (screen-space derivatives), decals
+//                          do not wrap and their normal maps are not applied
+//   albedoTexture          the decal's colour (required, except in coverage mode)
+//   roughness              the type's roughness (DecalType::roughness >= 0)
+//   objectIdTexture        clipping to the decal's object: without it a decal on a moving target
+//                          also shows on whatever lies behind it inside its box
+//
+// GL state: every call that touches GL (create, setDecals, addDecalTexture*, draw) leaves the GL
+// state exactly as it found it, as Dear ImGui's OpenGL 3 backend does: it saves and restores the
+// bound draw and read framebuffers, viewport, program, vertex array, active texture unit and the
+// 2D and 2D-array textures and samplers of units 0-7, the uniform buffer bindings 0-1 and shader
+// storage bindings 0-7 (with their ranges) and the generic uniform, shader storage, array and pixel
+// unpack buffer bindings, blending (enable per draw buffer 0-3, equations, functions), colour masks
+// of draw buffers 0-3, depth test, function and mask, stencil test, scissor test, face culling and
+// cull mode, front face, clip control, GL_FRAMEBUFFER_SRGB, and the unpack alignment. What it
+// changes are the contents of the textures it writes (draw) and its own GL objects. It needs the
+// host's context current on the calling thread, and that context must outlive the projector.
+//
+// Bad input changes nothing: a HostFrame with a missing required texture, an unsupported format,
+// mismatched sizes, a viewport outside the textures or a camera that cannot be inverted fails with
+// an error naming the field, before any GL call; decals naming a missing object or type, or with a
+// degenerate or non-finite box, are skipped and counted (ProjectorStats::invalid).
+
+#include "spatter/core/Decal.hpp"
+#include "spatter/core/DecalType.hpp"
+#include "spatter/core/Image.hpp"
+#include "spatter/core/Result.hpp"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace spatter {
+
+// What the host's depth texture holds.
+enum class DepthEncoding {
+    Window,     // window-space depth of `projection`, as a depth attachment holds it (any depth or
+                // float format); ClipDepth and reversedZ say how it was produced
+    LinearView, // the distance from the eye along the view direction, world units, > 0 on surfaces
+                // (a float colour texture, R32F or R16F); 0 or less is the background
+};
+
+// The clip-space depth range the host's projection was used with (glClipControl).
+enum class ClipDepth {
+    ZeroToOne,     // GL_ZERO_TO_ONE: window depth = clip z / w
+    MinusOneToOne, // GL's default, GL_NEGATIVE_ONE_TO_ONE: window depth = (clip z / w + 1) / 2
+};
+
+// How the host's normal texture encodes unit normals (sampled with texelFetch).
+enum class NormalEncoding {
+    OctahedralWorld, // RG in [-1, 1]: world-space normal, octahedral (Cigolle et al. 2014); RG16F, RG16_SNORM
+    WorldSigned,     // RGB in [-1, 1]: world-space normal; RGBA16F, RGB10A2 read as signed...
+    WorldUnorm,      // RGB in [0, 1]: world-space normal as n * 0.5 + 0.5; RGBA8, RGB10_A2
+    ViewUnorm,       // RGB in [0, 1]: view-space normal as n * 0.5 + 0.5
+};
+
+// The frame in which a decal's normal map is applied.
+enum class DecalNormalFrame {
+    DecalAxes,        // the decal's tangent, bitangent and axis (Krassnigg 20.7)
+    DepthDerivatives, // per pixel: the drawn surface's normal from depth derivatives, with the
+                      // decal's tangent projected into it (follows curvature and wrapped corners)
+};
+
+struct HostDepth {
+    uint32_t texture = 0; // GL_TEXTURE_2D name; required
+    DepthEncoding encoding = DepthEncoding::Window;
+    ClipDepth clip = ClipDepth::ZeroToOne; // Window only
+    bool reversedZ = false;                // Window only: near maps to 1 and far to 0 (cleared to 0); checked
+                                           // against `projection`
+};
+
+struct HostNormals {
+    uint32_t texture = 0; // GL_TEXTURE_2D name; 0: no normals (see the feature table above)
+    NormalEncoding encoding = NormalEncoding::OctahedralWorld;
+};
+
+struct HostRoughness {
+    uint32_t texture = 0; // GL_TEXTURE_2D colour texture; 0: roughness is not written
+    int channel = 0;      // 0 (R), 1 (G) or 2 (B): the channel roughness lives in; the others are kept
+};
+
+// The host's frame, field by field. Every texture is a GL_TEXTURE_2D of the host's, sampled with
+// texelFetch at level 0; the colour targets are attached to the projector's own framebuffer and
+// written with blending (an sRGB albedo format is encoded and blended in linear space).
+struct HostFrame {
+    // The region of the host's textures this frame covers, in pixels from their lower left corner;
+    // every texture must contain it.
+    int x = 0, y = 0, width = 0, height = 0;
+    // The camera in double precision: `view` maps world to view space (looking down -Z, as
+    // glm::lookAt), `projection` view to clip space (any invertible OpenGL projection: perspective
+    // or orthographic, finite or infinite far plane, standard or reversed Z), `eye` is the camera's
+    // world position. Positions reach the GPU relative to `eye`, so a frame far from the world
+    // origin keeps float precision.
+    glm::dmat4 view{1.0};
+    glm::dmat4 projection{1.0};
+    glm::dvec3 eye{0.0};
+    HostDepth depth;
+    HostNormals normals;
+    // RGBA colour texture, RGB = base colour (linear, or sRGB-encoded by an sRGB format); its alpha is
+    // kept. Required unless the draw is in coverage mode.
+    uint32_t albedoTexture = 0;
+    HostRoughness roughness;
+    // Unsigned integer texture (R8UI, R16UI or R32UI) of the objects' 8-bit decal IDs, 0 for static
+    // geometry; 0: no ID clipping.
+    uint32_t objectIdTexture = 0;
+};
+
+struct ProjectorSettings {
+    // Largest angle between a pixel's normal and the decal axis that a wrap-around type accepts: a
+    // type's maxAngleDeg (at most 90, a placement limit) would cut the decal at every corner it is
+    // meant to wrap around. Flat types use their own maxAngleDeg. In [0, 180].
+    float wrapMaxAngleDeg = 120.0f;
+    // Depth fading starts at this fraction of the half-depth (|z| / halfDepth) and reaches zero at
+    // the box face; DecalType::depthFade picks the curve. In [0, 1).
+    float fadeStart = 0.5f;
+    DecalNormalFrame normalFrame = DecalNormalFrame::DecalAxes;
+    int decalTextureSize = 256; // size of the decal texture layers: a power of two in [16, 2048]
+    bool waitForTimers = false; // draw() waits for its GPU time (tools, benchmarks); otherwise the
+                                // time reported is that of an earlier frame, read without stalling
+};
+
+// Per-draw switches.
+struct ProjectorDraw {
+    // Coverage mode: instead of blending the decals, write 1 into every channel of this colour
+    // texture (R8 or any colour format) wherever a decal changes the pixel (inside its box, ID
+    // matching, within its angle); other pixels are left as they are. 0: blend as usual.
+    uint32_t coverageTexture = 0;
+    bool idClipping = true;  // false: ignore object IDs even when the frame has them (debugging)
+    bool angleReject = true; // false: no angle test (debugging)
+};
+
+// What one draw did.
+struct ProjectorStats {
+    size_t decals = 0;        // decals given to setDecals
+    size_t invalid = 0;       // skipped: object or type out of range, degenerate or non-finite box
+    size_t culled = 0;        // outside the view frustum (CPU test of the box corners)
+    size_t drawn = 0;         // instances drawn
+    size_t inside = 0;        // of those, drawn as "camera inside" (the box may hold the eye)
+    size_t bytesUploaded = 0; // instance and visibility data sent to the GPU by this draw
+    size_t drawCalls = 0;
+    bool skipped = true;   // no visible decal: no normal copy, no draw
+    std::string variant;   // shader features used, e.g. "IDS WRAP NORMAL_MAP FADE"
+    double gpuMs = 0.0;    // GPU time of the pass, of frame `gpuFrame` (see waitForTimers)
+    int64_t gpuFrame = -1; // the draw call count (0 for the first) the time belongs to; -1: none yet
+};
+
+// GL objects of the projector that a host may read: the decal texture arrays, and the instance data
+// for its own debug drawing (decal box outlines). Valid until the next setDecals, addDecalTexture* or
+// draw. Layouts: glsl/decal_data.glsl (DecalData, the visible list) and glsl/projector.glsl
+// (ProjectorObject), installed beside this header.
+struct ProjectorResources {
+    uint32_t albedoLayers = 0; // GL_TEXTURE_2D_ARRAY, SRGB8_ALPHA8: decal albedo, straight alpha
+    uint32_t normalLayers = 0; // GL_TEXTURE_2D_ARRAY, RGBA8: tangent-space normal maps
+    uint32_t decals = 0;       // shader storage: DecalData per decal given to setDecals
+    uint32_t visible = 0;      // shader storage: uint decal indices of the last draw, visibleCount of them
+    uint32_t objects = 0;      // shader storage: ProjectorObject per object (relative to the last eye)
+    size_t visibleCount = 0;
+};
+
+class DecalProjector {
+public:
+    // Compiles nothing yet (variants are built on first use) and builds the decal texture array with
+    // the built-in layers. Needs a current OpenGL 4.5 core context. Fails on settings out of range.
+    static Result<DecalProjector> create(const ProjectorSettings& settings = {});
+
+    DecalProjector(DecalProjector&&) noexcept;
+    DecalProjector& operator=(DecalProjector&&) noexcept;
+    ~DecalProjector();
+
+    // Decal appearance, indexed by Decal::type; DecalType::texture is a layer of the texture array
+    // (0..3 are the built-in DecalTexture values). Volumetric types are drawn like flat ones here.
+    void setDecalTypes(const std::vector<DecalType>& types);
+    // The decals, in their objects' space (as DecalSystem::decals() gives them). Only instances whose
+    // data changed since the last call are uploaded (at the next draw).
+    void setDecals(const std::vector<Decal>& decals);
+    // Object-to-world transforms (double) and 8-bit decal IDs, one entry per object that decals may
+    // name (Decal::object). Fails, changing nothing, when the counts differ or a transform is not
+    // finite and affine; a singular transform is taken (its decals collapse and are not drawn).
+    Status setObjects(const std::vector<glm::dmat4>& transforms, const std::vector<uint8_t>& ids);
+
+    // Adds a decal texture layer (resized to the layer size); `normalMap` may be empty for a flat
+    // one. Returns its layer index.
+    Result<int> addDecalTexture(const Image& albedo, const Image& normalMap = {});
+    // The same from image files (PNG, JPEG, ...); `normalMapPath` may be empty.
+    Result<int> addDecalTextureFile(const std::string& albedoPath, const std::string& normalMapPath = "");
+    int decalTextureLayers() const;
+
+    // Projects the decals into the host's frame (G-buffer blend: albedo, normals and roughness are
+    // blended into the host's textures), or writes their coverage (ProjectorDraw). Fails, drawing
+    // nothing and leaving the GL state as it was, on a HostFrame that does not fit (the error names
+    // the field) or a shader that does not build.
+    Result<ProjectorStats> draw(const HostFrame& frame, const ProjectorDraw& options = {});
+
+    // The checks draw() makes on `frame` (and `options`), without drawing: empty when it fits.
+    std::string frameProblem(const HostFrame& frame, const ProjectorDraw& options = {}) const;
+
+    ProjectorResources resources() const;
+    const ProjectorSettings& settings() const;
+
+private:
+    struct Impl;
+    explicit DecalProjector(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace spatter

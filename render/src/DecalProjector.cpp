@@ -1,0 +1,470 @@
+#include "spatter/render/DecalProjector.hpp"
+
+#include "DecalBatch.hpp"
+#include "DecalTextureArray.hpp"
+#include "GlObjects.hpp"
+#include "GlStateGuard.hpp"
+#include "GpuLayouts.hpp"
+#include "GpuTimers.hpp"
+#include "HostFrameCheck.hpp"
+#include "NormalMatrix.hpp"
+#include "ProjectorLayouts.hpp"
+#include "ProjectorShaders.hpp"
+#include "ShaderProgram.hpp"
+
+#include "spatter/core/Scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+
+namespace spatter {
+
+using namespace render_detail;
+
+namespace {
+
+// Shader variant bits: the features a draw's visible decals use and the host's conventions.
+enum Variant : uint32_t {
+    kVariantIds = 1u,
+    kVariantWrap = 2u,
+    kVariantNormalMap = 4u,
+    kVariantFade = 8u,
+    kVariantCoverage = 16u,
+    kVariantDepthFrame = 32u,
+    kVariantNoAngle = 64u,
+    kVariantDepthLinear = 128u,
+    kVariantClipMinusOne = 256u,
+    kVariantStandardZ = 512u,
+    kVariantNoNormals = 1024u,
+    kVariantNormalWorldSigned = 2048u,
+    kVariantNormalWorldUnorm = 4096u,
+    kVariantNormalViewUnorm = 8192u,
+};
+
+constexpr const char* kVariantNames[] = {"IDS",
+                                         "WRAP",
+                                         "NORMAL_MAP",
+                                         "FADE",
+                                         "COVERAGE",
+                                         "DEPTH_FRAME",
+                                         "NO_ANGLE",
+                                         "DEPTH_LINEAR",
+                                         "CLIP_MINUS_ONE",
+                                         "STANDARD_Z",
+                                         "NO_NORMALS",
+                                         "NORMAL_WORLD_SIGNED",
+                                         "NORMAL_WORLD_UNORM",
+                                         "NORMAL_VIEW_UNORM"};
+
+std::vector<std::string> variantDefines(uint32_t bits) {
+    std::vector<std::string> d;
+    for (size_t i = 0; i < sizeof(kVariantNames) / sizeof(kVariantNames[0]); ++i)
+        if (bits & (1u << i)) d.push_back(kVariantNames[i]);
+    return d;
+}
+
+std::string join(const std::vector<std::string>& parts) {
+    std::string s;
+    for (const std::string& p : parts)
+        s += (s.empty() ? "" : " ") + p;
+    return s;
+}
+
+Status validateSettings(const ProjectorSettings& s) {
+    if (!std::isfinite(s.wrapMaxAngleDeg) || s.wrapMaxAngleDeg < 0.0f || s.wrapMaxAngleDeg > 180.0f)
+        return fail("projector: wrapMaxAngleDeg must be in [0, 180]");
+    if (!std::isfinite(s.fadeStart) || s.fadeStart < 0.0f || s.fadeStart >= 1.0f)
+        return fail("projector: fadeStart must be in [0, 1)");
+    return {};
+}
+
+uint32_t conventionBits(const HostFrame& f) {
+    uint32_t bits = 0;
+    if (f.depth.encoding == DepthEncoding::LinearView) bits |= kVariantDepthLinear;
+    if (f.depth.clip == ClipDepth::MinusOneToOne) bits |= kVariantClipMinusOne;
+    if (!f.depth.reversedZ && f.depth.encoding == DepthEncoding::Window) bits |= kVariantStandardZ;
+    if (f.normals.texture == 0) return bits | kVariantNoNormals;
+    switch (f.normals.encoding) {
+    case NormalEncoding::WorldSigned:
+        return bits | kVariantNormalWorldSigned;
+    case NormalEncoding::WorldUnorm:
+        return bits | kVariantNormalWorldUnorm;
+    case NormalEncoding::ViewUnorm:
+        return bits | kVariantNormalViewUnorm;
+    case NormalEncoding::OctahedralWorld:
+        break;
+    }
+    return bits;
+}
+
+// The camera of a frame relative to its eye, and what culling needs of it.
+struct FrameCamera {
+    glm::dmat4 view; // camera-relative world -> view
+    glm::dmat4 viewProj;
+    CullView cull;
+};
+
+FrameCamera frameCamera(const HostFrame& f) {
+    FrameCamera c;
+    c.view = f.view * glm::translate(glm::dmat4(1.0), f.eye);
+    c.viewProj = f.projection * c.view;
+    c.cull.viewProj = c.viewProj;
+    c.cull.eye = f.eye;
+    c.cull.reversedZ = f.depth.encoding == DepthEncoding::Window ? f.depth.reversedZ : false;
+    c.cull.clipMinusOne = f.depth.clip == ClipDepth::MinusOneToOne;
+    if (f.depth.encoding == DepthEncoding::LinearView) { // which way the projection runs decides
+        const glm::dmat4 inv = glm::inverse(f.projection);
+        const glm::dvec4 a = inv * glm::dvec4(0.0, 0.0, 0.25, 1.0), b = inv * glm::dvec4(0.0, 0.0, 0.5, 1.0);
+        c.cull.reversedZ = b.z / b.w > a.z / a.w;
+    }
+    // The near plane's corners in view space (view space is the camera-relative world, rotated).
+    const glm::dmat4 invProj = glm::inverse(f.projection);
+    const double nearZ = c.cull.reversedZ ? 1.0 : (c.cull.clipMinusOne ? -1.0 : 0.0);
+    for (int i = 0; i < 4; ++i) {
+        const glm::dvec4 p = invProj * glm::dvec4((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, nearZ, 1.0);
+        c.cull.nearRadius = std::max(c.cull.nearRadius, glm::length(glm::dvec3(p) / p.w));
+    }
+    return c;
+}
+
+// Grows `buffer` to hold `bytes` (doubling, at least `minimum`); true when it was recreated.
+bool reserve(GlBuffer& buffer, size_t& capacity, size_t bytes, size_t minimum) {
+    if (bytes <= capacity && buffer) return false;
+    capacity = std::max(capacity, minimum);
+    while (capacity < bytes)
+        capacity *= 2;
+    buffer = createBuffer();
+    glNamedBufferStorage(buffer.get(), GLsizeiptr(capacity), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    return true;
+}
+
+} // namespace
+
+struct DecalProjector::Impl {
+    ProjectorSettings settings;
+    DecalBatch batch;
+    DecalTextureArray textures;
+    std::map<uint32_t, GlProgram> programs;
+    std::vector<glm::dmat4> transforms;
+    std::vector<uint8_t> ids;
+
+    GlBuffer frameBuffer, objectBuffer, decalBuffer, visibleBuffer;
+    size_t objectCapacity = 0, decalCapacity = 0, visibleCapacity = 0, visibleCount = 0;
+    GlVertexArray emptyVao;
+    GlFramebuffer fbo;
+    GlTexture zeroIds;    // bound as s_ids when the frame has no ID texture
+    GlTexture normalCopy; // the host's normals as they were before the draw
+    GLenum normalCopyFormat = 0;
+    int normalCopyWidth = 0, normalCopyHeight = 0;
+    GpuTimers timers;
+    uint64_t draws = 0;
+
+    Result<GLuint> program(uint32_t bits) {
+        auto it = programs.find(bits);
+        if (it != programs.end()) return it->second.get();
+        Result<GlProgram> p = buildProgram(
+            shaderLibrary(kProjectorShaders),
+            {{GL_VERTEX_SHADER, "decal.vert"}, {GL_FRAGMENT_SHADER, "decal.frag"}}, variantDefines(bits));
+        if (!p) return fail("projector: " + p.error());
+        const GLuint name = p->get();
+        programs.emplace(bits, std::move(p.value()));
+        return name;
+    }
+
+    uint32_t variantBits(const HostFrame& f, const ProjectorDraw& o, uint32_t flags) const {
+        uint32_t bits = conventionBits(f);
+        const bool normals = f.normals.texture != 0;
+        if (f.objectIdTexture != 0 && o.idClipping) bits |= kVariantIds;
+        if (!o.angleReject) bits |= kVariantNoAngle;
+        if ((flags & kDecalWrap) && normals) bits |= kVariantWrap;
+        if (o.coverageTexture != 0) return bits | kVariantCoverage;
+        if ((flags & kDecalNormalMap) && normals) {
+            bits |= kVariantNormalMap;
+            if (settings.normalFrame == DecalNormalFrame::DepthDerivatives) bits |= kVariantDepthFrame;
+        }
+        if (flags & (kDecalFadeLinear | kDecalFadeSmooth)) bits |= kVariantFade;
+        return bits;
+    }
+
+    void uploadFrame(const HostFrame& f, const FrameCamera& c) {
+        ProjectorFrameGpu g{};
+        g.viewProj = glm::mat4(c.viewProj);
+        g.view = glm::mat4(c.view);
+        g.invView = glm::mat4(glm::inverse(c.view));
+        g.invProjection = glm::mat4(glm::inverse(f.projection));
+        g.viewport = glm::vec4(float(f.x), float(f.y), 1.0f / float(f.width), 1.0f / float(f.height));
+        g.params = glm::vec4(settings.fadeStart, 0.0f, 0.0f, 0.0f);
+        glNamedBufferSubData(frameBuffer.get(), 0, sizeof g, &g);
+
+        std::vector<ProjectorObjectGpu> objects(std::max<size_t>(1, transforms.size()));
+        const glm::dmat4 toEye = glm::translate(glm::dmat4(1.0), -f.eye);
+        for (size_t i = 0; i < transforms.size(); ++i) {
+            const glm::dmat4 rel = toEye * transforms[i];
+            ProjectorObjectGpu& o = objects[i];
+            o.model = glm::mat4(rel);
+            o.normalMatrix = glm::mat4(glm::mat3(normalMatrix(glm::dmat3(transforms[i]))));
+            o.worldToObject = glm::mat4(glm::inverse(rel)); // read only by decals, none on a singular one
+            o.info = glm::uvec4(ids[i], glm::determinant(glm::dmat3(transforms[i])) < 0.0 ? 1u : 0u, 0u, 0u);
+        }
+        const size_t bytes = objects.size() * sizeof(ProjectorObjectGpu);
+        reserve(objectBuffer, objectCapacity, bytes, 64 * sizeof(ProjectorObjectGpu));
+        glNamedBufferSubData(objectBuffer.get(), 0, GLsizeiptr(bytes), objects.data());
+    }
+
+    // Sends changed decal instances and the visible list; returns the bytes sent.
+    size_t uploadDecals(const DecalVisibility& vis) {
+        size_t bytes = 0;
+        const std::vector<DecalGpu>& inst = batch.instances();
+        if (reserve(decalBuffer, decalCapacity, inst.size() * sizeof(DecalGpu), 64 * sizeof(DecalGpu))) {
+            glNamedBufferSubData(decalBuffer.get(), 0, GLsizeiptr(inst.size() * sizeof(DecalGpu)),
+                                 inst.data());
+            bytes += inst.size() * sizeof(DecalGpu);
+        } else {
+            for (const auto& r : batch.dirty()) {
+                glNamedBufferSubData(decalBuffer.get(), GLintptr(r.first * sizeof(DecalGpu)),
+                                     GLsizeiptr((r.second - r.first) * sizeof(DecalGpu)), &inst[r.first]);
+                bytes += (r.second - r.first) * sizeof(DecalGpu);
+            }
+        }
+        batch.markUploaded();
+        std::vector<uint32_t> list(vis.outside);
+        list.insert(list.end(), vis.inside.begin(), vis.inside.end());
+        reserve(visibleBuffer, visibleCapacity, list.size() * sizeof(uint32_t), 64 * sizeof(uint32_t));
+        glNamedBufferSubData(visibleBuffer.get(), 0, GLsizeiptr(list.size() * sizeof(uint32_t)), list.data());
+        visibleCount = list.size();
+        return bytes + list.size() * sizeof(uint32_t);
+    }
+
+    // Copies the viewport's part of the host's normals into normalCopy (same format and size).
+    void copyNormals(const HostFrame& f) {
+        GLint w = 0, h = 0;
+        glGetTextureLevelParameteriv(f.normals.texture, 0, GL_TEXTURE_WIDTH, &w);
+        glGetTextureLevelParameteriv(f.normals.texture, 0, GL_TEXTURE_HEIGHT, &h);
+        const GLenum format = textureFormat(f.normals.texture);
+        if (!normalCopy || format != normalCopyFormat || w != normalCopyWidth || h != normalCopyHeight) {
+            normalCopy = createTexture(GL_TEXTURE_2D);
+            glTextureStorage2D(normalCopy.get(), 1, format, w, h);
+            normalCopyFormat = format;
+            normalCopyWidth = w;
+            normalCopyHeight = h;
+        }
+        glCopyImageSubData(f.normals.texture, GL_TEXTURE_2D, 0, f.x, f.y, 0, normalCopy.get(), GL_TEXTURE_2D,
+                           0, f.x, f.y, 0, f.width, f.height, 1);
+    }
+
+    // Attaches the host's targets and sets the blend state of each; returns whether the host's depth
+    // is attached for the depth test.
+    bool bindTargets(const HostFrame& f, const ProjectorDraw& o) {
+        const GLuint fb = fbo.get();
+        const bool coverage = o.coverageTexture != 0;
+        const GLuint normals = coverage ? 0 : f.normals.texture,
+                     roughness = coverage ? 0 : f.roughness.texture;
+        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, coverage ? o.coverageTexture : f.albedoTexture,
+                                  0);
+        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, normals, 0);
+        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT2, roughness, 0);
+        const bool depthTest =
+            f.depth.encoding == DepthEncoding::Window && formatFacts(textureFormat(f.depth.texture)).depth;
+        glNamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthTest ? f.depth.texture : 0, 0);
+        const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GLenum(normals ? GL_COLOR_ATTACHMENT1 : GL_NONE),
+                                   GLenum(roughness ? GL_COLOR_ATTACHMENT2 : GL_NONE)};
+        glNamedFramebufferDrawBuffers(fb, 3, buffers);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fb);
+        for (GLuint i = 0; i < GLuint(GlStateGuard::kDrawBuffers); ++i) {
+            glBlendEquationi(i, GL_FUNC_ADD);
+            glBlendFunci(i, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+            if (coverage)
+                glDisablei(GL_BLEND, i);
+            else
+                glEnablei(GL_BLEND, i);
+        }
+        if (coverage) {
+            glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        } else {
+            glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE); // albedo; the host's alpha stays
+            const GLboolean third =
+                f.normals.encoding == NormalEncoding::OctahedralWorld ? GL_FALSE : GL_TRUE;
+            glColorMaski(1, GL_TRUE, GL_TRUE, third, GL_FALSE);
+            const int c = f.roughness.channel;
+            glColorMaski(2, c == 0, c == 1, c == 2, GL_FALSE);
+        }
+        return depthTest;
+    }
+
+    void bindInputs(const HostFrame& f, bool coverage) {
+        glBindTextureUnit(0, f.depth.texture);
+        glBindTextureUnit(1, f.normals.texture == 0 ? 0 : coverage ? f.normals.texture : normalCopy.get());
+        glBindTextureUnit(2, f.objectIdTexture != 0 ? f.objectIdTexture : zeroIds.get());
+        glBindTextureUnit(3, textures.albedoTexture());
+        glBindTextureUnit(4, textures.normalTexture());
+        for (GLuint unit = 0; unit < 5; ++unit)
+            glBindSampler(unit, 0);
+        glBindBufferBase(GL_UNIFORM_BUFFER, kProjectorFrameBlock, frameBuffer.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorObjectBuffer, objectBuffer.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorDecalBuffer, decalBuffer.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorVisibleBuffer, visibleBuffer.get());
+    }
+
+    // The pass itself: boxes in front of the eye with the depth test where the host's depth is
+    // attached, then the boxes that may hold the eye by their far faces. Returns the draws made.
+    size_t drawBoxes(const HostFrame& f, const DecalVisibility& vis, GLuint prog, bool depthTest) {
+        glViewport(f.x, f.y, f.width, f.height);
+        glClipControl(GL_LOWER_LEFT,
+                      f.depth.clip == ClipDepth::ZeroToOne ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_STENCIL_TEST);
+        glDepthMask(GL_FALSE);
+        glFrontFace(GL_CCW);
+        glEnable(GL_FRAMEBUFFER_SRGB);
+        glEnable(GL_CULL_FACE);
+        glUseProgram(prog);
+        glBindVertexArray(emptyVao.get());
+        size_t calls = 0;
+        if (!vis.outside.empty()) {
+            glCullFace(GL_BACK);
+            if (depthTest) {
+                glEnable(GL_DEPTH_TEST);
+                glDepthFunc(f.depth.reversedZ ? GL_GEQUAL : GL_LEQUAL); // the face is not behind the scene
+            } else {
+                glDisable(GL_DEPTH_TEST);
+            }
+            glUniform1ui(0, 0u);
+            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(vis.outside.size()));
+            ++calls;
+        }
+        if (!vis.inside.empty()) {
+            glCullFace(GL_FRONT);
+            glDisable(GL_DEPTH_TEST);
+            glUniform1ui(0, GLuint(vis.outside.size()));
+            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(vis.inside.size()));
+            ++calls;
+        }
+        return calls;
+    }
+};
+
+DecalProjector::DecalProjector(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+DecalProjector::DecalProjector(DecalProjector&&) noexcept = default;
+DecalProjector& DecalProjector::operator=(DecalProjector&&) noexcept = default;
+DecalProjector::~DecalProjector() = default;
+
+Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings) {
+    if (Status s = validateSettings(settings); !s) return fail(s.error());
+    GlStateGuard guard;
+    auto impl = std::make_unique<Impl>();
+    impl->settings = settings;
+    if (Status s = impl->textures.create(settings.decalTextureSize); !s)
+        return fail("projector: " + s.error());
+    impl->batch.configure(settings.wrapMaxAngleDeg, impl->textures.layers());
+    impl->frameBuffer = createBuffer();
+    glNamedBufferStorage(impl->frameBuffer.get(), sizeof(ProjectorFrameGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    impl->emptyVao = createVertexArray();
+    impl->fbo = createFramebuffer();
+    impl->zeroIds = createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(impl->zeroIds.get(), 1, GL_R8UI, 1, 1);
+    const uint8_t zero = 0;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(impl->zeroIds.get(), 0, 0, 0, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+    impl->timers.create();
+    return DecalProjector(std::move(impl));
+}
+
+void DecalProjector::setDecalTypes(const std::vector<DecalType>& types) {
+    impl_->batch.setTypes(types);
+}
+
+void DecalProjector::setDecals(const std::vector<Decal>& decals) {
+    impl_->batch.setDecals(decals, impl_->transforms.size());
+}
+
+Status DecalProjector::setObjects(const std::vector<glm::dmat4>& transforms,
+                                  const std::vector<uint8_t>& ids) {
+    if (transforms.size() != ids.size())
+        return fail("projector: " + std::to_string(transforms.size()) + " transforms but " +
+                    std::to_string(ids.size()) + " object IDs");
+    for (size_t i = 0; i < transforms.size(); ++i)
+        if (const std::string p = transformProblem(transforms[i]); !p.empty())
+            return fail("projector: object " + std::to_string(i) + ": " + p);
+    impl_->transforms = transforms;
+    impl_->ids = ids;
+    impl_->batch.setObjectCount(transforms.size());
+    return {};
+}
+
+Result<int> DecalProjector::addDecalTexture(const Image& albedo, const Image& normalMap) {
+    GlStateGuard guard;
+    Result<int> layer = impl_->textures.add(albedo, normalMap);
+    if (layer) impl_->batch.configure(impl_->settings.wrapMaxAngleDeg, impl_->textures.layers());
+    return layer;
+}
+
+Result<int> DecalProjector::addDecalTextureFile(const std::string& albedoPath,
+                                                const std::string& normalMapPath) {
+    Result<Image> albedo = loadImage(albedoPath);
+    if (!albedo) return fail(albedo.error());
+    Image normal;
+    if (!normalMapPath.empty()) {
+        Result<Image> n = loadImage(normalMapPath);
+        if (!n) return fail(n.error());
+        normal = std::move(n.value());
+    }
+    return addDecalTexture(albedo.value(), normal);
+}
+
+int DecalProjector::decalTextureLayers() const {
+    return impl_->textures.layers();
+}
+
+std::string DecalProjector::frameProblem(const HostFrame& frame, const ProjectorDraw& options) const {
+    return hostFrameProblem(frame, options);
+}
+
+Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const ProjectorDraw& options) {
+    Impl& m = *impl_;
+    if (const std::string p = hostFrameProblem(frame, options); !p.empty()) return fail("projector: " + p);
+    const FrameCamera camera = frameCamera(frame);
+    const DecalVisibility vis = m.batch.cull(m.transforms, camera.cull);
+    ProjectorStats stats;
+    stats.decals = m.batch.size();
+    stats.invalid = m.batch.invalidCount();
+    stats.culled = vis.culled;
+    stats.drawn = vis.outside.size() + vis.inside.size();
+    stats.inside = vis.inside.size();
+    stats.skipped = stats.drawn == 0;
+    if (stats.skipped) return stats;
+    const uint32_t bits = m.variantBits(frame, options, vis.flags);
+    Result<GLuint> program = m.program(bits);
+    if (!program) return fail(program.error());
+    stats.variant = join(variantDefines(bits));
+
+    GlStateGuard guard;
+    m.timers.beginFrame(m.draws);
+    m.timers.begin(GpuPass::Decals);
+    m.uploadFrame(frame, camera);
+    stats.bytesUploaded = m.uploadDecals(vis);
+    const bool coverage = options.coverageTexture != 0;
+    if (!coverage && frame.normals.texture != 0) m.copyNormals(frame);
+    const bool depthTest = m.bindTargets(frame, options);
+    m.bindInputs(frame, coverage);
+    stats.drawCalls = m.drawBoxes(frame, vis, program.value(), depthTest);
+    m.timers.end();
+    const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
+    stats.gpuMs = times.decalsMs;
+    stats.gpuFrame = times.frame;
+    ++m.draws;
+    return stats;
+}
+
+ProjectorResources DecalProjector::resources() const {
+    const Impl& m = *impl_;
+    return {m.textures.albedoTexture(), m.textures.normalTexture(), m.decalBuffer.get(),
+            m.visibleBuffer.get(),      m.objectBuffer.get(),       m.visibleCount};
+}
+
+const ProjectorSettings& DecalProjector::settings() const {
+    return impl_->settings;
+}
+
+} // namespace spatter

@@ -1,0 +1,125 @@
+#include "GlStateGuard.hpp"
+
+namespace spatter::render_detail {
+
+namespace {
+
+void enable(GLenum cap, GLboolean on) {
+    if (on)
+        glEnable(cap);
+    else
+        glDisable(cap);
+}
+
+} // namespace
+
+GlStateGuard::GlStateGuard() {
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer_);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer_);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vertexArray_);
+    glGetIntegerv(GL_VIEWPORT, viewport_);
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture_);
+    for (int i = 0; i < kTextureUnits; ++i) {
+        glActiveTexture(GLenum(GL_TEXTURE0 + i));
+        glGetIntegerv(GL_TEXTURE_BINDING_2D, &texture2d_[size_t(i)]);
+        glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &textureArray_[size_t(i)]);
+        glGetIntegerv(GL_SAMPLER_BINDING, &sampler_[size_t(i)]);
+    }
+    glActiveTexture(GLenum(activeTexture_));
+    for (int i = 0; i < kUniformBindings; ++i) {
+        IndexedBuffer& b = uniform_[size_t(i)];
+        glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, GLuint(i), &b.buffer);
+        glGetInteger64i_v(GL_UNIFORM_BUFFER_START, GLuint(i), &b.start);
+        glGetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, GLuint(i), &b.size);
+    }
+    for (int i = 0; i < kStorageBindings; ++i) {
+        IndexedBuffer& b = storage_[size_t(i)];
+        glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, GLuint(i), &b.buffer);
+        glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, GLuint(i), &b.start);
+        glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, GLuint(i), &b.size);
+    }
+    glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniformBuffer_);
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storageBuffer_);
+    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &arrayBuffer_);
+    glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpackBuffer_);
+    for (int i = 0; i < kDrawBuffers; ++i) {
+        Blend& b = blend_[size_t(i)];
+        const auto index = GLuint(i);
+        b.enabled = glIsEnabledi(GL_BLEND, index);
+        glGetIntegeri_v(GL_BLEND_SRC_RGB, index, &b.srcRgb);
+        glGetIntegeri_v(GL_BLEND_DST_RGB, index, &b.dstRgb);
+        glGetIntegeri_v(GL_BLEND_SRC_ALPHA, index, &b.srcAlpha);
+        glGetIntegeri_v(GL_BLEND_DST_ALPHA, index, &b.dstAlpha);
+        glGetIntegeri_v(GL_BLEND_EQUATION_RGB, index, &b.equationRgb);
+        glGetIntegeri_v(GL_BLEND_EQUATION_ALPHA, index, &b.equationAlpha);
+        glGetBooleani_v(GL_COLOR_WRITEMASK, index, b.mask);
+    }
+    depthTest_ = glIsEnabled(GL_DEPTH_TEST);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask_);
+    glGetIntegerv(GL_DEPTH_FUNC, &depthFunc_);
+    stencilTest_ = glIsEnabled(GL_STENCIL_TEST);
+    scissorTest_ = glIsEnabled(GL_SCISSOR_TEST);
+    cullFace_ = glIsEnabled(GL_CULL_FACE);
+    glGetIntegerv(GL_CULL_FACE_MODE, &cullMode_);
+    glGetIntegerv(GL_FRONT_FACE, &frontFace_);
+    glGetIntegerv(GL_CLIP_ORIGIN, &clipOrigin_);
+    glGetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepth_);
+    framebufferSrgb_ = glIsEnabled(GL_FRAMEBUFFER_SRGB);
+    glGetIntegerv(GL_UNPACK_ALIGNMENT, &unpackAlignment_);
+}
+
+GlStateGuard::~GlStateGuard() {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(drawFramebuffer_));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(readFramebuffer_));
+    glUseProgram(GLuint(program_));
+    glBindVertexArray(GLuint(vertexArray_));
+    glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+    for (int i = 0; i < kTextureUnits; ++i) {
+        glActiveTexture(GLenum(GL_TEXTURE0 + i));
+        glBindTexture(GL_TEXTURE_2D, GLuint(texture2d_[size_t(i)]));
+        glBindTexture(GL_TEXTURE_2D_ARRAY, GLuint(textureArray_[size_t(i)]));
+        glBindSampler(GLuint(i), GLuint(sampler_[size_t(i)]));
+    }
+    glActiveTexture(GLenum(activeTexture_));
+    auto rebind = [](GLenum target, GLuint index, const IndexedBuffer& b) {
+        if (b.buffer != 0 && b.size > 0)
+            glBindBufferRange(target, index, GLuint(b.buffer), GLintptr(b.start), GLsizeiptr(b.size));
+        else
+            glBindBufferBase(target, index, GLuint(b.buffer));
+    };
+    for (int i = 0; i < kUniformBindings; ++i)
+        rebind(GL_UNIFORM_BUFFER, GLuint(i), uniform_[size_t(i)]);
+    for (int i = 0; i < kStorageBindings; ++i)
+        rebind(GL_SHADER_STORAGE_BUFFER, GLuint(i), storage_[size_t(i)]);
+    // The generic bindings last: binding a range also sets them.
+    glBindBuffer(GL_UNIFORM_BUFFER, GLuint(uniformBuffer_));
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, GLuint(storageBuffer_));
+    glBindBuffer(GL_ARRAY_BUFFER, GLuint(arrayBuffer_));
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, GLuint(unpackBuffer_));
+    for (int i = 0; i < kDrawBuffers; ++i) {
+        const Blend& b = blend_[size_t(i)];
+        const auto index = GLuint(i);
+        if (b.enabled)
+            glEnablei(GL_BLEND, index);
+        else
+            glDisablei(GL_BLEND, index);
+        glBlendFuncSeparatei(index, GLenum(b.srcRgb), GLenum(b.dstRgb), GLenum(b.srcAlpha),
+                             GLenum(b.dstAlpha));
+        glBlendEquationSeparatei(index, GLenum(b.equationRgb), GLenum(b.equationAlpha));
+        glColorMaski(index, b.mask[0], b.mask[1], b.mask[2], b.mask[3]);
+    }
+    enable(GL_DEPTH_TEST, depthTest_);
+    glDepthMask(depthMask_);
+    glDepthFunc(GLenum(depthFunc_));
+    enable(GL_STENCIL_TEST, stencilTest_);
+    enable(GL_SCISSOR_TEST, scissorTest_);
+    enable(GL_CULL_FACE, cullFace_);
+    glCullFace(GLenum(cullMode_));
+    glFrontFace(GLenum(frontFace_));
+    glClipControl(GLenum(clipOrigin_), GLenum(clipDepth_));
+    enable(GL_FRAMEBUFFER_SRGB, framebufferSrgb_);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, unpackAlignment_);
+}
+
+} // namespace spatter::render_detail

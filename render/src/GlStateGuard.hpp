@@ -1,0 +1,48 @@
+#pragma once
+// GlStateGuard: saves, on construction, the GL state the projector may change and restores it on
+// destruction (the list in spatter/render/DecalProjector.hpp), as Dear ImGui's OpenGL 3 backend
+// does, so that a host can call the projector between its own passes.
+
+#include <epoxy/gl.h>
+
+#include <array>
+
+namespace spatter::render_detail {
+
+class GlStateGuard {
+public:
+    static constexpr int kTextureUnits = 8;
+    static constexpr int kDrawBuffers = 4;
+    static constexpr int kUniformBindings = 2;
+    static constexpr int kStorageBindings = 8;
+
+    GlStateGuard();
+    ~GlStateGuard();
+    GlStateGuard(const GlStateGuard&) = delete;
+    GlStateGuard& operator=(const GlStateGuard&) = delete;
+
+private:
+    struct IndexedBuffer {
+        GLint buffer = 0;
+        GLint64 start = 0, size = 0;
+    };
+    struct Blend {
+        GLboolean enabled = GL_FALSE;
+        GLint srcRgb = 0, dstRgb = 0, srcAlpha = 0, dstAlpha = 0, equationRgb = 0, equationAlpha = 0;
+        GLboolean mask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
+    };
+
+    GLint drawFramebuffer_ = 0, readFramebuffer_ = 0, program_ = 0, vertexArray_ = 0, activeTexture_ = 0;
+    GLint viewport_[4] = {0, 0, 0, 0};
+    std::array<GLint, kTextureUnits> texture2d_{}, textureArray_{}, sampler_{};
+    std::array<IndexedBuffer, kUniformBindings> uniform_{};
+    std::array<IndexedBuffer, kStorageBindings> storage_{};
+    GLint uniformBuffer_ = 0, storageBuffer_ = 0, arrayBuffer_ = 0, unpackBuffer_ = 0;
+    std::array<Blend, kDrawBuffers> blend_{};
+    GLboolean depthTest_ = GL_FALSE, depthMask_ = GL_TRUE, stencilTest_ = GL_FALSE, scissorTest_ = GL_FALSE;
+    GLboolean cullFace_ = GL_FALSE, framebufferSrgb_ = GL_FALSE;
+    GLint depthFunc_ = 0, cullMode_ = 0, frontFace_ = 0, clipOrigin_ = 0, clipDepth_ = 0,
+          unpackAlignment_ = 4;
+};
+
+} // namespace spatter::render_detail

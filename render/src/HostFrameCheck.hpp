@@ -1,0 +1,31 @@
+#pragma once
+// The checks DecalProjector makes on a HostFrame before it touches any GL state: every texture
+// exists, is a 2D texture holding the viewport, and has a format its role can take; the camera can
+// be inverted and its depth direction is the one the frame states.
+
+#include "spatter/render/DecalProjector.hpp"
+
+#include <epoxy/gl.h>
+
+#include <string>
+
+namespace spatter::render_detail {
+
+// What a texture's internal format holds, as far as the projector cares.
+struct FormatFacts {
+    int channels = 0; // 0: a format the projector does not know
+    bool depth = false;
+    bool integer = false;  // unsigned integer
+    bool isSigned = false; // snorm or float: can hold negative values
+    bool renderable = false;
+};
+
+FormatFacts formatFacts(GLenum internalFormat);
+
+// The internal format of level 0 of a texture (0 when it is not a texture).
+GLenum textureFormat(GLuint texture);
+
+// Empty when `frame` (with `options`) fits; otherwise an error naming the field.
+std::string hostFrameProblem(const HostFrame& frame, const ProjectorDraw& options);
+
+} // namespace spatter::render_detail

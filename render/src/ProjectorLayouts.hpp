@@ -1,0 +1,39 @@
+#pragma once
+// C++ mirrors of the projector's GLSL blocks in shaders/projector.glsl (the decal instances are
+// DecalGpu, GpuLayouts.hpp). Field order, types and padding match the std140 / std430 rules; the
+// static_asserts keep both sides in step.
+
+#include <cstdint>
+#include <glm/glm.hpp>
+
+namespace spatter::render_detail {
+
+// Binding points of the projector's shaders (layout(binding = N)).
+enum ProjectorBinding : uint32_t {
+    kProjectorFrameBlock = 0,   // uniform block ProjectorFrame
+    kProjectorObjectBuffer = 1, // shader storage ProjectorObjects
+    kProjectorDecalBuffer = 3,  // shader storage DecalBuffer (decal_data.glsl)
+    kProjectorVisibleBuffer = 4,
+};
+
+// std140 uniform block ProjectorFrame.
+struct alignas(16) ProjectorFrameGpu {
+    glm::mat4 viewProj;      // camera-relative world -> clip
+    glm::mat4 view;          // camera-relative world -> view
+    glm::mat4 invView;       // view -> camera-relative world
+    glm::mat4 invProjection; // clip -> view
+    glm::vec4 viewport;      // x, y, 1 / width, 1 / height
+    glm::vec4 params;        // x: fade start
+};
+static_assert(sizeof(ProjectorFrameGpu) == 4 * 64 + 2 * 16, "ProjectorFrameGpu must match ProjectorFrame");
+
+// std430, one per object.
+struct alignas(16) ProjectorObjectGpu {
+    glm::mat4 model;         // object -> camera-relative world
+    glm::mat4 normalMatrix;  // inverse transpose of model's 3x3 part, in the upper left
+    glm::mat4 worldToObject; // camera-relative world -> object
+    glm::uvec4 info;         // x: object decal ID, y: 1 when model mirrors
+};
+static_assert(sizeof(ProjectorObjectGpu) == 208, "ProjectorObjectGpu must match ProjectorObject (std430)");
+
+} // namespace spatter::render_detail

@@ -1,0 +1,368 @@
+// The projector's host contract (spatter/render/DecalProjector.hpp): the GL state it promises to
+// leave as it found it, host descriptions that do not fit, and the same decals in a foreign host
+// and in spatter's renderer.
+
+#include "ForeignHost.hpp"
+#include "RenderTestSupport.hpp"
+#include "TestData.hpp"
+
+#include "spatter/core/MeshBuilder.hpp"
+#include "spatter/render/DecalProjector.hpp"
+#include "spatter/render/DecalTextures.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <vector>
+
+using namespace spatter;
+using ::testing::HasSubstr;
+
+namespace {
+
+constexpr int kWidth = 96;
+constexpr int kHeight = 64;
+
+// Every piece of GL state the header lists, as numbers.
+std::vector<int64_t> glStateSnapshot() {
+    std::vector<int64_t> v;
+    auto get = [&v](GLenum name, int count = 1) {
+        GLint64 x[4] = {0, 0, 0, 0};
+        glGetInteger64v(name, x);
+        v.insert(v.end(), x, x + count);
+    };
+    auto getIndexed = [&v](GLenum name, GLuint index) {
+        GLint64 x = 0;
+        glGetInteger64i_v(name, index, &x);
+        v.push_back(x);
+    };
+    get(GL_DRAW_FRAMEBUFFER_BINDING);
+    get(GL_READ_FRAMEBUFFER_BINDING);
+    get(GL_CURRENT_PROGRAM);
+    get(GL_VERTEX_ARRAY_BINDING);
+    get(GL_VIEWPORT, 4);
+    GLint active = 0;
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+    v.push_back(active);
+    for (GLuint unit = 0; unit < 8; ++unit) {
+        glActiveTexture(GL_TEXTURE0 + unit);
+        get(GL_TEXTURE_BINDING_2D);
+        get(GL_TEXTURE_BINDING_2D_ARRAY);
+        get(GL_SAMPLER_BINDING);
+    }
+    glActiveTexture(GLenum(active));
+    for (GLuint i = 0; i < 2; ++i)
+        for (GLenum name : {GL_UNIFORM_BUFFER_BINDING, GL_UNIFORM_BUFFER_START, GL_UNIFORM_BUFFER_SIZE})
+            getIndexed(name, i);
+    for (GLuint i = 0; i < 8; ++i)
+        for (GLenum name : {GL_SHADER_STORAGE_BUFFER_BINDING, GL_SHADER_STORAGE_BUFFER_START,
+                            GL_SHADER_STORAGE_BUFFER_SIZE})
+            getIndexed(name, i);
+    for (GLenum name : {GL_UNIFORM_BUFFER_BINDING, GL_SHADER_STORAGE_BUFFER_BINDING, GL_ARRAY_BUFFER_BINDING,
+                        GL_PIXEL_UNPACK_BUFFER_BINDING})
+        get(name);
+    for (GLuint i = 0; i < 4; ++i) {
+        v.push_back(glIsEnabledi(GL_BLEND, i));
+        for (GLenum name : {GL_BLEND_SRC_RGB, GL_BLEND_DST_RGB, GL_BLEND_SRC_ALPHA, GL_BLEND_DST_ALPHA,
+                            GL_BLEND_EQUATION_RGB, GL_BLEND_EQUATION_ALPHA})
+            getIndexed(name, i);
+        GLboolean mask[4];
+        glGetBooleani_v(GL_COLOR_WRITEMASK, i, mask);
+        v.insert(v.end(), mask, mask + 4);
+    }
+    for (GLenum cap : {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_SCISSOR_TEST, GL_CULL_FACE, GL_FRAMEBUFFER_SRGB})
+        v.push_back(glIsEnabled(cap));
+    for (GLenum name : {GL_DEPTH_WRITEMASK, GL_DEPTH_FUNC, GL_CULL_FACE_MODE, GL_FRONT_FACE, GL_CLIP_ORIGIN,
+                        GL_CLIP_DEPTH_MODE, GL_UNPACK_ALIGNMENT})
+        get(name);
+    return v;
+}
+
+// GL objects a host has bound, and unusual values for all the state the header lists.
+struct HostState {
+    GLuint fbo = 0, program = 0, vao = 0, sampler = 0, buffers[4] = {0, 0, 0, 0}, textures[3] = {0, 0, 0};
+
+    HostState() {
+        glCreateFramebuffers(1, &fbo);
+        program = glCreateProgram();
+        const char* text = "#version 450 core\nvoid main() { gl_Position = vec4(0.0); }\n";
+        const GLuint vs = glCreateShader(GL_VERTEX_SHADER);
+        glShaderSource(vs, 1, &text, nullptr);
+        glCompileShader(vs);
+        glAttachShader(program, vs);
+        glLinkProgram(program);
+        glDeleteShader(vs);
+        glCreateVertexArrays(1, &vao);
+        glCreateSamplers(1, &sampler);
+        glCreateBuffers(4, buffers);
+        for (GLuint b : buffers)
+            glNamedBufferStorage(b, 1024, nullptr, 0);
+        glCreateTextures(GL_TEXTURE_2D, 2, textures);
+        glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, textures + 2);
+        glTextureStorage2D(textures[0], 1, GL_RGBA8, 4, 4);
+        glTextureStorage2D(textures[1], 1, GL_R32F, 4, 4);
+        glTextureStorage3D(textures[2], 1, GL_RGBA8, 4, 4, 2);
+    }
+    // Back to GL's defaults for the tests that follow on the shared context.
+    ~HostState() {
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glUseProgram(0);
+        glBindVertexArray(0);
+        glBindSampler(2, 0);
+        glActiveTexture(GL_TEXTURE0);
+        for (GLuint i = 0; i < 4; ++i) {
+            glBlendFuncSeparatei(i, GL_ONE, GL_ZERO, GL_ONE, GL_ZERO);
+            glBlendEquationSeparatei(i, GL_FUNC_ADD, GL_FUNC_ADD);
+            glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        }
+        glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_STENCIL_TEST);
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_CULL_FACE);
+        glCullFace(GL_BACK);
+        glFrontFace(GL_CCW);
+        glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glDeleteFramebuffers(1, &fbo);
+        glDeleteProgram(program);
+        glDeleteVertexArrays(1, &vao);
+        glDeleteSamplers(1, &sampler);
+        glDeleteBuffers(4, buffers);
+        glDeleteTextures(3, textures);
+    }
+
+    void apply() const {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+        glUseProgram(program);
+        glBindVertexArray(vao);
+        glViewport(3, 5, 17, 11);
+        for (GLuint unit = 0; unit < 8; ++unit) {
+            glActiveTexture(GL_TEXTURE0 + unit);
+            glBindTexture(GL_TEXTURE_2D, textures[unit % 2]);
+            glBindTexture(GL_TEXTURE_2D_ARRAY, textures[2]);
+        }
+        glBindSampler(2, sampler);
+        glActiveTexture(GL_TEXTURE5);
+        glBindBufferRange(GL_UNIFORM_BUFFER, 0, buffers[0], 256, 512);
+        glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffers[1]);
+        for (GLuint i = 0; i < 8; ++i)
+            glBindBufferRange(GL_SHADER_STORAGE_BUFFER, i, buffers[i % 4], 0, 256);
+        glBindBuffer(GL_UNIFORM_BUFFER, buffers[2]);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[3]);
+        glBindBuffer(GL_ARRAY_BUFFER, buffers[1]);
+        glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+        for (GLuint i = 0; i < 4; ++i) {
+            if (i % 2)
+                glEnablei(GL_BLEND, i);
+            else
+                glDisablei(GL_BLEND, i);
+            glBlendFuncSeparatei(i, GL_ONE, GL_DST_COLOR, GL_ZERO, GL_SRC_ALPHA_SATURATE);
+            glBlendEquationSeparatei(i, GL_MAX, GL_FUNC_REVERSE_SUBTRACT);
+            glColorMaski(i, GL_FALSE, GL_TRUE, i == 2, GL_TRUE);
+        }
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_ALWAYS);
+        glDepthMask(GL_FALSE);
+        glEnable(GL_STENCIL_TEST);
+        glEnable(GL_SCISSOR_TEST);
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_FRONT_AND_BACK);
+        glFrontFace(GL_CW);
+        glClipControl(GL_UPPER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        glDisable(GL_FRAMEBUFFER_SRGB);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    }
+};
+
+// A wall (z = 0, facing +Z) and a dynamic box in front of it, seen from the front, with decals on both.
+struct WallScene {
+    Scene scene;
+    std::vector<glm::dmat4> transforms;
+    std::vector<uint8_t> ids = {0, 7};
+    std::vector<DecalType> types;
+    std::vector<Decal> decals;
+    Camera camera = test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0});
+
+    WallScene() {
+        scene.objects.push_back(
+            makeSceneObject("wall", makeBox(glm::vec3(3.0f, 2.0f, 0.05f), 2),
+                            glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 1.0, -0.05))));
+        scene.objects.push_back(makeSceneObject("crate", makeBox(glm::vec3(0.3f), 1),
+                                                glm::translate(glm::dmat4(1.0), glm::dvec3(0.8, 0.8, 0.5)),
+                                                true));
+        for (const SceneObject& o : scene.objects)
+            transforms.push_back(o.transform);
+        DecalType t;
+        t.name = "paint";
+        t.size = glm::vec2(0.6f);
+        t.texture = int(DecalTexture::Paint);
+        t.roughness = 0.2f;
+        types.push_back(t);
+        decals.push_back(decalAt(0, {-0.6f, 0.0f, 0.05f}));
+        decals.push_back(decalAt(1, {0.0f, 0.0f, 0.3f}));
+    }
+
+    static Decal decalAt(uint32_t object, const glm::vec3& center) {
+        Decal d;
+        d.object = object;
+        d.center = center;
+        d.frame.tangent = {1, 0, 0};
+        d.frame.bitangent = {0, 1, 0};
+        d.frame.normal = {0, 0, 1};
+        d.size = glm::vec2(0.6f);
+        d.halfDepth = 0.2f;
+        d.objectId = object == 1 ? 7 : 0;
+        d.opacity = 1.0f;
+        return d;
+    }
+};
+
+struct Hosted {
+    WallScene wall;
+    test::ForeignHost host;
+    DecalProjector projector;
+
+    static std::optional<Hosted> make() {
+        Result<test::ForeignHost> host = test::ForeignHost::create(kWidth, kHeight);
+        Result<DecalProjector> projector = DecalProjector::create();
+        EXPECT_TRUE(host.ok()) << host.error();
+        EXPECT_TRUE(projector.ok()) << projector.error();
+        if (!host || !projector) return std::nullopt;
+        std::optional<Hosted> h(std::in_place,
+                                Hosted{WallScene(), std::move(host).value(), std::move(projector).value()});
+        h->host.setScene(h->wall.scene);
+        h->host.draw(h->wall.transforms, h->wall.ids, h->wall.camera);
+        EXPECT_TRUE(h->projector.setObjects(h->wall.transforms, h->wall.ids).ok());
+        h->projector.setDecalTypes(h->wall.types);
+        h->projector.setDecals(h->wall.decals);
+        return h;
+    }
+};
+
+size_t differingPixels(const Image& a, const Image& b) {
+    size_t n = 0;
+    for (size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); i += 4)
+        n += std::memcmp(&a.rgba[i], &b.rgba[i], 4) != 0 ? 1 : 0;
+    return n;
+}
+
+} // namespace
+
+TEST(Projector, LeavesEveryListedGlStateAsItFoundIt) {
+    SPATTER_REQUIRE_GL(gl);
+    std::optional<Hosted> h = Hosted::make();
+    ASSERT_TRUE(h);
+    const HostState state;
+    state.apply();
+    const std::vector<int64_t> before = glStateSnapshot();
+    Result<ProjectorStats> blended = h->projector.draw(h->host.frame(h->wall.camera, true));
+    ASSERT_TRUE(blended.ok()) << blended.error();
+    EXPECT_EQ(blended->drawn, 2u);
+    EXPECT_EQ(glStateSnapshot(), before) << "after a blended draw";
+    ProjectorDraw coverage;
+    coverage.coverageTexture = h->host.coverageTexture();
+    ASSERT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, true), coverage).ok());
+    EXPECT_EQ(glStateSnapshot(), before) << "after a coverage draw";
+    ASSERT_TRUE(h->projector.addDecalTexture(makeBuiltinDecalTexture(DecalTexture::Blood, 32).albedo).ok());
+    EXPECT_EQ(glStateSnapshot(), before) << "after addDecalTexture";
+    HostFrame bad = h->host.frame(h->wall.camera, true);
+    bad.projection = glm::dmat4(0.0);
+    EXPECT_FALSE(h->projector.draw(bad).ok());
+    EXPECT_EQ(glStateSnapshot(), before) << "after a failed draw";
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}
+
+TEST(Projector, BlendsIntoTheHostsTargetsAndClipsByObjectId) {
+    SPATTER_REQUIRE_GL(gl);
+    std::optional<Hosted> h = Hosted::make();
+    ASSERT_TRUE(h);
+    const Image before = h->host.read(h->host.albedoTexture());
+    Result<ProjectorStats> st = h->projector.draw(h->host.frame(h->wall.camera, true));
+    ASSERT_TRUE(st.ok()) << st.error();
+    EXPECT_EQ(st->drawn, 2u) << "culled " << st->culled << ", invalid " << st->invalid;
+    EXPECT_THAT(st->variant, HasSubstr("IDS"));
+    EXPECT_THAT(st->variant, HasSubstr("CLIP_MINUS_ONE"));
+    EXPECT_THAT(st->variant, HasSubstr("STANDARD_Z"));
+    EXPECT_THAT(st->variant, HasSubstr("NORMAL_WORLD_UNORM"));
+    const Image after = h->host.read(h->host.albedoTexture());
+    EXPECT_GT(differingPixels(before, after), 20u); // the paint texture is opaque only in places
+    // Coverage with and without the ID texture: the crate's decal reaches the wall behind it only
+    // without IDs.
+    ProjectorDraw draw;
+    draw.coverageTexture = h->host.coverageTexture();
+    h->host.clearCoverage();
+    ASSERT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, true), draw).ok());
+    const size_t withIds = test::countSet(test::whiteMask(h->host.read(h->host.coverageTexture())));
+    h->host.clearCoverage();
+    ASSERT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, false), draw).ok());
+    const size_t withoutIds = test::countSet(test::whiteMask(h->host.read(h->host.coverageTexture())));
+    EXPECT_GT(withIds, 0u);
+    EXPECT_GT(withoutIds, withIds);
+}
+
+TEST(Projector, RejectsHostFramesThatDoNotFitNamingTheFieldAndDrawsNothing) {
+    SPATTER_REQUIRE_GL(gl);
+    std::optional<Hosted> h = Hosted::make();
+    ASSERT_TRUE(h);
+    const HostFrame good = h->host.frame(h->wall.camera, true);
+    ASSERT_EQ(h->projector.frameProblem(good), "");
+    struct Textures {
+        GLuint rgba8 = 0, narrow = 0, r32f = 0; // the frame's size in RGBA8 and R32F, half as wide
+    } t;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t.rgba8);
+    glTextureStorage2D(t.rgba8, 1, GL_RGBA8, kWidth, kHeight);
+    glCreateTextures(GL_TEXTURE_2D, 1, &t.narrow);
+    glTextureStorage2D(t.narrow, 1, GL_RGBA8, kWidth / 2, kHeight);
+    glCreateTextures(GL_TEXTURE_2D, 1, &t.r32f);
+    glTextureStorage2D(t.r32f, 1, GL_R32F, kWidth, kHeight);
+    struct Case {
+        const char* field;
+        void (*change)(HostFrame&, const Textures&);
+    };
+    const Case cases[] = {
+        {"HostFrame.depth.texture", [](HostFrame& f, const Textures&) { f.depth.texture = 0; }},
+        {"HostFrame.albedoTexture", [](HostFrame& f, const Textures&) { f.albedoTexture = 0; }},
+        {"HostFrame.albedoTexture", [](HostFrame& f, const Textures& x) { f.albedoTexture = x.narrow; }},
+        {"HostFrame.albedoTexture", [](HostFrame& f, const Textures& x) { f.albedoTexture = x.r32f; }},
+        {"HostFrame.normals.texture",
+         [](HostFrame& f, const Textures& x) {
+             f.normals = {x.rgba8, NormalEncoding::WorldSigned};
+         }},
+        {"HostFrame.objectIdTexture", [](HostFrame& f, const Textures& x) { f.objectIdTexture = x.rgba8; }},
+        {"HostFrame.roughness.channel", [](HostFrame& f, const Textures&) { f.roughness.channel = 3; }},
+        {"HostFrame.roughness.texture",
+         [](HostFrame& f, const Textures&) { f.roughness.texture = f.albedoTexture; }},
+        {"HostFrame.projection", [](HostFrame& f, const Textures&) { f.projection = glm::dmat4(0.0); }},
+        {"HostFrame.view",
+         [](HostFrame& f, const Textures&) { f.view[0][0] = std::numeric_limits<double>::quiet_NaN(); }},
+        {"HostFrame.depth.reversedZ", [](HostFrame& f, const Textures&) { f.depth.reversedZ = true; }},
+        {"HostFrame.depth.texture",
+         [](HostFrame& f, const Textures& x) {
+             f.depth = {x.rgba8, DepthEncoding::LinearView, ClipDepth::ZeroToOne, false};
+         }},
+        {"HostFrame viewport", [](HostFrame& f, const Textures&) { f.width = 0; }},
+        {"HostFrame.depth.texture", [](HostFrame& f, const Textures&) { f.x = 1; }},
+    };
+    const Image before = h->host.read(h->host.albedoTexture());
+    for (const Case& c : cases) {
+        HostFrame f = good;
+        c.change(f, t);
+        Result<ProjectorStats> st = h->projector.draw(f);
+        ASSERT_FALSE(st.ok()) << c.field;
+        EXPECT_THAT(st.error(), HasSubstr(c.field));
+    }
+    EXPECT_EQ(differingPixels(before, h->host.read(h->host.albedoTexture())), 0u);
+    const GLuint textures[3] = {t.rgba8, t.narrow, t.r32f};
+    glDeleteTextures(3, textures);
+    EXPECT_FALSE(h->projector.setObjects(h->wall.transforms, {0}).ok());
+}
