@@ -24,14 +24,13 @@ void main() {
 
 const char* kFrag = R"(#version 450 core
 in vec3 v_normal;
-layout(location = 2) uniform uint u_id;
+layout(location = 4) uniform uint u_id; // u_normalMatrix takes locations 1 to 3
 layout(location = 0) out vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_material;
 layout(location = 3) out uint o_id;
 void main() {
-    vec3 n = normalize(v_normal);
-    if (!gl_FrontFacing) n = -n;
+    vec3 n = normalize(v_normal); // the meshes are closed: their back faces are never seen
     o_albedo = vec4(0.5, 0.5, 0.5, 1.0);
     o_normal = vec4(n * 0.5 + 0.5, 1.0);
     o_material = vec4(0.0, 0.8, 0.0, 0.0);
@@ -56,6 +55,7 @@ GLuint texture(GLenum format, int w, int h) {
 struct MeshGpu {
     GLuint vao = 0, buffers[3] = {0, 0, 0};
     GLsizei indices = 0;
+    bool receiver = true;
 };
 
 } // namespace
@@ -146,6 +146,7 @@ void ForeignHost::setScene(const Scene& scene) {
         }
         glVertexArrayElementBuffer(g.vao, g.buffers[2]);
         g.indices = GLsizei(o.mesh.indices.size());
+        g.receiver = o.receivesDecals;
         m.meshes.push_back(g);
     }
 }
@@ -180,13 +181,14 @@ void ForeignHost::draw(const std::vector<glm::dmat4>& transforms, const std::vec
     glUseProgram(m.program);
     const glm::dmat4 viewProj = projection(camera) * viewRotation(camera);
     for (size_t i = 0; i < m.meshes.size() && i < transforms.size(); ++i) {
+        if (!m.meshes[i].receiver) continue;
         glm::dmat4 rel = transforms[i];
         rel[3] -= glm::dvec4(camera.eye, 0.0);
         const glm::mat4 mvp(viewProj * rel);
         const glm::mat3 normal(glm::transpose(glm::inverse(glm::dmat3(transforms[i]))));
         glUniformMatrix4fv(0, 1, GL_FALSE, &mvp[0][0]);
         glUniformMatrix3fv(1, 1, GL_FALSE, &normal[0][0]);
-        glUniform1ui(2, i < ids.size() ? ids[i] : 0u);
+        glUniform1ui(4, i < ids.size() ? ids[i] : 0u);
         glBindVertexArray(m.meshes[i].vao);
         glDrawElements(GL_TRIANGLES, m.meshes[i].indices, GL_UNSIGNED_INT, nullptr);
     }

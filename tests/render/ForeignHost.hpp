@@ -3,7 +3,9 @@
 // projector's host contract: standard (not reversed) Z with GL's default clip depth in a 24-bit
 // depth buffer and a finite far plane, world normals in RGB10A2 as n * 0.5 + 0.5, albedo in RGBA8,
 // roughness in the G channel of an RG8 texture, object decal IDs in R8UI, and an R8 coverage target.
-// It draws a Scene's render meshes with a flat grey albedo.
+// It draws the render meshes of a Scene's decal receivers with a flat grey albedo; like spatter's
+// renderer it would draw the objects that take no decals after the projector, over the decals, which
+// the tests that use it do not need.
 
 #include "spatter/core/Image.hpp"
 #include "spatter/core/Scene.hpp"
@@ -27,7 +29,7 @@ public:
 
     // Uploads the scene's meshes (replacing any earlier scene).
     void setScene(const Scene& scene);
-    // Clears the targets and draws the scene with `transforms` (one per object) and `ids`.
+    // Clears the targets and draws the decal receivers with `transforms` (one per object) and `ids`.
     void draw(const std::vector<glm::dmat4>& transforms, const std::vector<uint8_t>& ids,
               const Camera& camera);
     // The frame as the projector's host description; `withIds`: hand it the ID texture.
