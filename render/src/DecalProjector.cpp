@@ -155,6 +155,8 @@ struct DecalProjector::Impl {
     GlVertexArray emptyVao;
     GlFramebuffer fbo;
     GlTexture zeroIds;    // bound as s_ids when the frame has no ID texture
+    GlSampler nearest;    // for the host's textures, whatever their own filters (an integer texture
+                          // with a mipmap filter is incomplete and reads 0)
     GlTexture normalCopy; // the host's normals as they were before the draw
     GLenum normalCopyFormat = 0;
     int normalCopyWidth = 0, normalCopyHeight = 0;
@@ -299,8 +301,10 @@ struct DecalProjector::Impl {
         glBindTextureUnit(2, f.objectIdTexture != 0 ? f.objectIdTexture : zeroIds.get());
         glBindTextureUnit(3, textures.albedoTexture());
         glBindTextureUnit(4, textures.normalTexture());
-        for (GLuint unit = 0; unit < 5; ++unit)
-            glBindSampler(unit, 0);
+        for (GLuint unit = 0; unit < 3; ++unit)
+            glBindSampler(unit, nearest.get());
+        glBindSampler(3, 0);
+        glBindSampler(4, 0);
         glBindBufferBase(GL_UNIFORM_BUFFER, kProjectorFrameBlock, frameBuffer.get());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorObjectBuffer, objectBuffer.get());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorDecalBuffer, decalBuffer.get());
@@ -362,6 +366,10 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
     glNamedBufferStorage(impl->frameBuffer.get(), sizeof(ProjectorFrameGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
     impl->emptyVao = createVertexArray();
     impl->fbo = createFramebuffer();
+    impl->nearest = createSampler();
+    glSamplerParameteri(impl->nearest.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(impl->nearest.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(impl->nearest.get(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
     impl->zeroIds = createTexture(GL_TEXTURE_2D);
     glTextureStorage2D(impl->zeroIds.get(), 1, GL_R8UI, 1, 1);
     const uint8_t zero = 0;

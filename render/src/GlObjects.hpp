@@ -8,7 +8,7 @@
 
 namespace spatter::render_detail {
 
-enum class GlKind { Buffer, Texture, Framebuffer, VertexArray, Query, Program, Shader };
+enum class GlKind { Buffer, Texture, Framebuffer, VertexArray, Query, Program, Shader, Sampler };
 
 inline void deleteGlName(GlKind kind, GLuint name) {
     switch (kind) {
@@ -32,6 +32,9 @@ inline void deleteGlName(GlKind kind, GLuint name) {
         break;
     case GlKind::Shader:
         glDeleteShader(name);
+        break;
+    case GlKind::Sampler:
+        glDeleteSamplers(1, &name);
         break;
     }
 }
@@ -70,6 +73,7 @@ using GlVertexArray = GlName<GlKind::VertexArray>;
 using GlQuery = GlName<GlKind::Query>;
 using GlProgram = GlName<GlKind::Program>;
 using GlShader = GlName<GlKind::Shader>;
+using GlSampler = GlName<GlKind::Sampler>;
 
 inline GlBuffer createBuffer() {
     GLuint n = 0;
@@ -87,6 +91,12 @@ inline GlFramebuffer createFramebuffer() {
     GLuint n = 0;
     glCreateFramebuffers(1, &n);
     return GlFramebuffer(n);
+}
+
+inline GlSampler createSampler() {
+    GLuint n = 0;
+    glCreateSamplers(1, &n);
+    return GlSampler(n);
 }
 
 inline GlVertexArray createVertexArray() {

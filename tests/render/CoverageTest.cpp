@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 
 using namespace spatter;
@@ -136,7 +137,9 @@ void expectCoverageMatches(const std::string& name, const Scene& scene, const Pl
     EXPECT_GT(test::countSet(cpu), size_t(kWidth * kHeight) / 20) << name;
     const size_t decals = placed.inputs.decals.size();
     expectMaskMatches(name + "-gpu", renderCoverage(scene, placed.inputs, cam), cpu, decals, minIou);
-    expectMaskMatches(name + "-foreign", foreignCoverage(scene, placed.inputs, cam), cpu, decals, minIou);
+    // A host of the projector is held to 0.99 (the projector's own contract).
+    expectMaskMatches(name + "-foreign", foreignCoverage(scene, placed.inputs, cam), cpu, decals,
+                      std::max(minIou, 0.99));
 }
 
 Camera cameraFor(const Scene& scene, const glm::dvec3& direction) {

@@ -14,7 +14,7 @@ const char* kVert = R"(#version 450 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 0) uniform mat4 u_modelViewProj;
-layout(location = 1) uniform mat3 u_normalMatrix;
+layout(location = 4) uniform mat3 u_normalMatrix; // u_modelViewProj takes locations 0 to 3
 out vec3 v_normal;
 void main() {
     gl_Position = u_modelViewProj * vec4(a_position, 1.0);
@@ -24,7 +24,7 @@ void main() {
 
 const char* kFrag = R"(#version 450 core
 in vec3 v_normal;
-layout(location = 4) uniform uint u_id; // u_normalMatrix takes locations 1 to 3
+layout(location = 7) uniform uint u_id; // u_normalMatrix takes locations 4 to 6
 layout(location = 0) out vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_material;
@@ -187,8 +187,8 @@ void ForeignHost::draw(const std::vector<glm::dmat4>& transforms, const std::vec
         const glm::mat4 mvp(viewProj * rel);
         const glm::mat3 normal(glm::transpose(glm::inverse(glm::dmat3(transforms[i]))));
         glUniformMatrix4fv(0, 1, GL_FALSE, &mvp[0][0]);
-        glUniformMatrix3fv(1, 1, GL_FALSE, &normal[0][0]);
-        glUniform1ui(4, i < ids.size() ? ids[i] : 0u);
+        glUniformMatrix3fv(4, 1, GL_FALSE, &normal[0][0]);
+        glUniform1ui(7, i < ids.size() ? ids[i] : 0u);
         glBindVertexArray(m.meshes[i].vao);
         glDrawElements(GL_TRIANGLES, m.meshes[i].indices, GL_UNSIGNED_INT, nullptr);
     }

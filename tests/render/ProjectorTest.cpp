@@ -209,7 +209,11 @@ struct WallScene {
         t.roughness = 0.2f;
         types.push_back(t);
         decals.push_back(decalAt(0, {-0.6f, 0.0f, 0.05f}));
-        decals.push_back(decalAt(1, {0.0f, 0.0f, 0.3f}));
+        // Wider than the crate and deep enough to reach the wall behind it: only IDs keep it off the wall.
+        Decal onCrate = decalAt(1, {0.0f, 0.0f, 0.3f});
+        onCrate.size = glm::vec2(1.0f);
+        onCrate.halfDepth = 1.0f;
+        decals.push_back(onCrate);
     }
 
     static Decal decalAt(uint32_t object, const glm::vec3& center) {
