@@ -209,6 +209,12 @@ struct Renderer::Impl {
         drawObjects(true);
     }
 
+    // After the projector added a decal texture layer: the splats' instances see it too.
+    Result<int> layerAdded(Result<int> layer) {
+        if (layer) splatBatch.configure(settings.wrapMaxAngleDeg, projector->decalTextureLayers());
+        return layer;
+    }
+
     // The G-buffer as the projector's host frame (pass 2: the decals, or their coverage).
     HostFrame hostFrame(const Camera& camera) const {
         HostFrame f;
@@ -597,22 +603,11 @@ void Renderer::setDecals(const std::vector<Decal>& decals) {
 }
 
 Result<int> Renderer::addDecalTexture(const Image& albedo, const Image& normalMap) {
-    Result<int> layer = impl_->projector->addDecalTexture(albedo, normalMap);
-    if (layer)
-        impl_->splatBatch.configure(impl_->settings.wrapMaxAngleDeg, impl_->projector->decalTextureLayers());
-    return layer;
+    return impl_->layerAdded(impl_->projector->addDecalTexture(albedo, normalMap));
 }
 
 Result<int> Renderer::addDecalTextureFile(const std::string& albedoPath, const std::string& normalMapPath) {
-    Result<Image> albedo = loadImage(albedoPath);
-    if (!albedo) return fail(albedo.error());
-    Image normal;
-    if (!normalMapPath.empty()) {
-        Result<Image> n = loadImage(normalMapPath);
-        if (!n) return fail(n.error());
-        normal = std::move(n.value());
-    }
-    return addDecalTexture(albedo.value(), normal);
+    return impl_->layerAdded(impl_->projector->addDecalTextureFile(albedoPath, normalMapPath));
 }
 
 int Renderer::decalTextureLayers() const {

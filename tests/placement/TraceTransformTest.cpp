@@ -121,15 +121,9 @@ void expectTrace(const CollisionWorld& w, const glm::dmat4& crate, bool crateTra
 // The scene as a glTF file: the floor static, the crate static or dynamic, by node matrices.
 std::string writeCrateGltf(const std::string& dir, const std::string& name, const glm::dmat4& crate,
                            bool dynamic) {
-    GltfBuilder g;
     const Mesh box = makeBox(glm::vec3(0.5f), 1);
-    g.addMesh(box.positions, box.indices);
-    g.push("nodes",
-           {{"name", "floor"}, {"mesh", 0}, {"scale", {20, 0.2, 20}}, {"translation", {0, -0.1, 0}}});
     const std::vector<double> matrix(&crate[0][0], &crate[0][0] + 16);
-    g.push("nodes", {{"name", "crate"}, {"mesh", 0}, {"matrix", matrix}, {"extras", {{"dynamic", dynamic}}}});
-    g.doc["scenes"] = {{{"nodes", {0, 1}}}};
-    g.doc["scene"] = 0;
+    GltfBuilder g = floorAndCrate(box.positions, box.indices, matrix, dynamic);
     return g.writeGltf(dir, name);
 }
 

@@ -160,17 +160,8 @@ TEST(SpatterRender, PlacesRaysAndHonoursTranslate) {
 TEST(SpatterRender, DrawsAndTracesAroundANodeSingularInFloat) {
     SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("tool-untraced");
-    test::GltfBuilder g;
     const Mesh box = makeBox(glm::vec3(0.5f), 1);
-    g.addMesh(box.positions, box.indices);
-    g.push("nodes",
-           {{"name", "floor"}, {"mesh", 0}, {"scale", {20, 0.2, 20}}, {"translation", {0, -0.1, 0}}});
-    g.push("nodes", {{"name", "crate"},
-                     {"mesh", 0},
-                     {"matrix", {1, 1, 0, 0, 1, 1.000000001, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1}},
-                     {"extras", {{"dynamic", true}}}});
-    g.doc["scenes"] = {{{"nodes", {0, 1}}}};
-    g.doc["scene"] = 0;
+    test::GltfBuilder g = test::floorAndCrate(box.positions, box.indices, test::kColumnsEqualInFloat, true);
     const std::string scene = g.writeGltf(dir, "crate");
     std::ofstream(dir + "/rays.txt") << "0 10 0 0 -1 0\n";
     ASSERT_EQ(runTool(scene + " --rays " + dir + "/rays.txt --camera 'eye=0,6,6;target=0,0,0' --size 64x48" +

@@ -119,4 +119,26 @@ struct GltfBuilder {
     }
 };
 
+// A floor (the unit box scaled to 20 x 0.2 x 20, top at y = 0) and a node "crate" (the same box,
+// half-extent 0.5) placed by the column-major `crateMatrix`, dynamic or static. `box`: the box's
+// positions and indices (MeshBuilder's makeBox(0.5)).
+inline GltfBuilder floorAndCrate(const std::vector<glm::vec3>& positions,
+                                 const std::vector<uint32_t>& indices, const std::vector<double>& crateMatrix,
+                                 bool dynamic) {
+    GltfBuilder g;
+    g.addMesh(positions, indices);
+    g.push("nodes",
+           {{"name", "floor"}, {"mesh", 0}, {"scale", {20, 0.2, 20}}, {"translation", {0, -0.1, 0}}});
+    g.push("nodes",
+           {{"name", "crate"}, {"mesh", 0}, {"matrix", crateMatrix}, {"extras", {{"dynamic", dynamic}}}});
+    g.doc["scenes"] = {{{"nodes", {0, 1}}}};
+    g.doc["scene"] = 0;
+    return g;
+}
+
+// Columns [1, 1, 0] and [1, 1 + 1e-9, 0]: invertible in double, singular once rounded to float; the
+// crate at (0, 2, 0).
+inline const std::vector<double> kColumnsEqualInFloat = {1, 1, 0, 0, 1, 1.000000001, 0, 0,
+                                                         0, 0, 1, 0, 0, 2,           0, 1};
+
 } // namespace spatter::test
