@@ -127,19 +127,23 @@ Ray burstRay(FuzzedDataProvider& in, const Ray& previous) {
     return r;
 }
 
-// A transform that single precision can barely use or not at all (TraceTransform.hpp): two columns
-// that differ by 2^-10 to 2^-60 (past float's seventh digit from 2^-24 on), a column scaled by 2^-80 to 2^80,
-// a strong shear, or a mirror, on a placed object.
+// A transform that single precision can barely use or not at all (TraceTransform.hpp), on a placed
+// and turned object: two columns whose components differ by a factor 1 + k 2^-n, n from 10 to 60
+// (equal once rounded to float from n = 24 on, while the double matrix stays invertible), a column
+// scaled by 2^-80 to 2^80, a shear up to 1e7, or a mirror.
 glm::dmat4 pickFloatSingular(FuzzedDataProvider& in) {
     glm::dmat4 m = glm::translate(glm::dmat4(1.0), pickVec(in, -12.0, 12.0));
+    const glm::dvec3 axis(1.0 + in.ConsumeFloatingPointInRange(0.0, 1.0), 2.0, 3.0);
+    m = glm::rotate(m, in.ConsumeFloatingPointInRange(0.1, 3.0), glm::normalize(axis));
     const int c = in.ConsumeIntegralInRange<int>(0, 2);
     const int d = (c + in.ConsumeIntegralInRange<int>(1, 2)) % 3;
     switch (in.ConsumeIntegralInRange<int>(0, 3)) {
-    case 0:
-        m[d] = m[c] +
-               glm::dvec4(pickVec(in, -1.0, 1.0) * std::ldexp(1.0, -in.ConsumeIntegralInRange<int>(10, 60)),
-                          0.0);
+    case 0: {
+        const double delta = std::ldexp(1.0, -in.ConsumeIntegralInRange<int>(10, 60));
+        for (int r = 0; r < 3; ++r)
+            m[d][r] = m[c][r] * (1.0 + delta * double(r + 1));
         break;
+    }
     case 1:
         m[c] *= std::ldexp(1.0, in.ConsumeIntegralInRange<int>(-80, 80));
         break;

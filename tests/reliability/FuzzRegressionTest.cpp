@@ -64,6 +64,27 @@ void expectConsistent(const DecalStats& st) {
         << st.evicted << " expired " << st.expired << " removed " << st.removed;
 }
 
+// The scene of fuzz_spawn: a floor, a static sphere, a dynamic crate, a dynamic non-receiver and a
+// dynamic scaled sphere.
+Scene fuzzSpawnScene() {
+    Scene s;
+    s.source = "fuzz:spawn";
+    const glm::dmat4 id(1.0);
+    s.objects.push_back(makeSceneObject("floor", makeBox(glm::vec3(10.0f, 0.1f, 10.0f), 2),
+                                        glm::translate(id, glm::dvec3(0.0, -0.1, 0.0))));
+    s.objects.push_back(
+        makeSceneObject("pillar", makeSphere(1.0f, 8, 12), glm::translate(id, glm::dvec3(3, 1, 0))));
+    s.objects.push_back(
+        makeSceneObject("crate", makeBox(glm::vec3(0.5f), 1), glm::translate(id, glm::dvec3(0, 1, 0)), true));
+    s.objects.push_back(makeSceneObject("ghost", makeBox(glm::vec3(0.5f), 1),
+                                        glm::translate(id, glm::dvec3(-3, 1, 0)), true));
+    s.objects.back().receivesDecals = false;
+    s.objects.push_back(
+        makeSceneObject("ball", makeSphere(0.5f, 6, 8),
+                        glm::scale(glm::translate(id, glm::dvec3(0, 1, 3)), glm::dvec3(1, 2, 0.5)), true));
+    return s;
+}
+
 } // namespace
 
 // fuzz_spawn: depthMargin 0 on a collision mesh with h = 0 made decals of half-depth 0, boxes the
@@ -350,21 +371,7 @@ TEST(FuzzRegression, NodeMatrixThatIsNotAffineIsRejectedWhenLoading) {
 // attached to a scaled sphere gave a decal whose object-space box was sound but whose world box,
 // rounded back, overflowed to infinity. Such a spawn is now degenerate (InvalidArgument).
 TEST(FuzzRegression, DecalWhoseWorldBoxOverflowsIsRejectedAsDegenerate) {
-    Scene s;
-    s.source = "fuzz:spawn";
-    const glm::dmat4 id(1.0);
-    s.objects.push_back(makeSceneObject("floor", makeBox(glm::vec3(10.0f, 0.1f, 10.0f), 2),
-                                        glm::translate(id, glm::dvec3(0.0, -0.1, 0.0))));
-    s.objects.push_back(
-        makeSceneObject("pillar", makeSphere(1.0f, 8, 12), glm::translate(id, glm::dvec3(3, 1, 0))));
-    s.objects.push_back(
-        makeSceneObject("crate", makeBox(glm::vec3(0.5f), 1), glm::translate(id, glm::dvec3(0, 1, 0)), true));
-    s.objects.push_back(makeSceneObject("ghost", makeBox(glm::vec3(0.5f), 1),
-                                        glm::translate(id, glm::dvec3(-3, 1, 0)), true));
-    s.objects.back().receivesDecals = false;
-    s.objects.push_back(
-        makeSceneObject("ball", makeSphere(0.5f, 6, 8),
-                        glm::scale(glm::translate(id, glm::dvec3(0, 1, 3)), glm::dvec3(1, 2, 0.5)), true));
+    const Scene s = fuzzSpawnScene();
     DecalSettings settings;
     settings.seed = 11732013733571554261ull;
     settings.cellSize = 3.56594253f;
@@ -414,4 +421,39 @@ TEST(FuzzRegression, CollisionMeshesThatAreOnePointAreLeftOutInsteadOfAborting) 
     EXPECT_THAT(w->warnings()[0], HasSubstr("collision mesh is a single point"));
     EXPECT_FALSE(w->intersect(Ray{{0.0, 0.0, 5.0}, {0.0, 0.0, -1.0}}));
     EXPECT_FALSE(w->intersectBatch({Ray{{0.0, 0.0, 5.0}, {0.0, 0.0, -1.0}}})[0]);
+}
+
+// fuzz_spawn, once it drew transforms singular in single precision: the crate turned so that its
+// first and third columns differ by factors 1 + k 2^-40 (equal in float, invertible in double), then
+// a shot through its place. Embree got the singular float matrix, inverted it and asserted on the NaN
+// rays (ray.valid()). The crate now leaves the trace and the shot goes on.
+TEST(FuzzRegression, CrateTurnedSingularInFloatLeavesTheTraceInsteadOfAborting) {
+    DecalSettings settings;
+    settings.seed = 4425030522700391117ull;
+    settings.cellSize = 3.68939376f;
+    settings.maxPerCell = 3;
+    settings.budget = 14;
+    settings.maxPerObject = 14;
+    settings.policy = LimitPolicy::Reject;
+    settings.idSeparation = 1.0;
+    Result<DecalSystem> sys = DecalSystem::create(fuzzSpawnScene(), settings);
+    ASSERT_TRUE(sys) << sys.error();
+    const glm::dmat4 m(glm::dvec4(0.74245116792759003, 0.14805637757023157, 0.65333419649299707, 0.0),
+                       glm::dvec4(-0.6624898728902533, 0.30693617441022286, 0.68329887542441725, 0.0),
+                       glm::dvec4(0.74245116792691479, 0.14805637756996226, 0.65333419649121449, 0.0),
+                       glm::dvec4(10.566416382088232, -6.6054295593395072, 11.26155006451685, 1.0));
+    const Result<TransformUpdate> moved = sys->setTransform(2, m);
+    ASSERT_TRUE(moved) << moved.error();
+    EXPECT_FALSE(moved->traced);
+    EXPECT_THAT(moved->warning, HasSubstr("singular in single precision"));
+    const uint16_t type = sys->registerType(namedType("hole")).value();
+    const Ray shot{{-13.715689917364514, -13.924088494789226, 1.1754943508222875e-38},
+                   {45.11292520850408, 13.905771574806389, 19.806600449248723}};
+    const SpawnResult r = sys->spawn(shot, type);
+    EXPECT_NE(r.status, SpawnStatus::InvalidRay) << r.reason;
+    std::vector<SpawnResult> results;
+    sys->spawnBatch({shot, shot, shot, shot, shot}, type, results);
+    EXPECT_EQ(results.size(), 5u);
+    const std::optional<Hit> aimed = sys->world().intersect(Ray{{10.5, 10.0, 11.2}, {0.0, -1.0, 0.0}});
+    EXPECT_TRUE(!aimed || aimed->object != 2u);
 }
