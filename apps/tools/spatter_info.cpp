@@ -18,7 +18,8 @@ Loads SCENE and prints one JSON object on stdout:
                        "traced"}]}
 Bounds are world-space, over every render mesh. traced is whether shots can hit the object: it
 receives decals and its transform is one single-precision ray tracing can use (finite inverse,
-condition number at most 65536, scales within 2^-25..2^25, within 2^32 of the world's centre). For
+condition number at most 65536, scales within 2^-25..2^25, within 2^32 of the world's centre, not
+smaller than a few float steps there). For
 each receiver that is not traced a warning on stderr names it and says why.
 
 SCENE is builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file.

@@ -74,7 +74,8 @@ Options:
   --help            this text
 
 An object whose transform single-precision ray tracing cannot use (singular or nearly so in float,
-scaled beyond 2^+-25, or more than 2^32 from the world's centre) is left out (rays pass through it)
+scaled beyond 2^+-25, more than 2^32 from the world's centre, or smaller than a few float steps at
+its place) is left out (rays pass through it)
 with a warning on stderr that names it and says why; the rest of the scene is traced as usual.
 
 No area limits apply: every ray gets its own decal. Exit code 0 when the scene loads (whatever

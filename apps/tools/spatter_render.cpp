@@ -75,7 +75,8 @@ Output:
   --help          this text
 
 With --rays, an object whose transform single-precision ray tracing cannot use (singular or nearly
-so in float, scaled beyond 2^+-25, or more than 2^32 from the world's centre) is left out of the
+so in float, scaled beyond 2^+-25, more than 2^32 from the world's centre, or smaller than a few
+float steps at its place) is left out of the
 trace (rays pass through it; it is still drawn) with a warning on stderr that names it and says why.
 
 Exit code 0 on success, 1 when the scene, the decals or the GL context fail, 2 on bad options.

@@ -13,7 +13,8 @@
 //
 // Transforms: Embree traces in single precision, so an object is traced only while its transform
 // keeps the rule of TraceTransform.hpp (its float matrix has a finite inverse, a condition number of
-// at most 2^16 and scales within 2^+-25, and the object lies within 2^32 of origin()). An object in
+// at most 2^16 and scales within 2^+-25; the object lies within 2^32 of origin() and is not smaller
+// than a few float steps there). An object in
 // the world whose transform breaks it is left out of the trace (CollisionObject::traced is false,
 // `untraced` says why, warnings() lists it) until setTransform gives it a usable one; no matrix that
 // breaks the rule ever reaches Embree. Every ray handed to Embree is valid by construction: finite
