@@ -60,12 +60,9 @@ bool soundBox(const Decal& d) {
            finite(d.frame.normal) && extent(d.size.x) && extent(d.size.y) && extent(d.halfDepth);
 }
 
-// The box in world space can be described in float: a size at float's limit in one space can round
-// past it in the other.
-bool soundWorldBox(const WorldDecal& w) {
-    return std::isfinite(w.size.x) && std::isfinite(w.size.y) && std::isfinite(w.halfDepth) &&
-           std::isfinite(w.center.x) && std::isfinite(w.center.y) && std::isfinite(w.center.z);
-}
+// The largest world-space extent (size or half-depth) a decal may have: its box goes to object space
+// and back through float, and an extent at float's limit would round past it to infinity.
+constexpr float kMaxWorldExtent = std::numeric_limits<float>::max() / 4.0f;
 
 struct Meta {
     uint32_t slot = kNone;
@@ -242,7 +239,8 @@ struct DecalSystem::Impl {
         d.type = typeIndex;
         d.spawnTime = time;
         d.opacity = 1.0f;
-        if (!soundBox(d) || !soundWorldBox(toWorld(d))) {
+        const bool worldSound = std::max(size.x, size.y) <= kMaxWorldExtent && halfDepth <= kMaxWorldExtent;
+        if (!soundBox(d) || !worldSound) {
             rng = unused;
             return reject(SpawnStatus::InvalidArgument,
                           "the box of a decal of type '" + t.name + "' on '" + o.name +
