@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 using namespace spatter;
@@ -185,6 +186,50 @@ TEST(Coverage, MatchesCpuReferenceOnSharedMeshes) {
         ASSERT_GT(placed.placed, 10u) << file;
         expectCoverageMatches(std::string(file).substr(7), scene.value(), placed, cam, 0.97);
     }
+}
+
+TEST(Coverage, MatchesCpuReferenceOnDamagedHelmet) {
+    SPATTER_REQUIRE_GL(gl);
+    SPATTER_REQUIRE_SHARED(path, "gltf/DamagedHelmet/DamagedHelmet.glb");
+    Result<Scene> scene = loadScene(path);
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    const Camera cam = cameraFor(scene.value(), {0.4, 0.3, 1.0});
+    const float s = float(scene->worldBounds().diagonal()) * 0.1f;
+    const std::vector<DecalType> types = {makeType("a", {s, s}, DecalTexture::BulletHole),
+                                          makeType("b", {1.5f * s, s}, DecalTexture::Blood, true),
+                                          makeType("c", {s, s}, DecalTexture::Scorch, false, 0.5f * s)};
+    const Placed placed = shootFromCamera(scene.value(), cam, types, 60, 13);
+    ASSERT_GT(placed.placed, 10u);
+    expectCoverageMatches("DamagedHelmet", scene.value(), placed, cam, 0.97);
+}
+
+// The eye inside deep decal boxes: the boxes are drawn by their far faces without the depth test,
+// and the near plane clips the reference's rays as it clips the GPU's.
+TEST(Coverage, MatchesCpuReferenceWithTheCameraInsideDecalBoxes) {
+    SPATTER_REQUIRE_GL(gl);
+    GallerySettings gs;
+    gs.detail = 1;
+    const Scene scene = makeGalleryScene(gs);
+    Camera shooter;
+    shooter.eye = {1.5, 2.2, 4.5};
+    shooter.target = {-0.5, 1.0, -3.0};
+    const std::vector<DecalType> types = {makeType("deep", {2.5f, 2.5f}, DecalTexture::Scorch, false, 3.0f),
+                                          makeType("wrap", {2.0f, 2.0f}, DecalTexture::Blood, true, 3.0f)};
+    const Placed placed = shootFromCamera(scene, shooter, types, 40, 17);
+    ASSERT_GT(placed.placed, 20u);
+    // The eye 1 m in front of the first decal, looking at it: inside its box and others.
+    const Decal& d = placed.inputs.decals.front();
+    const glm::dmat4& m = scene.objects[d.object].transform;
+    const glm::dvec3 centre(m * glm::dvec4(glm::dvec3(d.center), 1.0));
+    const glm::dvec3 normal =
+        glm::normalize(glm::transpose(glm::inverse(glm::dmat3(m))) * glm::dvec3(d.frame.normal));
+    Camera inside;
+    inside.eye = centre + normal * 1.0;
+    inside.target = centre - glm::dvec3(0.3, 0.2, 0.1);
+    const glm::dvec3 box(glm::inverse(m * glm::dmat4(d.boxToObject())) * glm::dvec4(inside.eye, 1.0));
+    ASSERT_LE(std::max({std::fabs(box.x), std::fabs(box.y), std::fabs(box.z)}), 1.0)
+        << "the eye is not in the box";
+    expectCoverageMatches("inside", scene, placed, inside, 0.97);
 }
 
 TEST(Coverage, DecalsPlacedThroughACoarseProxyCoverTheDrawnSurface) {
