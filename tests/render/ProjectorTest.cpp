@@ -370,3 +370,58 @@ TEST(Projector, RejectsHostFramesThatDoNotFitNamingTheFieldAndDrawsNothing) {
     glDeleteTextures(3, textures);
     EXPECT_FALSE(h->projector.setObjects(h->wall.transforms, {0}).ok());
 }
+
+// The same decals on the same grey (0.5) wall and crate, in spatter's renderer (an sRGB albedo
+// target, reversed Z, octahedral normals) and in the foreign host (linear RGBA8, standard Z, RGB10A2
+// normals): under the decals the albedo agrees, in linear terms, within 2/255 on average and 8/255
+// at most, the quantisation of the two targets' 8-bit encodings.
+TEST(Projector, TheSameDecalsGiveTheSameAlbedoInEveryHost) {
+    SPATTER_REQUIRE_GL(gl);
+    std::optional<Hosted> h = Hosted::make();
+    ASSERT_TRUE(h);
+    Scene scene = h->wall.scene;
+    Material grey;
+    grey.name = "grey";
+    grey.baseColorFactor = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
+    scene.materials = {grey};
+    for (SceneObject& o : scene.objects)
+        o.mesh.submeshes = {{0, uint32_t(o.mesh.indices.size()), 0}};
+    Result<Renderer> r = test::makeRenderer(kWidth, kHeight);
+    ASSERT_TRUE(r.ok()) << r.error();
+    ASSERT_TRUE(r->setScene(scene).ok());
+    ASSERT_TRUE(r->setObjectIds(h->wall.ids).ok());
+    r->setDecalTypes(h->wall.types);
+    r->setDecals(h->wall.decals);
+    const Image spatterAlbedo = test::renderView(r.value(), h->wall.camera, View::Albedo);
+
+    h->host.draw(h->wall.transforms, h->wall.ids, h->wall.camera);
+    ASSERT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, true)).ok());
+    const Image hostAlbedo = h->host.read(h->host.albedoTexture());
+    ProjectorDraw coverage;
+    coverage.coverageTexture = h->host.coverageTexture();
+    h->host.clearCoverage();
+    ASSERT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, true), coverage).ok());
+    const std::vector<uint8_t> decalPixels = test::whiteMask(h->host.read(h->host.coverageTexture()));
+    ASSERT_GT(test::countSet(decalPixels), 100u);
+
+    auto srgbToLinear = [](uint8_t v) {
+        const double c = v / 255.0;
+        return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    };
+    double sum = 0.0, worst = 0.0;
+    size_t n = 0;
+    for (size_t p = 0; p < decalPixels.size(); ++p) {
+        if (!decalPixels[p]) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double a = srgbToLinear(spatterAlbedo.rgba[p * 4 + size_t(c)]);
+            const double b = hostAlbedo.rgba[p * 4 + size_t(c)] / 255.0;
+            sum += std::fabs(a - b);
+            worst = std::max(worst, std::fabs(a - b));
+            ++n;
+        }
+    }
+    std::printf("albedo under %zu decal pixels: mean difference %.2f/255, largest %.2f/255\n", n / 3,
+                255.0 * sum / double(n), 255.0 * worst);
+    EXPECT_LE(255.0 * sum / double(n), 2.0);
+    EXPECT_LE(255.0 * worst, 8.0);
+}
