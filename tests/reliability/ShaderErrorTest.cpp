@@ -59,7 +59,8 @@ protected:
 } // namespace
 
 TEST_F(ShaderErrors, CompileErrorNamesTheFileAndLine) {
-    Result<GlProgram> program = buildProgram(shaderLibrary(kShaderSources), {{GL_FRAGMENT_SHADER, "broken.frag"}}, {});
+    Result<GlProgram> program =
+        buildProgram(shaderLibrary(kShaderSources), {{GL_FRAGMENT_SHADER, "broken.frag"}}, {});
     ASSERT_FALSE(program.ok());
     const std::string& message = program.error();
     EXPECT_NE(message.find("shader broken.frag does not compile"), std::string::npos) << message;
@@ -68,7 +69,8 @@ TEST_F(ShaderErrors, CompileErrorNamesTheFileAndLine) {
 }
 
 TEST_F(ShaderErrors, ErrorInAnIncludedFileNamesThatFileAndLine) {
-    Result<GlProgram> program = buildProgram(shaderLibrary(kShaderSources), {{GL_FRAGMENT_SHADER, "uses_broken_lib.frag"}}, {});
+    Result<GlProgram> program =
+        buildProgram(shaderLibrary(kShaderSources), {{GL_FRAGMENT_SHADER, "uses_broken_lib.frag"}}, {});
     ASSERT_FALSE(program.ok());
     const std::string& message = program.error();
     EXPECT_NE(message.find("shader uses_broken_lib.frag does not compile"), std::string::npos) << message;
@@ -77,7 +79,8 @@ TEST_F(ShaderErrors, ErrorInAnIncludedFileNamesThatFileAndLine) {
 }
 
 TEST_F(ShaderErrors, MissingFileIsNamed) {
-    Result<GlProgram> program = buildProgram(shaderLibrary(kShaderSources), {{GL_FRAGMENT_SHADER, "absent.frag"}}, {});
+    Result<GlProgram> program =
+        buildProgram(shaderLibrary(kShaderSources), {{GL_FRAGMENT_SHADER, "absent.frag"}}, {});
     ASSERT_FALSE(program.ok());
     EXPECT_NE(program.error().find("absent.frag"), std::string::npos) << program.error();
 }

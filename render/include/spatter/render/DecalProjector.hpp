@@ -114,8 +114,9 @@ struct HostRoughness {
 
 // The host's frame, field by field. Every texture is a GL_TEXTURE_2D of the host's, read with
 // texelFetch at level 0 through the projector's own nearest-filter sampler (the texture's filters do
-// not matter: an integer texture left with a mipmap filter would otherwise read 0); the colour targets are attached to the projector's own framebuffer and
-// written with blending (an sRGB albedo format is encoded and blended in linear space).
+// not matter: an integer texture left with a mipmap filter would otherwise read 0); the colour targets are
+// attached to the projector's own framebuffer and written with blending (an sRGB albedo format is encoded and
+// blended in linear space).
 struct HostFrame {
     // The region of the host's textures this frame covers, in pixels from their lower left corner;
     // every texture must contain it.
