@@ -79,12 +79,13 @@ enum class ClipDepth {
     MinusOneToOne, // GL's default, GL_NEGATIVE_ONE_TO_ONE: window depth = (clip z / w + 1) / 2
 };
 
-// How the host's normal texture encodes unit normals (sampled with texelFetch).
+// How the host's normal texture encodes unit normals, and the formats each takes.
 enum class NormalEncoding {
-    OctahedralWorld, // RG in [-1, 1]: world-space normal, octahedral (Cigolle et al. 2014); RG16F, RG16_SNORM
-    WorldSigned,     // RGB in [-1, 1]: world-space normal; RGBA16F, RGB10A2 read as signed...
-    WorldUnorm,      // RGB in [0, 1]: world-space normal as n * 0.5 + 0.5; RGBA8, RGB10_A2
-    ViewUnorm,       // RGB in [0, 1]: view-space normal as n * 0.5 + 0.5
+    OctahedralWorld, // RG in [-1, 1]: world-space normal, octahedral (Cigolle et al. 2014);
+                     // a signed format of two or more channels (RG16F, RG16_SNORM, RG32F)
+    WorldSigned,     // RGB in [-1, 1]: world-space normal; a signed format (RGBA16F, RGBA16_SNORM)
+    WorldUnorm,      // RGB in [0, 1]: world-space normal as n * 0.5 + 0.5 (RGBA8, RGB10_A2, RGBA16F)
+    ViewUnorm,       // RGB in [0, 1]: view-space normal as n * 0.5 + 0.5, the same formats
 };
 
 // The frame in which a decal's normal map is applied.
