@@ -15,6 +15,7 @@
 // the G-buffer taken before the pass, so every decal tests the surface, not other decals. With
 // NO_NORMALS (the host has none) the surface normal comes from depth derivatives and nothing writes
 // normals. Roughness goes to every colour channel of location 2; the colour mask picks the host's.
+// ROUGHNESS_ALPHA writes only roughness, into an alpha channel (a pass of its own, DecalProjector).
 #include "projector.glsl"
 
 layout(binding = 0) uniform sampler2D s_depth;
@@ -31,8 +32,12 @@ flat in vec4 v_tint;
 flat in uvec4 v_info;
 flat in vec2 v_params;
 
-#ifdef COVERAGE
+#if defined(COVERAGE)
 layout(location = 0) out vec4 o_coverage;
+#elif defined(ROUGHNESS_ALPHA)
+// Roughness in an alpha channel, its own pass: dual-source blending weighs it by the decal's alpha.
+layout(location = 0, index = 0) out vec4 o_roughness; // a: roughness * weight
+layout(location = 0, index = 1) out vec4 o_weight;    // a: weight
 #else
 layout(location = 0) out vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
@@ -102,6 +107,11 @@ void main() {
     vec3 layer = vec3(tc, float(v_info.y));
     vec4 tex = textureGrad(s_decalAlbedo, layer, tcdx, tcdy);
     float alpha = clamp(tex.a * v_tint.a * fade, 0.0, 1.0);
+#ifdef ROUGHNESS_ALPHA
+    float weight = (flags & DECAL_ROUGHNESS) != 0u ? alpha : 0.0;
+    o_roughness = vec4(0.0, 0.0, 0.0, v_params.y * weight);
+    o_weight = vec4(0.0, 0.0, 0.0, weight);
+#else
     o_albedo = vec4(tex.rgb * v_tint.rgb, alpha);
     o_normal = vec4(0.0);
 #ifdef NORMAL_MAP
@@ -130,5 +140,6 @@ void main() {
     }
 #endif
     o_material = vec4(vec3(v_params.y), (flags & DECAL_ROUGHNESS) != 0u ? alpha : 0.0);
+#endif
 #endif
 }

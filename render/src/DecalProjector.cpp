@@ -41,6 +41,7 @@ enum Variant : uint32_t {
     kVariantNormalWorldSigned = 2048u,
     kVariantNormalWorldUnorm = 4096u,
     kVariantNormalViewUnorm = 8192u,
+    kVariantRoughnessAlpha = 16384u,
 };
 
 constexpr const char* kVariantNames[] = {"IDS",
@@ -56,7 +57,8 @@ constexpr const char* kVariantNames[] = {"IDS",
                                          "NO_NORMALS",
                                          "NORMAL_WORLD_SIGNED",
                                          "NORMAL_WORLD_UNORM",
-                                         "NORMAL_VIEW_UNORM"};
+                                         "NORMAL_VIEW_UNORM",
+                                         "ROUGHNESS_ALPHA"};
 
 std::vector<std::string> variantDefines(uint32_t bits) {
     std::vector<std::string> d;
@@ -97,6 +99,11 @@ uint32_t conventionBits(const HostFrame& f) {
         break;
     }
     return bits;
+}
+
+// Whether the frame keeps roughness in an alpha channel: a pass of its own after the blend.
+bool roughnessInAlpha(const HostFrame& f, const ProjectorDraw& o) {
+    return f.roughness.texture != 0 && f.roughness.channel == 3 && o.coverageTexture == 0;
 }
 
 // The camera of a frame relative to its eye, and what culling needs of it.
@@ -261,8 +268,8 @@ struct DecalProjector::Impl {
     bool bindTargets(const HostFrame& f, const ProjectorDraw& o) {
         const GLuint fb = fbo.get();
         const bool coverage = o.coverageTexture != 0;
-        const GLuint normals = coverage ? 0 : f.normals.texture,
-                     roughness = coverage ? 0 : f.roughness.texture;
+        const GLuint normals = coverage ? 0 : f.normals.texture;
+        const GLuint roughness = coverage || roughnessInAlpha(f, o) ? 0 : f.roughness.texture;
         glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, coverage ? o.coverageTexture : f.albedoTexture,
                                   0);
         glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, normals, 0);
@@ -309,6 +316,21 @@ struct DecalProjector::Impl {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorObjectBuffer, objectBuffer.get());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorDecalBuffer, decalBuffer.get());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorVisibleBuffer, visibleBuffer.get());
+    }
+
+    // Roughness in an alpha channel: the same boxes again, into that texture alone, with dual-source
+    // blending (a = roughness * w + a * (1 - w), w the decal's alpha), the other channels kept.
+    size_t roughnessPass(const HostFrame& f, const DecalVisibility& vis, GLuint prog, bool depthTest) {
+        const GLuint fb = fbo.get();
+        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, f.roughness.texture, 0);
+        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, 0, 0);
+        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT2, 0, 0);
+        glNamedFramebufferDrawBuffer(fb, GL_COLOR_ATTACHMENT0);
+        glEnablei(GL_BLEND, 0);
+        glBlendEquationi(0, GL_FUNC_ADD);
+        glBlendFuncSeparatei(0, GL_ZERO, GL_ONE, GL_ONE, GL_ONE_MINUS_SRC1_ALPHA);
+        glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+        return drawBoxes(f, vis, prog, depthTest);
     }
 
     // The pass itself: boxes in front of the eye with the depth test where the host's depth is
@@ -446,6 +468,13 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     Result<GLuint> program = m.program(bits);
     if (!program) return fail(program.error());
     stats.variant = join(variantDefines(bits));
+    GLuint roughnessProgram = 0;
+    if (roughnessInAlpha(frame, options) && (vis.flags & kDecalRoughness)) {
+        Result<GLuint> p =
+            m.program((bits & ~(kVariantNormalMap | kVariantDepthFrame)) | kVariantRoughnessAlpha);
+        if (!p) return fail(p.error());
+        roughnessProgram = p.value();
+    }
 
     GlStateGuard guard;
     m.timers.beginFrame(m.draws);
@@ -457,6 +486,7 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     const bool depthTest = m.bindTargets(frame, options);
     m.bindInputs(frame, coverage);
     stats.drawCalls = m.drawBoxes(frame, vis, program.value(), depthTest);
+    if (roughnessProgram != 0) stats.drawCalls += m.roughnessPass(frame, vis, roughnessProgram, depthTest);
     m.timers.end();
     const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
     stats.gpuMs = times.decalsMs;

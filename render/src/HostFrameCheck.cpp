@@ -174,17 +174,19 @@ std::string hostFrameProblem(const HostFrame& f, const ProjectorDraw& options) {
         if (!p.empty()) return p;
     }
     if (f.roughness.texture != 0 && !coverage) {
-        if (f.roughness.channel < 0 || f.roughness.channel > 2)
+        if (f.roughness.channel < 0 || f.roughness.channel > 3)
             return "HostFrame.roughness.channel: " + std::to_string(f.roughness.channel) +
-                   " is not 0, 1 or 2 (roughness in an alpha channel is not supported)";
+                   " is not 0, 1, 2 or 3";
         const int channel = f.roughness.channel;
         p = checkTexture(
             f.roughness.texture, "HostFrame.roughness.texture", f,
             [channel](const FormatFacts& k) { return k.renderable && !k.integer && k.channels > channel; },
             "a colour format with that channel");
         if (!p.empty()) return p;
-        if (f.roughness.texture == f.albedoTexture || f.roughness.texture == f.normals.texture)
-            return "HostFrame.roughness.texture: the same texture as the albedo or normal target";
+        if (f.roughness.texture == f.normals.texture ||
+            (f.roughness.texture == f.albedoTexture && channel != 3))
+            return "HostFrame.roughness.texture: the same texture as the normal target, or as the albedo "
+                   "target with roughness outside its alpha channel";
     }
     if (!coverage && f.normals.texture != 0 && f.normals.texture == f.albedoTexture)
         return "HostFrame.normals.texture: the same texture as the albedo target";

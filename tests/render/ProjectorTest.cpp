@@ -273,6 +273,10 @@ TEST(Projector, LeavesEveryListedGlStateAsItFoundIt) {
     ASSERT_TRUE(blended.ok()) << blended.error();
     EXPECT_EQ(blended->drawn, 2u);
     EXPECT_EQ(glStateSnapshot(), before) << "after a blended draw";
+    HostFrame alphaRoughness = h->host.frame(h->wall.camera, true);
+    alphaRoughness.roughness = {alphaRoughness.albedoTexture, 3};
+    ASSERT_TRUE(h->projector.draw(alphaRoughness).ok());
+    EXPECT_EQ(glStateSnapshot(), before) << "after a draw with roughness in an alpha channel";
     ProjectorDraw coverage;
     coverage.coverageTexture = h->host.coverageTexture();
     ASSERT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, true), coverage).ok());
@@ -343,7 +347,7 @@ TEST(Projector, RejectsHostFramesThatDoNotFitNamingTheFieldAndDrawsNothing) {
              f.normals = {x.rgba8, NormalEncoding::WorldSigned};
          }},
         {"HostFrame.objectIdTexture", [](HostFrame& f, const Textures& x) { f.objectIdTexture = x.rgba8; }},
-        {"HostFrame.roughness.channel", [](HostFrame& f, const Textures&) { f.roughness.channel = 3; }},
+        {"HostFrame.roughness.channel", [](HostFrame& f, const Textures&) { f.roughness.channel = 4; }},
         {"HostFrame.roughness.texture",
          [](HostFrame& f, const Textures&) { f.roughness.texture = f.albedoTexture; }},
         {"HostFrame.projection", [](HostFrame& f, const Textures&) { f.projection = glm::dmat4(0.0); }},
@@ -424,4 +428,33 @@ TEST(Projector, TheSameDecalsGiveTheSameAlbedoInEveryHost) {
                 255.0 * sum / double(n), 255.0 * worst);
     EXPECT_LE(255.0 * sum / double(n), 2.0);
     EXPECT_LE(255.0 * worst, 8.0);
+}
+
+// Roughness in the albedo texture's alpha channel (a second draw of the boxes with dual-source
+// blending): under the decals alpha moves towards the type's roughness (0.2) while the colour is
+// blended as usual; elsewhere both stay.
+TEST(Projector, WritesRoughnessIntoTheAlbedoAlphaChannel) {
+    SPATTER_REQUIRE_GL(gl);
+    std::optional<Hosted> h = Hosted::make();
+    ASSERT_TRUE(h);
+    const Image before = h->host.read(h->host.albedoTexture());
+    HostFrame f = h->host.frame(h->wall.camera, true);
+    f.roughness = {f.albedoTexture, 3};
+    Result<ProjectorStats> st = h->projector.draw(f);
+    ASSERT_TRUE(st.ok()) << st.error();
+    EXPECT_EQ(st->drawCalls, 2u); // the blend, then the alpha roughness pass (no box holds the eye)
+    const Image after = h->host.read(h->host.albedoTexture());
+    size_t rougher = 0, colourOnly = 0, alphaOnly = 0;
+    for (size_t i = 0; i < after.rgba.size(); i += 4) {
+        const bool colour = std::memcmp(&before.rgba[i], &after.rgba[i], 3) != 0;
+        const bool alpha = before.rgba[i + 3] != after.rgba[i + 3];
+        rougher += alpha && after.rgba[i + 3] < before.rgba[i + 3] ? 1 : 0;
+        colourOnly += colour && !alpha ? 1 : 0;
+        alphaOnly += alpha && !colour ? 1 : 0;
+    }
+    EXPECT_GT(rougher, 20u);
+    // Where the decal's alpha rounds the colour away, its roughness can still show, and the reverse.
+    EXPECT_LT(colourOnly + alphaOnly, rougher);
+    std::printf("alpha roughness: %zu pixels rougher, %zu colour only, %zu alpha only\n", rougher, colourOnly,
+                alphaOnly);
 }

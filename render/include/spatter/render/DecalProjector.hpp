@@ -109,8 +109,10 @@ struct HostNormals {
 };
 
 struct HostRoughness {
-    uint32_t texture = 0; // GL_TEXTURE_2D colour texture; 0: roughness is not written
-    int channel = 0;      // 0 (R), 1 (G) or 2 (B): the channel roughness lives in; the others are kept
+    uint32_t texture = 0; // GL_TEXTURE_2D colour texture; 0: roughness is not written. It may be the
+                          // albedo texture when roughness lives in its alpha channel
+    int channel = 0;      // 0 (R), 1 (G), 2 (B) or 3 (A): the channel roughness lives in; the others
+                          // are kept. In A it takes a second draw of the boxes (dual-source blending)
 };
 
 // The host's frame, field by field. Every texture is a GL_TEXTURE_2D of the host's, read with
