@@ -458,3 +458,98 @@ TEST(Projector, WritesRoughnessIntoTheAlbedoAlphaChannel) {
     std::printf("alpha roughness: %zu pixels rougher, %zu colour only, %zu alpha only\n", rougher, colourOnly,
                 alphaOnly);
 }
+
+namespace {
+
+// A 64 x 64 frame of a wall at z = 0 seen from z = 2, its depth given as `depth` (a constant the
+// test computes for each encoding), and the coverage of a 1 x 1 decal at the origin in it.
+size_t wallCoverage(const glm::dmat4& projection, HostDepth depth, float depthValue) {
+    constexpr int kSize = 64;
+    auto texture = [](GLenum format) {
+        GLuint t = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &t);
+        glTextureStorage2D(t, 1, format, kSize, kSize);
+        return t;
+    };
+    const bool depthFormat = depth.encoding == DepthEncoding::Window;
+    depth.texture = texture(depthFormat ? GL_DEPTH_COMPONENT32F : GL_R32F);
+    glClearTexImage(depth.texture, 0, depthFormat ? GL_DEPTH_COMPONENT : GL_RED, GL_FLOAT, &depthValue);
+    const GLuint coverage = texture(GL_R8), albedo = texture(GL_RGBA8);
+    const unsigned char black[4] = {0, 0, 0, 0};
+    glClearTexImage(coverage, 0, GL_RGBA, GL_UNSIGNED_BYTE, black);
+    Result<DecalProjector> projector = DecalProjector::create();
+    EXPECT_TRUE(projector.ok());
+    DecalType t;
+    t.name = "square";
+    projector->setDecalTypes({t});
+    EXPECT_TRUE(projector->setObjects({glm::dmat4(1.0)}, {0}).ok());
+    projector->setDecals({WallScene::decalAt(0, glm::vec3(0.0f))});
+    HostFrame f;
+    f.width = f.height = kSize;
+    f.view = glm::lookAt(glm::dvec3(0, 0, 2), glm::dvec3(0.0), glm::dvec3(0, 1, 0));
+    f.projection = projection;
+    f.eye = glm::dvec3(0, 0, 2);
+    f.depth = depth;
+    f.albedoTexture = albedo;
+    ProjectorDraw draw;
+    draw.coverageTexture = coverage;
+    Result<ProjectorStats> st = projector->draw(f, draw);
+    EXPECT_TRUE(st.ok()) << st.error();
+    std::vector<uint8_t> pixels(size_t(kSize) * kSize * 4);
+    glGetTextureImage(coverage, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(pixels.size()), pixels.data());
+    const GLuint textures[3] = {depth.texture, coverage, albedo};
+    glDeleteTextures(3, textures);
+    size_t n = 0;
+    for (size_t i = 0; i < pixels.size(); i += 4)
+        n += pixels[i] > 127 ? 1 : 0;
+    return n;
+}
+
+} // namespace
+
+// One wall, one decal, every depth convention: window depth in either clip range and direction,
+// linear view depth, perspective and orthographic projections. The 0.6-unit decal covers what its
+// size predicts, to the pixel rows its edges cross.
+TEST(Projector, EveryDepthConventionRebuildsTheSameSurface) {
+    SPATTER_REQUIRE_GL(gl);
+    const double near = 0.1, far = 100.0;
+    const glm::dmat4 perspective = glm::perspective(glm::radians(60.0), 1.0, near, far);
+    // The wall's window depth under GL's default clip range, and under the zero-to-one range.
+    const glm::dvec4 clip = perspective * glm::dvec4(0.0, 0.0, -2.0, 1.0);
+    const float minusOneToOne = float(clip.z / clip.w * 0.5 + 0.5);
+    glm::dmat4 zeroToOne = perspective; // the same frustum with depth from 0 (near) to 1 (far)
+    zeroToOne[2][2] = -far / (far - near);
+    zeroToOne[3][2] = -far * near / (far - near);
+    const glm::dvec4 clip01 = zeroToOne * glm::dvec4(0.0, 0.0, -2.0, 1.0);
+    glm::dmat4 reversed = zeroToOne; // reversed: 1 at the near plane, 0 at the far one
+    reversed[2][2] = near / (far - near);
+    reversed[3][2] = far * near / (far - near);
+    const glm::dvec4 clipRev = reversed * glm::dvec4(0.0, 0.0, -2.0, 1.0);
+    // 0.6 of the 2 * 2 tan(30 deg) view: a square of about 16.6 pixels.
+    const double side = 0.6 / (4.0 * std::tan(glm::radians(30.0))) * 64.0;
+    const size_t expected = size_t(side * side);
+    const size_t standard =
+        wallCoverage(perspective, {0, DepthEncoding::Window, ClipDepth::MinusOneToOne, false}, minusOneToOne);
+    const size_t standard01 = wallCoverage(zeroToOne, {0, DepthEncoding::Window, ClipDepth::ZeroToOne, false},
+                                           float(clip01.z / clip01.w));
+    const size_t reversedZ = wallCoverage(reversed, {0, DepthEncoding::Window, ClipDepth::ZeroToOne, true},
+                                          float(clipRev.z / clipRev.w));
+    const size_t linear =
+        wallCoverage(perspective, {0, DepthEncoding::LinearView, ClipDepth::ZeroToOne, false}, 2.0f);
+    for (size_t n : {standard, standard01, reversedZ, linear})
+        EXPECT_NEAR(double(n), double(expected), 2.0 * side + 2.0) << "expected about " << expected;
+    // Orthographic, 2 x 2 units in view: the decal covers 0.3 of each side.
+    const glm::dmat4 ortho = glm::ortho(-1.0, 1.0, -1.0, 1.0, near, far);
+    const glm::dvec4 clipOrtho = ortho * glm::dvec4(0.0, 0.0, -2.0, 1.0);
+    const size_t orthographic = wallCoverage(
+        ortho, {0, DepthEncoding::Window, ClipDepth::MinusOneToOne, false}, float(clipOrtho.z * 0.5 + 0.5));
+    const size_t orthoLinear =
+        wallCoverage(ortho, {0, DepthEncoding::LinearView, ClipDepth::MinusOneToOne, false}, 2.0f);
+    const double orthoSide = 0.3 * 64.0;
+    for (size_t n : {orthographic, orthoLinear})
+        EXPECT_NEAR(double(n), orthoSide * orthoSide, 2.0 * orthoSide + 2.0);
+    std::printf(
+        "coverage: standard %zu, standard 0..1 %zu, reversed %zu, linear %zu, ortho %zu, ortho linear %zu "
+        "(expected %zu and %.0f)\n",
+        standard, standard01, reversedZ, linear, orthographic, orthoLinear, expected, orthoSide * orthoSide);
+}
