@@ -336,6 +336,7 @@ struct DecalProjector::Impl {
     // The pass itself: boxes in front of the eye with the depth test where the host's depth is
     // attached, then the boxes that may hold the eye by their far faces. Returns the draws made.
     size_t drawBoxes(const HostFrame& f, const DecalVisibility& vis, GLuint prog, bool depthTest) {
+        GlStateGuard::neutralise();
         glViewport(f.x, f.y, f.width, f.height);
         glClipControl(GL_LOWER_LEFT,
                       f.depth.clip == ClipDepth::ZeroToOne ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);

@@ -66,6 +66,12 @@ GlStateGuard::GlStateGuard() {
     glGetIntegerv(GL_CLIP_ORIGIN, &clipOrigin_);
     glGetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepth_);
     framebufferSrgb_ = glIsEnabled(GL_FRAMEBUFFER_SRGB);
+    rasterizerDiscard_ = glIsEnabled(GL_RASTERIZER_DISCARD);
+    colorLogicOp_ = glIsEnabled(GL_COLOR_LOGIC_OP);
+    depthClamp_ = glIsEnabled(GL_DEPTH_CLAMP);
+    for (int i = 0; i < 8; ++i)
+        clipDistance_[size_t(i)] = glIsEnabled(GLenum(GL_CLIP_DISTANCE0 + i));
+    glGetIntegerv(GL_POLYGON_MODE, polygonMode_);
     glGetIntegerv(GL_UNPACK_ALIGNMENT, &unpackAlignment_);
 }
 
@@ -119,7 +125,22 @@ GlStateGuard::~GlStateGuard() {
     glFrontFace(GLenum(frontFace_));
     glClipControl(GLenum(clipOrigin_), GLenum(clipDepth_));
     enable(GL_FRAMEBUFFER_SRGB, framebufferSrgb_);
+    enable(GL_RASTERIZER_DISCARD, rasterizerDiscard_);
+    enable(GL_COLOR_LOGIC_OP, colorLogicOp_);
+    enable(GL_DEPTH_CLAMP, depthClamp_);
+    for (int i = 0; i < 8; ++i)
+        enable(GLenum(GL_CLIP_DISTANCE0 + i), clipDistance_[size_t(i)]);
+    glPolygonMode(GL_FRONT_AND_BACK, GLenum(polygonMode_[0]));
     glPixelStorei(GL_UNPACK_ALIGNMENT, unpackAlignment_);
+}
+
+void GlStateGuard::neutralise() {
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glDisable(GL_RASTERIZER_DISCARD);
+    glDisable(GL_COLOR_LOGIC_OP);
+    glDisable(GL_DEPTH_CLAMP);
+    for (int i = 0; i < 8; ++i)
+        glDisable(GLenum(GL_CLIP_DISTANCE0 + i));
 }
 
 } // namespace spatter::render_detail

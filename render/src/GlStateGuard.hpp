@@ -1,7 +1,9 @@
 #pragma once
 // GlStateGuard: saves, on construction, the GL state the projector may change and restores it on
 // destruction (the list in spatter/render/DecalProjector.hpp), as Dear ImGui's OpenGL 3 backend
-// does, so that a host can call the projector between its own passes.
+// does, so that a host can call the projector between its own passes. neutralise() then switches
+// off what a host may have left on that would change the projector's draws (polygon mode, rasterizer
+// discard, logic op, depth clamp, clip distances).
 
 #include <epoxy/gl.h>
 
@@ -18,6 +20,8 @@ public:
 
     GlStateGuard();
     ~GlStateGuard();
+    // Fills polygons, with rasterizer discard, colour logic op, depth clamp and clip distances 0-7 off.
+    static void neutralise();
     GlStateGuard(const GlStateGuard&) = delete;
     GlStateGuard& operator=(const GlStateGuard&) = delete;
 
@@ -40,7 +44,10 @@ private:
     GLint uniformBuffer_ = 0, storageBuffer_ = 0, arrayBuffer_ = 0, unpackBuffer_ = 0;
     std::array<Blend, kDrawBuffers> blend_{};
     GLboolean depthTest_ = GL_FALSE, depthMask_ = GL_TRUE, stencilTest_ = GL_FALSE, scissorTest_ = GL_FALSE;
-    GLboolean cullFace_ = GL_FALSE, framebufferSrgb_ = GL_FALSE;
+    GLboolean cullFace_ = GL_FALSE, framebufferSrgb_ = GL_FALSE, rasterizerDiscard_ = GL_FALSE;
+    GLboolean colorLogicOp_ = GL_FALSE, depthClamp_ = GL_FALSE;
+    std::array<GLboolean, 8> clipDistance_{};
+    GLint polygonMode_[2] = {GL_FILL, GL_FILL};
     GLint depthFunc_ = 0, cullMode_ = 0, frontFace_ = 0, clipOrigin_ = 0, clipDepth_ = 0,
           unpackAlignment_ = 4;
 };

@@ -76,8 +76,11 @@ std::vector<int64_t> glStateSnapshot() {
         glGetBooleani_v(GL_COLOR_WRITEMASK, i, mask);
         v.insert(v.end(), mask, mask + 4);
     }
-    for (GLenum cap : {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_SCISSOR_TEST, GL_CULL_FACE, GL_FRAMEBUFFER_SRGB})
+    for (GLenum cap :
+         {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_SCISSOR_TEST, GL_CULL_FACE, GL_FRAMEBUFFER_SRGB,
+          GL_RASTERIZER_DISCARD, GL_COLOR_LOGIC_OP, GL_DEPTH_CLAMP, GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE7})
         v.push_back(glIsEnabled(cap));
+    get(GL_POLYGON_MODE, 2);
     for (GLenum name : {GL_DEPTH_WRITEMASK, GL_DEPTH_FUNC, GL_CULL_FACE_MODE, GL_FRONT_FACE, GL_CLIP_ORIGIN,
                         GL_CLIP_DEPTH_MODE, GL_UNPACK_ALIGNMENT})
         get(name);
@@ -132,6 +135,12 @@ struct HostState {
         glFrontFace(GL_CCW);
         glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        glDisable(GL_RASTERIZER_DISCARD);
+        glDisable(GL_COLOR_LOGIC_OP);
+        glDisable(GL_DEPTH_CLAMP);
+        glDisable(GL_CLIP_DISTANCE0);
+        glDisable(GL_CLIP_DISTANCE7);
         glDeleteFramebuffers(1, &fbo);
         glDeleteProgram(program);
         glDeleteVertexArrays(1, &vao);
@@ -181,6 +190,13 @@ struct HostState {
         glClipControl(GL_UPPER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
         glDisable(GL_FRAMEBUFFER_SRGB);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+        // State that would spoil the projector's draws if it kept it.
+        glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+        glEnable(GL_RASTERIZER_DISCARD);
+        glEnable(GL_COLOR_LOGIC_OP);
+        glEnable(GL_DEPTH_CLAMP);
+        glEnable(GL_CLIP_DISTANCE0);
+        glEnable(GL_CLIP_DISTANCE7);
     }
 };
 
@@ -266,12 +282,15 @@ TEST(Projector, LeavesEveryListedGlStateAsItFoundIt) {
     SPATTER_REQUIRE_GL(gl);
     std::optional<Hosted> h = Hosted::make();
     ASSERT_TRUE(h);
+    const Image albedoBefore = h->host.read(h->host.albedoTexture());
     const HostState state;
     state.apply();
     const std::vector<int64_t> before = glStateSnapshot();
     Result<ProjectorStats> blended = h->projector.draw(h->host.frame(h->wall.camera, true));
     ASSERT_TRUE(blended.ok()) << blended.error();
     EXPECT_EQ(blended->drawn, 2u);
+    // The host's state did not spoil the draw (line polygons, rasterizer discard, logic op...).
+    EXPECT_GT(differingPixels(albedoBefore, h->host.read(h->host.albedoTexture())), 20u);
     EXPECT_EQ(glStateSnapshot(), before) << "after a blended draw";
     HostFrame alphaRoughness = h->host.frame(h->wall.camera, true);
     alphaRoughness.roughness = {alphaRoughness.albedoTexture, 3};

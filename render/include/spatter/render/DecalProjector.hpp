@@ -43,7 +43,9 @@
 // storage bindings 0-7 (with their ranges) and the generic uniform, shader storage, array and pixel
 // unpack buffer bindings, blending (enable per draw buffer 0-3, equations, functions), colour masks
 // of draw buffers 0-3, depth test, function and mask, stencil test, scissor test, face culling and
-// cull mode, front face, clip control, GL_FRAMEBUFFER_SRGB, and the unpack alignment. What it
+// cull mode, front face, clip control, GL_FRAMEBUFFER_SRGB, the unpack alignment, and polygon mode,
+// rasterizer discard, colour logic op, depth clamp and clip distances 0-7 (which it switches off for
+// its draws, whatever the host left on). What it
 // changes are the contents of the textures it writes (draw) and its own GL objects. It needs the
 // host's context current on the calling thread, and that context must outlive the projector.
 //
