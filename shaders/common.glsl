@@ -18,7 +18,6 @@ layout(std140, binding = 0) uniform FrameBlock {
 struct ObjectData {
     mat4 model;         // object -> camera-relative world
     mat4 normalMatrix;  // upper left 3x3: inverse transpose of model
-    mat4 worldToObject; // camera-relative world -> object
     uvec4 info;         // x: object decal ID, y: 1 when model mirrors, z: 1 with a decal layer
     vec4 deformA;       // xyz: displacement direction * amplitude (0: none); w: frequency
     vec4 deformB;       // xyz: unit wave direction; w: phase at this frame's time

@@ -559,7 +559,7 @@ struct CollisionWorld::Impl {
         for (ObjectData& od : objects) {
             if (!od.info.inWorld) continue;
             if (od.info.untraced.empty())
-                od.info.untraced = traceTransformProblem(od.info.transform, od.info.localBounds, origin);
+                od.info.untraced = tracePlacementProblem(od.info.transform, od.info.localBounds, origin);
             od.info.traced = od.info.untraced.empty();
             if (!od.info.traced) continue;
             od.inverse = glm::inverse(od.info.transform);
@@ -802,7 +802,7 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         od.info.triangles = mesh->triangleCount();
         od.info.localBounds = meshBounds(od.positions, od.indices);
         // The frame's origin comes from the objects whose scale and condition the trace can use.
-        od.info.untraced = traceTransformProblem(so.transform, Bounds(), glm::dvec3(0.0));
+        od.info.untraced = floatLinearProblem(so.transform);
         if (!od.info.untraced.empty()) continue;
         const DBounds wb = transformBounds(od.info.localBounds, so.transform);
         allBounds.extend(wb);

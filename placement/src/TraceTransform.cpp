@@ -56,11 +56,11 @@ double floatConditionNumber(const glm::dmat4& transform) {
     return std::isfinite(k) ? k : std::numeric_limits<double>::infinity(); // also 0 * inf
 }
 
-std::string traceTransformProblem(const glm::dmat4& transform, const Bounds& local,
-                                  const glm::dvec3& frameOrigin) {
+std::string floatLinearProblem(const glm::dmat4& transform) {
     double forward, inverse;
     norms(transform, forward, inverse);
-    const double condition = floatConditionNumber(transform);
+    const double product = forward * inverse;
+    const double condition = std::isfinite(product) ? product : std::numeric_limits<double>::infinity();
     if (condition > kTraceMaxCondition)
         return "transform is " + std::string(std::isfinite(condition) ? "nearly " : "") +
                "singular in single precision (condition number " + number(condition) + ", limit " +
@@ -71,6 +71,11 @@ std::string traceTransformProblem(const glm::dmat4& transform, const Bounds& loc
     if (inverse > kTraceMaxScale)
         return "transform scales by less than single precision allows (inverse norm " + number(inverse) +
                ", limit " + limit(kTraceMaxScale) + ")";
+    return {};
+}
+
+std::string tracePlacementProblem(const glm::dmat4& transform, const Bounds& local,
+                                  const glm::dvec3& frameOrigin) {
     if (local.empty()) return {};
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (int i = 0; i < 8; ++i) {
@@ -91,6 +96,12 @@ std::string traceTransformProblem(const glm::dmat4& transform, const Bounds& loc
         return "object is too small for single precision at its place (size " + number(extent) + " at " +
                number(reach) + " from the collision world's origin)";
     return {};
+}
+
+std::string traceTransformProblem(const glm::dmat4& transform, const Bounds& local,
+                                  const glm::dvec3& frameOrigin) {
+    std::string problem = floatLinearProblem(transform);
+    return problem.empty() ? tracePlacementProblem(transform, local, frameOrigin) : problem;
 }
 
 } // namespace spatter

@@ -145,14 +145,17 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
                                  const CullView& view) const {
     DecalVisibility vis;
     const double radius = view.nearRadius * 1.01;
+    // On an object with a singular transform (a scale of 0) the boxes collapse: nothing to draw.
+    std::vector<uint8_t> collapsed(objectTransforms.size());
+    for (size_t o = 0; o < objectTransforms.size(); ++o) {
+        const double det = glm::determinant(glm::dmat3(objectTransforms[o]));
+        collapsed[o] = !(std::fabs(det) > 0.0) || !std::isfinite(det) ? 1 : 0;
+    }
     for (size_t i = 0; i < decals_.size(); ++i) {
         if (!valid_[i]) continue;
         const Decal& d = decals_[i];
-        if (d.object >= objectTransforms.size()) continue;
+        if (d.object >= objectTransforms.size() || collapsed[d.object]) continue;
         const glm::dmat4 boxToWorld = objectTransforms[d.object] * boxToObject(d);
-        // On an object with a singular transform (a scale of 0) the box collapses: nothing to draw.
-        const double det = glm::determinant(glm::dmat3(boxToWorld));
-        if (!(std::fabs(det) > 0.0) || !std::isfinite(det)) continue;
 
         // Frustum: the box is outside when all eight corners lie beyond one clip plane.
         int outside[6] = {0, 0, 0, 0, 0, 0};
@@ -178,6 +181,7 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
         // if |u_r| <= 1 + radius * |row r|.
         const glm::dmat4 worldToBox = glm::inverse(boxToWorld);
         const glm::dvec3 u = glm::dvec3(worldToBox * glm::dvec4(view.eye, 1.0));
+        if (!std::isfinite(u.x + u.y + u.z)) continue; // the box collapsed in double after all
         bool inside = true;
         for (int r = 0; r < 3 && inside; ++r) {
             const double rowLength =

@@ -43,15 +43,14 @@ static_assert(sizeof(FrameGpu) == 3 * 64 + 7 * 16, "FrameGpu must match FrameBlo
 
 // std430, binding kObjectBuffer, one per scene object.
 struct alignas(16) ObjectGpu {
-    glm::mat4 model;         // object -> camera-relative world
-    glm::mat4 normalMatrix;  // inverse transpose of model's 3x3 part, in the upper left
-    glm::mat4 worldToObject; // camera-relative world -> object
-    glm::uvec4 info;         // x: object decal ID, y: 1 when model mirrors (negative determinant),
-                             // z: 1 when the object has a texture-space decal layer
-    glm::vec4 deformA;       // xyz: displacement direction * amplitude (0: no deformation); w: frequency
-    glm::vec4 deformB;       // xyz: unit wave direction; w: phase at this frame's time
+    glm::mat4 model;        // object -> camera-relative world
+    glm::mat4 normalMatrix; // inverse transpose of model's 3x3 part, in the upper left
+    glm::uvec4 info;        // x: object decal ID, y: 1 when model mirrors (negative determinant),
+                            // z: 1 when the object has a texture-space decal layer
+    glm::vec4 deformA;      // xyz: displacement direction * amplitude (0: no deformation); w: frequency
+    glm::vec4 deformB;      // xyz: unit wave direction; w: phase at this frame's time
 };
-static_assert(sizeof(ObjectGpu) == 240, "ObjectGpu must match ObjectData (std430)");
+static_assert(sizeof(ObjectGpu) == 176, "ObjectGpu must match ObjectData (std430)");
 
 // std430, binding kMaterialBuffer; the last entry is the default material.
 struct alignas(16) MaterialGpu {

@@ -337,7 +337,6 @@ struct Renderer::Impl {
             ObjectGpu& o = objects[i];
             o.model = glm::mat4(rel);
             o.normalMatrix = glm::mat4(glm::mat3(normalMatrix(glm::dmat3(transforms[i]))));
-            o.worldToObject = glm::mat4(glm::inverse(rel)); // read only by decals, none on a singular one
             o.info = glm::uvec4(gbuffer.hasIds() ? objectIds[i] : 0u,
                                 glm::determinant(glm::dmat3(transforms[i])) < 0.0 ? 1u : 0u,
                                 textureSpace.enabled(i) ? 1u : 0u, 0u);

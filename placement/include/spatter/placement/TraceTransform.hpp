@@ -45,10 +45,17 @@ constexpr double kTraceMinRelativeSize = 1.0 / 2097152.0; // 2^-21
 // infinity when the float matrix is singular or its inverse overflows.
 double floatConditionNumber(const glm::dmat4& transform);
 
-// Empty when the world can trace an object whose collision mesh has object-space bounds `local`
-// under `transform` (finite and affine, checked by the caller) in a float frame centred at
-// `frameOrigin`; otherwise why not, e.g. "transform is singular in single precision (condition
-// number 4e+09, limit 65536)".
+// Rules 1 and 2, on the transform alone (finite and affine, checked by the caller): empty when they
+// hold, otherwise why not, e.g. "transform is singular in single precision (condition number
+// 4e+09, limit 65536)".
+std::string floatLinearProblem(const glm::dmat4& transform);
+
+// Rules 3 and 4, for an object whose collision mesh has object-space bounds `local` (empty bounds:
+// nothing to check) placed by `transform` in a float frame centred at `frameOrigin`.
+std::string tracePlacementProblem(const glm::dmat4& transform, const Bounds& local,
+                                  const glm::dvec3& frameOrigin);
+
+// The whole rule: floatLinearProblem, then tracePlacementProblem; empty when the world can trace it.
 std::string traceTransformProblem(const glm::dmat4& transform, const Bounds& local,
                                   const glm::dvec3& frameOrigin);
 
