@@ -16,6 +16,8 @@
 // NO_NORMALS (the host has none) the surface normal comes from depth derivatives and nothing writes
 // normals. Roughness goes to every colour channel of location 2; the colour mask picks the host's.
 // ROUGHNESS_ALPHA writes only roughness, into an alpha channel (a pass of its own, DecalProjector).
+// DBUFFER writes the same outputs into the projector's decal buffers (normals world space, signed);
+// their blend state keeps, in alpha, how much of the surface shows through (dbuffer.glsl).
 #include "projector.glsl"
 
 layout(binding = 0) uniform sampler2D s_depth;

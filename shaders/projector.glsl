@@ -4,6 +4,7 @@
 //            otherwise zero to one), STANDARD_Z (far is 1; otherwise reversed: far is 0)
 //   normals  NO_NORMALS, NORMAL_WORLD_SIGNED, NORMAL_WORLD_UNORM, NORMAL_VIEW_UNORM, otherwise
 //            octahedral world normals in RG
+//   target   DBUFFER: the decal buffers (normals written world space, signed), else the host's
 // Mirrored on the C++ side by render/src/ProjectorLayouts.hpp (keep both in step).
 #include "decal_data.glsl"
 
@@ -73,9 +74,10 @@ vec3 decodeHostNormal(vec4 s) {
 #endif
 }
 
-// A world-space unit normal in the host's encoding, as the normal target takes it.
+// A world-space unit normal in the host's encoding, as the normal target takes it (DBUFFER: the
+// decal buffer's, world space and signed).
 vec4 encodeHostNormal(vec3 n) {
-#if defined(NORMAL_WORLD_SIGNED)
+#if defined(NORMAL_WORLD_SIGNED) || defined(DBUFFER)
     return vec4(n, 0.0);
 #elif defined(NORMAL_WORLD_UNORM)
     return vec4(n * 0.5 + 0.5, 0.0);

@@ -42,6 +42,7 @@ enum Variant : uint32_t {
     kVariantNormalWorldUnorm = 4096u,
     kVariantNormalViewUnorm = 8192u,
     kVariantRoughnessAlpha = 16384u,
+    kVariantDBuffer = 32768u,
 };
 
 constexpr const char* kVariantNames[] = {"IDS",
@@ -58,7 +59,8 @@ constexpr const char* kVariantNames[] = {"IDS",
                                          "NORMAL_WORLD_SIGNED",
                                          "NORMAL_WORLD_UNORM",
                                          "NORMAL_VIEW_UNORM",
-                                         "ROUGHNESS_ALPHA"};
+                                         "ROUGHNESS_ALPHA",
+                                         "DBUFFER"};
 
 std::vector<std::string> variantDefines(uint32_t bits) {
     std::vector<std::string> d;
@@ -101,10 +103,24 @@ uint32_t conventionBits(const HostFrame& f) {
     return bits;
 }
 
+// Whether the draw blends into the host's G-buffer (not coverage, not the DBuffer).
+bool blendsIntoHost(const ProjectorDraw& o) {
+    return o.path == ProjectorPath::GBufferBlend && o.coverageTexture == 0;
+}
+
+// Whether the draw fills the projector's decal buffers.
+bool fillsDBuffer(const ProjectorDraw& o) {
+    return o.path == ProjectorPath::DBuffer && o.coverageTexture == 0;
+}
+
 // Whether the frame keeps roughness in an alpha channel: a pass of its own after the blend.
 bool roughnessInAlpha(const HostFrame& f, const ProjectorDraw& o) {
-    return f.roughness.texture != 0 && f.roughness.channel == 3 && o.coverageTexture == 0;
+    return f.roughness.texture != 0 && f.roughness.channel == 3 && blendsIntoHost(o);
 }
+
+// The decal buffers: textures, formats and what "no decal" reads as.
+constexpr int kDBufferTargets = 3;
+constexpr GLenum kDBufferFormats[kDBufferTargets] = {GL_SRGB8_ALPHA8, GL_RGBA16F, GL_RGBA8};
 
 // The camera of a frame relative to its eye, and what culling needs of it.
 struct FrameCamera {
@@ -167,6 +183,9 @@ struct DecalProjector::Impl {
     GlTexture normalCopy; // the host's normals as they were before the draw
     GLenum normalCopyFormat = 0;
     int normalCopyWidth = 0, normalCopyHeight = 0;
+    GlTexture dbuffer[kDBufferTargets]; // albedo, normal, material (ProjectorResources::dbuffer*)
+    int dbufferWidth = 0, dbufferHeight = 0;
+    bool dbufferWritten = false; // a draw wrote into the decal buffers since they were last cleared
     GpuTimers timers;
     uint64_t draws = 0;
 
@@ -189,6 +208,7 @@ struct DecalProjector::Impl {
         if (!o.angleReject) bits |= kVariantNoAngle;
         if ((flags & kDecalWrap) && normals) bits |= kVariantWrap;
         if (o.coverageTexture != 0) return bits | kVariantCoverage;
+        if (o.path == ProjectorPath::DBuffer) bits |= kVariantDBuffer;
         if ((flags & kDecalNormalMap) && normals) {
             bits |= kVariantNormalMap;
             if (settings.normalFrame == DecalNormalFrame::DepthDerivatives) bits |= kVariantDepthFrame;
@@ -263,9 +283,62 @@ struct DecalProjector::Impl {
                            0, f.x, f.y, 0, f.width, f.height, 1);
     }
 
-    // Attaches the host's targets and sets the blend state of each; returns whether the host's depth
-    // is attached for the depth test.
+    // Gives the decal buffers the size of the host's depth texture and clears them when a draw wrote
+    // into them: afterwards they read "no decal" (RGB 0, A 1) everywhere.
+    void prepareDBuffer(const HostFrame& f) {
+        GlStateGuard guard;
+        GLint w = 0, h = 0;
+        glGetTextureLevelParameteriv(f.depth.texture, 0, GL_TEXTURE_WIDTH, &w);
+        glGetTextureLevelParameteriv(f.depth.texture, 0, GL_TEXTURE_HEIGHT, &h);
+        if (!dbuffer[0] || w != dbufferWidth || h != dbufferHeight) {
+            for (int i = 0; i < kDBufferTargets; ++i) {
+                dbuffer[i] = createTexture(GL_TEXTURE_2D);
+                glTextureStorage2D(dbuffer[i].get(), 1, kDBufferFormats[i], w, h);
+            }
+            dbufferWidth = w;
+            dbufferHeight = h;
+            dbufferWritten = true;
+        }
+        if (!dbufferWritten) return;
+        const float none[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+        for (const GlTexture& t : dbuffer)
+            glClearTexImage(t.get(), 0, GL_RGBA, GL_FLOAT, none);
+        dbufferWritten = false;
+    }
+
+    // Attaches the decal buffers; each blends src * a + dst * (1 - a) in RGB and dst * (1 - a) in A.
+    void bindDBufferTargets() {
+        const GLuint fb = fbo.get();
+        GLenum buffers[kDBufferTargets];
+        for (int i = 0; i < kDBufferTargets; ++i) {
+            glNamedFramebufferTexture(fb, GLenum(GL_COLOR_ATTACHMENT0 + i), dbuffer[i].get(), 0);
+            buffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
+            glEnablei(GL_BLEND, GLuint(i));
+            glBlendEquationi(GLuint(i), GL_FUNC_ADD);
+            glBlendFuncSeparatei(GLuint(i), GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO,
+                                 GL_ONE_MINUS_SRC_ALPHA);
+            glColorMaski(GLuint(i), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        }
+        glNamedFramebufferDrawBuffers(fb, kDBufferTargets, buffers);
+        dbufferWritten = true;
+    }
+
+    // Attaches the targets of the draw (the host's, or the decal buffers) and sets the blend state of
+    // each; returns whether the host's depth is attached for the depth test.
     bool bindTargets(const HostFrame& f, const ProjectorDraw& o) {
+        const GLuint fb = fbo.get();
+        const bool depthTest =
+            f.depth.encoding == DepthEncoding::Window && formatFacts(textureFormat(f.depth.texture)).depth;
+        glNamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthTest ? f.depth.texture : 0, 0);
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fb);
+        if (fillsDBuffer(o))
+            bindDBufferTargets();
+        else
+            bindHostTargets(f, o);
+        return depthTest;
+    }
+
+    void bindHostTargets(const HostFrame& f, const ProjectorDraw& o) {
         const GLuint fb = fbo.get();
         const bool coverage = o.coverageTexture != 0;
         const GLuint normals = coverage ? 0 : f.normals.texture;
@@ -274,13 +347,9 @@ struct DecalProjector::Impl {
                                   0);
         glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, normals, 0);
         glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT2, roughness, 0);
-        const bool depthTest =
-            f.depth.encoding == DepthEncoding::Window && formatFacts(textureFormat(f.depth.texture)).depth;
-        glNamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthTest ? f.depth.texture : 0, 0);
         const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GLenum(normals ? GL_COLOR_ATTACHMENT1 : GL_NONE),
                                    GLenum(roughness ? GL_COLOR_ATTACHMENT2 : GL_NONE)};
         glNamedFramebufferDrawBuffers(fb, 3, buffers);
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fb);
         for (GLuint i = 0; i < GLuint(GlStateGuard::kDrawBuffers); ++i) {
             glBlendEquationi(i, GL_FUNC_ADD);
             glBlendFunci(i, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -299,12 +368,12 @@ struct DecalProjector::Impl {
             const int c = f.roughness.channel;
             glColorMaski(2, c == 0, c == 1, c == 2, GL_FALSE);
         }
-        return depthTest;
     }
 
-    void bindInputs(const HostFrame& f, bool coverage) {
+    // `copied`: the host's normals are read from the copy taken before the draw.
+    void bindInputs(const HostFrame& f, bool copied) {
         glBindTextureUnit(0, f.depth.texture);
-        glBindTextureUnit(1, f.normals.texture == 0 ? 0 : coverage ? f.normals.texture : normalCopy.get());
+        glBindTextureUnit(1, f.normals.texture == 0 ? 0 : copied ? normalCopy.get() : f.normals.texture);
         glBindTextureUnit(2, f.objectIdTexture != 0 ? f.objectIdTexture : zeroIds.get());
         glBindTextureUnit(3, textures.albedoTexture());
         glBindTextureUnit(4, textures.normalTexture());
@@ -464,6 +533,7 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     stats.drawn = vis.outside.size() + vis.inside.size();
     stats.inside = vis.inside.size();
     stats.skipped = stats.drawn == 0;
+    if (fillsDBuffer(options)) m.prepareDBuffer(frame); // cleared, even when nothing is drawn
     if (stats.skipped) return stats;
     const uint32_t bits = m.variantBits(frame, options, vis.flags);
     Result<GLuint> program = m.program(bits);
@@ -482,10 +552,10 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     m.timers.begin(GpuPass::Decals);
     m.uploadFrame(frame, camera);
     stats.bytesUploaded = m.uploadDecals(vis);
-    const bool coverage = options.coverageTexture != 0;
-    if (!coverage && frame.normals.texture != 0) m.copyNormals(frame);
+    const bool copyNormals = blendsIntoHost(options) && frame.normals.texture != 0;
+    if (copyNormals) m.copyNormals(frame);
     const bool depthTest = m.bindTargets(frame, options);
-    m.bindInputs(frame, coverage);
+    m.bindInputs(frame, copyNormals);
     stats.drawCalls = m.drawBoxes(frame, vis, program.value(), depthTest);
     if (roughnessProgram != 0) stats.drawCalls += m.roughnessPass(frame, vis, roughnessProgram, depthTest);
     m.timers.end();
@@ -498,8 +568,22 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
 
 ProjectorResources DecalProjector::resources() const {
     const Impl& m = *impl_;
-    return {m.textures.albedoTexture(), m.textures.normalTexture(), m.decalBuffer.get(),
-            m.visibleBuffer.get(),      m.objectBuffer.get(),       m.visibleCount};
+    ProjectorResources r;
+    r.albedoLayers = m.textures.albedoTexture();
+    r.normalLayers = m.textures.normalTexture();
+    r.decals = m.decalBuffer.get();
+    r.visible = m.visibleBuffer.get();
+    r.objects = m.objectBuffer.get();
+    r.visibleCount = m.visibleCount;
+    r.dbufferAlbedo = m.dbuffer[0].get();
+    r.dbufferNormal = m.dbuffer[1].get();
+    r.dbufferMaterial = m.dbuffer[2].get();
+    return r;
+}
+
+Result<std::string> DecalProjector::hostShader(const std::string& name) {
+    if (name != "dbuffer.glsl") return fail("projector: no host shader '" + name + "' (dbuffer.glsl)");
+    return includeText(shaderLibrary(kProjectorShaders), name);
 }
 
 const ProjectorSettings& DecalProjector::settings() const {

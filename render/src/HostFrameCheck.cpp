@@ -166,14 +166,15 @@ std::string hostFrameProblem(const HostFrame& f, const ProjectorDraw& options) {
             options.coverageTexture, "ProjectorDraw.coverageTexture", f,
             [](const FormatFacts& k) { return k.renderable && !k.integer; }, "a colour format (R8)");
         if (!p.empty()) return p;
-    } else {
+    } else if (options.path == ProjectorPath::GBufferBlend) {
         p = checkTexture(
             f.albedoTexture, "HostFrame.albedoTexture", f,
             [](const FormatFacts& k) { return k.renderable && !k.integer && k.channels >= 3; },
             "a colour format of three or more channels (RGBA8, SRGB8_ALPHA8)");
         if (!p.empty()) return p;
     }
-    if (f.roughness.texture != 0 && !coverage) {
+    const bool blend = !coverage && options.path == ProjectorPath::GBufferBlend;
+    if (f.roughness.texture != 0 && blend) {
         if (f.roughness.channel < 0 || f.roughness.channel > 3)
             return "HostFrame.roughness.channel: " + std::to_string(f.roughness.channel) +
                    " is not 0, 1, 2 or 3";
@@ -188,7 +189,7 @@ std::string hostFrameProblem(const HostFrame& f, const ProjectorDraw& options) {
             return "HostFrame.roughness.texture: the same texture as the normal target, or as the albedo "
                    "target with roughness outside its alpha channel";
     }
-    if (!coverage && f.normals.texture != 0 && f.normals.texture == f.albedoTexture)
+    if (blend && f.normals.texture != 0 && f.normals.texture == f.albedoTexture)
         return "HostFrame.normals.texture: the same texture as the albedo target";
     if (f.objectIdTexture != 0) {
         p = checkTexture(

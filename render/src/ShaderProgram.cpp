@@ -23,14 +23,17 @@ std::string sourceList(const ShaderLibrary& lib) {
     return s;
 }
 
-Status expand(const ShaderLibrary& lib, int index, std::set<int>& included, int depth, std::string& out) {
+// Appends file `index` to `out` with its includes expanded (each file once); `lines`: with #line
+// directives.
+Status expand(const ShaderLibrary& lib, int index, std::set<int>& included, int depth, bool lines,
+              std::string& out) {
     const ShaderSource* kShaderSources = lib.files;
     if (depth > kMaxIncludeDepth)
         return fail(std::string("shader ") + kShaderSources[index].name + ": includes nest too deep");
     std::istringstream in(kShaderSources[index].text);
     std::string line;
     int lineNo = 0;
-    out += "#line 1 " + std::to_string(index) + "\n";
+    if (lines) out += "#line 1 " + std::to_string(index) + "\n";
     while (std::getline(in, line)) {
         ++lineNo;
         const size_t first = line.find_first_not_of(" \t");
@@ -45,9 +48,9 @@ Status expand(const ShaderLibrary& lib, int index, std::set<int>& included, int 
                 return fail(std::string("shader ") + kShaderSources[index].name + ":" +
                             std::to_string(lineNo) + ": no embedded file '" + name + "'");
             if (included.insert(inc).second) {
-                if (Status s = expand(lib, inc, included, depth + 1, out); !s) return s;
+                if (Status s = expand(lib, inc, included, depth + 1, lines, out); !s) return s;
             }
-            out += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
+            if (lines) out += "#line " + std::to_string(lineNo + 1) + " " + std::to_string(index) + "\n";
             continue;
         }
         out += line;
@@ -87,7 +90,16 @@ Result<std::string> expandShader(const ShaderLibrary& library, const std::string
     for (const std::string& d : defines)
         out += "#define " + d + " 1\n";
     std::set<int> included{index};
-    if (Status s = expand(library, index, included, 0, out); !s) return fail(s.error());
+    if (Status s = expand(library, index, included, 0, true, out); !s) return fail(s.error());
+    return out;
+}
+
+Result<std::string> includeText(const ShaderLibrary& library, const std::string& file) {
+    const int index = findSource(library, file);
+    if (index < 0) return fail("no embedded shader file '" + file + "'");
+    std::string out;
+    std::set<int> included{index};
+    if (Status s = expand(library, index, included, 0, false, out); !s) return fail(s.error());
     return out;
 }
 

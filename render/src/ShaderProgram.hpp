@@ -40,6 +40,10 @@ struct ShaderStage {
 Result<std::string> expandShader(const ShaderLibrary& library, const std::string& file,
                                  const std::vector<std::string>& defines);
 
+// The text of `file` with its includes expanded, without #version, defines or #line directives: GLSL
+// for a host to paste into its own shaders.
+Result<std::string> includeText(const ShaderLibrary& library, const std::string& file);
+
 // Compiles and links; errors carry the file names and the driver's log.
 Result<GlProgram> buildProgram(const ShaderLibrary& library, const std::vector<ShaderStage>& stages,
                                const std::vector<std::string>& defines);

@@ -3,6 +3,7 @@
 // and in spatter's renderer.
 
 #include "ForeignHost.hpp"
+#include "HostedWall.hpp"
 #include "RenderTestSupport.hpp"
 #include "TestData.hpp"
 
@@ -26,8 +27,8 @@ using ::testing::HasSubstr;
 
 namespace {
 
-constexpr int kWidth = 96;
-constexpr int kHeight = 64;
+constexpr int kWidth = test::HostedWall::kWidth;
+constexpr int kHeight = test::HostedWall::kHeight;
 
 // Every piece of GL state the header lists, as numbers.
 std::vector<int64_t> glStateSnapshot() {
@@ -200,87 +201,11 @@ struct HostState {
     }
 };
 
-// A wall (z = 0, facing +Z) and a dynamic box in front of it, seen from the front, with decals on both.
-struct WallScene {
-    Scene scene;
-    std::vector<glm::dmat4> transforms;
-    std::vector<uint8_t> ids = {0, 7};
-    std::vector<DecalType> types;
-    std::vector<Decal> decals;
-    Camera camera = test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0});
-
-    WallScene() {
-        scene.objects.push_back(
-            makeSceneObject("wall", makeBox(glm::vec3(3.0f, 2.0f, 0.05f), 2),
-                            glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 1.0, -0.05))));
-        scene.objects.push_back(makeSceneObject("crate", makeBox(glm::vec3(0.3f), 1),
-                                                glm::translate(glm::dmat4(1.0), glm::dvec3(0.8, 0.8, 0.5)),
-                                                true));
-        for (const SceneObject& o : scene.objects)
-            transforms.push_back(o.transform);
-        DecalType t;
-        t.name = "paint";
-        t.size = glm::vec2(0.6f);
-        t.texture = int(DecalTexture::Paint);
-        t.roughness = 0.2f;
-        types.push_back(t);
-        decals.push_back(decalAt(0, {-0.6f, 0.0f, 0.05f}));
-        // Wider than the crate and deep enough to reach the wall behind it: only IDs keep it off the wall.
-        Decal onCrate = decalAt(1, {0.0f, 0.0f, 0.3f});
-        onCrate.size = glm::vec2(1.0f);
-        onCrate.halfDepth = 1.0f;
-        decals.push_back(onCrate);
-    }
-
-    static Decal decalAt(uint32_t object, const glm::vec3& center) {
-        Decal d;
-        d.object = object;
-        d.center = center;
-        d.frame.tangent = {1, 0, 0};
-        d.frame.bitangent = {0, 1, 0};
-        d.frame.normal = {0, 0, 1};
-        d.size = glm::vec2(0.6f);
-        d.halfDepth = 0.2f;
-        d.objectId = object == 1 ? 7 : 0;
-        d.opacity = 1.0f;
-        return d;
-    }
-};
-
-struct Hosted {
-    WallScene wall;
-    test::ForeignHost host;
-    DecalProjector projector;
-
-    static std::optional<Hosted> make() {
-        Result<test::ForeignHost> host = test::ForeignHost::create(kWidth, kHeight);
-        Result<DecalProjector> projector = DecalProjector::create();
-        EXPECT_TRUE(host.ok()) << host.error();
-        EXPECT_TRUE(projector.ok()) << projector.error();
-        if (!host || !projector) return std::nullopt;
-        std::optional<Hosted> h(std::in_place,
-                                Hosted{WallScene(), std::move(host).value(), std::move(projector).value()});
-        h->host.setScene(h->wall.scene);
-        h->host.draw(h->wall.transforms, h->wall.ids, h->wall.camera);
-        EXPECT_TRUE(h->projector.setObjects(h->wall.transforms, h->wall.ids).ok());
-        h->projector.setDecalTypes(h->wall.types);
-        h->projector.setDecals(h->wall.decals);
-        return h;
-    }
-};
-
-size_t differingPixels(const Image& a, const Image& b) {
-    size_t n = 0;
-    for (size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); i += 4)
-        n += std::memcmp(&a.rgba[i], &b.rgba[i], 4) != 0 ? 1 : 0;
-    return n;
-}
-
 } // namespace
 
 TEST(Projector, LeavesEveryListedGlStateAsItFoundIt) {
     SPATTER_REQUIRE_GL(gl);
-    std::optional<Hosted> h = Hosted::make();
+    std::optional<test::HostedWall> h = test::HostedWall::make();
     ASSERT_TRUE(h);
     const Image albedoBefore = h->host.read(h->host.albedoTexture());
     const HostState state;
@@ -290,7 +215,7 @@ TEST(Projector, LeavesEveryListedGlStateAsItFoundIt) {
     ASSERT_TRUE(blended.ok()) << blended.error();
     EXPECT_EQ(blended->drawn, 2u);
     // The host's state did not spoil the draw (line polygons, rasterizer discard, logic op...).
-    EXPECT_GT(differingPixels(albedoBefore, h->host.read(h->host.albedoTexture())), 20u);
+    EXPECT_GT(test::differingPixels(albedoBefore, h->host.read(h->host.albedoTexture())), 20u);
     EXPECT_EQ(glStateSnapshot(), before) << "after a blended draw";
     HostFrame alphaRoughness = h->host.frame(h->wall.camera, true);
     alphaRoughness.roughness = {alphaRoughness.albedoTexture, 3};
@@ -300,6 +225,10 @@ TEST(Projector, LeavesEveryListedGlStateAsItFoundIt) {
     coverage.coverageTexture = h->host.coverageTexture();
     ASSERT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, true), coverage).ok());
     EXPECT_EQ(glStateSnapshot(), before) << "after a coverage draw";
+    ProjectorDraw dbuffer;
+    dbuffer.path = ProjectorPath::DBuffer;
+    ASSERT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, true), dbuffer).ok());
+    EXPECT_EQ(glStateSnapshot(), before) << "after a DBuffer draw";
     ASSERT_TRUE(h->projector.addDecalTexture(makeBuiltinDecalTexture(DecalTexture::Blood, 32).albedo).ok());
     EXPECT_EQ(glStateSnapshot(), before) << "after addDecalTexture";
     HostFrame bad = h->host.frame(h->wall.camera, true);
@@ -311,7 +240,7 @@ TEST(Projector, LeavesEveryListedGlStateAsItFoundIt) {
 
 TEST(Projector, BlendsIntoTheHostsTargetsAndClipsByObjectId) {
     SPATTER_REQUIRE_GL(gl);
-    std::optional<Hosted> h = Hosted::make();
+    std::optional<test::HostedWall> h = test::HostedWall::make();
     ASSERT_TRUE(h);
     const Image before = h->host.read(h->host.albedoTexture());
     Result<ProjectorStats> st = h->projector.draw(h->host.frame(h->wall.camera, true));
@@ -322,7 +251,7 @@ TEST(Projector, BlendsIntoTheHostsTargetsAndClipsByObjectId) {
     EXPECT_THAT(st->variant, HasSubstr("STANDARD_Z"));
     EXPECT_THAT(st->variant, HasSubstr("NORMAL_WORLD_UNORM"));
     const Image after = h->host.read(h->host.albedoTexture());
-    EXPECT_GT(differingPixels(before, after), 20u); // the paint texture is opaque only in places
+    EXPECT_GT(test::differingPixels(before, after), 20u); // the paint texture is opaque only in places
     // Coverage with and without the ID texture: the crate's decal reaches the wall behind it only
     // without IDs.
     ProjectorDraw draw;
@@ -339,7 +268,7 @@ TEST(Projector, BlendsIntoTheHostsTargetsAndClipsByObjectId) {
 
 TEST(Projector, RejectsHostFramesThatDoNotFitNamingTheFieldAndDrawsNothing) {
     SPATTER_REQUIRE_GL(gl);
-    std::optional<Hosted> h = Hosted::make();
+    std::optional<test::HostedWall> h = test::HostedWall::make();
     ASSERT_TRUE(h);
     const HostFrame good = h->host.frame(h->wall.camera, true);
     ASSERT_EQ(h->projector.frameProblem(good), "");
@@ -388,7 +317,7 @@ TEST(Projector, RejectsHostFramesThatDoNotFitNamingTheFieldAndDrawsNothing) {
         ASSERT_FALSE(st.ok()) << c.field;
         EXPECT_THAT(st.error(), HasSubstr(c.field));
     }
-    EXPECT_EQ(differingPixels(before, h->host.read(h->host.albedoTexture())), 0u);
+    EXPECT_EQ(test::differingPixels(before, h->host.read(h->host.albedoTexture())), 0u);
     const GLuint textures[3] = {t.rgba8, t.narrow, t.r32f};
     glDeleteTextures(3, textures);
     EXPECT_FALSE(h->projector.setObjects(h->wall.transforms, {0}).ok());
@@ -400,7 +329,7 @@ TEST(Projector, RejectsHostFramesThatDoNotFitNamingTheFieldAndDrawsNothing) {
 // at most, the quantisation of the two targets' 8-bit encodings.
 TEST(Projector, TheSameDecalsGiveTheSameAlbedoInEveryHost) {
     SPATTER_REQUIRE_GL(gl);
-    std::optional<Hosted> h = Hosted::make();
+    std::optional<test::HostedWall> h = test::HostedWall::make();
     ASSERT_TRUE(h);
     Scene scene = h->wall.scene;
     Material grey;
@@ -454,7 +383,7 @@ TEST(Projector, TheSameDecalsGiveTheSameAlbedoInEveryHost) {
 // blended as usual; elsewhere both stay.
 TEST(Projector, WritesRoughnessIntoTheAlbedoAlphaChannel) {
     SPATTER_REQUIRE_GL(gl);
-    std::optional<Hosted> h = Hosted::make();
+    std::optional<test::HostedWall> h = test::HostedWall::make();
     ASSERT_TRUE(h);
     const Image before = h->host.read(h->host.albedoTexture());
     HostFrame f = h->host.frame(h->wall.camera, true);
@@ -502,7 +431,7 @@ size_t wallCoverage(const glm::dmat4& projection, HostDepth depth, float depthVa
     t.name = "square";
     projector->setDecalTypes({t});
     EXPECT_TRUE(projector->setObjects({glm::dmat4(1.0)}, {0}).ok());
-    projector->setDecals({WallScene::decalAt(0, glm::vec3(0.0f))});
+    projector->setDecals({test::WallScene::decalAt(0, glm::vec3(0.0f))});
     HostFrame f;
     f.width = f.height = kSize;
     f.view = glm::lookAt(glm::dvec3(0, 0, 2), glm::dvec3(0.0), glm::dvec3(0, 1, 0));

@@ -4,7 +4,9 @@
 // box per visible decal over the host's frame: each pixel inside a box is rebuilt from the host's
 // depth, kept when it lies inside the box, belongs to the decal's object (object IDs) and faces the
 // decal within its type's angle, and gets the decal's albedo, normal and roughness blended into the
-// host's G-buffer before the host's lighting runs.
+// host's G-buffer before the host's lighting runs (G-buffer blend), or into the projector's own decal
+// buffers, which the host's material or lighting shader applies (DBuffer, as Unreal and Unity HDRP
+// do: the host's G-buffer stays read-only).
 //
 // It owns the decal instances (object space, uploaded when they change), the decal texture array
 // (built-in layers and addDecalTexture*), the shader variants and the GPU timer of its pass. It knows
@@ -110,7 +112,7 @@ struct HostNormals {
     NormalEncoding encoding = NormalEncoding::OctahedralWorld;
 };
 
-struct HostRoughness {
+struct HostRoughness {    // G-buffer blend only
     uint32_t texture = 0; // GL_TEXTURE_2D colour texture; 0: roughness is not written. It may be the
                           // albedo texture when roughness lives in its alpha channel
     int channel = 0;      // 0 (R), 1 (G), 2 (B) or 3 (A): the channel roughness lives in; the others
@@ -137,7 +139,7 @@ struct HostFrame {
     HostDepth depth;
     HostNormals normals;
     // RGBA colour texture, RGB = base colour (linear, or sRGB-encoded by an sRGB format); its alpha is
-    // kept. Required unless the draw is in coverage mode.
+    // kept. Required for G-buffer blend, except in coverage mode; not read by the DBuffer path.
     uint32_t albedoTexture = 0;
     HostRoughness roughness;
     // Unsigned integer texture (R8UI, R16UI or R32UI) of the objects' 8-bit decal IDs, 0 for static
@@ -159,8 +161,18 @@ struct ProjectorSettings {
                                 // time reported is that of an earlier frame, read without stalling
 };
 
+// Where a draw puts the decals (the forward path, DecalProjector::bin, draws nothing).
+enum class ProjectorPath {
+    GBufferBlend, // blended into the host's G-buffer (albedo, normals, roughness) before its lighting
+    DBuffer,      // into the projector's own decal buffers (ProjectorResources::dbuffer*), which the
+                  // host's material or lighting shader applies (hostShader("dbuffer.glsl")); the
+                  // host's textures are only read: depth, normals and object IDs, never albedo or
+                  // roughness
+};
+
 // Per-draw switches.
 struct ProjectorDraw {
+    ProjectorPath path = ProjectorPath::GBufferBlend;
     // Coverage mode: instead of blending the decals, write 1 into every channel of this colour
     // texture (R8 or any colour format) wherever a decal changes the pixel (inside its box, ID
     // matching, within its angle); other pixels are left as they are. 0: blend as usual.
@@ -195,6 +207,12 @@ struct ProjectorResources {
     uint32_t visible = 0;      // shader storage: uint decal indices of the last draw, visibleCount of them
     uint32_t objects = 0;      // shader storage: ProjectorObject per object (relative to the last eye)
     size_t visibleCount = 0;
+    // The decal buffers of the last ProjectorPath::DBuffer draw (0 before the first): GL_TEXTURE_2D,
+    // the size of the host's depth texture, cleared over the frame's viewport by each such draw. RGB
+    // holds the decals premultiplied by their alpha, A the fraction of the surface that shows through.
+    uint32_t dbufferAlbedo = 0;   // SRGB8_ALPHA8: linear albedo
+    uint32_t dbufferNormal = 0;   // RGBA16F: world-space normal
+    uint32_t dbufferMaterial = 0; // RGBA8: roughness in R
 };
 
 class DecalProjector {
@@ -226,7 +244,8 @@ public:
     int decalTextureLayers() const;
 
     // Projects the decals into the host's frame (G-buffer blend: albedo, normals and roughness are
-    // blended into the host's textures), or writes their coverage (ProjectorDraw). Fails, drawing
+    // blended into the host's textures; DBuffer: into the projector's decal buffers), or writes their
+    // coverage (ProjectorDraw). Fails, drawing
     // nothing and leaving the GL state as it was, on a HostFrame that does not fit (the error names
     // the field) or a shader that does not build.
     Result<ProjectorStats> draw(const HostFrame& frame, const ProjectorDraw& options = {});
@@ -235,6 +254,10 @@ public:
     std::string frameProblem(const HostFrame& frame, const ProjectorDraw& options = {}) const;
 
     ProjectorResources resources() const;
+
+    // GLSL for a host's own shaders, to paste after its #version line: "dbuffer.glsl" (applying the
+    // decal buffers of the DBuffer path). Fails on another name.
+    static Result<std::string> hostShader(const std::string& name);
     const ProjectorSettings& settings() const;
 
 private:
