@@ -1,0 +1,245 @@
+#include "spatter/placement/DecalRecords.hpp"
+
+#include "spatter/placement/DecalLooks.hpp"
+#include "spatter/placement/DecalSystem.hpp"
+#include "spatter/placement/RayParser.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <utility>
+
+namespace spatter {
+
+namespace {
+
+using Json = nlohmann::json;
+
+// One "placed" record of spatter-place.
+struct PlacedRecord {
+    std::string object;
+    WorldDecalBox box;
+    double maxAngleDeg = 80.0;
+    uint8_t objectId = 0;
+    std::optional<uint32_t> decalId;
+};
+
+// The value of `v` when it is a finite number.
+std::optional<double> finite(const Json& v) {
+    const double x = v.is_number() ? v.get<double>() : std::nan("");
+    return std::isfinite(x) ? std::optional<double>(x) : std::nullopt;
+}
+
+// The finite number `rec[key]`, or nothing when it is absent, not a number or not finite.
+std::optional<double> number(const Json& rec, const char* key) {
+    return rec.contains(key) ? finite(rec[key]) : std::nullopt;
+}
+
+Status readVec3(const Json& rec, const char* key, glm::dvec3& out) {
+    const Json* v = rec.contains(key) ? &rec[key] : nullptr;
+    bool ok = v && v->is_array() && v->size() == 3;
+    for (int k = 0; ok && k < 3; ++k) {
+        const std::optional<double> c = finite((*v)[size_t(k)]);
+        ok = c.has_value();
+        if (ok) out[k] = *c;
+    }
+    if (!ok) return fail(std::string("a placed record needs \"") + key + "\": three finite numbers");
+    return {};
+}
+
+Status readBox(const Json& rec, WorldDecalBox& box) {
+    const char* const vectors[4] = {"position", "tangent", "bitangent", "normal"};
+    glm::dvec3* const targets[4] = {&box.center, &box.axes[0], &box.axes[1], &box.axes[2]};
+    for (int k = 0; k < 4; ++k)
+        if (Status s = readVec3(rec, vectors[k], *targets[k]); !s) return s;
+    const Json* size = rec.contains("size") ? &rec["size"] : nullptr;
+    const std::optional<double> w =
+        size && size->is_array() && size->size() == 2 ? finite((*size)[0]) : std::nullopt;
+    const std::optional<double> h = w ? finite((*size)[1]) : std::nullopt;
+    if (!h || !(*w > 0.0) || !(*h > 0.0))
+        return fail("a placed record needs \"size\": two finite positive numbers");
+    box.size = {*w, *h};
+    const std::optional<double> halfDepth = number(rec, "half_depth");
+    if (!halfDepth || !(*halfDepth > 0.0))
+        return fail("a placed record needs \"half_depth\": a finite positive number");
+    box.halfDepth = *halfDepth;
+    return {};
+}
+
+// The record on `line`: nothing for a record that is not placed, an error for one that cannot be used.
+Result<std::optional<PlacedRecord>> parseRecord(const std::string& line) {
+    const Json rec = Json::parse(line, nullptr, false);
+    if (rec.is_discarded() || !rec.is_object()) return fail("not a JSON object");
+    if (!rec.contains("status") || rec["status"] != "placed") return std::optional<PlacedRecord>();
+    PlacedRecord r;
+    if (!rec.contains("object") || !rec["object"].is_string())
+        return fail("a placed record needs \"object\": the name of a scene object");
+    r.object = rec["object"].get<std::string>();
+    if (Status s = readBox(rec, r.box); !s) return fail(s.error());
+    r.maxAngleDeg = number(rec, "max_angle_deg").value_or(r.maxAngleDeg);
+    if (rec.contains("object_id")) {
+        const std::optional<double> id = number(rec, "object_id");
+        if (!id || *id < 0.0 || *id > 255.0) return fail("\"object_id\" must be a number in 0..255");
+        r.objectId = uint8_t(*id);
+    }
+    if (rec.contains("decal_id") && rec["decal_id"].is_number_unsigned())
+        r.decalId = rec["decal_id"].get<uint32_t>();
+    return std::optional<PlacedRecord>(std::move(r));
+}
+
+// Decal types by (max angle, look), as they are first met.
+class TypeTable {
+public:
+    TypeTable(const DecalType& base, int look) : base_(base), look_(look) {}
+
+    uint16_t typeOf(double maxAngleDeg, size_t k, std::vector<DecalType>& types) {
+        const int look = lookOf(look_, k);
+        auto it = index_.find({maxAngleDeg, look});
+        if (it != index_.end()) return it->second;
+        DecalType t = withLook(base_, look);
+        t.maxAngleDeg = float(maxAngleDeg);
+        types.push_back(t);
+        return index_.emplace(std::make_pair(maxAngleDeg, look), uint16_t(types.size() - 1)).first->second;
+    }
+
+private:
+    DecalType base_;
+    int look_;
+    std::map<std::pair<double, int>, uint16_t> index_;
+};
+
+// Dynamic objects that carry no decal get an ID no decal has, so that no decal shows on them: the
+// smallest one the decals do not use.
+void giveSpareIds(const Scene& scene, LoadedDecals& out) {
+    std::vector<bool> used(256, false), named(scene.objects.size(), false);
+    for (const Decal& d : out.decals) {
+        used[d.objectId] = true;
+        named[d.object] = true;
+    }
+    int spare = 1;
+    while (spare < 256 && used[size_t(spare)])
+        ++spare;
+    for (size_t i = 0; i < scene.objects.size(); ++i)
+        if (scene.objects[i].dynamic && !named[i]) out.objectIds[i] = uint8_t(spare < 256 ? spare : 255);
+}
+
+// The rays of a ray file, and how many ray lines it has (parsed or not).
+Result<std::pair<std::vector<Ray>, size_t>> readRays(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) return fail("cannot read " + path);
+    std::vector<Ray> rays;
+    size_t lineNumber = 0, records = 0;
+    for (std::string raw; std::getline(in, raw);) {
+        const RayLine line = parseRayLine(raw, ++lineNumber);
+        if (!line.isRay) continue;
+        ++records;
+        // An unparseable ray places nothing, as in spatter-place; one with values that are not finite
+        // is rejected by the decal system (rayProblem) and places nothing either.
+        if (line.ok) rays.push_back(line.ray);
+    }
+    return std::make_pair(std::move(rays), records);
+}
+
+} // namespace
+
+int findObject(const Scene& scene, const std::string& name, const glm::dvec3& position) {
+    int best = -1;
+    double bestDistance = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const SceneObject& o = scene.objects[i];
+        if (o.name != name) continue;
+        DBounds b;
+        for (const glm::vec3& p : o.mesh.positions)
+            b.extend(glm::dvec3(o.transform * glm::dvec4(glm::dvec3(p), 1.0)));
+        const double d = b.empty() ? 0.0 : glm::length(glm::clamp(position, b.min, b.max) - position);
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = int(i);
+        }
+    }
+    return best;
+}
+
+Decal toObjectSpace(const SceneObject& object, uint32_t index, const WorldDecalBox& box) {
+    const glm::dmat4 inv = glm::inverse(object.transform);
+    const glm::dmat3 invLinear(inv);
+    const glm::dvec3 a = invLinear * (box.axes[0] * (0.5 * box.size.x));
+    const glm::dvec3 b = invLinear * (box.axes[1] * (0.5 * box.size.y));
+    const glm::dvec3 c = invLinear * (box.axes[2] * box.halfDepth);
+    Decal d;
+    d.object = index;
+    d.center = glm::vec3(glm::dvec3(inv * glm::dvec4(box.center, 1.0)));
+    d.frame.tangent = glm::vec3(glm::normalize(a));
+    d.frame.bitangent = glm::vec3(glm::normalize(b));
+    d.frame.normal = glm::vec3(glm::normalize(c));
+    d.size = glm::vec2(float(2.0 * glm::length(a)), float(2.0 * glm::length(b)));
+    d.halfDepth = float(glm::length(c));
+    return d;
+}
+
+Result<LoadedDecals> loadPlacedRecords(const std::string& path, const Scene& scene, const DecalType& base,
+                                       int look) {
+    std::ifstream in(path);
+    if (!in) return fail("cannot read " + path);
+    LoadedDecals out;
+    out.objectIds.assign(scene.objects.size(), 0);
+    TypeTable types(base, look);
+    size_t lineNumber = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++lineNumber;
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        ++out.records;
+        const std::string where = path + ":" + std::to_string(lineNumber) + ": ";
+        Result<std::optional<PlacedRecord>> rec = parseRecord(line);
+        if (!rec) return fail(where + rec.error());
+        if (!rec.value()) continue;
+        const PlacedRecord& r = *rec.value();
+        const int object = findObject(scene, r.object, r.box.center);
+        if (object < 0) return fail(where + "the scene has no object named '" + r.object + "'");
+        Decal d = toObjectSpace(scene.objects[size_t(object)], uint32_t(object), r.box);
+        d.type = types.typeOf(r.maxAngleDeg, out.decals.size(), out.types);
+        d.objectId = r.objectId;
+        if (r.decalId) d.id = *r.decalId;
+        out.objectIds[size_t(object)] = d.objectId;
+        out.decals.push_back(d);
+        ++out.placed;
+    }
+    giveSpareIds(scene, out);
+    return out;
+}
+
+Result<LoadedDecals> placeRays(const std::string& path, const Scene& scene, const DecalType& type, int look,
+                               uint64_t seed) {
+    Result<std::pair<std::vector<Ray>, size_t>> rays = readRays(path);
+    if (!rays) return fail(rays.error());
+    DecalSettings settings;
+    settings.seed = seed;
+    settings.maxPerCell = std::numeric_limits<uint32_t>::max();
+    settings.budget = std::numeric_limits<uint32_t>::max();
+    settings.maxPerObject = std::numeric_limits<uint32_t>::max();
+    Result<DecalSystem> sys = DecalSystem::create(scene, settings);
+    if (!sys) return fail(sys.error());
+    Result<uint16_t> index = sys->registerType(type);
+    if (!index) return fail(index.error());
+    LoadedDecals out;
+    out.warnings = sys->world().warnings();
+    out.records = rays->second;
+    std::vector<SpawnResult> results;
+    sys->spawnBatch(rays->first, index.value(), results);
+    for (const SpawnResult& r : results)
+        out.placed += r.placed() ? 1 : 0;
+    out.decals = sys->decals();
+    for (int k = 0; k < int(DecalTexture::Count); ++k)
+        out.types.push_back(withLook(type, k));
+    for (size_t k = 0; k < out.decals.size(); ++k)
+        out.decals[k].type = uint16_t(lookOf(look, k));
+    for (uint32_t o = 0; o < scene.objects.size(); ++o)
+        out.objectIds.push_back(sys->objectId(o));
+    return out;
+}
+
+} // namespace spatter

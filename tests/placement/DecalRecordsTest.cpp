@@ -1,0 +1,180 @@
+// Decals read from files for a scene (DecalRecords.hpp) and the built-in looks (DecalLooks.hpp).
+
+#include "PlacementTestUtil.hpp"
+
+#include "TestData.hpp"
+
+#include "spatter/placement/DecalLooks.hpp"
+#include "spatter/placement/DecalRecords.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+using namespace spatter;
+using ::testing::HasSubstr;
+
+namespace {
+
+std::string json3(const glm::dvec3& v) {
+    std::ostringstream s;
+    s.precision(17);
+    s << "[" << v.x << "," << v.y << "," << v.z << "]";
+    return s.str();
+}
+
+// The record spatter-place writes for `d`.
+std::string placedRecord(const DecalSystem& sys, const Decal& d, double maxAngle) {
+    const WorldDecal w = sys.worldBox(d);
+    std::ostringstream r;
+    r.precision(17);
+    r << R"({"ray":0,"status":"placed","reason":"","object":")" << sys.world().object(d.object)->name
+      << R"(","object_id":)" << int(d.objectId) << R"(,"decal_id":)" << d.id << R"(,"position":)"
+      << json3(w.center) << R"(,"normal":)" << json3(glm::dvec3(w.frame.normal)) << R"(,"tangent":)"
+      << json3(glm::dvec3(w.frame.tangent)) << R"(,"bitangent":)" << json3(glm::dvec3(w.frame.bitangent))
+      << R"(,"size":[)" << w.size.x << "," << w.size.y << R"(],"half_depth":)" << w.halfDepth
+      << R"(,"max_angle_deg":)" << maxAngle << "}";
+    return r.str();
+}
+
+std::string writeFile(const std::string& name, const std::string& text) {
+    static const std::string dir = test::scratchDir("decal-records");
+    const std::string path = dir + "/" + name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+void expectNear(const glm::vec3& a, const glm::vec3& b, float tolerance) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+} // namespace
+
+// A decal on a turned and scaled moving target, written as spatter-place writes it and read back,
+// is the same object-space decal; the target's ID comes from the record, and the other targets get
+// one that no decal has.
+TEST(DecalRecords, PlacedRecordsGiveBackTheObjectSpaceDecals) {
+    const Scene scene = test::rangeScene(3);
+    Result<DecalSystem> sys = DecalSystem::create(scene);
+    ASSERT_TRUE(sys.ok()) << sys.error();
+    DecalType type;
+    type.name = "t";
+    type.size = {0.3f, 0.2f};
+    const uint16_t index = sys->registerType(type).value();
+    ASSERT_TRUE(sys->spawn(Ray{{2.0, 1.1, 5.0}, {0.0, 0.0, -1.0}}, index).placed());
+    ASSERT_TRUE(sys->spawn(Ray{{-2.0, 1.0, 5.0}, {0.0, 0.0, -1.0}}, index).placed());
+    const std::vector<Decal>& placed = sys->decals();
+    const std::string path =
+        writeFile("placed.jsonl", placedRecord(sys.value(), placed[0], 60.0) + "\n\n" +
+                                      R"({"ray":1,"status":"missed","reason":"no hit"})" + "\n" +
+                                      placedRecord(sys.value(), placed[1], 80.0) + "\n");
+
+    Result<LoadedDecals> loaded = loadPlacedRecords(path, scene, type, kMixedLooks);
+    ASSERT_TRUE(loaded.ok()) << loaded.error();
+    EXPECT_EQ(loaded->records, 3u);
+    EXPECT_EQ(loaded->placed, 2u);
+    ASSERT_EQ(loaded->decals.size(), 2u);
+    for (size_t k = 0; k < 2; ++k) {
+        const Decal &a = loaded->decals[k], &b = placed[k];
+        EXPECT_EQ(a.object, b.object);
+        EXPECT_EQ(a.id, b.id);
+        EXPECT_EQ(a.objectId, b.objectId);
+        expectNear(a.center, b.center, 1e-5f);
+        expectNear(a.frame.tangent, b.frame.tangent, 1e-5f);
+        expectNear(a.frame.normal, b.frame.normal, 1e-5f);
+        EXPECT_NEAR(a.size.x, b.size.x, 1e-5f);
+        EXPECT_NEAR(a.halfDepth, b.halfDepth, 1e-5f);
+        // Mixed looks: the k-th decal has the k-th built-in texture and its record's angle.
+        const DecalType& t = loaded->types[a.type];
+        EXPECT_EQ(t.texture, int(k));
+        EXPECT_FLOAT_EQ(t.maxAngleDeg, k == 0 ? 60.0f : 80.0f);
+        EXPECT_EQ(t.size, type.size);
+    }
+    ASSERT_EQ(loaded->objectIds.size(), scene.objects.size());
+    const uint8_t hitId = placed[0].objectId;
+    EXPECT_NE(hitId, 0);
+    EXPECT_EQ(loaded->objectIds[placed[0].object], hitId);
+    for (size_t o = 0; o < scene.objects.size(); ++o) {
+        if (o == placed[0].object || !scene.objects[o].dynamic) continue;
+        EXPECT_EQ(loaded->objectIds[o], hitId == 1 ? 2 : 1) << o;
+    }
+}
+
+TEST(DecalRecords, ErrorsNameTheFileLineAndField) {
+    const Scene scene = test::boxScene();
+    const std::string good =
+        R"({"status":"placed","object":"box","position":[0,0,0.5],"normal":[0,0,1],"tangent":[1,0,0],)"
+        R"("bitangent":[0,1,0],"size":[0.2,0.2],"half_depth":0.1})";
+    struct Case {
+        std::string line, expected;
+    };
+    const Case cases[] = {
+        {"[1, 2]", "not a JSON object"},
+        {"{\"status\":\"placed\"", "not a JSON object"},
+        {R"({"status":"placed","position":[0,0,0]})", "\"object\""},
+        {R"({"status":"placed","object":"box","position":[0,0]})", "\"position\""},
+        {R"({"status":"placed","object":"box","position":[0,0,0],"normal":[0,0,"1"]})", "\"tangent\""},
+        {good.substr(0, good.size() - 1) + ",\"size\":[0.2,-1]}", "\"size\""},
+        {good.substr(0, good.size() - 1) + ",\"half_depth\":0}", "\"half_depth\""},
+        {good.substr(0, good.size() - 1) + ",\"object_id\":256}", "\"object_id\""},
+        {good.substr(0, good.size() - 1) + ",\"object\":\"crate\"}", "no object named 'crate'"},
+    };
+    for (const Case& c : cases) {
+        const std::string path = writeFile("bad.jsonl", good + "\n" + c.line + "\n");
+        Result<LoadedDecals> loaded = loadPlacedRecords(path, scene, DecalType{}, 0);
+        ASSERT_FALSE(loaded.ok()) << c.line;
+        EXPECT_THAT(loaded.error(), HasSubstr(path + ":2: ")) << c.line;
+        EXPECT_THAT(loaded.error(), HasSubstr(c.expected)) << c.line;
+    }
+    Result<LoadedDecals> missing = loadPlacedRecords(writeFile("x", "") + ".missing", scene, DecalType{}, 0);
+    ASSERT_FALSE(missing.ok());
+    EXPECT_THAT(missing.error(), HasSubstr("cannot read"));
+}
+
+// Rays are placed in order; a line that does not parse counts as a ray and places nothing.
+TEST(DecalRecords, RayFilesArePlacedThroughTheDecalSystem) {
+    const Scene scene = test::boxScene();
+    const std::string path =
+        writeFile("rays.txt", "# two shots at the box\n0 0 3 0 0 -1\n\nnot a ray\n0.1 0.1 3 0 0 -1\n");
+    DecalType type;
+    type.name = "t";
+    type.size = {0.2f, 0.2f};
+    Result<LoadedDecals> loaded = placeRays(path, scene, type, int(DecalTexture::Scorch), 7);
+    ASSERT_TRUE(loaded.ok()) << loaded.error();
+    EXPECT_EQ(loaded->records, 3u);
+    EXPECT_EQ(loaded->placed, 2u);
+    ASSERT_EQ(loaded->decals.size(), 2u);
+    ASSERT_EQ(loaded->types.size(), size_t(DecalTexture::Count));
+    for (const Decal& d : loaded->decals) {
+        EXPECT_EQ(loaded->types[d.type].texture, int(DecalTexture::Scorch));
+        EXPECT_FLOAT_EQ(d.size.x, 0.2f);
+    }
+    EXPECT_EQ(loaded->objectIds, std::vector<uint8_t>{0});
+    // The same seed places the same decals.
+    Result<LoadedDecals> again = placeRays(path, scene, type, int(DecalTexture::Scorch), 7);
+    ASSERT_TRUE(again.ok());
+    EXPECT_EQ(again->decals[1].id, loaded->decals[1].id);
+    type.size = {-1.0f, 0.2f};
+    EXPECT_FALSE(placeRays(path, scene, type, 0, 7).ok());
+}
+
+TEST(DecalLooks, NamesGiveTheBuiltInTexturesAndMixedTakesThemInTurn) {
+    EXPECT_EQ(parseDecalLook("bullet_hole").value(), int(DecalTexture::BulletHole));
+    EXPECT_EQ(parseDecalLook("scorch").value(), int(DecalTexture::Scorch));
+    EXPECT_EQ(parseDecalLook("mixed").value(), kMixedLooks);
+    Result<int> unknown = parseDecalLook("glitter");
+    ASSERT_FALSE(unknown.ok());
+    EXPECT_THAT(unknown.error(), HasSubstr("'glitter'"));
+    EXPECT_EQ(lookOf(kMixedLooks, 5), 1);
+    EXPECT_EQ(lookOf(int(DecalTexture::Paint), 5), int(DecalTexture::Paint));
+    DecalType base;
+    base.size = {2.0f, 1.0f};
+    const DecalType blood = withLook(base, int(DecalTexture::Blood));
+    EXPECT_EQ(blood.texture, int(DecalTexture::Blood));
+    EXPECT_FLOAT_EQ(blood.roughness, 0.25f);
+    EXPECT_EQ(blood.size, base.size);
+}
