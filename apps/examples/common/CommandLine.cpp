@@ -1,0 +1,153 @@
+#include "CommandLine.hpp"
+
+#include <spatter/core/SceneLoader.hpp>
+#include <spatter/core/TextFields.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace example {
+
+namespace {
+
+// A whole number in 1..16384 (the image sizes spatter-render takes).
+bool parseSide(const std::string& text, int& out) {
+    double v = 0.0;
+    if (!spatter::parseNumber(text, v) || v < 1.0 || v > 16384.0 || v != std::floor(v)) return false;
+    out = int(v);
+    return true;
+}
+
+spatter::Status parseSize(const std::string& text, Options& o) {
+    const size_t x = text.find('x');
+    if (x == std::string::npos || !parseSide(text.substr(0, x), o.width) ||
+        !parseSide(text.substr(x + 1), o.height))
+        return spatter::fail("--size needs WxH, whole numbers in 1..16384");
+    return {};
+}
+
+spatter::Status parseView(const std::string& text, Options& o) {
+    const char* const names[] = {"final", "albedo", "coverage"};
+    for (int k = 0; k < 3; ++k)
+        if (text == names[k]) {
+            o.view = View(k);
+            return {};
+        }
+    return spatter::fail("unknown view '" + text + "' (final, albedo or coverage)");
+}
+
+// Takes the option argv[i] (and its value, moving i past it) into `o`.
+spatter::Status parseOption(int argc, char** argv, int& i, Options& o) {
+    const std::string a = argv[i];
+    const bool hasValue = i + 1 < argc;
+    const std::string v = hasValue ? argv[i + 1] : "";
+    if (a == "--help" || a == "-h") {
+        o.help = true;
+        return {};
+    }
+    const char* const valued[] = {"--decals", "--rays", "--camera", "--size", "--view", "--out"};
+    if (std::find(std::begin(valued), std::end(valued), a) == std::end(valued))
+        return spatter::fail("unknown option " + a);
+    if (!hasValue) return spatter::fail(a + " needs a value");
+    ++i;
+    if (a == "--decals") o.decals = v;
+    if (a == "--rays") o.rays = v;
+    if (a == "--out") o.out = v;
+    if (a == "--size") return parseSize(v, o);
+    if (a == "--view") return parseView(v, o);
+    if (a == "--camera") {
+        spatter::Result<spatter::Camera> camera = spatter::parseCamera(v);
+        if (!camera) return spatter::fail("--camera: " + camera.error());
+        o.camera = camera.value();
+    }
+    return {};
+}
+
+// spatter-render's default view: the centre of the scene's bounds from the front, above; the near
+// plane a thousandth of the scene's diagonal.
+spatter::Camera defaultCamera(const spatter::Scene& scene) {
+    spatter::Camera cam;
+    const spatter::DBounds b = scene.worldBounds();
+    if (b.empty()) return cam;
+    const double diag = std::max(b.diagonal(), 1e-6);
+    cam.target = b.center();
+    cam.eye = b.center() + glm::normalize(glm::dvec3(0.15, 0.35, 1.0)) * (0.75 * diag);
+    cam.nearPlane = std::max(diag * 1e-3, 1e-4);
+    return cam;
+}
+
+} // namespace
+
+spatter::Result<Options> parseCommandLine(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc && !o.help; ++i) {
+        const std::string a = argv[i];
+        if (!a.empty() && a[0] == '-') {
+            if (spatter::Status s = parseOption(argc, argv, i, o); !s) return spatter::fail(s.error());
+        } else if (o.scene.empty()) {
+            o.scene = a;
+        } else {
+            return spatter::fail("more than one scene given");
+        }
+    }
+    if (o.help) return o;
+    if (o.scene.empty()) return spatter::fail("no scene given");
+    if (!o.decals.empty() && !o.rays.empty()) return spatter::fail("--decals and --rays exclude each other");
+    return o;
+}
+
+std::string usage(const std::string& program, const std::string& description) {
+    return "usage: " + program + R"( SCENE [--decals FILE.jsonl | --rays FILE]
+        [--camera "eye=x,y,z;target=x,y,z;up=x,y,z;fov=DEG"] [--size WxH]
+        [--view final|albedo|coverage] [--out FILE.png]
+
+)" + description +
+           R"(
+
+The options are spatter-render's, with the same meanings:
+  SCENE           builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file
+  --decals FILE   spatter-place output (JSON Lines): every "placed" record becomes a decal on the
+                  object it names
+  --rays FILE     one ray per line, "ox oy oz dx dy dz" ('#' starts a comment), placed here through
+                  the decal system on the render meshes (decals of 0.3 within 80 degrees, seed 1)
+  --camera "eye=x,y,z;target=x,y,z;up=x,y,z;fov=DEG"
+                  perspective camera; up defaults to 0,1,0 and fov (vertical, degrees) to 60.
+                  Default: looking at the centre of the scene's bounds from the front, above.
+                  Pixel (i, j) of the image, j counted from the top row, shows the ray from the
+                  eye through the centre of that pixel.
+  --size WxH      image size (default 960x540)
+  --view V        final (lit, default), albedo (after the decals, sRGB), or coverage: white where
+                  at least one decal changes the pixel (inside its box, object ID matching, within
+                  its max angle), black elsewhere
+  --out FILE.png  the image (default render.png)
+  --help          this text
+
+Exit code 0 on success, 1 when the scene, the decals or the GL context fail, 2 on bad options.
+)";
+}
+
+spatter::Result<Inputs> loadInputs(const Options& options) {
+    spatter::Result<spatter::Scene> scene = spatter::loadScene(options.scene);
+    if (!scene) return spatter::fail(scene.error());
+    Inputs in;
+    in.scene = std::move(scene.value());
+    in.camera = defaultCamera(in.scene);
+    if (options.camera) {
+        const double nearPlane = in.camera.nearPlane;
+        in.camera = *options.camera;
+        in.camera.nearPlane = nearPlane;
+    }
+    spatter::DecalType type; // spatter-render's defaults
+    type.name = "spatter-render";
+    type.size = glm::vec2(0.3f);
+    type.maxAngleDeg = 80.0f;
+    const int look = int(spatter::DecalTexture::BulletHole);
+    spatter::Result<spatter::LoadedDecals> decals = spatter::LoadedDecals{};
+    if (!options.decals.empty()) decals = spatter::loadPlacedRecords(options.decals, in.scene, type, look);
+    if (!options.rays.empty()) decals = spatter::placeRays(options.rays, in.scene, type, look, 1);
+    if (!decals) return spatter::fail(decals.error());
+    in.decals = std::move(decals.value());
+    return in;
+}
+
+} // namespace example
