@@ -68,7 +68,7 @@ void main() {
 
     vec2 uv = box.xy;
 #ifdef WRAP
-    if ((flags & DECAL_WRAP) != 0u) {
+    if ((flags & SPATTER_DECAL_WRAP) != 0u) {
         // Listing 20.4 in metric decal space: the slope of the surface relative to the decal plane
         // moves the texture coordinates outward by the distance to the plane.
         vec3 halfSize = vec3(v_tangent.w, v_bitangent.w, v_normal.w);
@@ -103,21 +103,21 @@ void main() {
     float fade = 1.0;
 #ifdef FADE
     float f = clamp((1.0 - abs(box.z)) / max(1.0 - u_params.x, 1e-4), 0.0, 1.0);
-    if ((flags & DECAL_FADE_LINEAR) != 0u) fade = f;
-    else if ((flags & DECAL_FADE_SMOOTH) != 0u) fade = f * f * (3.0 - 2.0 * f);
+    if ((flags & SPATTER_DECAL_FADE_LINEAR) != 0u) fade = f;
+    else if ((flags & SPATTER_DECAL_FADE_SMOOTH) != 0u) fade = f * f * (3.0 - 2.0 * f);
 #endif
     vec3 layer = vec3(tc, float(v_info.y));
     vec4 tex = textureGrad(s_decalAlbedo, layer, tcdx, tcdy);
     float alpha = clamp(tex.a * v_tint.a * fade, 0.0, 1.0);
 #ifdef ROUGHNESS_ALPHA
-    float weight = (flags & DECAL_ROUGHNESS) != 0u ? alpha : 0.0;
+    float weight = (flags & SPATTER_DECAL_ROUGHNESS) != 0u ? alpha : 0.0;
     o_roughness = vec4(0.0, 0.0, 0.0, v_params.y * weight);
     o_weight = vec4(0.0, 0.0, 0.0, weight);
 #else
     o_albedo = vec4(tex.rgb * v_tint.rgb, alpha);
     o_normal = vec4(0.0);
 #ifdef NORMAL_MAP
-    if ((flags & DECAL_NORMAL_MAP) != 0u) {
+    if ((flags & SPATTER_DECAL_NORMAL_MAP) != 0u) {
         vec3 detail = normalize(textureGrad(s_decalNormal, layer, tcdx, tcdy).xyz * 2.0 - 1.0);
         vec3 T = v_tangent.xyz;
         vec3 B = v_bitangent.xyz;
@@ -141,7 +141,7 @@ void main() {
         o_normal = vec4(encodeHostNormal(blended).xyz, alpha);
     }
 #endif
-    o_material = vec4(vec3(v_params.y), (flags & DECAL_ROUGHNESS) != 0u ? alpha : 0.0);
+    o_material = vec4(vec3(v_params.y), (flags & SPATTER_DECAL_ROUGHNESS) != 0u ? alpha : 0.0);
 #endif
 #endif
 }

@@ -11,7 +11,7 @@ flat out vec4 v_tangent;       // xyz: world unit tangent; w: half width (world 
 flat out vec4 v_bitangent;     // w: half height
 flat out vec4 v_normal;        // xyz: world unit decal axis; w: half depth
 flat out vec4 v_tint;
-flat out uvec4 v_info;         // x: object decal ID, y: texture layer, z: DECAL_* flags
+flat out uvec4 v_info;         // x: object decal ID, y: texture layer, z: SPATTER_DECAL_* flags
 flat out vec2 v_params;        // x: cosine of the largest accepted angle, y: roughness
 
 // Corner i of the cube: x from bit 0, y from bit 1, z from bit 2; triangles wound
@@ -27,20 +27,18 @@ void main() {
     vec3 c = vec3((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0, (corner & 4) != 0 ? 1.0 : -1.0);
     // A mirroring box-to-world transform turns the winding inside out; mirroring the cube in its
     // own space (it maps onto itself) turns it back.
-    bool mirrored = ((d.info.w & DECAL_MIRRORED) != 0u) != (o.info.y != 0u);
+    bool mirrored = ((d.info.w & SPATTER_DECAL_MIRRORED) != 0u) != (o.info.y != 0u);
     if (mirrored) c.x = -c.x;
 
     vec4 local = vec4(c, 1.0);
     vec3 objectPos = vec3(dot(d.boxToObject[0], local), dot(d.boxToObject[1], local), dot(d.boxToObject[2], local));
     gl_Position = u_viewProj * (o.model * vec4(objectPos, 1.0));
 
-    for (int r = 0; r < 3; ++r) v_worldToBox[r] = d.objectToBox[r] * o.worldToObject;
-    vec3 t = mat3(o.model) * d.tangent.xyz;
-    vec3 b = mat3(o.model) * d.bitangent.xyz;
-    float depthScale = length(mat3(o.model) * d.normal.xyz);
-    v_tangent = vec4(normalize(t), length(t) * d.tangent.w);
-    v_bitangent = vec4(normalize(b), length(b) * d.bitangent.w);
-    v_normal = vec4(normalize(mat3(o.normalMatrix) * d.normal.xyz), depthScale * d.normal.w);
+    WorldDecal w = worldDecal(d, o);
+    v_worldToBox = w.worldToBox;
+    v_tangent = w.tangent;
+    v_bitangent = w.bitangent;
+    v_normal = w.normal;
     v_tint = d.tint;
     v_info = uvec4(d.info.y, d.info.z, d.info.w, 0u);
     v_params = d.params.xy;

@@ -1,14 +1,9 @@
-// Decal instances as the projector stores them (DecalProjector::buffers()), shared by the projector's
+// Decal instances as the projector stores them (DecalProjector::resources()), shared by the projector's
 // shaders and any host's debug drawing: the DecalData buffer (binding 3), the visible list of the last
-// draw (binding 4), the DECAL_* flags, and the octahedral normal encoding. Mirrored on the C++ side
+// draw (binding 4), the SPATTER_DECAL_* flags, and the octahedral normal encoding. Mirrored on the C++ side
 // by render/src/GpuLayouts.hpp (DecalGpu).
 
-const uint DECAL_WRAP = 1u;
-const uint DECAL_NORMAL_MAP = 2u;
-const uint DECAL_FADE_LINEAR = 4u;
-const uint DECAL_FADE_SMOOTH = 8u;
-const uint DECAL_ROUGHNESS = 16u;
-const uint DECAL_MIRRORED = 32u;
+#include "decal_flags.glsl"
 
 struct DecalData {
     vec4 objectToBox[3]; // rows: object -> unit box
@@ -17,7 +12,7 @@ struct DecalData {
     vec4 bitangent;      // w: half height
     vec4 normal;         // w: half depth
     vec4 tint;           // rgb tint; a: tint alpha * opacity
-    uvec4 info;          // x: object index, y: object decal ID, z: texture layer, w: DECAL_* flags
+    uvec4 info;          // x: object index, y: object decal ID, z: texture layer, w: SPATTER_DECAL_* flags
     vec4 params;         // x: cosine of the largest accepted angle; y: roughness written
 };
 

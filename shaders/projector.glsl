@@ -87,3 +87,25 @@ vec4 encodeHostNormal(vec3 n) {
     return vec4(encodeNormal(n), 0.0, 0.0);
 #endif
 }
+
+// A decal in camera-relative world space, as its box is drawn (decal.vert) or binned (forward):
+// rows of world -> unit box, and the unit tangent, bitangent and axis with the half width, height and
+// depth in w.
+struct WorldDecal {
+    vec4 worldToBox[3];
+    vec4 tangent;
+    vec4 bitangent;
+    vec4 normal;
+};
+
+WorldDecal worldDecal(DecalData d, ProjectorObject o) {
+    WorldDecal w;
+    for (int r = 0; r < 3; ++r) w.worldToBox[r] = d.objectToBox[r] * o.worldToObject;
+    vec3 t = mat3(o.model) * d.tangent.xyz;
+    vec3 b = mat3(o.model) * d.bitangent.xyz;
+    float depthScale = length(mat3(o.model) * d.normal.xyz);
+    w.tangent = vec4(normalize(t), length(t) * d.tangent.w);
+    w.bitangent = vec4(normalize(b), length(b) * d.bitangent.w);
+    w.normal = vec4(normalize(mat3(o.normalMatrix) * d.normal.xyz), depthScale * d.normal.w);
+    return w;
+}

@@ -34,7 +34,7 @@ void main() {
     uint flags = d.info.w;
 
     vec2 uv = box.xy;
-    if ((flags & DECAL_WRAP) != 0u) {
+    if ((flags & SPATTER_DECAL_WRAP) != 0u) {
         vec3 halfSize = vec3(d.tangent.w, d.bitangent.w, d.normal.w);
         vec3 q = box * halfSize;
         vec2 slope = vec2(dot(n, d.tangent.xyz), dot(n, d.bitangent.xyz));
@@ -50,15 +50,15 @@ void main() {
 
     float fade = 1.0;
     float f = clamp((1.0 - abs(box.z)) / max(1.0 - u_fadeStart, 1e-4), 0.0, 1.0);
-    if ((flags & DECAL_FADE_LINEAR) != 0u) fade = f;
-    else if ((flags & DECAL_FADE_SMOOTH) != 0u) fade = f * f * (3.0 - 2.0 * f);
+    if ((flags & SPATTER_DECAL_FADE_LINEAR) != 0u) fade = f;
+    else if ((flags & SPATTER_DECAL_FADE_SMOOTH) != 0u) fade = f * f * (3.0 - 2.0 * f);
 
     vec3 layer = vec3(tc, float(d.info.z));
     vec4 tex = textureGrad(s_decalAlbedo, layer, tcdx, tcdy);
     float alpha = clamp(tex.a * d.tint.a * fade, 0.0, 1.0);
     o_albedo = vec4(tex.rgb * d.tint.rgb, alpha);
     o_normal = vec4(0.0);
-    if ((flags & DECAL_NORMAL_MAP) != 0u) {
+    if ((flags & SPATTER_DECAL_NORMAL_MAP) != 0u) {
         vec3 detail = normalize(textureGrad(s_decalNormal, layer, tcdx, tcdy).xyz * 2.0 - 1.0);
         vec3 T = d.tangent.xyz, B = d.bitangent.xyz, N = d.normal.xyz;
         vec3 base = vec3(dot(n, T), dot(n, B), dot(n, N));

@@ -159,6 +159,8 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
 
         // Frustum: the box is outside when all eight corners lie beyond one clip plane.
         int outside[6] = {0, 0, 0, 0, 0, 0};
+        glm::dvec4 rect(1.0, 1.0, -1.0, -1.0);
+        bool behind = false;
         for (int c = 0; c < 8; ++c) {
             const glm::dvec4 corner((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0, 1.0);
             const glm::dvec3 rel = glm::dvec3(boxToWorld * corner) - view.eye;
@@ -170,6 +172,9 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
             outside[3] += clip.y > clip.w;
             outside[4] += view.reversedZ ? clip.z > clip.w : clip.z < low; // in front of the near plane
             outside[5] += view.reversedZ ? clip.z < low : clip.z > clip.w; // beyond the far plane
+            behind = behind || !(clip.w > 0.0);
+            rect = glm::dvec4(glm::min(glm::dvec2(rect), glm::dvec2(clip) / clip.w),
+                              glm::max(glm::dvec2(rect.z, rect.w), glm::dvec2(clip) / clip.w));
         }
         if (std::any_of(outside, outside + 6, [](int n) { return n == 8; })) {
             ++vis.culled;
@@ -190,6 +195,9 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
         }
         (inside ? vis.inside : vis.outside).push_back(uint32_t(i));
         vis.flags |= gpu_[i].info.w;
+        if (view.rects && !inside)
+            vis.outsideRects.push_back(behind ? glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f)
+                                              : glm::vec4(glm::clamp(rect, -1.0, 1.0)));
     }
     return vis;
 }

@@ -23,6 +23,10 @@ struct DecalVisibility {
     std::vector<uint32_t> inside;  // boxes that may contain the eye or cross the near plane
     uint32_t flags = 0;            // union of the DecalFlag bits of the visible decals
     size_t culled = 0;             // valid decals outside the view
+    // With CullView::rects: for each of `outside`, the normalised device x, y bounds of its box
+    // (min x, min y, max x, max y) clamped to [-1, 1]; the whole view where the box reaches behind
+    // the eye. Boxes `inside` may cover the whole view.
+    std::vector<glm::vec4> outsideRects;
 };
 
 // The view the decals are culled against, in the host's clip conventions.
@@ -32,6 +36,7 @@ struct CullView {
     bool reversedZ = true;     // near at clip depth w, far at the low end
     bool clipMinusOne = false; // clip depth range [-w, w] (GL's default), else [0, w]
     double nearRadius = 0.0;   // radius of a sphere around the eye holding the near plane's rectangle
+    bool rects = false;        // also the screen rectangles of the boxes (DecalVisibility::outsideRects)
 };
 
 class DecalBatch {

@@ -2,6 +2,7 @@
 
 #include "DecalBatch.hpp"
 #include "DecalTextureArray.hpp"
+#include "ForwardBins.hpp"
 #include "GlObjects.hpp"
 #include "GlStateGuard.hpp"
 #include "GpuLayouts.hpp"
@@ -81,6 +82,9 @@ Status validateSettings(const ProjectorSettings& s) {
         return fail("projector: wrapMaxAngleDeg must be in [0, 180]");
     if (!std::isfinite(s.fadeStart) || s.fadeStart < 0.0f || s.fadeStart >= 1.0f)
         return fail("projector: fadeStart must be in [0, 1)");
+    const int t = s.forwardTileSize;
+    if (t < 8 || t > 64 || (t & (t - 1)) != 0)
+        return fail("projector: forwardTileSize must be a power of two in [8, 64], not " + std::to_string(t));
     return {};
 }
 
@@ -152,17 +156,6 @@ FrameCamera frameCamera(const HostFrame& f) {
     return c;
 }
 
-// Grows `buffer` to hold `bytes` (doubling, at least `minimum`); true when it was recreated.
-bool reserve(GlBuffer& buffer, size_t& capacity, size_t bytes, size_t minimum) {
-    if (bytes <= capacity && buffer) return false;
-    capacity = std::max(capacity, minimum);
-    while (capacity < bytes)
-        capacity *= 2;
-    buffer = createBuffer();
-    glNamedBufferStorage(buffer.get(), GLsizeiptr(capacity), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    return true;
-}
-
 } // namespace
 
 struct DecalProjector::Impl {
@@ -186,6 +179,7 @@ struct DecalProjector::Impl {
     GlTexture dbuffer[kDBufferTargets]; // albedo, normal, material (ProjectorResources::dbuffer*)
     int dbufferWidth = 0, dbufferHeight = 0;
     bool dbufferWritten = false; // a draw wrote into the decal buffers since they were last cleared
+    ForwardBins forward;
     GpuTimers timers;
     uint64_t draws = 0;
 
@@ -238,7 +232,7 @@ struct DecalProjector::Impl {
             o.info = glm::uvec4(ids[i], glm::determinant(glm::dmat3(transforms[i])) < 0.0 ? 1u : 0u, 0u, 0u);
         }
         const size_t bytes = objects.size() * sizeof(ProjectorObjectGpu);
-        reserve(objectBuffer, objectCapacity, bytes, 64 * sizeof(ProjectorObjectGpu));
+        reserveBuffer(objectBuffer, objectCapacity, bytes, 64 * sizeof(ProjectorObjectGpu));
         glNamedBufferSubData(objectBuffer.get(), 0, GLsizeiptr(bytes), objects.data());
     }
 
@@ -246,7 +240,8 @@ struct DecalProjector::Impl {
     size_t uploadDecals(const DecalVisibility& vis) {
         size_t bytes = 0;
         const std::vector<DecalGpu>& inst = batch.instances();
-        if (reserve(decalBuffer, decalCapacity, inst.size() * sizeof(DecalGpu), 64 * sizeof(DecalGpu))) {
+        if (reserveBuffer(decalBuffer, decalCapacity, inst.size() * sizeof(DecalGpu),
+                          64 * sizeof(DecalGpu))) {
             glNamedBufferSubData(decalBuffer.get(), 0, GLsizeiptr(inst.size() * sizeof(DecalGpu)),
                                  inst.data());
             bytes += inst.size() * sizeof(DecalGpu);
@@ -260,7 +255,7 @@ struct DecalProjector::Impl {
         batch.markUploaded();
         std::vector<uint32_t> list(vis.outside);
         list.insert(list.end(), vis.inside.begin(), vis.inside.end());
-        reserve(visibleBuffer, visibleCapacity, list.size() * sizeof(uint32_t), 64 * sizeof(uint32_t));
+        reserveBuffer(visibleBuffer, visibleCapacity, list.size() * sizeof(uint32_t), 64 * sizeof(uint32_t));
         glNamedBufferSubData(visibleBuffer.get(), 0, GLsizeiptr(list.size() * sizeof(uint32_t)), list.data());
         visibleCount = list.size();
         return bytes + list.size() * sizeof(uint32_t);
@@ -381,6 +376,11 @@ struct DecalProjector::Impl {
             glBindSampler(unit, nearest.get());
         glBindSampler(3, 0);
         glBindSampler(4, 0);
+        bindBuffers();
+    }
+
+    // The frame block, objects, decal instances and visible list at their binding points.
+    void bindBuffers() const {
         glBindBufferBase(GL_UNIFORM_BUFFER, kProjectorFrameBlock, frameBuffer.get());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorObjectBuffer, objectBuffer.get());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorDecalBuffer, decalBuffer.get());
@@ -521,6 +521,52 @@ std::string DecalProjector::frameProblem(const HostFrame& frame, const Projector
     return hostFrameProblem(frame, options);
 }
 
+Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
+    Impl& m = *impl_;
+    if (const std::string p = forwardFrameProblem(frame); !p.empty()) return fail("projector: " + p);
+    const HostFrame host = cameraFrame(frame);
+    const FrameCamera camera = frameCamera(host);
+    CullView cull = camera.cull;
+    cull.rects = true;
+    const DecalVisibility vis = m.batch.cull(m.transforms, cull);
+    if (Status s = m.forward.prepare(); !s) return fail(s.error());
+    ProjectorStats stats;
+    stats.decals = m.batch.size();
+    stats.invalid = m.batch.invalidCount();
+    stats.culled = vis.culled;
+    stats.drawn = vis.outside.size() + vis.inside.size();
+    stats.inside = vis.inside.size();
+    stats.skipped = stats.drawn == 0;
+    stats.variant = "FORWARD";
+
+    GlStateGuard guard;
+    m.timers.beginFrame(m.draws);
+    m.timers.begin(GpuPass::Decals);
+    m.uploadFrame(host, camera);
+    stats.bytesUploaded = m.uploadDecals(vis);
+    m.bindBuffers();
+    ForwardGridGpu head{};
+    head.info.y = m.settings.normalFrame == DecalNormalFrame::DepthDerivatives ? 1 : 0;
+    head.params.x = m.settings.fadeStart;
+    stats.bytesUploaded += m.forward.bin(frame, vis, m.settings.forwardTileSize, head);
+    stats.drawCalls = stats.skipped ? 0 : 4;
+    m.timers.end();
+    const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
+    stats.gpuMs = times.decalsMs;
+    stats.gpuFrame = times.frame;
+    ++m.draws;
+    return stats;
+}
+
+void DecalProjector::bindForward(const ForwardBindings& bindings) const {
+    const Impl& m = *impl_;
+    m.forward.bind(bindings);
+    glBindTextureUnit(bindings.albedoUnit, m.textures.albedoTexture());
+    glBindTextureUnit(bindings.normalUnit, m.textures.normalTexture());
+    glBindSampler(bindings.albedoUnit, 0);
+    glBindSampler(bindings.normalUnit, 0);
+}
+
 Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const ProjectorDraw& options) {
     Impl& m = *impl_;
     if (const std::string p = hostFrameProblem(frame, options); !p.empty()) return fail("projector: " + p);
@@ -578,11 +624,15 @@ ProjectorResources DecalProjector::resources() const {
     r.dbufferAlbedo = m.dbuffer[0].get();
     r.dbufferNormal = m.dbuffer[1].get();
     r.dbufferMaterial = m.dbuffer[2].get();
+    r.forwardDecals = m.forward.decals();
+    r.forwardTiles = m.forward.tiles();
+    r.forwardItems = m.forward.items();
     return r;
 }
 
 Result<std::string> DecalProjector::hostShader(const std::string& name) {
-    if (name != "dbuffer.glsl") return fail("projector: no host shader '" + name + "' (dbuffer.glsl)");
+    if (name != "dbuffer.glsl" && name != "forward.glsl")
+        return fail("projector: no host shader '" + name + "' (dbuffer.glsl, forward.glsl)");
     return includeText(shaderLibrary(kProjectorShaders), name);
 }
 

@@ -4,6 +4,7 @@
 
 #include <epoxy/gl.h>
 
+#include <cstddef>
 #include <utility>
 
 namespace spatter::render_detail {
@@ -79,6 +80,18 @@ inline GlBuffer createBuffer() {
     GLuint n = 0;
     glCreateBuffers(1, &n);
     return GlBuffer(n);
+}
+
+// Grows `buffer` (immutable storage, GL_DYNAMIC_STORAGE_BIT) to hold `bytes`, doubling from at least
+// `minimum`; true when it was recreated (its contents are then undefined).
+inline bool reserveBuffer(GlBuffer& buffer, size_t& capacity, size_t bytes, size_t minimum) {
+    if (bytes <= capacity && buffer) return false;
+    capacity = capacity > minimum ? capacity : minimum;
+    while (capacity < bytes)
+        capacity *= 2;
+    buffer = createBuffer();
+    glNamedBufferStorage(buffer.get(), GLsizeiptr(capacity), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    return true;
 }
 
 inline GlTexture createTexture(GLenum target) {

@@ -16,7 +16,7 @@ enum Binding : uint32_t {
     kVisibleBuffer = 4,
 };
 
-// Decal flags (DecalGpu::info.w), as DECAL_* in common.glsl.
+// Decal flags (DecalGpu::info.w), as SPATTER_DECAL_* in shaders/decal_flags.glsl.
 enum DecalFlag : uint32_t {
     kDecalWrap = 1u,
     kDecalNormalMap = 2u,

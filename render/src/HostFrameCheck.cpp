@@ -100,11 +100,12 @@ bool invertible(const glm::dmat4& m) {
     return finiteMatrix(m) && std::isfinite(det) && det != 0.0 && finiteMatrix(glm::inverse(m));
 }
 
-std::string cameraProblem(const HostFrame& f) {
-    if (!invertible(f.view)) return "HostFrame.view: not a finite invertible matrix";
-    if (!invertible(f.projection)) return "HostFrame.projection: not a finite invertible matrix";
+// The camera of `f`, whose fields the error names as `frame`'s ("HostFrame", "ForwardFrame").
+std::string cameraProblem(const HostFrame& f, const std::string& frame) {
+    if (!invertible(f.view)) return frame + ".view: not a finite invertible matrix";
+    if (!invertible(f.projection)) return frame + ".projection: not a finite invertible matrix";
     if (!std::isfinite(f.eye.x) || !std::isfinite(f.eye.y) || !std::isfinite(f.eye.z))
-        return "HostFrame.eye: not finite";
+        return frame + ".eye: not finite";
     if (f.depth.encoding != DepthEncoding::Window) return {};
     // Two points on the view axis in front of the camera: which one gets the larger depth?
     const glm::dmat4 inv = glm::inverse(f.projection);
@@ -112,11 +113,12 @@ std::string cameraProblem(const HostFrame& f) {
     const glm::dvec4 pa = inv * glm::dvec4(0.0, 0.0, a, 1.0), pb = inv * glm::dvec4(0.0, 0.0, b, 1.0);
     const double za = pa.z / pa.w, zb = pb.z / pb.w;
     if (!std::isfinite(za) || !std::isfinite(zb) || za == zb)
-        return "HostFrame.projection: maps no depth range";
+        return frame + ".projection: maps no depth range";
     const bool reversed = zb > za; // a larger depth is nearer
     if (reversed != f.depth.reversedZ)
-        return std::string("HostFrame.depth.reversedZ: ") + (f.depth.reversedZ ? "true" : "false") +
-               ", but the projection gives " + (reversed ? "nearer" : "farther") + " points larger depths";
+        return frame + (frame == "HostFrame" ? ".depth" : "") +
+               ".reversedZ: " + (f.depth.reversedZ ? "true" : "false") + ", but the projection gives " +
+               (reversed ? "nearer" : "farther") + " points larger depths";
     return {};
 }
 
@@ -138,7 +140,7 @@ std::string hostFrameProblem(const HostFrame& f, const ProjectorDraw& options) {
         return "HostFrame viewport " + std::to_string(f.x) + "," + std::to_string(f.y) + " " +
                std::to_string(f.width) + "x" + std::to_string(f.height) +
                ": the size must be positive and the corner not negative";
-    if (std::string p = cameraProblem(f); !p.empty()) return p;
+    if (std::string p = cameraProblem(f, "HostFrame"); !p.empty()) return p;
     const bool window = f.depth.encoding == DepthEncoding::Window;
     std::string p = checkTexture(
         f.depth.texture, "HostFrame.depth.texture", f,
@@ -198,6 +200,29 @@ std::string hostFrameProblem(const HostFrame& f, const ProjectorDraw& options) {
         if (!p.empty()) return p;
     }
     return {};
+}
+
+HostFrame cameraFrame(const ForwardFrame& f) {
+    HostFrame h;
+    h.x = f.x;
+    h.y = f.y;
+    h.width = f.width;
+    h.height = f.height;
+    h.view = f.view;
+    h.projection = f.projection;
+    h.eye = f.eye;
+    h.depth.clip = f.clip;
+    h.depth.reversedZ = f.reversedZ;
+    return h;
+}
+
+std::string forwardFrameProblem(const ForwardFrame& f) {
+    if (f.width <= 0 || f.height <= 0 || f.x < 0 || f.y < 0 || f.width > kMaxForwardSize ||
+        f.height > kMaxForwardSize)
+        return "ForwardFrame viewport " + std::to_string(f.x) + "," + std::to_string(f.y) + " " +
+               std::to_string(f.width) + "x" + std::to_string(f.height) + ": the size must be in [1, " +
+               std::to_string(kMaxForwardSize) + "] and the corner not negative";
+    return cameraProblem(cameraFrame(f), "ForwardFrame");
 }
 
 } // namespace spatter::render_detail

@@ -1,7 +1,8 @@
 #pragma once
 // The checks DecalProjector makes on a HostFrame before it touches any GL state: every texture
 // exists, is a 2D texture holding the viewport, and has a format its role can take; the camera can
-// be inverted and its depth direction is the one the frame states.
+// be inverted and its depth direction is the one the frame states. The same for the forward path's
+// ForwardFrame.
 
 #include "spatter/render/DecalProjector.hpp"
 
@@ -27,5 +28,14 @@ GLenum textureFormat(GLuint texture);
 
 // Empty when `frame` (with `options`) fits; otherwise an error naming the field.
 std::string hostFrameProblem(const HostFrame& frame, const ProjectorDraw& options);
+
+// The largest forward viewport side, pixels.
+constexpr int kMaxForwardSize = 16384;
+
+// The forward frame's viewport and camera as a HostFrame without textures (window depth).
+HostFrame cameraFrame(const ForwardFrame& frame);
+
+// Empty when `frame` fits; otherwise an error naming the field.
+std::string forwardFrameProblem(const ForwardFrame& frame);
 
 } // namespace spatter::render_detail

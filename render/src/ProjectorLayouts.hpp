@@ -1,7 +1,7 @@
 #pragma once
-// C++ mirrors of the projector's GLSL blocks in shaders/projector.glsl (the decal instances are
-// DecalGpu, GpuLayouts.hpp). Field order, types and padding match the std140 / std430 rules; the
-// static_asserts keep both sides in step.
+// C++ mirrors of the projector's GLSL blocks in shaders/projector.glsl and forward_data.glsl (the
+// decal instances are DecalGpu, GpuLayouts.hpp). Field order, types and padding match the std140 / std430
+// rules; the static_asserts keep both sides in step.
 
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -14,6 +14,8 @@ enum ProjectorBinding : uint32_t {
     kProjectorObjectBuffer = 1, // shader storage ProjectorObjects
     kProjectorDecalBuffer = 3,  // shader storage DecalBuffer (decal_data.glsl)
     kProjectorVisibleBuffer = 4,
+    kForwardRectBuffer = 0,  // shader storage TileRects of the binning passes (forward_*.comp)
+    kForwardCountBuffer = 2, // shader storage TileCounts / TileCursors
 };
 
 // std140 uniform block ProjectorFrame.
@@ -35,5 +37,22 @@ struct alignas(16) ProjectorObjectGpu {
     glm::uvec4 info;         // x: object decal ID, y: 1 when model mirrors
 };
 static_assert(sizeof(ProjectorObjectGpu) == 208, "ProjectorObjectGpu must match ProjectorObject (std430)");
+
+// std430 SpatterForwardDecal (forward_data.glsl), one per visible decal.
+struct alignas(16) ForwardDecalGpu {
+    glm::vec4 worldToBox[3];
+    glm::vec4 tangent, bitangent, normal, tint;
+    glm::uvec4 info;
+    glm::vec4 params;
+};
+static_assert(sizeof(ForwardDecalGpu) == 144, "ForwardDecalGpu must match SpatterForwardDecal (std430)");
+
+// The head of std430 SpatterForwardTiles; the tiles' runs (uvec2 each) follow.
+struct alignas(16) ForwardGridGpu {
+    glm::ivec4 grid;  // x, y: viewport corner; z: tiles per row; w: rows
+    glm::ivec4 info;  // x: tile size; y: 1 with the derivative normal frame
+    glm::vec4 params; // x: fade start
+};
+static_assert(sizeof(ForwardGridGpu) == 48, "ForwardGridGpu must match SpatterForwardTiles' head");
 
 } // namespace spatter::render_detail

@@ -1,6 +1,7 @@
 // Decal coverage of the GPU decal pass against the CPU reference (rays through every pixel centre
 // against the render meshes, the same inclusion rule in double precision), in spatter's renderer and
-// in a foreign host of the projector (ForeignHost: standard Z, 24-bit depth, RGB10A2 world normals).
+// in a foreign host of the projector (ForeignHost: standard Z, 24-bit depth, RGB10A2 world normals),
+// deferred and forward.
 
 #include "ForeignHost.hpp"
 #include "RenderTestSupport.hpp"
@@ -93,8 +94,10 @@ std::vector<uint8_t> renderCoverage(const Scene& scene, const test::CoverageInpu
     return im ? test::whiteMask(im.value()) : std::vector<uint8_t>{};
 }
 
-// The coverage of the same decals projected into the foreign host's frame.
-std::vector<uint8_t> foreignCoverage(const Scene& scene, const test::CoverageInputs& in, const Camera& cam) {
+// The coverage of the same decals in the foreign host: projected into its frame (deferred), or applied
+// in its fragment shader through the forward path's tiles (forward).
+std::vector<uint8_t> foreignCoverage(const Scene& scene, const test::CoverageInputs& in, const Camera& cam,
+                                     bool forward) {
     Result<test::ForeignHost> host = test::ForeignHost::create(kWidth, kHeight);
     Result<DecalProjector> projector = DecalProjector::create();
     EXPECT_TRUE(host.ok() && projector.ok());
@@ -105,11 +108,16 @@ std::vector<uint8_t> foreignCoverage(const Scene& scene, const test::CoverageInp
     std::vector<uint8_t> ids = in.objectIds;
     ids.resize(transforms.size(), 0);
     host->setScene(scene);
-    host->draw(transforms, ids, cam);
-    host->clearCoverage();
     EXPECT_TRUE(projector->setObjects(transforms, ids).ok());
     projector->setDecalTypes(in.types);
     projector->setDecals(in.decals);
+    if (forward) {
+        Result<ProjectorStats> st = host->drawForward(transforms, ids, cam, projector.value());
+        EXPECT_TRUE(st.ok()) << st.error();
+        return test::whiteMask(host->read(host->coverageTexture()));
+    }
+    host->draw(transforms, ids, cam);
+    host->clearCoverage();
     ProjectorDraw draw;
     draw.coverageTexture = host->coverageTexture();
     Result<ProjectorStats> st = projector->draw(host->frame(cam, scene.dynamicObjectCount() > 0), draw);
@@ -139,7 +147,9 @@ void expectCoverageMatches(const std::string& name, const Scene& scene, const Pl
     const size_t decals = placed.inputs.decals.size();
     expectMaskMatches(name + "-gpu", renderCoverage(scene, placed.inputs, cam), cpu, decals, minIou);
     // A host of the projector is held to 0.99 (the projector's own contract).
-    expectMaskMatches(name + "-foreign", foreignCoverage(scene, placed.inputs, cam), cpu, decals,
+    expectMaskMatches(name + "-foreign", foreignCoverage(scene, placed.inputs, cam, false), cpu, decals,
+                      std::max(minIou, 0.99));
+    expectMaskMatches(name + "-forward", foreignCoverage(scene, placed.inputs, cam, true), cpu, decals,
                       std::max(minIou, 0.99));
 }
 

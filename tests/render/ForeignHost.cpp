@@ -38,11 +38,63 @@ void main() {
 }
 )";
 
+// The forward mode: the same meshes, their surface changed by the projector's forward path
+// (forward.glsl, pasted after the #version line) before it is written, with coverage at location 4.
+const char* kForwardVert = R"(#version 450 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 0) uniform mat4 u_modelViewProj;
+layout(location = 4) uniform mat3 u_normalMatrix;
+layout(location = 8) uniform mat4 u_model; // object -> camera-relative world
+out vec3 v_normal;
+out vec3 v_position;
+void main() {
+    gl_Position = u_modelViewProj * vec4(a_position, 1.0);
+    v_normal = u_normalMatrix * a_normal;
+    v_position = (u_model * vec4(a_position, 1.0)).xyz;
+}
+)";
+
+const char* kForwardFrag = R"(
+in vec3 v_normal;
+in vec3 v_position;
+layout(location = 7) uniform uint u_id;
+layout(location = 0) out vec4 o_albedo;
+layout(location = 1) out vec4 o_normal;
+layout(location = 2) out vec4 o_material;
+layout(location = 3) out uint o_id;
+layout(location = 4) out vec4 o_coverage;
+void main() {
+    SpatterSurface s = SpatterSurface(vec3(0.5), normalize(v_normal), 0.8);
+    int decals = spatterApplyForwardDecals(gl_FragCoord.xy, v_position, u_id, s);
+    o_albedo = vec4(s.albedo, 1.0);
+    o_normal = vec4(s.normal * 0.5 + 0.5, 1.0);
+    o_material = vec4(0.0, s.roughness, 0.0, 0.0);
+    o_id = u_id;
+    o_coverage = vec4(decals > 0 ? 1.0 : 0.0);
+}
+)";
+
 GLuint compile(GLenum stage, const char* text) {
     const GLuint s = glCreateShader(stage);
     glShaderSource(s, 1, &text, nullptr);
     glCompileShader(s);
     return s;
+}
+
+GLuint link(const char* vert, const std::string& frag) {
+    const GLuint vs = compile(GL_VERTEX_SHADER, vert), fs = compile(GL_FRAGMENT_SHADER, frag.c_str());
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, vs);
+    glAttachShader(program, fs);
+    glLinkProgram(program);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint linked = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &linked);
+    if (linked) return program;
+    glDeleteProgram(program);
+    return 0;
 }
 
 GLuint texture(GLenum format, int w, int h) {
@@ -62,7 +114,7 @@ struct MeshGpu {
 
 struct ForeignHost::Impl {
     int width = 0, height = 0;
-    GLuint program = 0, fbo = 0, coverageFbo = 0;
+    GLuint program = 0, forwardProgram = 0, fbo = 0, forwardFbo = 0, coverageFbo = 0;
     GLuint depth = 0, albedo = 0, normal = 0, material = 0, ids = 0, coverage = 0;
     std::vector<MeshGpu> meshes;
 
@@ -70,9 +122,10 @@ struct ForeignHost::Impl {
         clearMeshes();
         const GLuint textures[6] = {depth, albedo, normal, material, ids, coverage};
         glDeleteTextures(6, textures);
-        const GLuint fbos[2] = {fbo, coverageFbo};
-        glDeleteFramebuffers(2, fbos);
+        const GLuint fbos[3] = {fbo, forwardFbo, coverageFbo};
+        glDeleteFramebuffers(3, fbos);
         glDeleteProgram(program);
+        glDeleteProgram(forwardProgram);
     }
 
     void clearMeshes() {
@@ -93,16 +146,11 @@ Result<ForeignHost> ForeignHost::create(int width, int height) {
     auto m = std::make_unique<Impl>();
     m->width = width;
     m->height = height;
-    const GLuint vs = compile(GL_VERTEX_SHADER, kVert), fs = compile(GL_FRAGMENT_SHADER, kFrag);
-    m->program = glCreateProgram();
-    glAttachShader(m->program, vs);
-    glAttachShader(m->program, fs);
-    glLinkProgram(m->program);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint linked = GL_FALSE;
-    glGetProgramiv(m->program, GL_LINK_STATUS, &linked);
-    if (!linked) return fail("foreign host: the program does not link");
+    m->program = link(kVert, kFrag);
+    Result<std::string> forward = DecalProjector::hostShader("forward.glsl");
+    if (!forward) return fail(forward.error());
+    m->forwardProgram = link(kForwardVert, "#version 450 core\n" + forward.value() + kForwardFrag);
+    if (!m->program || !m->forwardProgram) return fail("foreign host: a program does not link");
     m->depth = texture(GL_DEPTH_COMPONENT24, width, height);
     m->albedo = texture(GL_RGBA8, width, height);
     m->normal = texture(GL_RGB10_A2, width, height);
@@ -118,6 +166,15 @@ Result<ForeignHost> ForeignHost::create(int width, int height) {
     const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
                                GL_COLOR_ATTACHMENT3};
     glNamedFramebufferDrawBuffers(m->fbo, 4, buffers);
+    glCreateFramebuffers(1, &m->forwardFbo);
+    const GLuint forwardTargets[5] = {m->albedo, m->normal, m->material, m->ids, m->coverage};
+    GLenum forwardBuffers[5];
+    for (GLuint i = 0; i < 5; ++i) {
+        glNamedFramebufferTexture(m->forwardFbo, GL_COLOR_ATTACHMENT0 + i, forwardTargets[i], 0);
+        forwardBuffers[i] = GL_COLOR_ATTACHMENT0 + i;
+    }
+    glNamedFramebufferDrawBuffers(m->forwardFbo, 5, forwardBuffers);
+    glNamedFramebufferTexture(m->forwardFbo, GL_DEPTH_ATTACHMENT, m->depth, 0);
     glCreateFramebuffers(1, &m->coverageFbo);
     glNamedFramebufferTexture(m->coverageFbo, GL_COLOR_ATTACHMENT0, m->coverage, 0);
     if (glCheckNamedFramebufferStatus(m->fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
@@ -158,8 +215,40 @@ glm::dmat4 ForeignHost::projection(const Camera& camera) const {
 
 void ForeignHost::draw(const std::vector<glm::dmat4>& transforms, const std::vector<uint8_t>& ids,
                        const Camera& camera) {
+    drawMeshes(impl_->fbo, impl_->program, transforms, ids, camera);
+}
+
+Result<ProjectorStats> ForeignHost::drawForward(const std::vector<glm::dmat4>& transforms,
+                                                const std::vector<uint8_t>& ids, const Camera& camera,
+                                                DecalProjector& projector) {
+    Result<ProjectorStats> stats = projector.bin(forwardFrame(camera));
+    if (!stats) return stats;
+    const ForwardBindings bindings;
+    projector.bindForward(bindings);
+    drawMeshes(impl_->forwardFbo, impl_->forwardProgram, transforms, ids, camera);
+    for (const GLuint b : {bindings.decals, bindings.tiles, bindings.items})
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+    glBindTextureUnit(bindings.albedoUnit, 0);
+    glBindTextureUnit(bindings.normalUnit, 0);
+    return stats;
+}
+
+ForwardFrame ForeignHost::forwardFrame(const Camera& camera) const {
+    const HostFrame f = frame(camera, false);
+    ForwardFrame forward;
+    forward.width = f.width;
+    forward.height = f.height;
+    forward.view = f.view;
+    forward.projection = f.projection;
+    forward.eye = f.eye;
+    forward.clip = ClipDepth::MinusOneToOne;
+    return forward;
+}
+
+void ForeignHost::drawMeshes(GLuint fbo, GLuint program, const std::vector<glm::dmat4>& transforms,
+                             const std::vector<uint8_t>& ids, const Camera& camera) {
     Impl& m = *impl_;
-    glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, m.width, m.height);
     glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     glDisable(GL_FRAMEBUFFER_SRGB);
@@ -177,8 +266,9 @@ void ForeignHost::draw(const std::vector<glm::dmat4>& transforms, const std::vec
     for (GLint b = 0; b < 3; ++b)
         glClearBufferfv(GL_COLOR, b, zero);
     glClearBufferuiv(GL_COLOR, 3, zeroId);
+    if (program == m.forwardProgram) glClearBufferfv(GL_COLOR, 4, zero);
     glClearBufferfv(GL_DEPTH, 0, std::array<GLfloat, 1>{1.0f}.data());
-    glUseProgram(m.program);
+    glUseProgram(program);
     const glm::dmat4 viewProj = projection(camera) * viewRotation(camera);
     for (size_t i = 0; i < m.meshes.size() && i < transforms.size(); ++i) {
         if (!m.meshes[i].receiver) continue;
@@ -188,6 +278,7 @@ void ForeignHost::draw(const std::vector<glm::dmat4>& transforms, const std::vec
         const glm::mat3 normal(glm::transpose(glm::inverse(glm::dmat3(transforms[i]))));
         glUniformMatrix4fv(0, 1, GL_FALSE, &mvp[0][0]);
         glUniformMatrix3fv(4, 1, GL_FALSE, &normal[0][0]);
+        if (program == m.forwardProgram) glUniformMatrix4fv(8, 1, GL_FALSE, &glm::mat4(rel)[0][0]);
         glUniform1ui(7, i < ids.size() ? ids[i] : 0u);
         glBindVertexArray(m.meshes[i].vao);
         glDrawElements(GL_TRIANGLES, m.meshes[i].indices, GL_UNSIGNED_INT, nullptr);

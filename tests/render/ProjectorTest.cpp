@@ -229,6 +229,8 @@ TEST(Projector, LeavesEveryListedGlStateAsItFoundIt) {
     dbuffer.path = ProjectorPath::DBuffer;
     ASSERT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, true), dbuffer).ok());
     EXPECT_EQ(glStateSnapshot(), before) << "after a DBuffer draw";
+    ASSERT_TRUE(h->projector.bin(h->host.forwardFrame(h->wall.camera)).ok());
+    EXPECT_EQ(glStateSnapshot(), before) << "after binning for the forward path";
     ASSERT_TRUE(h->projector.addDecalTexture(makeBuiltinDecalTexture(DecalTexture::Blood, 32).albedo).ok());
     EXPECT_EQ(glStateSnapshot(), before) << "after addDecalTexture";
     HostFrame bad = h->host.frame(h->wall.camera, true);

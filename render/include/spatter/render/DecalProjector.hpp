@@ -6,7 +6,9 @@
 // decal within its type's angle, and gets the decal's albedo, normal and roughness blended into the
 // host's G-buffer before the host's lighting runs (G-buffer blend), or into the projector's own decal
 // buffers, which the host's material or lighting shader applies (DBuffer, as Unreal and Unity HDRP
-// do: the host's G-buffer stays read-only).
+// do: the host's G-buffer stays read-only). For forward renderers (as Godot 4 and Bevy do it) bin()
+// sorts the visible decals into screen tiles on the GPU and the host's forward fragment shader
+// applies those of its pixel (hostShader("forward.glsl")).
 //
 // It owns the decal instances (object space, uploaded when they change), the decal texture array
 // (built-in layers and addDecalTexture*), the shader variants and the GPU timer of its pass. It knows
@@ -38,7 +40,7 @@
 //   objectIdTexture        clipping to the decal's object: without it a decal on a moving target
 //                          also shows on whatever lies behind it inside its box
 //
-// GL state: every call that touches GL (create, setDecals, addDecalTexture*, draw) leaves the GL
+// GL state: every call that touches GL (create, setDecals, addDecalTexture*, draw, bin) leaves the GL
 // state exactly as it found it, as Dear ImGui's OpenGL 3 backend does: it saves and restores the
 // bound draw and read framebuffers, viewport, program, vertex array, active texture unit and the
 // 2D and 2D-array textures and samplers of units 0-7, the uniform buffer bindings 0-1 and shader
@@ -48,7 +50,8 @@
 // cull mode, front face, clip control, GL_FRAMEBUFFER_SRGB, the unpack alignment, and polygon mode,
 // rasterizer discard, colour logic op, depth clamp and clip distances 0-7 (which it switches off for
 // its draws, whatever the host left on). What it
-// changes are the contents of the textures it writes (draw) and its own GL objects. It needs the
+// changes are the contents of the textures it writes (draw) and its own GL objects. bindForward alone
+// changes bindings on purpose: those its ForwardBindings name, for the host's forward pass. It needs the
 // host's context current on the calling thread, and that context must outlive the projector.
 //
 // Bad input changes nothing: a HostFrame with a missing required texture, an unsupported format,
@@ -157,6 +160,7 @@ struct ProjectorSettings {
     float fadeStart = 0.5f;
     DecalNormalFrame normalFrame = DecalNormalFrame::DecalAxes;
     int decalTextureSize = 256; // size of the decal texture layers: a power of two in [16, 2048]
+    int forwardTileSize = 16;   // side of the forward path's screen tiles, pixels: a power of two in [8, 64]
     bool waitForTimers = false; // draw() waits for its GPU time (tools, benchmarks); otherwise the
                                 // time reported is that of an earlier frame, read without stalling
 };
@@ -168,6 +172,25 @@ enum class ProjectorPath {
                   // host's material or lighting shader applies (hostShader("dbuffer.glsl")); the
                   // host's textures are only read: depth, normals and object IDs, never albedo or
                   // roughness
+};
+
+// The forward path's frame (DecalProjector::bin): the viewport and camera of the host's forward pass.
+// No texture of the host's is read.
+struct ForwardFrame {
+    int x = 0, y = 0, width = 0, height = 0; // as HostFrame's; each side at most 16384
+    glm::dmat4 view{1.0};                    // as HostFrame's
+    glm::dmat4 projection{1.0};
+    glm::dvec3 eye{0.0};
+    ClipDepth clip = ClipDepth::ZeroToOne; // the clip depth range the projection is used with
+    bool reversedZ = false;                // near maps to the larger depth; checked against `projection`
+};
+
+// Where bindForward binds the forward path's resources for the host's shader: the defaults of
+// forward.glsl, moved there by defining SPATTER_FORWARD_DECALS_BINDING, SPATTER_FORWARD_TILES_BINDING,
+// SPATTER_FORWARD_ITEMS_BINDING, SPATTER_DECAL_ALBEDO_UNIT and SPATTER_DECAL_NORMAL_UNIT.
+struct ForwardBindings {
+    uint32_t decals = 5, tiles = 6, items = 7; // shader storage binding points
+    uint32_t albedoUnit = 14, normalUnit = 15; // texture units of the decal texture arrays
 };
 
 // Per-draw switches.
@@ -213,6 +236,10 @@ struct ProjectorResources {
     uint32_t dbufferAlbedo = 0;   // SRGB8_ALPHA8: linear albedo
     uint32_t dbufferNormal = 0;   // RGBA16F: world-space normal
     uint32_t dbufferMaterial = 0; // RGBA8: roughness in R
+    // The forward path's buffers of the last bin() (0 before the first); layouts in forward_data.glsl.
+    uint32_t forwardDecals = 0; // shader storage: SpatterForwardDecal per visible decal
+    uint32_t forwardTiles = 0;  // shader storage: the tile grid and each tile's run of items
+    uint32_t forwardItems = 0;  // shader storage: the tiles' decal indices, in drawing order
 };
 
 class DecalProjector {
@@ -250,13 +277,23 @@ public:
     // the field) or a shader that does not build.
     Result<ProjectorStats> draw(const HostFrame& frame, const ProjectorDraw& options = {});
 
+    // Forward path: culls the decals against `frame` and sorts the visible ones into screen tiles on the
+    // GPU (ProjectorSettings::forwardTileSize), for the host's forward shader, which applies them per
+    // pixel (hostShader("forward.glsl")) after bindForward. Draws nothing and leaves the GL state as it
+    // found it. Fails, changing nothing, on a frame that does not fit (the error names the field).
+    Result<ProjectorStats> bin(const ForwardFrame& frame);
+    // Binds the buffers of the last bin() and the decal texture arrays for the host's forward pass.
+    // It changes exactly the shader storage bindings and texture units `bindings` names (and binds
+    // sampler 0 to those units): the one call that leaves GL state changed, for the host's next draws.
+    void bindForward(const ForwardBindings& bindings = {}) const;
+
     // The checks draw() makes on `frame` (and `options`), without drawing: empty when it fits.
     std::string frameProblem(const HostFrame& frame, const ProjectorDraw& options = {}) const;
 
     ProjectorResources resources() const;
 
     // GLSL for a host's own shaders, to paste after its #version line: "dbuffer.glsl" (applying the
-    // decal buffers of the DBuffer path). Fails on another name.
+    // decal buffers of the DBuffer path) or "forward.glsl" (the forward path). Fails on another name.
     static Result<std::string> hostShader(const std::string& name);
     const ProjectorSettings& settings() const;
 

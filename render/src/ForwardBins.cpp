@@ -1,0 +1,131 @@
+#include "ForwardBins.hpp"
+
+#include "ProjectorShaders.hpp"
+#include "ShaderProgram.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace spatter::render_detail {
+
+namespace {
+
+constexpr GLuint kGroup = 64; // local size of the per-decal and per-tile passes
+
+GLuint groups(uint32_t n) {
+    return GLuint((n + kGroup - 1) / kGroup);
+}
+
+Result<GlProgram> computeProgram(const char* file) {
+    Result<GlProgram> p = buildProgram(shaderLibrary(kProjectorShaders), {{GL_COMPUTE_SHADER, file}}, {});
+    if (!p) return fail("projector: " + p.error());
+    return p;
+}
+
+// The tile holding window position `ndc` of a viewport `size` pixels wide, widened by a pixel for
+// the float rounding of the GPU's box test, clamped to the grid.
+int tileOf(double ndc, int size, int tileSize, int tiles, double widen) {
+    const double pixel = (ndc * 0.5 + 0.5) * size + widen;
+    return std::clamp(int(std::floor(pixel / tileSize)), 0, tiles - 1);
+}
+
+} // namespace
+
+Status ForwardBins::prepare() {
+    if (sort_) return {};
+    Result<GlProgram> prepare = computeProgram("forward_prepare.comp");
+    if (!prepare) return fail(prepare.error());
+    Result<GlProgram> scan = computeProgram("forward_scan.comp");
+    if (!scan) return fail(scan.error());
+    Result<GlProgram> fill = computeProgram("forward_fill.comp");
+    if (!fill) return fail(fill.error());
+    Result<GlProgram> sort = computeProgram("forward_sort.comp");
+    if (!sort) return fail(sort.error());
+    prepare_ = std::move(prepare.value());
+    scan_ = std::move(scan.value());
+    fill_ = std::move(fill.value());
+    sort_ = std::move(sort.value());
+    return {};
+}
+
+size_t ForwardBins::tileRects(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize,
+                              glm::ivec2 tiles) {
+    rectsCpu_.clear();
+    size_t items = 0;
+    auto add = [&](const glm::vec4& r) {
+        const int x0 = tileOf(r.x, frame.width, tileSize, tiles.x, -1.0);
+        const int y0 = tileOf(r.y, frame.height, tileSize, tiles.y, -1.0);
+        const int x1 = tileOf(r.z, frame.width, tileSize, tiles.x, 1.0);
+        const int y1 = tileOf(r.w, frame.height, tileSize, tiles.y, 1.0);
+        rectsCpu_.push_back(glm::uvec2(uint32_t(x0) | uint32_t(y0) << 16, uint32_t(x1) | uint32_t(y1) << 16));
+        items += size_t(x1 - x0 + 1) * size_t(y1 - y0 + 1);
+    };
+    for (const glm::vec4& r : vis.outsideRects)
+        add(r);
+    for (size_t i = 0; i < vis.inside.size(); ++i)
+        add(glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f));
+    return items;
+}
+
+size_t ForwardBins::bin(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize,
+                        ForwardGridGpu head) {
+    const glm::ivec2 tiles((frame.width + tileSize - 1) / tileSize, (frame.height + tileSize - 1) / tileSize);
+    const uint32_t tileCount = uint32_t(tiles.x) * uint32_t(tiles.y);
+    const size_t items = tileRects(frame, vis, tileSize, tiles);
+    const uint32_t visible = uint32_t(rectsCpu_.size());
+    head.grid = glm::ivec4(frame.x, frame.y, tiles.x, tiles.y);
+    head.info.x = tileSize;
+
+    const size_t tileBytes = sizeof(ForwardGridGpu) + tileCount * sizeof(glm::uvec2);
+    reserveBuffer(tiles_, tilesCapacity_, tileBytes, 4096);
+    reserveBuffer(counts_, countsCapacity_, tileCount * sizeof(uint32_t), 4096);
+    reserveBuffer(decals_, decalsCapacity_, visible * sizeof(ForwardDecalGpu), 64 * sizeof(ForwardDecalGpu));
+    reserveBuffer(items_, itemsCapacity_, items * sizeof(uint32_t), 4096);
+    reserveBuffer(rects_, rectsCapacity_, visible * sizeof(glm::uvec2), 512);
+    glNamedBufferSubData(tiles_.get(), 0, sizeof head, &head);
+    glNamedBufferSubData(rects_.get(), 0, GLsizeiptr(visible * sizeof(glm::uvec2)), rectsCpu_.data());
+    const uint32_t zero = 0;
+    glClearNamedBufferSubData(counts_.get(), GL_R32UI, 0, GLsizeiptr(tileCount * sizeof(uint32_t)),
+                              GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    if (visible == 0) { // no decal: every run empty
+        glClearNamedBufferSubData(tiles_.get(), GL_R32UI, sizeof head,
+                                  GLsizeiptr(tileCount * sizeof(glm::uvec2)), GL_RED_INTEGER, GL_UNSIGNED_INT,
+                                  &zero);
+        return sizeof head;
+    }
+    dispatch(visible, tileCount);
+    return sizeof head + visible * sizeof(glm::uvec2);
+}
+
+void ForwardBins::dispatch(uint32_t visible, uint32_t tileCount) const {
+    const ForwardBindings b;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kForwardRectBuffer, rects_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kForwardCountBuffer, counts_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.decals, decals_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.tiles, tiles_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.items, items_.get());
+    glUseProgram(prepare_.get());
+    glUniform1ui(0, visible);
+    glDispatchCompute(groups(visible), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(scan_.get());
+    glUniform1ui(0, tileCount);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(fill_.get());
+    glUniform1ui(0, visible);
+    glDispatchCompute(groups(visible), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(sort_.get());
+    glUniform1ui(0, tileCount);
+    glDispatchCompute(groups(tileCount), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void ForwardBins::bind(const ForwardBindings& b) const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.decals, decals_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.tiles, tiles_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.items, items_.get());
+}
+
+} // namespace spatter::render_detail

@@ -1,0 +1,46 @@
+#pragma once
+// ForwardBins: the forward path's screen tiles. From the visible decals of a frame (the projector's
+// instance, object and visible-list buffers bound at their binding points) four compute passes
+// write each decal's camera-relative world form, count the decals per tile, turn the counts into
+// runs of an item list and fill and sort the runs into drawing order (shaders/forward_*.comp). The
+// screen rectangles come from the CPU culling, so the item list's size is known before the GPU runs.
+
+#include "DecalBatch.hpp"
+#include "GlObjects.hpp"
+#include "ProjectorLayouts.hpp"
+
+#include "spatter/core/Result.hpp"
+#include "spatter/render/DecalProjector.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace spatter::render_detail {
+
+class ForwardBins {
+public:
+    // Builds the compute programs on first use.
+    Status prepare();
+    // Bins the visible decals of `vis` (outside, then inside, as the visible list holds them) into the
+    // tiles of `frame`; `head` carries the frame's parameters (the grid is filled in here). Returns the
+    // bytes sent to the GPU. Needs prepare() to have succeeded.
+    size_t bin(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize, ForwardGridGpu head);
+    void bind(const ForwardBindings& b) const;
+
+    GLuint decals() const { return decals_.get(); }
+    GLuint tiles() const { return tiles_.get(); }
+    GLuint items() const { return items_.get(); }
+
+private:
+    // The tile rectangles of the visible decals (x0 | y0 << 16, x1 | y1 << 16) and the item count.
+    size_t tileRects(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize, glm::ivec2 tiles);
+    void dispatch(uint32_t visible, uint32_t tileCount) const;
+
+    GlProgram prepare_, scan_, fill_, sort_;
+    GlBuffer decals_, tiles_, items_, rects_, counts_;
+    size_t decalsCapacity_ = 0, tilesCapacity_ = 0, itemsCapacity_ = 0, rectsCapacity_ = 0,
+           countsCapacity_ = 0;
+    std::vector<glm::uvec2> rectsCpu_;
+};
+
+} // namespace spatter::render_detail
