@@ -2,6 +2,7 @@
 
 #include "BenchSupport.hpp"
 #include "DecalField.hpp"
+#include "PathHost.hpp"
 
 #include "spatter/render/GlContext.hpp"
 
@@ -36,18 +37,25 @@ of them in view, each a square of a fraction of the screen height. Groups of row
   features     1080p, 10,000 decals in view: minimal (no normal map, no fade), default (normal map
                and smooth fade), wrap-around, depth-derivative normal frame, object IDs (a dynamic
                object in the scene), angle rejection off
+  paths        1080p, 100, 10,000 and 100,000 decals in view, the same decals through spatter's
+               renderer and through the projector in a host of its own with the frame layout of
+               spatter-example-deferred (24-bit standard Z, RGB10A2 world normals, roughness in
+               the albedo's alpha, object IDs): G-buffer blend, DBuffer and forward. A path's decal
+               cost is the projector's pass plus what the decals add to the host's passes (the
+               DBuffer applied in the lighting pass, the forward pass's decal loop)
 
 Unless a group says otherwise decals cover 1.5% of the screen height (16 pixels at 1080p) and use the
 default features. Targets (for a GPU; reported for whatever renderer runs): 10,000 decals in view at
 1080p cost at most 0.5 ms in the decal pass; 1,000,000 in the world with 1% in view at most 1.2
-times that.
+times that; the projector's G-buffer blend in the host at most 1.1 times the renderer's decal pass.
 
 --groups LIST     comma-separated groups (default all)
 --frames N        timed frames per row after one warm-up frame (default 7)
 --max-seconds S   wall-time cap per row: fewer frames are timed when it is reached (default 20)
 --quick           720p and 1080p, at most 10,000 decals, 2 frames, 3 s per row (smoke test)
 --json FILE       {"rows": [{"group", "resolution", "world", "visible", "decal_px", "feature",
-                  "decal_ms", "ns_per_visible_decal", ...}], "targets": {...}, "gl_renderer", ...}
+                  "decal_ms", "ns_per_visible_decal", "projector_ms", "host_pass_ms",
+                  "baseline_ms", ...}], "targets": {...}, "gl_renderer", ...}
 )";
 
 struct Feature {
@@ -117,16 +125,31 @@ std::vector<Config> configs(const std::vector<std::string>& groups, bool quick) 
             if (!quick || std::string(f.name) == "minimal" || std::string(f.name) == "default")
                 out.push_back(
                     {"features", "1080p", quick ? 1000u : 10000u, quick ? 1000u : 10000u, 0.015, f.name});
+    if (want("paths"))
+        for (size_t n : quick ? std::vector<size_t>{100, 1000} : std::vector<size_t>{100, 10000, 100000})
+            for (const char* path : {"renderer", "blend", "dbuffer", "forward"})
+                out.push_back({"paths", "1080p", n, n, 0.015, path});
     return out;
 }
 
 struct Row {
     Config config;
     int width = 0, height = 0;
-    FrameTimes times;
+    FrameTimes times; // for the projector's paths: decalsMs is the path's decal cost
+    PathTimes path;   // the projector's paths: medians of the frames
     double setDecalsS = 0.0;
     std::string error;
 };
+
+bool projectorPath(const Config& c) {
+    return c.group == "paths" && c.feature != "renderer";
+}
+
+HostPath hostPath(const std::string& name) {
+    return name == "dbuffer"   ? HostPath::DBuffer
+           : name == "forward" ? HostPath::Forward
+                               : HostPath::GBufferBlend;
+}
 
 // One renderer per normal frame, resized and given scenes as the rows need them.
 class Bench {
@@ -135,6 +158,7 @@ public:
     const GlContext& context() const { return *context_; }
 
     Result<Row> run(const Config& c, size_t frames, double maxSeconds) {
+        if (projectorPath(c)) return runPath(c, frames, maxSeconds);
         Row row;
         row.config = c;
         if (!resolutionByName(c.resolution, row.width, row.height))
@@ -187,7 +211,76 @@ public:
     }
 
 private:
+    // A row of the projector in the bench's own host (PathHost), on the floor of the decal field.
+    Result<Row> runPath(const Config& c, size_t frames, double maxSeconds) {
+        Row row;
+        row.config = c;
+        if (!resolutionByName(c.resolution, row.width, row.height))
+            return fail("unknown resolution " + c.resolution);
+        const DecalFieldView view = decalFieldView(double(row.width) / double(row.height));
+        if (Status s = preparePath(row.width, row.height, view); !s) return fail(s.error());
+        const auto key = std::make_tuple(c.world, c.visible, c.size);
+        if (projectorKey_ != key) {
+            const std::vector<Decal> decals = decalField(view, c.world, c.visible, c.size, 0, 1);
+            const double start = now();
+            projector_->setDecals(decals);
+            row.setDecalsS = now() - start;
+            projectorKey_ = key;
+        }
+        const HostPath path = hostPath(c.feature);
+        const double start = now();
+        std::vector<double> cost, projector, pass, baseline, cpu;
+        for (size_t i = 0; i < frames + 1; ++i) { // the first frame warms up
+            if (i > 1 && now() - start > maxSeconds) {
+                row.times.capped = true;
+                break;
+            }
+            const double frameStart = now();
+            Result<PathTimes> t = pathHost_->frame(path, *projector_, view.camera);
+            if (!t) return fail(t.error());
+            if (i == 0) continue;
+            cpu.push_back(1e3 * (now() - frameStart));
+            cost.push_back(t->decalMs());
+            projector.push_back(t->projectorMs);
+            pass.push_back(t->hostPassMs);
+            baseline.push_back(t->baselineMs);
+            row.path.stats = t->stats;
+        }
+        row.times.frames = cost.size();
+        row.times.decalsMs = median(cost);
+        row.times.cpuMs = median(cpu);
+        row.times.last.decalVariant = row.path.stats.variant;
+        row.path.projectorMs = median(projector);
+        row.path.hostPassMs = median(pass);
+        row.path.baselineMs = median(baseline);
+        return row;
+    }
+
+    Status preparePath(int width, int height, const DecalFieldView& view) {
+        if (!pathHost_ || pathSize_ != glm::ivec2(width, height)) {
+            Result<PathHost> host = PathHost::create(width, height);
+            if (!host) return fail(host.error());
+            pathHost_.emplace(std::move(host).value());
+            pathHost_->setScene(decalFieldScene(view, false));
+            pathSize_ = glm::ivec2(width, height);
+        }
+        if (projector_) return {};
+        ProjectorSettings ps;
+        ps.waitForTimers = true;
+        Result<DecalProjector> p = DecalProjector::create(ps);
+        if (!p) return fail(p.error());
+        projector_.emplace(std::move(p).value());
+        DecalType type;
+        type.name = "bench";
+        projector_->setDecalTypes({type});
+        return projector_->setObjects({glm::dmat4(1.0)}, {0});
+    }
+
     std::unique_ptr<GlContext> context_;
+    std::optional<PathHost> pathHost_;
+    glm::ivec2 pathSize_{0};
+    std::optional<DecalProjector> projector_;
+    std::tuple<size_t, size_t, double> projectorKey_;
     std::optional<Renderer> renderers_[2];
     int sceneIds_[2] = {-1, -1};
     std::tuple<size_t, size_t, double> decalsKey_[2];
@@ -224,6 +317,11 @@ Json rowJson(const Row& r) {
     j["set_decals_s"] = r.setDecalsS;
     j["frames"] = r.times.frames;
     j["capped"] = r.times.capped;
+    if (projectorPath(c)) {
+        j["projector_ms"] = r.path.projectorMs;
+        j["host_pass_ms"] = r.path.hostPassMs;
+        j["baseline_ms"] = r.path.baselineMs;
+    }
     return j;
 }
 
@@ -234,6 +332,52 @@ const Row* findRow(const std::vector<Row>& rows, const std::string& resolution, 
             r.config.visible == visible && r.config.size == 0.015 && r.config.feature == "default")
             return &r;
     return nullptr;
+}
+
+// The renderer's decal pass of the paths group at `visible` decals, or nothing.
+const Row* rendererRow(const std::vector<Row>& rows, size_t visible) {
+    for (const Row& r : rows)
+        if (r.error.empty() && r.config.group == "paths" && r.config.feature == "renderer" &&
+            r.config.visible == visible)
+            return &r;
+    return nullptr;
+}
+
+// The paths group side by side, each path's decal cost against the renderer's decal pass, and the
+// target: the projector's G-buffer blend in a host within 10% of the renderer's pass.
+void printPaths(const std::vector<Row>& rows, Json& targets) {
+    std::vector<std::vector<std::string>> table;
+    for (const Row& r : rows) {
+        const Config& c = r.config;
+        if (c.group != "paths") continue;
+        const Row* renderer = rendererRow(rows, c.visible);
+        if (!r.error.empty()) {
+            table.push_back(
+                {c.resolution, std::to_string(c.visible), c.feature, "-", "-", "-", "-", r.error});
+            continue;
+        }
+        const bool own = projectorPath(c);
+        const std::string ratio = renderer && renderer->times.decalsMs > 0.0
+                                      ? fixed(r.times.decalsMs / renderer->times.decalsMs, 2)
+                                      : "-";
+        table.push_back({c.resolution, std::to_string(c.visible), c.feature, fixed(r.times.decalsMs, 3),
+                         own ? fixed(r.path.projectorMs, 3) : "-",
+                         own && c.feature != "blend"
+                             ? fixed(r.path.hostPassMs, 3) + " / " + fixed(r.path.baselineMs, 3)
+                             : "-",
+                         ratio, r.times.last.decalVariant});
+        if (c.feature == "blend" && renderer && renderer->times.decalsMs > 0.0) {
+            const double q = r.times.decalsMs / renderer->times.decalsMs;
+            const std::string key = "paths_blend_over_renderer_" + std::to_string(c.visible);
+            targets[key] = q;
+            targets[key + "_met"] = q <= 1.1;
+        }
+    }
+    if (table.empty()) return;
+    std::printf("\nThe same decals through spatter's renderer and through the projector's paths in a host:\n");
+    printTable({"res", "visible", "path", "decal ms", "projector ms", "host pass / without decals ms",
+                "vs renderer", "variant"},
+               table);
 }
 
 } // namespace
@@ -258,7 +402,8 @@ int runRenderCommand(int argc, char** argv) {
         std::string list = args.value("--groups") + ",";
         for (size_t a = 0, b; (b = list.find(',', a)) != std::string::npos; a = b + 1) {
             const std::string g = list.substr(a, b - a);
-            if (g != "count" && g != "visible" && g != "coverage" && g != "resolution" && g != "features")
+            if (g != "count" && g != "visible" && g != "coverage" && g != "resolution" && g != "features" &&
+                g != "paths")
                 return usageError(kCommand, "unknown group '" + g + "'");
             groups.push_back(g);
         }
@@ -326,6 +471,7 @@ int runRenderCommand(int argc, char** argv) {
     std::vector<std::vector<std::string>> table;
     for (const Row& r : rows) {
         const Config& c = r.config;
+        if (c.group == "paths") continue; // a table of their own
         if (!r.error.empty()) {
             table.push_back({c.group, c.resolution, std::to_string(c.world), std::to_string(c.visible),
                              fixed(c.size * r.height, 0), c.feature, "-", "-", "-", "-", "-", "-", r.error});
@@ -344,6 +490,7 @@ int runRenderCommand(int argc, char** argv) {
                table);
 
     Json targets;
+    printPaths(rows, targets);
     const Row* tenK = findRow(rows, "1080p", 10000, 10000);
     const Row* million = findRow(rows, "1080p", 1000000, 10000);
     if (tenK) {
