@@ -44,13 +44,18 @@ vec3 spatterDecalNormalMap(SpatterForwardDecal d, vec3 detail, vec3 position, ve
     return normalize(T * r.x + B * r.y + N * r.z);
 }
 
-// Applies decal `d` to `s` when the point `position` (camera-relative world) of the object with decal
-// ID `objectId` and surface normal `n` lies inside its box, faces it within its angle and, for
-// wrap-around types, its wrapped footprint lies inside its rectangle; returns whether it did.
-bool spatterApplyDecal(SpatterForwardDecal d, vec3 position, vec3 dpdx, vec3 dpdy, uint objectId, vec3 n,
-                       inout SpatterSurface s) {
+// The point `position` (camera-relative world) in the unit box of decal `index`.
+vec3 spatterBoxPosition(uint index, vec3 position) {
     vec4 ph = vec4(position, 1.0);
-    vec3 box = vec3(dot(d.worldToBox[0], ph), dot(d.worldToBox[1], ph), dot(d.worldToBox[2], ph));
+    return vec3(dot(spatterForwardDecals[index].worldToBox[0], ph), dot(spatterForwardDecals[index].worldToBox[1], ph),
+                dot(spatterForwardDecals[index].worldToBox[2], ph));
+}
+
+// Applies decal `d` to `s` at `box` (the shaded point in its unit box) when the point belongs to the
+// object with decal ID `objectId`, its surface normal `n` faces the decal within its angle and, for
+// wrap-around types, its wrapped footprint lies inside the decal's rectangle; returns whether it did.
+bool spatterApplyDecal(SpatterForwardDecal d, vec3 box, vec3 position, vec3 dpdx, vec3 dpdy, uint objectId, vec3 n,
+                       inout SpatterSurface s) {
     uint flags = d.info.z;
     vec2 uv = box.xy;
     if ((flags & SPATTER_DECAL_WRAP) != 0u) { // Krassnigg's Listing 20.4 in metric decal space
@@ -58,8 +63,7 @@ bool spatterApplyDecal(SpatterForwardDecal d, vec3 position, vec3 dpdx, vec3 dpd
         vec3 q = box * halfSize;
         uv = (q.xy - q.z * vec2(dot(n, d.tangent.xyz), dot(n, d.bitangent.xyz))) / halfSize.xy;
     }
-    bool keep = all(lessThanEqual(abs(box), vec3(1.0))) && all(lessThanEqual(abs(uv), vec2(1.0))) &&
-                objectId == d.info.x && dot(n, d.normal.xyz) >= d.params.x;
+    bool keep = all(lessThanEqual(abs(uv), vec2(1.0))) && objectId == d.info.x && dot(n, d.normal.xyz) >= d.params.x;
     if (!keep) return false;
 
     float f = clamp((1.0 - abs(box.z)) / max(1.0 - spatterForwardParams.x, 1e-4), 0.0, 1.0);
@@ -95,9 +99,10 @@ int spatterApplyForwardDecals(vec2 fragCoord, vec3 position, uint objectId, inou
     vec3 n = s.normal; // every decal tests the surface, not the decals before it
     int changed = 0;
     for (uint k = 0u; k < run.y; ++k) {
-        if (spatterApplyDecal(spatterForwardDecals[spatterTileItems[run.x + k]], position, dpdx, dpdy, objectId,
-                              n, s))
-            ++changed;
+        uint index = spatterTileItems[run.x + k];
+        vec3 box = spatterBoxPosition(index, position); // most candidates end here: only the box is read
+        if (!all(lessThanEqual(abs(box), vec3(1.0)))) continue;
+        if (spatterApplyDecal(spatterForwardDecals[index], box, position, dpdx, dpdy, objectId, n, s)) ++changed;
     }
     if (changed > 0) s.normal = normalize(s.normal);
     return changed;

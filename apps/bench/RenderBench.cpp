@@ -52,6 +52,7 @@ times that; the projector's G-buffer blend in the host at most 1.1 times the ren
 --groups LIST     comma-separated groups (default all)
 --frames N        timed frames per row after one warm-up frame (default 7)
 --max-seconds S   wall-time cap per row: fewer frames are timed when it is reached (default 20)
+--forward-tile N  the forward path's tile size in pixels (ProjectorSettings::forwardTileSize, default 16)
 --quick           720p and 1080p, at most 10,000 decals, 2 frames, 3 s per row (smoke test)
 --json FILE       {"rows": [{"group", "resolution", "world", "visible", "decal_px", "feature",
                   "decal_ms", "ns_per_visible_decal", "projector_ms", "host_pass_ms",
@@ -154,7 +155,8 @@ HostPath hostPath(const std::string& name) {
 // One renderer per normal frame, resized and given scenes as the rows need them.
 class Bench {
 public:
-    explicit Bench(std::unique_ptr<GlContext> context) : context_(std::move(context)) {}
+    Bench(std::unique_ptr<GlContext> context, int forwardTile)
+        : context_(std::move(context)), forwardTile_(forwardTile) {}
     const GlContext& context() const { return *context_; }
 
     Result<Row> run(const Config& c, size_t frames, double maxSeconds) {
@@ -267,6 +269,7 @@ private:
         if (projector_) return {};
         ProjectorSettings ps;
         ps.waitForTimers = true;
+        ps.forwardTileSize = forwardTile_;
         Result<DecalProjector> p = DecalProjector::create(ps);
         if (!p) return fail(p.error());
         projector_.emplace(std::move(p).value());
@@ -277,6 +280,7 @@ private:
     }
 
     std::unique_ptr<GlContext> context_;
+    int forwardTile_ = 16;
     std::optional<PathHost> pathHost_;
     glm::ivec2 pathSize_{0};
     std::optional<DecalProjector> projector_;
@@ -374,7 +378,8 @@ void printPaths(const std::vector<Row>& rows, Json& targets) {
         }
     }
     if (table.empty()) return;
-    std::printf("\nThe same decals through spatter's renderer and through the projector's paths in a host:\n");
+    std::printf(
+        "\nThe same decals through spatter's renderer and through the projector's paths in a host:\n");
     printTable({"res", "visible", "path", "decal ms", "projector ms", "host pass / without decals ms",
                 "vs renderer", "variant"},
                table);
@@ -384,9 +389,9 @@ void printPaths(const std::vector<Row>& rows, Json& targets) {
 
 int runRenderCommand(int argc, char** argv) {
     int exitCode = 0;
-    const std::optional<Args> parsed =
-        commandArgs(argc, argv, kCommand, kUsage, {"--groups", "--frames", "--max-seconds", "--json"},
-                    {"--quick"}, exitCode);
+    const std::optional<Args> parsed = commandArgs(
+        argc, argv, kCommand, kUsage, {"--groups", "--frames", "--max-seconds", "--json", "--forward-tile"},
+        {"--quick"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
     if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
@@ -395,6 +400,9 @@ int runRenderCommand(int argc, char** argv) {
     Result<double> maxSeconds = parseNumber(args.value("--max-seconds", quick ? "3" : "20"), "--max-seconds");
     if (!frames) return usageError(kCommand, frames.error());
     if (!maxSeconds) return usageError(kCommand, maxSeconds.error());
+    Result<uint64_t> forwardTile = parseCount(args.value("--forward-tile", "16"), "--forward-tile");
+    if (!forwardTile || forwardTile.value() > 64)
+        return usageError(kCommand, "--forward-tile: 8, 16, 32 or 64");
     if (frames.value() == 0 || !(maxSeconds.value() > 0.0))
         return usageError(kCommand, "--frames and --max-seconds must be positive");
     std::vector<std::string> groups;
@@ -415,7 +423,7 @@ int runRenderCommand(int argc, char** argv) {
         std::cerr << "spatter-bench render: no OpenGL context: " << gl.error() << "\n";
         return 1;
     }
-    Bench bench(std::make_unique<GlContext>(std::move(gl).value()));
+    Bench bench(std::make_unique<GlContext>(std::move(gl).value()), int(forwardTile.value()));
     const ContextInfo& info = bench.context().info();
     std::printf("spatter-bench render: %s (%s), %s\nmachine: %s\n", info.renderer.c_str(),
                 info.platform.c_str(), info.version.c_str(), describe(machine).c_str());
