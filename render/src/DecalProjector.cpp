@@ -1,6 +1,7 @@
 #include "spatter/render/DecalProjector.hpp"
 
 #include "DecalBatch.hpp"
+#include "DecalBuffers.hpp"
 #include "DecalTextureArray.hpp"
 #include "ForwardBins.hpp"
 #include "GlObjects.hpp"
@@ -11,6 +12,7 @@
 #include "NormalMatrix.hpp"
 #include "ProjectorLayouts.hpp"
 #include "ProjectorShaders.hpp"
+#include "ProjectorVariants.hpp"
 #include "ShaderProgram.hpp"
 
 #include "spatter/core/Scene.hpp"
@@ -25,50 +27,6 @@ namespace spatter {
 using namespace render_detail;
 
 namespace {
-
-// Shader variant bits: the features a draw's visible decals use and the host's conventions.
-enum Variant : uint32_t {
-    kVariantIds = 1u,
-    kVariantWrap = 2u,
-    kVariantNormalMap = 4u,
-    kVariantFade = 8u,
-    kVariantCoverage = 16u,
-    kVariantDepthFrame = 32u,
-    kVariantNoAngle = 64u,
-    kVariantDepthLinear = 128u,
-    kVariantClipMinusOne = 256u,
-    kVariantStandardZ = 512u,
-    kVariantNoNormals = 1024u,
-    kVariantNormalWorldSigned = 2048u,
-    kVariantNormalWorldUnorm = 4096u,
-    kVariantNormalViewUnorm = 8192u,
-    kVariantRoughnessAlpha = 16384u,
-    kVariantDBuffer = 32768u,
-};
-
-constexpr const char* kVariantNames[] = {"IDS",
-                                         "WRAP",
-                                         "NORMAL_MAP",
-                                         "FADE",
-                                         "COVERAGE",
-                                         "DEPTH_FRAME",
-                                         "NO_ANGLE",
-                                         "DEPTH_LINEAR",
-                                         "CLIP_MINUS_ONE",
-                                         "STANDARD_Z",
-                                         "NO_NORMALS",
-                                         "NORMAL_WORLD_SIGNED",
-                                         "NORMAL_WORLD_UNORM",
-                                         "NORMAL_VIEW_UNORM",
-                                         "ROUGHNESS_ALPHA",
-                                         "DBUFFER"};
-
-std::vector<std::string> variantDefines(uint32_t bits) {
-    std::vector<std::string> d;
-    for (size_t i = 0; i < sizeof(kVariantNames) / sizeof(kVariantNames[0]); ++i)
-        if (bits & (1u << i)) d.push_back(kVariantNames[i]);
-    return d;
-}
 
 std::string join(const std::vector<std::string>& parts) {
     std::string s;
@@ -88,25 +46,6 @@ Status validateSettings(const ProjectorSettings& s) {
     return {};
 }
 
-uint32_t conventionBits(const HostFrame& f) {
-    uint32_t bits = 0;
-    if (f.depth.encoding == DepthEncoding::LinearView) bits |= kVariantDepthLinear;
-    if (f.depth.clip == ClipDepth::MinusOneToOne) bits |= kVariantClipMinusOne;
-    if (!f.depth.reversedZ && f.depth.encoding == DepthEncoding::Window) bits |= kVariantStandardZ;
-    if (f.normals.texture == 0) return bits | kVariantNoNormals;
-    switch (f.normals.encoding) {
-    case NormalEncoding::WorldSigned:
-        return bits | kVariantNormalWorldSigned;
-    case NormalEncoding::WorldUnorm:
-        return bits | kVariantNormalWorldUnorm;
-    case NormalEncoding::ViewUnorm:
-        return bits | kVariantNormalViewUnorm;
-    case NormalEncoding::OctahedralWorld:
-        break;
-    }
-    return bits;
-}
-
 // Whether the draw blends into the host's G-buffer (not coverage, not the DBuffer).
 bool blendsIntoHost(const ProjectorDraw& o) {
     return o.path == ProjectorPath::GBufferBlend && o.coverageTexture == 0;
@@ -121,10 +60,6 @@ bool fillsDBuffer(const ProjectorDraw& o) {
 bool roughnessInAlpha(const HostFrame& f, const ProjectorDraw& o) {
     return f.roughness.texture != 0 && f.roughness.channel == 3 && blendsIntoHost(o);
 }
-
-// The decal buffers: textures, formats and what "no decal" reads as.
-constexpr int kDBufferTargets = 3;
-constexpr GLenum kDBufferFormats[kDBufferTargets] = {GL_SRGB8_ALPHA8, GL_RGBA16F, GL_RGBA8};
 
 // The camera of a frame relative to its eye, and what culling needs of it.
 struct FrameCamera {
@@ -176,9 +111,7 @@ struct DecalProjector::Impl {
     GlTexture normalCopy; // the host's normals as they were before the draw
     GLenum normalCopyFormat = 0;
     int normalCopyWidth = 0, normalCopyHeight = 0;
-    GlTexture dbuffer[kDBufferTargets]; // albedo, normal, material (ProjectorResources::dbuffer*)
-    int dbufferWidth = 0, dbufferHeight = 0;
-    bool dbufferWritten = false; // a draw wrote into the decal buffers since they were last cleared
+    DecalBuffers dbuffer;
     ForwardBins forward;
     GpuTimers timers;
     uint64_t draws = 0;
@@ -278,46 +211,6 @@ struct DecalProjector::Impl {
                            0, f.x, f.y, 0, f.width, f.height, 1);
     }
 
-    // Gives the decal buffers the size of the host's depth texture and clears them when a draw wrote
-    // into them: afterwards they read "no decal" (RGB 0, A 1) everywhere.
-    void prepareDBuffer(const HostFrame& f) {
-        GlStateGuard guard;
-        GLint w = 0, h = 0;
-        glGetTextureLevelParameteriv(f.depth.texture, 0, GL_TEXTURE_WIDTH, &w);
-        glGetTextureLevelParameteriv(f.depth.texture, 0, GL_TEXTURE_HEIGHT, &h);
-        if (!dbuffer[0] || w != dbufferWidth || h != dbufferHeight) {
-            for (int i = 0; i < kDBufferTargets; ++i) {
-                dbuffer[i] = createTexture(GL_TEXTURE_2D);
-                glTextureStorage2D(dbuffer[i].get(), 1, kDBufferFormats[i], w, h);
-            }
-            dbufferWidth = w;
-            dbufferHeight = h;
-            dbufferWritten = true;
-        }
-        if (!dbufferWritten) return;
-        const float none[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-        for (const GlTexture& t : dbuffer)
-            glClearTexImage(t.get(), 0, GL_RGBA, GL_FLOAT, none);
-        dbufferWritten = false;
-    }
-
-    // Attaches the decal buffers; each blends src * a + dst * (1 - a) in RGB and dst * (1 - a) in A.
-    void bindDBufferTargets() {
-        const GLuint fb = fbo.get();
-        GLenum buffers[kDBufferTargets];
-        for (int i = 0; i < kDBufferTargets; ++i) {
-            glNamedFramebufferTexture(fb, GLenum(GL_COLOR_ATTACHMENT0 + i), dbuffer[i].get(), 0);
-            buffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
-            glEnablei(GL_BLEND, GLuint(i));
-            glBlendEquationi(GLuint(i), GL_FUNC_ADD);
-            glBlendFuncSeparatei(GLuint(i), GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO,
-                                 GL_ONE_MINUS_SRC_ALPHA);
-            glColorMaski(GLuint(i), GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        }
-        glNamedFramebufferDrawBuffers(fb, kDBufferTargets, buffers);
-        dbufferWritten = true;
-    }
-
     // Attaches the targets of the draw (the host's, or the decal buffers) and sets the blend state of
     // each; returns whether the host's depth is attached for the depth test.
     bool bindTargets(const HostFrame& f, const ProjectorDraw& o) {
@@ -327,7 +220,7 @@ struct DecalProjector::Impl {
         glNamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthTest ? f.depth.texture : 0, 0);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fb);
         if (fillsDBuffer(o))
-            bindDBufferTargets();
+            dbuffer.attach(fb);
         else
             bindHostTargets(f, o);
         return depthTest;
@@ -579,7 +472,7 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     stats.drawn = vis.outside.size() + vis.inside.size();
     stats.inside = vis.inside.size();
     stats.skipped = stats.drawn == 0;
-    if (fillsDBuffer(options)) m.prepareDBuffer(frame); // cleared, even when nothing is drawn
+    if (fillsDBuffer(options)) m.dbuffer.prepare(frame.depth.texture); // cleared, even when nothing is drawn
     if (stats.skipped) return stats;
     const uint32_t bits = m.variantBits(frame, options, vis.flags);
     Result<GLuint> program = m.program(bits);
@@ -621,9 +514,9 @@ ProjectorResources DecalProjector::resources() const {
     r.visible = m.visibleBuffer.get();
     r.objects = m.objectBuffer.get();
     r.visibleCount = m.visibleCount;
-    r.dbufferAlbedo = m.dbuffer[0].get();
-    r.dbufferNormal = m.dbuffer[1].get();
-    r.dbufferMaterial = m.dbuffer[2].get();
+    r.dbufferAlbedo = m.dbuffer.albedo();
+    r.dbufferNormal = m.dbuffer.normal();
+    r.dbufferMaterial = m.dbuffer.material();
     r.forwardDecals = m.forward.decals();
     r.forwardTiles = m.forward.tiles();
     r.forwardItems = m.forward.items();
