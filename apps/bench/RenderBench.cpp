@@ -252,6 +252,9 @@ private:
         row.times.decalsMs = median(cost);
         row.times.cpuMs = median(cpu);
         row.times.last.decalVariant = row.path.stats.variant;
+        row.times.last.decalsDrawn = row.path.stats.drawn;
+        row.times.last.decalsCulled = row.path.stats.culled;
+        row.times.last.decalPassSkipped = row.path.stats.skipped;
         row.path.projectorMs = median(projector);
         row.path.hostPassMs = median(pass);
         row.path.baselineMs = median(baseline);

@@ -136,6 +136,26 @@ TEST(BenchSmoke, RenderQuickTimesTheDecalPass) {
     }
 }
 
+TEST(BenchSmoke, RenderPathsTimeEveryPathOfTheProjectorWithTheSameDecals) {
+    if (!noGl().empty()) {
+        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
+        GTEST_SKIP() << "no headless OpenGL 4.5 context (" << noGl() << ")";
+    }
+    const std::string dir = test::scratchDir("bench-paths");
+    ASSERT_EQ(runBench("render --quick --groups paths --frames 1 --json " + dir + "/p.json", dir + "/log"), 0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/p.json");
+    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << readAll(dir + "/p.json");
+    ASSERT_EQ(j["rows"].size(), 8u); // renderer, blend, DBuffer, forward at two counts
+    for (const auto& row : j["rows"]) {
+        ASSERT_FALSE(row.contains("error")) << row.dump();
+        EXPECT_EQ(row["decals_drawn"], row["visible"]) << row["feature"];
+        EXPECT_GE(row["decal_ms"].get<double>(), 0.0);
+        if (row["feature"] != "renderer") EXPECT_GE(row["projector_ms"].get<double>(), 0.0);
+    }
+    EXPECT_TRUE(j["targets"].contains("paths_blend_over_renderer_100"));
+}
+
 TEST(BenchSmoke, VolumetricQuickDrawsEveryCraterInAFewInstancedDraws) {
     if (!noGl().empty()) {
         if (test::runningInCi()) FAIL() << "CI=true but no headless OpenGL 4.5 context: " << noGl();
