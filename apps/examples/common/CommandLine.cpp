@@ -3,8 +3,11 @@
 #include <spatter/core/SceneLoader.hpp>
 #include <spatter/core/TextFields.hpp>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace example {
 
@@ -37,12 +40,16 @@ spatter::Status parseView(const std::string& text, Options& o) {
 }
 
 // Takes the option argv[i] (and its value, moving i past it) into `o`.
-spatter::Status parseOption(int argc, char** argv, int& i, Options& o) {
+spatter::Status parseOption(int argc, char** argv, int& i, const std::vector<Switch>& own, Options& o) {
     const std::string a = argv[i];
     const bool hasValue = i + 1 < argc;
     const std::string v = hasValue ? argv[i + 1] : "";
     if (a == "--help" || a == "-h") {
         o.help = true;
+        return {};
+    }
+    if (std::any_of(own.begin(), own.end(), [&](const Switch& s) { return s.name == a; })) {
+        o.switches.insert(a);
         return {};
     }
     const char* const valued[] = {"--decals", "--rays", "--camera", "--size", "--view", "--out"};
@@ -76,14 +83,28 @@ spatter::Camera defaultCamera(const spatter::Scene& scene) {
     return cam;
 }
 
+// The perspective projection of `camera` for the image, standard Z with GL's default clip depth; the
+// far plane well beyond the scene.
+glm::dmat4 projectionFor(const spatter::Camera& camera, const spatter::Scene& scene, double aspect) {
+    const spatter::DBounds b = scene.worldBounds();
+    double farthest = 0.0;
+    for (int k = 0; k < 8 && !b.empty(); ++k) {
+        const glm::dvec3 corner((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y,
+                                (k & 4) ? b.max.z : b.min.z);
+        farthest = std::max(farthest, glm::length(corner - camera.eye));
+    }
+    const double farPlane = std::max(2.0 * farthest, 2.0 * camera.nearPlane);
+    return glm::perspective(glm::radians(camera.fovYDeg), aspect, camera.nearPlane, farPlane);
+}
+
 } // namespace
 
-spatter::Result<Options> parseCommandLine(int argc, char** argv) {
+spatter::Result<Options> parseCommandLine(int argc, char** argv, const std::vector<Switch>& own) {
     Options o;
     for (int i = 1; i < argc && !o.help; ++i) {
         const std::string a = argv[i];
         if (!a.empty() && a[0] == '-') {
-            if (spatter::Status s = parseOption(argc, argv, i, o); !s) return spatter::fail(s.error());
+            if (spatter::Status s = parseOption(argc, argv, i, own, o); !s) return spatter::fail(s.error());
         } else if (o.scene.empty()) {
             o.scene = a;
         } else {
@@ -96,15 +117,22 @@ spatter::Result<Options> parseCommandLine(int argc, char** argv) {
     return o;
 }
 
-std::string usage(const std::string& program, const std::string& description) {
+std::string usage(const std::string& program, const std::string& description,
+                  const std::vector<Switch>& own) {
+    std::string synopsis, ownHelp = own.empty() ? "" : "Its own options:\n";
+    for (const Switch& s : own) {
+        synopsis += " [" + s.name + "]";
+        std::string help = s.help; // continued lines under the first
+        for (size_t at = help.find('\n'); at != std::string::npos; at = help.find('\n', at + 1))
+            help.insert(at + 1, 18, ' ');
+        ownHelp +=
+            "  " + s.name + std::string(s.name.size() < 16 ? 16 - s.name.size() : 1, ' ') + help + "\n";
+    }
     return "usage: " + program + R"( SCENE [--decals FILE.jsonl | --rays FILE]
         [--camera "eye=x,y,z;target=x,y,z;up=x,y,z;fov=DEG"] [--size WxH]
-        [--view final|albedo|coverage] [--out FILE.png]
-
-)" + description +
-           R"(
-
-The options are spatter-render's, with the same meanings:
+        [--view final|albedo|coverage] [--out FILE.png])" +
+           synopsis + "\n\n" + description + "\n\n" + ownHelp + (own.empty() ? "" : "\n") +
+           R"(spatter-render's options, with the same meanings:
   SCENE           builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file
   --decals FILE   spatter-place output (JSON Lines): every "placed" record becomes a decal on the
                   object it names
@@ -137,6 +165,8 @@ spatter::Result<Inputs> loadInputs(const Options& options) {
         in.camera = *options.camera;
         in.camera.nearPlane = nearPlane;
     }
+    in.view = spatter::viewRotation(in.camera) * glm::translate(glm::dmat4(1.0), -in.camera.eye);
+    in.projection = projectionFor(in.camera, in.scene, double(options.width) / double(options.height));
     spatter::DecalType type; // spatter-render's defaults
     type.name = "spatter-render";
     type.size = glm::vec2(0.3f);
@@ -148,6 +178,16 @@ spatter::Result<Inputs> loadInputs(const Options& options) {
     if (!decals) return spatter::fail(decals.error());
     in.decals = std::move(decals.value());
     return in;
+}
+
+int usageError(const std::string& program, const std::string& message) {
+    std::fprintf(stderr, "%s: %s\n(see %s --help)\n", program.c_str(), message.c_str(), program.c_str());
+    return 2;
+}
+
+int failure(const std::string& program, const std::string& message) {
+    std::fprintf(stderr, "%s: %s\n", program.c_str(), message.c_str());
+    return 1;
 }
 
 } // namespace example

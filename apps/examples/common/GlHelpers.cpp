@@ -1,0 +1,67 @@
+#include "GlHelpers.hpp"
+
+#include <algorithm>
+#include <vector>
+
+namespace example {
+
+namespace {
+
+// A compiled stage; its log is appended to `log` when it does not compile.
+GLuint compile(GLenum stage, const std::string& source, std::string& log) {
+    const GLuint s = glCreateShader(stage);
+    const char* text = source.c_str();
+    glShaderSource(s, 1, &text, nullptr);
+    glCompileShader(s);
+    GLint compiled = GL_FALSE;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &compiled);
+    if (!compiled) {
+        char message[2048] = "";
+        glGetShaderInfoLog(s, sizeof message, nullptr, message);
+        log += message;
+    }
+    return s;
+}
+
+} // namespace
+
+spatter::Result<GLuint> linkProgram(const std::string& vertex, const std::string& fragment) {
+    std::string log;
+    const GLuint vs = compile(GL_VERTEX_SHADER, vertex, log), fs = compile(GL_FRAGMENT_SHADER, fragment, log);
+    const GLuint p = glCreateProgram();
+    glAttachShader(p, vs);
+    glAttachShader(p, fs);
+    glLinkProgram(p);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint linked = GL_FALSE;
+    glGetProgramiv(p, GL_LINK_STATUS, &linked);
+    if (linked) return p;
+    char message[2048] = "";
+    glGetProgramInfoLog(p, sizeof message, nullptr, message);
+    glDeleteProgram(p);
+    return spatter::fail("a program does not build: " + log + message);
+}
+
+GLuint texture(GLenum format, int width, int height) {
+    GLuint t = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    glTextureStorage2D(t, 1, format, width, height);
+    return t;
+}
+
+spatter::Image readImage(GLuint texture, int width, int height) {
+    spatter::Image image;
+    image.width = width;
+    image.height = height;
+    const size_t row = size_t(width) * 4;
+    std::vector<uint8_t> pixels(row * size_t(height));
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(texture, 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(pixels.size()), pixels.data());
+    image.rgba.resize(pixels.size());
+    for (int y = 0; y < height; ++y)
+        std::copy_n(&pixels[size_t(height - 1 - y) * row], row, &image.rgba[size_t(y) * row]);
+    return image;
+}
+
+} // namespace example
