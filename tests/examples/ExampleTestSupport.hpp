@@ -54,7 +54,9 @@ void expectCoverageWithAnObjectThatTakesNoDecals(const ExampleHost& host);
 // cover too few pixels to compare.
 struct AlbedoAgreement {
     size_t pixels = 0;
-    double mean = 0.0, largest = 0.0;
+    double mean = 0.0;         // over the pixels and channels
+    double percentile99 = 0.0; // of the pixels' largest channel difference
+    double largest = 0.0;
 };
 AlbedoAgreement albedoAgainstSpatterRender(const ExampleHost& host);
 
