@@ -9,6 +9,7 @@
 #include "GpuLayouts.hpp"
 #include "GpuTimers.hpp"
 #include "HostFrameCheck.hpp"
+#include "NormalCopy.hpp"
 #include "NormalMatrix.hpp"
 #include "ProjectorLayouts.hpp"
 #include "ProjectorShaders.hpp"
@@ -105,12 +106,10 @@ struct DecalProjector::Impl {
     size_t objectCapacity = 0, decalCapacity = 0, visibleCapacity = 0, visibleCount = 0;
     GlVertexArray emptyVao;
     GlFramebuffer fbo;
-    GlTexture zeroIds;    // bound as s_ids when the frame has no ID texture
-    GlSampler nearest;    // for the host's textures, whatever their own filters (an integer texture
-                          // with a mipmap filter is incomplete and reads 0)
-    GlTexture normalCopy; // the host's normals as they were before the draw
-    GLenum normalCopyFormat = 0;
-    int normalCopyWidth = 0, normalCopyHeight = 0;
+    GlTexture zeroIds;     // bound as s_ids when the frame has no ID texture
+    GlSampler nearest;     // for the host's textures, whatever their own filters (an integer texture
+                           // with a mipmap filter is incomplete and reads 0)
+    NormalCopy normalCopy; // the host's normals as they were before the draw
     DecalBuffers dbuffer;
     ForwardBins forward;
     GpuTimers timers;
@@ -194,42 +193,48 @@ struct DecalProjector::Impl {
         return bytes + list.size() * sizeof(uint32_t);
     }
 
-    // Copies the viewport's part of the host's normals into normalCopy (same format and size).
-    void copyNormals(const HostFrame& f) {
-        GLint w = 0, h = 0;
-        glGetTextureLevelParameteriv(f.normals.texture, 0, GL_TEXTURE_WIDTH, &w);
-        glGetTextureLevelParameteriv(f.normals.texture, 0, GL_TEXTURE_HEIGHT, &h);
-        const GLenum format = textureFormat(f.normals.texture);
-        if (!normalCopy || format != normalCopyFormat || w != normalCopyWidth || h != normalCopyHeight) {
-            normalCopy = createTexture(GL_TEXTURE_2D);
-            glTextureStorage2D(normalCopy.get(), 1, format, w, h);
-            normalCopyFormat = format;
-            normalCopyWidth = w;
-            normalCopyHeight = h;
+    // Takes the copy of the host's normals that the decals read (NormalCopy.hpp); returns the draws
+    // made.
+    size_t copyNormals(const HostFrame& f, const DecalVisibility& vis, NormalCopyMode mode, bool depthTest) {
+        normalCopy.allocate(f.normals.texture);
+        if (mode == NormalCopyMode::Viewport) {
+            normalCopy.copyViewport(f);
+            return 0;
         }
-        glCopyImageSubData(f.normals.texture, GL_TEXTURE_2D, 0, f.x, f.y, 0, normalCopy.get(), GL_TEXTURE_2D,
-                           0, f.x, f.y, 0, f.width, f.height, 1);
+        const GLuint fb = fbo.get();
+        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, normalCopy.texture(), 0);
+        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, 0, 0);
+        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT2, 0, 0);
+        glNamedFramebufferDrawBuffer(fb, GL_COLOR_ATTACHMENT0);
+        glDisablei(GL_BLEND, 0);
+        glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        return drawBoxes(f, vis, normalCopy.program(), depthTest);
     }
 
-    // Attaches the targets of the draw (the host's, or the decal buffers) and sets the blend state of
-    // each; returns whether the host's depth is attached for the depth test.
-    bool bindTargets(const HostFrame& f, const ProjectorDraw& o) {
+    // Binds the projector's framebuffer with the host's depth attached where the depth test can use
+    // it; returns whether it is.
+    bool attachDepth(const HostFrame& f) {
         const GLuint fb = fbo.get();
         const bool depthTest =
             f.depth.encoding == DepthEncoding::Window && formatFacts(textureFormat(f.depth.texture)).depth;
         glNamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depthTest ? f.depth.texture : 0, 0);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fb);
-        if (fillsDBuffer(o))
-            dbuffer.attach(fb);
-        else
-            bindHostTargets(f, o);
         return depthTest;
     }
 
-    void bindHostTargets(const HostFrame& f, const ProjectorDraw& o) {
+    // Attaches the colour targets of the draw (the host's, or the decal buffers) and sets the blend
+    // state of each; `writesNormals`: the host's normal texture is one of them.
+    void bindTargets(const HostFrame& f, const ProjectorDraw& o, bool writesNormals) {
+        if (fillsDBuffer(o))
+            dbuffer.attach(fbo.get());
+        else
+            bindHostTargets(f, o, writesNormals);
+    }
+
+    void bindHostTargets(const HostFrame& f, const ProjectorDraw& o, bool writesNormals) {
         const GLuint fb = fbo.get();
         const bool coverage = o.coverageTexture != 0;
-        const GLuint normals = coverage ? 0 : f.normals.texture;
+        const GLuint normals = writesNormals ? f.normals.texture : 0;
         const GLuint roughness = coverage || roughnessInAlpha(f, o) ? 0 : f.roughness.texture;
         glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, coverage ? o.coverageTexture : f.albedoTexture,
                                   0);
@@ -258,10 +263,11 @@ struct DecalProjector::Impl {
         }
     }
 
-    // `copied`: the host's normals are read from the copy taken before the draw.
-    void bindInputs(const HostFrame& f, bool copied) {
+    // The host's textures, the decal textures and buffers; normals from the host's texture (until a
+    // copy replaces them on unit 1).
+    void bindInputs(const HostFrame& f) {
         glBindTextureUnit(0, f.depth.texture);
-        glBindTextureUnit(1, f.normals.texture == 0 ? 0 : copied ? normalCopy.get() : f.normals.texture);
+        glBindTextureUnit(1, f.normals.texture);
         glBindTextureUnit(2, f.objectIdTexture != 0 ? f.objectIdTexture : zeroIds.get());
         glBindTextureUnit(3, textures.albedoTexture());
         glBindTextureUnit(4, textures.normalTexture());
@@ -464,7 +470,9 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     Impl& m = *impl_;
     if (const std::string p = hostFrameProblem(frame, options); !p.empty()) return fail("projector: " + p);
     const FrameCamera camera = frameCamera(frame);
-    const DecalVisibility vis = m.batch.cull(m.transforms, camera.cull);
+    CullView cull = camera.cull;
+    cull.rects = blendsIntoHost(options) && frame.normals.texture != 0; // for the normal copy
+    const DecalVisibility vis = m.batch.cull(m.transforms, cull);
     ProjectorStats stats;
     stats.decals = m.batch.size();
     stats.invalid = m.batch.invalidCount();
@@ -485,17 +493,27 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
         if (!p) return fail(p.error());
         roughnessProgram = p.value();
     }
+    // Decals that blend normal maps into the host's normals read a copy of them; others read the
+    // host's texture, which the draw then does not write.
+    const bool writesNormals = blendsIntoHost(options) && (bits & kVariantNormalMap);
+    const NormalCopyMode copy = writesNormals ? normalCopyMode(vis) : NormalCopyMode::None;
+    if (copy == NormalCopyMode::Boxes)
+        if (Status s = m.normalCopy.prepare(); !s) return fail(s.error());
+    stats.normalCopy = normalCopyName(copy);
 
     GlStateGuard guard;
     m.timers.beginFrame(m.draws);
     m.timers.begin(GpuPass::Decals);
     m.uploadFrame(frame, camera);
     stats.bytesUploaded = m.uploadDecals(vis);
-    const bool copyNormals = blendsIntoHost(options) && frame.normals.texture != 0;
-    if (copyNormals) m.copyNormals(frame);
-    const bool depthTest = m.bindTargets(frame, options);
-    m.bindInputs(frame, copyNormals);
-    stats.drawCalls = m.drawBoxes(frame, vis, program.value(), depthTest);
+    const bool depthTest = m.attachDepth(frame);
+    m.bindInputs(frame);
+    if (copy != NormalCopyMode::None) {
+        stats.drawCalls += m.copyNormals(frame, vis, copy, depthTest);
+        glBindTextureUnit(1, m.normalCopy.texture());
+    }
+    m.bindTargets(frame, options, writesNormals);
+    stats.drawCalls += m.drawBoxes(frame, vis, program.value(), depthTest);
     if (roughnessProgram != 0) stats.drawCalls += m.roughnessPass(frame, vis, roughnessProgram, depthTest);
     m.timers.end();
     const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);

@@ -53,6 +53,7 @@ std::string toJson(const FrameStats& s) {
     field("decal_bytes_uploaded", std::to_string(s.decalBytesUploaded));
     field("decal_pass_skipped", s.decalPassSkipped ? "true" : "false");
     field("decal_variant", quoted(s.decalVariant));
+    field("decal_normal_copy", quoted(s.decalNormalCopy));
     field("overlay_lines", std::to_string(s.overlayLines));
     field("decals_texture_space", std::to_string(s.decalsTextureSpace));
     field("decals_splatted", std::to_string(s.decalsSplatted));

@@ -733,6 +733,7 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
     stats.decalBytesUploaded = decals->bytesUploaded;
     stats.decalPassSkipped = decals->skipped;
     stats.decalVariant = decals->variant;
+    stats.decalNormalCopy = decals->normalCopy;
     m.drawCalls += decals->drawCalls;
     if (m.hasLate) {
         m.timers.begin(GpuPass::Late);

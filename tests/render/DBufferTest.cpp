@@ -144,16 +144,18 @@ double largestNormalAngle(const Image& a, const Image& b) {
 
 } // namespace
 
-TEST(DBuffer, AppliedByTheHostGivesWhatTheGBufferBlendGives) {
-    SPATTER_REQUIRE_GL(gl);
+namespace {
+
+// Draws `decals` on the wall with the G-buffer blend (whose copy of the host's normals must be
+// `normalCopy`), then with the DBuffer applied by the host, and compares the two.
+void expectDBufferGivesTheBlend(const std::vector<Decal>& decals, const char* normalCopy) {
     std::optional<test::HostedWall> h = test::HostedWall::make();
     ASSERT_TRUE(h);
-    // A second decal over half of the wall's first: the buffers must compose decals in their order.
-    std::vector<Decal> decals = h->wall.decals;
-    decals.push_back(test::WallScene::decalAt(0, {-0.3f, 0.1f, 0.05f}));
     h->projector.setDecals(decals);
     const HostFrame f = h->host.frame(h->wall.camera, true);
-    ASSERT_TRUE(h->projector.draw(f).ok());
+    Result<ProjectorStats> blend = h->projector.draw(f);
+    ASSERT_TRUE(blend.ok()) << blend.error();
+    EXPECT_EQ(blend->normalCopy, normalCopy);
     const Image blendAlbedo = h->host.read(f.albedoTexture), blendNormal = h->host.read(f.normals.texture),
                 blendMaterial = h->host.read(f.roughness.texture);
 
@@ -164,8 +166,9 @@ TEST(DBuffer, AppliedByTheHostGivesWhatTheGBufferBlendGives) {
     dbuffer.path = ProjectorPath::DBuffer;
     Result<ProjectorStats> st = h->projector.draw(f, dbuffer);
     ASSERT_TRUE(st.ok()) << st.error();
-    EXPECT_EQ(st->drawn, 3u);
+    EXPECT_EQ(st->drawn, decals.size());
     EXPECT_THAT(st->variant, HasSubstr("DBUFFER"));
+    EXPECT_EQ(st->normalCopy, "") << "the DBuffer reads the host's normals as they are";
     EXPECT_EQ(test::differingPixels(hostAlbedo, h->host.read(f.albedoTexture)), 0u)
         << "the G-buffer is read only";
     EXPECT_EQ(test::differingPixels(hostNormal, h->host.read(f.normals.texture)), 0u);
@@ -179,14 +182,38 @@ TEST(DBuffer, AppliedByTheHostGivesWhatTheGBufferBlendGives) {
     const int albedoDiff = largestDifference(blendAlbedo, albedo, 0, 3);
     const int roughnessDiff = largestDifference(blendMaterial, material, 1, 2);
     const double normalAngle = largestNormalAngle(blendNormal, normal);
-    std::printf("DBuffer applied vs G-buffer blend: albedo %d/255, roughness %d/255, normal %.2f degrees\n",
-                albedoDiff, roughnessDiff, normalAngle);
+    std::printf("DBuffer applied vs G-buffer blend (%s normal copy): albedo %d/255, roughness %d/255, normal "
+                "%.2f degrees\n",
+                normalCopy, albedoDiff, roughnessDiff, normalAngle);
     // The blend rounds to 8 bits after each decal; the buffers round in their own formats and once more
     // when applied.
     EXPECT_LE(albedoDiff, 3);
     EXPECT_LE(roughnessDiff, 3);
     EXPECT_LE(normalAngle, 3.0);
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}
+
+} // namespace
+
+// A second decal over half of the wall's first: the buffers must compose decals in their order. The
+// boxes cover little of the view, so the blend copies the normals under them only.
+TEST(DBuffer, AppliedByTheHostGivesWhatTheGBufferBlendGives) {
+    SPATTER_REQUIRE_GL(gl);
+    const test::WallScene wall;
+    std::vector<Decal> decals = wall.decals;
+    decals.push_back(test::WallScene::decalAt(0, {-0.3f, 0.1f, 0.05f}));
+    expectDBufferGivesTheBlend(decals, "boxes");
+}
+
+// One decal over most of the view: the blend copies the whole viewport's normals.
+TEST(DBuffer, AppliedByTheHostGivesWhatTheGBufferBlendGivesUnderALargeDecal) {
+    SPATTER_REQUIRE_GL(gl);
+    const test::WallScene wall;
+    std::vector<Decal> decals = wall.decals;
+    Decal large = test::WallScene::decalAt(0, {0.0f, 0.0f, 0.05f});
+    large.size = glm::vec2(4.0f, 2.5f);
+    decals.push_back(large);
+    expectDBufferGivesTheBlend(decals, "viewport");
 }
 
 TEST(DBuffer, ReadsNoDecalAfterADrawWithNothingInView) {

@@ -213,7 +213,11 @@ struct ProjectorStats {
     size_t inside = 0;        // of those, drawn as "camera inside" (the box may hold the eye)
     size_t bytesUploaded = 0; // instance and visibility data sent to the GPU by this draw
     size_t drawCalls = 0;
-    bool skipped = true;   // no visible decal: no normal copy, no draw
+    bool skipped = true; // no visible decal: no normal copy, no draw
+    // The copy of the host's normals that decals blending normal maps read (G-buffer blend): "" (none
+    // taken: no such decal in view), "boxes" (under the visible boxes only, when they cover at most a
+    // quarter of the viewport) or "viewport".
+    std::string normalCopy;
     std::string variant;   // shader features used, e.g. "IDS WRAP NORMAL_MAP FADE"
     double gpuMs = 0.0;    // GPU time of the pass, of frame `gpuFrame` (see waitForTimers)
     int64_t gpuFrame = -1; // the draw call count (0 for the first) the time belongs to; -1: none yet

@@ -1,0 +1,61 @@
+#include "NormalCopy.hpp"
+
+#include "HostFrameCheck.hpp"
+#include "ProjectorShaders.hpp"
+#include "ShaderProgram.hpp"
+
+namespace spatter::render_detail {
+
+NormalCopyMode normalCopyMode(const DecalVisibility& vis) {
+    if (!vis.inside.empty()) return NormalCopyMode::Viewport;
+    double area = 0.0; // in units of the viewport (NDC spans 2 x 2)
+    for (const glm::vec4& r : vis.outsideRects)
+        area += double(r.z - r.x) * double(r.w - r.y) / 4.0;
+    return area <= 0.25 ? NormalCopyMode::Boxes : NormalCopyMode::Viewport;
+}
+
+const char* normalCopyName(NormalCopyMode mode) {
+    switch (mode) {
+    case NormalCopyMode::Boxes:
+        return "boxes";
+    case NormalCopyMode::Viewport:
+        return "viewport";
+    case NormalCopyMode::None:
+        break;
+    }
+    return "";
+}
+
+Status NormalCopy::prepare() {
+    if (program_) return {};
+    Result<GlProgram> p =
+        buildProgram(shaderLibrary(kProjectorShaders),
+                     {{GL_VERTEX_SHADER, "decal.vert"}, {GL_FRAGMENT_SHADER, "normal_copy.frag"}}, {});
+    if (!p) return fail("projector: " + p.error());
+    program_ = std::move(p.value());
+    return {};
+}
+
+void NormalCopy::allocate(GLuint hostNormals) {
+    GLint w = 0, h = 0;
+    glGetTextureLevelParameteriv(hostNormals, 0, GL_TEXTURE_WIDTH, &w);
+    glGetTextureLevelParameteriv(hostNormals, 0, GL_TEXTURE_HEIGHT, &h);
+    const GLenum format = textureFormat(hostNormals);
+    if (texture_ && format == format_ && w == width_ && h == height_) return;
+    texture_ = createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(texture_.get(), 1, format, w, h);
+    // Defined from the start: a box copy leaves the rest as it was, and the decal pass's derivatives
+    // read a neighbour or two beyond the boxes.
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(texture_.get(), 0, GL_RGBA, GL_FLOAT, zero);
+    format_ = format;
+    width_ = w;
+    height_ = h;
+}
+
+void NormalCopy::copyViewport(const HostFrame& f) const {
+    glCopyImageSubData(f.normals.texture, GL_TEXTURE_2D, 0, f.x, f.y, 0, texture_.get(), GL_TEXTURE_2D, 0,
+                       f.x, f.y, 0, f.width, f.height, 1);
+}
+
+} // namespace spatter::render_detail
