@@ -113,9 +113,11 @@ void DecalBatch::rebuild() {
     std::vector<DecalGpu> next(decals_.size());
     valid_.assign(decals_.size(), 0);
     invalid_ = 0;
+    flagsUnion_ = 0;
     for (size_t i = 0; i < decals_.size(); ++i) {
         valid_[i] = build(decals_[i], next[i]) ? 1 : 0;
         invalid_ += valid_[i] ? 0 : 1;
+        flagsUnion_ |= next[i].info.w;
     }
     // Only instances whose bytes changed (or are new) need uploading.
     const size_t common = std::min(next.size(), gpu_.size());

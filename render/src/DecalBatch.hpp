@@ -50,6 +50,8 @@ public:
 
     size_t size() const { return gpu_.size(); }
     size_t invalidCount() const { return invalid_; }
+    // The union of the DecalFlag bits of the valid instances.
+    uint32_t flagsUnion() const { return flagsUnion_; }
     // Whether instance i can be drawn (invalid instances are zero).
     bool valid(size_t i) const { return i < valid_.size() && valid_[i] != 0; }
     const std::vector<DecalGpu>& instances() const { return gpu_; }
@@ -75,6 +77,7 @@ private:
     std::vector<DecalGpu> gpu_;
     std::vector<std::pair<size_t, size_t>> dirty_;
     size_t invalid_ = 0;
+    uint32_t flagsUnion_ = 0;
 };
 
 } // namespace spatter::render_detail

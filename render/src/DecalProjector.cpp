@@ -6,6 +6,7 @@
 #include "ForwardBins.hpp"
 #include "GlObjects.hpp"
 #include "GlStateGuard.hpp"
+#include "GpuCulling.hpp"
 #include "GpuLayouts.hpp"
 #include "GpuTimers.hpp"
 #include "HostFrameCheck.hpp"
@@ -62,6 +63,21 @@ bool roughnessInAlpha(const HostFrame& f, const ProjectorDraw& o) {
     return f.roughness.texture != 0 && f.roughness.channel == 3 && blendsIntoHost(o);
 }
 
+// The two instanced draws of the boxes: counts known on the CPU, or read by the GPU from `indirect`
+// (GpuCulling's draw commands).
+struct BoxDraws {
+    size_t outside = 0, inside = 0;
+    uint32_t insideFirst = 0; // the inside draw's first place in the visible list, or kFirstFromCulling
+    GLuint indirect = 0;
+};
+
+// decal.vert's u_firstInstance for "where the GPU culling's outside list ends".
+constexpr uint32_t kFirstFromCulling = 0xffffffffu;
+
+BoxDraws cpuDraws(const DecalVisibility& vis) {
+    return {vis.outside.size(), vis.inside.size(), uint32_t(vis.outside.size()), 0};
+}
+
 // The camera of a frame relative to its eye, and what culling needs of it.
 struct FrameCamera {
     glm::dmat4 view; // camera-relative world -> view
@@ -112,6 +128,7 @@ struct DecalProjector::Impl {
     NormalCopy normalCopy; // the host's normals as they were before the draw
     DecalBuffers dbuffer;
     ForwardBins forward;
+    GpuCulling culling;
     GpuTimers timers;
     uint64_t draws = 0;
 
@@ -161,7 +178,10 @@ struct DecalProjector::Impl {
             o.model = glm::mat4(rel);
             o.normalMatrix = glm::mat4(glm::mat3(normalMatrix(glm::dmat3(transforms[i]))));
             o.worldToObject = glm::mat4(glm::inverse(rel)); // read only by decals, none on a singular one
-            o.info = glm::uvec4(ids[i], glm::determinant(glm::dmat3(transforms[i])) < 0.0 ? 1u : 0u, 0u, 0u);
+            const double det = glm::determinant(glm::dmat3(transforms[i]));
+            const bool collapsed =
+                !(std::fabs(det) > 0.0) || !std::isfinite(det); // boxes collapse: not drawn
+            o.info = glm::uvec4(ids[i], det < 0.0 ? 1u : 0u, collapsed ? 1u : 0u, 0u);
         }
         const size_t bytes = objects.size() * sizeof(ProjectorObjectGpu);
         reserveBuffer(objectBuffer, objectCapacity, bytes, 64 * sizeof(ProjectorObjectGpu));
@@ -169,7 +189,10 @@ struct DecalProjector::Impl {
     }
 
     // Sends changed decal instances and the visible list; returns the bytes sent.
-    size_t uploadDecals(const DecalVisibility& vis) {
+    size_t uploadDecals(const DecalVisibility& vis) { return uploadInstances() + uploadVisible(vis); }
+
+    // Sends the decal instances that changed; returns the bytes sent.
+    size_t uploadInstances() {
         size_t bytes = 0;
         const std::vector<DecalGpu>& inst = batch.instances();
         if (reserveBuffer(decalBuffer, decalCapacity, inst.size() * sizeof(DecalGpu),
@@ -185,17 +208,21 @@ struct DecalProjector::Impl {
             }
         }
         batch.markUploaded();
+        return bytes;
+    }
+
+    size_t uploadVisible(const DecalVisibility& vis) {
         std::vector<uint32_t> list(vis.outside);
         list.insert(list.end(), vis.inside.begin(), vis.inside.end());
         reserveBuffer(visibleBuffer, visibleCapacity, list.size() * sizeof(uint32_t), 64 * sizeof(uint32_t));
         glNamedBufferSubData(visibleBuffer.get(), 0, GLsizeiptr(list.size() * sizeof(uint32_t)), list.data());
         visibleCount = list.size();
-        return bytes + list.size() * sizeof(uint32_t);
+        return list.size() * sizeof(uint32_t);
     }
 
     // Takes the copy of the host's normals that the decals read (NormalCopy.hpp); returns the draws
     // made.
-    size_t copyNormals(const HostFrame& f, const DecalVisibility& vis, NormalCopyMode mode, bool depthTest) {
+    size_t copyNormals(const HostFrame& f, const BoxDraws& boxes, NormalCopyMode mode, bool depthTest) {
         normalCopy.allocate(f.normals.texture);
         if (mode == NormalCopyMode::Viewport) {
             normalCopy.copyViewport(f);
@@ -208,7 +235,7 @@ struct DecalProjector::Impl {
         glNamedFramebufferDrawBuffer(fb, GL_COLOR_ATTACHMENT0);
         glDisablei(GL_BLEND, 0);
         glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        return drawBoxes(f, vis, normalCopy.program(), depthTest);
+        return drawBoxes(f, boxes, normalCopy.program(), depthTest);
     }
 
     // Binds the projector's framebuffer with the host's depth attached where the depth test can use
@@ -288,7 +315,7 @@ struct DecalProjector::Impl {
 
     // Roughness in an alpha channel: the same boxes again, into that texture alone, with dual-source
     // blending (a = roughness * w + a * (1 - w), w the decal's alpha), the other channels kept.
-    size_t roughnessPass(const HostFrame& f, const DecalVisibility& vis, GLuint prog, bool depthTest) {
+    size_t roughnessPass(const HostFrame& f, const BoxDraws& boxes, GLuint prog, bool depthTest) {
         const GLuint fb = fbo.get();
         glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, f.roughness.texture, 0);
         glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, 0, 0);
@@ -298,12 +325,27 @@ struct DecalProjector::Impl {
         glBlendEquationi(0, GL_FUNC_ADD);
         glBlendFuncSeparatei(0, GL_ZERO, GL_ONE, GL_ONE, GL_ONE_MINUS_SRC1_ALPHA);
         glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
-        return drawBoxes(f, vis, prog, depthTest);
+        return drawBoxes(f, boxes, prog, depthTest);
+    }
+
+    // Builds the visible list on the GPU and sets the counts of `stats` from its totals (this draw's
+    // with waitForTimers, else the latest the GPU has finished); returns the indirect draws.
+    BoxDraws cullOnGpu(const CullView& cull, ProjectorStats& stats) {
+        bindBuffers();
+        culling.run(uint32_t(batch.size()), cull.nearRadius, cull.reversedZ, cull.clipMinusOne, visibleBuffer,
+                    visibleCapacity);
+        bindBuffers(); // the visible list may have grown
+        const glm::uvec2 t = culling.totals(settings.waitForTimers);
+        stats.drawn = t.x + t.y;
+        stats.inside = t.y;
+        stats.culled = batch.size() - batch.invalidCount() - std::min<size_t>(stats.drawn, batch.size());
+        visibleCount = stats.drawn;
+        return {0, 0, kFirstFromCulling, culling.draws()};
     }
 
     // The pass itself: boxes in front of the eye with the depth test where the host's depth is
     // attached, then the boxes that may hold the eye by their far faces. Returns the draws made.
-    size_t drawBoxes(const HostFrame& f, const DecalVisibility& vis, GLuint prog, bool depthTest) {
+    size_t drawBoxes(const HostFrame& f, const BoxDraws& boxes, GLuint prog, bool depthTest) {
         GlStateGuard::neutralise();
         glViewport(f.x, f.y, f.width, f.height);
         glClipControl(GL_LOWER_LEFT,
@@ -316,8 +358,10 @@ struct DecalProjector::Impl {
         glEnable(GL_CULL_FACE);
         glUseProgram(prog);
         glBindVertexArray(emptyVao.get());
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, boxes.indirect);
+        if (boxes.indirect) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullTotalsBuffer, boxes.indirect);
         size_t calls = 0;
-        if (!vis.outside.empty()) {
+        if (boxes.outside > 0 || boxes.indirect) {
             glCullFace(GL_BACK);
             if (depthTest) {
                 glEnable(GL_DEPTH_TEST);
@@ -326,17 +370,25 @@ struct DecalProjector::Impl {
                 glDisable(GL_DEPTH_TEST);
             }
             glUniform1ui(0, 0u);
-            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(vis.outside.size()));
+            drawInstances(boxes.indirect, 0, boxes.outside);
             ++calls;
         }
-        if (!vis.inside.empty()) {
+        if (boxes.inside > 0 || boxes.indirect) {
             glCullFace(GL_FRONT);
             glDisable(GL_DEPTH_TEST);
-            glUniform1ui(0, GLuint(vis.outside.size()));
-            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(vis.inside.size()));
+            glUniform1ui(0, boxes.insideFirst);
+            drawInstances(boxes.indirect, 1, boxes.inside);
             ++calls;
         }
         return calls;
+    }
+
+    // `count` cubes, or the GPU's count from command `command` of the indirect buffer.
+    static void drawInstances(GLuint indirect, size_t command, size_t count) {
+        if (indirect)
+            glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(command * 4 * sizeof(GLuint)));
+        else
+            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(count));
     }
 };
 
@@ -470,16 +522,23 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     Impl& m = *impl_;
     if (const std::string p = hostFrameProblem(frame, options); !p.empty()) return fail("projector: " + p);
     const FrameCamera camera = frameCamera(frame);
-    CullView cull = camera.cull;
-    cull.rects = blendsIntoHost(options) && frame.normals.texture != 0; // for the normal copy
-    const DecalVisibility vis = m.batch.cull(m.transforms, cull);
+    const bool onGpu = m.batch.size() > 0 && m.batch.size() >= m.settings.gpuCullingFrom;
+    DecalVisibility vis;
+    if (onGpu) {
+        vis.flags = m.batch.flagsUnion();
+    } else {
+        CullView cull = camera.cull;
+        cull.rects = blendsIntoHost(options) && frame.normals.texture != 0; // for the normal copy
+        vis = m.batch.cull(m.transforms, cull);
+    }
     ProjectorStats stats;
     stats.decals = m.batch.size();
     stats.invalid = m.batch.invalidCount();
     stats.culled = vis.culled;
     stats.drawn = vis.outside.size() + vis.inside.size();
     stats.inside = vis.inside.size();
-    stats.skipped = stats.drawn == 0;
+    stats.gpuCulled = onGpu;
+    stats.skipped = onGpu ? stats.invalid == stats.decals : stats.drawn == 0;
     if (fillsDBuffer(options)) m.dbuffer.prepare(frame.depth.texture); // cleared, even when nothing is drawn
     if (stats.skipped) return stats;
     const uint32_t bits = m.variantBits(frame, options, vis.flags);
@@ -496,25 +555,34 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     // Decals that blend normal maps into the host's normals read a copy of them; others read the
     // host's texture, which the draw then does not write.
     const bool writesNormals = blendsIntoHost(options) && (bits & kVariantNormalMap);
-    const NormalCopyMode copy = writesNormals ? normalCopyMode(vis) : NormalCopyMode::None;
-    if (copy == NormalCopyMode::Boxes)
+    if (writesNormals)
         if (Status s = m.normalCopy.prepare(); !s) return fail(s.error());
-    stats.normalCopy = normalCopyName(copy);
+    if (onGpu)
+        if (Status s = m.culling.prepare(); !s) return fail(s.error());
 
     GlStateGuard guard;
     m.timers.beginFrame(m.draws);
     m.timers.begin(GpuPass::Decals);
     m.uploadFrame(frame, camera);
-    stats.bytesUploaded = m.uploadDecals(vis);
+    stats.bytesUploaded = m.uploadInstances();
+    BoxDraws boxes = cpuDraws(vis);
+    if (onGpu)
+        boxes = m.cullOnGpu(camera.cull, stats);
+    else
+        stats.bytesUploaded += m.uploadVisible(vis);
+    const NormalCopyMode copy = !writesNormals ? NormalCopyMode::None
+                                : onGpu        ? normalCopyMode(m.culling.totals(false))
+                                               : normalCopyMode(vis);
+    stats.normalCopy = normalCopyName(copy);
     const bool depthTest = m.attachDepth(frame);
     m.bindInputs(frame);
     if (copy != NormalCopyMode::None) {
-        stats.drawCalls += m.copyNormals(frame, vis, copy, depthTest);
+        stats.drawCalls += m.copyNormals(frame, boxes, copy, depthTest);
         glBindTextureUnit(1, m.normalCopy.texture());
     }
     m.bindTargets(frame, options, writesNormals);
-    stats.drawCalls += m.drawBoxes(frame, vis, program.value(), depthTest);
-    if (roughnessProgram != 0) stats.drawCalls += m.roughnessPass(frame, vis, roughnessProgram, depthTest);
+    stats.drawCalls += m.drawBoxes(frame, boxes, program.value(), depthTest);
+    if (roughnessProgram != 0) stats.drawCalls += m.roughnessPass(frame, boxes, roughnessProgram, depthTest);
     m.timers.end();
     const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
     stats.gpuMs = times.decalsMs;

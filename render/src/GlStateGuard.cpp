@@ -43,6 +43,7 @@ GlStateGuard::GlStateGuard() {
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storageBuffer_);
     glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &arrayBuffer_);
     glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpackBuffer_);
+    glGetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &indirectBuffer_);
     for (int i = 0; i < kDrawBuffers; ++i) {
         Blend& b = blend_[size_t(i)];
         const auto index = GLuint(i);
@@ -103,6 +104,7 @@ GlStateGuard::~GlStateGuard() {
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, GLuint(storageBuffer_));
     glBindBuffer(GL_ARRAY_BUFFER, GLuint(arrayBuffer_));
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, GLuint(unpackBuffer_));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, GLuint(indirectBuffer_));
     for (int i = 0; i < kDrawBuffers; ++i) {
         const Blend& b = blend_[size_t(i)];
         const auto index = GLuint(i);

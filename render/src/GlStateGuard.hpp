@@ -41,7 +41,7 @@ private:
     std::array<GLint, kTextureUnits> texture2d_{}, textureArray_{}, sampler_{};
     std::array<IndexedBuffer, kUniformBindings> uniform_{};
     std::array<IndexedBuffer, kStorageBindings> storage_{};
-    GLint uniformBuffer_ = 0, storageBuffer_ = 0, arrayBuffer_ = 0, unpackBuffer_ = 0;
+    GLint uniformBuffer_ = 0, storageBuffer_ = 0, arrayBuffer_ = 0, unpackBuffer_ = 0, indirectBuffer_ = 0;
     std::array<Blend, kDrawBuffers> blend_{};
     GLboolean depthTest_ = GL_FALSE, depthMask_ = GL_TRUE, stencilTest_ = GL_FALSE, scissorTest_ = GL_FALSE;
     GLboolean cullFace_ = GL_FALSE, framebufferSrgb_ = GL_FALSE, rasterizerDiscard_ = GL_FALSE;

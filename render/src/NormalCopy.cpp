@@ -14,6 +14,11 @@ NormalCopyMode normalCopyMode(const DecalVisibility& vis) {
     return area <= 0.25 ? NormalCopyMode::Boxes : NormalCopyMode::Viewport;
 }
 
+NormalCopyMode normalCopyMode(glm::uvec2 gpuTotals) {
+    return gpuTotals.y == 0 && gpuTotals.x <= kBoxCopyDecals ? NormalCopyMode::Boxes
+                                                             : NormalCopyMode::Viewport;
+}
+
 const char* normalCopyName(NormalCopyMode mode) {
     switch (mode) {
     case NormalCopyMode::Boxes:

@@ -20,6 +20,10 @@ enum class NormalCopyMode { None, Boxes, Viewport };
 // Boxes when the screen rectangles of the visible boxes add up to at most a quarter of the viewport
 // (a box that may hold the eye counts as the whole viewport), else Viewport.
 NormalCopyMode normalCopyMode(const DecalVisibility& vis);
+// The same choice for a visible list built on the GPU, from its outside and inside counts (those of
+// an earlier draw): boxes while at most kBoxCopyDecals decals are in view and none may hold the eye.
+NormalCopyMode normalCopyMode(glm::uvec2 gpuTotals);
+constexpr unsigned kBoxCopyDecals = 1024;
 
 const char* normalCopyName(NormalCopyMode mode);
 

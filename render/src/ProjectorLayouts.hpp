@@ -16,6 +16,7 @@ enum ProjectorBinding : uint32_t {
     kProjectorVisibleBuffer = 4,
     kForwardRectBuffer = 0,  // shader storage TileRects of the binning passes (forward_*.comp)
     kForwardCountBuffer = 2, // shader storage TileCounts / TileCursors
+    kCullTotalsBuffer = 2,   // shader storage CullTotals of decal.vert (GpuCulling's draw buffer)
 };
 
 // std140 uniform block ProjectorFrame.

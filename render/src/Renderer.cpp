@@ -417,6 +417,7 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
     projector.normalFrame = settings.normalFrame;
     projector.decalTextureSize = settings.decalTextureSize;
     projector.waitForTimers = settings.waitForTimers;
+    projector.gpuCullingFrom = settings.gpuCullingFrom;
     Result<DecalProjector> p = DecalProjector::create(projector);
     if (!p) return fail("renderer: " + p.error());
     impl->projector.emplace(std::move(p).value());

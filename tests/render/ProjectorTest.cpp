@@ -66,7 +66,7 @@ std::vector<int64_t> glStateSnapshot() {
                             GL_SHADER_STORAGE_BUFFER_SIZE})
             getIndexed(name, i);
     for (GLenum name : {GL_UNIFORM_BUFFER_BINDING, GL_SHADER_STORAGE_BUFFER_BINDING, GL_ARRAY_BUFFER_BINDING,
-                        GL_PIXEL_UNPACK_BUFFER_BINDING})
+                        GL_PIXEL_UNPACK_BUFFER_BINDING, GL_DRAW_INDIRECT_BUFFER_BINDING})
         get(name);
     for (GLuint i = 0; i < 4; ++i) {
         v.push_back(glIsEnabledi(GL_BLEND, i));
@@ -171,6 +171,7 @@ struct HostState {
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[3]);
         glBindBuffer(GL_ARRAY_BUFFER, buffers[1]);
         glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, buffers[2]);
         for (GLuint i = 0; i < 4; ++i) {
             if (i % 2)
                 glEnablei(GL_BLEND, i);

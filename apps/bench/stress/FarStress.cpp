@@ -221,6 +221,18 @@ void addComparisonRows(StressResult& r, const std::string& prefix, double magnit
           c.compared);
 }
 
+// The coverage view of `decals` on `scene` (with object IDs `ids`) seen by `camera`.
+Result<Image> coverageOf(Renderer& renderer, const Scene& scene, const std::vector<uint8_t>& ids,
+                         const std::vector<Decal>& decals, const Camera& camera) {
+    if (Status st = renderer.setScene(scene); !st) return fail(st.error());
+    if (Status st = renderer.setObjectIds(ids); !st) return fail(st.error());
+    renderer.setDecalTypes({farType()});
+    renderer.setDecals(decals);
+    Result<FrameStats> frame = renderer.render(camera, View::Coverage);
+    if (!frame) return fail(frame.error());
+    return renderer.readback();
+}
+
 } // namespace
 
 StressResult runFarPlacement(const StressConfig& cfg) {
@@ -301,6 +313,8 @@ StressResult runFarRender(const StressConfig& cfg) {
     const int width = cfg.full ? 320 : 128, height = cfg.full ? 240 : 96;
     Result<Renderer> renderer = caseRenderer(cfg, width, height, r);
     if (!renderer) return r;
+    Result<Renderer> gpuCulled = caseRenderer(cfg, width, height, r, 0); // the same, culled on the GPU
+    if (!gpuCulled) return r;
     GallerySettings gs = gallerySettings(cfg);
     gs.detail = 0;
     const Scene scene = makeGalleryScene(gs);
@@ -324,13 +338,8 @@ StressResult runFarRender(const StressConfig& cfg) {
         Camera c = cam;
         c.eye += offset;
         c.target += offset;
-        Status st = renderer->setScene(moved);
-        if (st) st = renderer->setObjectIds(ids);
-        renderer->setDecalTypes({farType()});
-        renderer->setDecals(decals);
-        Result<FrameStats> frame =
-            st ? renderer->render(c, View::Coverage) : Result<FrameStats>(fail(st.error()));
-        Result<Image> image = frame ? renderer->readback() : Result<Image>(fail(frame.error()));
+        Result<Image> image = coverageOf(renderer.value(), moved, ids, decals, c);
+        Result<Image> gpuImage = coverageOf(gpuCulled.value(), moved, ids, decals, c);
         if (!placed || !image) {
             r.failure(!placed ? placed.error() : image.error());
             r.row("render at " + num(magnitude), INFINITY, 0.0, 0);
@@ -339,6 +348,11 @@ StressResult runFarRender(const StressConfig& cfg) {
         std::vector<uint8_t> mask(size_t(width) * size_t(height));
         for (size_t i = 0; i < mask.size(); ++i)
             mask[i] = image->rgba[4 * i] > 127 ? 1 : 0;
+        size_t unlike = gpuImage ? 0 : mask.size();
+        for (size_t i = 0; gpuImage && i < mask.size(); ++i)
+            unlike += (gpuImage->rgba[4 * i] > 127 ? 1 : 0) != mask[i] ? 1 : 0;
+        r.row("coverage culled on the GPU at " + num(magnitude) + ": pixels unlike the CPU culling's",
+              double(unlike), 0.0, mask.size(), gpuImage ? "" : gpuImage.error());
         if (magnitude == 0.0) {
             reference = mask;
             size_t covered = 0;

@@ -194,7 +194,8 @@ bool closedMesh(const Mesh& mesh) {
     return true;
 }
 
-Result<Renderer> caseRenderer(const StressConfig& cfg, int width, int height, StressResult& r) {
+Result<Renderer> caseRenderer(const StressConfig& cfg, int width, int height, StressResult& r,
+                              size_t gpuCullingFrom) {
     if (!cfg.gl) {
         r.skipped = "no headless OpenGL context: " + cfg.glError;
         return fail(r.skipped);
@@ -202,6 +203,7 @@ Result<Renderer> caseRenderer(const StressConfig& cfg, int width, int height, St
     RendererSettings rs;
     rs.width = width;
     rs.height = height;
+    rs.gpuCullingFrom = gpuCullingFrom;
     Result<Renderer> renderer = Renderer::create(*cfg.gl, rs);
     if (!renderer) {
         r.failure(renderer.error());

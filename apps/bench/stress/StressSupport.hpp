@@ -77,7 +77,9 @@ bool closedMesh(const Mesh& mesh);
 // A width x height renderer on cfg's headless context for a render case. Fails when there is none:
 // without a context `r` is marked skipped (saying why); when the renderer cannot be created `r`
 // records the failure and an infinite "renderer" row. On failure the case returns `r` as it is.
-Result<Renderer> caseRenderer(const StressConfig& cfg, int width, int height, StressResult& r);
+// `gpuCullingFrom` as RendererSettings' (0: the projector culls on the GPU).
+Result<Renderer> caseRenderer(const StressConfig& cfg, int width, int height, StressResult& r,
+                              size_t gpuCullingFrom = RendererSettings().gpuCullingFrom);
 
 // "%.6g" and "(x, y, z)" with 17 digits.
 std::string num(double v);

@@ -44,10 +44,10 @@
 // state exactly as it found it, as Dear ImGui's OpenGL 3 backend does: it saves and restores the
 // bound draw and read framebuffers, viewport, program, vertex array, active texture unit and the
 // 2D and 2D-array textures and samplers of units 0-7, the uniform buffer bindings 0-1 and shader
-// storage bindings 0-7 (with their ranges) and the generic uniform, shader storage, array and pixel
-// unpack buffer bindings, blending (enable per draw buffer 0-3, equations, functions), colour masks
-// of draw buffers 0-3, depth test, function and mask, stencil test, scissor test, face culling and
-// cull mode, front face, clip control, GL_FRAMEBUFFER_SRGB, the unpack alignment, and polygon mode,
+// storage bindings 0-7 (with their ranges) and the generic uniform, shader storage, array, pixel
+// unpack and draw indirect buffer bindings, blending (enable per draw buffer 0-3, equations, functions),
+// colour masks of draw buffers 0-3, depth test, function and mask, stencil test, scissor test, face culling
+// and cull mode, front face, clip control, GL_FRAMEBUFFER_SRGB, the unpack alignment, and polygon mode,
 // rasterizer discard, colour logic op, depth clamp and clip distances 0-7 (which it switches off for
 // its draws, whatever the host left on). What it
 // changes are the contents of the textures it writes (draw) and its own GL objects. bindForward alone
@@ -161,6 +161,11 @@ struct ProjectorSettings {
     DecalNormalFrame normalFrame = DecalNormalFrame::DecalAxes;
     int decalTextureSize = 256; // size of the decal texture layers: a power of two in [16, 2048]
     int forwardTileSize = 16;   // side of the forward path's screen tiles, pixels: a power of two in [8, 64]
+    // draw() builds the visible list on the GPU from this many decals on (given to setDecals): the CPU
+    // then does no per-decal work per frame, the pass is not skipped when nothing is in view, and the
+    // counts in ProjectorStats are those of an earlier draw (of this one with waitForTimers). 0: always
+    // on the GPU. bin() culls on the CPU.
+    size_t gpuCullingFrom = 65536;
     bool waitForTimers = false; // draw() waits for its GPU time (tools, benchmarks); otherwise the
                                 // time reported is that of an earlier frame, read without stalling
 };
@@ -208,7 +213,7 @@ struct ProjectorDraw {
 struct ProjectorStats {
     size_t decals = 0;        // decals given to setDecals
     size_t invalid = 0;       // skipped: object or type out of range, degenerate or non-finite box
-    size_t culled = 0;        // outside the view frustum (CPU test of the box corners)
+    size_t culled = 0;        // outside the view frustum (test of the box corners)
     size_t drawn = 0;         // instances drawn
     size_t inside = 0;        // of those, drawn as "camera inside" (the box may hold the eye)
     size_t bytesUploaded = 0; // instance and visibility data sent to the GPU by this draw
@@ -218,9 +223,10 @@ struct ProjectorStats {
     // taken: no such decal in view), "boxes" (under the visible boxes only, when they cover at most a
     // quarter of the viewport) or "viewport".
     std::string normalCopy;
-    std::string variant;   // shader features used, e.g. "IDS WRAP NORMAL_MAP FADE"
-    double gpuMs = 0.0;    // GPU time of the pass, of frame `gpuFrame` (see waitForTimers)
-    int64_t gpuFrame = -1; // the draw call count (0 for the first) the time belongs to; -1: none yet
+    bool gpuCulled = false; // the visible list was built on the GPU (ProjectorSettings::gpuCullingFrom)
+    std::string variant;    // shader features used, e.g. "IDS WRAP NORMAL_MAP FADE"
+    double gpuMs = 0.0;     // GPU time of the pass, of frame `gpuFrame` (see waitForTimers)
+    int64_t gpuFrame = -1;  // the draw call count (0 for the first) the time belongs to; -1: none yet
 };
 
 // GL objects of the projector that a host may read: the decal texture arrays, and the instance data

@@ -97,8 +97,9 @@ struct RendererSettings {
     // Depth fading starts at this fraction of the half-depth (|z| / halfDepth) and reaches zero at
     // the box face; DecalType::depthFade picks the curve (None, Linear, Smooth). In [0, 1).
     float fadeStart = 0.5f;
-    int decalTextureSize = 256; // size of the decal texture layers: a power of two in [16, 2048]
-    bool waitForTimers = false; // render() waits for this frame's GPU times (tools, benchmarks)
+    int decalTextureSize = 256;    // size of the decal texture layers: a power of two in [16, 2048]
+    bool waitForTimers = false;    // render() waits for this frame's GPU times (tools, benchmarks)
+    size_t gpuCullingFrom = 65536; // decals from which the projector culls on the GPU (ProjectorSettings)
     LightSettings light;
 };
 

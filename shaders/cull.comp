@@ -1,0 +1,79 @@
+// GPU culling, pass 1 of 3 (GpuCulling): one invocation per decal sorts it into culled (0), drawn
+// with the depth test from outside (1) or drawn by its far faces because its box may hold the eye or
+// cross the near plane (2), as DecalBatch::cull does on the CPU, with margins that keep float
+// rounding from culling a box the CPU would keep. Each work group counts its outside and inside
+// decals for the scan.
+#include "projector.glsl"
+
+layout(local_size_x = 256) in;
+layout(location = 0) uniform uint u_count;  // decals
+layout(location = 1) uniform vec4 u_camera; // x: near-plane sphere radius; y: 1 reversed Z; z: 1 clip depth -1..1
+
+layout(std430, binding = 0) writeonly buffer Classes {
+    uint classes[];
+};
+layout(std430, binding = 2) writeonly buffer GroupCounts {
+    uvec2 groupCounts[];
+};
+
+shared uint sOutside, sInside;
+
+// Whether decal record `d` can be drawn: invalid records are zero.
+bool validRecord(DecalData d) {
+    return d.boxToObject[0] != vec4(0.0) || d.boxToObject[1] != vec4(0.0) || d.boxToObject[2] != vec4(0.0);
+}
+
+// Whether the box, corner by corner in clip space, lies beyond one of the view's planes.
+bool outsideFrustum(DecalData d, ProjectorObject o) {
+    int beyond[6] = int[6](0, 0, 0, 0, 0, 0);
+    bool reversed = u_camera.y != 0.0;
+    for (int c = 0; c < 8; ++c) {
+        vec4 local = vec4((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0, 1.0);
+        vec3 p = vec3(dot(d.boxToObject[0], local), dot(d.boxToObject[1], local), dot(d.boxToObject[2], local));
+        vec4 clip = u_viewProj * (o.model * vec4(p, 1.0));
+        float w = clip.w, slack = 1e-4 * abs(w) + 1e-30;
+        float low = u_camera.z != 0.0 ? -w : 0.0;
+        beyond[0] += clip.x < -w - slack ? 1 : 0;
+        beyond[1] += clip.x > w + slack ? 1 : 0;
+        beyond[2] += clip.y < -w - slack ? 1 : 0;
+        beyond[3] += clip.y > w + slack ? 1 : 0;
+        beyond[4] += (reversed ? clip.z > w + slack : clip.z < low - slack) ? 1 : 0;
+        beyond[5] += (reversed ? clip.z < low - slack : clip.z > w + slack) ? 1 : 0;
+    }
+    for (int k = 0; k < 6; ++k)
+        if (beyond[k] == 8) return true;
+    return false;
+}
+
+// Whether the eye's near-plane sphere may reach into the box (the eye is the origin here).
+bool mayHoldTheEye(DecalData d, ProjectorObject o) {
+    for (int r = 0; r < 3; ++r) {
+        vec4 row = d.objectToBox[r] * o.worldToObject; // camera-relative world -> box coordinate r
+        float u = abs(row.w), reach = u_camera.x * length(row.xyz);
+        if (u > 1.0 + reach + 1e-4 * (1.0 + u)) return false;
+    }
+    return true;
+}
+
+uint classify(uint i) {
+    DecalData d = decals[i];
+    if (!validRecord(d)) return 0u;
+    ProjectorObject o = objects[d.info.x];
+    if (o.info.z != 0u || outsideFrustum(d, o)) return 0u; // collapsed object, or out of view
+    return mayHoldTheEye(d, o) ? 2u : 1u;
+}
+
+void main() {
+    if (gl_LocalInvocationIndex == 0u) {
+        sOutside = 0u;
+        sInside = 0u;
+    }
+    barrier();
+    uint i = gl_GlobalInvocationID.x;
+    uint c = i < u_count ? classify(i) : 0u;
+    if (i < u_count) classes[i] = c;
+    if (c == 1u) atomicAdd(sOutside, 1u);
+    if (c == 2u) atomicAdd(sInside, 1u);
+    barrier();
+    if (gl_LocalInvocationIndex == 0u) groupCounts[gl_WorkGroupID.x] = uvec2(sOutside, sInside);
+}

@@ -1,0 +1,123 @@
+// Culling on the GPU (ProjectorSettings::gpuCullingFrom) is exact: the same decals give the same
+// coverage, bit for bit, and the same counts as culling on the CPU, with the camera inside boxes,
+// boxes across the frustum's edges and its near plane, and far from the world's origin.
+
+#include "ForeignHost.hpp"
+#include "HostedWall.hpp"
+#include "RenderTestSupport.hpp"
+#include "TestData.hpp"
+
+#include "spatter/core/Random.hpp"
+#include "spatter/render/DecalProjector.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <limits>
+
+using namespace spatter;
+
+namespace {
+
+constexpr int kWidth = test::HostedWall::kWidth;
+constexpr int kHeight = test::HostedWall::kHeight;
+
+// `count` decals on the wall (object 0) scattered over an area wider than the view and the wall,
+// some deep enough to reach the camera, in three sizes.
+std::vector<Decal> scatteredDecals(int count, uint64_t seed) {
+    Rng rng(seed);
+    std::vector<Decal> decals;
+    for (int i = 0; i < count; ++i) {
+        Decal d = test::WallScene::decalAt(0, {rng.uniform(-6.0f, 6.0f), rng.uniform(-4.0f, 4.0f), 0.05f});
+        d.size = glm::vec2(0.2f + 0.3f * float(i % 3));
+        d.halfDepth = i % 7 == 0 ? 4.0f : 0.2f; // deep boxes reach the eye at the close views
+        decals.push_back(d);
+    }
+    // Deep boxes around the close views' eye, (0.2, 1, 0.6) in the world, and beside it.
+    for (const glm::vec3& c : {glm::vec3(0.2f, 0.0f, 0.05f), glm::vec3(-0.2f, 0.1f, 0.05f)}) {
+        Decal d = test::WallScene::decalAt(0, c);
+        d.size = glm::vec2(0.5f);
+        d.halfDepth = 4.0f;
+        decals.push_back(d);
+    }
+    return decals;
+}
+
+struct Culled {
+    std::vector<uint8_t> coverage;
+    ProjectorStats stats;
+};
+
+// The coverage of `decals` on the wall moved by `offset`, seen by `camera` (moved too), culled on
+// the CPU or on the GPU.
+Culled coverage(const std::vector<Decal>& decals, const glm::dvec3& offset, Camera camera, bool onGpu) {
+    test::WallScene wall;
+    const glm::dmat4 move = glm::translate(glm::dmat4(1.0), offset);
+    for (size_t i = 0; i < wall.scene.objects.size(); ++i) {
+        wall.scene.objects[i].transform = move * wall.scene.objects[i].transform;
+        wall.transforms[i] = wall.scene.objects[i].transform;
+    }
+    camera.eye += offset;
+    camera.target += offset;
+    Result<test::ForeignHost> host = test::ForeignHost::create(kWidth, kHeight);
+    ProjectorSettings settings;
+    settings.gpuCullingFrom = onGpu ? 0 : std::numeric_limits<size_t>::max();
+    settings.waitForTimers = true; // this draw's counts
+    Result<DecalProjector> projector = DecalProjector::create(settings);
+    EXPECT_TRUE(host.ok() && projector.ok());
+    if (!host || !projector) return {};
+    host->setScene(wall.scene);
+    host->draw(wall.transforms, wall.ids, camera);
+    host->clearCoverage();
+    EXPECT_TRUE(projector->setObjects(wall.transforms, wall.ids).ok());
+    projector->setDecalTypes(wall.types);
+    projector->setDecals(decals);
+    ProjectorDraw draw;
+    draw.coverageTexture = host->coverageTexture();
+    Result<ProjectorStats> st = projector->draw(host->frame(camera, true), draw);
+    EXPECT_TRUE(st.ok()) << st.error();
+    if (!st) return {};
+    EXPECT_EQ(st->gpuCulled, onGpu);
+    return {test::whiteMask(host->read(host->coverageTexture())), st.value()};
+}
+
+void expectSameAsCpu(const char* name, const std::vector<Decal>& decals, const glm::dvec3& offset,
+                     const Camera& camera) {
+    const Culled cpu = coverage(decals, offset, camera, false);
+    const Culled gpu = coverage(decals, offset, camera, true);
+    std::printf("%s: %zu drawn (%zu inside), %zu culled; %zu covered pixels\n", name, cpu.stats.drawn,
+                cpu.stats.inside, cpu.stats.culled, test::countSet(cpu.coverage));
+    EXPECT_GT(test::countSet(cpu.coverage), 0u) << name;
+    EXPECT_EQ(gpu.coverage, cpu.coverage) << name;
+    // The GPU's float test keeps a margin: it may draw a box the CPU culls (which then covers no
+    // pixel), never the reverse.
+    EXPECT_GE(gpu.stats.drawn, cpu.stats.drawn) << name;
+    EXPECT_LE(gpu.stats.drawn, cpu.stats.drawn + 2) << name;
+    EXPECT_GE(gpu.stats.inside, cpu.stats.inside) << name;
+    EXPECT_EQ(gpu.stats.drawn + gpu.stats.culled, cpu.stats.drawn + cpu.stats.culled) << name;
+}
+
+} // namespace
+
+TEST(GpuCulling, MatchesTheCpuWithBoxesAcrossTheFrustumEdges) {
+    SPATTER_REQUIRE_GL(gl);
+    const std::vector<Decal> decals = scatteredDecals(300, 7);
+    expectSameAsCpu("edges", decals, glm::dvec3(0.0), test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0}));
+    expectSameAsCpu("oblique", decals, glm::dvec3(0.0), test::lookAt({2.5, 2.0, 2.0}, {-1.0, 0.5, 0.0}));
+}
+
+TEST(GpuCulling, MatchesTheCpuWithTheCameraInsideBoxesAndBoxesAcrossTheNearPlane) {
+    SPATTER_REQUIRE_GL(gl);
+    const std::vector<Decal> decals = scatteredDecals(300, 11);
+    expectSameAsCpu("close", decals, glm::dvec3(0.0), test::lookAt({0.2, 1.0, 0.6}, {0.0, 1.0, 0.0}));
+    expectSameAsCpu("grazing", decals, glm::dvec3(0.0), test::lookAt({-2.0, 1.0, 0.3}, {2.0, 1.0, 0.0}));
+}
+
+TEST(GpuCulling, MatchesTheCpuFarFromTheOrigin) {
+    SPATTER_REQUIRE_GL(gl);
+    const std::vector<Decal> decals = scatteredDecals(300, 13);
+    const glm::dvec3 far(1.0e6, -2.0e5, 3.0e6);
+    expectSameAsCpu("far", decals, far, test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0}));
+    expectSameAsCpu("far close", decals, far, test::lookAt({0.2, 1.0, 0.6}, {0.0, 1.0, 0.0}));
+}
