@@ -21,7 +21,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 #include <map>
 
 namespace spatter {
@@ -35,6 +37,12 @@ std::string join(const std::vector<std::string>& parts) {
     for (const std::string& p : parts)
         s += (s.empty() ? "" : " ") + p;
     return s;
+}
+
+// Whether the context's renderer is Mesa's software rasteriser.
+bool softwareRasteriser() {
+    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    return renderer && (std::strstr(renderer, "llvmpipe") || std::strstr(renderer, "softpipe"));
 }
 
 Status validateSettings(const ProjectorSettings& s) {
@@ -129,6 +137,7 @@ struct DecalProjector::Impl {
     DecalBuffers dbuffer;
     ForwardBins forward;
     GpuCulling culling;
+    size_t gpuCullingFrom = 0; // settings.gpuCullingFrom, or its default for this context
     GpuTimers timers;
     uint64_t draws = 0;
 
@@ -402,6 +411,8 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
     GlStateGuard guard;
     auto impl = std::make_unique<Impl>();
     impl->settings = settings;
+    impl->gpuCullingFrom = settings.gpuCullingFrom.value_or(
+        softwareRasteriser() ? std::numeric_limits<size_t>::max() : ProjectorSettings::kGpuCullingFrom);
     if (Status s = impl->textures.create(settings.decalTextureSize); !s)
         return fail("projector: " + s.error());
     impl->batch.configure(settings.wrapMaxAngleDeg, impl->textures.layers());
@@ -522,7 +533,7 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     Impl& m = *impl_;
     if (const std::string p = hostFrameProblem(frame, options); !p.empty()) return fail("projector: " + p);
     const FrameCamera camera = frameCamera(frame);
-    const bool onGpu = m.batch.size() > 0 && m.batch.size() >= m.settings.gpuCullingFrom;
+    const bool onGpu = m.batch.size() > 0 && m.batch.size() >= m.gpuCullingFrom;
     DecalVisibility vis;
     if (onGpu) {
         vis.flags = m.batch.flagsUnion();

@@ -195,7 +195,7 @@ bool closedMesh(const Mesh& mesh) {
 }
 
 Result<Renderer> caseRenderer(const StressConfig& cfg, int width, int height, StressResult& r,
-                              size_t gpuCullingFrom) {
+                              std::optional<size_t> gpuCullingFrom) {
     if (!cfg.gl) {
         r.skipped = "no headless OpenGL context: " + cfg.glError;
         return fail(r.skipped);

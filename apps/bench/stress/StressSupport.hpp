@@ -79,7 +79,7 @@ bool closedMesh(const Mesh& mesh);
 // records the failure and an infinite "renderer" row. On failure the case returns `r` as it is.
 // `gpuCullingFrom` as RendererSettings' (0: the projector culls on the GPU).
 Result<Renderer> caseRenderer(const StressConfig& cfg, int width, int height, StressResult& r,
-                              size_t gpuCullingFrom = RendererSettings().gpuCullingFrom);
+                              std::optional<size_t> gpuCullingFrom = std::nullopt);
 
 // "%.6g" and "(x, y, z)" with 17 digits.
 std::string num(double v);

@@ -67,6 +67,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -164,8 +165,10 @@ struct ProjectorSettings {
     // draw() builds the visible list on the GPU from this many decals on (given to setDecals): the CPU
     // then does no per-decal work per frame, the pass is not skipped when nothing is in view, and the
     // counts in ProjectorStats are those of an earlier draw (of this one with waitForTimers). 0: always
-    // on the GPU. bin() culls on the CPU.
-    size_t gpuCullingFrom = 65536;
+    // on the GPU. Unset: kGpuCullingFrom on a GPU, never on a software rasteriser (llvmpipe), where the
+    // compute passes cost more than the CPU's test. bin() culls on the CPU.
+    std::optional<size_t> gpuCullingFrom;
+    static constexpr size_t kGpuCullingFrom = 65536;
     bool waitForTimers = false; // draw() waits for its GPU time (tools, benchmarks); otherwise the
                                 // time reported is that of an earlier frame, read without stalling
 };

@@ -72,6 +72,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -97,9 +98,10 @@ struct RendererSettings {
     // Depth fading starts at this fraction of the half-depth (|z| / halfDepth) and reaches zero at
     // the box face; DecalType::depthFade picks the curve (None, Linear, Smooth). In [0, 1).
     float fadeStart = 0.5f;
-    int decalTextureSize = 256;    // size of the decal texture layers: a power of two in [16, 2048]
-    bool waitForTimers = false;    // render() waits for this frame's GPU times (tools, benchmarks)
-    size_t gpuCullingFrom = 65536; // decals from which the projector culls on the GPU (ProjectorSettings)
+    int decalTextureSize = 256;           // size of the decal texture layers: a power of two in [16, 2048]
+    bool waitForTimers = false;           // render() waits for this frame's GPU times (tools, benchmarks)
+    std::optional<size_t> gpuCullingFrom; // decals from which the projector culls on the GPU
+                                          // (ProjectorSettings::gpuCullingFrom)
     LightSettings light;
 };
 
