@@ -10,7 +10,15 @@ flat out vec3 v_color;
 const int kEdgeCorners[24] = int[24](0, 1, 2, 3, 4, 5, 6, 7,  0, 2, 1, 3, 4, 6, 5, 7,  0, 4, 1, 5, 2, 6, 3, 7);
 
 void main() {
-    DecalData d = decals[visibleDecals[uint(gl_InstanceID)]];
+    // With culling on the GPU the count drawn may be an earlier frame's: an entry past this frame's
+    // list may name a decal that is gone.
+    uint index = visibleDecals[uint(gl_InstanceID)];
+    if (index >= uint(decals.length())) {
+        gl_Position = vec4(0.0, 0.0, 2.0, 1.0); // outside the clip volume: nothing drawn
+        v_color = vec3(0.0);
+        return;
+    }
+    DecalData d = decals[index];
     ObjectData o = objects[d.info.x];
     int corner = kEdgeCorners[gl_VertexID];
     vec4 local = vec4((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0,
