@@ -231,10 +231,15 @@ struct DecalProjector::Impl {
 
     // Takes the copy of the host's normals that the decals read (NormalCopy.hpp); returns the draws
     // made.
-    size_t copyNormals(const HostFrame& f, const BoxDraws& boxes, NormalCopyMode mode, bool depthTest) {
+    size_t copyNormals(const HostFrame& f, const DecalVisibility& vis, const BoxDraws& boxes,
+                       NormalCopyMode mode, bool depthTest) {
         normalCopy.allocate(f.normals.texture);
         if (mode == NormalCopyMode::Viewport) {
             normalCopy.copyViewport(f);
+            return 0;
+        }
+        if (mode == NormalCopyMode::Rects) {
+            normalCopy.copyRects(f, vis);
             return 0;
         }
         const GLuint fb = fbo.get();
@@ -588,7 +593,7 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     const bool depthTest = m.attachDepth(frame);
     m.bindInputs(frame);
     if (copy != NormalCopyMode::None) {
-        stats.drawCalls += m.copyNormals(frame, boxes, copy, depthTest);
+        stats.drawCalls += m.copyNormals(frame, vis, boxes, copy, depthTest);
         glBindTextureUnit(1, m.normalCopy.texture());
     }
     m.bindTargets(frame, options, writesNormals);

@@ -4,6 +4,9 @@
 #include "ProjectorShaders.hpp"
 #include "ShaderProgram.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace spatter::render_detail {
 
 NormalCopyMode normalCopyMode(const DecalVisibility& vis) {
@@ -11,7 +14,8 @@ NormalCopyMode normalCopyMode(const DecalVisibility& vis) {
     double area = 0.0; // in units of the viewport (NDC spans 2 x 2)
     for (const glm::vec4& r : vis.outsideRects)
         area += double(r.z - r.x) * double(r.w - r.y) / 4.0;
-    return area <= 0.25 ? NormalCopyMode::Boxes : NormalCopyMode::Viewport;
+    if (area > 0.25) return NormalCopyMode::Viewport;
+    return vis.outsideRects.size() <= kRectCopyDecals ? NormalCopyMode::Rects : NormalCopyMode::Boxes;
 }
 
 NormalCopyMode normalCopyMode(glm::uvec2 gpuTotals) {
@@ -21,6 +25,8 @@ NormalCopyMode normalCopyMode(glm::uvec2 gpuTotals) {
 
 const char* normalCopyName(NormalCopyMode mode) {
     switch (mode) {
+    case NormalCopyMode::Rects:
+        return "rects";
     case NormalCopyMode::Boxes:
         return "boxes";
     case NormalCopyMode::Viewport:
@@ -61,6 +67,19 @@ void NormalCopy::allocate(GLuint hostNormals) {
 void NormalCopy::copyViewport(const HostFrame& f) const {
     glCopyImageSubData(f.normals.texture, GL_TEXTURE_2D, 0, f.x, f.y, 0, texture_.get(), GL_TEXTURE_2D, 0,
                        f.x, f.y, 0, f.width, f.height, 1);
+}
+
+void NormalCopy::copyRects(const HostFrame& f, const DecalVisibility& vis) const {
+    for (const glm::vec4& r : vis.outsideRects) {
+        // Whole pixels around the rectangle, a pixel wider for the decal pass's derivatives.
+        const int x0 = std::max(0, int(std::floor((r.x * 0.5f + 0.5f) * float(f.width))) - 1);
+        const int y0 = std::max(0, int(std::floor((r.y * 0.5f + 0.5f) * float(f.height))) - 1);
+        const int x1 = std::min(f.width, int(std::ceil((r.z * 0.5f + 0.5f) * float(f.width))) + 1);
+        const int y1 = std::min(f.height, int(std::ceil((r.w * 0.5f + 0.5f) * float(f.height))) + 1);
+        if (x1 <= x0 || y1 <= y0) continue;
+        glCopyImageSubData(f.normals.texture, GL_TEXTURE_2D, 0, f.x + x0, f.y + y0, 0, texture_.get(),
+                           GL_TEXTURE_2D, 0, f.x + x0, f.y + y0, 0, x1 - x0, y1 - y0, 1);
+    }
 }
 
 } // namespace spatter::render_detail

@@ -196,12 +196,26 @@ void expectDBufferGivesTheBlend(const std::vector<Decal>& decals, const char* no
 } // namespace
 
 // A second decal over half of the wall's first: the buffers must compose decals in their order. The
-// boxes cover little of the view, so the blend copies the normals under them only.
+// boxes are few and cover little of the view, so the blend copies the normals under each one's
+// screen rectangle.
 TEST(DBuffer, AppliedByTheHostGivesWhatTheGBufferBlendGives) {
     SPATTER_REQUIRE_GL(gl);
     const test::WallScene wall;
     std::vector<Decal> decals = wall.decals;
     decals.push_back(test::WallScene::decalAt(0, {-0.3f, 0.1f, 0.05f}));
+    expectDBufferGivesTheBlend(decals, "rects");
+}
+
+// Forty small overlapping decals: the blend copies the normals by drawing their boxes.
+TEST(DBuffer, AppliedByTheHostGivesWhatTheGBufferBlendGivesUnderManyDecals) {
+    SPATTER_REQUIRE_GL(gl);
+    const test::WallScene wall;
+    std::vector<Decal> decals = wall.decals;
+    for (int i = 0; i < 40; ++i) {
+        Decal d = test::WallScene::decalAt(0, {-0.9f + 0.03f * float(i), 0.1f * float(i % 4), 0.05f});
+        d.size = glm::vec2(0.25f);
+        decals.push_back(d);
+    }
     expectDBufferGivesTheBlend(decals, "boxes");
 }
 

@@ -433,10 +433,10 @@ TEST(DecalPass, CullsDecalsOutsideTheViewAndSkipsThePassWithoutVisibleDecals) {
     EXPECT_EQ(st.decals, 3u);
     EXPECT_EQ(st.decalsDrawn, 1u);
     EXPECT_EQ(st.decalsCulled, 2u);
-    // The host's normals copied under the one box (not the whole screen), then one instanced draw for
-    // all visible decals.
-    EXPECT_EQ(st.decalNormalCopy, "boxes");
-    EXPECT_EQ(st.drawCalls, drawsWithout + 2);
+    // The host's normals copied under the one box's screen rectangle (not the whole screen), then one
+    // instanced draw for all visible decals.
+    EXPECT_EQ(st.decalNormalCopy, "rects");
+    EXPECT_EQ(st.drawCalls, drawsWithout + 1);
 
     // Every decal out of view: no pass at all.
     const Camera away = test::lookAt({0.0, 2.0, 5.0}, {-20.0, 2.0, 5.0});

@@ -393,9 +393,10 @@ TEST(Projector, WritesRoughnessIntoTheAlbedoAlphaChannel) {
     f.roughness = {f.albedoTexture, 3};
     Result<ProjectorStats> st = h->projector.draw(f);
     ASSERT_TRUE(st.ok()) << st.error();
-    // The normals copied under the boxes, the blend, then the alpha roughness pass (no box holds the eye).
-    EXPECT_EQ(st->normalCopy, "boxes");
-    EXPECT_EQ(st->drawCalls, 3u);
+    // The normals copied under the boxes' rectangles, the blend, then the alpha roughness pass (no box
+    // holds the eye).
+    EXPECT_EQ(st->normalCopy, "rects");
+    EXPECT_EQ(st->drawCalls, 2u);
     const Image after = h->host.read(h->host.albedoTexture());
     size_t rougher = 0, colourOnly = 0, alphaOnly = 0;
     for (size_t i = 0; i < after.rgba.size(); i += 4) {

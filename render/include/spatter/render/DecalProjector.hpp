@@ -223,8 +223,9 @@ struct ProjectorStats {
     size_t drawCalls = 0;
     bool skipped = true; // no visible decal: no normal copy, no draw
     // The copy of the host's normals that decals blending normal maps read (G-buffer blend): "" (none
-    // taken: no such decal in view), "boxes" (under the visible boxes only, when they cover at most a
-    // quarter of the viewport) or "viewport".
+    // taken: no such decal in view); when the visible boxes cover at most a quarter of the viewport,
+    // "rects" (each box's screen rectangle, for a few boxes) or "boxes" (a draw of the boxes);
+    // otherwise "viewport".
     std::string normalCopy;
     bool gpuCulled = false; // the visible list was built on the GPU (ProjectorSettings::gpuCullingFrom)
     std::string variant;    // shader features used, e.g. "IDS WRAP NORMAL_MAP FADE"
