@@ -352,7 +352,8 @@ struct DecalProjector::Impl {
         const glm::uvec2 t = culling.totals(settings.waitForTimers);
         stats.drawn = t.x + t.y;
         stats.inside = t.y;
-        stats.culled = batch.size() - batch.invalidCount() - std::min<size_t>(stats.drawn, batch.size());
+        const size_t valid = batch.size() - batch.invalidCount();
+        stats.culled = valid > stats.drawn ? valid - stats.drawn : 0; // counts of an earlier draw may exceed
         visibleCount = stats.drawn;
         return {0, 0, kFirstFromCulling, culling.draws()};
     }
