@@ -243,7 +243,8 @@ struct ProjectorResources {
     uint32_t decals = 0;       // shader storage: DecalData per decal given to setDecals
     uint32_t visible = 0;      // shader storage: uint decal indices of the last draw, visibleCount of them
     uint32_t objects = 0;      // shader storage: ProjectorObject per object (relative to the last eye)
-    size_t visibleCount = 0;
+    size_t visibleCount = 0;   // with culling on the GPU, the count of an earlier draw (unless
+                               // waitForTimers): entries past this draw's list may name gone decals
     // The decal buffers of the last ProjectorPath::DBuffer draw (0 before the first): GL_TEXTURE_2D,
     // the size of the host's depth texture, cleared over the frame's viewport by each such draw. RGB
     // holds the decals premultiplied by their alpha, A the fraction of the surface that shows through.
