@@ -1,22 +1,25 @@
-// GPU culling, pass 1 of 3 (GpuCulling): one invocation per decal sorts it into culled (0), drawn
-// with the depth test from outside (1) or drawn by its far faces because its box may hold the eye or
-// cross the near plane (2), as DecalBatch::cull does on the CPU, with margins that keep float
-// rounding from culling a box the CPU would keep. Each work group counts its outside and inside
-// decals for the scan.
+// GPU culling, pass 1 of 3 (GpuCulling): one invocation per place in the draw order marks its decal
+// visible (1) or culled (0) by the test DecalBatch::cull makes on the CPU, with margins that keep
+// float rounding from culling a box the CPU would keep. Each work group counts its visible decals
+// for the scan.
 #include "projector.glsl"
 
 layout(local_size_x = 256) in;
 layout(location = 0) uniform uint u_count;  // decals
-layout(location = 1) uniform vec4 u_camera; // x: near-plane sphere radius; y: 1 reversed Z; z: 1 clip depth -1..1
+layout(location = 1) uniform vec4 u_camera; // y: 1 reversed Z; z: 1 clip depth -1..1
+layout(location = 2) uniform bool u_ordered; // the draw order is drawOrder[], not the decals' own
 
 layout(std430, binding = 0) writeonly buffer Classes {
     uint classes[];
 };
 layout(std430, binding = 2) writeonly buffer GroupCounts {
-    uvec2 groupCounts[];
+    uint groupCounts[];
+};
+layout(std430, binding = 6) readonly buffer DrawOrder {
+    uint drawOrder[];
 };
 
-shared uint sOutside, sInside;
+shared uint sVisible;
 
 // Whether decal record `d` can be drawn: invalid records are zero.
 bool validRecord(DecalData d) {
@@ -45,35 +48,20 @@ bool outsideFrustum(DecalData d, ProjectorObject o) {
     return false;
 }
 
-// Whether the eye's near-plane sphere may reach into the box (the eye is the origin here).
-bool mayHoldTheEye(DecalData d, ProjectorObject o) {
-    for (int r = 0; r < 3; ++r) {
-        vec4 row = d.objectToBox[r] * o.worldToObject; // camera-relative world -> box coordinate r
-        float u = abs(row.w), reach = u_camera.x * length(row.xyz);
-        if (u > 1.0 + reach + 1e-4 * (1.0 + u)) return false;
-    }
-    return true;
-}
-
 uint classify(uint i) {
     DecalData d = decals[i];
     if (!validRecord(d)) return 0u;
     ProjectorObject o = objects[d.info.x];
-    if (o.info.z != 0u || outsideFrustum(d, o)) return 0u; // collapsed object, or out of view
-    return mayHoldTheEye(d, o) ? 2u : 1u;
+    return o.info.z != 0u || outsideFrustum(d, o) ? 0u : 1u; // collapsed object, or out of view
 }
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u) {
-        sOutside = 0u;
-        sInside = 0u;
-    }
+    if (gl_LocalInvocationIndex == 0u) sVisible = 0u;
     barrier();
-    uint i = gl_GlobalInvocationID.x;
-    uint c = i < u_count ? classify(i) : 0u;
-    if (i < u_count) classes[i] = c;
-    if (c == 1u) atomicAdd(sOutside, 1u);
-    if (c == 2u) atomicAdd(sInside, 1u);
+    uint place = gl_GlobalInvocationID.x;
+    uint c = place < u_count ? classify(u_ordered ? drawOrder[place] : place) : 0u;
+    if (place < u_count) classes[place] = c;
+    if (c == 1u) atomicAdd(sVisible, 1u);
     barrier();
-    if (gl_LocalInvocationIndex == 0u) groupCounts[gl_WorkGroupID.x] = uvec2(sOutside, sInside);
+    if (gl_LocalInvocationIndex == 0u) groupCounts[gl_WorkGroupID.x] = sVisible;
 }

@@ -1,17 +1,8 @@
 // Decal pass: one instanced unit cube per visible decal. The instance's decal index comes from the
-// visible list (first + gl_InstanceID); its object-space box is carried to camera-relative
+// visible list (gl_InstanceID: the list is in draw order); its object-space box is carried to camera-relative
 // world space by its object's transform, and the inverse, world -> unit box, goes to the fragment
 // shader together with the decal frame in world space.
 #include "projector.glsl"
-
-layout(location = 0) uniform uint u_firstInstance; // kFirstFromCulling: the GPU culling's outside count
-
-// The GPU culling's totals (GpuCulling), read when the inside list starts where the outside one ends.
-const uint kFirstFromCulling = 0xffffffffu;
-layout(std430, binding = 2) readonly buffer CullTotals {
-    uvec4 cullDraws[2];
-    uvec4 cullTotals; // x: outside decals
-};
 
 flat out vec4 v_worldToBox[3]; // rows: camera-relative world -> unit box [-1, 1]^3
 flat out vec4 v_tangent;       // xyz: world unit tangent; w: half width (world units)
@@ -27,8 +18,7 @@ const int kCubeIndices[36] = int[36](0, 4, 6, 0, 6, 2,  1, 3, 7, 1, 7, 5,  0, 1,
                                      2, 6, 7, 2, 7, 3,  0, 2, 3, 0, 3, 1,  4, 5, 7, 4, 7, 6);
 
 void main() {
-    uint first = u_firstInstance == kFirstFromCulling ? cullTotals.x : u_firstInstance;
-    DecalData d = decals[visibleDecals[first + uint(gl_InstanceID)]];
+    DecalData d = decals[visibleDecals[uint(gl_InstanceID)]];
     ProjectorObject o = objects[d.info.x];
 
     int corner = kCubeIndices[gl_VertexID];

@@ -134,6 +134,7 @@ void DecalBatch::rebuild() {
         i = j;
     }
     gpu_ = std::move(next);
+    sortDrawOrder();
     // Ranges recorded earlier may point past a shrunk array.
     for (auto& r : dirty_)
         r.second = std::min(r.second, gpu_.size());
@@ -141,6 +142,32 @@ void DecalBatch::rebuild() {
         std::remove_if(dirty_.begin(), dirty_.end(), [](const auto& r) { return r.first >= r.second; }),
         dirty_.end());
     std::sort(dirty_.begin(), dirty_.end());
+}
+
+void DecalBatch::sortDrawOrder() {
+    auto priority = [this](uint32_t i) {
+        const uint16_t t = decals_[i].type;
+        return t < types_.size() ? types_[t].priority : 0;
+    };
+    auto time = [this](uint32_t i) { // a spawn time that is not a number sorts as 0, keeping the order strict
+        const double t = decals_[i].spawnTime;
+        return std::isfinite(t) ? t : 0.0;
+    };
+    auto before = [&](uint32_t a, uint32_t b) {
+        const int pa = priority(a), pb = priority(b);
+        if (pa != pb) return pa < pb;
+        const double ta = time(a), tb = time(b);
+        if (ta != tb) return ta < tb;
+        return a < b;
+    };
+    // The order the GPU holds: empty when it is the index order.
+    const std::vector<uint32_t> previous = indexOrder_ ? std::vector<uint32_t>{} : order_;
+    order_.resize(decals_.size());
+    for (size_t i = 0; i < order_.size(); ++i)
+        order_[i] = uint32_t(i);
+    indexOrder_ = std::is_sorted(order_.begin(), order_.end(), before);
+    if (!indexOrder_) std::sort(order_.begin(), order_.end(), before);
+    orderChanged_ = orderChanged_ || (indexOrder_ ? !previous.empty() : previous != order_);
 }
 
 DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms,
@@ -153,7 +180,7 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
         const double det = glm::determinant(glm::dmat3(objectTransforms[o]));
         collapsed[o] = !(std::fabs(det) > 0.0) || !std::isfinite(det) ? 1 : 0;
     }
-    for (size_t i = 0; i < decals_.size(); ++i) {
+    for (const uint32_t i : order_) {
         if (!valid_[i]) continue;
         const Decal& d = decals_[i];
         if (d.object >= objectTransforms.size() || collapsed[d.object]) continue;
@@ -195,11 +222,12 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
                 glm::length(glm::dvec3(worldToBox[0][r], worldToBox[1][r], worldToBox[2][r]));
             inside = std::fabs(u[r]) <= 1.0 + radius * rowLength;
         }
-        (inside ? vis.inside : vis.outside).push_back(uint32_t(i));
+        vis.visible.push_back(i);
+        vis.inside += inside ? 1 : 0;
         vis.flags |= gpu_[i].info.w;
-        if (view.rects && !inside)
-            vis.outsideRects.push_back(behind ? glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f)
-                                              : glm::vec4(glm::clamp(rect, -1.0, 1.0)));
+        if (view.rects)
+            vis.rects.push_back(behind || inside ? glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f)
+                                                 : glm::vec4(glm::clamp(rect, -1.0, 1.0)));
     }
     return vis;
 }

@@ -1,8 +1,9 @@
 #pragma once
 // DecalBatch: the CPU side of the decal pass. It turns Decals and DecalTypes into per-instance GPU
 // data (object space, so that it changes only when a decal or its type changes), keeps track of
-// which instances changed since the last upload, and per frame culls the boxes against the view
-// and sorts the visible ones into "camera outside" and "camera inside" lists.
+// which instances changed since the last upload, keeps the draw order (DecalType::priority, then
+// spawn time, then index), and per frame culls the boxes against the view into the visible list,
+// in draw order, noting the boxes that may hold the eye.
 
 #include "GpuLayouts.hpp"
 
@@ -19,14 +20,14 @@
 namespace spatter::render_detail {
 
 struct DecalVisibility {
-    std::vector<uint32_t> outside; // decal indices drawn with back-face culling and the depth test
-    std::vector<uint32_t> inside;  // boxes that may contain the eye or cross the near plane
+    std::vector<uint32_t> visible; // decal indices in draw order
+    size_t inside = 0;             // of those, boxes that may contain the eye or cross the near plane
     uint32_t flags = 0;            // union of the DecalFlag bits of the visible decals
     size_t culled = 0;             // valid decals outside the view
-    // With CullView::rects: for each of `outside`, the normalised device x, y bounds of its box
+    // With CullView::rects: for each of `visible`, the normalised device x, y bounds of its box
     // (min x, min y, max x, max y) clamped to [-1, 1]; the whole view where the box reaches behind
-    // the eye. Boxes `inside` may cover the whole view.
-    std::vector<glm::vec4> outsideRects;
+    // the eye or may hold it.
+    std::vector<glm::vec4> rects;
 };
 
 // The view the decals are culled against, in the host's clip conventions.
@@ -36,7 +37,7 @@ struct CullView {
     bool reversedZ = true;     // near at clip depth w, far at the low end
     bool clipMinusOne = false; // clip depth range [-w, w] (GL's default), else [0, w]
     double nearRadius = 0.0;   // radius of a sphere around the eye holding the near plane's rectangle
-    bool rects = false;        // also the screen rectangles of the boxes (DecalVisibility::outsideRects)
+    bool rects = false;        // also the screen rectangles of the boxes (DecalVisibility::rects)
 };
 
 class DecalBatch {
@@ -52,6 +53,12 @@ public:
     size_t invalidCount() const { return invalid_; }
     // The union of the DecalFlag bits of the valid instances.
     uint32_t flagsUnion() const { return flagsUnion_; }
+    // The decal indices in draw order: by DecalType::priority, then Decal::spawnTime, then index.
+    const std::vector<uint32_t>& drawOrder() const { return order_; }
+    // Whether drawOrder() is 0, 1, 2...
+    bool indexOrder() const { return indexOrder_; }
+    // Whether the draw order changed since the last call.
+    bool takeOrderChange() { return std::exchange(orderChanged_, false); }
     // Whether instance i can be drawn (invalid instances are zero).
     bool valid(size_t i) const { return i < valid_.size() && valid_[i] != 0; }
     const std::vector<DecalGpu>& instances() const { return gpu_; }
@@ -60,11 +67,12 @@ public:
     void markUploaded() { dirty_.clear(); }
 
     // Frustum culling of the valid decals under the current object transforms (world space,
-    // double) against `view`.
+    // double) against `view`, in draw order.
     DecalVisibility cull(const std::vector<glm::dmat4>& objectTransforms, const CullView& view) const;
 
 private:
     void rebuild();
+    void sortDrawOrder();
     // The instance of decal i, or nothing (zero, invalid) when it cannot be drawn.
     bool build(const Decal& d, DecalGpu& out) const;
 
@@ -78,6 +86,9 @@ private:
     std::vector<std::pair<size_t, size_t>> dirty_;
     size_t invalid_ = 0;
     uint32_t flagsUnion_ = 0;
+    std::vector<uint32_t> order_;
+    bool indexOrder_ = true;
+    bool orderChanged_ = true;
 };
 
 } // namespace spatter::render_detail

@@ -71,19 +71,17 @@ bool roughnessInAlpha(const HostFrame& f, const ProjectorDraw& o) {
     return f.roughness.texture != 0 && f.roughness.channel == 3 && blendsIntoHost(o);
 }
 
-// The two instanced draws of the boxes: counts known on the CPU, or read by the GPU from `indirect`
-// (GpuCulling's draw commands).
+// The instanced draw of the visible boxes, in draw order: by their faces towards the eye, or, when a
+// box may hold the eye (or the GPU culled and cannot tell), by their far faces. The count is known on the
+// CPU, or read by the GPU from `indirect` (GpuCulling).
 struct BoxDraws {
-    size_t outside = 0, inside = 0;
-    uint32_t insideFirst = 0; // the inside draw's first place in the visible list, or kFirstFromCulling
+    size_t count = 0;
+    bool farFaces = false;
     GLuint indirect = 0;
 };
 
-// decal.vert's u_firstInstance for "where the GPU culling's outside list ends".
-constexpr uint32_t kFirstFromCulling = 0xffffffffu;
-
 BoxDraws cpuDraws(const DecalVisibility& vis) {
-    return {vis.outside.size(), vis.inside.size(), uint32_t(vis.outside.size()), 0};
+    return {vis.visible.size(), vis.inside > 0, 0};
 }
 
 // The camera of a frame relative to its eye, and what culling needs of it.
@@ -200,6 +198,13 @@ struct DecalProjector::Impl {
     // Sends changed decal instances and the visible list; returns the bytes sent.
     size_t uploadDecals(const DecalVisibility& vis) { return uploadInstances() + uploadVisible(vis); }
 
+    // Sends the draw order to the GPU culling when it changed; returns the bytes sent.
+    size_t uploadDrawOrder() {
+        if (!batch.takeOrderChange()) return 0;
+        culling.setDrawOrder(batch.indexOrder() ? std::vector<uint32_t>{} : batch.drawOrder());
+        return batch.indexOrder() ? 0 : batch.drawOrder().size() * sizeof(uint32_t);
+    }
+
     // Sends the decal instances that changed; returns the bytes sent.
     size_t uploadInstances() {
         size_t bytes = 0;
@@ -221,8 +226,7 @@ struct DecalProjector::Impl {
     }
 
     size_t uploadVisible(const DecalVisibility& vis) {
-        std::vector<uint32_t> list(vis.outside);
-        list.insert(list.end(), vis.inside.begin(), vis.inside.end());
+        const std::vector<uint32_t>& list = vis.visible;
         reserveBuffer(visibleBuffer, visibleCapacity, list.size() * sizeof(uint32_t), 64 * sizeof(uint32_t));
         glNamedBufferSubData(visibleBuffer.get(), 0, GLsizeiptr(list.size() * sizeof(uint32_t)), list.data());
         visibleCount = list.size();
@@ -342,24 +346,21 @@ struct DecalProjector::Impl {
         return drawBoxes(f, boxes, prog, depthTest);
     }
 
-    // Builds the visible list on the GPU and sets the counts of `stats` from its totals (this draw's
-    // with waitForTimers, else the latest the GPU has finished); returns the indirect draws.
+    // Builds the visible list on the GPU and sets the counts of `stats` from it (this draw's with
+    // waitForTimers, else the latest the GPU has finished); returns the indirect draw.
     BoxDraws cullOnGpu(const CullView& cull, ProjectorStats& stats) {
         bindBuffers();
-        culling.run(uint32_t(batch.size()), cull.nearRadius, cull.reversedZ, cull.clipMinusOne, visibleBuffer,
+        culling.run(uint32_t(batch.size()), cull.reversedZ, cull.clipMinusOne, visibleBuffer,
                     visibleCapacity);
         bindBuffers(); // the visible list may have grown
-        const glm::uvec2 t = culling.totals(settings.waitForTimers);
-        stats.drawn = t.x + t.y;
-        stats.inside = t.y;
+        stats.drawn = culling.visibleCount(settings.waitForTimers);
         const size_t valid = batch.size() - batch.invalidCount();
         stats.culled = valid > stats.drawn ? valid - stats.drawn : 0; // counts of an earlier draw may exceed
         visibleCount = stats.drawn;
-        return {0, 0, kFirstFromCulling, culling.draws()};
+        return {0, true, culling.draws()};
     }
 
-    // The pass itself: boxes in front of the eye with the depth test where the host's depth is
-    // attached, then the boxes that may hold the eye by their far faces. Returns the draws made.
+    // The pass itself: one instanced draw of the boxes (BoxDraws). Returns the draws made.
     size_t drawBoxes(const HostFrame& f, const BoxDraws& boxes, GLuint prog, bool depthTest) {
         GlStateGuard::neutralise();
         glViewport(f.x, f.y, f.width, f.height);
@@ -371,39 +372,24 @@ struct DecalProjector::Impl {
         glFrontFace(GL_CCW);
         glEnable(GL_FRAMEBUFFER_SRGB);
         glEnable(GL_CULL_FACE);
+        glCullFace(boxes.farFaces ? GL_FRONT : GL_BACK);
+        // Near faces: not behind the scene. Far faces: not in front of it (where the whole box is in
+        // front of the scene, no surface lies inside), clamped rather than clipped at the far plane.
+        if (depthTest) {
+            glEnable(GL_DEPTH_TEST);
+            glDepthFunc(f.depth.reversedZ != boxes.farFaces ? GL_GEQUAL : GL_LEQUAL);
+        } else {
+            glDisable(GL_DEPTH_TEST);
+        }
+        if (boxes.farFaces) glEnable(GL_DEPTH_CLAMP);
         glUseProgram(prog);
         glBindVertexArray(emptyVao.get());
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, boxes.indirect);
-        if (boxes.indirect) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCullTotalsBuffer, boxes.indirect);
-        size_t calls = 0;
-        if (boxes.outside > 0 || boxes.indirect) {
-            glCullFace(GL_BACK);
-            if (depthTest) {
-                glEnable(GL_DEPTH_TEST);
-                glDepthFunc(f.depth.reversedZ ? GL_GEQUAL : GL_LEQUAL); // the face is not behind the scene
-            } else {
-                glDisable(GL_DEPTH_TEST);
-            }
-            glUniform1ui(0, 0u);
-            drawInstances(boxes.indirect, 0, boxes.outside);
-            ++calls;
-        }
-        if (boxes.inside > 0 || boxes.indirect) {
-            glCullFace(GL_FRONT);
-            glDisable(GL_DEPTH_TEST);
-            glUniform1ui(0, boxes.insideFirst);
-            drawInstances(boxes.indirect, 1, boxes.inside);
-            ++calls;
-        }
-        return calls;
-    }
-
-    // `count` cubes, or the GPU's count from command `command` of the indirect buffer.
-    static void drawInstances(GLuint indirect, size_t command, size_t count) {
-        if (indirect)
-            glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(command * 4 * sizeof(GLuint)));
+        if (boxes.indirect)
+            glDrawArraysIndirect(GL_TRIANGLES, nullptr);
         else
-            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(count));
+            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(boxes.count));
+        return 1;
     }
 };
 
@@ -502,8 +488,8 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
     stats.decals = m.batch.size();
     stats.invalid = m.batch.invalidCount();
     stats.culled = vis.culled;
-    stats.drawn = vis.outside.size() + vis.inside.size();
-    stats.inside = vis.inside.size();
+    stats.drawn = vis.visible.size();
+    stats.inside = vis.inside;
     stats.skipped = stats.drawn == 0;
     stats.variant = "FORWARD";
 
@@ -552,8 +538,8 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     stats.decals = m.batch.size();
     stats.invalid = m.batch.invalidCount();
     stats.culled = vis.culled;
-    stats.drawn = vis.outside.size() + vis.inside.size();
-    stats.inside = vis.inside.size();
+    stats.drawn = vis.visible.size();
+    stats.inside = vis.inside;
     stats.gpuCulled = onGpu;
     stats.skipped = onGpu ? stats.invalid == stats.decals : stats.drawn == 0;
     if (fillsDBuffer(options)) m.dbuffer.prepare(frame.depth.texture); // cleared, even when nothing is drawn
@@ -583,12 +569,14 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     m.uploadFrame(frame, camera);
     stats.bytesUploaded = m.uploadInstances();
     BoxDraws boxes = cpuDraws(vis);
-    if (onGpu)
+    if (onGpu) {
+        stats.bytesUploaded += m.uploadDrawOrder();
         boxes = m.cullOnGpu(camera.cull, stats);
-    else
+    } else {
         stats.bytesUploaded += m.uploadVisible(vis);
+    }
     const NormalCopyMode copy = !writesNormals ? NormalCopyMode::None
-                                : onGpu        ? normalCopyMode(m.culling.totals(false))
+                                : onGpu        ? normalCopyMode(m.culling.visibleCount(false))
                                                : normalCopyMode(vis);
     stats.normalCopy = normalCopyName(copy);
     const bool depthTest = m.attachDepth(frame);

@@ -60,10 +60,8 @@ size_t ForwardBins::tileRects(const ForwardFrame& frame, const DecalVisibility& 
         rectsCpu_.push_back(glm::uvec2(uint32_t(x0) | uint32_t(y0) << 16, uint32_t(x1) | uint32_t(y1) << 16));
         items += size_t(x1 - x0 + 1) * size_t(y1 - y0 + 1);
     };
-    for (const glm::vec4& r : vis.outsideRects)
+    for (const glm::vec4& r : vis.rects)
         add(r);
-    for (size_t i = 0; i < vis.inside.size(); ++i)
-        add(glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f));
     return items;
 }
 

@@ -21,8 +21,8 @@ class ForwardBins {
 public:
     // Builds the compute programs on first use.
     Status prepare();
-    // Bins the visible decals of `vis` (outside, then inside, as the visible list holds them) into the
-    // tiles of `frame`; `head` carries the frame's parameters (the grid is filled in here). Returns the
+    // Bins the visible decals of `vis` (in draw order, as the visible list holds them) into the tiles
+    // of `frame`; `head` carries the frame's parameters (the grid is filled in here). Returns the
     // bytes sent to the GPU. Needs prepare() to have succeeded.
     size_t bin(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize, ForwardGridGpu head);
     void bind(const ForwardBindings& b) const;

@@ -12,9 +12,10 @@ namespace {
 constexpr uint32_t kGroup = 256; // local size of the classify and scatter passes
 
 // Binding points of the culling passes (shaders/cull*.comp).
-constexpr GLuint kClassesBinding = 0, kGroupsBinding = 2, kDrawsBinding = 5, kVisibleOutBinding = 6;
-constexpr size_t kTotalsOffset = 2 * 4 * sizeof(uint32_t), kTotalsBytes = 4 * sizeof(uint32_t);
-constexpr size_t kDrawsBytes = kTotalsOffset + kTotalsBytes;
+constexpr GLuint kClassesBinding = 0, kGroupsBinding = 2, kDrawsBinding = 5, kOrderBinding = 6,
+                 kVisibleOutBinding = 7;
+constexpr size_t kDrawsBytes = 4 * sizeof(uint32_t);
+constexpr size_t kCountOffset = sizeof(uint32_t); // DrawArraysIndirectCommand::instanceCount
 
 Result<GlProgram> computeProgram(const char* file) {
     Result<GlProgram> p = buildProgram(shaderLibrary(kProjectorShaders), {{GL_COMPUTE_SHADER, file}}, {});
@@ -42,15 +43,24 @@ Status GpuCulling::prepare() {
     draws_ = createBuffer();
     glNamedBufferStorage(draws_.get(), GLsizeiptr(kDrawsBytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
     readback_ = createBuffer();
-    glNamedBufferStorage(readback_.get(), GLsizeiptr(kTotalsBytes), nullptr, GL_CLIENT_STORAGE_BIT);
+    glNamedBufferStorage(readback_.get(), GLsizeiptr(sizeof(uint32_t)), nullptr, GL_CLIENT_STORAGE_BIT);
     return {};
 }
 
-void GpuCulling::run(uint32_t count, double nearRadius, bool reversedZ, bool clipMinusOne, GlBuffer& visible,
+void GpuCulling::setDrawOrder(const std::vector<uint32_t>& order) {
+    ordered_ = !order.empty();
+    if (!ordered_) return;
+    const size_t bytes = order.size() * sizeof(uint32_t);
+    reserveBuffer(order_, orderCapacity_, bytes, 4096);
+    glNamedBufferSubData(order_.get(), 0, GLsizeiptr(bytes), order.data());
+}
+
+void GpuCulling::run(uint32_t count, bool reversedZ, bool clipMinusOne, GlBuffer& visible,
                      size_t& visibleCapacity) {
     const uint32_t groups = std::max<uint32_t>(1, (count + kGroup - 1) / kGroup);
     reserveBuffer(classes_, classesCapacity_, size_t(count) * sizeof(uint32_t), 4096);
-    reserveBuffer(groups_, groupsCapacity_, size_t(groups) * 2 * sizeof(uint32_t), 4096);
+    reserveBuffer(groups_, groupsCapacity_, size_t(groups) * sizeof(uint32_t), 4096);
+    reserveBuffer(order_, orderCapacity_, sizeof(uint32_t), 4096); // bound even when unread
     if (reserveBuffer(visible, visibleCapacity, size_t(count) * sizeof(uint32_t), 4096)) {
         const uint32_t zero = 0; // an earlier draw's count may reach past this run's list (overlays)
         glClearNamedBufferData(visible.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -58,11 +68,13 @@ void GpuCulling::run(uint32_t count, double nearRadius, bool reversedZ, bool cli
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClassesBinding, classes_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGroupsBinding, groups_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDrawsBinding, draws_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOrderBinding, order_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleOutBinding, visible.get());
 
     glUseProgram(classify_.get());
     glUniform1ui(0, count);
-    glUniform4f(1, float(nearRadius * 1.01), reversedZ ? 1.0f : 0.0f, clipMinusOne ? 1.0f : 0.0f, 0.0f);
+    glUniform4f(1, 0.0f, reversedZ ? 1.0f : 0.0f, clipMinusOne ? 1.0f : 0.0f, 0.0f);
+    glUniform1i(2, ordered_ ? 1 : 0);
     glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(scan_.get());
@@ -71,22 +83,20 @@ void GpuCulling::run(uint32_t count, double nearRadius, bool reversedZ, bool cli
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(scatter_.get());
     glUniform1ui(0, count);
+    glUniform1i(2, ordered_ ? 1 : 0);
     glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    glCopyNamedBufferSubData(draws_.get(), readback_.get(), GLintptr(kTotalsOffset), 0,
-                             GLsizeiptr(kTotalsBytes));
+    glCopyNamedBufferSubData(draws_.get(), readback_.get(), GLintptr(kCountOffset), 0, sizeof(uint32_t));
     if (fence_) glDeleteSync(fence_);
     fence_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
 }
 
-glm::uvec2 GpuCulling::totals(bool wait) {
+uint32_t GpuCulling::visibleCount(bool wait) {
     if (!fence_) return latest_;
     const GLenum state =
         glClientWaitSync(fence_, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, wait ? ~GLuint64(0) : 0);
     if (state != GL_ALREADY_SIGNALED && state != GL_CONDITION_SATISFIED) return latest_;
-    uint32_t t[4] = {0, 0, 0, 0};
-    glGetNamedBufferSubData(readback_.get(), 0, sizeof t, t);
-    latest_ = glm::uvec2(t[0], t[1]);
+    glGetNamedBufferSubData(readback_.get(), 0, sizeof latest_, &latest_);
     glDeleteSync(fence_);
     fence_ = nullptr;
     return latest_;

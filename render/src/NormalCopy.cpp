@@ -10,17 +10,15 @@
 namespace spatter::render_detail {
 
 NormalCopyMode normalCopyMode(const DecalVisibility& vis) {
-    if (!vis.inside.empty()) return NormalCopyMode::Viewport;
-    double area = 0.0; // in units of the viewport (NDC spans 2 x 2)
-    for (const glm::vec4& r : vis.outsideRects)
+    double area = 0.0; // in units of the viewport (NDC spans 2 x 2); a box that may hold the eye: 1
+    for (const glm::vec4& r : vis.rects)
         area += double(r.z - r.x) * double(r.w - r.y) / 4.0;
     if (area > 0.25) return NormalCopyMode::Viewport;
-    return vis.outsideRects.size() <= kRectCopyDecals ? NormalCopyMode::Rects : NormalCopyMode::Boxes;
+    return vis.rects.size() <= kRectCopyDecals ? NormalCopyMode::Rects : NormalCopyMode::Boxes;
 }
 
-NormalCopyMode normalCopyMode(glm::uvec2 gpuTotals) {
-    return gpuTotals.y == 0 && gpuTotals.x <= kBoxCopyDecals ? NormalCopyMode::Boxes
-                                                             : NormalCopyMode::Viewport;
+NormalCopyMode normalCopyMode(uint32_t gpuVisible) {
+    return gpuVisible <= kBoxCopyDecals ? NormalCopyMode::Boxes : NormalCopyMode::Viewport;
 }
 
 const char* normalCopyName(NormalCopyMode mode) {
@@ -70,7 +68,7 @@ void NormalCopy::copyViewport(const HostFrame& f) const {
 }
 
 void NormalCopy::copyRects(const HostFrame& f, const DecalVisibility& vis) const {
-    for (const glm::vec4& r : vis.outsideRects) {
+    for (const glm::vec4& r : vis.rects) {
         // Whole pixels around the rectangle, a pixel wider for the decal pass's derivatives.
         const int x0 = std::max(0, int(std::floor((r.x * 0.5f + 0.5f) * float(f.width))) - 1);
         const int y0 = std::max(0, int(std::floor((r.y * 0.5f + 0.5f) * float(f.height))) - 1);

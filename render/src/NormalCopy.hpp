@@ -22,9 +22,9 @@ enum class NormalCopyMode { None, Rects, Boxes, Viewport };
 // about 1 microsecond each) for up to kRectCopyDecals boxes, else Boxes (a draw of the boxes, about
 // 30 microseconds whatever their number). Otherwise Viewport.
 NormalCopyMode normalCopyMode(const DecalVisibility& vis);
-// The same choice for a visible list built on the GPU, from its outside and inside counts (those of
-// an earlier draw): boxes while at most kBoxCopyDecals decals are in view and none may hold the eye.
-NormalCopyMode normalCopyMode(glm::uvec2 gpuTotals);
+// The same choice for a visible list built on the GPU, from its length (that of an earlier draw):
+// Boxes while at most kBoxCopyDecals decals are in view.
+NormalCopyMode normalCopyMode(uint32_t gpuVisible);
 constexpr unsigned kBoxCopyDecals = 1024;
 constexpr size_t kRectCopyDecals = 24;
 
@@ -38,7 +38,7 @@ public:
     void allocate(GLuint hostNormals);
     // Copies the frame's viewport of the host's normals.
     void copyViewport(const HostFrame& f) const;
-    // Copies the screen rectangles (normalised device x, y bounds) of `vis`'s outside boxes.
+    // Copies the screen rectangles (normalised device x, y bounds) of `vis`'s boxes.
     void copyRects(const HostFrame& f, const DecalVisibility& vis) const;
 
     GLuint texture() const { return texture_.get(); }

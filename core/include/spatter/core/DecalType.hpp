@@ -35,6 +35,10 @@ struct DecalType {
     DepthFade depthFade = DepthFade::Smooth;
     bool normalMap = true;   // blend the texture's normal map into the G-buffer normal
     float roughness = -1.0f; // roughness written under the decal; < 0 keeps the surface's
+    // Draw order (Unreal's SortOrder, Unity's draw order): decals of a higher priority draw over those
+    // of a lower one whatever their spawn order; within a priority, newer decals (Decal::spawnTime)
+    // draw over older ones, and decals of the same instant in the order they are given.
+    int priority = 0;
     // Volumetric: instead of the projected texture, a crater model is drawn behind a stencil hole in
     // the surface (Renderer.hpp), with the surface's material continued into it; the decal system
     // clips it where the solid ends around the hit (Decal::clips).
