@@ -196,7 +196,9 @@ struct DecalProjector::Impl {
     }
 
     // Sends changed decal instances and the visible list; returns the bytes sent.
-    size_t uploadDecals(const DecalVisibility& vis) { return uploadInstances() + uploadVisible(vis); }
+    size_t uploadDecals(const DecalVisibility& vis, size_t& uploads) {
+        return uploadInstances(uploads) + uploadVisible(vis);
+    }
 
     // Sends the draw order to the GPU culling when it changed; returns the bytes sent.
     size_t uploadDrawOrder() {
@@ -205,8 +207,8 @@ struct DecalProjector::Impl {
         return batch.indexOrder() ? 0 : batch.drawOrder().size() * sizeof(uint32_t);
     }
 
-    // Sends the decal instances that changed; returns the bytes sent.
-    size_t uploadInstances() {
+    // Sends the decal instances that changed; returns the bytes sent and counts the uploads.
+    size_t uploadInstances(size_t& uploads) {
         size_t bytes = 0;
         const std::vector<DecalGpu>& inst = batch.instances();
         if (reserveBuffer(decalBuffer, decalCapacity, inst.size() * sizeof(DecalGpu),
@@ -214,11 +216,13 @@ struct DecalProjector::Impl {
             glNamedBufferSubData(decalBuffer.get(), 0, GLsizeiptr(inst.size() * sizeof(DecalGpu)),
                                  inst.data());
             bytes += inst.size() * sizeof(DecalGpu);
+            ++uploads;
         } else {
             for (const auto& r : batch.dirty()) {
                 glNamedBufferSubData(decalBuffer.get(), GLintptr(r.first * sizeof(DecalGpu)),
                                      GLsizeiptr((r.second - r.first) * sizeof(DecalGpu)), &inst[r.first]);
                 bytes += (r.second - r.first) * sizeof(DecalGpu);
+                ++uploads;
             }
         }
         batch.markUploaded();
@@ -497,7 +501,7 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
     m.timers.beginFrame(m.draws);
     m.timers.begin(GpuPass::Decals);
     m.uploadFrame(host, camera);
-    stats.bytesUploaded = m.uploadDecals(vis);
+    stats.bytesUploaded = m.uploadDecals(vis, stats.instanceUploads);
     m.bindBuffers();
     ForwardGridGpu head{};
     head.info.y = m.settings.normalFrame == DecalNormalFrame::DepthDerivatives ? 1 : 0;
@@ -567,7 +571,7 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     m.timers.beginFrame(m.draws);
     m.timers.begin(GpuPass::Decals);
     m.uploadFrame(frame, camera);
-    stats.bytesUploaded = m.uploadInstances();
+    stats.bytesUploaded = m.uploadInstances(stats.instanceUploads);
     BoxDraws boxes = cpuDraws(vis);
     if (onGpu) {
         stats.bytesUploaded += m.uploadDrawOrder();
