@@ -6,6 +6,8 @@
 
 #include "spatter/render/GlContext.hpp"
 
+#include <epoxy/gl.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -37,6 +39,9 @@ of them in view, each a square of a fraction of the screen height. Groups of row
   features     1080p, 10,000 decals in view: minimal (no normal map, no fade), default (normal map
                and smooth fade), wrap-around, depth-derivative normal frame, object IDs (a dynamic
                object in the scene), angle rejection off
+  cpu          1080p, 10,000 decals in view among 10,000 and among 1,000,000 in the world: the wall
+               time of render() when it does not wait for the GPU (a glFinish after each frame,
+               outside the time), with the GPU times of an earlier frame
   paths        1080p, 100, 10,000 and 100,000 decals in view, the same decals through spatter's
                renderer and through the projector in a host of its own with the frame layout of
                spatter-example-deferred (24-bit standard Z, RGB10A2 world normals, roughness in
@@ -67,6 +72,7 @@ struct Feature {
     bool depthFrame = false;
     bool ids = false;
     bool angleReject = true;
+    bool wait = true; // render() waits for the frame's GPU times; false: CPU time of render() alone
 };
 
 const std::vector<Feature>& features() {
@@ -77,6 +83,7 @@ const std::vector<Feature>& features() {
         {"depth-frame", true, DepthFade::Smooth, false, true, false, true},
         {"ids", true, DepthFade::Smooth, false, false, true, true},
         {"no-angle", true, DepthFade::Smooth, false, false, false, false},
+        {"no-wait", true, DepthFade::Smooth, false, false, false, true, false},
     };
     return all;
 }
@@ -126,6 +133,9 @@ std::vector<Config> configs(const std::vector<std::string>& groups, bool quick) 
             if (!quick || std::string(f.name) == "minimal" || std::string(f.name) == "default")
                 out.push_back(
                     {"features", "1080p", quick ? 1000u : 10000u, quick ? 1000u : 10000u, 0.015, f.name});
+    if (want("cpu"))
+        for (size_t world : quick ? std::vector<size_t>{1000} : std::vector<size_t>{10000, 1000000})
+            out.push_back({"cpu", "1080p", world, std::min<size_t>(world, 10000), 0.015, "no-wait"});
     if (want("paths"))
         for (size_t n : quick ? std::vector<size_t>{100, 1000} : std::vector<size_t>{100, 10000, 100000})
             for (const char* path : {"renderer", "blend", "dbuffer", "forward"})
@@ -166,12 +176,12 @@ public:
         if (!resolutionByName(c.resolution, row.width, row.height))
             return fail("unknown resolution " + c.resolution);
         const Feature& f = feature(c.feature);
-        const int slot = f.depthFrame ? 1 : 0;
+        const int slot = !f.wait ? 2 : f.depthFrame ? 1 : 0;
         if (!renderers_[slot]) {
             RendererSettings rs;
             rs.width = row.width;
             rs.height = row.height;
-            rs.waitForTimers = true;
+            rs.waitForTimers = f.wait;
             rs.normalFrame = f.depthFrame ? DecalNormalFrame::DepthDerivatives : DecalNormalFrame::DecalAxes;
             Result<Renderer> r = Renderer::create(*context_, rs);
             if (!r) return fail(r.error());
@@ -206,10 +216,34 @@ public:
         }
         RenderOptions options;
         options.decals.angleReject = f.angleReject;
-        Result<FrameTimes> t = timeFrames(r, view.camera, options, 1, frames, maxSeconds);
+        Result<FrameTimes> t = f.wait ? timeFrames(r, view.camera, options, 1, frames, maxSeconds)
+                                      : cpuFrames(r, view.camera, options, frames);
         if (!t) return fail(t.error());
         row.times = t.value();
         return row;
+    }
+
+    // render()'s wall time without waiting for the GPU: each frame is finished outside the time.
+    static Result<FrameTimes> cpuFrames(Renderer& r, const Camera& camera, const RenderOptions& options,
+                                        size_t frames) {
+        FrameTimes t;
+        std::vector<double> cpu;
+        for (size_t i = 0; i < frames + 1; ++i) { // the first frame warms up
+            const double start = now();
+            Result<FrameStats> s = r.render(camera, options);
+            const double ms = 1e3 * (now() - start);
+            if (!s) return fail(s.error());
+            glFinish();
+            if (i == 0) continue;
+            cpu.push_back(ms);
+            t.last = s.value();
+            t.decalsMs = s->gpu.decalsMs; // of an earlier frame
+            t.geometryMs = s->gpu.geometryMs;
+            t.lightingMs = s->gpu.lightingMs;
+        }
+        t.frames = cpu.size();
+        t.cpuMs = median(cpu);
+        return t;
     }
 
 private:
@@ -288,9 +322,9 @@ private:
     glm::ivec2 pathSize_{0};
     std::optional<DecalProjector> projector_;
     std::tuple<size_t, size_t, double> projectorKey_;
-    std::optional<Renderer> renderers_[2];
-    int sceneIds_[2] = {-1, -1};
-    std::tuple<size_t, size_t, double> decalsKey_[2];
+    std::optional<Renderer> renderers_[3]; // waiting for GPU times, with the depth frame, not waiting
+    int sceneIds_[3] = {-1, -1, -1};
+    std::tuple<size_t, size_t, double> decalsKey_[3];
 };
 
 Json rowJson(const Row& r) {
@@ -414,7 +448,7 @@ int runRenderCommand(int argc, char** argv) {
         for (size_t a = 0, b; (b = list.find(',', a)) != std::string::npos; a = b + 1) {
             const std::string g = list.substr(a, b - a);
             if (g != "count" && g != "visible" && g != "coverage" && g != "resolution" && g != "features" &&
-                g != "paths")
+                g != "paths" && g != "cpu")
                 return usageError(kCommand, "unknown group '" + g + "'");
             groups.push_back(g);
         }
