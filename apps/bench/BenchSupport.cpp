@@ -205,7 +205,7 @@ Result<InputMesh> loadInputMesh(const std::string& spec, int loopSteps) {
     Result<Scene> scene = loadScene(path);
     if (!scene) return fail(scene.error());
     InputMesh in;
-    in.source = path;
+    in.source = spec; // as given: reports name what was asked for, not where this machine keeps it
     in.name = path.compare(0, 8, "builtin:") == 0 ? path.substr(8) : fs::path(path).stem().string();
     in.mesh = mergeReceivers(scene.value());
     if (in.mesh.triangleCount() == 0) return fail("'" + path + "' has no triangles that receive decals");

@@ -104,7 +104,7 @@ Mesh mergeReceivers(const Scene& scene);
 // then subdivided `loopSteps` times (loopSubdivide). `name` is a short label: the file stem, plus "-loopN".
 struct InputMesh {
     std::string name;
-    std::string source;
+    std::string source; // `spec` as given
     Mesh mesh;
     double diagonal = 0.0; // of the referenced vertices
     size_t droppedFaces = 0;

@@ -1,5 +1,7 @@
 #include "PathHost.hpp"
 
+#include "GlHelpers.hpp"
+
 #include <epoxy/gl.h>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -95,45 +97,6 @@ void main() {
     o_color = vec4(shade(albedo.rgb, n, roughness), 1.0);
 }
 )";
-
-GLuint compileStage(GLenum stage, const std::string& text, std::string& log) {
-    const GLuint s = glCreateShader(stage);
-    const char* src = text.c_str();
-    glShaderSource(s, 1, &src, nullptr);
-    glCompileShader(s);
-    GLint ok = GL_FALSE;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        std::array<char, 2048> text2{};
-        glGetShaderInfoLog(s, GLsizei(text2.size()), nullptr, text2.data());
-        log += text2.data();
-    }
-    return s;
-}
-
-Result<GLuint> link(const std::string& vert, const std::string& frag) {
-    std::string log;
-    const GLuint vs = compileStage(GL_VERTEX_SHADER, vert, log),
-                 fs = compileStage(GL_FRAGMENT_SHADER, frag, log);
-    const GLuint program = glCreateProgram();
-    glAttachShader(program, vs);
-    glAttachShader(program, fs);
-    glLinkProgram(program);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint linked = GL_FALSE;
-    glGetProgramiv(program, GL_LINK_STATUS, &linked);
-    if (linked) return program;
-    glDeleteProgram(program);
-    return fail("bench host: a program does not build: " + log);
-}
-
-GLuint texture(GLenum format, int w, int h) {
-    GLuint t = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &t);
-    glTextureStorage2D(t, 1, format, w, h);
-    return t;
-}
 
 GLuint framebuffer(const std::vector<GLuint>& colours, GLuint depth) {
     GLuint fbo = 0;
@@ -325,12 +288,14 @@ Result<PathHost> PathHost::create(int width, int height) {
     if (!forward) return fail(forward.error());
     if (!dbuffer) return fail(dbuffer.error());
     const std::string head = "#version 450 core\n";
-    Result<GLuint> geometry = link(kGeometryVert, kGeometryFrag);
-    Result<GLuint> forwardProgram = link(kGeometryVert, head + forward.value() + kShade + kForwardFrag);
-    Result<GLuint> plainForward = link(kGeometryVert, head + kShade + kPlainForwardFrag);
-    Result<GLuint> lighting = link(kFullscreenVert, head + dbuffer.value() + kShade + kLightingFrag);
-    Result<GLuint> dbufferLighting =
-        link(kFullscreenVert, head + "#define DBUFFER 1\n" + dbuffer.value() + kShade + kLightingFrag);
+    Result<GLuint> geometry = example::linkProgram(kGeometryVert, kGeometryFrag);
+    Result<GLuint> forwardProgram =
+        example::linkProgram(kGeometryVert, head + forward.value() + kShade + kForwardFrag);
+    Result<GLuint> plainForward = example::linkProgram(kGeometryVert, head + kShade + kPlainForwardFrag);
+    Result<GLuint> lighting =
+        example::linkProgram(kFullscreenVert, head + dbuffer.value() + kShade + kLightingFrag);
+    Result<GLuint> dbufferLighting = example::linkProgram(
+        kFullscreenVert, head + "#define DBUFFER 1\n" + dbuffer.value() + kShade + kLightingFrag);
     for (const Result<GLuint>* p : {&geometry, &forwardProgram, &plainForward, &lighting, &dbufferLighting})
         if (!*p) return fail(p->error());
     m->geometry = geometry.value();
@@ -338,11 +303,11 @@ Result<PathHost> PathHost::create(int width, int height) {
     m->plainForward = plainForward.value();
     m->lighting = lighting.value();
     m->dbufferLighting = dbufferLighting.value();
-    m->depth = texture(GL_DEPTH_COMPONENT24, width, height);
-    m->albedo = texture(GL_RGBA8, width, height);
-    m->normal = texture(GL_RGB10_A2, width, height);
-    m->ids = texture(GL_R8UI, width, height);
-    m->color = texture(GL_RGBA8, width, height);
+    m->depth = example::texture(GL_DEPTH_COMPONENT24, width, height);
+    m->albedo = example::texture(GL_RGBA8, width, height);
+    m->normal = example::texture(GL_RGB10_A2, width, height);
+    m->ids = example::texture(GL_R8UI, width, height);
+    m->color = example::texture(GL_RGBA8, width, height);
     m->gbufferFbo = framebuffer({m->albedo, m->normal, m->ids}, m->depth);
     m->colorFbo = framebuffer({m->color}, m->depth);
     glCreateVertexArrays(1, &m->emptyVao);
