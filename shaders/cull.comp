@@ -21,11 +21,6 @@ layout(std430, binding = 6) readonly buffer DrawOrder {
 
 shared uint sVisible;
 
-// Whether decal record `d` can be drawn: invalid records are zero.
-bool validRecord(DecalData d) {
-    return d.boxToObject[0] != vec4(0.0) || d.boxToObject[1] != vec4(0.0) || d.boxToObject[2] != vec4(0.0);
-}
-
 // Whether the box, corner by corner in clip space, lies beyond one of the view's planes.
 bool outsideFrustum(DecalData d, ProjectorObject o) {
     int beyond[6] = int[6](0, 0, 0, 0, 0, 0);
@@ -49,8 +44,11 @@ bool outsideFrustum(DecalData d, ProjectorObject o) {
 }
 
 uint classify(uint i) {
-    DecalData d = decals[i];
-    if (!validRecord(d)) return 0u;
+    DecalRecord r = decalRecords[i];
+    if (!decalRecordValid(r) || decalTypeIndex(r) >= uint(decalTypes.length()) ||
+        decalTypes[decalTypeIndex(r)].info.z == 0u || float(r.info.x) >= u_params.y)
+        return 0u; // a degenerate box, or a type or object that cannot be drawn
+    DecalData d = unpackDecal(r);
     ProjectorObject o = objects[d.info.x];
     return o.info.z != 0u || outsideFrustum(d, o) ? 0u : 1u; // collapsed object, or out of view
 }

@@ -18,7 +18,7 @@ const int kCubeIndices[36] = int[36](0, 4, 6, 0, 6, 2,  1, 3, 7, 1, 7, 5,  0, 1,
                                      2, 6, 7, 2, 7, 3,  0, 2, 3, 0, 3, 1,  4, 5, 7, 4, 7, 6);
 
 void main() {
-    DecalData d = decals[visibleDecals[uint(gl_InstanceID)]];
+    DecalData d = decalData(visibleDecals[uint(gl_InstanceID)]);
     ProjectorObject o = objects[d.info.x];
 
     int corner = kCubeIndices[gl_VertexID];

@@ -18,7 +18,7 @@ layout(std430, binding = 2) buffer TileCounts {
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= u_count) return;
-    DecalData d = decals[visibleDecals[i]];
+    DecalData d = decalData(visibleDecals[i]);
     WorldDecal w = worldDecal(d, objects[d.info.x]);
     SpatterForwardDecal f;
     f.worldToBox = w.worldToBox;

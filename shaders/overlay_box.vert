@@ -13,12 +13,12 @@ void main() {
     // With culling on the GPU the count drawn may be an earlier frame's: an entry past this frame's
     // list may name a decal that is gone.
     uint index = visibleDecals[uint(gl_InstanceID)];
-    if (index >= uint(decals.length())) {
+    if (index >= uint(decalRecords.length())) {
         gl_Position = vec4(0.0, 0.0, 2.0, 1.0); // outside the clip volume: nothing drawn
         v_color = vec3(0.0);
         return;
     }
-    DecalData d = decals[index];
+    DecalData d = decalData(index);
     ObjectData o = objects[d.info.x];
     int corner = kEdgeCorners[gl_VertexID];
     vec4 local = vec4((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0,

@@ -14,7 +14,7 @@ layout(std140, binding = 0) uniform ProjectorFrame {
     mat4 u_invView;       // view -> camera-relative world
     mat4 u_invProjection; // clip -> view
     vec4 u_viewport;      // x, y of the host's viewport, 1 / width, 1 / height
-    vec4 u_params;        // x: fade start (fraction of the half-depth)
+    vec4 u_params;        // x: fade start (fraction of the half-depth); y: object count
 };
 
 struct ProjectorObject {

@@ -27,7 +27,7 @@ layout(location = 0) out vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
 
 void main() {
-    DecalData d = decals[v_decal];
+    DecalData d = decalData(v_decal);
     vec4 ph = vec4(v_position, 1.0);
     vec3 box = vec3(dot(d.objectToBox[0], ph), dot(d.objectToBox[1], ph), dot(d.objectToBox[2], ph));
     vec3 n = normalize(v_normal);

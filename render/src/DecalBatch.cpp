@@ -9,19 +9,6 @@ namespace spatter::render_detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-bool finite(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-bool finite(const glm::vec4& v) {
-    return finite(glm::vec3(v)) && std::isfinite(v.w);
-}
-
-glm::dmat4 boxToObject(const Decal& d) {
-    return glm::dmat4(d.boxToObject());
-}
-
 void addDirty(std::vector<std::pair<size_t, size_t>>& dirty, size_t begin, size_t end) {
     // Ranges arrive in increasing order; join those closer than a few instances.
     if (!dirty.empty() && begin <= dirty.back().second + 4) {
@@ -57,78 +44,36 @@ void DecalBatch::setObjectCount(size_t objectCount) {
     rebuild();
 }
 
-bool DecalBatch::build(const Decal& d, DecalGpu& out) const {
-    out = DecalGpu{};
-    if (d.object >= objectCount_ || d.type >= types_.size()) return false;
-    const DecalType& type = types_[d.type];
-    if (!finite(d.frame.tangent) || !finite(d.frame.bitangent) || !finite(d.frame.normal) ||
-        !finite(d.center) || !std::isfinite(d.size.x) || !std::isfinite(d.size.y) ||
-        !std::isfinite(d.halfDepth) || !std::isfinite(d.opacity))
-        return false;
-    // Denormal extents cannot be inverted into a box transform: treat them like zero.
-    constexpr float kMinExtent = std::numeric_limits<float>::min();
-    if (!(d.size.x >= kMinExtent) || !(d.size.y >= kMinExtent) || !(d.halfDepth >= kMinExtent)) return false;
-    if (type.texture < 0 || type.texture >= layerCount_ || !finite(type.tint) ||
-        !std::isfinite(type.maxAngleDeg) || !std::isfinite(type.roughness))
-        return false;
-    const double lt = glm::length(glm::dvec3(d.frame.tangent)),
-                 lb = glm::length(glm::dvec3(d.frame.bitangent)),
-                 ln = glm::length(glm::dvec3(d.frame.normal));
-    if (!(lt > 1e-6 && lb > 1e-6 && ln > 1e-6)) return false;
-
-    const glm::dmat4 b2o = boxToObject(d);
-    const double det = glm::determinant(glm::dmat3(b2o));
-    const double scale = lt * lb * ln * double(d.size.x) * double(d.size.y) * double(d.halfDepth) * 0.25;
-    if (!(std::fabs(det) > 1e-9 * scale) || !std::isfinite(det)) return false;
-    const glm::dmat4 o2b = glm::inverse(b2o);
-    for (int r = 0; r < 3; ++r) {
-        out.boxToObject[r] =
-            glm::vec4(float(b2o[0][r]), float(b2o[1][r]), float(b2o[2][r]), float(b2o[3][r]));
-        out.objectToBox[r] =
-            glm::vec4(float(o2b[0][r]), float(o2b[1][r]), float(o2b[2][r]), float(o2b[3][r]));
-    }
-    out.tangent = glm::vec4(glm::vec3(glm::dvec3(d.frame.tangent) / lt), float(0.5 * double(d.size.x) * lt));
-    out.bitangent =
-        glm::vec4(glm::vec3(glm::dvec3(d.frame.bitangent) / lb), float(0.5 * double(d.size.y) * lb));
-    out.normal = glm::vec4(glm::vec3(glm::dvec3(d.frame.normal) / ln), float(double(d.halfDepth) * ln));
-    out.tint = glm::vec4(glm::vec3(type.tint), type.tint.w * std::clamp(d.opacity, 0.0f, 1.0f));
-
-    uint32_t flags = 0;
-    if (type.wrapAround) flags |= kDecalWrap;
-    if (type.normalMap) flags |= kDecalNormalMap;
-    if (type.depthFade == DepthFade::Linear) flags |= kDecalFadeLinear;
-    if (type.depthFade == DepthFade::Smooth) flags |= kDecalFadeSmooth;
-    if (type.roughness >= 0.0f) flags |= kDecalRoughness;
-    if (det < 0.0) flags |= kDecalMirrored;
-    out.info = glm::uvec4(d.object, d.objectId, uint32_t(type.texture), flags);
-
-    double angle = std::clamp(double(type.maxAngleDeg), 0.0, 180.0);
-    if (type.wrapAround) angle = std::max(angle, std::clamp(double(wrapMaxAngleDeg_), 0.0, 180.0));
-    out.params =
-        glm::vec4(float(std::cos(angle * kPi / 180.0)), std::clamp(type.roughness, 0.0f, 1.0f), 0.0f, 0.0f);
-    return true;
+bool DecalBatch::build(const Decal& d, DecalRecordGpu& out) const {
+    const bool sound = buildDecalRecord(d, out);
+    return sound && d.object < objectCount_ && d.type < typeRecords_.size() &&
+           typeRecords_[d.type].info.z != 0;
 }
 
 void DecalBatch::rebuild() {
-    std::vector<DecalGpu> next(decals_.size());
+    typeRecords_.clear();
+    for (const DecalType& t : types_)
+        typeRecords_.push_back(buildDecalType(t, wrapMaxAngleDeg_, layerCount_));
+    std::vector<DecalRecordGpu> next(decals_.size());
     valid_.assign(decals_.size(), 0);
     invalid_ = 0;
     flagsUnion_ = 0;
     for (size_t i = 0; i < decals_.size(); ++i) {
         valid_[i] = build(decals_[i], next[i]) ? 1 : 0;
         invalid_ += valid_[i] ? 0 : 1;
-        flagsUnion_ |= next[i].info.w;
+        if (valid_[i]) flagsUnion_ |= flags(next[i]);
     }
     // Only instances whose bytes changed (or are new) need uploading.
     const size_t common = std::min(next.size(), gpu_.size());
     size_t i = 0;
     while (i < next.size()) {
-        if (i < common && std::memcmp(&next[i], &gpu_[i], sizeof(DecalGpu)) == 0) {
+        if (i < common && std::memcmp(&next[i], &gpu_[i], sizeof(DecalRecordGpu)) == 0) {
             ++i;
             continue;
         }
         size_t j = i + 1;
-        while (j < next.size() && !(j < common && std::memcmp(&next[j], &gpu_[j], sizeof(DecalGpu)) == 0))
+        while (j < next.size() &&
+               !(j < common && std::memcmp(&next[j], &gpu_[j], sizeof(DecalRecordGpu)) == 0))
             ++j;
         addDirty(dirty_, i, j);
         i = j;
@@ -182,9 +127,9 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
     }
     for (const uint32_t i : order_) {
         if (!valid_[i]) continue;
-        const Decal& d = decals_[i];
-        if (d.object >= objectTransforms.size() || collapsed[d.object]) continue;
-        const glm::dmat4 boxToWorld = objectTransforms[d.object] * boxToObject(d);
+        const uint32_t object = gpu_[i].info.x;
+        if (object >= objectTransforms.size() || collapsed[object]) continue;
+        const glm::dmat4 boxToWorld = objectTransforms[object] * recordBoxToObject(gpu_[i]);
 
         // Frustum: the box is outside when all eight corners lie beyond one clip plane.
         int outside[6] = {0, 0, 0, 0, 0, 0};
@@ -224,7 +169,7 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
         }
         vis.visible.push_back(i);
         vis.inside += inside ? 1 : 0;
-        vis.flags |= gpu_[i].info.w;
+        vis.flags |= flags(gpu_[i]);
         if (view.rects)
             vis.rects.push_back(behind || inside ? glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f)
                                                  : glm::vec4(glm::clamp(rect, -1.0, 1.0)));

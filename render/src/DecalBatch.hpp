@@ -5,7 +5,7 @@
 // spawn time, then index), and per frame culls the boxes against the view into the visible list,
 // in draw order, noting the boxes that may hold the eye.
 
-#include "GpuLayouts.hpp"
+#include "DecalRecord.hpp"
 
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalType.hpp"
@@ -61,7 +61,13 @@ public:
     bool takeOrderChange() { return std::exchange(orderChanged_, false); }
     // Whether instance i can be drawn (invalid instances are zero).
     bool valid(size_t i) const { return i < valid_.size() && valid_[i] != 0; }
-    const std::vector<DecalGpu>& instances() const { return gpu_; }
+    const std::vector<DecalRecordGpu>& instances() const { return gpu_; }
+    // The types as the shaders read them (one entry per type given to setTypes).
+    const std::vector<DecalTypeGpu>& typeRecords() const { return typeRecords_; }
+    // The DecalFlag bits of a valid record: its type's and its own.
+    uint32_t flags(const DecalRecordGpu& r) const {
+        return typeRecords_[recordType(r)].info.y | recordFlags(r);
+    }
     // Ranges [begin, end) of instances() changed since markUploaded().
     const std::vector<std::pair<size_t, size_t>>& dirty() const { return dirty_; }
     void markUploaded() { dirty_.clear(); }
@@ -74,7 +80,7 @@ private:
     void rebuild();
     void sortDrawOrder();
     // The instance of decal i, or nothing (zero, invalid) when it cannot be drawn.
-    bool build(const Decal& d, DecalGpu& out) const;
+    bool build(const Decal& d, DecalRecordGpu& out) const;
 
     float wrapMaxAngleDeg_ = 120.0f;
     int layerCount_ = 0;
@@ -82,7 +88,8 @@ private:
     std::vector<DecalType> types_;
     std::vector<Decal> decals_;
     std::vector<uint8_t> valid_;
-    std::vector<DecalGpu> gpu_;
+    std::vector<DecalRecordGpu> gpu_;
+    std::vector<DecalTypeGpu> typeRecords_;
     std::vector<std::pair<size_t, size_t>> dirty_;
     size_t invalid_ = 0;
     uint32_t flagsUnion_ = 0;

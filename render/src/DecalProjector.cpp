@@ -124,7 +124,8 @@ struct DecalProjector::Impl {
     std::vector<glm::dmat4> transforms;
     std::vector<uint8_t> ids;
 
-    GlBuffer frameBuffer, objectBuffer, decalBuffer, visibleBuffer;
+    GlBuffer frameBuffer, objectBuffer, decalBuffer, visibleBuffer, typeBuffer;
+    bool typesChanged = true;
     size_t objectCapacity = 0, decalCapacity = 0, visibleCapacity = 0, visibleCount = 0;
     GlVertexArray emptyVao;
     GlFramebuffer fbo;
@@ -174,7 +175,7 @@ struct DecalProjector::Impl {
         g.invView = glm::mat4(glm::inverse(c.view));
         g.invProjection = glm::mat4(glm::inverse(f.projection));
         g.viewport = glm::vec4(float(f.x), float(f.y), 1.0f / float(f.width), 1.0f / float(f.height));
-        g.params = glm::vec4(settings.fadeStart, 0.0f, 0.0f, 0.0f);
+        g.params = glm::vec4(settings.fadeStart, float(transforms.size()), 0.0f, 0.0f);
         glNamedBufferSubData(frameBuffer.get(), 0, sizeof g, &g);
 
         std::vector<ProjectorObjectGpu> objects(std::max<size_t>(1, transforms.size()));
@@ -207,21 +208,33 @@ struct DecalProjector::Impl {
         return batch.indexOrder() ? 0 : batch.drawOrder().size() * sizeof(uint32_t);
     }
 
-    // Sends the decal instances that changed; returns the bytes sent and counts the uploads.
+    // Sends the decal types when they changed; returns the bytes sent.
+    size_t uploadTypes() {
+        if (!std::exchange(typesChanged, false) && typeBuffer) return 0;
+        std::vector<DecalTypeGpu> records = batch.typeRecords();
+        if (records.empty()) records.emplace_back(); // a buffer of one type that cannot be drawn
+        const size_t bytes = records.size() * sizeof(DecalTypeGpu);
+        typeBuffer = createBuffer(); // sized exactly: the shaders take its length as the type count
+        glNamedBufferStorage(typeBuffer.get(), GLsizeiptr(bytes), records.data(), 0);
+        return bytes;
+    }
+
+    // Sends the decal instances (and types) that changed; returns the bytes sent and counts the uploads.
     size_t uploadInstances(size_t& uploads) {
-        size_t bytes = 0;
-        const std::vector<DecalGpu>& inst = batch.instances();
-        if (reserveBuffer(decalBuffer, decalCapacity, inst.size() * sizeof(DecalGpu),
-                          64 * sizeof(DecalGpu))) {
-            glNamedBufferSubData(decalBuffer.get(), 0, GLsizeiptr(inst.size() * sizeof(DecalGpu)),
+        size_t bytes = uploadTypes();
+        const std::vector<DecalRecordGpu>& inst = batch.instances();
+        if (reserveBuffer(decalBuffer, decalCapacity, inst.size() * sizeof(DecalRecordGpu),
+                          64 * sizeof(DecalRecordGpu))) {
+            glNamedBufferSubData(decalBuffer.get(), 0, GLsizeiptr(inst.size() * sizeof(DecalRecordGpu)),
                                  inst.data());
-            bytes += inst.size() * sizeof(DecalGpu);
+            bytes += inst.size() * sizeof(DecalRecordGpu);
             ++uploads;
         } else {
             for (const auto& r : batch.dirty()) {
-                glNamedBufferSubData(decalBuffer.get(), GLintptr(r.first * sizeof(DecalGpu)),
-                                     GLsizeiptr((r.second - r.first) * sizeof(DecalGpu)), &inst[r.first]);
-                bytes += (r.second - r.first) * sizeof(DecalGpu);
+                glNamedBufferSubData(decalBuffer.get(), GLintptr(r.first * sizeof(DecalRecordGpu)),
+                                     GLsizeiptr((r.second - r.first) * sizeof(DecalRecordGpu)),
+                                     &inst[r.first]);
+                bytes += (r.second - r.first) * sizeof(DecalRecordGpu);
                 ++uploads;
             }
         }
@@ -333,6 +346,7 @@ struct DecalProjector::Impl {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorObjectBuffer, objectBuffer.get());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorDecalBuffer, decalBuffer.get());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorVisibleBuffer, visibleBuffer.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalTypeBuffer, typeBuffer.get());
     }
 
     // Roughness in an alpha channel: the same boxes again, into that texture alone, with dual-source
@@ -431,6 +445,7 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
 
 void DecalProjector::setDecalTypes(const std::vector<DecalType>& types) {
     impl_->batch.setTypes(types);
+    impl_->typesChanged = true;
 }
 
 void DecalProjector::setDecals(const std::vector<Decal>& decals) {
@@ -455,6 +470,7 @@ Result<int> DecalProjector::addDecalTexture(const Image& albedo, const Image& no
     GlStateGuard guard;
     Result<int> layer = impl_->textures.add(albedo, normalMap);
     if (layer) impl_->batch.configure(impl_->settings.wrapMaxAngleDeg, impl_->textures.layers());
+    impl_->typesChanged = impl_->typesChanged || layer;
     return layer;
 }
 
@@ -606,6 +622,7 @@ ProjectorResources DecalProjector::resources() const {
     r.albedoLayers = m.textures.albedoTexture();
     r.normalLayers = m.textures.normalTexture();
     r.decals = m.decalBuffer.get();
+    r.types = m.typeBuffer.get();
     r.visible = m.visibleBuffer.get();
     r.objects = m.objectBuffer.get();
     r.visibleCount = m.visibleCount;

@@ -89,22 +89,26 @@ GlStateGuard::~GlStateGuard() {
         glBindSampler(GLuint(i), GLuint(sampler_[size_t(i)]));
     }
     glActiveTexture(GLenum(activeTexture_));
-    auto rebind = [](GLenum target, GLuint index, const IndexedBuffer& b) {
-        if (b.buffer != 0 && b.size > 0)
-            glBindBufferRange(target, index, GLuint(b.buffer), GLintptr(b.start), GLsizeiptr(b.size));
+    // A buffer deleted meanwhile (one of the projector's, which the host had bound, and which grew) is
+    // unbound, as GL itself unbinds a buffer deleted while bound.
+    auto alive = [](GLint name) { return name != 0 && glIsBuffer(GLuint(name)) ? GLuint(name) : 0u; };
+    auto rebind = [&](GLenum target, GLuint index, const IndexedBuffer& b) {
+        const GLuint name = alive(b.buffer);
+        if (name != 0 && b.size > 0)
+            glBindBufferRange(target, index, name, GLintptr(b.start), GLsizeiptr(b.size));
         else
-            glBindBufferBase(target, index, GLuint(b.buffer));
+            glBindBufferBase(target, index, name);
     };
     for (int i = 0; i < kUniformBindings; ++i)
         rebind(GL_UNIFORM_BUFFER, GLuint(i), uniform_[size_t(i)]);
     for (int i = 0; i < kStorageBindings; ++i)
         rebind(GL_SHADER_STORAGE_BUFFER, GLuint(i), storage_[size_t(i)]);
     // The generic bindings last: binding a range also sets them.
-    glBindBuffer(GL_UNIFORM_BUFFER, GLuint(uniformBuffer_));
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, GLuint(storageBuffer_));
-    glBindBuffer(GL_ARRAY_BUFFER, GLuint(arrayBuffer_));
-    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, GLuint(unpackBuffer_));
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, GLuint(indirectBuffer_));
+    glBindBuffer(GL_UNIFORM_BUFFER, alive(uniformBuffer_));
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, alive(storageBuffer_));
+    glBindBuffer(GL_ARRAY_BUFFER, alive(arrayBuffer_));
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, alive(unpackBuffer_));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, alive(indirectBuffer_));
     for (int i = 0; i < kDrawBuffers; ++i) {
         const Blend& b = blend_[size_t(i)];
         const auto index = GLuint(i);

@@ -14,9 +14,11 @@ enum Binding : uint32_t {
     kMaterialBuffer = 2,
     kDecalBuffer = 3,
     kVisibleBuffer = 4,
+    kDecalTypeBuffer = 8,
 };
 
-// Decal flags (DecalGpu::info.w), as SPATTER_DECAL_* in shaders/decal_flags.glsl.
+// Decal flags (DecalTypeGpu::info.y; kDecalMirrored in DecalRecordGpu::info.y >> 24), as SPATTER_DECAL_* in
+// shaders/decal_flags.glsl.
 enum DecalFlag : uint32_t {
     kDecalWrap = 1u,
     kDecalNormalMap = 2u,
@@ -60,19 +62,22 @@ struct alignas(16) MaterialGpu {
 };
 static_assert(sizeof(MaterialGpu) == 48, "MaterialGpu must match MaterialData (std430)");
 
-// std430, binding kDecalBuffer, one per decal given to the renderer (invalid ones stay zero and
-// are never drawn). Object-space data only, so it changes only when the decal or its type does;
-// the camera-relative world-to-box transform is composed in the vertex shader with the object's.
-struct alignas(16) DecalGpu {
-    glm::vec4 objectToBox[3]; // rows: object space -> unit box [-1, 1]^3
-    glm::vec4 boxToObject[3]; // rows: unit box -> object space
-    glm::vec4 tangent;        // xyz: object-space unit tangent; w: half width
-    glm::vec4 bitangent;      // xyz: unit bitangent; w: half height
-    glm::vec4 normal;         // xyz: unit normal (decal axis); w: half depth
-    glm::vec4 tint;           // rgb: tint; a: tint alpha * opacity
-    glm::uvec4 info;          // x: object index, y: object decal ID, z: texture layer, w: DecalFlag bits
-    glm::vec4 params;         // x: cosine of the largest accepted angle, y: roughness written
+// std430, binding kDecalBuffer: one decal (DecalRecord in decal_data.glsl). Object-space data only,
+// so it changes only when the decal does; the camera-relative world-to-box transform is composed in
+// the shaders with the object's, and the rest of the decal's look comes from its type (DecalTypeGpu).
+struct alignas(16) DecalRecordGpu {
+    glm::vec4 objectToBox[3]; // rows: object space -> unit box; all zero: not drawable
+    glm::uvec4 info;          // x: object index; y: type (bits 0-15), object decal ID (16-23),
+                              // kDecalMirrored << 24; z: opacity (float bits); w: decal ID
 };
-static_assert(sizeof(DecalGpu) == 192, "DecalGpu must match DecalData (std430)");
+static_assert(sizeof(DecalRecordGpu) == 64, "DecalRecordGpu must match DecalRecord (std430)");
+
+// std430, binding kDecalTypeBuffer: one per decal type (DecalTypeRecord in decal_data.glsl).
+struct alignas(16) DecalTypeGpu {
+    glm::vec4 tint;   // rgb; a: alpha
+    glm::uvec4 info;  // x: texture layer; y: DecalFlag bits; z: 1 when decals of the type can be drawn
+    glm::vec4 params; // x: cosine of the largest accepted angle; y: roughness written
+};
+static_assert(sizeof(DecalTypeGpu) == 48, "DecalTypeGpu must match DecalTypeRecord (std430)");
 
 } // namespace spatter::render_detail

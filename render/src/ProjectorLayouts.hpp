@@ -1,6 +1,6 @@
 #pragma once
 // C++ mirrors of the projector's GLSL blocks in shaders/projector.glsl and forward_data.glsl (the
-// decal instances are DecalGpu, GpuLayouts.hpp). Field order, types and padding match the std140 / std430
+// decal records are DecalRecordGpu, GpuLayouts.hpp). Field order, types and padding match the std140 / std430
 // rules; the static_asserts keep both sides in step.
 
 #include <cstdint>

@@ -111,7 +111,7 @@ struct Renderer::Impl {
     std::vector<Decal> pendingSplats;
     std::vector<std::unordered_set<uint64_t>> splatted; // keys of the decals splatted per object
     size_t decalsTextureSpace = 0;
-    GlBuffer splatBuffer, splatLists;
+    GlBuffer splatBuffer, splatTypes, splatLists;
 
     GlProgram geometryProgram, lightingProgram, viewProgram;
     GlProgram meshOverlayProgram, boxOverlayProgram; // built on first use
@@ -150,6 +150,7 @@ struct Renderer::Impl {
         const ProjectorResources decals = projector->resources();
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBuffer, decals.decals);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBuffer, decals.visible);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalTypeBuffer, decals.types);
     }
 
     GLuint idTexture() const { return gbuffer.hasIds() ? gbuffer.ids() : zeroIds.get(); }
@@ -361,7 +362,7 @@ struct Renderer::Impl {
         pendingSplats.clear();
         invalid = splatBatch.invalidCount();
         std::vector<std::vector<uint32_t>> perObject(transforms.size());
-        const std::vector<DecalGpu>& inst = splatBatch.instances();
+        const std::vector<DecalRecordGpu>& inst = splatBatch.instances();
         for (size_t i = 0; i < inst.size(); ++i)
             if (splatBatch.valid(i)) perObject[inst[i].info.x].push_back(uint32_t(i));
         std::vector<uint32_t> lists;
@@ -369,13 +370,20 @@ struct Renderer::Impl {
             lists.insert(lists.end(), l.begin(), l.end());
         if (lists.empty()) return size_t(0);
         splatBuffer = createBuffer();
-        glNamedBufferStorage(splatBuffer.get(), GLsizeiptr(inst.size() * sizeof(DecalGpu)), inst.data(), 0);
+        glNamedBufferStorage(splatBuffer.get(), GLsizeiptr(inst.size() * sizeof(DecalRecordGpu)), inst.data(),
+                             0);
+        const std::vector<DecalTypeGpu>& typeRecords = splatBatch.typeRecords();
+        splatTypes = createBuffer();
+        glNamedBufferStorage(splatTypes.get(), GLsizeiptr(typeRecords.size() * sizeof(DecalTypeGpu)),
+                             typeRecords.data(), 0);
         splatLists = createBuffer();
         glNamedBufferStorage(splatLists.get(), GLsizeiptr(lists.size() * sizeof(uint32_t)), lists.data(), 0);
         splatBatch.markUploaded();
-        Result<size_t> n = textureSpace.splat(
-            perObject, scene, splatBuffer.get(), splatLists.get(), projector->resources().albedoLayers,
-            projector->resources().normalLayers, settings.fadeStart, drawCalls);
+        Result<size_t> n =
+            textureSpace.splat(perObject, scene,
+                               {splatBuffer.get(), splatTypes.get(), splatLists.get(),
+                                projector->resources().albedoLayers, projector->resources().normalLayers},
+                               settings.fadeStart, drawCalls);
         splatBatch.setDecals({}, transforms.size());
         return n;
     }

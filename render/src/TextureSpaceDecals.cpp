@@ -148,8 +148,7 @@ void TextureSpaceDecals::dilate(Layer& layer, size_t& drawCalls) {
 }
 
 Result<size_t> TextureSpaceDecals::splat(const std::vector<std::vector<uint32_t>>& perObject,
-                                         const SceneGpu& scene, GLuint instances, GLuint lists,
-                                         GLuint decalAlbedo, GLuint decalNormal, float fadeStart,
+                                         const SceneGpu& scene, const SplatInputs& in, float fadeStart,
                                          size_t& drawCalls) {
     if (Status s = buildPrograms(); !s) return fail(s.error());
     size_t splatted = 0;
@@ -164,10 +163,11 @@ Result<size_t> TextureSpaceDecals::splat(const std::vector<std::vector<uint32_t>
         baseState(layer.framebuffer.get(), layer.size);
         glEnable(GL_BLEND);
         glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBuffer, instances);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBuffer, lists);
-        glBindTextureUnit(3, decalAlbedo);
-        glBindTextureUnit(4, decalNormal);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBuffer, in.instances);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalTypeBuffer, in.types);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBuffer, in.lists);
+        glBindTextureUnit(3, in.decalAlbedo);
+        glBindTextureUnit(4, in.decalNormal);
         glUseProgram(splatProgram_.get());
         glUniform1ui(0, begin);
         glUniform1f(1, fadeStart);

@@ -38,14 +38,18 @@ public:
     // GPU memory of every enabled object's textures and mask, plus the dilation scratch textures.
     size_t bytes() const;
 
-    // Splats the valid instances of `batch` listed in `perObject[o]` into object o's textures (objects
-    // not enabled are skipped), then dilates each object that got one. The caller binds the frame
-    // buffers; `instances` and `lists` are the GPU copies of batch.instances() and of the index
-    // lists, bound here to the decal and visible bindings. `decalAlbedo`/`decalNormal` are the decal
-    // texture arrays. Returns the decals splatted; counts draws in `drawCalls`.
+    // The GPU copies of a DecalBatch's records and types and of the index lists, bound to the decal,
+    // type and visible bindings, and the decal texture arrays.
+    struct SplatInputs {
+        GLuint instances = 0, types = 0, lists = 0;
+        GLuint decalAlbedo = 0, decalNormal = 0;
+    };
+
+    // Splats the valid instances listed in `perObject[o]` into object o's textures (objects not
+    // enabled are skipped), then dilates each object that got one. The caller binds the frame
+    // buffers. Returns the decals splatted; counts draws in `drawCalls`.
     Result<size_t> splat(const std::vector<std::vector<uint32_t>>& perObject, const SceneGpu& scene,
-                         GLuint instances, GLuint lists, GLuint decalAlbedo, GLuint decalNormal,
-                         float fadeStart, size_t& drawCalls);
+                         const SplatInputs& in, float fadeStart, size_t& drawCalls);
 
 private:
     struct Layer {

@@ -1,0 +1,35 @@
+#pragma once
+// DecalRecord: a Decal and a DecalType as the GPU keeps them (DecalRecordGpu, DecalTypeGpu in
+// GpuLayouts.hpp): 64 bytes per decal, its box and what is its own, and one entry per type for the
+// rest of its look.
+
+#include "GpuLayouts.hpp"
+
+#include "spatter/core/Decal.hpp"
+#include "spatter/core/DecalType.hpp"
+
+#include <glm/glm.hpp>
+
+namespace spatter::render_detail {
+
+// The record of `d`; false (and a zero record) when its box is degenerate or not finite. The box is the
+// decal's frame scaled by its half extents, as it is (a frame need not be orthonormal in its object's
+// space: an orthogonal world box on an object of non-uniform scale is not); a left-handed frame is
+// flagged kDecalMirrored.
+bool buildDecalRecord(const Decal& d, DecalRecordGpu& out);
+
+// The type as the shaders read it; info.z is 0 when decals of the type cannot be drawn (a texture
+// layer outside [0, layerCount), a tint, angle or roughness that is not finite).
+DecalTypeGpu buildDecalType(const DecalType& t, float wrapMaxAngleDeg, int layerCount);
+
+// The unit box -> object space transform of a drawable record (the inverse of its rows), in double.
+glm::dmat4 recordBoxToObject(const DecalRecordGpu& r);
+
+inline uint16_t recordType(const DecalRecordGpu& r) {
+    return uint16_t(r.info.y & 0xffffu);
+}
+inline uint32_t recordFlags(const DecalRecordGpu& r) {
+    return r.info.y >> 24;
+}
+
+} // namespace spatter::render_detail
