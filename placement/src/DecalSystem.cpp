@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <mutex>
 #include <system_error>
@@ -75,6 +76,60 @@ struct Slot {
     uint32_t generation = 1;
 };
 
+// A set of dense indices: one bit per index and one summary bit per 64 of them (set when any of the
+// 64 is), so the set members are found from the highest down in O(members + size / 4096) words.
+// update() keeps the decals it has to visit in one (DecalSystem::Impl::timed).
+class DenseIndexSet {
+public:
+    bool test(uint32_t i) const {
+        const size_t w = i >> 6;
+        return w < words_.size() && ((words_[w] >> (i & 63)) & 1u) != 0;
+    }
+    void set(uint32_t i) {
+        const size_t w = i >> 6;
+        if (w >= words_.size()) {
+            words_.resize(w + 1, 0);
+            summary_.resize((words_.size() + 63) >> 6, 0);
+        }
+        words_[w] |= uint64_t(1) << (i & 63);
+        summary_[w >> 6] |= uint64_t(1) << (w & 63);
+    }
+    void reset(uint32_t i) {
+        const size_t w = i >> 6;
+        if (w >= words_.size()) return;
+        words_[w] &= ~(uint64_t(1) << (i & 63));
+        if (words_[w] == 0) summary_[w >> 6] &= ~(uint64_t(1) << (w & 63));
+    }
+    // The highest member below `end`, or kNone.
+    uint32_t highestBelow(uint32_t end) const {
+        if (end == 0 || words_.empty()) return kNone;
+        const size_t top = (end - 1) >> 6;
+        size_t w = std::min(top, words_.size() - 1);
+        const uint64_t word = w == top ? words_[w] & upTo((end - 1) & 63) : words_[w];
+        if (word != 0) return uint32_t(w * 64 + highestBit(word));
+        if (w == 0) return kNone;
+        --w; // the highest non-empty word at or below w, through the summary
+        size_t s = w >> 6;
+        for (uint64_t bits = summary_[s] & upTo(w & 63);; bits = summary_[--s]) {
+            if (bits != 0) {
+                const size_t found = s * 64 + highestBit(bits);
+                return uint32_t(found * 64 + highestBit(words_[found]));
+            }
+            if (s == 0) return kNone;
+        }
+    }
+
+private:
+    static uint64_t upTo(unsigned bit) { return (uint64_t(2) << bit) - 1; } // bits 0..bit
+    static unsigned highestBit(uint64_t v) { return 63u - unsigned(__builtin_clzll(v)); }
+
+    std::vector<uint64_t> words_;
+    std::vector<uint64_t> summary_;
+};
+
+// The change log keeps at least this many entries (DecalSystem::changesSince).
+constexpr size_t kMinChangeLog = 4096;
+
 } // namespace
 
 uint64_t DecalStats::rejectedTotal() const {
@@ -97,8 +152,11 @@ struct DecalSystem::Impl {
     std::vector<uint8_t> objectIds;
     Rng rng;
     double time = 0.0;
-    std::vector<Decal> decals; // dense
-    std::vector<Meta> meta;    // parallel to decals
+    std::vector<Decal> decals;          // dense
+    std::vector<Meta> meta;             // parallel to decals
+    DenseIndexSet timed;                // dense indices update() visits: type lifetime > 0, or fading
+    std::vector<DecalChange> changeLog; // the newest changes of decals, oldest first
+    uint64_t changeLogBase = 0;         // the version before changeLog[0]
     std::vector<Slot> slots;
     std::vector<uint32_t> freeSlots;
     AreaLimits limits;
@@ -141,6 +199,28 @@ struct DecalSystem::Impl {
         return key;
     }
 
+    uint64_t version() const { return changeLogBase + changeLog.size(); }
+
+    // Appends to the change log. It holds at most max(kMinChangeLog, decals / 4) entries: when full
+    // it drops the oldest ones down to half of that (amortised O(1) per entry). Its capacity grows to
+    // that bound at most, and shrinks when the bound falls to half of it.
+    void logChange(uint32_t index, uint32_t from, DecalChangeKind kind) {
+        const size_t bound = std::max(kMinChangeLog, decals.size() / 4);
+        if (changeLog.size() >= bound) {
+            const size_t drop = changeLog.size() - bound / 2;
+            changeLog.erase(changeLog.begin(), changeLog.begin() + std::ptrdiff_t(drop));
+            changeLogBase += drop;
+            if (changeLog.capacity() > 2 * bound) changeLog.shrink_to_fit();
+        }
+        if (changeLog.size() == changeLog.capacity())
+            changeLog.reserve(std::min(bound, std::max<size_t>(256, 2 * changeLog.size())));
+        DecalChange c;
+        c.index = index;
+        c.from = from;
+        c.kind = kind;
+        changeLog.push_back(c);
+    }
+
     void removeDense(uint32_t dense) {
         const uint32_t slot = meta[dense].slot;
         if (meta[dense].fading) stats.fading--;
@@ -149,14 +229,21 @@ struct DecalSystem::Impl {
         slots[slot].generation++;
         freeSlots.push_back(slot);
         const uint32_t last = uint32_t(decals.size() - 1);
+        const bool lastTimed = timed.test(last);
+        timed.reset(last);
         if (dense != last) {
             decals[dense] = decals[last];
             meta[dense] = meta[last];
             slots[meta[dense].slot].dense = dense;
+            if (lastTimed)
+                timed.set(dense);
+            else
+                timed.reset(dense);
         }
         decals.pop_back();
         meta.pop_back();
         stats.alive = decals.size();
+        logChange(dense, last, DecalChangeKind::Removed);
     }
 
     void evict(uint32_t slot) {
@@ -167,6 +254,7 @@ struct DecalSystem::Impl {
             limits.unlink(slot);
             meta[dense].fading = true;
             meta[dense].evictedAt = time;
+            timed.set(dense);
             stats.fading++;
         } else {
             removeDense(dense);
@@ -265,14 +353,17 @@ struct DecalSystem::Impl {
             slot = uint32_t(slots.size());
             slots.emplace_back();
         }
-        slots[slot].dense = uint32_t(decals.size());
+        const uint32_t dense = uint32_t(decals.size());
+        slots[slot].dense = dense;
         decals.push_back(d);
         Meta mt;
         mt.slot = slot;
         meta.push_back(mt);
+        if (t.lifetime > 0.0f) timed.set(dense);
         limits.link(slot, key, objectIndex);
         stats.placed++;
         stats.alive = decals.size();
+        logChange(dense, dense, DecalChangeKind::Added);
 
         SpawnResult r;
         r.status = SpawnStatus::Placed;
@@ -536,7 +627,12 @@ Status DecalSystem::update(double dt) {
     Impl& s = *impl_;
     const std::lock_guard<std::mutex> lock(s.mutex);
     s.time += dt;
-    for (size_t i = s.decals.size(); i-- > 0;) {
+    // Only the timed decals can change: the others are opaque (1) from their placement on and stay.
+    // They are visited from the highest dense index down, as a walk over every decal would meet them,
+    // and a removal moves the last decal (visited already) into the hole: the indices below the one
+    // visited, and the members of `timed` among them, do not move.
+    for (uint32_t i = s.timed.highestBelow(uint32_t(s.decals.size())); i != kNone;
+         i = s.timed.highestBelow(i)) {
         Decal& d = s.decals[i];
         const Meta& m = s.meta[i];
         const DecalType& t = s.types[d.type];
@@ -560,10 +656,12 @@ Status DecalSystem::update(double dt) {
             else
                 opacity = std::min(opacity, float(1.0 - since / double(t.fadeOutTime)));
         }
-        if (remove)
-            s.removeDense(uint32_t(i));
-        else
+        if (remove) {
+            s.removeDense(i);
+        } else if (std::memcmp(&d.opacity, &opacity, sizeof opacity) != 0) {
             d.opacity = opacity;
+            s.logChange(i, i, DecalChangeKind::Changed);
+        }
     }
     return {};
 }
@@ -598,6 +696,26 @@ WorldDecal DecalSystem::worldBox(const Decal& decal) const {
 
 const std::vector<Decal>& DecalSystem::decals() const {
     return impl_->decals;
+}
+
+uint64_t DecalSystem::version() const {
+    return impl_->version();
+}
+
+void DecalSystem::changesSince(uint64_t version, DecalChanges& out) const {
+    const Impl& s = *impl_;
+    out.version = s.version();
+    out.changes.clear();
+    out.complete = version >= s.changeLogBase && version <= out.version;
+    if (out.complete)
+        out.changes.assign(s.changeLog.begin() + std::ptrdiff_t(version - s.changeLogBase),
+                           s.changeLog.end());
+}
+
+DecalChanges DecalSystem::changesSince(uint64_t version) const {
+    DecalChanges out;
+    changesSince(version, out);
+    return out;
 }
 
 Result<TransformUpdate> DecalSystem::setTransform(uint32_t object, const glm::dmat4& transform) {

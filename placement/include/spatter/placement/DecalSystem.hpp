@@ -8,6 +8,7 @@
 //   SpawnResult r = sys->spawn(Ray{eye, aim}, hole);               // r.placed() or r.status/r.reason
 //   sys->update(dt);                                               // ages, fades, expires
 //   renderer.draw(sys->decals());                                  // contiguous, object space
+//   DecalChanges c = sys->changesSince(seen); seen = c.version;    // or only what changed since
 //
 // Rules every call follows:
 // - A call that places nothing returns a status and a reason and changes no state except the
@@ -22,8 +23,14 @@
 //   the world as the previous one left it (a spawn traces against the objects where they are while
 //   it holds the lock). Const calls take no lock: they may run concurrently with each other, but
 //   not with a mutation (decals() and get() return references into state that mutations change).
+//   version() and changesSince() are const calls like decals(): no lock, never during a mutation.
+// - Every change of decals() is logged (changesSince): a placement as Added; a removal by remove, an
+//   eviction, the end of a lifetime or fade in update, or removeObject as Removed, with the move that
+//   fills the hole; an opacity that update() changes (bit for bit) as Changed. The version is the
+//   number of changes logged since create(); a call that changes no decal logs nothing.
 
 #include "spatter/core/Decal.hpp"
+#include "spatter/core/DecalChanges.hpp"
 #include "spatter/core/DecalType.hpp"
 #include "spatter/core/Frame.hpp"
 #include "spatter/core/Result.hpp"
@@ -155,6 +162,8 @@ public:
     // lifetime stays opaque until the last fadeOutTime seconds of it, fades linearly to 0, and is
     // removed (expired) when its age reaches the lifetime; a decal evicted under FadeOldest fades over
     // fadeOutTime from its eviction and is then removed. Fails, changing nothing, on a bad dt.
+    // Visits only the decals that can change (type lifetime > 0, or fading), from the highest index in
+    // decals() down: O(those decals + decals().size() / 4096); permanent decals cost nothing.
     Status update(double dt);
 
     // Removes a decal. False for a stale or invalid handle.
@@ -169,6 +178,17 @@ public:
 
     // The live decals, contiguous, for the renderer. Order is deterministic but changes on removals.
     const std::vector<Decal>& decals() const;
+
+    // The version of decals(): the number of changes logged since create() (0: the system as created).
+    uint64_t version() const;
+    // The changes that turn decals() as it was at `version` into decals() now (DecalChanges.hpp), and
+    // the version they lead to. The log keeps the newest max(4096, decals().size() / 4) changes at
+    // most (when full it drops the older half; 12 bytes each: 48 KiB up to 16384 decals, then 3 bytes
+    // per decal); a `version` older than what it keeps, or newer than version(), gives
+    // complete == false and no changes: take decals() whole. O(changes returned). The second form
+    // reuses `out`'s memory.
+    DecalChanges changesSince(uint64_t version) const;
+    void changesSince(uint64_t version, DecalChanges& out) const;
 
     // Moves a dynamic object (CollisionWorld::setTransform); its decals follow. A transform the trace
     // cannot use (TraceTransform.hpp) takes the object out of the trace until a usable one, and the
