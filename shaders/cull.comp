@@ -1,4 +1,4 @@
-// GPU culling, pass 1 of 3 (GpuCulling): one invocation per place in the draw order marks its decal
+// GPU culling, pass 1 of 3 (GpuCulling): one invocation per entry of the draw order marks its decal
 // visible (1) or culled (0) by the test DecalBatch::cull makes on the CPU, with margins that keep
 // float rounding from culling a box the CPU would keep. Each work group counts its visible decals
 // for the scan.
@@ -7,7 +7,6 @@
 layout(local_size_x = 256) in;
 layout(location = 0) uniform uint u_count;  // decals
 layout(location = 1) uniform vec4 u_camera; // y: 1 reversed Z; z: 1 clip depth -1..1
-layout(location = 2) uniform bool u_ordered; // the draw order is drawOrder[], not the decals' own
 
 layout(std430, binding = 0) writeonly buffer Classes {
     uint classes[];
@@ -57,7 +56,8 @@ void main() {
     if (gl_LocalInvocationIndex == 0u) sVisible = 0u;
     barrier();
     uint place = gl_GlobalInvocationID.x;
-    uint c = place < u_count ? classify(u_ordered ? drawOrder[place] : place) : 0u;
+    uint entry = place < u_count ? drawOrder[place] : 0xffffffffu; // an empty entry of the order
+    uint c = entry != 0xffffffffu ? classify(entry) : 0u;
     if (place < u_count) classes[place] = c;
     if (c == 1u) atomicAdd(sVisible, 1u);
     barrier();

@@ -2,7 +2,6 @@
 // in draw order.
 layout(local_size_x = 256) in;
 layout(location = 0) uniform uint u_count;
-layout(location = 2) uniform bool u_ordered;
 
 layout(std430, binding = 0) readonly buffer Classes {
     uint classes[];
@@ -30,5 +29,5 @@ void main() {
         ranks[t] += v;
         barrier();
     }
-    if (mine != 0u) visibleOut[groupFirsts[gl_WorkGroupID.x] + ranks[t] - 1u] = u_ordered ? drawOrder[place] : place;
+    if (mine != 0u) visibleOut[groupFirsts[gl_WorkGroupID.x] + ranks[t] - 1u] = drawOrder[place];
 }

@@ -1,118 +1,158 @@
 #include "DecalBatch.hpp"
 
+#include "SparseRuns.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <limits>
 
 namespace spatter::render_detail {
-
-namespace {
-
-void addDirty(std::vector<std::pair<size_t, size_t>>& dirty, size_t begin, size_t end) {
-    // Ranges arrive in increasing order; join those closer than a few instances.
-    if (!dirty.empty() && begin <= dirty.back().second + 4) {
-        dirty.back().second = std::max(dirty.back().second, end);
-        return;
-    }
-    dirty.emplace_back(begin, end);
-}
-
-} // namespace
 
 void DecalBatch::configure(float wrapMaxAngleDeg, int layerCount) {
     if (wrapMaxAngleDeg == wrapMaxAngleDeg_ && layerCount == layerCount_) return;
     wrapMaxAngleDeg_ = wrapMaxAngleDeg;
     layerCount_ = layerCount;
-    rebuild();
+    rebuildTypes();
 }
 
 void DecalBatch::setTypes(std::vector<DecalType> types) {
     types_ = std::move(types);
-    rebuild();
+    rebuildTypes();
 }
 
-void DecalBatch::setDecals(const std::vector<Decal>& decals, size_t objectCount) {
-    decals_ = decals;
-    objectCount_ = objectCount;
-    rebuild();
-}
-
-void DecalBatch::setObjectCount(size_t objectCount) {
-    if (objectCount == objectCount_) return;
-    objectCount_ = objectCount;
-    rebuild();
-}
-
-bool DecalBatch::build(const Decal& d, DecalRecordGpu& out) const {
-    const bool sound = buildDecalRecord(d, out);
-    return sound && d.object < objectCount_ && d.type < typeRecords_.size() &&
-           typeRecords_[d.type].info.z != 0;
-}
-
-void DecalBatch::rebuild() {
+void DecalBatch::rebuildTypes() {
     typeRecords_.clear();
-    for (const DecalType& t : types_)
+    std::vector<int> priorities;
+    for (const DecalType& t : types_) {
         typeRecords_.push_back(buildDecalType(t, wrapMaxAngleDeg_, layerCount_));
-    std::vector<DecalRecordGpu> next(decals_.size());
-    valid_.assign(decals_.size(), 0);
-    invalid_ = 0;
-    flagsUnion_ = 0;
-    for (size_t i = 0; i < decals_.size(); ++i) {
-        valid_[i] = build(decals_[i], next[i]) ? 1 : 0;
-        invalid_ += valid_[i] ? 0 : 1;
-        if (valid_[i]) flagsUnion_ |= flags(next[i]);
+        priorities.push_back(t.priority);
     }
-    // Only instances whose bytes changed (or are new) need uploading.
-    const size_t common = std::min(next.size(), gpu_.size());
-    size_t i = 0;
-    while (i < next.size()) {
-        if (i < common && std::memcmp(&next[i], &gpu_[i], sizeof(DecalRecordGpu)) == 0) {
-            ++i;
-            continue;
-        }
-        size_t j = i + 1;
-        while (j < next.size() &&
-               !(j < common && std::memcmp(&next[j], &gpu_[j], sizeof(DecalRecordGpu)) == 0))
-            ++j;
-        addDirty(dirty_, i, j);
-        i = j;
-    }
-    gpu_ = std::move(next);
-    sortDrawOrder();
-    // Ranges recorded earlier may point past a shrunk array.
-    for (auto& r : dirty_)
-        r.second = std::min(r.second, gpu_.size());
-    dirty_.erase(
-        std::remove_if(dirty_.begin(), dirty_.end(), [](const auto& r) { return r.first >= r.second; }),
-        dirty_.end());
-    std::sort(dirty_.begin(), dirty_.end());
+    std::sort(priorities.begin(), priorities.end());
+    priorities.erase(std::unique(priorities.begin(), priorities.end()), priorities.end());
+    std::vector<uint32_t> ranks;
+    for (const DecalType& t : types_)
+        ranks.push_back(uint32_t(std::lower_bound(priorities.begin(), priorities.end(), t.priority) -
+                                 priorities.begin()));
+    if (ranks != typeRank_) ranksChanged_ = true; // the order is laid out afresh with the next decals
+    typeRank_ = std::move(ranks);
 }
 
-void DecalBatch::sortDrawOrder() {
-    auto priority = [this](uint32_t i) {
-        const uint16_t t = decals_[i].type;
-        return t < types_.size() ? types_[t].priority : 0;
-    };
-    auto time = [this](uint32_t i) { // a spawn time that is not a number sorts as 0, keeping the order strict
-        const double t = decals_[i].spawnTime;
-        return std::isfinite(t) ? t : 0.0;
-    };
-    auto before = [&](uint32_t a, uint32_t b) {
-        const int pa = priority(a), pb = priority(b);
-        if (pa != pb) return pa < pb;
-        const double ta = time(a), tb = time(b);
-        if (ta != tb) return ta < tb;
-        return a < b;
-    };
-    // The order the GPU holds: empty when it is the index order.
-    const std::vector<uint32_t> previous = indexOrder_ ? std::vector<uint32_t>{} : order_;
-    order_.resize(decals_.size());
-    for (size_t i = 0; i < order_.size(); ++i)
-        order_[i] = uint32_t(i);
-    indexOrder_ = std::is_sorted(order_.begin(), order_.end(), before);
-    if (!indexOrder_) std::sort(order_.begin(), order_.end(), before);
-    orderChanged_ = orderChanged_ || (indexOrder_ ? !previous.empty() : previous != order_);
+void DecalBatch::setMirrorLimit(size_t limit) {
+    mirrorLimit_ = limit;
+    if (mirror_ && size() >= limit) {
+        records_ = {};
+        mirror_ = false;
+    }
+}
+
+void DecalBatch::setDecals(const std::vector<Decal>& decals) {
+    ranksChanged_ = false;
+    order_.rebuild(decals, typeRank_);
+    sound_.assign(decals.size(), true);
+    unsound_ = 0;
+    mirror_ = decals.size() < mirrorLimit_;
+    records_ = mirror_ ? std::vector<DecalRecordGpu>(decals.size()) : std::vector<DecalRecordGpu>{};
+    staged_.clear();
+    std::vector<uint32_t> all(decals.size());
+    for (size_t i = 0; i < all.size(); ++i)
+        all[i] = uint32_t(i);
+    stage(decals, std::move(all));
+}
+
+void DecalBatch::applyChanges(const std::vector<Decal>& decals, const DecalChanges& changes) {
+    std::vector<uint32_t> stale;
+    if (!changes.complete || ranksChanged_ || !replay(decals, changes, stale)) {
+        setDecals(decals);
+        return;
+    }
+    order_.place(decals, typeRank_);
+    updateMirror(decals);
+    stage(decals, std::move(stale));
+}
+
+// Replays `changes` on the order, the validity bits and the CPU copy; false when they do not fit.
+bool DecalBatch::replay(const std::vector<Decal>& decals, const DecalChanges& changes,
+                        std::vector<uint32_t>& stale) {
+    for (const DecalChange& c : changes.changes) {
+        const size_t n = size();
+        if (c.kind == DecalChangeKind::Added) {
+            if (c.index != n) return false;
+            order_.add(c.index);
+            sound_.push_back(true);
+            if (mirror_) records_.emplace_back();
+        } else if (c.kind == DecalChangeKind::Removed) {
+            if (c.index >= n || c.from != n - 1) return false;
+            order_.remove(c.index, c.from);
+            unsound_ -= sound_[c.index] ? 0 : 1;
+            sound_[c.index] = sound_[c.from];
+            sound_.pop_back();
+            if (mirror_) {
+                records_[c.index] = records_[c.from];
+                records_.pop_back();
+            }
+            if (c.index == c.from) continue;
+        } else if (c.index >= n) {
+            return false;
+        }
+        stale.push_back(c.index);
+    }
+    return size() == decals.size();
+}
+
+// Builds the records of the decals at `stale` (those past the end are gone) and stages them.
+void DecalBatch::stage(const std::vector<Decal>& decals, std::vector<uint32_t> stale) {
+    stale.erase(std::remove_if(stale.begin(), stale.end(), [&](uint32_t i) { return i >= decals.size(); }),
+                stale.end());
+    for (const auto& [begin, end] : sparseRuns(std::move(stale), 4)) {
+        StagedRecords run;
+        run.begin = begin;
+        run.records.resize(end - begin);
+        for (size_t i = begin; i < end; ++i) {
+            setValid(i, buildDecalRecord(decals[i], run.records[i - begin]));
+            if (mirror_) records_[i] = run.records[i - begin];
+        }
+        staged_.push_back(std::move(run));
+    }
+}
+
+void DecalBatch::setValid(size_t i, bool sound) {
+    if (sound_[i] == sound) return;
+    unsound_ += sound ? size_t(-1) : 1;
+    sound_[i] = sound;
+}
+
+// Keeps the CPU copy below the mirror limit (taking it from `decals` when it was not kept) and drops
+// it above.
+void DecalBatch::updateMirror(const std::vector<Decal>& decals) {
+    const bool want = decals.size() < mirrorLimit_;
+    if (want == mirror_) return;
+    mirror_ = want;
+    records_ = {};
+    if (!want) return;
+    records_.resize(decals.size());
+    for (size_t i = 0; i < decals.size(); ++i)
+        buildDecalRecord(decals[i], records_[i]);
+}
+
+size_t DecalBatch::invalidCount() const {
+    return unsound_;
+}
+
+uint32_t DecalBatch::flagsUnion() const {
+    uint32_t flags = kDecalMirrored;
+    for (const DecalTypeGpu& t : typeRecords_)
+        flags |= t.info.z != 0 ? t.info.y : 0u;
+    return flags;
+}
+
+bool DecalBatch::valid(size_t i) const {
+    if (!mirror_ || i >= records_.size() || !sound_[i]) return false;
+    const DecalRecordGpu& r = records_[i];
+    return r.info.x < objectCount_ && recordType(r) < typeRecords_.size() &&
+           typeRecords_[recordType(r)].info.z != 0;
+}
+
+void DecalBatch::markUploaded() {
+    staged_ = {};
 }
 
 DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms,
@@ -125,11 +165,15 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
         const double det = glm::determinant(glm::dmat3(objectTransforms[o]));
         collapsed[o] = !(std::fabs(det) > 0.0) || !std::isfinite(det) ? 1 : 0;
     }
-    for (const uint32_t i : order_) {
-        if (!valid_[i]) continue;
-        const uint32_t object = gpu_[i].info.x;
+    for (const uint32_t i : order_.entries()) {
+        if (i == DrawOrder::kEmpty) continue;
+        if (!valid(i)) {
+            ++vis.invalid;
+            continue;
+        }
+        const uint32_t object = records_[i].info.x;
         if (object >= objectTransforms.size() || collapsed[object]) continue;
-        const glm::dmat4 boxToWorld = objectTransforms[object] * recordBoxToObject(gpu_[i]);
+        const glm::dmat4 boxToWorld = objectTransforms[object] * recordBoxToObject(records_[i]);
 
         // Frustum: the box is outside when all eight corners lie beyond one clip plane.
         int outside[6] = {0, 0, 0, 0, 0, 0};
@@ -169,7 +213,7 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
         }
         vis.visible.push_back(i);
         vis.inside += inside ? 1 : 0;
-        vis.flags |= flags(gpu_[i]);
+        vis.flags |= flags(records_[i]);
         if (view.rects)
             vis.rects.push_back(behind || inside ? glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f)
                                                  : glm::vec4(glm::clamp(rect, -1.0, 1.0)));

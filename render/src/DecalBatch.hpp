@@ -1,19 +1,24 @@
 #pragma once
-// DecalBatch: the CPU side of the decal pass. It turns Decals and DecalTypes into per-instance GPU
-// data (object space, so that it changes only when a decal or its type changes), keeps track of
-// which instances changed since the last upload, keeps the draw order (DecalType::priority, then
-// spawn time, then index), and per frame culls the boxes against the view into the visible list,
-// in draw order, noting the boxes that may hold the eye.
+// DecalBatch: the CPU side of the decal store. The decals live on the GPU as 64-byte records
+// (DecalRecord.hpp); the batch builds the records of the decals that changed (all of them on
+// setDecals, those a DecalChanges names on applyChanges) and stages them for upload, keeps the
+// draw order (DrawOrder.hpp) and a validity bit per decal. It keeps a CPU copy of the records only
+// while it holds fewer decals than its mirror limit, for culling them on the CPU, in draw order,
+// into the visible list; above it no per-decal data but the order and the validity bit stays on the
+// CPU, and the GPU culls (GpuCulling).
 
 #include "DecalRecord.hpp"
+#include "DrawOrder.hpp"
 
 #include "spatter/core/Decal.hpp"
+#include "spatter/core/DecalChanges.hpp"
 #include "spatter/core/DecalType.hpp"
 
 #include <glm/glm.hpp>
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -24,6 +29,7 @@ struct DecalVisibility {
     size_t inside = 0;             // of those, boxes that may contain the eye or cross the near plane
     uint32_t flags = 0;            // union of the DecalFlag bits of the visible decals
     size_t culled = 0;             // valid decals outside the view
+    size_t invalid = 0;            // decals that cannot be drawn (box, object or type)
     // With CullView::rects: for each of `visible`, the normalised device x, y bounds of its box
     // (min x, min y, max x, max y) clamped to [-1, 1]; the whole view where the box reaches behind
     // the eye or may hold it.
@@ -40,62 +46,77 @@ struct CullView {
     bool rects = false;        // also the screen rectangles of the boxes (DecalVisibility::rects)
 };
 
+// Records waiting for upload: `records` go to [begin, begin + records.size()).
+struct StagedRecords {
+    size_t begin = 0;
+    std::vector<DecalRecordGpu> records;
+};
+
 class DecalBatch {
 public:
-    // Settings that shape the instance data; a change rebuilds every instance.
+    // Settings that shape the type records.
     void configure(float wrapMaxAngleDeg, int layerCount);
     void setTypes(std::vector<DecalType> types);
-    void setDecals(const std::vector<Decal>& decals, size_t objectCount);
-    // Decals naming an object at or past `objectCount` are invalid.
-    void setObjectCount(size_t objectCount);
+    // Decals naming an object at or past `objectCount` are not drawn.
+    void setObjectCount(size_t objectCount) { objectCount_ = objectCount; }
+    // The CPU copy of the records is kept while fewer decals than this are held.
+    void setMirrorLimit(size_t limit);
 
-    size_t size() const { return gpu_.size(); }
-    size_t invalidCount() const { return invalid_; }
-    // The union of the DecalFlag bits of the valid instances.
-    uint32_t flagsUnion() const { return flagsUnion_; }
-    // The decal indices in draw order: by DecalType::priority, then Decal::spawnTime, then index.
-    const std::vector<uint32_t>& drawOrder() const { return order_; }
-    // Whether drawOrder() is 0, 1, 2...
-    bool indexOrder() const { return indexOrder_; }
-    // Whether the draw order changed since the last call.
-    bool takeOrderChange() { return std::exchange(orderChanged_, false); }
-    // Whether instance i can be drawn (invalid instances are zero).
-    bool valid(size_t i) const { return i < valid_.size() && valid_[i] != 0; }
-    const std::vector<DecalRecordGpu>& instances() const { return gpu_; }
+    // Every decal afresh.
+    void setDecals(const std::vector<Decal>& decals);
+    // The decals after `changes` (DecalChanges.hpp); takes them whole when the changes are not
+    // complete, do not fit the decals held, or the types' priorities changed since the last call.
+    void applyChanges(const std::vector<Decal>& decals, const DecalChanges& changes);
+
+    size_t size() const { return order_.decalCount(); }
+    // Decals whose box cannot be drawn (degenerate or not finite); with the CPU copy also those naming a
+    // missing object or type.
+    size_t invalidCount() const;
+    // The DecalFlag bits of the valid decals (without the CPU copy: of every type that can be drawn).
+    uint32_t flagsUnion() const;
+    const DrawOrder& order() const { return order_; }
+    // The runs of order entries changed since the last call (DrawOrder::takeChanged).
+    std::vector<std::pair<size_t, size_t>> takeOrderChanges() { return order_.takeChanged(); }
+    bool mirrored() const { return mirror_; }
+    // The CPU copy of the records (mirrored() only) and whether record i can be drawn.
+    const std::vector<DecalRecordGpu>& instances() const { return records_; }
+    bool valid(size_t i) const;
     // The types as the shaders read them (one entry per type given to setTypes).
     const std::vector<DecalTypeGpu>& typeRecords() const { return typeRecords_; }
-    // The DecalFlag bits of a valid record: its type's and its own.
+    // The DecalFlag bits of a record: its type's and its own.
     uint32_t flags(const DecalRecordGpu& r) const {
         return typeRecords_[recordType(r)].info.y | recordFlags(r);
     }
-    // Ranges [begin, end) of instances() changed since markUploaded().
-    const std::vector<std::pair<size_t, size_t>>& dirty() const { return dirty_; }
-    void markUploaded() { dirty_.clear(); }
 
-    // Frustum culling of the valid decals under the current object transforms (world space,
-    // double) against `view`, in draw order.
+    // Records changed since markUploaded(), in runs.
+    const std::vector<StagedRecords>& staged() const { return staged_; }
+    void markUploaded();
+
+    // Frustum culling of the valid decals (mirrored() only) under the current object transforms
+    // (world space, double) against `view`, in draw order.
     DecalVisibility cull(const std::vector<glm::dmat4>& objectTransforms, const CullView& view) const;
 
 private:
-    void rebuild();
-    void sortDrawOrder();
-    // The instance of decal i, or nothing (zero, invalid) when it cannot be drawn.
-    bool build(const Decal& d, DecalRecordGpu& out) const;
+    void rebuildTypes();
+    bool replay(const std::vector<Decal>& decals, const DecalChanges& changes, std::vector<uint32_t>& stale);
+    void stage(const std::vector<Decal>& decals, std::vector<uint32_t> stale);
+    void setValid(size_t i, bool valid);
+    void updateMirror(const std::vector<Decal>& decals);
 
     float wrapMaxAngleDeg_ = 120.0f;
     int layerCount_ = 0;
     size_t objectCount_ = 0;
+    size_t mirrorLimit_ = std::numeric_limits<size_t>::max();
     std::vector<DecalType> types_;
-    std::vector<Decal> decals_;
-    std::vector<uint8_t> valid_;
-    std::vector<DecalRecordGpu> gpu_;
     std::vector<DecalTypeGpu> typeRecords_;
-    std::vector<std::pair<size_t, size_t>> dirty_;
-    size_t invalid_ = 0;
-    uint32_t flagsUnion_ = 0;
-    std::vector<uint32_t> order_;
-    bool indexOrder_ = true;
-    bool orderChanged_ = true;
+    std::vector<uint32_t> typeRank_;
+    bool ranksChanged_ = false;
+    DrawOrder order_;
+    std::vector<bool> sound_; // per decal: its box can be drawn
+    size_t unsound_ = 0;
+    bool mirror_ = true;
+    std::vector<DecalRecordGpu> records_;
+    std::vector<StagedRecords> staged_;
 };
 
 } // namespace spatter::render_detail

@@ -127,6 +127,8 @@ struct DecalProjector::Impl {
     GlBuffer frameBuffer, objectBuffer, decalBuffer, visibleBuffer, typeBuffer;
     bool typesChanged = true;
     size_t objectCapacity = 0, decalCapacity = 0, visibleCapacity = 0, visibleCount = 0;
+    size_t recordsOnGpu = 0; // records the decal buffer holds (past size() they are stale)
+    bool orderOnGpu = false; // the GPU culling's draw order is the batch's
     GlVertexArray emptyVao;
     GlFramebuffer fbo;
     GlTexture zeroIds;     // bound as s_ids when the frame has no ID texture
@@ -201,11 +203,12 @@ struct DecalProjector::Impl {
         return uploadInstances(uploads) + uploadVisible(vis);
     }
 
-    // Sends the draw order to the GPU culling when it changed; returns the bytes sent.
+    // Sends the draw order's changes to the GPU culling (all of it when the CPU culled since);
+    // returns the bytes sent.
     size_t uploadDrawOrder() {
-        if (!batch.takeOrderChange()) return 0;
-        culling.setDrawOrder(batch.indexOrder() ? std::vector<uint32_t>{} : batch.drawOrder());
-        return batch.indexOrder() ? 0 : batch.drawOrder().size() * sizeof(uint32_t);
+        std::vector<std::pair<size_t, size_t>> runs = batch.takeOrderChanges();
+        if (!std::exchange(orderOnGpu, true)) runs = {{0, batch.order().entries().size()}};
+        return culling.updateDrawOrder(batch.order().entries(), runs);
     }
 
     // Sends the decal types when they changed; returns the bytes sent.
@@ -219,25 +222,21 @@ struct DecalProjector::Impl {
         return bytes;
     }
 
-    // Sends the decal instances (and types) that changed; returns the bytes sent and counts the uploads.
+    // Sends the decal records (and types) that changed; returns the bytes sent and counts the uploads.
     size_t uploadInstances(size_t& uploads) {
-        size_t bytes = uploadTypes();
-        const std::vector<DecalRecordGpu>& inst = batch.instances();
-        if (reserveBuffer(decalBuffer, decalCapacity, inst.size() * sizeof(DecalRecordGpu),
-                          64 * sizeof(DecalRecordGpu))) {
-            glNamedBufferSubData(decalBuffer.get(), 0, GLsizeiptr(inst.size() * sizeof(DecalRecordGpu)),
-                                 inst.data());
-            bytes += inst.size() * sizeof(DecalRecordGpu);
+        size_t bytes = uploadTypes(), end = batch.size();
+        for (const StagedRecords& run : batch.staged())
+            end = std::max(end, run.begin + run.records.size());
+        growBuffer(decalBuffer, decalCapacity, std::max<size_t>(1, end) * sizeof(DecalRecordGpu),
+                   64 * sizeof(DecalRecordGpu), recordsOnGpu * sizeof(DecalRecordGpu));
+        for (const StagedRecords& run : batch.staged()) {
+            const size_t size = run.records.size() * sizeof(DecalRecordGpu);
+            glNamedBufferSubData(decalBuffer.get(), GLintptr(run.begin * sizeof(DecalRecordGpu)),
+                                 GLsizeiptr(size), run.records.data());
+            bytes += size;
             ++uploads;
-        } else {
-            for (const auto& r : batch.dirty()) {
-                glNamedBufferSubData(decalBuffer.get(), GLintptr(r.first * sizeof(DecalRecordGpu)),
-                                     GLsizeiptr((r.second - r.first) * sizeof(DecalRecordGpu)),
-                                     &inst[r.first]);
-                bytes += (r.second - r.first) * sizeof(DecalRecordGpu);
-                ++uploads;
-            }
         }
+        recordsOnGpu = std::max(batch.size(), end);
         batch.markUploaded();
         return bytes;
     }
@@ -368,8 +367,7 @@ struct DecalProjector::Impl {
     // waitForTimers, else the latest the GPU has finished); returns the indirect draw.
     BoxDraws cullOnGpu(const CullView& cull, ProjectorStats& stats) {
         bindBuffers();
-        culling.run(uint32_t(batch.size()), cull.reversedZ, cull.clipMinusOne, visibleBuffer,
-                    visibleCapacity);
+        culling.run(batch.size(), cull.reversedZ, cull.clipMinusOne, visibleBuffer, visibleCapacity);
         bindBuffers(); // the visible list may have grown
         stats.drawn = culling.visibleCount(settings.waitForTimers);
         const size_t valid = batch.size() - batch.invalidCount();
@@ -421,11 +419,13 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
     GlStateGuard guard;
     auto impl = std::make_unique<Impl>();
     impl->settings = settings;
-    impl->gpuCullingFrom = settings.gpuCullingFrom.value_or(
-        softwareRasteriser() ? std::numeric_limits<size_t>::max() : ProjectorSettings::kGpuCullingFrom);
+    impl->gpuCullingFrom = settings.gpuCullingFrom.value_or(softwareRasteriser()
+                                                                ? ProjectorSettings::kGpuCullingFromSoftware
+                                                                : ProjectorSettings::kGpuCullingFrom);
     if (Status s = impl->textures.create(settings.decalTextureSize); !s)
         return fail("projector: " + s.error());
     impl->batch.configure(settings.wrapMaxAngleDeg, impl->textures.layers());
+    impl->batch.setMirrorLimit(impl->gpuCullingFrom);
     impl->frameBuffer = createBuffer();
     glNamedBufferStorage(impl->frameBuffer.get(), sizeof(ProjectorFrameGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
     impl->emptyVao = createVertexArray();
@@ -449,7 +449,11 @@ void DecalProjector::setDecalTypes(const std::vector<DecalType>& types) {
 }
 
 void DecalProjector::setDecals(const std::vector<Decal>& decals) {
-    impl_->batch.setDecals(decals, impl_->transforms.size());
+    impl_->batch.setDecals(decals);
+}
+
+void DecalProjector::updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes) {
+    impl_->batch.applyChanges(decals, changes);
 }
 
 Status DecalProjector::setObjects(const std::vector<glm::dmat4>& transforms,
@@ -502,11 +506,17 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
     const FrameCamera camera = frameCamera(host);
     CullView cull = camera.cull;
     cull.rects = true;
+    if (!m.batch.mirrored())
+        return fail("projector: bin() culls on the CPU, which keeps its records only below gpuCullingFrom (" +
+                    std::to_string(m.gpuCullingFrom) + ") decals; " + std::to_string(m.batch.size()) +
+                    " are held");
     const DecalVisibility vis = m.batch.cull(m.transforms, cull);
+    m.orderOnGpu = false;
+    m.batch.takeOrderChanges();
     if (Status s = m.forward.prepare(); !s) return fail(s.error());
     ProjectorStats stats;
     stats.decals = m.batch.size();
-    stats.invalid = m.batch.invalidCount();
+    stats.invalid = vis.invalid;
     stats.culled = vis.culled;
     stats.drawn = vis.visible.size();
     stats.inside = vis.inside;
@@ -545,7 +555,7 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     Impl& m = *impl_;
     if (const std::string p = hostFrameProblem(frame, options); !p.empty()) return fail("projector: " + p);
     const FrameCamera camera = frameCamera(frame);
-    const bool onGpu = m.batch.size() > 0 && m.batch.size() >= m.gpuCullingFrom;
+    const bool onGpu = m.batch.size() > 0 && (m.batch.size() >= m.gpuCullingFrom || !m.batch.mirrored());
     DecalVisibility vis;
     if (onGpu) {
         vis.flags = m.batch.flagsUnion();
@@ -553,10 +563,12 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
         CullView cull = camera.cull;
         cull.rects = blendsIntoHost(options) && frame.normals.texture != 0; // for the normal copy
         vis = m.batch.cull(m.transforms, cull);
+        m.orderOnGpu = false;
+        m.batch.takeOrderChanges();
     }
     ProjectorStats stats;
     stats.decals = m.batch.size();
-    stats.invalid = m.batch.invalidCount();
+    stats.invalid = onGpu ? m.batch.invalidCount() : vis.invalid;
     stats.culled = vis.culled;
     stats.drawn = vis.visible.size();
     stats.inside = vis.inside;

@@ -94,6 +94,17 @@ inline bool reserveBuffer(GlBuffer& buffer, size_t& capacity, size_t bytes, size
     return true;
 }
 
+// reserveBuffer that keeps the first `keep` bytes of the old buffer, copied on the GPU.
+inline bool growBuffer(GlBuffer& buffer, size_t& capacity, size_t bytes, size_t minimum, size_t keep) {
+    if (bytes <= capacity && buffer) return false;
+    GlBuffer old = std::move(buffer);
+    const size_t oldCapacity = old ? capacity : 0;
+    reserveBuffer(buffer, capacity, bytes, minimum);
+    keep = keep < oldCapacity ? keep : oldCapacity;
+    if (keep > 0) glCopyNamedBufferSubData(old.get(), buffer.get(), 0, 0, GLsizeiptr(keep));
+    return true;
+}
+
 inline GlTexture createTexture(GLenum target) {
     GLuint n = 0;
     glCreateTextures(target, 1, &n);

@@ -47,21 +47,31 @@ Status GpuCulling::prepare() {
     return {};
 }
 
-void GpuCulling::setDrawOrder(const std::vector<uint32_t>& order) {
-    ordered_ = !order.empty();
-    if (!ordered_) return;
-    const size_t bytes = order.size() * sizeof(uint32_t);
-    reserveBuffer(order_, orderCapacity_, bytes, 4096);
-    glNamedBufferSubData(order_.get(), 0, GLsizeiptr(bytes), order.data());
+size_t GpuCulling::updateDrawOrder(const std::vector<uint32_t>& entries,
+                                   const std::vector<std::pair<size_t, size_t>>& runs) {
+    entries_ = uint32_t(entries.size());
+    const size_t bytes = std::max<size_t>(1, entries.size()) * sizeof(uint32_t);
+    if (reserveBuffer(order_, orderCapacity_, bytes, 4096)) {
+        glNamedBufferSubData(order_.get(), 0, GLsizeiptr(entries.size() * sizeof(uint32_t)), entries.data());
+        return entries.size() * sizeof(uint32_t);
+    }
+    size_t sent = 0;
+    for (const auto& [begin, end] : runs) {
+        glNamedBufferSubData(order_.get(), GLintptr(begin * sizeof(uint32_t)),
+                             GLsizeiptr((end - begin) * sizeof(uint32_t)), &entries[begin]);
+        sent += (end - begin) * sizeof(uint32_t);
+    }
+    return sent;
 }
 
-void GpuCulling::run(uint32_t count, bool reversedZ, bool clipMinusOne, GlBuffer& visible,
+void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, GlBuffer& visible,
                      size_t& visibleCapacity) {
+    const uint32_t count = entries_;
     const uint32_t groups = std::max<uint32_t>(1, (count + kGroup - 1) / kGroup);
     reserveBuffer(classes_, classesCapacity_, size_t(count) * sizeof(uint32_t), 4096);
     reserveBuffer(groups_, groupsCapacity_, size_t(groups) * sizeof(uint32_t), 4096);
-    reserveBuffer(order_, orderCapacity_, sizeof(uint32_t), 4096); // bound even when unread
-    if (reserveBuffer(visible, visibleCapacity, size_t(count) * sizeof(uint32_t), 4096)) {
+    reserveBuffer(order_, orderCapacity_, sizeof(uint32_t), 4096); // bound even when empty
+    if (reserveBuffer(visible, visibleCapacity, decals * sizeof(uint32_t), 4096)) {
         const uint32_t zero = 0; // an earlier draw's count may reach past this run's list (overlays)
         glClearNamedBufferData(visible.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     }
@@ -74,7 +84,6 @@ void GpuCulling::run(uint32_t count, bool reversedZ, bool clipMinusOne, GlBuffer
     glUseProgram(classify_.get());
     glUniform1ui(0, count);
     glUniform4f(1, 0.0f, reversedZ ? 1.0f : 0.0f, clipMinusOne ? 1.0f : 0.0f, 0.0f);
-    glUniform1i(2, ordered_ ? 1 : 0);
     glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(scan_.get());
@@ -83,7 +92,6 @@ void GpuCulling::run(uint32_t count, bool reversedZ, bool clipMinusOne, GlBuffer
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(scatter_.get());
     glUniform1ui(0, count);
-    glUniform1i(2, ordered_ ? 1 : 0);
     glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     glCopyNamedBufferSubData(draws_.get(), readback_.get(), GLintptr(kCountOffset), 0, sizeof(uint32_t));

@@ -2,16 +2,17 @@
 // GpuCulling: the visible list of a draw built on the GPU, for decal counts where culling every box
 // on the CPU each frame would cost more than the draw (ProjectorSettings::gpuCullingFrom). Three
 // compute passes over the projector's decal instances and objects (bound at their binding points,
-// objects relative to this frame's eye): mark each decal, in draw order, visible or culled as
-// DecalBatch::cull does, scan the work groups' counts, and scatter the visible indices into the
-// visible list in draw order, with the draw's instance count written into an indirect draw buffer.
-// The boxes are then drawn by their far faces (the GPU does not tell which may hold the eye).
+// objects relative to this frame's eye): mark each entry of the draw order (DrawOrder.hpp) visible or culled
+// as DecalBatch::cull does, scan the work groups' counts, and scatter the visible indices into the visible
+// list in draw order, with the draw's instance count written into an indirect draw buffer. The boxes are then
+// drawn by their far faces (the GPU does not tell which may hold the eye).
 
 #include "GlObjects.hpp"
 
 #include "spatter/core/Result.hpp"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace spatter::render_detail {
@@ -25,11 +26,13 @@ public:
 
     // Builds the compute programs on first use.
     Status prepare();
-    // The draw order when it is not the decals' own (empty: 0, 1, 2...); sent to the GPU at once.
-    void setDrawOrder(const std::vector<uint32_t>& order);
-    // Culls `count` decals against the frame block's camera. The visible list goes into `visible`
-    // (grown to hold `count` indices; `visibleCapacity` in bytes).
-    void run(uint32_t count, bool reversedZ, bool clipMinusOne, GlBuffer& visible, size_t& visibleCapacity);
+    // Sends the draw order's entries (DrawOrder.hpp) in `runs` (all of them when the buffer grows);
+    // returns the bytes sent.
+    size_t updateDrawOrder(const std::vector<uint32_t>& entries,
+                           const std::vector<std::pair<size_t, size_t>>& runs);
+    // Culls the decals of the draw order against the frame block's camera. The visible list goes
+    // into `visible` (grown to hold `decals` indices; `visibleCapacity` in bytes).
+    void run(size_t decals, bool reversedZ, bool clipMinusOne, GlBuffer& visible, size_t& visibleCapacity);
     // One DrawArraysIndirectCommand: 36 vertices, the visible count as instances.
     GLuint draws() const { return draws_.get(); }
     // The visible count of the last run when `wait` (waiting for the GPU), else that of the latest
@@ -40,7 +43,7 @@ private:
     GlProgram classify_, scan_, scatter_;
     GlBuffer classes_, groups_, draws_, readback_, order_;
     size_t classesCapacity_ = 0, groupsCapacity_ = 0, orderCapacity_ = 0;
-    bool ordered_ = false;
+    uint32_t entries_ = 0;   // of the draw order
     GLsync fence_ = nullptr; // signalled when the last run's count is in readback_
     uint32_t latest_ = 0;
 };

@@ -358,13 +358,18 @@ struct Renderer::Impl {
     // object, then dilates each; returns the decals splatted.
     Result<size_t> splatPending(size_t& invalid) {
         if (pendingSplats.empty()) return size_t(0);
-        splatBatch.setDecals(pendingSplats, transforms.size());
+        splatBatch.setObjectCount(transforms.size());
+        splatBatch.setDecals(pendingSplats);
         pendingSplats.clear();
-        invalid = splatBatch.invalidCount();
         std::vector<std::vector<uint32_t>> perObject(transforms.size());
         const std::vector<DecalRecordGpu>& inst = splatBatch.instances();
-        for (size_t i = 0; i < inst.size(); ++i)
-            if (splatBatch.valid(i)) perObject[inst[i].info.x].push_back(uint32_t(i));
+        invalid = 0;
+        for (size_t i = 0; i < inst.size(); ++i) {
+            if (splatBatch.valid(i))
+                perObject[inst[i].info.x].push_back(uint32_t(i));
+            else
+                ++invalid;
+        }
         std::vector<uint32_t> lists;
         for (const auto& l : perObject)
             lists.insert(lists.end(), l.begin(), l.end());
@@ -384,7 +389,7 @@ struct Renderer::Impl {
                                {splatBuffer.get(), splatTypes.get(), splatLists.get(),
                                 projector->resources().albedoLayers, projector->resources().normalLayers},
                                settings.fadeStart, drawCalls);
-        splatBatch.setDecals({}, transforms.size());
+        splatBatch.setDecals({});
         return n;
     }
 };
@@ -608,6 +613,19 @@ void Renderer::setDecals(const std::vector<Decal>& decals) {
         if (m.splatted[d.object].insert(decalKey(d)).second) m.pendingSplats.push_back(d);
     }
     m.projector->setDecals(projected);
+}
+
+void Renderer::updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes) {
+    Impl& m = *impl_;
+    const bool volumetric =
+        std::any_of(m.types.begin(), m.types.end(), [](const DecalType& t) { return t.volumetric; });
+    if (volumetric || m.textureSpace.objectCount() != 0) {
+        setDecals(decals);
+        return;
+    }
+    m.decalsTextureSpace = 0;
+    m.volumetric.setDecals({}, m.types, m.transforms.size());
+    m.projector->updateDecals(decals, changes);
 }
 
 Result<int> Renderer::addDecalTexture(const Image& albedo, const Image& normalMap) {

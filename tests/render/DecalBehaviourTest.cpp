@@ -463,12 +463,14 @@ TEST(DecalPass, UploadsOnlyChangedInstances) {
     ASSERT_EQ(st.decalsDrawn, 50u);
     EXPECT_EQ(st.decalBytesUploaded, 50 * instance + type + visible); // the records, and the type once
 
-    r->setDecals(decals); // nothing changed
+    DecalChanges changes; // what a DecalSystem reports: nothing changed
+    r->updateDecals(decals, changes);
     test::renderView(r.value(), cam, View::Final, &st);
     EXPECT_EQ(st.decalBytesUploaded, visible);
 
     decals[17].opacity = 0.5f; // one decal fading
-    r->setDecals(decals);
+    changes.changes = {DecalChange{17, 17, DecalChangeKind::Changed}};
+    r->updateDecals(decals, changes);
     test::renderView(r.value(), cam, View::Final, &st);
     EXPECT_EQ(st.decalBytesUploaded, instance + visible);
 

@@ -1,5 +1,6 @@
-// What reaches the GPU when decals change: a batch of 100,000 spawns goes up in one upload, a later
-// batch in one upload of its own records, and one more spawn sends only its own record.
+// What reaches the GPU when decals change (DecalSystem's change list given to updateDecals): a batch
+// of 100,000 spawns goes up in one upload, a later batch in one upload of its own records, and one
+// more spawn sends only its own record.
 
 #include "ForeignHost.hpp"
 #include "RenderTestSupport.hpp"
@@ -53,7 +54,8 @@ TEST(Upload, ABatchOf100000SpawnsReachesTheGpuInOneUpload) {
     host->draw(transforms, ids, camera);
     ASSERT_TRUE(projector->setObjects(transforms, ids).ok());
     projector->setDecalTypes({type});
-    projector->setDecals(sys->decals());
+    projector->updateDecals(sys->decals(), sys->changesSince(0));
+    uint64_t version = sys->version();
     Result<ProjectorStats> first = projector->draw(host->frame(camera, false));
     ASSERT_TRUE(first.ok()) << first.error();
     ASSERT_GT(first->drawn, 0u);
@@ -66,7 +68,8 @@ TEST(Upload, ABatchOf100000SpawnsReachesTheGpuInOneUpload) {
         r.origin.x += 0.25;
     sys->spawnBatch(more, t, results);
     ASSERT_EQ(sys->decals().size(), size_t(kShots + 20000));
-    projector->setDecals(sys->decals());
+    projector->updateDecals(sys->decals(), sys->changesSince(version));
+    version = sys->version();
     Result<ProjectorStats> batch = projector->draw(host->frame(camera, false));
     ASSERT_TRUE(batch.ok()) << batch.error();
     EXPECT_EQ(batch->instanceUploads, 1u);
@@ -74,7 +77,7 @@ TEST(Upload, ABatchOf100000SpawnsReachesTheGpuInOneUpload) {
     EXPECT_LT(batch->bytesUploaded, size_t(20000) * 64u + 65536u);
 
     ASSERT_TRUE(sys->spawn(Ray{{0.1, 5.0, 0.1}, {0, -1, 0}}, t).placed());
-    projector->setDecals(sys->decals());
+    projector->updateDecals(sys->decals(), sys->changesSince(version));
     Result<ProjectorStats> second = projector->draw(host->frame(camera, false));
     ASSERT_TRUE(second.ok()) << second.error();
     EXPECT_EQ(second->instanceUploads, 1u);

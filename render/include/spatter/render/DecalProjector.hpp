@@ -10,7 +10,8 @@
 // sorts the visible decals into screen tiles on the GPU and the host's forward fragment shader
 // applies those of its pixel (hostShader("forward.glsl")).
 //
-// It owns the decal instances (object space, uploaded when they change), the decal texture array
+// It owns the decal records (64 bytes each, object space, on the GPU; uploaded when they change), the
+// decal texture array
 // (built-in layers and addDecalTexture*), the shader variants and the GPU timer of its pass. It knows
 // nothing of scenes, meshes, materials or lighting: per frame the host hands it the decals (as
 // DecalSystem::decals() gives them), the object transforms (double precision), the objects' 8-bit
@@ -60,6 +61,7 @@
 // degenerate or non-finite box, are skipped and counted (ProjectorStats::invalid).
 
 #include "spatter/core/Decal.hpp"
+#include "spatter/core/DecalChanges.hpp"
 #include "spatter/core/DecalType.hpp"
 #include "spatter/core/Image.hpp"
 #include "spatter/core/Result.hpp"
@@ -165,10 +167,12 @@ struct ProjectorSettings {
     // draw() builds the visible list on the GPU from this many decals on (given to setDecals): the CPU
     // then does no per-decal work per frame, the pass is not skipped when nothing is in view, and the
     // counts in ProjectorStats are those of an earlier draw (of this one with waitForTimers). 0: always
-    // on the GPU. Unset: kGpuCullingFrom on a GPU, never on a software rasteriser (llvmpipe), where the
-    // compute passes cost more than the CPU's test. bin() culls on the CPU.
+    // on the GPU. Unset: kGpuCullingFrom on a GPU, kGpuCullingFromSoftware on a software rasteriser
+    // (llvmpipe), where the compute passes cost more than the CPU's test of a few decals. bin() culls on the CPU, and so fails
+    // above this count (the CPU keeps the decal records it culls only below it).
     std::optional<size_t> gpuCullingFrom;
     static constexpr size_t kGpuCullingFrom = 65536;
+    static constexpr size_t kGpuCullingFromSoftware = 262144;
     bool waitForTimers = false; // draw() waits for its GPU time (tools, benchmarks); otherwise the
                                 // time reported is that of an earlier frame, read without stalling
 };
@@ -274,9 +278,18 @@ public:
     // Decal appearance, indexed by Decal::type; DecalType::texture is a layer of the texture array
     // (0..3 are the built-in DecalTexture values). Volumetric types are drawn like flat ones here.
     void setDecalTypes(const std::vector<DecalType>& types);
-    // The decals, in their objects' space (as DecalSystem::decals() gives them). Only instances whose
-    // data changed since the last call are uploaded (at the next draw).
+    // The decals, in their objects' space (as DecalSystem::decals() gives them), taken whole: every
+    // record is built and uploaded (at the next draw) and the draw order sorted afresh.
     void setDecals(const std::vector<Decal>& decals);
+    // The decals after `changes` (DecalSystem::changesSince, DecalChanges.hpp): only the records the
+    // changes name are built and uploaded, and the draw order is kept without sorting (a decal added
+    // draws over the older ones of its priority). The decals are taken whole, as by setDecals, when
+    // the changes are not complete or do not fit the decals held, and after setDecalTypes changed the
+    // types' priorities. The projector keeps no copy of the decals: the changes and `decals` together
+    // say what changed. Per decal it keeps 64 bytes on the GPU, and on the CPU a 64-byte record only
+    // while it holds fewer than gpuCullingFrom decals (for the CPU's culling), else about 6 bytes
+    // (its place in the draw order and a validity bit).
+    void updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes);
     // Object-to-world transforms (double) and 8-bit decal IDs, one entry per object that decals may
     // name (Decal::object). Fails, changing nothing, when the counts differ or a transform is not
     // finite and affine; a singular transform is taken (its decals collapse and are not drawn).

@@ -32,7 +32,8 @@
 //   r->setScene(scene);
 //   r->setDecalTypes(types);             // appearance, indexed by Decal::type
 //   r->setObjectIds(ids);                // the decal system's 8-bit object IDs
-//   r->setDecals(decalSystem.decals());  // every frame; only changed instances are uploaded
+//   r->setDecals(decalSystem.decals());  // once; then every frame only what changed:
+//   r->updateDecals(decalSystem.decals(), decalSystem.changesSince(version)); version = ...version
 //
 // Texture-space decals (DecalMode.hpp) and vertex animation (Deformation.hpp), per object:
 //   r->setObjectDecalMode(target, DecalMode::TextureSpace, 512); // fails on overlapping UVs
@@ -150,11 +151,15 @@ public:
     void setDecalTypes(const std::vector<DecalType>& types);
     // The decals to draw (object space, as DecalSystem::decals() gives them). Decals whose type,
     // as last given to setDecalTypes, is volumetric are drawn as holes, not by the decal pass.
-    // Only instances whose data changed since the last frame are uploaded. Decals on texture-space
+    // Every decal is taken whole (updateDecals takes only what changed). Decals on texture-space
     // objects are not drawn by the decal pass: each is splatted into its object's decal texture by the next
     // render call after it first appears (recognised by its ID, object, type, frame and size), and stays
     // there.
     void setDecals(const std::vector<Decal>& decals);
+    // The decals after `changes` (DecalSystem::changesSince): only the decals the changes name are
+    // built and uploaded (DecalProjector::updateDecals). While a scene has texture-space objects or
+    // volumetric types the decals are routed one by one, and this is setDecals.
+    void updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes);
     // Adds a decal texture layer (resized to the layer size); `normalMap` may be empty for a flat
     // one. Returns its layer index.
     Result<int> addDecalTexture(const Image& albedo, const Image& normalMap = {});
