@@ -419,13 +419,12 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
     GlStateGuard guard;
     auto impl = std::make_unique<Impl>();
     impl->settings = settings;
-    impl->gpuCullingFrom = settings.gpuCullingFrom.value_or(softwareRasteriser()
-                                                                ? ProjectorSettings::kGpuCullingFromSoftware
-                                                                : ProjectorSettings::kGpuCullingFrom);
+    impl->gpuCullingFrom =
+        settings.gpuCullingFrom.value_or(softwareRasteriser() ? ProjectorSettings::kGpuCullingFromSoftware
+                                                              : ProjectorSettings::kGpuCullingFrom);
     if (Status s = impl->textures.create(settings.decalTextureSize); !s)
         return fail("projector: " + s.error());
     impl->batch.configure(settings.wrapMaxAngleDeg, impl->textures.layers());
-    impl->batch.setMirrorLimit(impl->gpuCullingFrom);
     impl->frameBuffer = createBuffer();
     glNamedBufferStorage(impl->frameBuffer.get(), sizeof(ProjectorFrameGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
     impl->emptyVao = createVertexArray();
@@ -506,10 +505,11 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
     const FrameCamera camera = frameCamera(host);
     CullView cull = camera.cull;
     cull.rects = true;
+    m.batch.setMirrorLimit(std::numeric_limits<size_t>::max()); // bin() culls on the CPU
     if (!m.batch.mirrored())
-        return fail("projector: bin() culls on the CPU, which keeps its records only below gpuCullingFrom (" +
-                    std::to_string(m.gpuCullingFrom) + ") decals; " + std::to_string(m.batch.size()) +
-                    " are held");
+        return fail(
+            "projector: bin() culls the decals on the CPU, and a draw() that culled them on the GPU let "
+            "their CPU records go: give the decals again (setDecals or updateDecals) before bin()");
     const DecalVisibility vis = m.batch.cull(m.transforms, cull);
     m.orderOnGpu = false;
     m.batch.takeOrderChanges();
@@ -556,6 +556,7 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     if (const std::string p = hostFrameProblem(frame, options); !p.empty()) return fail("projector: " + p);
     const FrameCamera camera = frameCamera(frame);
     const bool onGpu = m.batch.size() > 0 && (m.batch.size() >= m.gpuCullingFrom || !m.batch.mirrored());
+    if (onGpu) m.batch.setMirrorLimit(m.gpuCullingFrom); // the CPU copy is not needed from here on
     DecalVisibility vis;
     if (onGpu) {
         vis.flags = m.batch.flagsUnion();

@@ -168,8 +168,9 @@ struct ProjectorSettings {
     // then does no per-decal work per frame, the pass is not skipped when nothing is in view, and the
     // counts in ProjectorStats are those of an earlier draw (of this one with waitForTimers). 0: always
     // on the GPU. Unset: kGpuCullingFrom on a GPU, kGpuCullingFromSoftware on a software rasteriser
-    // (llvmpipe), where the compute passes cost more than the CPU's test of a few decals. bin() culls on the CPU, and so fails
-    // above this count (the CPU keeps the decal records it culls only below it).
+    // (llvmpipe), where the compute passes cost more than the CPU's test of a few decals. The first
+    // draw() that culls on the GPU lets the CPU copy of the decal records go (64 bytes per decal).
+    // bin() culls on the CPU and keeps that copy.
     std::optional<size_t> gpuCullingFrom;
     static constexpr size_t kGpuCullingFrom = 65536;
     static constexpr size_t kGpuCullingFromSoftware = 262144;
@@ -286,9 +287,9 @@ public:
     // draws over the older ones of its priority). The decals are taken whole, as by setDecals, when
     // the changes are not complete or do not fit the decals held, and after setDecalTypes changed the
     // types' priorities. The projector keeps no copy of the decals: the changes and `decals` together
-    // say what changed. Per decal it keeps 64 bytes on the GPU, and on the CPU a 64-byte record only
-    // while it holds fewer than gpuCullingFrom decals (for the CPU's culling), else about 6 bytes
-    // (its place in the draw order and a validity bit).
+    // say what changed. Per decal it keeps 64 bytes on the GPU, and on the CPU about 10 bytes (its
+    // place in the draw order, a validity bit) plus a 64-byte record for culling on the CPU, which
+    // goes once draw() culls on the GPU (ProjectorSettings::gpuCullingFrom).
     void updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes);
     // Object-to-world transforms (double) and 8-bit decal IDs, one entry per object that decals may
     // name (Decal::object). Fails, changing nothing, when the counts differ or a transform is not
@@ -309,10 +310,11 @@ public:
     // the field) or a shader that does not build.
     Result<ProjectorStats> draw(const HostFrame& frame, const ProjectorDraw& options = {});
 
-    // Forward path: culls the decals against `frame` and sorts the visible ones into screen tiles on the
-    // GPU (ProjectorSettings::forwardTileSize), for the host's forward shader, which applies them per
-    // pixel (hostShader("forward.glsl")) after bindForward. Draws nothing and leaves the GL state as it
-    // found it. Fails, changing nothing, on a frame that does not fit (the error names the field).
+    // Forward path: culls the decals against `frame` (on the CPU: see gpuCullingFrom) and sorts the visible
+    // ones into screen tiles on the GPU (ProjectorSettings::forwardTileSize), for the host's forward shader,
+    // which applies them per pixel (hostShader("forward.glsl")) after bindForward. Draws nothing and leaves
+    // the GL state as it found it. Fails, changing nothing, on a frame that does not fit (the error names the
+    // field).
     Result<ProjectorStats> bin(const ForwardFrame& frame);
     // Binds the buffers of the last bin() and the decal texture arrays for the host's forward pass.
     // It changes exactly the shader storage bindings and texture units `bindings` names (and binds
