@@ -14,6 +14,7 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -35,8 +36,11 @@ Bytes per decal and per object, measured:
                  decals spawned with spawnAttached, spread so that a cell of the area grid holds
                  about 8: the decal records, the per-decal bookkeeping, the area grid and the
                  handle slots (the containers' growth included)
-  renderer CPU   C heap the renderer keeps after Renderer::setDecals and the first frame (the draw
-                 order and validity bits; the decal records too while the projector culls on the CPU)
+  renderer CPU   what the projector holds on the CPU for the decals by its own count
+                 (DecalProjector::memory: the draw order, validity bits, and the decal records while it
+                 culls on the CPU), and the C heap the renderer keeps after Renderer::setDecals and the
+                 first frame (with what the GL driver allocates: some drivers keep copies of the buffers
+                 that the GPU row counts)
   renderer GPU   record bytes uploaded in the first frame (FrameStats), and the GPU memory the
                  driver reports gone (GL_NVX_gpu_memory_info) where the driver has it, else the
                  resident set growth (a software renderer keeps its buffers in process memory)
@@ -148,7 +152,8 @@ int runMemoryCommand(int argc, char** argv) {
     j["area_side"] = side;
 
     // ---- The renderer ----
-    double rendererCpu = std::nan(""), gpuPerDecal = std::nan(""), gpuMeasured = std::nan("");
+    double rendererCpu = std::nan(""), rendererCpuHeap = std::nan(""), gpuPerDecal = std::nan(""),
+           gpuMeasured = std::nan(""), gpuHeld = std::nan("");
     std::string gpuHow = "not measured";
     Json objects;
     if (!args.has("--no-gpu")) {
@@ -188,7 +193,10 @@ int runMemoryCommand(int argc, char** argv) {
                 std::cerr << "spatter-bench memory: " << frame.error() << "\n";
                 return 1;
             }
-            rendererCpu = (double(h1) - double(h0)) / double(placed);
+            const ProjectorMemory held = renderer->decalMemory();
+            rendererCpuHeap = (double(h1) - double(h0)) / double(placed);
+            rendererCpu = double(held.cpuBytes) / double(placed);
+            gpuHeld = double(held.gpuBufferBytes) / double(placed);
             const double uploaded = double(frame->decalBytesUploaded);
             const double visibleBytes = 4.0 * double(frame->decalsDrawn), typeBytes = 48.0;
             gpuPerDecal = (uploaded - visibleBytes - typeBytes) / double(placed);
@@ -200,15 +208,19 @@ int runMemoryCommand(int argc, char** argv) {
                 gpuHow = "resident set growth of the first frame (software renderer)";
             }
             std::printf(
-                "renderer CPU: kept after setDecals and a frame: heap %+.1f MB (%.1f B per decal), resident "
-                "%+.1f MB\n",
-                mb(double(h1) - double(h0)), rendererCpu, mb(double(r1) - double(r0)));
+                "renderer CPU: the projector's own count %.1f B per decal; the heap after setDecals and a "
+                "frame %+.1f MB (%.1f B per decal, the GL driver's allocations included), resident %+.1f "
+                "MB\n",
+                rendererCpu, mb(double(h1) - double(h0)), rendererCpuHeap, mb(double(r1) - double(r0)));
+            std::printf("renderer GPU: the projector's buffers %.1f B per decal (capacities)\n", gpuHeld);
             std::printf("renderer GPU: first frame uploaded %.1f MB: %.1f B per decal of records + 4 B per "
                         "visible decal (%zu visible) + one type\n",
                         mb(uploaded), gpuPerDecal, frame->decalsDrawn);
             std::printf("              memory gone: %.1f B per decal (%s; the buffer grows by doubling)\n",
                         gpuMeasured, gpuHow.c_str());
             j["renderer_cpu_bytes_per_decal"] = rendererCpu;
+            j["renderer_cpu_heap_bytes_per_decal"] = rendererCpuHeap;
+            j["gpu_buffer_bytes_per_decal"] = gpuHeld;
             j["renderer_cpu_resident_bytes_per_decal"] = (double(r1) - double(r0)) / double(placed);
             j["gpu_bytes_per_decal"] = gpuPerDecal;
             j["gpu_bytes_per_visible_decal"] = 4;
@@ -335,9 +347,10 @@ int runMemoryCommand(int argc, char** argv) {
 
     // ---- Targets ----
     const double million = 1e6;
-    const double totalPerDecal = cpuPerDecal + (std::isnan(rendererCpu) ? 0.0 : rendererCpu) +
-                                 (std::isnan(gpuMeasured) ? (std::isnan(gpuPerDecal) ? 0.0 : gpuPerDecal)
-                                                          : std::max(gpuMeasured, gpuPerDecal));
+    const double totalPerDecal =
+        cpuPerDecal + (std::isnan(rendererCpu) ? 0.0 : rendererCpu) +
+        std::max({std::isnan(gpuMeasured) ? 0.0 : gpuMeasured, std::isnan(gpuPerDecal) ? 0.0 : gpuPerDecal,
+                  std::isnan(gpuHeld) ? 0.0 : gpuHeld});
     const double rendererCpuPart = std::isnan(rendererCpu) ? 0.0 : rendererCpu;
     std::printf(
         "\nper decal: decal system %.1f B + renderer CPU %.1f B + GPU %.1f B = %.1f B, target <= 160: %s\n",

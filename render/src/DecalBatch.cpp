@@ -39,7 +39,7 @@ void DecalBatch::rebuildTypes() {
 void DecalBatch::setMirrorLimit(size_t limit) {
     mirrorLimit_ = limit;
     if (mirror_ && size() >= limit) {
-        records_ = {};
+        std::vector<DecalRecordGpu>().swap(records_); // frees the memory, which "= {}" keeps
         mirror_ = false;
     }
 }
@@ -126,7 +126,7 @@ void DecalBatch::updateMirror(const std::vector<Decal>& decals) {
     const bool want = decals.size() < mirrorLimit_;
     if (want == mirror_) return;
     mirror_ = want;
-    records_ = {};
+    std::vector<DecalRecordGpu>().swap(records_);
     if (!want) return;
     records_.resize(decals.size());
     for (size_t i = 0; i < decals.size(); ++i)
@@ -151,8 +151,17 @@ bool DecalBatch::valid(size_t i) const {
            typeRecords_[recordType(r)].info.z != 0;
 }
 
+size_t DecalBatch::cpuBytes() const {
+    size_t bytes = order_.cpuBytes() + sound_.capacity() / 8 + records_.capacity() * sizeof(DecalRecordGpu) +
+                   typeRecords_.capacity() * sizeof(DecalTypeGpu) +
+                   staged_.capacity() * sizeof(StagedRecords);
+    for (const StagedRecords& run : staged_)
+        bytes += run.records.capacity() * sizeof(DecalRecordGpu);
+    return bytes;
+}
+
 void DecalBatch::markUploaded() {
-    staged_ = {};
+    std::vector<StagedRecords>().swap(staged_);
 }
 
 DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms,

@@ -88,6 +88,9 @@ public:
         return typeRecords_[recordType(r)].info.y | recordFlags(r);
     }
 
+    // Bytes of its own allocations: the draw order, the validity bits, the CPU copy and the staged records.
+    size_t cpuBytes() const;
+
     // Records changed since markUploaded(), in runs.
     const std::vector<StagedRecords>& staged() const { return staged_; }
     void markUploaded();

@@ -654,6 +654,15 @@ Result<std::string> DecalProjector::hostShader(const std::string& name) {
     return includeText(shaderLibrary(kProjectorShaders), name);
 }
 
+ProjectorMemory DecalProjector::memory() const {
+    const Impl& m = *impl_;
+    ProjectorMemory r;
+    r.cpuBytes = m.batch.cpuBytes();
+    r.gpuBufferBytes = m.decalCapacity + m.visibleCapacity + m.objectCapacity + m.culling.gpuBytes() +
+                       m.forward.gpuBytes() + m.batch.typeRecords().size() * sizeof(DecalTypeGpu);
+    return r;
+}
+
 const ProjectorSettings& DecalProjector::settings() const {
     return impl_->settings;
 }

@@ -30,6 +30,12 @@ public:
     void place(const std::vector<Decal>& decals, const std::vector<uint32_t>& typeRank);
 
     const std::vector<uint32_t>& entries() const { return entries_; }
+    // Bytes of its own allocations.
+    size_t cpuBytes() const {
+        return (entries_.capacity() + pos_.capacity() + pending_.capacity() + changed_.capacity()) *
+                   sizeof(uint32_t) +
+               regions_.capacity() * sizeof(Region);
+    }
     size_t decalCount() const { return pos_.size(); }
     // The runs of entries changed since the last call (SparseRuns.hpp); all of them after a new layout.
     std::vector<std::pair<size_t, size_t>> takeChanged();

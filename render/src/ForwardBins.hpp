@@ -31,6 +31,11 @@ public:
     GLuint tiles() const { return tiles_.get(); }
     GLuint items() const { return items_.get(); }
 
+    // Bytes of the GPU buffers it holds.
+    size_t gpuBytes() const {
+        return decalsCapacity_ + tilesCapacity_ + itemsCapacity_ + rectsCapacity_ + countsCapacity_;
+    }
+
 private:
     // The tile rectangles of the visible decals (x0 | y0 << 16, x1 | y1 << 16) and the item count.
     size_t tileRects(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize, glm::ivec2 tiles);

@@ -39,6 +39,9 @@ public:
     // run the GPU has finished (0 before the first).
     uint32_t visibleCount(bool wait);
 
+    // Bytes of the GPU buffers it holds.
+    size_t gpuBytes() const { return classesCapacity_ + groupsCapacity_ + orderCapacity_; }
+
 private:
     GlProgram classify_, scan_, scatter_;
     GlBuffer classes_, groups_, draws_, readback_, order_;

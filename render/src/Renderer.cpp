@@ -636,6 +636,10 @@ Result<int> Renderer::addDecalTextureFile(const std::string& albedoPath, const s
     return impl_->layerAdded(impl_->projector->addDecalTextureFile(albedoPath, normalMapPath));
 }
 
+ProjectorMemory Renderer::decalMemory() const {
+    return impl_->projector->memory();
+}
+
 int Renderer::decalTextureLayers() const {
     return impl_->projector->decalTextureLayers();
 }

@@ -266,6 +266,15 @@ struct ProjectorResources {
     uint32_t forwardItems = 0;  // shader storage: the tiles' decal indices, in drawing order
 };
 
+// What the projector holds for its decals (DecalProjector::memory), counted from its own
+// allocations; the driver's own copies and bookkeeping are not in it.
+struct ProjectorMemory {
+    size_t cpuBytes = 0;       // the draw order, a validity bit per decal, the CPU copy of the records
+                               // (until draw() culls on the GPU) and records waiting for upload
+    size_t gpuBufferBytes = 0; // the decal records, types, objects, draw order, culling and forward
+                               // buffers and the visible list (capacities: buffers grow by doubling)
+};
+
 class DecalProjector {
 public:
     // Compiles nothing yet (variants are built on first use) and builds the decal texture array with
@@ -325,6 +334,7 @@ public:
     std::string frameProblem(const HostFrame& frame, const ProjectorDraw& options = {}) const;
 
     ProjectorResources resources() const;
+    ProjectorMemory memory() const;
 
     // GLSL for a host's own shaders, to paste after its #version line: "dbuffer.glsl" (applying the
     // decal buffers of the DBuffer path) or "forward.glsl" (the forward path). Fails on another name.

@@ -166,6 +166,8 @@ public:
     // The same from image files (PNG, JPEG, ...); `normalMapPath` may be empty.
     Result<int> addDecalTextureFile(const std::string& albedoPath, const std::string& normalMapPath = "");
     int decalTextureLayers() const;
+    // What the decal projector holds for the decals (DecalProjector::memory).
+    ProjectorMemory decalMemory() const;
 
     // Wireframes for RenderOverlays::proxyWireframe, typically the collision proxies (Proxy::mesh):
     // one mesh per scene object, in that object's space (an empty mesh draws nothing for its
