@@ -9,7 +9,7 @@ layout(location = 0) uniform uint u_count;  // decals
 layout(location = 1) uniform vec4 u_camera; // y: 1 reversed Z; z: 1 clip depth -1..1
 
 layout(std430, binding = 0) writeonly buffer Classes {
-    uint classes[];
+    uint classBits[]; // bit k of word w: entry 32 w + k is visible
 };
 layout(std430, binding = 2) writeonly buffer GroupCounts {
     uint groupCounts[];
@@ -19,6 +19,7 @@ layout(std430, binding = 6) readonly buffer DrawOrder {
 };
 
 shared uint sVisible;
+shared uint sBits[8]; // the work group's 256 classes
 
 // Whether the box, corner by corner in clip space, lies beyond one of the view's planes.
 bool outsideFrustum(DecalData d, ProjectorObject o) {
@@ -54,12 +55,16 @@ uint classify(uint i) {
 
 void main() {
     if (gl_LocalInvocationIndex == 0u) sVisible = 0u;
+    if (gl_LocalInvocationIndex < 8u) sBits[gl_LocalInvocationIndex] = 0u;
     barrier();
     uint place = gl_GlobalInvocationID.x;
     uint entry = place < u_count ? drawOrder[place] : 0xffffffffu; // an empty entry of the order
     uint c = entry != 0xffffffffu ? classify(entry) : 0u;
-    if (place < u_count) classes[place] = c;
-    if (c == 1u) atomicAdd(sVisible, 1u);
+    if (c == 1u) {
+        atomicAdd(sVisible, 1u);
+        atomicOr(sBits[gl_LocalInvocationIndex / 32u], 1u << (gl_LocalInvocationIndex % 32u));
+    }
     barrier();
+    if (gl_LocalInvocationIndex < 8u) classBits[gl_WorkGroupID.x * 8u + gl_LocalInvocationIndex] = sBits[gl_LocalInvocationIndex];
     if (gl_LocalInvocationIndex == 0u) groupCounts[gl_WorkGroupID.x] = sVisible;
 }

@@ -4,7 +4,7 @@ layout(local_size_x = 256) in;
 layout(location = 0) uniform uint u_count;
 
 layout(std430, binding = 0) readonly buffer Classes {
-    uint classes[];
+    uint classBits[]; // bit k of word w: entry 32 w + k is visible
 };
 layout(std430, binding = 2) readonly buffer GroupFirsts {
     uint groupFirsts[];
@@ -20,7 +20,7 @@ shared uint ranks[256];
 
 void main() {
     uint t = gl_LocalInvocationIndex, place = gl_GlobalInvocationID.x;
-    uint mine = place < u_count ? classes[place] : 0u;
+    uint mine = place < u_count ? (classBits[place / 32u] >> (place % 32u)) & 1u : 0u;
     ranks[t] = mine;
     barrier();
     for (uint offset = 1u; offset < 256u; offset <<= 1) {

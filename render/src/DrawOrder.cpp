@@ -119,7 +119,7 @@ void DrawOrder::layout(const std::vector<std::vector<uint32_t>>& byRank) {
     size_t start = 0;
     for (size_t r = 0; r < regions_.size(); ++r) {
         const size_t n = r < byRank.size() ? byRank[r].size() : 0;
-        regions_[r] = Region{start, n + n / 2 + 64, n, 0}; // room to grow by half before the next layout
+        regions_[r] = Region{start, n + n / 4 + 64, n, 0}; // room to grow by a quarter before the next layout
         start += regions_[r].size;
     }
     entries_.assign(start, kEmpty);

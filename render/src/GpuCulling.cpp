@@ -51,7 +51,10 @@ size_t GpuCulling::updateDrawOrder(const std::vector<uint32_t>& entries,
                                    const std::vector<std::pair<size_t, size_t>>& runs) {
     entries_ = uint32_t(entries.size());
     const size_t bytes = std::max<size_t>(1, entries.size()) * sizeof(uint32_t);
-    if (reserveBuffer(order_, orderCapacity_, bytes, 4096)) {
+    if (bytes > orderCapacity_ || !order_) { // sized as the order is: it has room to grow of its own
+        order_ = createBuffer();
+        orderCapacity_ = bytes;
+        glNamedBufferStorage(order_.get(), GLsizeiptr(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
         glNamedBufferSubData(order_.get(), 0, GLsizeiptr(entries.size() * sizeof(uint32_t)), entries.data());
         return entries.size() * sizeof(uint32_t);
     }
@@ -68,7 +71,7 @@ void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, GlBuffer&
                      size_t& visibleCapacity) {
     const uint32_t count = entries_;
     const uint32_t groups = std::max<uint32_t>(1, (count + kGroup - 1) / kGroup);
-    reserveBuffer(classes_, classesCapacity_, size_t(count) * sizeof(uint32_t), 4096);
+    reserveBuffer(classes_, classesCapacity_, size_t(groups) * kGroup / 8, 4096); // a bit per entry
     reserveBuffer(groups_, groupsCapacity_, size_t(groups) * sizeof(uint32_t), 4096);
     reserveBuffer(order_, orderCapacity_, sizeof(uint32_t), 4096); // bound even when empty
     if (reserveBuffer(visible, visibleCapacity, decals * sizeof(uint32_t), 4096)) {
