@@ -1,5 +1,7 @@
 #include "AreaLimits.hpp"
 
+#include <algorithm>
+
 namespace spatter {
 
 size_t CellKeyHash::operator()(const CellKey& k) const {
@@ -16,66 +18,157 @@ size_t CellKeyHash::operator()(const CellKey& k) const {
     return size_t(mix(h, k.space));
 }
 
-void AreaLimits::pushBack(List& list, Kind kind, uint32_t slot) {
-    Link& l = links_[slot][kind];
+AreaLimits::AreaLimits(size_t objectCount, bool cellOrder, bool objectOrder) : objects_(objectCount) {
+    if (objectOrder) objectPos_ = stride_++;
+    if (cellOrder) cellPos_ = stride_++;
+}
+
+size_t AreaLimits::hashOf(const Cell& c) {
+    CellKey k;
+    k.x = c.x;
+    k.y = c.y;
+    k.z = c.z;
+    k.space = c.space;
+    return CellKeyHash()(k);
+}
+
+uint32_t AreaLimits::findCell(const CellKey& key) const {
+    if (table_.empty()) return kNone;
+    const size_t mask = table_.size() - 1;
+    for (size_t i = CellKeyHash()(key) & mask;; i = (i + 1) & mask) {
+        const uint32_t c = table_[i];
+        if (c == kNone || cells_[c].is(key)) return c;
+    }
+}
+
+uint32_t AreaLimits::addCell(const CellKey& key) {
+    if (2 * (cellsInUse_ + 1) > table_.size()) { // at most half full: rehash into twice the size
+        std::vector<uint32_t> old(std::max<size_t>(16, 2 * table_.size()), kNone);
+        old.swap(table_);
+        const size_t mask = table_.size() - 1;
+        for (uint32_t c : old) {
+            if (c == kNone) continue;
+            size_t i = hashOf(cells_[c]) & mask;
+            while (table_[i] != kNone)
+                i = (i + 1) & mask;
+            table_[i] = c;
+        }
+    }
+    uint32_t c;
+    if (freeCells_ != kNone) {
+        c = freeCells_;
+        freeCells_ = cells_[c].list.head;
+    } else {
+        c = uint32_t(cells_.size());
+        cells_.emplace_back();
+    }
+    Cell& cell = cells_[c];
+    cell.x = key.x;
+    cell.y = key.y;
+    cell.z = key.z;
+    cell.space = key.space;
+    cell.list = List();
+    const size_t mask = table_.size() - 1;
+    size_t i = CellKeyHash()(key) & mask;
+    while (table_[i] != kNone)
+        i = (i + 1) & mask;
+    table_[i] = c;
+    cellsInUse_++;
+    return c;
+}
+
+void AreaLimits::dropCell(uint32_t c) {
+    const size_t mask = table_.size() - 1;
+    size_t i = hashOf(cells_[c]) & mask;
+    while (table_[i] != c)
+        i = (i + 1) & mask;
+    // Backward-shift deletion: move up every later entry of the run that may not stay behind the hole.
+    for (size_t j = (i + 1) & mask; table_[j] != kNone; j = (j + 1) & mask) {
+        const size_t home = hashOf(cells_[table_[j]]) & mask;
+        // The entry at j may stay when its home lies cyclically in (i, j].
+        const bool stays = i < j ? (home > i && home <= j) : (home > i || home <= j);
+        if (!stays) {
+            table_[i] = table_[j];
+            i = j;
+        }
+    }
+    table_[i] = kNone;
+    cells_[c].list.head = freeCells_;
+    freeCells_ = c;
+    cellsInUse_--;
+}
+
+void AreaLimits::pushBack(List& list, unsigned pos, uint32_t slot) {
+    list.count++;
+    Link& l = links_[size_t(slot) * stride_ + pos];
     l.prev = list.tail;
     l.next = kNone;
     if (list.tail != kNone)
-        links_[list.tail][kind].next = slot;
+        links_[size_t(list.tail) * stride_ + pos].next = slot;
     else
         list.head = slot;
     list.tail = slot;
-    list.count++;
 }
 
-void AreaLimits::erase(List& list, Kind kind, uint32_t slot) {
-    Link& l = links_[slot][kind];
+void AreaLimits::erase(List& list, unsigned pos, uint32_t slot) {
+    list.count--;
+    Link& l = links_[size_t(slot) * stride_ + pos];
     if (l.prev != kNone)
-        links_[l.prev][kind].next = l.next;
+        links_[size_t(l.prev) * stride_ + pos].next = l.next;
     else
         list.head = l.next;
     if (l.next != kNone)
-        links_[l.next][kind].prev = l.prev;
+        links_[size_t(l.next) * stride_ + pos].prev = l.prev;
     else
         list.tail = l.prev;
     l = Link();
-    list.count--;
 }
 
 void AreaLimits::link(uint32_t slot, const CellKey& key, uint32_t object) {
-    if (slot >= links_.size()) {
-        links_.resize(slot + 1);
-        keys_.resize(slot + 1);
-        objectOf_.resize(slot + 1, 0);
-        linked_.resize(slot + 1, false);
+    if (slot >= cellOf_.size()) {
+        cellOf_.resize(size_t(slot) + 1, kNone);
+        links_.resize(cellOf_.size() * stride_);
     }
-    if (object >= objects_.size()) objects_.resize(object + 1);
-    keys_[slot] = key;
-    objectOf_[slot] = object;
-    linked_[slot] = true;
-    pushBack(cells_[key], kCell, slot);
-    pushBack(objects_[object], kObject, slot);
-    pushBack(global_, kGlobal, slot);
+    if (object >= objects_.size()) objects_.resize(size_t(object) + 1);
+    uint32_t c = findCell(key);
+    if (c == kNone) c = addCell(key);
+    cellOf_[slot] = c;
+    pushBack(global_, 0, slot);
+    if (objectPos_ != 0)
+        pushBack(objects_[object], objectPos_, slot);
+    else
+        objects_[object].count++;
+    if (cellPos_ != 0)
+        pushBack(cells_[c].list, cellPos_, slot);
+    else
+        cells_[c].list.count++;
 }
 
-void AreaLimits::unlink(uint32_t slot) {
+void AreaLimits::unlink(uint32_t slot, uint32_t object) {
     if (!linked(slot)) return;
-    auto cell = cells_.find(keys_[slot]);
-    erase(cell->second, kCell, slot);
-    if (cell->second.count == 0) cells_.erase(cell);
-    erase(objects_[objectOf_[slot]], kObject, slot);
-    erase(global_, kGlobal, slot);
-    linked_[slot] = false;
-}
-
-uint32_t AreaLimits::cellCount(const CellKey& key) const {
-    auto it = cells_.find(key);
-    return it == cells_.end() ? 0 : it->second.count;
+    const uint32_t c = cellOf_[slot];
+    cellOf_[slot] = kNone;
+    erase(global_, 0, slot);
+    if (objectPos_ != 0)
+        erase(objects_[object], objectPos_, slot);
+    else
+        objects_[object].count--;
+    if (cellPos_ != 0)
+        erase(cells_[c].list, cellPos_, slot);
+    else
+        cells_[c].list.count--;
+    if (cells_[c].list.count == 0) dropCell(c);
 }
 
 uint32_t AreaLimits::oldestInCell(const CellKey& key) const {
-    auto it = cells_.find(key);
-    return it == cells_.end() ? kNone : it->second.head;
+    if (cellPos_ == 0) return cellCount(key) != 0 ? oldest() : kNone;
+    const uint32_t c = findCell(key);
+    return c == kNone ? kNone : cells_[c].list.head;
+}
+
+uint32_t AreaLimits::oldestOfObject(uint32_t object) const {
+    if (objectPos_ == 0) return objectCount(object) != 0 ? oldest() : kNone;
+    return object < objects_.size() ? objects_[object].head : kNone;
 }
 
 } // namespace spatter

@@ -2,11 +2,14 @@
 // AreaLimits: the bookkeeping behind the per-area limits of the decal system. Each counted decal
 // (by slot) sits in three lists in spawn order: its cell of the spatial hash, its object, and the
 // global list, so counting and finding the oldest are O(1).
+//
+// Memory: a slot keeps the 32-bit index of its cell and two 32-bit links per list it is ordered in
+// (at most 28 bytes); a cell in use keeps its key and list (40 bytes) and a 32-bit entry in an
+// open-addressing table at most half full. A limit at or above the budget keeps no order of its own
+// (see AreaLimits()), which saves that list's 8 bytes per slot.
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace spatter {
@@ -27,15 +30,24 @@ class AreaLimits {
 public:
     static constexpr uint32_t kNone = UINT32_MAX;
 
-    explicit AreaLimits(size_t objectCount = 0) : objects_(objectCount) {}
+    // `cellOrder` and `objectOrder` say whether the cells' and the objects' lists are kept in spawn
+    // order. The counted decals never outnumber the budget, so a limit at or above the budget is
+    // reached only when every counted decal is in that one cell (object): its oldest is then the
+    // oldest of all, and without the order oldestInCell / oldestOfObject return oldest(), which is
+    // that same decal. The counts are kept either way.
+    explicit AreaLimits(size_t objectCount = 0, bool cellOrder = true, bool objectOrder = true);
 
     // Adds `slot` as the newest decal of its cell, its object and the world. `slot` must not be linked.
     void link(uint32_t slot, const CellKey& key, uint32_t object);
-    // Takes `slot` out of its lists; does nothing when it is not linked.
-    void unlink(uint32_t slot);
-    bool linked(uint32_t slot) const { return slot < linked_.size() && linked_[slot]; }
+    // Takes `slot` out of its lists; `object` is the one it was linked with. Does nothing when it is
+    // not linked.
+    void unlink(uint32_t slot, uint32_t object);
+    bool linked(uint32_t slot) const { return slot < cellOf_.size() && cellOf_[slot] != kNone; }
 
-    uint32_t cellCount(const CellKey& key) const;
+    uint32_t cellCount(const CellKey& key) const {
+        const uint32_t c = findCell(key);
+        return c == kNone ? 0 : cells_[c].list.count;
+    }
     uint32_t objectCount(uint32_t object) const {
         return object < objects_.size() ? objects_[object].count : 0;
     }
@@ -43,9 +55,7 @@ public:
 
     // Oldest linked slot, or kNone.
     uint32_t oldestInCell(const CellKey& key) const;
-    uint32_t oldestOfObject(uint32_t object) const {
-        return object < objects_.size() ? objects_[object].head : kNone;
-    }
+    uint32_t oldestOfObject(uint32_t object) const;
     uint32_t oldest() const { return global_.head; }
 
 private:
@@ -55,16 +65,36 @@ private:
     struct List {
         uint32_t head = kNone, tail = kNone, count = 0;
     };
-    enum Kind { kCell = 0, kObject = 1, kGlobal = 2 };
+    // A cell in use (list.count > 0), or a free one whose list.head is the next free cell.
+    struct Cell {
+        int64_t x = 0, y = 0, z = 0;
+        uint32_t space = 0;
+        List list;
+        bool is(const CellKey& k) const { return x == k.x && y == k.y && z == k.z && space == k.space; }
+    };
+    static_assert(sizeof(Cell) == 40, "a cell of the area grid grew past 40 bytes");
 
-    void pushBack(List& list, Kind kind, uint32_t slot);
-    void erase(List& list, Kind kind, uint32_t slot);
+    static size_t hashOf(const Cell& c);
+    // The index of the cell of `key`, or kNone.
+    uint32_t findCell(const CellKey& key) const;
+    // Adds an empty cell for `key`, which has none yet, and returns its index.
+    uint32_t addCell(const CellKey& key);
+    // Takes an empty cell out of the table and frees its index.
+    void dropCell(uint32_t cell);
 
-    std::vector<std::array<Link, 3>> links_; // by slot
-    std::vector<CellKey> keys_;              // by slot
-    std::vector<uint32_t> objectOf_;         // by slot
-    std::vector<bool> linked_;               // by slot
-    std::unordered_map<CellKey, List, CellKeyHash> cells_;
+    // Lists by their position in a slot's links: 0 the global list, then the ordered ones.
+    void pushBack(List& list, unsigned pos, uint32_t slot);
+    void erase(List& list, unsigned pos, uint32_t slot);
+
+    unsigned stride_ = 1;          // links per slot
+    unsigned objectPos_ = 0;       // position of the object list's links, 0: not ordered
+    unsigned cellPos_ = 0;         // position of the cell list's links, 0: not ordered
+    std::vector<Link> links_;      // by slot, stride_ each
+    std::vector<uint32_t> cellOf_; // by slot: its cell, kNone when not linked
+    std::vector<Cell> cells_;      // by cell index
+    uint32_t freeCells_ = kNone;   // first free cell index
+    std::vector<uint32_t> table_;  // cell indices by hash (linear probing, power of two, kNone: empty)
+    size_t cellsInUse_ = 0;
     std::vector<List> objects_;
     List global_;
 };

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <system_error>
 #include <thread>
+#include <unordered_map>
 
 namespace spatter {
 
@@ -64,12 +65,6 @@ bool soundBox(const Decal& d) {
 // The largest world-space extent (size or half-depth) a decal may have: its box goes to object space
 // and back through float, and an extent at float's limit would round past it to infinity.
 constexpr float kMaxWorldExtent = std::numeric_limits<float>::max() / 4.0f;
-
-struct Meta {
-    uint32_t slot = kNone;
-    bool fading = false;    // evicted under FadeOldest, no longer counted by the limits
-    double evictedAt = 0.0; // clock time of that eviction
-};
 
 struct Slot {
     uint32_t dense = kNone;
@@ -152,8 +147,11 @@ struct DecalSystem::Impl {
     std::vector<uint8_t> objectIds;
     Rng rng;
     double time = 0.0;
-    std::vector<Decal> decals;          // dense
-    std::vector<Meta> meta;             // parallel to decals
+    std::vector<Decal> decals;    // dense
+    std::vector<uint32_t> slotOf; // parallel to decals: the handle slot of each
+    // The decals evicted under FadeOldest, which the limits no longer count, by slot: the clock time
+    // of the eviction. Few at a time, so a side table rather than 8 bytes beside every decal.
+    std::unordered_map<uint32_t, double> fadingSince;
     DenseIndexSet timed;                // dense indices update() visits: type lifetime > 0, or fading
     std::vector<DecalChange> changeLog; // the newest changes of decals, oldest first
     uint64_t changeLogBase = 0;         // the version before changeLog[0]
@@ -164,7 +162,9 @@ struct DecalSystem::Impl {
     std::mutex mutex; // held by every mutation
 
     Impl(CollisionWorld w, const DecalSettings& s)
-        : world(std::move(w)), settings(s), rng(s.seed), limits(world.objectCount()) {}
+        : world(std::move(w)), settings(s), rng(s.seed),
+          // A cap at or above the budget needs no spawn order of its own (AreaLimits()).
+          limits(world.objectCount(), s.maxPerCell < s.budget, s.maxPerObject < s.budget) {}
 
     SpawnResult reject(SpawnStatus status, std::string reason) {
         stats.rejected[size_t(status)]++;
@@ -221,10 +221,14 @@ struct DecalSystem::Impl {
         changeLog.push_back(c);
     }
 
+    bool fading(uint32_t dense) const {
+        return !fadingSince.empty() && fadingSince.count(slotOf[dense]) != 0;
+    }
+
     void removeDense(uint32_t dense) {
-        const uint32_t slot = meta[dense].slot;
-        if (meta[dense].fading) stats.fading--;
-        limits.unlink(slot);
+        const uint32_t slot = slotOf[dense];
+        if (!fadingSince.empty() && fadingSince.erase(slot) != 0) stats.fading--;
+        limits.unlink(slot, decals[dense].object);
         slots[slot].dense = kNone;
         slots[slot].generation++;
         freeSlots.push_back(slot);
@@ -233,15 +237,15 @@ struct DecalSystem::Impl {
         timed.reset(last);
         if (dense != last) {
             decals[dense] = decals[last];
-            meta[dense] = meta[last];
-            slots[meta[dense].slot].dense = dense;
+            slotOf[dense] = slotOf[last];
+            slots[slotOf[dense]].dense = dense;
             if (lastTimed)
                 timed.set(dense);
             else
                 timed.reset(dense);
         }
         decals.pop_back();
-        meta.pop_back();
+        slotOf.pop_back();
         stats.alive = decals.size();
         logChange(dense, last, DecalChangeKind::Removed);
     }
@@ -251,9 +255,8 @@ struct DecalSystem::Impl {
         const uint32_t dense = slots[slot].dense;
         const float fade = types[decals[dense].type].fadeOutTime;
         if (settings.policy == LimitPolicy::FadeOldest && fade > 0.0f) {
-            limits.unlink(slot);
-            meta[dense].fading = true;
-            meta[dense].evictedAt = time;
+            limits.unlink(slot, decals[dense].object);
+            fadingSince[slot] = time;
             timed.set(dense);
             stats.fading++;
         } else {
@@ -356,9 +359,7 @@ struct DecalSystem::Impl {
         const uint32_t dense = uint32_t(decals.size());
         slots[slot].dense = dense;
         decals.push_back(d);
-        Meta mt;
-        mt.slot = slot;
-        meta.push_back(mt);
+        slotOf.push_back(slot);
         if (t.lifetime > 0.0f) timed.set(dense);
         limits.link(slot, key, objectIndex);
         stats.placed++;
@@ -634,7 +635,8 @@ Status DecalSystem::update(double dt) {
     for (uint32_t i = s.timed.highestBelow(uint32_t(s.decals.size())); i != kNone;
          i = s.timed.highestBelow(i)) {
         Decal& d = s.decals[i];
-        const Meta& m = s.meta[i];
+        const auto fade = s.fadingSince.empty() ? s.fadingSince.end() : s.fadingSince.find(s.slotOf[i]);
+        const bool fading = fade != s.fadingSince.end();
         const DecalType& t = s.types[d.type];
         float opacity = 1.0f;
         bool remove = false;
@@ -642,15 +644,15 @@ Status DecalSystem::update(double dt) {
             const double age = s.time - d.spawnTime;
             if (age >= double(t.lifetime)) {
                 remove = true;
-                if (!m.fading) s.stats.expired++;
+                if (!fading) s.stats.expired++;
             } else {
                 const double fadeStart = std::max(0.0, double(t.lifetime) - double(t.fadeOutTime));
                 if (age > fadeStart)
                     opacity = float((double(t.lifetime) - age) / (double(t.lifetime) - fadeStart));
             }
         }
-        if (!remove && m.fading) {
-            const double since = s.time - m.evictedAt;
+        if (!remove && fading) {
+            const double since = s.time - fade->second;
             if (since >= double(t.fadeOutTime))
                 remove = true;
             else
@@ -671,7 +673,7 @@ bool DecalSystem::remove(DecalHandle handle) {
     const std::lock_guard<std::mutex> lock(s.mutex);
     if (!get(handle)) return false;
     const uint32_t dense = s.slots[handle.slot].dense;
-    if (!s.meta[dense].fading) s.stats.removed++; // a fading decal is counted in evicted already
+    if (!s.fading(dense)) s.stats.removed++; // a fading decal is counted in evicted already
     s.removeDense(dense);
     return true;
 }
@@ -729,7 +731,7 @@ Status DecalSystem::removeObject(uint32_t object) {
     if (Status st = s.world.removeObject(object); !st) return st;
     for (size_t i = s.decals.size(); i-- > 0;) {
         if (s.decals[i].object != object) continue;
-        if (!s.meta[i].fading) s.stats.removed++; // a fading decal is counted in evicted already
+        if (!s.fading(uint32_t(i))) s.stats.removed++; // a fading decal is counted in evicted already
         s.removeDense(uint32_t(i));
     }
     return {};
