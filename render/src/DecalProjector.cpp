@@ -608,13 +608,16 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     } else {
         stats.bytesUploaded += m.uploadVisible(vis);
     }
+    const bool inPlace = !(vis.flags & kDecalWrap) && roughnessProgram == 0;
     const NormalCopyMode copy = !writesNormals ? NormalCopyMode::None
                                 : onGpu        ? normalCopyMode(m.culling.visibleCount(false))
-                                               : normalCopyMode(vis);
+                                               : normalCopyMode(vis, frame.width, frame.height, inPlace);
     stats.normalCopy = normalCopyName(copy);
     const bool depthTest = m.attachDepth(frame);
     m.bindInputs(frame);
-    if (copy != NormalCopyMode::None) {
+    if (copy == NormalCopyMode::InPlace) {
+        glTextureBarrier(); // the decals read the host's normals in place: its last writes must show
+    } else if (copy != NormalCopyMode::None) {
         stats.drawCalls += m.copyNormals(frame, vis, boxes, copy, depthTest);
         glBindTextureUnit(1, m.normalCopy.texture());
     }

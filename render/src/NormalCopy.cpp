@@ -9,7 +9,33 @@
 
 namespace spatter::render_detail {
 
-NormalCopyMode normalCopyMode(const DecalVisibility& vis) {
+namespace {
+
+// Whole pixels around a box's screen rectangle (normalised device bounds), a pixel wider for the
+// derivatives of the decal pass, clamped to the viewport: x0, y0, x1, y1 (end exclusive).
+glm::ivec4 pixelRect(const glm::vec4& r, int width, int height) {
+    return glm::ivec4(std::max(0, int(std::floor((r.x * 0.5f + 0.5f) * float(width))) - 1),
+                      std::max(0, int(std::floor((r.y * 0.5f + 0.5f) * float(height))) - 1),
+                      std::min(width, int(std::ceil((r.z * 0.5f + 0.5f) * float(width))) + 1),
+                      std::min(height, int(std::ceil((r.w * 0.5f + 0.5f) * float(height))) + 1));
+}
+
+bool disjoint(const DecalVisibility& vis, int width, int height) {
+    std::vector<glm::ivec4> px;
+    for (const glm::vec4& r : vis.rects)
+        px.push_back(pixelRect(r, width, height));
+    for (size_t a = 0; a < px.size(); ++a)
+        for (size_t b = a + 1; b < px.size(); ++b)
+            if (px[a].x < px[b].z && px[b].x < px[a].z && px[a].y < px[b].w && px[b].y < px[a].w)
+                return false;
+    return true;
+}
+
+} // namespace
+
+NormalCopyMode normalCopyMode(const DecalVisibility& vis, int width, int height, bool inPlace) {
+    if (inPlace && vis.rects.size() <= kInPlaceDecals && disjoint(vis, width, height))
+        return NormalCopyMode::InPlace;
     double area = 0.0; // in units of the viewport (NDC spans 2 x 2); a box that may hold the eye: 1
     for (const glm::vec4& r : vis.rects)
         area += double(r.z - r.x) * double(r.w - r.y) / 4.0;
@@ -23,6 +49,8 @@ NormalCopyMode normalCopyMode(uint32_t gpuVisible) {
 
 const char* normalCopyName(NormalCopyMode mode) {
     switch (mode) {
+    case NormalCopyMode::InPlace:
+        return "in-place";
     case NormalCopyMode::Rects:
         return "rects";
     case NormalCopyMode::Boxes:
@@ -69,11 +97,8 @@ void NormalCopy::copyViewport(const HostFrame& f) const {
 
 void NormalCopy::copyRects(const HostFrame& f, const DecalVisibility& vis) const {
     for (const glm::vec4& r : vis.rects) {
-        // Whole pixels around the rectangle, a pixel wider for the decal pass's derivatives.
-        const int x0 = std::max(0, int(std::floor((r.x * 0.5f + 0.5f) * float(f.width))) - 1);
-        const int y0 = std::max(0, int(std::floor((r.y * 0.5f + 0.5f) * float(f.height))) - 1);
-        const int x1 = std::min(f.width, int(std::ceil((r.z * 0.5f + 0.5f) * float(f.width))) + 1);
-        const int y1 = std::min(f.height, int(std::ceil((r.w * 0.5f + 0.5f) * float(f.height))) + 1);
+        const glm::ivec4 p = pixelRect(r, f.width, f.height);
+        const int x0 = p.x, y0 = p.y, x1 = p.z, y1 = p.w;
         if (x1 <= x0 || y1 <= y0) continue;
         glCopyImageSubData(f.normals.texture, GL_TEXTURE_2D, 0, f.x + x0, f.y + y0, 0, texture_.get(),
                            GL_TEXTURE_2D, 0, f.x + x0, f.y + y0, 0, x1 - x0, y1 - y0, 1);

@@ -15,18 +15,24 @@
 
 namespace spatter::render_detail {
 
-enum class NormalCopyMode { None, Rects, Boxes, Viewport };
+enum class NormalCopyMode { None, InPlace, Rects, Boxes, Viewport };
 
 // When the screen rectangles of the visible boxes add up to at most a quarter of the viewport (a box
 // that may hold the eye counts as the whole viewport): Rects (a copy of each rectangle; on an H200
 // about 1 microsecond each) for up to kRectCopyDecals boxes, else Boxes (a draw of the boxes, about
 // 30 microseconds whatever their number). Otherwise Viewport.
-NormalCopyMode normalCopyMode(const DecalVisibility& vis);
+// InPlace, no copy at all, where up to kInPlaceDecals boxes' screen rectangles, widened by a pixel, overlap
+// nowhere and `inPlace` allows it: each pixel is then drawn by one box at most, whose fragment reads the
+// host's normal and writes it (GL's one defined feedback loop, after a texture barrier); the caller
+// allows it when no visible decal wraps (a wrapped decal's texture derivatives read the neighbours'
+// normals) and no second draw reads the normals after the first wrote them.
+NormalCopyMode normalCopyMode(const DecalVisibility& vis, int width, int height, bool inPlace);
 // The same choice for a visible list built on the GPU, from its length (that of an earlier draw):
 // Boxes while at most kBoxCopyDecals decals are in view.
 NormalCopyMode normalCopyMode(uint32_t gpuVisible);
 constexpr unsigned kBoxCopyDecals = 1024;
 constexpr size_t kRectCopyDecals = 24;
+constexpr size_t kInPlaceDecals = 64;
 
 const char* normalCopyName(NormalCopyMode mode);
 

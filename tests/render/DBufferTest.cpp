@@ -206,6 +206,18 @@ TEST(DBuffer, AppliedByTheHostGivesWhatTheGBufferBlendGives) {
     expectDBufferGivesTheBlend(decals, "rects");
 }
 
+// Two decals apart on the wall: each pixel is drawn by one box at most, so the blend reads and
+// writes the host's normals in place, without a copy, and gives what the DBuffer gives.
+TEST(DBuffer, AppliedByTheHostGivesWhatTheGBufferBlendGivesWithTheNormalsBlendedInPlace) {
+    SPATTER_REQUIRE_GL(gl);
+    const test::WallScene wall;
+    std::vector<Decal> decals = {test::WallScene::decalAt(0, {-0.8f, 0.0f, 0.05f}),
+                                 test::WallScene::decalAt(0, {0.5f, 0.3f, 0.05f})};
+    for (Decal& d : decals)
+        d.size = glm::vec2(0.9f);
+    expectDBufferGivesTheBlend(decals, "in-place");
+}
+
 // Forty small overlapping decals: the blend copies the normals by drawing their boxes.
 TEST(DBuffer, AppliedByTheHostGivesWhatTheGBufferBlendGivesUnderManyDecals) {
     SPATTER_REQUIRE_GL(gl);

@@ -433,9 +433,9 @@ TEST(DecalPass, CullsDecalsOutsideTheViewAndSkipsThePassWithoutVisibleDecals) {
     EXPECT_EQ(st.decals, 3u);
     EXPECT_EQ(st.decalsDrawn, 1u);
     EXPECT_EQ(st.decalsCulled, 2u);
-    // The host's normals copied under the one box's screen rectangle (not the whole screen), then one
-    // instanced draw for all visible decals.
-    EXPECT_EQ(st.decalNormalCopy, "rects");
+    // One box alone: it reads and writes the host's normals in place (no copy), in one instanced draw
+    // for all visible decals.
+    EXPECT_EQ(st.decalNormalCopy, "in-place");
     EXPECT_EQ(st.drawCalls, drawsWithout + 1);
 
     // Every decal out of view: no pass at all.

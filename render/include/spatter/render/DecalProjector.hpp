@@ -230,9 +230,10 @@ struct ProjectorStats {
     size_t drawCalls = 0;
     bool skipped = true; // no visible decal: no normal copy, no draw
     // The copy of the host's normals that decals blending normal maps read (G-buffer blend): "" (none
-    // taken: no such decal in view); when the visible boxes cover at most a quarter of the viewport,
-    // "rects" (each box's screen rectangle, for a few boxes) or "boxes" (a draw of the boxes);
-    // otherwise "viewport".
+    // taken: no such decal in view); "in-place" (none needed: a few boxes whose screen rectangles do
+    // not overlap, none wrapping, each pixel read and written by one box at most); when the visible
+    // boxes cover at most a quarter of the viewport, "rects" (each box's screen rectangle, for a few
+    // boxes) or "boxes" (a draw of the boxes); otherwise "viewport".
     std::string normalCopy;
     bool gpuCulled = false; // the visible list was built on the GPU (ProjectorSettings::gpuCullingFrom)
     std::string variant;    // shader features used, e.g. "IDS WRAP NORMAL_MAP FADE"

@@ -41,7 +41,7 @@ struct FrameStats {
     size_t decalBytesUploaded = 0; // instance and visibility data sent to the GPU this frame
     bool decalPassSkipped = true;  // no visible decal: no normal copy, no decal pass
     std::string decalVariant;      // features of the decal shader used, e.g. "IDS WRAP NORMAL_MAP FADE"
-    std::string decalNormalCopy;   // ProjectorStats::normalCopy: "", "boxes" or "viewport"
+    std::string decalNormalCopy;   // ProjectorStats::normalCopy: "", "in-place", "rects", "boxes" or "viewport"
     size_t overlayLines = 0;       // line segments drawn by the overlays (RenderOverlays)
 
     // Texture-space decals (DecalMode::TextureSpace objects).
