@@ -71,17 +71,17 @@ bool roughnessInAlpha(const HostFrame& f, const ProjectorDraw& o) {
     return f.roughness.texture != 0 && f.roughness.channel == 3 && blendsIntoHost(o);
 }
 
-// The instanced draw of the visible boxes, in draw order: by their faces towards the eye, or, when a
-// box may hold the eye (or the GPU culled and cannot tell), by their far faces. The count is known on the
-// CPU, or read by the GPU from `indirect` (GpuCulling).
+// The instanced draw of the visible boxes, in draw order, by their far faces (they cover a box's pixels
+// also where the eye is inside it or the near plane cuts it, and culling on the CPU and on the GPU then
+// draw the very same fragments). The count is known on the CPU, or read by the GPU from `indirect`
+// (GpuCulling).
 struct BoxDraws {
     size_t count = 0;
-    bool farFaces = false;
     GLuint indirect = 0;
 };
 
 BoxDraws cpuDraws(const DecalVisibility& vis) {
-    return {vis.visible.size(), vis.inside > 0, 0};
+    return {vis.visible.size(), 0};
 }
 
 // The camera of a frame relative to its eye, and what culling needs of it.
@@ -373,7 +373,7 @@ struct DecalProjector::Impl {
         const size_t valid = batch.size() - batch.invalidCount();
         stats.culled = valid > stats.drawn ? valid - stats.drawn : 0; // counts of an earlier draw may exceed
         visibleCount = stats.drawn;
-        return {0, true, culling.draws()};
+        return {0, culling.draws()};
     }
 
     // The pass itself: one instanced draw of the boxes (BoxDraws). Returns the draws made.
@@ -388,16 +388,16 @@ struct DecalProjector::Impl {
         glFrontFace(GL_CCW);
         glEnable(GL_FRAMEBUFFER_SRGB);
         glEnable(GL_CULL_FACE);
-        glCullFace(boxes.farFaces ? GL_FRONT : GL_BACK);
-        // Near faces: not behind the scene. Far faces: not in front of it (where the whole box is in
-        // front of the scene, no surface lies inside), clamped rather than clipped at the far plane.
+        glCullFace(GL_FRONT);
+        // Far faces not in front of the scene (where the whole box is in front of it, no surface lies
+        // inside), clamped rather than clipped at the far plane.
         if (depthTest) {
             glEnable(GL_DEPTH_TEST);
-            glDepthFunc(f.depth.reversedZ != boxes.farFaces ? GL_GEQUAL : GL_LEQUAL);
+            glDepthFunc(f.depth.reversedZ ? GL_LEQUAL : GL_GEQUAL);
         } else {
             glDisable(GL_DEPTH_TEST);
         }
-        if (boxes.farFaces) glEnable(GL_DEPTH_CLAMP);
+        glEnable(GL_DEPTH_CLAMP);
         glUseProgram(prog);
         glBindVertexArray(emptyVao.get());
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, boxes.indirect);

@@ -89,7 +89,15 @@ void expectSameAsCpu(const char* name, const std::vector<Decal>& decals, const g
     std::printf("%s: %zu drawn (%zu inside), %zu culled; %zu covered pixels\n", name, cpu.stats.drawn,
                 cpu.stats.inside, cpu.stats.culled, test::countSet(cpu.coverage));
     EXPECT_GT(test::countSet(cpu.coverage), 0u) << name;
-    EXPECT_EQ(gpu.coverage, cpu.coverage) << name;
+    size_t differing = 0;
+    for (size_t i = 0; i < gpu.coverage.size() && i < cpu.coverage.size(); ++i)
+        if (gpu.coverage[i] != cpu.coverage[i]) {
+            if (++differing <= 8)
+                std::printf("  pixel (%zu, %zu): %s\n", i % kWidth, i / kWidth,
+                            cpu.coverage[i] ? "CPU only" : "GPU only");
+        }
+    EXPECT_EQ(differing, 0u) << name << ": pixels whose coverage differs";
+    EXPECT_EQ(gpu.coverage.size(), cpu.coverage.size()) << name;
     // The GPU's float test keeps a margin: it may draw a box the CPU culls (which then covers no
     // pixel), never the reverse.
     EXPECT_GE(gpu.stats.drawn, cpu.stats.drawn) << name;

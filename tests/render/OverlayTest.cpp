@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -259,7 +260,9 @@ TEST(Overlays, DecalBoxesAreDrawnWhereTheDecalIs) {
     size_t amber = 0;
     for (size_t i = 0; i < linesTested.size(); ++i) {
         const uint8_t* p = &tested.rgba[i * 4];
-        amber += (linesTested[i] && p[0] == 255 && p[1] == 184 && p[2] == 26) ? 1 : 0;
+        // Within a unit of (255, 184, 26): drivers round the line colour's sRGB encoding differently.
+        amber +=
+            (linesTested[i] && p[0] >= 254 && std::abs(p[1] - 184) <= 1 && std::abs(p[2] - 26) <= 1) ? 1 : 0;
     }
     EXPECT_EQ(amber, test::countSet(linesTested));
 

@@ -223,8 +223,8 @@ struct ProjectorStats {
     size_t invalid = 0;         // skipped: object or type out of range, degenerate or non-finite box
     size_t culled = 0;          // outside the view frustum (test of the box corners)
     size_t drawn = 0;           // instances drawn
-    size_t inside = 0;          // of those, boxes that may hold the eye: then every box is drawn by its far
-                                // faces (0 with GPU culling, which always does)
+    size_t inside = 0;          // of those, boxes that may hold the eye or cross the near plane (a
+                                // conservative test; 0 with GPU culling, which does not tell)
     size_t bytesUploaded = 0;   // instance and visibility data sent to the GPU by this draw
     size_t instanceUploads = 0; // buffer uploads of decal instances: one per run of changed decals
     size_t drawCalls = 0;
