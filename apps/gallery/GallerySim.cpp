@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <glm/gtc/matrix_transform.hpp>
+#include <mutex>
 #include <thread>
 
 namespace spatter::gallery {
@@ -126,13 +127,24 @@ Status GallerySim::rebuildProxies(float tolerancePercent) {
     settings.backend = ProxyBackend::MeshOpt;
     std::vector<std::optional<Proxy>> proxies(scene_.objects.size());
     std::vector<std::string> errors(scene_.objects.size());
-    std::atomic<size_t> next{0};
+    std::atomic<size_t> next{0}, done{0};
+    std::mutex say;
+    size_t receivers = 0;
+    for (const SceneObject& o : scene_.objects)
+        receivers += o.receivesDecals ? 1 : 0;
     auto work = [&]() {
         for (size_t i = next++; i < scene_.objects.size(); i = next++) {
             const SceneObject& o = scene_.objects[i];
             if (!o.receivesDecals) continue;
             const Mesh* collider = o.collider ? &*o.collider : nullptr;
             Result<Proxy> proxy = buildProxy(o.mesh, settings, collider);
+            const size_t finished = ++done;
+            if (proxy && !proxy->cached) { // a cold build takes seconds: say which
+                const std::lock_guard<std::mutex> lock(say);
+                std::fprintf(stderr,
+                             "spatter-gallery: built the collision proxy of %s (%zu of %zu, %.1f s)\n",
+                             o.name.c_str(), finished, receivers, proxy->seconds);
+            }
             if (proxy)
                 proxies[i] = std::move(proxy).value();
             else
