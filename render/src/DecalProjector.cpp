@@ -53,6 +53,9 @@ Status validateSettings(const ProjectorSettings& s) {
     const int t = s.forwardTileSize;
     if (t < 8 || t > 64 || (t & (t - 1)) != 0)
         return fail("projector: forwardTileSize must be a power of two in [8, 64], not " + std::to_string(t));
+    if (s.forwardTileCapacity < 16 || s.forwardTileCapacity > 4096)
+        return fail("projector: forwardTileCapacity must be in [16, 4096], not " +
+                    std::to_string(s.forwardTileCapacity));
     return {};
 }
 
@@ -363,6 +366,34 @@ struct DecalProjector::Impl {
         return drawBoxes(f, boxes, prog, depthTest);
     }
 
+    // Whether this frame's visible list is built on the GPU (gpuCullingFrom); from the first such frame
+    // on the CPU copy of the records is let go.
+    bool cullsOnGpu() {
+        const bool onGpu = batch.size() > 0 && (batch.size() >= gpuCullingFrom || !batch.mirrored());
+        if (onGpu) batch.setMirrorLimit(gpuCullingFrom);
+        return onGpu;
+    }
+
+    DecalVisibility cullOnCpu(const CullView& cull) {
+        DecalVisibility vis = batch.cull(transforms, cull);
+        orderOnGpu = false; // the GPU's draw order falls behind: sent whole when the GPU culls again
+        batch.takeOrderChanges();
+        return vis;
+    }
+
+    // The counts of a draw or bin known before the GPU runs.
+    ProjectorStats cpuStats(const DecalVisibility& vis, bool onGpu) const {
+        ProjectorStats stats;
+        stats.decals = batch.size();
+        stats.invalid = onGpu ? batch.invalidCount() : vis.invalid;
+        stats.culled = vis.culled;
+        stats.drawn = vis.visible.size();
+        stats.inside = vis.inside;
+        stats.gpuCulled = onGpu;
+        stats.skipped = onGpu ? stats.invalid == stats.decals : stats.drawn == 0;
+        return stats;
+    }
+
     // Builds the visible list on the GPU and sets the counts of `stats` from it (this draw's with
     // waitForTimers, else the latest the GPU has finished); returns the indirect draw.
     BoxDraws cullOnGpu(const CullView& cull, ProjectorStats& stats) {
@@ -503,37 +534,41 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
     if (const std::string p = forwardFrameProblem(frame); !p.empty()) return fail("projector: " + p);
     const HostFrame host = cameraFrame(frame);
     const FrameCamera camera = frameCamera(host);
-    CullView cull = camera.cull;
-    cull.rects = true;
-    m.batch.setMirrorLimit(std::numeric_limits<size_t>::max()); // bin() culls on the CPU
-    if (!m.batch.mirrored())
-        return fail(
-            "projector: bin() culls the decals on the CPU, and a draw() that culled them on the GPU let "
-            "their CPU records go: give the decals again (setDecals or updateDecals) before bin()");
-    const DecalVisibility vis = m.batch.cull(m.transforms, cull);
-    m.orderOnGpu = false;
-    m.batch.takeOrderChanges();
+    const bool onGpu = m.cullsOnGpu();
+    DecalVisibility vis;
+    if (!onGpu) {
+        CullView cull = camera.cull;
+        cull.rects = true;
+        vis = m.cullOnCpu(cull);
+    }
     if (Status s = m.forward.prepare(); !s) return fail(s.error());
-    ProjectorStats stats;
-    stats.decals = m.batch.size();
-    stats.invalid = vis.invalid;
-    stats.culled = vis.culled;
-    stats.drawn = vis.visible.size();
-    stats.inside = vis.inside;
-    stats.skipped = stats.drawn == 0;
+    if (onGpu)
+        if (Status s = m.culling.prepare(); !s) return fail(s.error());
+    ProjectorStats stats = m.cpuStats(vis, onGpu);
     stats.variant = "FORWARD";
 
     GlStateGuard guard;
     m.timers.beginFrame(m.draws);
     m.timers.begin(GpuPass::Decals);
     m.uploadFrame(host, camera);
-    stats.bytesUploaded = m.uploadDecals(vis, stats.instanceUploads);
-    m.bindBuffers();
     ForwardGridGpu head{};
     head.info.y = m.settings.normalFrame == DecalNormalFrame::DepthDerivatives ? 1 : 0;
     head.params.x = m.settings.fadeStart;
-    stats.bytesUploaded += m.forward.bin(frame, vis, m.settings.forwardTileSize, head);
-    stats.drawCalls = stats.skipped ? 0 : 4;
+    if (onGpu) {
+        stats.bytesUploaded = m.uploadInstances(stats.instanceUploads) + m.uploadDrawOrder();
+        m.cullOnGpu(camera.cull, stats);
+        // Room for twice the visible decals of the latest count the GPU has given (this bin's with
+        // waitForTimers): a sudden jump past it leaves decals out for a frame.
+        const size_t capacity = std::min(m.batch.size(), std::max<size_t>(4096, 2 * stats.drawn));
+        stats.bytesUploaded += m.forward.binCulled(frame, m.settings.forwardTileSize, head, m.culling.draws(),
+                                                   capacity, uint32_t(m.settings.forwardTileCapacity));
+        stats.drawCalls = 5;
+    } else {
+        stats.bytesUploaded = m.uploadDecals(vis, stats.instanceUploads);
+        m.bindBuffers();
+        stats.bytesUploaded += m.forward.bin(frame, vis, m.settings.forwardTileSize, head);
+        stats.drawCalls = stats.skipped ? 0 : 4;
+    }
     m.timers.end();
     const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
     stats.gpuMs = times.decalsMs;
@@ -555,26 +590,16 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     Impl& m = *impl_;
     if (const std::string p = hostFrameProblem(frame, options); !p.empty()) return fail("projector: " + p);
     const FrameCamera camera = frameCamera(frame);
-    const bool onGpu = m.batch.size() > 0 && (m.batch.size() >= m.gpuCullingFrom || !m.batch.mirrored());
-    if (onGpu) m.batch.setMirrorLimit(m.gpuCullingFrom); // the CPU copy is not needed from here on
+    const bool onGpu = m.cullsOnGpu();
     DecalVisibility vis;
     if (onGpu) {
         vis.flags = m.batch.flagsUnion();
     } else {
         CullView cull = camera.cull;
         cull.rects = blendsIntoHost(options) && frame.normals.texture != 0; // for the normal copy
-        vis = m.batch.cull(m.transforms, cull);
-        m.orderOnGpu = false;
-        m.batch.takeOrderChanges();
+        vis = m.cullOnCpu(cull);
     }
-    ProjectorStats stats;
-    stats.decals = m.batch.size();
-    stats.invalid = onGpu ? m.batch.invalidCount() : vis.invalid;
-    stats.culled = vis.culled;
-    stats.drawn = vis.visible.size();
-    stats.inside = vis.inside;
-    stats.gpuCulled = onGpu;
-    stats.skipped = onGpu ? stats.invalid == stats.decals : stats.drawn == 0;
+    ProjectorStats stats = m.cpuStats(vis, onGpu);
     if (fillsDBuffer(options)) m.dbuffer.prepare(frame.depth.texture); // cleared, even when nothing is drawn
     if (stats.skipped) return stats;
     const uint32_t bits = m.variantBits(frame, options, vis.flags);

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace spatter::render_detail {
 
@@ -16,8 +18,9 @@ GLuint groups(uint32_t n) {
     return GLuint((n + kGroup - 1) / kGroup);
 }
 
-Result<GlProgram> computeProgram(const char* file) {
-    Result<GlProgram> p = buildProgram(shaderLibrary(kProjectorShaders), {{GL_COMPUTE_SHADER, file}}, {});
+Result<GlProgram> computeProgram(const char* file, std::vector<std::string> defines = {}) {
+    Result<GlProgram> p =
+        buildProgram(shaderLibrary(kProjectorShaders), {{GL_COMPUTE_SHADER, file}}, std::move(defines));
     if (!p) return fail("projector: " + p.error());
     return p;
 }
@@ -41,6 +44,12 @@ Status ForwardBins::prepare() {
     if (!fill) return fail(fill.error());
     Result<GlProgram> sort = computeProgram("forward_sort.comp");
     if (!sort) return fail(sort.error());
+    Result<GlProgram> prepareCulled = computeProgram("forward_prepare.comp", {"FORWARD_CULLED"});
+    if (!prepareCulled) return fail(prepareCulled.error());
+    Result<GlProgram> sortCulled = computeProgram("forward_sort.comp", {"FORWARD_CULLED"});
+    if (!sortCulled) return fail(sortCulled.error());
+    prepareCulled_ = std::move(prepareCulled.value());
+    sortCulled_ = std::move(sortCulled.value());
     prepare_ = std::move(prepare.value());
     scan_ = std::move(scan.value());
     fill_ = std::move(fill.value());
@@ -65,14 +74,19 @@ size_t ForwardBins::tileRects(const ForwardFrame& frame, const DecalVisibility& 
     return items;
 }
 
+glm::ivec2 ForwardBins::grid(const ForwardFrame& frame, int tileSize, ForwardGridGpu& head) const {
+    const glm::ivec2 tiles((frame.width + tileSize - 1) / tileSize, (frame.height + tileSize - 1) / tileSize);
+    head.grid = glm::ivec4(frame.x, frame.y, tiles.x, tiles.y);
+    head.info.x = tileSize;
+    return tiles;
+}
+
 size_t ForwardBins::bin(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize,
                         ForwardGridGpu head) {
-    const glm::ivec2 tiles((frame.width + tileSize - 1) / tileSize, (frame.height + tileSize - 1) / tileSize);
+    const glm::ivec2 tiles = grid(frame, tileSize, head);
     const uint32_t tileCount = uint32_t(tiles.x) * uint32_t(tiles.y);
     const size_t items = tileRects(frame, vis, tileSize, tiles);
     const uint32_t visible = uint32_t(rectsCpu_.size());
-    head.grid = glm::ivec4(frame.x, frame.y, tiles.x, tiles.y);
-    head.info.x = tileSize;
 
     const size_t tileBytes = sizeof(ForwardGridGpu) + tileCount * sizeof(glm::uvec2);
     reserveBuffer(tiles_, tilesCapacity_, tileBytes, 4096);
@@ -93,6 +107,37 @@ size_t ForwardBins::bin(const ForwardFrame& frame, const DecalVisibility& vis, i
     }
     dispatch(visible, tileCount);
     return sizeof head + visible * sizeof(glm::uvec2);
+}
+
+size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGridGpu head, GLuint draws,
+                              size_t capacity, uint32_t tileCapacity) {
+    const glm::ivec2 tiles = grid(frame, tileSize, head);
+    const uint32_t tileCount = uint32_t(tiles.x) * uint32_t(tiles.y);
+    reserveBuffer(tiles_, tilesCapacity_, sizeof(ForwardGridGpu) + tileCount * sizeof(glm::uvec2), 4096);
+    reserveBuffer(counts_, countsCapacity_, tileCount * sizeof(uint32_t), 4096);
+    reserveBuffer(decals_, decalsCapacity_, capacity * sizeof(ForwardDecalGpu), 64 * sizeof(ForwardDecalGpu));
+    reserveBuffer(items_, itemsCapacity_, size_t(tileCount) * tileCapacity * sizeof(uint32_t), 4096);
+    glNamedBufferSubData(tiles_.get(), 0, sizeof head, &head);
+    const uint32_t zero = 0;
+    glClearNamedBufferSubData(counts_.get(), GL_R32UI, 0, GLsizeiptr(tileCount * sizeof(uint32_t)),
+                              GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    const ForwardBindings b;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, draws);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kForwardCountBuffer, counts_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.decals, decals_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.tiles, tiles_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.items, items_.get());
+    glUseProgram(prepareCulled_.get());
+    glUniform1ui(0, uint32_t(capacity));
+    glUniform1ui(1, tileCapacity);
+    glDispatchCompute(groups(uint32_t(capacity)), 1, 1); // invocations past the visible count return at once
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(sortCulled_.get());
+    glUniform1ui(0, tileCount);
+    glUniform1ui(1, tileCapacity);
+    glDispatchCompute(groups(tileCount), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    return sizeof head;
 }
 
 void ForwardBins::dispatch(uint32_t visible, uint32_t tileCount) const {

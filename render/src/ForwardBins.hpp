@@ -4,6 +4,8 @@
 // write each decal's camera-relative world form, count the decals per tile, turn the counts into
 // runs of an item list and fill and sort the runs into drawing order (shaders/forward_*.comp). The
 // screen rectangles come from the CPU culling, so the item list's size is known before the GPU runs.
+// After culling on the GPU the count is not known on the CPU: the tiles then have runs of a fixed
+// length, filled as the rectangles are found.
 
 #include "DecalBatch.hpp"
 #include "GlObjects.hpp"
@@ -25,6 +27,12 @@ public:
     // of `frame`; `head` carries the frame's parameters (the grid is filled in here). Returns the
     // bytes sent to the GPU. Needs prepare() to have succeeded.
     size_t bin(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize, ForwardGridGpu head);
+    // The same for a visible list the GPU culled (GpuCulling; `draws` its indirect draw, whose instance
+    // count is the list's length), with no count on the CPU: up to `capacity` visible decals are binned
+    // (the rest are left out), each tile holds up to `tileCapacity` of them, and two passes do it (the
+    // rectangles found and the runs filled at once, then sorted). Returns the bytes sent.
+    size_t binCulled(const ForwardFrame& frame, int tileSize, ForwardGridGpu head, GLuint draws,
+                     size_t capacity, uint32_t tileCapacity);
     void bind(const ForwardBindings& b) const;
 
     GLuint decals() const { return decals_.get(); }
@@ -41,7 +49,10 @@ private:
     size_t tileRects(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize, glm::ivec2 tiles);
     void dispatch(uint32_t visible, uint32_t tileCount) const;
 
-    GlProgram prepare_, scan_, fill_, sort_;
+    // The grid of `frame`'s tiles, the head's grid filled in.
+    glm::ivec2 grid(const ForwardFrame& frame, int tileSize, ForwardGridGpu& head) const;
+
+    GlProgram prepare_, scan_, fill_, sort_, prepareCulled_, sortCulled_;
     GlBuffer decals_, tiles_, items_, rects_, counts_;
     size_t decalsCapacity_ = 0, tilesCapacity_ = 0, itemsCapacity_ = 0, rectsCapacity_ = 0,
            countsCapacity_ = 0;

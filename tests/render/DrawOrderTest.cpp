@@ -1,6 +1,6 @@
 // Draw order (DecalType::priority): overlapping decals draw in priority order whatever their spawn
-// order, and within a priority newer over older, in every host path (G-buffer blend with culling on
-// the CPU and on the GPU, DBuffer, forward).
+// order, and within a priority newer over older, in every host path (G-buffer blend and forward with
+// culling on the CPU and on the GPU, DBuffer).
 
 #include "HostedWall.hpp"
 #include "RenderTestSupport.hpp"
@@ -18,7 +18,7 @@ using namespace spatter;
 
 namespace {
 
-enum class Path { Blend, BlendGpuCulled, DBuffer, Forward };
+enum class Path { Blend, BlendGpuCulled, DBuffer, Forward, ForwardGpuCulled };
 
 const char* name(Path p) {
     switch (p) {
@@ -29,9 +29,11 @@ const char* name(Path p) {
     case Path::DBuffer:
         return "DBuffer";
     case Path::Forward:
+        return "forward";
+    case Path::ForwardGpuCulled:
         break;
     }
-    return "forward";
+    return "forward, GPU culling";
 }
 
 // An opaque square decal type of one colour.
@@ -57,7 +59,7 @@ Counts drawPair(Path path, int redPriority, int bluePriority, double redTime, do
                 bool blueFirst) {
     std::optional<test::HostedWall> h = test::HostedWall::make();
     if (!h) return {};
-    if (path == Path::BlendGpuCulled) {
+    if (path == Path::BlendGpuCulled || path == Path::ForwardGpuCulled) {
         ProjectorSettings settings;
         settings.gpuCullingFrom = 0;
         Result<DecalProjector> p = DecalProjector::create(settings);
@@ -83,7 +85,7 @@ Counts drawPair(Path path, int redPriority, int bluePriority, double redTime, do
 
     const HostFrame f = h->host.frame(h->wall.camera, true);
     uint32_t albedo = f.albedoTexture;
-    if (path == Path::Forward) {
+    if (path == Path::Forward || path == Path::ForwardGpuCulled) {
         Result<ProjectorStats> st =
             h->host.drawForward(h->wall.transforms, h->wall.ids, h->wall.camera, h->projector);
         EXPECT_TRUE(st.ok()) << st.error();
@@ -107,7 +109,8 @@ Counts drawPair(Path path, int redPriority, int bluePriority, double redTime, do
     return c;
 }
 
-constexpr Path kPaths[] = {Path::Blend, Path::BlendGpuCulled, Path::DBuffer, Path::Forward};
+constexpr Path kPaths[] = {Path::Blend, Path::BlendGpuCulled, Path::DBuffer, Path::Forward,
+                           Path::ForwardGpuCulled};
 
 } // namespace
 

@@ -90,6 +90,44 @@ TEST(Forward, AppliedInTheHostsShaderGivesWhatTheGBufferBlendGivesInOrder) {
     EXPECT_LE(roughnessMean, 2.0);
 }
 
+// Culled on the GPU (no count on the CPU: tiles of a fixed length, filled as the rectangles are
+// found on the GPU), the forward pass gives what it gives culled on the CPU, bit for bit, with the
+// decals stacked in the same tiles and the wall's decals spread over the view.
+TEST(Forward, CulledOnTheGpuGivesWhatCulledOnTheCpuGives) {
+    SPATTER_REQUIRE_GL(gl);
+    Image images[2];
+    ProjectorStats stats[2];
+    for (const bool onGpu : {false, true}) {
+        std::optional<test::HostedWall> h = test::HostedWall::make();
+        ASSERT_TRUE(h);
+        ProjectorSettings settings;
+        settings.gpuCullingFrom = onGpu ? 0 : std::numeric_limits<size_t>::max();
+        settings.waitForTimers = true; // this bin's counts
+        Result<DecalProjector> p = DecalProjector::create(settings);
+        ASSERT_TRUE(p.ok()) << p.error();
+        h->projector = std::move(p).value();
+        ASSERT_TRUE(h->projector.setObjects(h->wall.transforms, h->wall.ids).ok());
+        h->projector.setDecalTypes(twoLooks(h->wall));
+        std::vector<Decal> decals = stackedDecals(h->wall, 40);
+        for (int i = 0; i < 30; ++i) // some in view, some beyond its edges
+            decals.push_back(
+                test::WallScene::decalAt(0, {-4.0f + 0.3f * float(i), -1.0f + 0.1f * float(i % 7), 0.05f}));
+        h->projector.setDecals(decals);
+        Result<ProjectorStats> st =
+            h->host.drawForward(h->wall.transforms, h->wall.ids, h->wall.camera, h->projector);
+        ASSERT_TRUE(st.ok()) << st.error();
+        EXPECT_EQ(st->gpuCulled, onGpu);
+        stats[onGpu] = st.value();
+        images[onGpu] = h->host.read(h->host.albedoTexture());
+    }
+    std::printf("forward, %zu decals: %zu drawn culled on the CPU, %zu on the GPU\n", stats[0].decals,
+                stats[0].drawn, stats[1].drawn);
+    EXPECT_GT(stats[0].drawn, 50u);
+    EXPECT_GT(stats[0].culled, 0u);
+    EXPECT_GE(stats[1].drawn, stats[0].drawn); // the GPU's float test keeps a margin
+    EXPECT_EQ(test::differingPixels(images[0], images[1]), 0u);
+}
+
 TEST(Forward, TilesAreEmptyWhenNoDecalIsInView) {
     SPATTER_REQUIRE_GL(gl);
     std::optional<test::HostedWall> h = test::HostedWall::make();

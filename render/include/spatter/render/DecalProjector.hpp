@@ -164,13 +164,17 @@ struct ProjectorSettings {
     DecalNormalFrame normalFrame = DecalNormalFrame::DecalAxes;
     int decalTextureSize = 256; // size of the decal texture layers: a power of two in [16, 2048]
     int forwardTileSize = 16;   // side of the forward path's screen tiles, pixels: a power of two in [8, 64]
+    // The most decals a forward tile holds when bin() culls on the GPU (where the count is not known on
+    // the CPU, each tile gets a run of this length; decals past it in a tile are left out of it), in
+    // [16, 4096]: 4 bytes per tile each (8 MB at 1080p with 16-pixel tiles and 256).
+    int forwardTileCapacity = 256;
     // draw() builds the visible list on the GPU from this many decals on (given to setDecals): the CPU
     // then does no per-decal work per frame, the pass is not skipped when nothing is in view, and the
     // counts in ProjectorStats are those of an earlier draw (of this one with waitForTimers). 0: always
     // on the GPU. Unset: kGpuCullingFrom on a GPU, kGpuCullingFromSoftware on a software rasteriser
     // (llvmpipe), where the compute passes cost more than the CPU's test of a few decals. The first
-    // draw() that culls on the GPU lets the CPU copy of the decal records go (64 bytes per decal).
-    // bin() culls on the CPU and keeps that copy.
+    // draw() or bin() that culls on the GPU lets the CPU copy of the decal records go (64 bytes per
+    // decal). bin() culled on the GPU sizes its buffers by an earlier count (see bin()).
     std::optional<size_t> gpuCullingFrom;
     static constexpr size_t kGpuCullingFrom = 65536;
     static constexpr size_t kGpuCullingFromSoftware = 262144;
