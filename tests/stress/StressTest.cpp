@@ -111,6 +111,11 @@ TEST(Stress, CoverageKeepsIoUAbove097WithTheSceneTranslatedTo1e5) {
     runChecked("far-render", config);
 }
 
+TEST(Stress, ALongRunOfSpawnsKeepsGpuMemoryFlatAndDrawsNoRemovedDecal) {
+    STRESS_CONFIG_WITH_GL(config, "soak");
+    runChecked("soak", config);
+}
+
 TEST(Stress, DecalsFrom1em4To1e4TimesTheSceneHaveValidFramesAndBoxes) {
     runChecked("extreme-sizes", ciConfig("extreme-sizes"));
 }
@@ -146,7 +151,8 @@ TEST(Stress, EveryCaseHasATestAndTheBenchListsThemAll) {
                             "extreme-sizes-render",
                             "depth",
                             "nonfinite-placement",
-                            "nonfinite-render"};
+                            "nonfinite-render",
+                            "soak"};
     ASSERT_EQ(stressCases().size(), sizeof tested / sizeof tested[0]);
     for (const char* name : tested)
         EXPECT_NE(findCase(name).run, nullptr) << name;

@@ -54,6 +54,8 @@ const std::vector<StressCase>& stressCases() {
         {"nonfinite-placement", "NaN, Inf and denormal input to the placement API", runNonFinitePlacement},
         {"nonfinite-render", "NaN, Inf and denormal input to the renderer and the camera",
          runNonFiniteRender},
+        {"soak", "spawns far past the budget (10 million at full size) through the renderer's change list",
+         runSoak},
     };
     return cases;
 }

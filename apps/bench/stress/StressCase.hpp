@@ -78,6 +78,7 @@ StressResult runExtremeSizesRender(const StressConfig& config);
 StressResult runDepth(const StressConfig& config);
 StressResult runNonFinitePlacement(const StressConfig& config);
 StressResult runNonFiniteRender(const StressConfig& config);
+StressResult runSoak(const StressConfig& config);
 
 // Runs one case, timing it and catching nothing (the library throws nothing).
 StressResult runCase(const StressCase& c, const StressConfig& config);
