@@ -24,13 +24,6 @@ CollisionWorld buildWorld(const Scene& scene, const std::vector<std::optional<Pr
     return std::move(w).value();
 }
 
-Ray ray(glm::dvec3 o, glm::dvec3 d) {
-    Ray r;
-    r.origin = o;
-    r.direction = d;
-    return r;
-}
-
 // A bumpy sphere and a box: curved and flat geometry, two objects, no symmetry to hide behind.
 Scene rawComparisonScene() {
     Scene s;

@@ -17,25 +17,6 @@ using namespace spatter::test;
 
 namespace {
 
-DecalSystem makeSystem(const Scene& scene, const DecalSettings& settings = {}) {
-    Result<DecalSystem> s = DecalSystem::create(scene, settings);
-    EXPECT_TRUE(s.ok()) << s.error();
-    return std::move(s).value();
-}
-
-uint16_t addType(DecalSystem& s, const DecalType& t) {
-    Result<uint16_t> r = s.registerType(t);
-    EXPECT_TRUE(r.ok()) << r.error();
-    return r.ok() ? r.value() : uint16_t(0);
-}
-
-Ray ray(glm::dvec3 o, glm::dvec3 d) {
-    Ray r;
-    r.origin = o;
-    r.direction = d;
-    return r;
-}
-
 // Every byte of two decals that holds a value (all but the padding) equal, field by field.
 bool sameBytes(const Decal& a, const Decal& b) {
     auto same = [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof x) == 0; };

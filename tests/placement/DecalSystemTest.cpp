@@ -17,25 +17,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-DecalSystem makeSystem(const Scene& scene, const DecalSettings& settings = {}) {
-    Result<DecalSystem> s = DecalSystem::create(scene, settings);
-    EXPECT_TRUE(s.ok()) << s.error();
-    return std::move(s).value();
-}
-
-uint16_t addType(DecalSystem& s, const DecalType& t) {
-    Result<uint16_t> r = s.registerType(t);
-    EXPECT_TRUE(r.ok()) << r.error();
-    return r.ok() ? r.value() : uint16_t(0);
-}
-
-Ray ray(glm::dvec3 o, glm::dvec3 d) {
-    Ray r;
-    r.origin = o;
-    r.direction = d;
-    return r;
-}
-
 // The decal's frame is orthonormal and right-handed, in object and in world space.
 void expectGoodFrames(const DecalSystem& s, const Decal& d) {
     EXPECT_LE(frameError(d.frame), 1e-6f);

@@ -22,6 +22,25 @@
 
 namespace spatter::test {
 
+inline DecalSystem makeSystem(const Scene& scene, const DecalSettings& settings = {}) {
+    Result<DecalSystem> s = DecalSystem::create(scene, settings);
+    EXPECT_TRUE(s.ok()) << s.error();
+    return std::move(s).value();
+}
+
+inline uint16_t addType(DecalSystem& s, const DecalType& t) {
+    Result<uint16_t> r = s.registerType(t);
+    EXPECT_TRUE(r.ok()) << r.error();
+    return r.ok() ? r.value() : uint16_t(0);
+}
+
+inline Ray ray(glm::dvec3 o, glm::dvec3 d) {
+    Ray r;
+    r.origin = o;
+    r.direction = d;
+    return r;
+}
+
 // One static box [-0.5, 0.5]^3 at the origin, faces cut into 2 x 2 squares.
 inline Scene boxScene() {
     Scene s;

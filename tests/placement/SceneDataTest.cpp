@@ -19,12 +19,6 @@ Scene load(const std::string& source) {
     return s.ok() ? std::move(s).value() : Scene{};
 }
 
-DecalSystem makeSystem(const Scene& scene, const DecalSettings& settings = {}) {
-    Result<DecalSystem> s = DecalSystem::create(scene, settings);
-    EXPECT_TRUE(s.ok()) << s.error();
-    return std::move(s).value();
-}
-
 // Rays from a camera at `eye` through a w x h grid spanning `fovDeg` degrees around -Z.
 std::vector<Ray> cameraRays(const glm::dvec3& eye, int w, int h, double fovDeg) {
     std::vector<Ray> rays;
