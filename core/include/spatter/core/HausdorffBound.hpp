@@ -1,0 +1,109 @@
+#pragma once
+// HausdorffBound: a certified upper bound on the Hausdorff distance between two triangle meshes, by
+// branch and bound over a bounding-volume hierarchy, with an early answer to "is it at most tol?".
+//
+// The one-sided distance from A to B is h(A, B) = sup over points a of A of d_B(a), where d_B(a) is
+// the distance from a to the surface of B (the union of its triangles of non-zero area). Two facts
+// give every bound this file reports:
+//  - Convexity. For one triangle t, d_t is a convex function (the distance to a convex set), so on a
+//    convex region P its largest value is taken at an extreme point of P: sup over P of d_t =
+//    max over the corners of P of d_t. As d_B <= d_t for every triangle t of B,
+//        sup over P of d_B  <=  min over t of (max over the corners c of P of d_t(c)).
+//  - Lipschitz. d_B is 1-Lipschitz, so for a triangle piece P with corners c_i and the radius e_P of
+//    the smallest circle enclosing it (every point of P lies within e_P of a corner),
+//        sup over P of d_B  <=  max_i d_B(c_i) + e_P.
+// Every distance at a point is exact up to double rounding (Embree's BVH of B with an exact
+// point-triangle distance in double, ClosestPointQuery), and every measured point lies on A, so the
+// largest measured distance is a lower bound.
+//
+// The algorithm. A's triangles are held in a bounding-volume hierarchy of axis-aligned boxes. A node
+// is bounded by convexity over the corners of its box (or, for a node of a few triangles, over the
+// corners of its triangles, whose convex hull holds them), against the triangle of B closest to one of
+// its vertices, and by Lipschitz from that vertex to the farthest box corner. A node whose bound is at
+// most the acceptance level is done; otherwise its children are bounded in turn. At a leaf, each
+// triangle is bounded by convexity against the triangles of B closest to its three corners and by
+// Lipschitz; a triangle above the level is cut by halving its longest edge (one new exact distance)
+// and the halves bounded again. The acceptance level is max(L + margin, tolerance), where L is the
+// largest distance measured so far, so pieces are refined only where the distance may exceed what is
+// already known (plus the margin) and what is asked. The bound reported is the largest bound of an
+// accepted node or piece: every point of A lies in one of them, so it is >= h(A, B). A piece whose
+// enclosing radius is at most the margin is always accepted (its Lipschitz bound is at most
+// L + margin), so the refinement ends. When a measured distance exceeds the tolerance, the answer to
+// "is h <= tol?" is no, and the search stops there (`exceeded`).
+//
+// Work is split over the subtrees of the hierarchy on up to 16 threads; each subtree starts from the
+// same lower bound (a fixed set of vertex samples), so the result does not depend on the thread
+// count or on timing. A relative allowance of 1e-9 (of the bound and of the largest coordinate) covers
+// double rounding.
+
+#include "spatter/core/Mesh.hpp"
+#include "spatter/core/MeshDistance.hpp"
+#include "spatter/core/Result.hpp"
+
+#include <limits>
+#include <memory>
+
+namespace spatter {
+
+// One mesh prepared for certification on either side: its hierarchy (for the side measured from)
+// and its closest-point query (for the side measured to). Built once and reused across any number
+// of bounds, e.g. a render mesh against many candidate proxies. Copies what it needs. Move-only.
+class HausdorffSurface {
+public:
+    // Fails like ClosestPointQuery::create (bad index, non-finite position, Embree failure). A mesh
+    // with no surface is accepted.
+    static Result<HausdorffSurface> create(const Mesh& mesh);
+
+    HausdorffSurface(HausdorffSurface&&) noexcept;
+    HausdorffSurface& operator=(HausdorffSurface&&) noexcept;
+    ~HausdorffSurface();
+
+    size_t surfaceTriangleCount() const;
+
+    // The prepared data, opaque outside the certifier.
+    struct Impl;
+    const Impl& impl() const { return *impl_; }
+
+private:
+    explicit HausdorffSurface(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+struct HausdorffSettings {
+    // The bound may exceed the largest measured distance by up to this (absolute, > 0): it trades
+    // the sharpness of the bound for speed.
+    double margin = 0.0;
+    // Early answer: a bound at most this is accepted as it is, and a measured distance above it stops
+    // the computation (exceeded). Infinity asks for the sharp bound only.
+    double tolerance = std::numeric_limits<double>::infinity();
+    // A distance already known to be attained (e.g. the other direction's lower bound); 0 if none.
+    double knownLower = 0.0;
+};
+
+struct HausdorffResult {
+    double lower = 0.0; // the largest distance measured: the true distance is at least this
+    // The true distance is at most this (infinity when exceeded). When not exceeded,
+    // upper <= max(lower + margin, tolerance) up to the rounding allowance.
+    double upper = 0.0;
+    bool exceeded = false; // a measured distance is above the tolerance: stopped early
+    size_t queries = 0;    // exact closest-point queries made
+    // True when the distance is certified to be at most `tolerance`.
+    bool within(double tolerance) const { return !exceeded && upper <= tolerance; }
+};
+
+// The one-sided distance from `from` to `to` (see the top of this file). 0 for a `from` without
+// surface. Fails when `from` has a surface and `to` has none, on a margin that is not finite and > 0,
+// on a negative or NaN tolerance, and on cancellation ("cancelled"); progress reports the stage
+// "measure".
+Result<HausdorffResult> boundOneSided(const HausdorffSurface& from, const HausdorffSurface& to,
+                                      const HausdorffSettings& settings,
+                                      const ProgressCallback& progress = {});
+
+// Both directions (a to b first, its lower bound then carried into b to a): lower and upper are the
+// two-sided ones; `exceeded` as soon as either direction exceeds. Fails like boundOneSided, and when
+// exactly one of the meshes has a surface.
+Result<HausdorffResult> boundHausdorff(const HausdorffSurface& a, const HausdorffSurface& b,
+                                       const HausdorffSettings& settings,
+                                       const ProgressCallback& progress = {});
+
+} // namespace spatter

@@ -1,0 +1,408 @@
+#include "spatter/core/HausdorffBound.hpp"
+
+#include "SurfaceGeometry.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <vector>
+
+namespace spatter {
+
+namespace {
+
+// Largest number of triangles in a leaf of the hierarchy.
+constexpr uint32_t kLeafTriangles = 4;
+// A node of at most this many triangles is bounded over its triangles' corners (the convex hull of
+// its surface) instead of its box corners.
+constexpr uint32_t kHullTriangles = 16;
+// Vertex samples of A measured before the walk: the starting lower bound of every subtree.
+constexpr size_t kStartSamples = 256;
+// Subtrees handed out to the threads, per thread.
+constexpr size_t kSubtreesPerWorker = 32;
+
+struct Node {
+    glm::dvec3 lo{0.0}, hi{0.0};
+    uint32_t first = 0, count = 0; // range of Impl::triangles
+    uint32_t child = 0;            // first of two children (child + 1 is the second); 0 for a leaf
+};
+
+} // namespace
+
+struct HausdorffSurface::Impl {
+    std::vector<glm::dvec3> positions;
+    std::vector<uint32_t> indices;                  // the mesh's, so that query results index them
+    std::vector<std::array<uint32_t, 3>> triangles; // surface triangles' corners, in hierarchy order
+    std::vector<Node> nodes;                        // nodes[0] is the root
+    ClosestPointQuery query;
+    double scale = 0.0; // largest absolute coordinate of a surface vertex
+
+    explicit Impl(ClosestPointQuery q) : query(std::move(q)) {}
+
+    glm::dvec3 corner(uint32_t meshTriangle, int k) const {
+        return positions[indices[3 * size_t(meshTriangle) + size_t(k)]];
+    }
+};
+
+namespace {
+
+using Impl = HausdorffSurface::Impl;
+
+void fitBox(Impl& s, Node& n) {
+    n.lo = glm::dvec3(std::numeric_limits<double>::infinity());
+    n.hi = -n.lo;
+    for (uint32_t i = n.first; i < n.first + n.count; ++i)
+        for (uint32_t v : s.triangles[i]) {
+            n.lo = glm::min(n.lo, s.positions[v]);
+            n.hi = glm::max(n.hi, s.positions[v]);
+        }
+}
+
+// Median split on the longest axis of the centroids, until leaves of kLeafTriangles.
+void buildHierarchy(Impl& s) {
+    s.nodes.clear();
+    if (s.triangles.empty()) return;
+    std::vector<glm::dvec3> centroid(s.triangles.size());
+    for (size_t i = 0; i < s.triangles.size(); ++i)
+        centroid[i] = (s.positions[s.triangles[i][0]] + s.positions[s.triangles[i][1]] +
+                       s.positions[s.triangles[i][2]]) /
+                      3.0;
+    std::vector<uint32_t> order(s.triangles.size());
+    std::iota(order.begin(), order.end(), 0u);
+    s.nodes.reserve(2 * s.triangles.size() / kLeafTriangles + 1);
+    s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), 0, uint32_t(order.size()), 0});
+    for (size_t i = 0; i < s.nodes.size(); ++i) {
+        const Node n = s.nodes[i];
+        if (n.count <= kLeafTriangles) continue;
+        glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
+        for (uint32_t k = n.first; k < n.first + n.count; ++k) {
+            lo = glm::min(lo, centroid[order[k]]);
+            hi = glm::max(hi, centroid[order[k]]);
+        }
+        const glm::dvec3 extent = hi - lo;
+        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+        const uint32_t half = n.count / 2;
+        std::nth_element(order.begin() + n.first, order.begin() + n.first + half,
+                         order.begin() + n.first + n.count, [&](uint32_t a, uint32_t b) {
+                             return centroid[a][axis] != centroid[b][axis]
+                                        ? centroid[a][axis] < centroid[b][axis]
+                                        : a < b;
+                         });
+        s.nodes[i].child = uint32_t(s.nodes.size());
+        s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), n.first, half, 0});
+        s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), n.first + half, n.count - half, 0});
+    }
+    std::vector<std::array<uint32_t, 3>> sorted(order.size());
+    for (size_t i = 0; i < order.size(); ++i)
+        sorted[i] = s.triangles[order[i]];
+    s.triangles = std::move(sorted);
+    for (Node& n : s.nodes)
+        fitBox(s, n);
+}
+
+struct Measured {
+    double distance = 0.0;
+    uint32_t triangle = 0; // mesh triangle of the target holding the closest point
+};
+
+// Distances at A's vertices, measured at most once per bound: a claim flag, then the value.
+class VertexCache {
+public:
+    explicit VertexCache(size_t n) : state_(n), value_(n) {}
+    template <class Measure> Measured get(uint32_t v, Measure&& measure, size_t& queries) {
+        if (state_[v].load(std::memory_order_acquire) == 2) return value_[v];
+        const Measured m = measure();
+        ++queries;
+        uint8_t expected = 0;
+        if (state_[v].compare_exchange_strong(expected, 1, std::memory_order_relaxed)) {
+            value_[v] = m;
+            state_[v].store(2, std::memory_order_release);
+        }
+        return m;
+    }
+
+private:
+    std::vector<std::atomic<uint8_t>> state_; // 0 unmeasured, 1 being stored, 2 ready
+    std::vector<Measured> value_;
+};
+
+// A triangle piece of A: corners, their distances to B and the triangles of B closest to them.
+struct Piece {
+    glm::dvec3 p[3];
+    Measured m[3];
+};
+
+// Bounds one subtree of A's hierarchy against B (see the top of HausdorffBound.hpp).
+class Walker {
+public:
+    Walker(const Impl& a, const Impl& b, const HausdorffSettings& s, VertexCache& cache,
+           std::atomic<bool>& exceeded, double lowerStart)
+        : lower(lowerStart), a_(a), b_(b), s_(s), cache_(cache), exceeded_(exceeded) {}
+
+    // Measures vertex v of A (raises the lower bound).
+    void sample(uint32_t v) { atVertex(v); }
+
+    void walk(uint32_t root) {
+        std::vector<uint32_t> stack{root};
+        while (!stack.empty() && !exceeded_.load(std::memory_order_relaxed)) {
+            const uint32_t i = stack.back();
+            stack.pop_back();
+            const Node& n = a_.nodes[i];
+            const double bound = nodeBound(n);
+            if (bound <= level()) {
+                accept(bound);
+            } else if (n.child != 0) {
+                stack.push_back(n.child + 1);
+                stack.push_back(n.child);
+            } else {
+                for (uint32_t t = n.first; t < n.first + n.count; ++t)
+                    triangle(a_.triangles[t]);
+            }
+        }
+    }
+
+    double lower;
+    double upper = 0.0;
+    size_t queries = 0;
+
+private:
+    double level() const {
+        return std::max(lower + s_.margin, std::isfinite(s_.tolerance) ? s_.tolerance : 0.0);
+    }
+    void accept(double bound) { upper = std::max(upper, bound); }
+
+    void see(double distance) {
+        lower = std::max(lower, distance);
+        if (distance > s_.tolerance) exceeded_.store(true, std::memory_order_relaxed);
+    }
+
+    Measured measure(const glm::dvec3& p) const {
+        const std::optional<ClosestPoint> c = b_.query.closest(p);
+        return c ? Measured{c->distance, c->triangle} : Measured{std::numeric_limits<double>::infinity(), 0};
+    }
+
+    Measured atVertex(uint32_t v) {
+        const Measured m = cache_.get(
+            v, [&] { return measure(a_.positions[v]); }, queries);
+        see(m.distance);
+        return m;
+    }
+
+    double toTriangle(const glm::dvec3& p, uint32_t t) const {
+        return glm::length(p -
+                           detail::closestOnTriangle(p, b_.corner(t, 0), b_.corner(t, 1), b_.corner(t, 2)));
+    }
+
+    double nodeBound(const Node& n) {
+        const uint32_t v = a_.triangles[n.first][0];
+        const Measured m = atVertex(v);
+        const glm::dvec3 p = a_.positions[v];
+        double farthest = 0.0;
+        for (int k = 0; k < 8; ++k) {
+            const glm::dvec3 c(k & 1 ? n.hi.x : n.lo.x, k & 2 ? n.hi.y : n.lo.y, k & 4 ? n.hi.z : n.lo.z);
+            farthest = std::max(farthest, glm::length(c - p));
+        }
+        const double lipschitz = m.distance + farthest;
+        double convex = 0.0;
+        if (n.count <= kHullTriangles) {
+            for (uint32_t t = n.first; t < n.first + n.count && convex < lipschitz; ++t)
+                for (uint32_t c : a_.triangles[t])
+                    convex = std::max(convex, toTriangle(a_.positions[c], m.triangle));
+        } else {
+            for (int k = 0; k < 8 && convex < lipschitz; ++k) {
+                const glm::dvec3 c(k & 1 ? n.hi.x : n.lo.x, k & 2 ? n.hi.y : n.lo.y, k & 4 ? n.hi.z : n.lo.z);
+                convex = std::max(convex, toTriangle(c, m.triangle));
+            }
+        }
+        return std::min(lipschitz, convex);
+    }
+
+    double pieceBound(const Piece& q) const {
+        const double lipschitz = std::max({q.m[0].distance, q.m[1].distance, q.m[2].distance}) +
+                                 detail::enclosingRadius(q.p[0], q.p[1], q.p[2]);
+        double best = lipschitz;
+        for (int j = 0; j < 3; ++j) {
+            const uint32_t t = q.m[j].triangle;
+            if ((j > 0 && t == q.m[0].triangle) || (j > 1 && t == q.m[1].triangle)) continue;
+            double convex = 0.0;
+            for (int i = 0; i < 3 && convex < best; ++i)
+                convex = std::max(convex, i == j ? q.m[i].distance : toTriangle(q.p[i], t));
+            best = std::min(best, convex);
+        }
+        return best;
+    }
+
+    void triangle(const std::array<uint32_t, 3>& t) {
+        Piece first;
+        for (int k = 0; k < 3; ++k) {
+            first.p[k] = a_.positions[t[size_t(k)]];
+            first.m[k] = atVertex(t[size_t(k)]);
+        }
+        std::vector<Piece>& stack = pieces_;
+        stack.assign(1, first);
+        while (!stack.empty() && !exceeded_.load(std::memory_order_relaxed)) {
+            const Piece q = stack.back();
+            stack.pop_back();
+            const double bound = pieceBound(q);
+            if (bound <= level()) {
+                accept(bound);
+                continue;
+            }
+            int k = 0;
+            double longest = -1.0;
+            for (int e = 0; e < 3; ++e) {
+                const glm::dvec3 d = q.p[(e + 1) % 3] - q.p[e];
+                if (glm::dot(d, d) > longest) longest = glm::dot(d, d), k = e;
+            }
+            const int k1 = (k + 1) % 3;
+            const glm::dvec3 mid = 0.5 * (q.p[k] + q.p[k1]);
+            const Measured m = measure(mid);
+            ++queries;
+            see(m.distance);
+            Piece x = q, y = q;
+            x.p[k1] = mid;
+            x.m[k1] = m;
+            y.p[k] = mid;
+            y.m[k] = m;
+            stack.push_back(x);
+            stack.push_back(y);
+        }
+    }
+
+    const Impl& a_;
+    const Impl& b_;
+    const HausdorffSettings& s_;
+    VertexCache& cache_;
+    std::atomic<bool>& exceeded_;
+    std::vector<Piece> pieces_;
+};
+
+// Subtrees of A's hierarchy for the threads: nodes split breadth first until there are enough.
+std::vector<uint32_t> subtrees(const Impl& a, size_t wanted) {
+    std::vector<uint32_t> out{0};
+    for (bool split = true; split && out.size() < wanted;) {
+        split = false;
+        std::vector<uint32_t> next;
+        for (uint32_t i : out) {
+            if (a.nodes[i].child != 0) {
+                next.push_back(a.nodes[i].child);
+                next.push_back(a.nodes[i].child + 1);
+                split = true;
+            } else {
+                next.push_back(i);
+            }
+        }
+        out = std::move(next);
+    }
+    return out;
+}
+
+} // namespace
+
+HausdorffSurface::HausdorffSurface(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+HausdorffSurface::HausdorffSurface(HausdorffSurface&&) noexcept = default;
+HausdorffSurface& HausdorffSurface::operator=(HausdorffSurface&&) noexcept = default;
+HausdorffSurface::~HausdorffSurface() = default;
+
+Result<HausdorffSurface> HausdorffSurface::create(const Mesh& mesh) {
+    Result<ClosestPointQuery> query = ClosestPointQuery::create(mesh); // validates the mesh
+    if (!query) return fail(query.error());
+    auto impl = std::make_unique<Impl>(std::move(query).value());
+    impl->positions.reserve(mesh.positions.size());
+    for (const glm::vec3& p : mesh.positions)
+        impl->positions.emplace_back(p);
+    impl->indices = mesh.indices;
+    for (uint32_t t : detail::surfaceTriangles(mesh)) {
+        impl->triangles.push_back(
+            {mesh.indices[3 * size_t(t)], mesh.indices[3 * size_t(t) + 1], mesh.indices[3 * size_t(t) + 2]});
+        for (uint32_t v : impl->triangles.back())
+            for (int k = 0; k < 3; ++k)
+                impl->scale = std::max(impl->scale, std::fabs(impl->positions[v][k]));
+    }
+    buildHierarchy(*impl);
+    return HausdorffSurface(std::move(impl));
+}
+
+size_t HausdorffSurface::surfaceTriangleCount() const {
+    return impl_->triangles.size();
+}
+
+Result<HausdorffResult> boundOneSided(const HausdorffSurface& from, const HausdorffSurface& to,
+                                      const HausdorffSettings& s, const ProgressCallback& progress) {
+    if (!(std::isfinite(s.margin) && s.margin > 0.0))
+        return fail("Hausdorff bound: margin " + std::to_string(s.margin) + " is not finite and > 0");
+    if (!(s.tolerance >= 0.0)) return fail("Hausdorff bound: tolerance is negative or NaN");
+    const Impl& a = from.impl();
+    const Impl& b = to.impl();
+    HausdorffResult out;
+    if (a.triangles.empty()) return out;
+    if (b.triangles.empty()) return fail("the target mesh has no surface (no triangle of non-zero area)");
+
+    VertexCache cache(a.positions.size());
+    std::atomic<bool> exceeded{false};
+    // The starting lower bound of every subtree: distances at a fixed stride of A's triangles.
+    Walker start(a, b, s, cache, exceeded, std::max(0.0, s.knownLower));
+    const size_t stride = std::max<size_t>(1, a.triangles.size() / kStartSamples);
+    for (size_t i = 0; i < a.triangles.size() && !exceeded.load(); i += stride)
+        start.sample(a.triangles[i][0]);
+
+    const unsigned workers = detail::workerCount();
+    const std::vector<uint32_t> roots = subtrees(a, kSubtreesPerWorker * workers);
+    std::vector<HausdorffResult> parts(roots.size());
+    auto report = [&](double f) { return !progress || progress(float(f), "measure"); };
+    const bool finished = detail::parallelChunks(
+        roots.size(), 1, workers,
+        [&](size_t begin, size_t end, unsigned) {
+            for (size_t i = begin; i < end; ++i) {
+                Walker w(a, b, s, cache, exceeded, start.lower);
+                w.walk(roots[i]);
+                parts[i] = {w.lower, w.upper, false, w.queries};
+            }
+        },
+        report, &exceeded);
+    if (!finished) return fail("cancelled");
+    out.lower = start.lower;
+    out.queries = start.queries;
+    for (const HausdorffResult& r : parts) {
+        out.lower = std::max(out.lower, r.lower);
+        out.upper = std::max(out.upper, r.upper);
+        out.queries += r.queries;
+    }
+    out.exceeded = exceeded.load();
+    if (out.exceeded) {
+        out.upper = std::numeric_limits<double>::infinity();
+        return out;
+    }
+    if (progress && !progress(1.0f, "measure")) return fail("cancelled");
+    out.upper = std::max(out.upper, out.lower) * (1.0 + detail::kRoundingAllowance) +
+                detail::kRoundingAllowance * a.scale;
+    return out;
+}
+
+Result<HausdorffResult> boundHausdorff(const HausdorffSurface& a, const HausdorffSurface& b,
+                                       const HausdorffSettings& s, const ProgressCallback& progress) {
+    if ((a.surfaceTriangleCount() == 0) != (b.surfaceTriangleCount() == 0))
+        return fail(std::string("mesh ") + (a.surfaceTriangleCount() == 0 ? "A" : "B") +
+                    " has no surface (no triangle of non-zero area) but the other has one");
+    auto half = [&](float offset) -> ProgressCallback {
+        if (!progress) return {};
+        return [&progress, offset](float f, const char* stage) { return progress(offset + 0.5f * f, stage); };
+    };
+    Result<HausdorffResult> ab = boundOneSided(a, b, s, half(0.0f));
+    if (!ab || ab->exceeded) return ab;
+    HausdorffSettings back = s;
+    back.knownLower = std::max(s.knownLower, ab->lower);
+    Result<HausdorffResult> ba = boundOneSided(b, a, back, half(0.5f));
+    if (!ba) return ba;
+    HausdorffResult out = ba.value();
+    out.lower = std::max(out.lower, ab->lower);
+    if (!out.exceeded) out.upper = std::max(out.upper, ab->upper);
+    out.queries += ab->queries;
+    return out;
+}
+
+} // namespace spatter

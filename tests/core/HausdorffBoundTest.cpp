@@ -1,0 +1,221 @@
+#include "spatter/core/HausdorffBound.hpp"
+
+#include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/core/Random.hpp"
+#include "spatter/core/SceneLoader.hpp"
+
+#include "ReferenceGeometry.hpp"
+#include "TestData.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <limits>
+
+using namespace spatter;
+using namespace spatter::test;
+using ::testing::HasSubstr;
+
+namespace {
+
+glm::dvec3 corner(const Mesh& m, size_t t, int k) {
+    return glm::dvec3(m.positions[m.indices[3 * t + size_t(k)]]);
+}
+
+// Lower estimate of the one-sided distance from `from` to `to`: the largest exact distance at `count`
+// random area-weighted points of `from` and at the corners of its triangles of non-zero area (the
+// surface; isolated vertices and degenerate triangles are not part of it).
+double denseOneSided(const Mesh& from, const Mesh& to, size_t count, uint64_t seed) {
+    Result<ClosestPointQuery> q = ClosestPointQuery::create(to);
+    EXPECT_TRUE(q) << q.error();
+    std::vector<double> cumulative;
+    double total = 0.0, worst = 0.0;
+    for (size_t t = 0; t < from.triangleCount(); ++t) {
+        const double area = glm::length(
+            glm::cross(corner(from, t, 1) - corner(from, t, 0), corner(from, t, 2) - corner(from, t, 0)));
+        total += area;
+        cumulative.push_back(total);
+        if (area > 0.0)
+            for (int k = 0; k < 3; ++k)
+                worst = std::max(worst, q->closest(corner(from, t, k))->distance);
+    }
+    Rng rng(seed);
+    for (size_t i = 0; i < count; ++i) {
+        const size_t t =
+            std::min(size_t(std::upper_bound(cumulative.begin(), cumulative.end(), rng.uniform() * total) -
+                            cumulative.begin()),
+                     cumulative.size() - 1);
+        double u = rng.uniform(), v = rng.uniform();
+        if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+        const glm::dvec3 p = corner(from, t, 0) + u * (corner(from, t, 1) - corner(from, t, 0)) +
+                             v * (corner(from, t, 2) - corner(from, t, 0));
+        worst = std::max(worst, q->closest(p)->distance);
+    }
+    return worst;
+}
+
+HausdorffSurface surface(const Mesh& m) {
+    Result<HausdorffSurface> s = HausdorffSurface::create(m);
+    EXPECT_TRUE(s) << s.error();
+    return std::move(s).value();
+}
+
+Mesh square(float z, float size) {
+    Mesh m;
+    m.positions = {{0, 0, z}, {size, 0, z}, {size, size, z}, {0, size, z}};
+    m.indices = {0, 1, 2, 0, 2, 3};
+    return m;
+}
+
+// A meshoptimizer proxy of `render` at `tolerance` of the diagonal (the builder's own bound is not
+// used here, only its mesh).
+Mesh proxyOf(const Mesh& render, float tolerance) {
+    ProxySettings s;
+    s.backend = ProxyBackend::MeshOpt;
+    s.tolerance = tolerance;
+    Result<Proxy> p = buildProxy(render, s);
+    EXPECT_TRUE(p) << p.error();
+    return p->mesh;
+}
+
+} // namespace
+
+TEST(HausdorffBound, ParallelSquaresAreTheirOffsetApart) {
+    const HausdorffSurface a = surface(square(0.0f, 1.0f)), b = surface(square(0.25f, 1.0f));
+    HausdorffSettings s;
+    s.margin = 1e-3;
+    Result<HausdorffResult> h = boundHausdorff(a, b, s);
+    ASSERT_TRUE(h) << h.error();
+    EXPECT_NEAR(h->lower, 0.25, 1e-6);
+    EXPECT_GE(h->upper, 0.25);
+    EXPECT_LE(h->upper, 0.25 + 1e-6);
+    EXPECT_FALSE(h->exceeded);
+}
+
+// A bump in the middle of a fine grid over a square of two triangles: the farthest point of the grid
+// from the square is the bump's top; the early answer says no below it and yes above it.
+TEST(HausdorffBound, BumpOverASquareIsBoundedAndAnsweredEarly) {
+    Mesh bumpy;
+    const uint32_t n = 64;
+    for (uint32_t i = 0; i <= n; ++i)
+        for (uint32_t j = 0; j <= n; ++j) {
+            const float x = float(i) / float(n), y = float(j) / float(n);
+            const float r2 = (x - 0.43f) * (x - 0.43f) + (y - 0.57f) * (y - 0.57f);
+            bumpy.positions.push_back({x, y, 0.1f * std::exp(-r2 / 0.002f)});
+        }
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t j = 0; j < n; ++j) {
+            const uint32_t v = i * (n + 1) + j;
+            bumpy.indices.insert(bumpy.indices.end(), {v, v + n + 1, v + n + 2, v, v + n + 2, v + 1});
+        }
+    const Mesh flat = square(0.0f, 1.0f);
+    const HausdorffSurface a = surface(bumpy), b = surface(flat);
+    const double dense = std::max(denseOneSided(bumpy, flat, 20000, 1), denseOneSided(flat, bumpy, 20000, 2));
+    HausdorffSettings s;
+    s.margin = 1e-3;
+    Result<HausdorffResult> h = boundHausdorff(b, a, s);
+    ASSERT_TRUE(h) << h.error();
+    EXPECT_GE(h->upper, dense);
+    EXPECT_LE(h->lower, h->upper);
+    EXPECT_LE(h->upper, h->lower + s.margin + 1e-9);
+    EXPECT_LE(h->upper, dense + s.margin + 1e-9);
+    EXPECT_GT(dense, 0.09);
+
+    s.tolerance = 0.09; // below the bump: no
+    Result<HausdorffResult> no = boundHausdorff(b, a, s);
+    ASSERT_TRUE(no);
+    EXPECT_TRUE(no->exceeded);
+    EXPECT_FALSE(no->within(s.tolerance));
+    EXPECT_GT(no->lower, 0.09);
+    s.tolerance = 0.11; // above it: yes, with fewer queries than the sharp bound
+    Result<HausdorffResult> yes = boundHausdorff(b, a, s);
+    ASSERT_TRUE(yes);
+    EXPECT_TRUE(yes->within(s.tolerance));
+    EXPECT_GE(yes->upper, dense);
+    EXPECT_LE(yes->queries, h->queries);
+}
+
+TEST(HausdorffBound, RejectsBadSettingsAndAOneSidedSurface) {
+    const HausdorffSurface a = surface(square(0.0f, 1.0f));
+    Mesh degenerate;
+    degenerate.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+    degenerate.indices = {0, 1, 2};
+    const HausdorffSurface empty = surface(degenerate);
+    HausdorffSettings s;
+    EXPECT_THAT(boundHausdorff(a, a, s).error(), HasSubstr("margin"));
+    s.margin = 0.01;
+    s.tolerance = -1.0;
+    EXPECT_THAT(boundHausdorff(a, a, s).error(), HasSubstr("tolerance"));
+    s.tolerance = std::numeric_limits<double>::infinity();
+    EXPECT_THAT(boundHausdorff(a, empty, s).error(), HasSubstr("no surface"));
+    Result<HausdorffResult> none = boundHausdorff(empty, empty, s);
+    ASSERT_TRUE(none);
+    EXPECT_EQ(none->upper, 0.0);
+    Mesh bad = square(0.0f, 1.0f);
+    bad.indices[2] = 9;
+    EXPECT_THAT(HausdorffSurface::create(bad).error(), HasSubstr("past the vertex count"));
+}
+
+TEST(HausdorffBound, ProgressCanCancel) {
+    const Mesh render = latLongSphere(1.0f, 60, 80, 0.05f);
+    const HausdorffSurface a = surface(render), b = surface(latLongSphere(1.0f, 12, 16));
+    HausdorffSettings s;
+    s.margin = 0.001;
+    float last = -1.0f;
+    Result<HausdorffResult> h = boundHausdorff(a, b, s, [&](float f, const char* stage) {
+        EXPECT_STREQ(stage, "measure");
+        EXPECT_GE(f, last);
+        last = f;
+        return true;
+    });
+    ASSERT_TRUE(h) << h.error();
+    EXPECT_EQ(last, 1.0f);
+    Result<HausdorffResult> cancelled =
+        boundHausdorff(a, b, s, [](float f, const char*) { return f < 0.3f; });
+    ASSERT_FALSE(cancelled);
+    EXPECT_EQ(cancelled.error(), "cancelled");
+}
+
+// On the shared scans, against meshoptimizer proxies: the bound is never below a dense estimate, it
+// is within its margin of what it measured, it agrees with the sampling measurement, and it is the
+// same on every run.
+TEST(HausdorffBound, NeverBelowTheDenseEstimateOnSharedMeshes) {
+    for (const char* file : {"meshes/fandisk.obj", "meshes/rocker-arm.obj", "meshes/stanford-bunny.obj"}) {
+        SPATTER_REQUIRE_SHARED(path, file);
+        Result<Scene> scene = loadScene(path);
+        ASSERT_TRUE(scene) << scene.error();
+        const Mesh& render = scene->objects.at(0).mesh;
+        const double diagonal = double(render.bounds().diagonal());
+        const Mesh proxy = proxyOf(render, 0.004f);
+        const HausdorffSurface r = surface(render), p = surface(proxy);
+        HausdorffSettings s;
+        s.margin = 0.0005 * diagonal;
+        const auto start = std::chrono::steady_clock::now();
+        Result<HausdorffResult> h = boundHausdorff(p, r, s);
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        ASSERT_TRUE(h) << h.error();
+        const double dense =
+            std::max(denseOneSided(proxy, render, 100000, 3), denseOneSided(render, proxy, 100000, 4));
+        EXPECT_GE(h->upper, dense) << file;
+        EXPECT_LE(h->lower, h->upper);
+        EXPECT_LE(h->upper, h->lower + s.margin * (1.0 + 1e-6)) << file;
+        SurfaceSampling sampling;
+        sampling.radius = s.margin;
+        Result<MeshDistance> sampled = measureMeshDistance(proxy, render, sampling);
+        ASSERT_TRUE(sampled) << sampled.error();
+        EXPECT_GE(h->upper, sampled->lowerBound()) << file;
+        EXPECT_GE(sampled->upperBound(), h->lower) << file;
+        Result<HausdorffResult> again = boundHausdorff(p, r, s);
+        ASSERT_TRUE(again);
+        EXPECT_EQ(again->upper, h->upper);
+        EXPECT_EQ(again->lower, h->lower);
+        std::printf("[ hausdorff ] %s: %zu vs %zu triangles: h in [%.6f, %.6f] (dense %.6f, sampled [%.6f, "
+                    "%.6f]), %zu queries, %.3f s\n",
+                    file, proxy.triangleCount(), render.triangleCount(), h->lower, h->upper, dense,
+                    sampled->lowerBound(), sampled->upperBound(), h->queries, seconds);
+    }
+}
