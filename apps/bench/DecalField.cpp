@@ -65,9 +65,8 @@ std::vector<Decal> decalField(const DecalFieldView& view, size_t total, size_t v
         }
         const double angle = 2.0 * kPi * double(rng.uniform());
         Decal d;
-        d.frame.normal = glm::vec3(0.0f, 1.0f, 0.0f);
-        d.frame.tangent = glm::vec3(float(std::cos(angle)), 0.0f, float(std::sin(angle)));
-        d.frame.bitangent = glm::cross(d.frame.normal, d.frame.tangent);
+        d.setFrame(frameFromNormalAndHint(glm::vec3(0.0f, 1.0f, 0.0f),
+                                          glm::vec3(float(std::cos(angle)), 0.0f, float(std::sin(angle)))));
         d.center = glm::vec3(float(x), 0.0f, float(z));
         d.size = glm::vec2(float(size));
         d.halfDepth = float(0.25 * size);

@@ -32,10 +32,10 @@ int8_t quantise(float v) {
 
 glm::dmat4 craterToObject(const Decal& d) {
     const double sx = 0.5 * double(d.size.x), sy = 0.5 * double(d.size.y), sz = std::min(sx, sy);
-    return glm::dmat4(glm::dvec4(glm::dvec3(d.frame.tangent) * sx, 0.0),
-                      glm::dvec4(glm::dvec3(d.frame.bitangent) * sy, 0.0),
-                      glm::dvec4(glm::dvec3(d.frame.normal) * sz, 0.0),
-                      glm::dvec4(glm::dvec3(d.center), 1.0));
+    const Frame f = d.frame();
+    return glm::dmat4(glm::dvec4(glm::dvec3(f.tangent) * sx, 0.0),
+                      glm::dvec4(glm::dvec3(f.bitangent) * sy, 0.0),
+                      glm::dvec4(glm::dvec3(f.normal) * sz, 0.0), glm::dvec4(glm::dvec3(d.center), 1.0));
 }
 
 CraterClip packCraterClip(const glm::vec3& normal, float offset) {

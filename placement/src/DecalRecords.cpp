@@ -173,9 +173,8 @@ Decal toObjectSpace(const SceneObject& object, uint32_t index, const WorldDecalB
     Decal d;
     d.object = index;
     d.center = glm::vec3(glm::dvec3(inv * glm::dvec4(box.center, 1.0)));
-    d.frame.tangent = glm::vec3(glm::normalize(a));
-    d.frame.bitangent = glm::vec3(glm::normalize(b));
-    d.frame.normal = glm::vec3(glm::normalize(c));
+    d.setFrame(
+        Frame{glm::vec3(glm::normalize(a)), glm::vec3(glm::normalize(b)), glm::vec3(glm::normalize(c))});
     d.size = glm::vec2(float(2.0 * glm::length(a)), float(2.0 * glm::length(b)));
     d.halfDepth = float(glm::length(c));
     return d;

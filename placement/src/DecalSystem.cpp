@@ -51,15 +51,14 @@ std::string formatNumber(double v) {
     return buf;
 }
 
-// A decal the renderer can use: finite centre and frame, size and half-depth finite and at least the
-// smallest normal float (a box of zero, denormal or infinite extent cannot be inverted).
+// A decal the renderer can use (its frame packed by setFrame): finite centre, size and half-depth finite and
+// at least the smallest normal float (a box of zero, denormal or infinite extent cannot be inverted).
 bool soundBox(const Decal& d) {
     auto finite = [](const glm::vec3& v) {
         return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
     };
     auto extent = [](float v) { return std::isfinite(v) && v >= std::numeric_limits<float>::min(); };
-    return finite(d.center) && finite(d.frame.tangent) && finite(d.frame.bitangent) &&
-           finite(d.frame.normal) && extent(d.size.x) && extent(d.size.y) && extent(d.halfDepth);
+    return finite(d.center) && extent(d.size.x) && extent(d.size.y) && extent(d.halfDepth);
 }
 
 // The largest world-space extent (size or half-depth) a decal may have: its box goes to object space
@@ -318,9 +317,7 @@ struct DecalSystem::Impl {
         const glm::dvec3 bit = glm::cross(n, tan);
 
         Decal d;
-        d.frame.tangent = glm::vec3(tan);
-        d.frame.bitangent = glm::vec3(bit);
-        d.frame.normal = glm::vec3(n);
+        const bool framed = d.setFrame(Frame{glm::vec3(tan), glm::vec3(bit), glm::vec3(n)});
         d.center = glm::vec3(local);
         d.size = glm::vec2(float(size.x / glm::length(m * tan)), float(size.y / glm::length(m * bit)));
         d.halfDepth = float(halfDepth * glm::length(glm::transpose(inv) * n));
@@ -331,7 +328,7 @@ struct DecalSystem::Impl {
         d.spawnTime = time;
         d.opacity = 1.0f;
         const bool worldSound = std::max(size.x, size.y) <= kMaxWorldExtent && halfDepth <= kMaxWorldExtent;
-        if (!soundBox(d) || !worldSound) {
+        if (!framed || !soundBox(d) || !worldSound) {
             rng = unused;
             return reject(SpawnStatus::InvalidArgument,
                           "the box of a decal of type '" + t.name + "' on '" + o.name +
@@ -430,19 +427,20 @@ struct DecalSystem::Impl {
         w.center = glm::dvec3(xf * glm::dvec4(glm::dvec3(d.center), 1.0));
         if (!(finite3(normalMatrix[0]) && finite3(normalMatrix[1]) &&
               finite3(normalMatrix[2]))) { // a singular transform: the object, and the box, collapse
-            w.frame = d.frame;
+            w.frame = d.frame();
             return w;
         }
-        const glm::dvec3 nScaled = normalMatrix * glm::dvec3(d.frame.normal);
+        const Frame f = d.frame();
+        const glm::dvec3 nScaled = normalMatrix * glm::dvec3(f.normal);
         const glm::dvec3 n = glm::normalize(nScaled);
-        const glm::dvec3 tScaled = m * glm::dvec3(d.frame.tangent);
+        const glm::dvec3 tScaled = m * glm::dvec3(f.tangent);
         glm::dvec3 t = tScaled - n * glm::dot(n, tScaled);
         t = glm::normalize(t);
         w.frame.normal = glm::vec3(n);
         w.frame.tangent = glm::vec3(t);
-        w.frame.bitangent = glm::vec3(glm::cross(n, t));
+        w.frame.bitangent = glm::vec3(d.mirrored ? -glm::cross(n, t) : glm::cross(n, t));
         w.size = glm::vec2(float(d.size.x * glm::length(tScaled)),
-                           float(d.size.y * glm::length(m * glm::dvec3(d.frame.bitangent))));
+                           float(d.size.y * glm::length(m * glm::dvec3(f.bitangent))));
         w.halfDepth = float(d.halfDepth / glm::length(nScaled));
         return w;
     }

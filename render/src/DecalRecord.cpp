@@ -24,10 +24,11 @@ uint32_t floatBits(float f) {
 // Whether the decal's numbers can make a box at all: finite, extents of normal floats.
 bool soundNumbers(const Decal& d) {
     constexpr float kMinExtent = std::numeric_limits<float>::min(); // a denormal cannot be inverted
-    return finite(d.frame.tangent) && finite(d.frame.bitangent) && finite(d.frame.normal) &&
-           finite(d.center) && std::isfinite(d.size.x) && std::isfinite(d.size.y) &&
-           std::isfinite(d.halfDepth) && std::isfinite(d.opacity) && d.size.x >= kMinExtent &&
-           d.size.y >= kMinExtent && d.halfDepth >= kMinExtent;
+    return std::isfinite(d.orientation.x) && std::isfinite(d.orientation.y) &&
+           std::isfinite(d.orientation.z) && std::isfinite(d.orientation.w) && finite(d.center) &&
+           std::isfinite(d.size.x) && std::isfinite(d.size.y) && std::isfinite(d.halfDepth) &&
+           std::isfinite(d.opacity) && d.size.x >= kMinExtent && d.size.y >= kMinExtent &&
+           d.halfDepth >= kMinExtent;
 }
 
 } // namespace
@@ -35,20 +36,15 @@ bool soundNumbers(const Decal& d) {
 bool buildDecalRecord(const Decal& d, DecalRecordGpu& out) {
     out = DecalRecordGpu{};
     if (!soundNumbers(d)) return false;
-    const glm::dvec3 t0(d.frame.tangent), b0(d.frame.bitangent), n0(d.frame.normal);
-    const double lt = glm::length(t0), lb = glm::length(b0), ln = glm::length(n0);
-    if (!(lt > 1e-6 && lb > 1e-6 && ln > 1e-6)) return false;
-    const double det = glm::dot(glm::cross(t0, b0), n0);
-    if (!(std::fabs(det) > 1e-9 * lt * lb * ln) || !std::isfinite(det)) return false;
-
-    const glm::dmat4 boxToObject(
-        glm::dvec4(t0 * (0.5 * double(d.size.x)), 0.0), glm::dvec4(b0 * (0.5 * double(d.size.y)), 0.0),
-        glm::dvec4(n0 * double(d.halfDepth), 0.0), glm::dvec4(glm::dvec3(d.center), 1.0));
-    const glm::dmat4 toBox = glm::inverse(boxToObject);
+    const Frame f = d.frame(); // orthonormal: its inverse is its transpose
+    if (f.normal == glm::vec3(0.0f)) return false;
+    const glm::dvec3 axes[3] = {glm::dvec3(f.tangent) / (0.5 * double(d.size.x)),
+                                glm::dvec3(f.bitangent) / (0.5 * double(d.size.y)),
+                                glm::dvec3(f.normal) / double(d.halfDepth)};
+    const glm::dvec3 c(d.center);
     for (int r = 0; r < 3; ++r)
-        out.objectToBox[r] =
-            glm::vec4(float(toBox[0][r]), float(toBox[1][r]), float(toBox[2][r]), float(toBox[3][r]));
-    const uint32_t mirrored = det < 0.0 ? kDecalMirrored : 0u;
+        out.objectToBox[r] = glm::vec4(glm::vec3(axes[r]), float(-glm::dot(axes[r], c)));
+    const uint32_t mirrored = d.mirrored ? kDecalMirrored : 0u;
     out.info = glm::uvec4(d.object, uint32_t(d.type) | uint32_t(d.objectId) << 16 | mirrored << 24,
                           floatBits(std::clamp(d.opacity, 0.0f, 1.0f)), d.id);
     return true;

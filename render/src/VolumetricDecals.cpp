@@ -114,7 +114,7 @@ void VolumetricDecals::setDecals(const std::vector<Decal>& decals, const std::ve
     cosMaxAngle_.clear();
     invalid_ = 0;
     for (const Decal& d : decals) {
-        const Frame& f = d.frame;
+        const Frame f = d.frame();
         const bool ok = d.object < objectCount && d.type < types.size() &&
                         std::isfinite(types[d.type].maxAngleDeg) && finite3(d.center) && finite3(f.normal) &&
                         finite3(f.tangent) && finite3(f.bitangent) && std::isfinite(d.size.x) &&

@@ -88,9 +88,9 @@ bool boxHoldsNearestRenderPoint(const Decal& d, const ClosestPointQuery& render,
     const std::optional<ClosestPoint> cp = render.closest(centre);
     if (!cp) return false;
     const glm::dvec3 v = cp->point - centre;
-    const double x = std::fabs(glm::dot(v, glm::dvec3(d.frame.tangent)));
-    const double y = std::fabs(glm::dot(v, glm::dvec3(d.frame.bitangent)));
-    const double z = std::fabs(glm::dot(v, glm::dvec3(d.frame.normal)));
+    const double x = std::fabs(glm::dot(v, glm::dvec3(d.frame().tangent)));
+    const double y = std::fabs(glm::dot(v, glm::dvec3(d.frame().bitangent)));
+    const double z = std::fabs(glm::dot(v, glm::dvec3(d.frame().normal)));
     const double hw = 0.5 * double(d.size.x), hh = 0.5 * double(d.size.y), hd = double(d.halfDepth);
     depthUse = z / hd;
     lateralUse = std::max(x / hw, y / hh);

@@ -54,9 +54,7 @@ int main() {
     paint.texture = int(spatter::DecalTexture::Paint);
     projector->setDecalTypes({paint});
     spatter::Decal decal;
-    decal.frame.tangent = {1, 0, 0};
-    decal.frame.bitangent = {0, 1, 0};
-    decal.frame.normal = {0, 0, 1};
+    decal.setFrame({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}); // tangent, bitangent, normal: facing +z
     decal.size = glm::vec2(1.0f);
     decal.halfDepth = 0.1f;
     if (!projector->setObjects({glm::dmat4(1.0)}, {0})) return 1;

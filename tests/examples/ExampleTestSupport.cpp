@@ -224,7 +224,7 @@ void expectCoverageWithTheCameraInsideADecalBox(const ExampleHost& host) {
     const glm::dmat4& m = in.scene.objects[d.object].transform;
     const glm::dvec3 centre(m * glm::dvec4(glm::dvec3(d.center), 1.0));
     const glm::dvec3 normal =
-        glm::normalize(glm::transpose(glm::inverse(glm::dmat3(m))) * glm::dvec3(d.frame.normal));
+        glm::normalize(glm::transpose(glm::inverse(glm::dmat3(m))) * glm::dvec3(d.frame().normal));
     const Camera inside = lookingAt(centre + normal, centre - glm::dvec3(0.3, 0.2, 0.1));
     const glm::dvec3 box(glm::inverse(m * glm::dmat4(d.boxToObject())) * glm::dvec4(inside.eye, 1.0));
     ASSERT_LE(std::max({std::fabs(box.x), std::fabs(box.y), std::fabs(box.z)}), 1.0)

@@ -20,16 +20,16 @@ namespace {
 // Every byte of two decals that holds a value (all but the padding) equal, field by field.
 bool sameBytes(const Decal& a, const Decal& b) {
     auto same = [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof x) == 0; };
-    return same(a.frame, b.frame) && same(a.center, b.center) && same(a.size, b.size) &&
-           same(a.halfDepth, b.halfDepth) && same(a.object, b.object) && same(a.id, b.id) &&
-           same(a.type, b.type) && same(a.objectId, b.objectId) && same(a.spawnTime, b.spawnTime) &&
-           same(a.opacity, b.opacity) && same(a.clips, b.clips);
+    return same(a.orientation, b.orientation) && same(a.mirrored, b.mirrored) && same(a.center, b.center) &&
+           same(a.size, b.size) && same(a.halfDepth, b.halfDepth) && same(a.object, b.object) &&
+           same(a.id, b.id) && same(a.type, b.type) && same(a.objectId, b.objectId) &&
+           same(a.spawnTime, b.spawnTime) && same(a.opacity, b.opacity) && same(a.clips, b.clips);
 }
 // A field added to Decal must be added to sameBytes.
-static_assert(sizeof(Frame) + sizeof(glm::vec3) + sizeof(glm::vec2) + 2 * sizeof(float) +
+static_assert(sizeof(glm::quat) + sizeof(bool) + sizeof(glm::vec3) + sizeof(glm::vec2) + 2 * sizeof(float) +
                       2 * sizeof(uint32_t) + sizeof(uint16_t) + sizeof(uint8_t) + sizeof(double) +
                       2 * sizeof(CraterClip) ==
-                  91,
+                  72,
               "Decal has fields sameBytes does not compare");
 
 ::testing::AssertionResult sameArray(const std::vector<Decal>& a, const std::vector<Decal>& b) {

@@ -84,8 +84,8 @@ TEST(DecalRecords, PlacedRecordsGiveBackTheObjectSpaceDecals) {
         EXPECT_EQ(a.id, b.id);
         EXPECT_EQ(a.objectId, b.objectId);
         expectNear(a.center, b.center, 1e-5f);
-        expectNear(a.frame.tangent, b.frame.tangent, 1e-5f);
-        expectNear(a.frame.normal, b.frame.normal, 1e-5f);
+        expectNear(a.frame().tangent, b.frame().tangent, 1e-5f);
+        expectNear(a.frame().normal, b.frame().normal, 1e-5f);
         EXPECT_NEAR(a.size.x, b.size.x, 1e-5f);
         EXPECT_NEAR(a.halfDepth, b.halfDepth, 1e-5f);
         // Mixed looks: the k-th decal has the k-th built-in texture and its record's angle.

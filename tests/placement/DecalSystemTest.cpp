@@ -19,7 +19,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 // The decal's frame is orthonormal and right-handed, in object and in world space.
 void expectGoodFrames(const DecalSystem& s, const Decal& d) {
-    EXPECT_LE(frameError(d.frame), 1e-6f);
+    EXPECT_LE(frameError(d.frame()), 1e-6f);
     EXPECT_LE(frameError(s.worldBox(d).frame), 1e-6f);
 }
 
@@ -66,10 +66,10 @@ TEST(DecalSystem, FramesOnEveryFaceOfABox) {
             const Decal& decal = *s.get(r.handle);
             expectGoodFrames(s, decal);
             for (int c = 0; c < 3; ++c) {
-                EXPECT_NEAR(decal.frame.normal[c], n[c], 1e-6);
+                EXPECT_NEAR(decal.frame().normal[c], n[c], 1e-6);
                 EXPECT_NEAR(decal.center[c], p[c], 1e-6);
             }
-            EXPECT_NEAR(glm::dot(glm::dvec3(decal.frame.tangent), n), 0.0, 1e-6);
+            EXPECT_NEAR(glm::dot(glm::dvec3(decal.frame().tangent), n), 0.0, 1e-6);
         }
     }
     EXPECT_EQ(s.stats().placed, 240u);
@@ -86,22 +86,22 @@ TEST(DecalSystem, TangentFollowsTheProjectedRayWithoutRotation) {
     const Decal& decal = *s.get(r.handle);
     const glm::dvec3 expected = glm::normalize(glm::dvec3(0.6, -0.3, 0.0));
     for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(decal.frame.tangent[c], expected[c], 1e-6);
+        EXPECT_NEAR(decal.frame().tangent[c], expected[c], 1e-6);
     expectGoodFrames(s, decal);
 
     // Straight on: the projection vanishes, the tangent falls back to world X.
     const SpawnResult straight = s.spawn(ray({0.2, 0.1, 4.0}, {0.0, 0.0, -1.0}), type);
     ASSERT_TRUE(straight.placed());
-    EXPECT_NEAR(s.get(straight.handle)->frame.tangent.x, 1.0, 1e-6);
+    EXPECT_NEAR(s.get(straight.handle)->frame().tangent.x, 1.0, 1e-6);
     // Straight down onto the top face along X: world X lies in the plane too.
     const SpawnResult down = s.spawn(ray({0.2, 4.0, 0.1}, {0.0, -1.0, 0.0}), type);
     ASSERT_TRUE(down.placed());
-    EXPECT_NEAR(s.get(down.handle)->frame.tangent.x, 1.0, 1e-6);
+    EXPECT_NEAR(s.get(down.handle)->frame().tangent.x, 1.0, 1e-6);
     // Straight onto the +X face: X is the normal, Duff et al. gives the frame.
     const SpawnResult side = s.spawn(ray({4.0, 0.1, 0.2}, {-1.0, 0.0, 0.0}), type);
     ASSERT_TRUE(side.placed());
     const Frame duff = basisFromNormal(glm::vec3(1, 0, 0));
-    EXPECT_NEAR(glm::length(s.get(side.handle)->frame.tangent - duff.tangent), 0.0, 1e-6);
+    EXPECT_NEAR(glm::length(s.get(side.handle)->frame().tangent - duff.tangent), 0.0, 1e-6);
     expectGoodFrames(s, *s.get(side.handle));
 }
 
@@ -127,9 +127,9 @@ TEST(DecalSystem, FramesOnASphereSweep) {
                 expectGoodFrames(s, decal);
                 // On the faceted sphere: within the chord sag of the unit sphere; normal close to radial.
                 EXPECT_NEAR(glm::length(decal.center), 1.0, 3e-3);
-                EXPECT_GT(glm::dot(glm::normalize(decal.center), decal.frame.normal), std::cos(0.1));
+                EXPECT_GT(glm::dot(glm::normalize(decal.center), decal.frame().normal), std::cos(0.1));
                 // The normal faces the shooter.
-                EXPECT_LT(glm::dot(glm::dvec3(decal.frame.normal), d), 0.0);
+                EXPECT_LT(glm::dot(glm::dvec3(decal.frame().normal), d), 0.0);
             }
     EXPECT_EQ(placed, 24u * 12u * 3u);
 }
@@ -794,8 +794,8 @@ TEST(DecalSystem, SpawnAttachedPlacesInObjectSpace) {
     ASSERT_TRUE(r.placed()) << r.reason;
     const Decal& d = *s.get(r.handle);
     EXPECT_EQ(d.center, glm::vec3(0.1f, 0.2f, 0.5f));
-    EXPECT_NEAR(d.frame.normal.z, 1.0f, 1e-6f);
-    EXPECT_NEAR(d.frame.tangent.x, 1.0f, 1e-6f); // the object's X axis
+    EXPECT_NEAR(d.frame().normal.z, 1.0f, 1e-6f);
+    EXPECT_NEAR(d.frame().tangent.x, 1.0f, 1e-6f); // the object's X axis
     EXPECT_EQ(d.objectId, s.objectId(3));
     expectGoodFrames(s, d);
 }

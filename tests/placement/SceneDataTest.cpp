@@ -58,7 +58,7 @@ TEST(PlacementOnGallery, ShotsFromTheCameraPlaceGoodDecals) {
         ++placed;
         const Decal& d = *single.get(r.handle);
         const WorldDecal w = single.worldBox(d);
-        EXPECT_LE(frameError(d.frame), 1e-6f);
+        EXPECT_LE(frameError(d.frame()), 1e-6f);
         EXPECT_LE(frameError(w.frame), 1e-6f);
         // The centre lies on the ray, the normal faces the camera.
         const glm::dvec3 u = glm::normalize(rays[i].direction);
@@ -137,7 +137,7 @@ TEST(PlacementOnSharedData, DuckDecalsHaveWorldSizesDespiteTheRootScale) {
         EXPECT_NEAR(w.size.y, 0.03f, 1e-6f);
         EXPECT_NEAR(w.halfDepth, 0.25f * 0.05f, 1e-6f);
         EXPECT_NEAR(d.size.x, 5.0f, 1e-4f); // object space is 100 times larger
-        EXPECT_LE(frameError(d.frame), 1e-6f);
+        EXPECT_LE(frameError(d.frame()), 1e-6f);
         EXPECT_LE(frameError(w.frame), 1e-6f);
     }
     EXPECT_GT(placed, 100u);

@@ -184,7 +184,7 @@ TEST(Concurrency, ThreadsSpawnWhileObjectsMoveAndDecalsAge) {
     size_t onTargets = 0;
     for (const Decal& d : sys.decals()) {
         ASSERT_LT(d.object, 2u + kTargets);
-        EXPECT_LT(frameError(d.frame), 1e-4f);
+        EXPECT_LT(frameError(d.frame()), 1e-4f);
         EXPECT_TRUE(std::isfinite(d.size.x) && d.size.x > 0.0f && std::isfinite(d.halfDepth) &&
                     d.halfDepth > 0.0f);
         if (d.object < 2) continue;
@@ -226,7 +226,8 @@ TEST(Concurrency, ThreadedSpawnBatchEqualsSerialBitForBit) {
         ASSERT_EQ(decals[k].size(), decals[0].size());
         for (size_t i = 0; i < decals[0].size(); ++i) {
             const Decal &a = decals[0][i], &b = decals[k][i];
-            ASSERT_EQ(std::memcmp(&a.frame, &b.frame, sizeof a.frame), 0) << i;
+            ASSERT_EQ(std::memcmp(&a.orientation, &b.orientation, sizeof a.orientation), 0) << i;
+            ASSERT_EQ(a.mirrored, b.mirrored) << i;
             ASSERT_EQ(std::memcmp(&a.center, &b.center, sizeof a.center), 0) << i;
             ASSERT_EQ(a.id, b.id) << i;
             ASSERT_EQ(a.size, b.size) << i;

@@ -232,7 +232,7 @@ TEST(Coverage, MatchesCpuReferenceWithTheCameraInsideDecalBoxes) {
     const glm::dmat4& m = scene.objects[d.object].transform;
     const glm::dvec3 centre(m * glm::dvec4(glm::dvec3(d.center), 1.0));
     const glm::dvec3 normal =
-        glm::normalize(glm::transpose(glm::inverse(glm::dmat3(m))) * glm::dvec3(d.frame.normal));
+        glm::normalize(glm::transpose(glm::inverse(glm::dmat3(m))) * glm::dvec3(d.frame().normal));
     Camera inside;
     inside.eye = centre + normal * 1.0;
     inside.target = centre - glm::dvec3(0.3, 0.2, 0.1);

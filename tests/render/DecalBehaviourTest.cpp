@@ -56,9 +56,8 @@ Decal decal(uint32_t objectIndex, glm::vec3 center, glm::vec3 normal, glm::vec3 
     Decal d;
     d.object = objectIndex;
     d.center = center;
-    d.frame.normal = glm::normalize(normal);
-    d.frame.tangent = glm::normalize(tangent);
-    d.frame.bitangent = glm::cross(d.frame.normal, d.frame.tangent);
+    const glm::vec3 n = glm::normalize(normal), t = glm::normalize(tangent);
+    d.setFrame({t, glm::cross(n, t), n});
     d.size = size;
     d.halfDepth = halfDepth;
     d.type = type;
@@ -516,14 +515,14 @@ TEST(DecalPass, SkipsInvalidDecalsWithoutCrashing) {
     r->setDecalTypes({type(), badTexture});
     const Decal good = decal(0, {0.0f, 0.1f, 0.0f}, {0, 1, 0}, {1, 0, 0}, {1, 1}, 0.2f);
     std::vector<Decal> decals(9, good);
-    decals[1].object = 7;                // no such object
-    decals[2].type = 5;                  // no such type
-    decals[3].type = 1;                  // its texture layer does not exist
-    decals[4].center.x = NAN;            // not finite
-    decals[5].size = {0.0f, 1.0f};       // empty
-    decals[6].halfDepth = -1.0f;         // negative depth
-    decals[7].frame.tangent = {0, 1, 0}; // degenerate frame (tangent along the normal)
-    decals[8].opacity = INFINITY;        // not finite
+    decals[1].object = 7;                 // no such object
+    decals[2].type = 5;                   // no such type
+    decals[3].type = 1;                   // its texture layer does not exist
+    decals[4].center.x = NAN;             // not finite
+    decals[5].size = {0.0f, 1.0f};        // empty
+    decals[6].halfDepth = -1.0f;          // negative depth
+    decals[7].orientation = {0, 0, 0, 0}; // no orientation (what setFrame makes of a degenerate frame)
+    decals[8].opacity = INFINITY;         // not finite
     r->setDecals(decals);
     FrameStats st;
     const Image im =

@@ -37,9 +37,7 @@ Decal WallScene::decalAt(uint32_t object, const glm::vec3& center) {
     Decal d;
     d.object = object;
     d.center = center;
-    d.frame.tangent = {1, 0, 0};
-    d.frame.bitangent = {0, 1, 0};
-    d.frame.normal = {0, 0, 1};
+    d.setFrame({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
     d.size = glm::vec2(0.6f);
     d.halfDepth = 0.2f;
     d.objectId = object == 1 ? 7 : 0;

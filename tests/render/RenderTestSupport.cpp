@@ -97,12 +97,12 @@ std::vector<uint8_t> referenceCoverage(const Scene& scene, const CoverageInputs&
         const DecalType& type = in.types[d.type];
         DecalRef r;
         r.worldToBox = glm::inverse(boxToWorld);
-        const glm::dvec3 t = lin * glm::dvec3(d.frame.tangent), b = lin * glm::dvec3(d.frame.bitangent);
+        const glm::dvec3 t = lin * glm::dvec3(d.frame().tangent), b = lin * glm::dvec3(d.frame().bitangent);
         r.tangent = glm::normalize(t);
         r.bitangent = glm::normalize(b);
-        r.axis = glm::normalize(normalMatrix * glm::dvec3(d.frame.normal));
+        r.axis = glm::normalize(normalMatrix * glm::dvec3(d.frame().normal));
         r.halfSize = glm::dvec3(glm::length(t) * 0.5 * d.size.x, glm::length(b) * 0.5 * d.size.y,
-                                glm::length(lin * glm::dvec3(d.frame.normal)) * d.halfDepth);
+                                glm::length(lin * glm::dvec3(d.frame().normal)) * d.halfDepth);
         double angle = type.maxAngleDeg;
         if (type.wrapAround) angle = std::max(angle, double(in.wrapMaxAngleDeg));
         r.cosMax = std::cos(angle * kPi / 180.0);

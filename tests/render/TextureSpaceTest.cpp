@@ -68,9 +68,7 @@ Camera topDown() {
 Decal decalAt(glm::vec3 center, glm::vec2 size) {
     Decal d;
     d.center = center;
-    d.frame.normal = {0, 1, 0};
-    d.frame.tangent = {1, 0, 0};
-    d.frame.bitangent = glm::cross(d.frame.normal, d.frame.tangent);
+    d.setFrame({{1, 0, 0}, {0, 0, -1}, {0, 1, 0}});
     d.size = size;
     d.halfDepth = 0.1f;
     d.id = 7;

@@ -55,9 +55,7 @@ Decal crater(float x, float y, uint32_t id = 1) {
     Decal d;
     d.object = 0;
     d.center = {x, y - 1.5f, 0.1f};
-    d.frame.normal = {0, 0, 1};
-    d.frame.tangent = {1, 0, 0};
-    d.frame.bitangent = {0, 1, 0};
+    d.setFrame({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
     d.size = glm::vec2(2.0f * kRadius);
     d.halfDepth = 0.2f;
     d.id = id;

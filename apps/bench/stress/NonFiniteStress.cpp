@@ -60,7 +60,8 @@ Result<DecalSystem> makeSystem(const Scene& scene, uint64_t seed) {
 }
 
 bool sameDecal(const Decal& a, const Decal& b) {
-    return std::memcmp(&a.frame, &b.frame, sizeof(Frame)) == 0 && a.center == b.center && a.size == b.size &&
+    return std::memcmp(&a.orientation, &b.orientation, sizeof a.orientation) == 0 &&
+           a.mirrored == b.mirrored && a.center == b.center && a.size == b.size &&
            a.halfDepth == b.halfDepth && a.object == b.object && a.objectId == b.objectId && a.id == b.id &&
            a.type == b.type && a.spawnTime == b.spawnTime && a.opacity == b.opacity;
 }
@@ -392,7 +393,7 @@ size_t denormalCoordinates(const Scene& scene, uint64_t seed, StressResult& r) {
         const Decal* da = a->get(aa.handle);
         const Decal* db = b->get(ab.handle);
         if (!da || !db || glm::length(glm::dvec3(da->center) - glm::dvec3(db->center)) > 1e-30 ||
-            frameErrorOf(db->frame) > 1e-6) {
+            frameErrorOf(db->frame()) > 1e-6) {
             differing++;
             r.failure("spawnAttached with denormal coordinates differs from zero");
         }
@@ -589,19 +590,17 @@ StressResult runNonFiniteRender(const StressConfig& cfg) {
     renderer->setDecalTypes({makeType("hole", 0.4f, 80.0f)});
     Decal good;
     good.center = glm::vec3(0.5f, 0.0f, 0.5f);
-    good.frame.normal = glm::vec3(0, 1, 0);
-    good.frame.tangent = glm::vec3(1, 0, 0);
-    good.frame.bitangent = glm::vec3(0, 0, -1);
+    good.setFrame(Frame{glm::vec3(1, 0, 0), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0)});
     good.size = glm::vec2(0.4f);
     good.halfDepth = 0.1f;
     for (const auto& [what, change] : std::vector<std::pair<std::string, std::function<void(Decal&)>>>{
              {"NaN centre", [](Decal& d) { d.center.x = kNaNf; }},
-             {"Inf normal", [](Decal& d) { d.frame.normal.y = kInff; }},
-             {"NaN tangent", [](Decal& d) { d.frame.tangent.z = kNaNf; }},
+             {"Inf orientation", [](Decal& d) { d.orientation.y = kInff; }},
+             {"NaN orientation", [](Decal& d) { d.orientation.z = kNaNf; }},
              {"NaN size", [](Decal& d) { d.size.y = kNaNf; }},
              {"Inf half-depth", [](Decal& d) { d.halfDepth = kInff; }},
              {"NaN opacity", [](Decal& d) { d.opacity = kNaNf; }},
-             {"zero frame", [](Decal& d) { d.frame.tangent = glm::vec3(0.0f); }},
+             {"zero orientation", [](Decal& d) { d.orientation = glm::quat(0.0f, 0.0f, 0.0f, 0.0f); }},
              {"denormal size", [](Decal& d) { d.size = glm::vec2(kDenormalf); }},
              {"denormal half-depth", [](Decal& d) { d.halfDepth = kDenormalf; }}}) {
         Decal d = good;

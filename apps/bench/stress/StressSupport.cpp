@@ -69,16 +69,16 @@ std::string checkDecal(const DecalSystem& sys, const Decal& d, const DecalType& 
                        double frameBound, double relBound) {
     check.checked++;
     const WorldDecal w = sys.worldBox(d);
-    const bool finite = finite3(d.frame.tangent) && finite3(d.frame.bitangent) && finite3(d.frame.normal) &&
-                        finite3(d.center) && std::isfinite(d.size.x) && std::isfinite(d.size.y) &&
-                        std::isfinite(d.halfDepth) && finite3(w.center) && finite3(w.frame.tangent) &&
-                        finite3(w.frame.bitangent) && finite3(w.frame.normal) && std::isfinite(w.size.x) &&
-                        std::isfinite(w.size.y) && std::isfinite(w.halfDepth);
+    const bool finite = finite3(d.frame().tangent) && finite3(d.frame().bitangent) &&
+                        finite3(d.frame().normal) && finite3(d.center) && std::isfinite(d.size.x) &&
+                        std::isfinite(d.size.y) && std::isfinite(d.halfDepth) && finite3(w.center) &&
+                        finite3(w.frame.tangent) && finite3(w.frame.bitangent) && finite3(w.frame.normal) &&
+                        std::isfinite(w.size.x) && std::isfinite(w.size.y) && std::isfinite(w.halfDepth);
     if (!finite) {
         check.nonFinite++;
         return "decal with a non-finite value at " + vec(w.center);
     }
-    const double fe = std::max(frameErrorOf(d.frame), frameErrorOf(w.frame));
+    const double fe = std::max(frameErrorOf(d.frame()), frameErrorOf(w.frame));
     check.frameError = worse(check.frameError, fe);
 
     const double fx = double(w.size.x) / double(type.size.x), fy = double(w.size.y) / double(type.size.y);

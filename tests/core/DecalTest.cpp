@@ -1,0 +1,107 @@
+#include "spatter/core/Decal.hpp"
+#include "spatter/core/Random.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+using namespace spatter;
+
+namespace {
+
+glm::vec3 randomUnit(Rng& rng) {
+    const float z = rng.uniform(-1.0f, 1.0f), phi = rng.uniform(0.0f, 6.2831853f);
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    return glm::normalize(glm::vec3(r * std::cos(phi), r * std::sin(phi), z));
+}
+
+float largestDifference(const Frame& a, const Frame& b) {
+    const glm::vec3 d[3] = {a.tangent - b.tangent, a.bitangent - b.bitangent, a.normal - b.normal};
+    float m = 0.0f;
+    for (const glm::vec3& v : d)
+        m = std::max({m, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+    return m;
+}
+
+bool zeroFrame(const Frame& f) {
+    return f.tangent == glm::vec3(0.0f) && f.bitangent == glm::vec3(0.0f) && f.normal == glm::vec3(0.0f);
+}
+
+} // namespace
+
+TEST(Decal, PackedFrameComesBackOrthonormalAndWithinFourTenMillionths) {
+    Rng rng(11);
+    for (int i = 0; i < 200000; ++i) {
+        const Frame f = frameFromNormalAndHint(randomUnit(rng), randomUnit(rng));
+        Decal d;
+        ASSERT_TRUE(d.setFrame(f)) << i;
+        const Frame back = d.frame();
+        ASSERT_LE(frameError(back), 1e-6f) << i;
+        ASSERT_LE(largestDifference(back, f), 4e-7f) << i;
+        ASSERT_FALSE(d.mirrored) << i;
+    }
+}
+
+TEST(Decal, LeftHandedFrameIsKeptAsMirrored) {
+    Rng rng(12);
+    for (int i = 0; i < 10000; ++i) {
+        Frame f = frameFromNormalAndHint(randomUnit(rng), randomUnit(rng));
+        f.bitangent = -f.bitangent;
+        Decal d;
+        ASSERT_TRUE(d.setFrame(f)) << i;
+        ASSERT_TRUE(d.mirrored) << i;
+        ASSERT_LE(largestDifference(d.frame(), f), 4e-7f) << i;
+    }
+}
+
+TEST(Decal, SkewedAndScaledFrameIsOrthonormalisedAroundItsNormal) {
+    Decal d;
+    ASSERT_TRUE(d.setFrame(Frame{glm::vec3(3, 0, 1), glm::vec3(0, 7, 0), glm::vec3(0, 0, 2)}));
+    const Frame f = d.frame();
+    EXPECT_LE(frameError(f), 1e-6f);
+    EXPECT_NEAR(f.normal.z, 1.0f, 1e-7f);
+    EXPECT_NEAR(f.tangent.x, 1.0f, 1e-7f);
+    EXPECT_NEAR(f.bitangent.y, 1.0f, 1e-7f);
+}
+
+TEST(Decal, FrameWithoutOrientationIsRefusedAndUnpacksToZero) {
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    const Frame bad[] = {
+        {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0.0f)},      // zero normal
+        {glm::vec3(0, 0, 1), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)},   // tangent along the normal
+        {glm::vec3(0.0f), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)},      // zero tangent
+        {glm::vec3(nan, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)}, // NaN
+        {glm::vec3(1, 0, 0), glm::vec3(0, inf, 0), glm::vec3(0, 0, 1)}, // Inf
+    };
+    for (const Frame& f : bad) {
+        Decal d;
+        d.mirrored = true;
+        EXPECT_FALSE(d.setFrame(f));
+        EXPECT_EQ(d.orientation, glm::quat(0.0f, 0.0f, 0.0f, 0.0f));
+        EXPECT_FALSE(d.mirrored);
+        EXPECT_TRUE(zeroFrame(d.frame()));
+    }
+}
+
+TEST(Decal, NonFiniteOrUnnormalisedOrientationUnpacksSafely) {
+    Decal d;
+    d.orientation = glm::quat(std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f, 0.0f);
+    EXPECT_TRUE(zeroFrame(d.frame()));
+    d.orientation = glm::quat(2.0f, 0.0f, 0.0f, 0.0f); // normalised on unpacking
+    EXPECT_LE(frameError(d.frame()), 1e-7f);
+    EXPECT_EQ(d.frame().normal, glm::vec3(0, 0, 1));
+}
+
+TEST(Decal, BoxToObjectSpansTheBox) {
+    Decal d;
+    ASSERT_TRUE(d.setFrame(Frame{glm::vec3(0, 1, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 0, 1)}));
+    d.center = glm::vec3(1, 2, 3);
+    d.size = glm::vec2(4, 6);
+    d.halfDepth = 0.5f;
+    const glm::mat4 m = d.boxToObject();
+    const glm::vec3 corner = glm::vec3(m * glm::vec4(1, 1, 1, 1));
+    EXPECT_NEAR(corner.x, 1.0f - 3.0f, 1e-6f);
+    EXPECT_NEAR(corner.y, 2.0f + 2.0f, 1e-6f);
+    EXPECT_NEAR(corner.z, 3.0f + 0.5f, 1e-6f);
+}
