@@ -1,5 +1,7 @@
 #include "AreaLimits.hpp"
 
+#include "CappedGrowth.hpp"
+
 #include <algorithm>
 
 namespace spatter {
@@ -18,7 +20,8 @@ size_t CellKeyHash::operator()(const CellKey& k) const {
     return size_t(mix(h, k.space));
 }
 
-AreaLimits::AreaLimits(size_t objectCount, bool cellOrder, bool objectOrder) : objects_(objectCount) {
+AreaLimits::AreaLimits(size_t objectCount, uint32_t budget, bool cellOrder, bool objectOrder)
+    : budget_(budget), objects_(objectCount) {
     if (objectOrder) objectPos_ = stride_++;
     if (cellOrder) cellPos_ = stride_++;
 }
@@ -126,6 +129,8 @@ void AreaLimits::erase(List& list, unsigned pos, uint32_t slot) {
 
 void AreaLimits::link(uint32_t slot, const CellKey& key, uint32_t object) {
     if (slot >= cellOf_.size()) {
+        reserveCapped(cellOf_, size_t(slot) + 1, budget_);
+        reserveCapped(links_, (size_t(slot) + 1) * stride_, size_t(budget_) * stride_);
         cellOf_.resize(size_t(slot) + 1, kNone);
         links_.resize(cellOf_.size() * stride_);
     }

@@ -35,7 +35,10 @@ public:
     // reached only when every counted decal is in that one cell (object): its oldest is then the
     // oldest of all, and without the order oldestInCell / oldestOfObject return oldest(), which is
     // that same decal. The counts are kept either way.
-    explicit AreaLimits(size_t objectCount = 0, bool cellOrder = true, bool objectOrder = true);
+    // `budget`: the decals the limits are meant to hold; the per-slot arrays grow up to it without
+    // slack (CappedGrowth.hpp).
+    explicit AreaLimits(size_t objectCount = 0, uint32_t budget = 4096, bool cellOrder = true,
+                        bool objectOrder = true);
 
     // Adds `slot` as the newest decal of its cell, its object and the world. `slot` must not be linked.
     void link(uint32_t slot, const CellKey& key, uint32_t object);
@@ -86,6 +89,7 @@ private:
     void pushBack(List& list, unsigned pos, uint32_t slot);
     void erase(List& list, unsigned pos, uint32_t slot);
 
+    uint32_t budget_ = 0;
     unsigned stride_ = 1;          // links per slot
     unsigned objectPos_ = 0;       // position of the object list's links, 0: not ordered
     unsigned cellPos_ = 0;         // position of the cell list's links, 0: not ordered

@@ -1,6 +1,7 @@
 #include "spatter/placement/DecalSystem.hpp"
 
 #include "AreaLimits.hpp"
+#include "CappedGrowth.hpp"
 #include "CraterClipping.hpp"
 #include "spatter/core/Random.hpp"
 #include "spatter/placement/ObjectIds.hpp"
@@ -163,7 +164,7 @@ struct DecalSystem::Impl {
     Impl(CollisionWorld w, const DecalSettings& s)
         : world(std::move(w)), settings(s), rng(s.seed),
           // A cap at or above the budget needs no spawn order of its own (AreaLimits()).
-          limits(world.objectCount(), s.maxPerCell < s.budget, s.maxPerObject < s.budget) {}
+          limits(world.objectCount(), s.budget, s.maxPerCell < s.budget, s.maxPerObject < s.budget) {}
 
     SpawnResult reject(SpawnStatus status, std::string reason) {
         stats.rejected[size_t(status)]++;
@@ -351,10 +352,13 @@ struct DecalSystem::Impl {
             freeSlots.pop_back();
         } else {
             slot = uint32_t(slots.size());
+            reserveCapped(slots, slots.size() + 1, settings.budget);
             slots.emplace_back();
         }
         const uint32_t dense = uint32_t(decals.size());
         slots[slot].dense = dense;
+        reserveCapped(decals, decals.size() + 1, settings.budget);
+        reserveCapped(slotOf, slotOf.size() + 1, settings.budget);
         decals.push_back(d);
         slotOf.push_back(slot);
         if (t.lifetime > 0.0f) timed.set(dense);
