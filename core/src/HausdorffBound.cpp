@@ -20,8 +20,8 @@ constexpr uint32_t kLeafTriangles = 4;
 // A node of at most this many triangles is bounded over its triangles' corners (the convex hull of
 // its surface) instead of its box corners.
 constexpr uint32_t kHullTriangles = 16;
-// Vertex samples of A measured before the walk: the starting lower bound of every subtree.
-constexpr size_t kStartSamples = 256;
+// Triangle centroids of A measured before the walk: the starting lower bound of every subtree.
+constexpr size_t kStartSamples = 1024;
 // Subtrees handed out to the threads, per thread.
 constexpr size_t kSubtreesPerWorker = 32;
 
@@ -141,10 +141,18 @@ class Walker {
 public:
     Walker(const Impl& a, const Impl& b, const HausdorffSettings& s, VertexCache& cache,
            std::atomic<bool>& exceeded, double lowerStart)
-        : lower(lowerStart), a_(a), b_(b), s_(s), cache_(cache), exceeded_(exceeded) {}
+        : lower(lowerStart), a_(a), b_(b), s_(s), cache_(cache), exceeded_(exceeded),
+          // Bounds at most this are at most the tolerance once the rounding allowance is added.
+          accept_(std::isfinite(s.tolerance)
+                      ? std::max(0.0, (s.tolerance - detail::kRoundingAllowance * a.scale) /
+                                          (1.0 + detail::kRoundingAllowance))
+                      : 0.0) {}
 
-    // Measures vertex v of A (raises the lower bound).
-    void sample(uint32_t v) { atVertex(v); }
+    // Measures the point p of A (raises the lower bound).
+    void sample(const glm::dvec3& p) {
+        ++queries;
+        see(measure(p).distance);
+    }
 
     void walk(uint32_t root) {
         std::vector<uint32_t> stack{root};
@@ -165,18 +173,18 @@ public:
         }
     }
 
-    double lower;
+    double lower;          // the acceptance's: the known lower bound and every distance measured
+    double measured = 0.0; // the largest distance this walker measured
     double upper = 0.0;
     size_t queries = 0;
 
 private:
-    double level() const {
-        return std::max(lower + s_.margin, std::isfinite(s_.tolerance) ? s_.tolerance : 0.0);
-    }
+    double level() const { return std::max(lower + s_.margin, accept_); }
     void accept(double bound) { upper = std::max(upper, bound); }
 
     void see(double distance) {
         lower = std::max(lower, distance);
+        measured = std::max(measured, distance);
         if (distance > s_.tolerance) exceeded_.store(true, std::memory_order_relaxed);
     }
 
@@ -207,6 +215,7 @@ private:
             farthest = std::max(farthest, glm::length(c - p));
         }
         const double lipschitz = m.distance + farthest;
+        if (lipschitz <= level()) return lipschitz;
         double convex = 0.0;
         if (n.count <= kHullTriangles) {
             for (uint32_t t = n.first; t < n.first + n.count && convex < lipschitz; ++t)
@@ -221,19 +230,29 @@ private:
         return std::min(lipschitz, convex);
     }
 
-    double pieceBound(const Piece& q) const {
-        const double lipschitz = std::max({q.m[0].distance, q.m[1].distance, q.m[2].distance}) +
-                                 detail::enclosingRadius(q.p[0], q.p[1], q.p[2]);
-        double best = lipschitz;
+    // Convexity against the triangles of B closest to q's corners: min over them of the largest
+    // distance from a corner of q to it (the corner's own distance to its closest triangle is known).
+    // Stops at `cap`.
+    double convexBound(const Piece& q, double cap) const {
+        double best = cap;
         for (int j = 0; j < 3; ++j) {
             const uint32_t t = q.m[j].triangle;
             if ((j > 0 && t == q.m[0].triangle) || (j > 1 && t == q.m[1].triangle)) continue;
-            double convex = 0.0;
+            double convex = q.m[j].distance;
             for (int i = 0; i < 3 && convex < best; ++i)
-                convex = std::max(convex, i == j ? q.m[i].distance : toTriangle(q.p[i], t));
+                if (i != j) convex = std::max(convex, toTriangle(q.p[i], t));
             best = std::min(best, convex);
         }
         return best;
+    }
+
+    // The bound of a piece: Lipschitz from its corners, and when that is above the level, convexity
+    // against the corners' closest triangles of B, the smaller.
+    double pieceBound(const Piece& q) const {
+        const double lipschitz = std::max({q.m[0].distance, q.m[1].distance, q.m[2].distance}) +
+                                 detail::enclosingRadius(q.p[0], q.p[1], q.p[2]);
+        if (lipschitz <= level()) return lipschitz;
+        return convexBound(q, lipschitz);
     }
 
     void triangle(const std::array<uint32_t, 3>& t) {
@@ -278,6 +297,7 @@ private:
     const HausdorffSettings& s_;
     VertexCache& cache_;
     std::atomic<bool>& exceeded_;
+    double accept_;
     std::vector<Piece> pieces_;
 };
 
@@ -344,11 +364,14 @@ Result<HausdorffResult> boundOneSided(const HausdorffSurface& from, const Hausdo
 
     VertexCache cache(a.positions.size());
     std::atomic<bool> exceeded{false};
-    // The starting lower bound of every subtree: distances at a fixed stride of A's triangles.
+    // The starting lower bound of every subtree: distances at the centroids of a fixed stride of A's
+    // triangles (where a coarse proxy is farthest from the render mesh, so a "no" comes early).
     Walker start(a, b, s, cache, exceeded, std::max(0.0, s.knownLower));
     const size_t stride = std::max<size_t>(1, a.triangles.size() / kStartSamples);
-    for (size_t i = 0; i < a.triangles.size() && !exceeded.load(); i += stride)
-        start.sample(a.triangles[i][0]);
+    for (size_t i = 0; i < a.triangles.size() && !exceeded.load(); i += stride) {
+        const std::array<uint32_t, 3>& t = a.triangles[i];
+        start.sample((a.positions[t[0]] + a.positions[t[1]] + a.positions[t[2]]) / 3.0);
+    }
 
     const unsigned workers = detail::workerCount();
     const std::vector<uint32_t> roots = subtrees(a, kSubtreesPerWorker * workers);
@@ -360,12 +383,12 @@ Result<HausdorffResult> boundOneSided(const HausdorffSurface& from, const Hausdo
             for (size_t i = begin; i < end; ++i) {
                 Walker w(a, b, s, cache, exceeded, start.lower);
                 w.walk(roots[i]);
-                parts[i] = {w.lower, w.upper, false, w.queries};
+                parts[i] = {w.measured, w.upper, false, w.queries};
             }
         },
         report, &exceeded);
     if (!finished) return fail("cancelled");
-    out.lower = start.lower;
+    out.lower = start.measured;
     out.queries = start.queries;
     for (const HausdorffResult& r : parts) {
         out.lower = std::max(out.lower, r.lower);

@@ -1,5 +1,6 @@
 #include "spatter/core/ProxyBuilder.hpp"
 
+#include "spatter/core/HausdorffBound.hpp"
 #include "spatter/core/ProxyCache.hpp"
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -48,26 +49,22 @@ const char* proxySourceName(ProxySource source) {
     return "unknown";
 }
 
-// The rule is documented in the header; the thresholds come from the measurements in docs/PROXIES.md.
-constexpr size_t kAutoOpenMeshMaxTriangles = 8000;
-constexpr double kAutoOpenMeshMaxRelativeTolerance = 0.02;
-
-ProxyBackend resolveProxyBackend(ProxyBackend requested, size_t triangles, double absoluteTolerance,
-                                 double diagonal) {
-    if (requested != ProxyBackend::Auto) return requested;
-    const bool tight = diagonal > 0.0 && absoluteTolerance <= kAutoOpenMeshMaxRelativeTolerance * diagonal;
-    return triangles <= kAutoOpenMeshMaxTriangles && tight ? ProxyBackend::OpenMesh : ProxyBackend::MeshOpt;
+ProxyBackend resolveProxyBackend(ProxyBackend requested, size_t, double, double) {
+    return requested == ProxyBackend::Auto ? ProxyBackend::MeshOpt : requested;
 }
 
 namespace {
 
-// Internal tolerance of the first simplification run, as a fraction of the target: the rest is left
-// for the sampling margin of the measurement and for the error the backend does not see (OpenMesh's
-// Hausdorff module checks removed vertices only, and lets some through, see docs/PROXIES.md;
-// meshoptimizer's quadric error is an average). Tuned on the shared meshes at 0.5% and 2%.
-constexpr double kFirstRunFraction[3] = {0.0, 0.5, 0.35}; // indexed by ProxyBackend (OpenMesh, MeshOpt)
-// Later runs scale the internal tolerance by target / measured error, within these limits.
-constexpr double kRetryFactorMin = 0.2, kRetryFactorMax = 0.75;
+// The search's first target error for each backend, as a fraction of the tolerance (indexed by
+// ProxyBackend: OpenMesh, MeshOpt); tuned on the shared meshes, where the coarsest certified target
+// lay between 0.2 and 1 times the tolerance.
+constexpr double kStartFraction[3] = {0.0, 0.5, 0.4};
+// The search stops once the coarsest certified target is known within this fraction; until it has
+// both a certified and a failed run it steps by a factor in this range (see nextTarget).
+constexpr double kSearchPrecision = 0.1;
+constexpr double kSearchStep = 1.5, kSearchStepMax = 4.0;
+// Runs the progress of a build is scaled to (a typical search).
+constexpr double kExpectedRuns = 5.0;
 // Full angle of the normal cone a decimated face may sweep (ModNormalDeviation): it only rules out
 // fold-overs; the distance error is controlled by the Hausdorff module and the measurement.
 constexpr float kNormalConeDegrees = 150.0f;
@@ -273,16 +270,20 @@ Mesh compactMesh(const std::vector<glm::vec3>& positions, const unsigned int* in
 }
 
 // meshoptimizer. `tolerance` is absolute (infinity: stop at the budget only); `budget` 0 is no limit.
-Mesh simplifyMeshopt(const Mesh& input, double tolerance, uint32_t budget, bool lockBorder) {
+// `resultError` receives the error meshoptimizer reports for the result (absolute).
+Mesh simplifyMeshopt(const Mesh& input, double tolerance, uint32_t budget, bool lockBorder,
+                     double& resultError) {
     const float scale =
         meshopt_simplifyScale(&input.positions[0].x, input.positions.size(), sizeof(glm::vec3));
     const float relative = std::isfinite(tolerance) && scale > 0.0f ? float(tolerance / double(scale))
                                                                     : std::numeric_limits<float>::max();
     std::vector<unsigned int> out(input.indices.size());
+    float error = 0.0f;
     const size_t count =
         meshopt_simplify(out.data(), input.indices.data(), input.indices.size(), &input.positions[0].x,
                          input.positions.size(), sizeof(glm::vec3), size_t(budget) * 3, relative,
-                         lockBorder ? unsigned(meshopt_SimplifyLockBorder) : 0u, nullptr);
+                         lockBorder ? unsigned(meshopt_SimplifyLockBorder) : 0u, &error);
+    resultError = double(error) * double(scale);
     return compactMesh(input.positions, out.data(), count);
 }
 
@@ -414,8 +415,16 @@ struct Candidate {
     Mesh mesh;
     ProxyBackend backend = ProxyBackend::None;
     bool budgetLimited = false; // the budget, not the tolerance, stopped simplification
-    OneSidedDistance proxyToRender, renderToProxy;
-    double bound() const { return std::max(proxyToRender.bound, renderToProxy.bound); }
+    double target = 0.0;        // the backend's tolerance for this run (absolute)
+    // meshoptimizer: the error it reports for the result (absolute); its collapses run in order of
+    // error, so a target between this and `target` gives the same mesh. For OpenMesh: `target`.
+    double resultError = 0.0;
+    HausdorffResult proxyToRender, renderToProxy;
+    double bound() const { return std::max(proxyToRender.upper, renderToProxy.upper); }
+    double lower() const { return std::max(proxyToRender.lower, renderToProxy.lower); }
+    bool within(double tolerance) const {
+        return proxyToRender.within(tolerance) && renderToProxy.within(tolerance);
+    }
 };
 
 // One simplification run with the chosen backend, made to respect the budget: a run stopped by the
@@ -425,10 +434,14 @@ Result<Candidate> simplifyOnce(ProxyBackend backend, const Mesh& welded, const M
                                double tolerance, const ProxySettings& s, const ProgressCallback& progress,
                                std::vector<std::string>& notes) {
     const uint32_t budget = s.maxTriangles;
+    Candidate c;
+    c.backend = backend;
+    c.target = tolerance;
+    c.resultError = tolerance;
     auto run = [&](double tol) -> Result<Mesh> {
         if (progress && !progress(0.0f, "simplify")) return fail("cancelled");
         if (backend == ProxyBackend::MeshOpt)
-            return simplifyMeshopt(meshoptInput, tol, budget, s.keepBoundaries);
+            return simplifyMeshopt(meshoptInput, tol, budget, s.keepBoundaries, c.resultError);
         size_t detached = 0;
         Result<Mesh> m = simplifyOpenMesh(welded, tol, budget, s, progress, detached);
         const std::string note = "openmesh: " + std::to_string(detached) +
@@ -437,8 +450,6 @@ Result<Candidate> simplifyOnce(ProxyBackend backend, const Mesh& welded, const M
             notes.push_back(note);
         return m;
     };
-    Candidate c;
-    c.backend = backend;
     Result<Mesh> m = run(tolerance);
     if (!m) return fail(m.error());
     c.mesh = finishProxy(m.value(), s);
@@ -461,72 +472,132 @@ Result<Candidate> simplifyOnce(ProxyBackend backend, const Mesh& welded, const M
     return c;
 }
 
-// Everything needed to measure a candidate against the render mesh.
-struct Measuring {
-    const Mesh& render;
-    const ClosestPointQuery& renderQuery;
-    SurfaceSampling sampling;
-};
-
-Status measure(Candidate& c, const Measuring& m, const ProgressCallback& progress) {
+// Certifies a candidate against the render mesh (HausdorffBound.hpp): proxy to render first (the
+// proxy is the smaller mesh, so a "no" costs little), then render to proxy. With a finite
+// `settings.tolerance` it stops at the first distance above it.
+Status certify(Candidate& c, const HausdorffSurface& render, HausdorffSettings settings,
+               const ProgressCallback& progress) {
+    if (c.mesh.indices.empty()) { // simplified away entirely: never within a tolerance
+        c.proxyToRender.exceeded = c.renderToProxy.exceeded = true;
+        c.proxyToRender.upper = c.renderToProxy.upper = std::numeric_limits<double>::infinity();
+        return {};
+    }
+    Result<HausdorffSurface> proxy = HausdorffSurface::create(c.mesh);
+    if (!proxy) return fail("proxy: " + proxy.error());
     auto half = [&progress](float offset) -> ProgressCallback {
         return [&progress, offset](float f, const char* stage) {
             return !progress || progress(offset + 0.5f * f, stage);
         };
     };
-    Result<OneSidedDistance> p2r = measureOneSidedDistance(c.mesh, m.renderQuery, m.sampling, half(0.0f));
-    if (!p2r) return fail("proxy to render: " + p2r.error());
-    Result<ClosestPointQuery> proxyQuery = ClosestPointQuery::create(c.mesh);
-    if (!proxyQuery) return fail("proxy: " + proxyQuery.error());
-    Result<OneSidedDistance> r2p =
-        measureOneSidedDistance(m.render, proxyQuery.value(), m.sampling, half(0.5f));
-    if (!r2p) return fail("render to proxy: " + r2p.error());
+    Result<HausdorffResult> p2r = boundOneSided(proxy.value(), render, settings, half(0.0f));
+    if (!p2r) return fail(p2r.error() == "cancelled" ? p2r.error() : "proxy to render: " + p2r.error());
     c.proxyToRender = p2r.value();
+    c.renderToProxy = {};
+    if (p2r->exceeded) {
+        c.renderToProxy.upper = std::numeric_limits<double>::infinity();
+        return {};
+    }
+    settings.knownLower = p2r->lower;
+    Result<HausdorffResult> r2p = boundOneSided(render, proxy.value(), settings, half(0.5f));
+    if (!r2p) return fail(r2p.error() == "cancelled" ? r2p.error() : "render to proxy: " + r2p.error());
     c.renderToProxy = r2p.value();
     return {};
 }
 
-struct BackendOutcome {
-    std::optional<Candidate> best; // empty: simplification removed no triangle
-    uint32_t attempts = 0;
+// Progress of the whole search as one fraction: run k of an expected number, each run split into
+// simplification and certification; never going back, below 1 until the end.
+class SearchProgress {
+public:
+    SearchProgress(const ProgressCallback& progress, double expectedRuns)
+        : progress_(progress), expected_(expectedRuns) {}
+    void nextRun() { ++run_; }
+    ProgressCallback stage(double offset, double share) {
+        return [this, offset, share](float f, const char* stage) {
+            const double runs = std::max(expected_, run_ + 1.0);
+            reported_ = std::max(reported_, std::min(0.99, (run_ + offset + share * double(f)) / runs));
+            return !progress_ || progress_(float(reported_), stage);
+        };
+    }
+
+private:
+    const ProgressCallback& progress_;
+    double expected_;
+    double run_ = 0.0;
+    double reported_ = 0.0;
 };
 
-// Up to maxAttempts runs of one backend, each measured; a run whose h exceeds the tolerance is
-// followed by one with a smaller internal tolerance. Returns the first run within the tolerance, or
-// the one with the smallest h.
-Result<BackendOutcome> runBackend(ProxyBackend backend, const Mesh& welded, double tolerance,
-                                  size_t surfaceTriangles, bool withinBudget, const Measuring& measuring,
-                                  const ProxySettings& s, const ProgressCallback& progress,
-                                  std::vector<std::string>& notes) {
+struct SearchOutcome {
+    std::optional<Candidate> best; // the coarsest certified candidate, or the finest one if none was
+    bool removedNothing = false;   // the finest run kept every triangle and none coarser was certified
+    uint32_t runs = 0;
+};
+
+// The next target of the search. While no run failed: up from the certified target by the room the
+// last run left (tolerance / its largest measured distance); while none was certified: down by how far
+// the last run overshot (its measured distance / tolerance); both within [kSearchStep,
+// kSearchStepMax]. Then the geometric middle of the bracket [lo, hi].
+double nextTarget(double lo, double hi, double measuredOverTolerance) {
+    if (!std::isfinite(hi))
+        return lo * std::clamp(1.0 / std::max(measuredOverTolerance, 1e-9), kSearchStep, kSearchStepMax);
+    if (lo <= 0.0) return hi / std::clamp(measuredOverTolerance, kSearchStep, kSearchStepMax);
+    return std::sqrt(lo * hi);
+}
+
+// The coarsest certified proxy one backend gives (see "The search" in docs/PROXIES.md): the backend's
+// target error is bisected between a certified run (lo) and one that is not (hi) until hi <= (1 +
+// kSearchPrecision) lo, or maxAttempts runs are spent. Each candidate is certified with the early answer.
+Result<SearchOutcome> searchBackend(ProxyBackend backend, const Mesh& welded, double tolerance,
+                                    size_t surfaceTriangles, bool withinBudget,
+                                    const HausdorffSurface& render, const HausdorffSettings& certifying,
+                                    const ProxySettings& s, uint32_t maxRuns, SearchProgress& progress,
+                                    std::vector<std::string>& notes) {
     Mesh meshoptInput;
     if (backend == ProxyBackend::MeshOpt) {
         meshoptInput = welded;
         if (s.keepSharpFeatures) splitCreases(meshoptInput, s.featureAngleDegrees);
     }
-    BackendOutcome out;
-    double internal = tolerance * kFirstRunFraction[uint32_t(backend)];
-    while (out.attempts < s.maxAttempts) {
-        Result<Candidate> c = simplifyOnce(backend, welded, meshoptInput, internal, s, progress, notes);
+    SearchOutcome out;
+    std::optional<Candidate> finest; // the finest run not certified, for when none is
+    double lo = 0.0, hi = std::numeric_limits<double>::infinity();
+    double target = tolerance * kStartFraction[uint32_t(backend)];
+    while (out.runs < maxRuns && !(lo > 0.0 && hi <= (1.0 + kSearchPrecision) * lo)) {
+        Result<Candidate> c =
+            simplifyOnce(backend, welded, meshoptInput, target, s, progress.stage(0.0, 0.2), notes);
         if (!c) return fail(c.error());
-        ++out.attempts;
-        if (withinBudget && c->mesh.triangleCount() >= surfaceTriangles) {
-            notes.push_back(std::string(proxyBackendName(backend)) + " removed no triangle");
-            out.best.reset();
-            return out;
+        ++out.runs;
+        double measured = 0.0; // the largest distance the certification measured
+        const size_t triangles = c->mesh.triangleCount();
+        if (withinBudget && triangles >= surfaceTriangles) { // as good as the render mesh
+            out.removedNothing = !out.best;
+            lo = target;
+        } else {
+            if (Status st = certify(c.value(), render, certifying, progress.stage(0.2, 0.8)); !st)
+                return fail(st.error());
+            const bool budgetLimited = c->budgetLimited;
+            measured = c->lower();
+            if (c->within(tolerance)) {
+                if (out.best && out.best->mesh.triangleCount() == triangles) break; // converged
+                lo = target;
+                if (!out.best || triangles < out.best->mesh.triangleCount()) out.best = std::move(c.value());
+                out.removedNothing = false;
+            } else {
+                hi = std::min(hi, std::max(c->resultError, lo));
+                if (!finest || c->target < finest->target) finest = std::move(c.value());
+            }
+            if (budgetLimited) break; // the budget decides the proxy, not the target
         }
-        if (Status st = measure(c.value(), measuring, progress); !st) return fail(st.error());
-        const double h = c->bound();
-        const bool met = h <= tolerance, budgetLimited = c->budgetLimited;
-        const double measured = std::max(c->proxyToRender.measuredMax, c->renderToProxy.measuredMax);
-        const double margin = std::max(c->proxyToRender.margin, c->renderToProxy.margin);
-        if (!out.best || h < out.best->bound()) out.best = std::move(c.value());
-        if (met || budgetLimited) break;
-        if (out.attempts < s.maxAttempts)
-            notes.push_back(std::string(proxyBackendName(backend)) + " run " + std::to_string(out.attempts) +
-                            ": h = " + std::to_string(h) + " above the tolerance " +
-                            std::to_string(tolerance) + ", simplifying less");
-        const double factor = measured > 0.0 ? 0.9 * (tolerance - margin) / measured : kRetryFactorMin;
-        internal *= std::clamp(factor, kRetryFactorMin, kRetryFactorMax);
+        progress.nextRun();
+        target = nextTarget(lo, hi, measured / tolerance);
+    }
+    if (!out.best && !out.removedNothing && finest) {
+        // Nothing certified: the finest candidate, with its sharp bound.
+        HausdorffSettings sharp = certifying;
+        sharp.tolerance = std::numeric_limits<double>::infinity();
+        if (Status st = certify(*finest, render, sharp, progress.stage(0.2, 0.8)); !st)
+            return fail(st.error());
+        notes.push_back(std::string(proxyBackendName(backend)) + ": no candidate in " +
+                        std::to_string(out.runs) + " runs was certified within the tolerance");
+        out.best = std::move(finest);
     }
     return out;
 }
@@ -564,6 +635,16 @@ void store(const ProxySettings& s, uint64_t key, Proxy& p) {
     if (Status st = storeCachedProxy(s.cacheDirectory, key, p); !st) p.notes.push_back(st.error());
 }
 
+// The report fields of a certified candidate.
+void takeBound(Proxy& p, const Candidate& c, double tolerance) {
+    p.errorBound = c.bound();
+    p.proxyToRenderMax = c.proxyToRender.lower;
+    p.renderToProxyMax = c.renderToProxy.lower;
+    p.samplingMargin = p.errorBound - c.lower();
+    p.samples = c.proxyToRender.queries + c.renderToProxy.queries;
+    p.toleranceMet = c.within(tolerance);
+}
+
 } // namespace
 
 Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh* authoredCollider,
@@ -578,12 +659,10 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
     const double tolerance = s.toleranceRelative ? double(s.tolerance) * diagonal : double(s.tolerance);
     const size_t inputTriangles = render.triangleCount();
     const size_t surfaceTriangles = surfaceTriangleCount(render);
-    SurfaceSampling sampling;
-    sampling.radius =
+    HausdorffSettings certifying;
+    certifying.margin =
         double(s.marginFraction) * (tolerance > 0.0 ? tolerance : kZeroToleranceScale * diagonal);
-    sampling.maxSamples = s.maxSamples;
-    sampling.randomSamples = s.randomSamples;
-    sampling.seed = s.seed;
+    certifying.tolerance = tolerance;
 
     Proxy proxy;
     proxy.tolerance = tolerance;
@@ -599,15 +678,18 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
         proxy.mesh = ownMesh(*authoredCollider);
         proxy.source = ProxySource::AuthoredCollider;
         proxy.backend = ProxyBackend::None;
+        Result<HausdorffSurface> renderSurface = HausdorffSurface::create(render);
+        if (!renderSurface) return fail("render mesh: " + renderSurface.error());
+        if ((renderSurface->surfaceTriangleCount() == 0) != (surfaceTriangleCount(proxy.mesh) == 0))
+            return fail("authored collider: exactly one of the collider and the render mesh has a surface");
+        Candidate c;
+        c.mesh = proxy.mesh;
+        HausdorffSettings sharp = certifying;
+        sharp.tolerance = std::numeric_limits<double>::infinity();
         auto measure = [&](float f, const char* stage) { return !progress || progress(f, stage); };
-        Result<MeshDistance> d = measureMeshDistance(proxy.mesh, render, sampling, measure);
-        if (!d) return fail("authored collider: " + d.error());
-        proxy.proxyToRenderMax = d->aToB.measuredMax;
-        proxy.renderToProxyMax = d->bToA.measuredMax;
-        proxy.errorBound = d->upperBound();
-        proxy.samplingMargin = std::max(d->aToB.margin, d->bToA.margin);
-        proxy.samples = d->aToB.samples + d->bToA.samples;
-        proxy.toleranceMet = proxy.errorBound <= tolerance;
+        if (Status st = certify(c, renderSurface.value(), sharp, measure); !st)
+            return fail(st.error() == "cancelled" ? st.error() : "authored collider: " + st.error());
+        takeBound(proxy, c, tolerance);
         finishResult(proxy, start);
         store(s, key, proxy);
         return proxy;
@@ -634,56 +716,31 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
 
     const ProxyBackend backend = resolveProxyBackend(s.backend, inputTriangles, tolerance, diagonal);
     const Mesh welded = weldedSurface(render);
-    Result<ClosestPointQuery> renderQuery = ClosestPointQuery::create(render);
-    if (!renderQuery) return fail("render mesh: " + renderQuery.error());
-    const Measuring measuring{render, renderQuery.value(), sampling};
-    auto ownMeshResult = [&](uint32_t attempts) {
+    Result<HausdorffSurface> renderSurface = HausdorffSurface::create(render);
+    if (!renderSurface) return fail("render mesh: " + renderSurface.error());
+    SearchProgress searchProgress(progress, kExpectedRuns);
+    Result<SearchOutcome> outcome =
+        searchBackend(backend, welded, tolerance, surfaceTriangles, withinBudget, renderSurface.value(),
+                      certifying, s, s.maxAttempts, searchProgress, proxy.notes);
+    if (!outcome) return fail(outcome.error());
+    proxy.attempts = outcome->runs;
+    if (!outcome->best) {
         proxy.notes.push_back("the render mesh is its own proxy");
         proxy.mesh = ownMesh(render);
         proxy.source = ProxySource::OwnMesh;
-        proxy.attempts = attempts;
-        finishResult(proxy, start);
-        store(s, key, proxy);
-        return proxy;
-    };
-
-    Result<BackendOutcome> outcome = runBackend(backend, welded, tolerance, surfaceTriangles, withinBudget,
-                                                measuring, s, progress, proxy.notes);
-    if (!outcome) return fail(outcome.error());
-    uint32_t attempts = outcome->attempts;
-    std::optional<Candidate> best = std::move(outcome->best);
-    if (!best) return ownMeshResult(attempts);
-    if (s.backend == ProxyBackend::Auto && backend == ProxyBackend::OpenMesh) {
-        // Auto on a small mesh: meshoptimizer runs too (it is cheap there) and the better proxy is kept:
-        // within the tolerance first, then fewer triangles, then the smaller h.
-        Result<BackendOutcome> other = runBackend(ProxyBackend::MeshOpt, welded, tolerance, surfaceTriangles,
-                                                  withinBudget, measuring, s, progress, proxy.notes);
-        if (!other) return fail(other.error());
-        attempts += other->attempts;
-        if (!other->best) return ownMeshResult(attempts);
-        const Candidate& o = other->best.value();
-        const bool met = best->bound() <= tolerance, otherMet = o.bound() <= tolerance;
-        const bool otherBetter = otherMet != met ? otherMet
-                                 : met && o.mesh.triangleCount() != best->mesh.triangleCount()
-                                     ? o.mesh.triangleCount() < best->mesh.triangleCount()
-                                     : o.bound() < best->bound();
-        if (otherBetter) best = std::move(other->best);
+    } else {
+        Candidate& best = outcome->best.value();
+        proxy.mesh = std::move(best.mesh);
+        proxy.source = ProxySource::Simplified;
+        proxy.backend = best.backend;
+        takeBound(proxy, best, tolerance);
+        if (!proxy.toleranceMet)
+            proxy.notes.push_back(
+                std::string("h = ") + std::to_string(proxy.errorBound) + " is above the tolerance " +
+                std::to_string(tolerance) +
+                (best.budgetLimited ? " (the triangle budget stopped simplification)" : ""));
     }
-
-    proxy.mesh = std::move(best->mesh);
-    proxy.source = ProxySource::Simplified;
-    proxy.backend = best->backend;
-    proxy.errorBound = best->bound();
-    proxy.proxyToRenderMax = best->proxyToRender.measuredMax;
-    proxy.renderToProxyMax = best->renderToProxy.measuredMax;
-    proxy.samplingMargin = std::max(best->proxyToRender.margin, best->renderToProxy.margin);
-    proxy.samples = best->proxyToRender.samples + best->renderToProxy.samples;
-    proxy.toleranceMet = proxy.errorBound <= tolerance;
-    proxy.attempts = attempts;
-    if (!proxy.toleranceMet)
-        proxy.notes.push_back(std::string("h = ") + std::to_string(proxy.errorBound) +
-                              " is above the tolerance " + std::to_string(tolerance) +
-                              (best->budgetLimited ? " (the triangle budget stopped simplification)" : ""));
+    if (progress && !progress(1.0f, "measure")) return fail("cancelled");
     finishResult(proxy, start);
     store(s, key, proxy);
     return proxy;

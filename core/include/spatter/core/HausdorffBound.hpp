@@ -32,9 +32,9 @@
 // "is h <= tol?" is no, and the search stops there (`exceeded`).
 //
 // Work is split over the subtrees of the hierarchy on up to 16 threads; each subtree starts from the
-// same lower bound (a fixed set of vertex samples), so the result does not depend on the thread
-// count or on timing. A relative allowance of 1e-9 (of the bound and of the largest coordinate) covers
-// double rounding.
+// same lower bound (the distances at a fixed stride of triangle centroids), so the result does not depend on
+// the thread count or on timing. A relative allowance of 1e-9 (of the bound and of the largest coordinate)
+// covers double rounding.
 
 #include "spatter/core/Mesh.hpp"
 #include "spatter/core/MeshDistance.hpp"
@@ -83,7 +83,7 @@ struct HausdorffSettings {
 struct HausdorffResult {
     double lower = 0.0; // the largest distance measured: the true distance is at least this
     // The true distance is at most this (infinity when exceeded). When not exceeded,
-    // upper <= max(lower + margin, tolerance) up to the rounding allowance.
+    // upper <= max(max(lower, knownLower) + margin, tolerance) up to the rounding allowance.
     double upper = 0.0;
     bool exceeded = false; // a measured distance is above the tolerance: stopped early
     size_t queries = 0;    // exact closest-point queries made

@@ -9,21 +9,21 @@
 //  - a simplification of the render mesh (ProxySource::Simplified) by OpenMesh's Decimater or
 //    meshoptimizer's simplifier, h measured.
 //
-// The bound. h = max(bound(proxy -> render), bound(render -> proxy)), each one-sided bound computed by
-// measureOneSidedDistance (MeshDistance.hpp, where the derivation is written out): exact closest-point
-// distances (Embree rtcPointQuery) at every vertex, every edge midpoint, the corners of an adaptive
-// cutting of every triangle, and random area-weighted samples; plus, per piece of the cutting, the
-// radius of its smallest enclosing circle. Because the distance to a surface is 1-Lipschitz and every
-// point of a piece lies within that radius of one of the piece's corners, h >= the true two-sided
-// Hausdorff distance between the proxy and the render mesh; and max(proxyToRenderMax,
-// renderToProxyMax), being attained at actual surface points, is <= it. The cutting goes on until
-// h <= max(proxyToRenderMax, renderToProxyMax) + marginFraction * tolerance, unless maxSamples
-// forces it to stop earlier (samplingMargin reports the margin reached).
+// The bound. h >= the true two-sided Hausdorff distance between the proxy and the render mesh,
+// certified by branch and bound (HausdorffBound.hpp, where the argument is written out): exact
+// closest-point distances in double at points of each surface, and convexity and Lipschitz bounds
+// over the pieces between them. proxyToRenderMax and renderToProxyMax are distances measured at actual
+// surface points, so the true distance is at least their maximum; h exceeds it by at most
+// samplingMargin.
 //
-// The tolerance is the target for h; the triangle budget is a hard limit. A backend is run with an
-// internal tolerance below the target; if the measured h exceeds the target, it is run again with a
-// smaller internal tolerance (up to maxAttempts runs). When the budget stops simplification first,
-// or no run meets the target, the proxy with the smallest h is returned with toleranceMet = false.
+// The search. meshoptimizer (or OpenMesh, when asked for) runs at a target error; the candidate is
+// certified with the early answer to "is h <= tolerance?". The target is bisected between a certified
+// candidate and one that is not, until the coarsest certified target is known within 10% or
+// maxAttempts runs are spent, and the certified candidate with the fewest triangles is the proxy.
+// Its h is at most max(largest measured distance + marginFraction * tolerance, tolerance): the search
+// asks for the tolerance, not for the sharpest bound. When no candidate is certified, the finest one is
+// returned with its sharp bound and toleranceMet = false; the triangle budget is a hard limit and
+// ends the search when it stops simplification.
 //
 // Cache: with a cache directory, a simplified proxy or a measured collider is stored on disk under a
 // 64-bit hash of the render mesh, the collider and the settings (ProxyCache.hpp); a later build with
@@ -81,15 +81,19 @@ struct ProxySettings {
     float featureAngleDegrees = 45.0f;
     // A render mesh with fewer triangles than this is its own proxy (h = 0).
     uint32_t smallMeshTriangles = 512;
-    // Error measurement: the sampling margin allowed (h minus the largest sampled distance) as a
-    // fraction of the absolute tolerance, in (0, 1); the sample budget and the random samples per
-    // direction, and their seed.
-    float marginFraction = 0.2f;
+    // Certification margin, as a fraction of the absolute tolerance, in (0, 1): a bound within it
+    // above the largest measured distance is not refined further. A candidate whose measured distance
+    // lies within it below the tolerance may be left uncertified (the search counts it as too coarse);
+    // a bound computed without the tolerance (an authored collider, a proxy that missed it) exceeds
+    // the measured distance by at most this.
+    float marginFraction = 0.05f;
+    // The settings of the sampling measurement (measureMeshDistance), for callers that measure
+    // proxies themselves; the builder's certificate does not sample and ignores them.
     uint32_t maxSamples = 2'000'000;
     uint32_t randomSamples = 16384;
     uint64_t seed = 1;
-    // Simplification runs allowed to bring h under the tolerance (>= 1).
-    uint32_t maxAttempts = 4;
+    // Simplification runs the search may make (>= 1).
+    uint32_t maxAttempts = 8;
     // Directory of the on-disk cache; empty for no cache. Created when missing.
     std::string cacheDirectory;
 };
@@ -103,30 +107,31 @@ struct Proxy {
     double errorBound = 0.0;                   // h: >= the true two-sided Hausdorff distance
     double proxyToRenderMax = 0.0;             // largest sampled proxy-to-render distance
     double renderToProxyMax = 0.0;             // largest sampled render-to-proxy distance
-    // errorBound <= max(proxyToRenderMax, renderToProxyMax) + samplingMargin; the margin is at most
-    // marginFraction * tolerance unless maxSamples forced coarser sampling.
+    // errorBound - max(proxyToRenderMax, renderToProxyMax): at most max(marginFraction * tolerance,
+    // tolerance - that maximum).
     double samplingMargin = 0.0;
-    size_t samples = 0;        // closest-point queries made for the final proxy
+    size_t samples = 0;        // closest-point queries made to certify the final proxy
     size_t inputTriangles = 0; // render mesh triangles
     size_t proxyTriangles = 0;
-    uint32_t attempts = 0;          // simplification runs (0 when nothing was simplified)
+    uint32_t attempts = 0;          // simplification runs of the search (0 when nothing was simplified)
     double seconds = 0.0;           // wall time of this buildProxy call
     bool cached = false;            // loaded from the cache: nothing was simplified or measured
     std::vector<std::string> notes; // what happened besides the plain path (cache misses, fallbacks)
 };
 
-// The backend Auto starts with. For meshes of at most 8,000 triangles whose tolerance is at most 2%
-// of the diagonal it is OpenMesh, and buildProxy then runs meshoptimizer as well and keeps the better
-// proxy (within the tolerance first, then fewer triangles, then the smaller h): there both cost well
-// under a second and each wins on some meshes. Otherwise it is meshoptimizer alone: tens of times
-// faster on large meshes, and OpenMesh's cost grows with the tolerance (each remaining face re-tests
-// every vertex removed under it). Any backend other than Auto is returned unchanged.
+// The backend Auto stands for: meshoptimizer. Its runs take milliseconds where OpenMesh's take
+// seconds, so the search can afford the several runs that find the coarsest certified proxy; OpenMesh
+// is there for callers who ask for it (its quadric decimation with a Hausdorff constraint sometimes
+// gives fewer triangles at the same tolerance, at tens of times the cost). Any backend other than Auto
+// is returned unchanged; the size and tolerance arguments are not used.
 ProxyBackend resolveProxyBackend(ProxyBackend requested, size_t triangles, double absoluteTolerance,
                                  double diagonal);
 
 // Builds the proxy of `render` (see the top of this file). `authoredCollider`, when given, is used as
 // the proxy instead of simplifying; it is not modified or kept. `progress` is called with the stages
-// "cache", "simplify" and "measure"; returning false cancels the build (error "cancelled").
+// "cache", "simplify" and "measure" and the fraction of the whole build done (it never goes back;
+// a simplified proxy or a measured collider ends with 1); returning false cancels the build (error
+// "cancelled").
 Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& settings,
                          const Mesh* authoredCollider = nullptr, const ProgressCallback& progress = {});
 
