@@ -74,6 +74,13 @@ bool roughnessInAlpha(const HostFrame& f, const ProjectorDraw& o) {
     return f.roughness.texture != 0 && f.roughness.channel == 3 && blendsIntoHost(o);
 }
 
+// The programs of a draw: the main pass, the roughness pass into an alpha channel (0: none), and
+// whether the main pass writes the host's normals.
+struct Passes {
+    GLuint main = 0, roughness = 0;
+    bool writesNormals = false;
+};
+
 // The instanced draw of the visible boxes, in draw order, by their far faces (they cover a box's pixels
 // also where the eye is inside it or the near plane cuts it, and culling on the CPU and on the GPU then
 // draw the very same fragments). The count is known on the CPU, or read by the GPU from `indirect`
@@ -148,9 +155,11 @@ struct DecalProjector::Impl {
     Result<GLuint> program(uint32_t bits) {
         auto it = programs.find(bits);
         if (it != programs.end()) return it->second.get();
-        Result<GlProgram> p = buildProgram(
-            shaderLibrary(kProjectorShaders),
-            {{GL_VERTEX_SHADER, "decal.vert"}, {GL_FRAGMENT_SHADER, "decal.frag"}}, variantDefines(bits));
+        const bool tiles = bits & kVariantTiles;
+        Result<GlProgram> p = buildProgram(shaderLibrary(kProjectorShaders),
+                                           {{GL_VERTEX_SHADER, tiles ? "fullscreen.vert" : "decal.vert"},
+                                            {GL_FRAGMENT_SHADER, tiles ? "decal_tiles.frag" : "decal.frag"}},
+                                           variantDefines(bits));
         if (!p) return fail("projector: " + p.error());
         const GLuint name = p->get();
         programs.emplace(bits, std::move(p.value()));
@@ -351,9 +360,9 @@ struct DecalProjector::Impl {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalTypeBuffer, typeBuffer.get());
     }
 
-    // Roughness in an alpha channel: the same boxes again, into that texture alone, with dual-source
+    // Roughness in an alpha channel: the decals again, into that texture alone, with dual-source
     // blending (a = roughness * w + a * (1 - w), w the decal's alpha), the other channels kept.
-    size_t roughnessPass(const HostFrame& f, const BoxDraws& boxes, GLuint prog, bool depthTest) {
+    void bindRoughnessTarget(const HostFrame& f) {
         const GLuint fb = fbo.get();
         glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, f.roughness.texture, 0);
         glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, 0, 0);
@@ -363,7 +372,6 @@ struct DecalProjector::Impl {
         glBlendEquationi(0, GL_FUNC_ADD);
         glBlendFuncSeparatei(0, GL_ZERO, GL_ONE, GL_ONE, GL_ONE_MINUS_SRC1_ALPHA);
         glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
-        return drawBoxes(f, boxes, prog, depthTest);
     }
 
     // Whether this frame's visible list is built on the GPU (gpuCullingFrom); from the first such frame
@@ -405,6 +413,103 @@ struct DecalProjector::Impl {
         stats.culled = valid > stats.drawn ? valid - stats.drawn : 0; // counts of an earlier draw may exceed
         visibleCount = stats.drawn;
         return {0, culling.draws()};
+    }
+
+    // Bins the visible decals into the screen tiles of `frame` (ForwardBins): those the GPU culls, or
+    // `vis` culled on the CPU. Adds the bytes sent and the calls made to `stats`. Needs
+    // forward.prepare() and, on the GPU, culling.prepare().
+    void binVisible(const ForwardFrame& frame, const FrameCamera& camera, bool onGpu,
+                    const DecalVisibility& vis, ProjectorStats& stats) {
+        ForwardGridGpu head{};
+        head.info.y = settings.normalFrame == DecalNormalFrame::DepthDerivatives ? 1 : 0;
+        head.params.x = settings.fadeStart;
+        if (onGpu) {
+            stats.bytesUploaded += uploadInstances(stats.instanceUploads) + uploadDrawOrder();
+            cullOnGpu(camera.cull, stats);
+            // Room for twice the visible decals of the latest count the GPU has given (this one's with
+            // waitForTimers): a sudden jump past it leaves decals out for a frame.
+            const size_t capacity = std::min(batch.size(), std::max<size_t>(4096, 2 * stats.drawn));
+            stats.bytesUploaded += forward.binCulled(frame, settings.forwardTileSize, head, culling.draws(),
+                                                     capacity, uint32_t(settings.forwardTileCapacity));
+            stats.drawCalls += 5;
+        } else {
+            stats.bytesUploaded += uploadDecals(vis, stats.instanceUploads);
+            bindBuffers();
+            stats.bytesUploaded += forward.bin(frame, vis, settings.forwardTileSize, head);
+            stats.drawCalls += stats.skipped ? 0 : 4;
+        }
+    }
+
+    // The box resolve: the visible list (culled on the GPU, or `vis`), the normal copy the decals read
+    // when they write normals, then the boxes, and the roughness pass.
+    void resolveWithBoxes(const HostFrame& f, const ProjectorDraw& o, const FrameCamera& camera, bool onGpu,
+                          const DecalVisibility& vis, const Passes& passes, ProjectorStats& stats) {
+        stats.bytesUploaded = uploadInstances(stats.instanceUploads);
+        BoxDraws boxes = cpuDraws(vis);
+        if (onGpu) {
+            stats.bytesUploaded += uploadDrawOrder();
+            boxes = cullOnGpu(camera.cull, stats);
+        } else {
+            stats.bytesUploaded += uploadVisible(vis);
+        }
+        const bool inPlace = !(vis.flags & kDecalWrap) && passes.roughness == 0;
+        const NormalCopyMode copy = !passes.writesNormals ? NormalCopyMode::None
+                                    : onGpu               ? normalCopyMode(culling.visibleCount(false))
+                                                          : normalCopyMode(vis, f.width, f.height, inPlace);
+        stats.normalCopy = normalCopyName(copy);
+        const bool depthTest = attachDepth(f);
+        bindInputs(f);
+        if (copy == NormalCopyMode::InPlace) {
+            glTextureBarrier(); // the decals read the host's normals in place: its last writes must show
+        } else if (copy != NormalCopyMode::None) {
+            stats.drawCalls += copyNormals(f, vis, boxes, copy, depthTest);
+            glBindTextureUnit(1, normalCopy.texture());
+        }
+        bindTargets(f, o, passes.writesNormals);
+        stats.drawCalls += drawBoxes(f, boxes, passes.main, depthTest);
+        if (passes.roughness != 0) {
+            bindRoughnessTarget(f);
+            stats.drawCalls += drawBoxes(f, boxes, passes.roughness, depthTest);
+        }
+    }
+
+    // The tiled resolve: the visible decals binned into tiles, then the roughness pass (which reads the
+    // normals before the main pass changes them) and the main pass, each over the viewport, each
+    // pixel reading and writing only its own texels.
+    void resolveWithTiles(const HostFrame& f, const ProjectorDraw& o, const FrameCamera& camera, bool onGpu,
+                          const DecalVisibility& vis, const Passes& passes, ProjectorStats& stats) {
+        binVisible(forwardFrame(f), camera, onGpu, vis, stats);
+        stats.normalCopy =
+            normalCopyName(passes.writesNormals ? NormalCopyMode::InPlace : NormalCopyMode::None);
+        glNamedFramebufferTexture(fbo.get(), GL_DEPTH_ATTACHMENT, 0, 0);
+        bindInputs(f);
+        forward.bind(ForwardBindings{});
+        glTextureBarrier(); // the G-buffer's last writes must show to the reads of the pass
+        if (passes.roughness != 0) {
+            bindRoughnessTarget(f);
+            stats.drawCalls += drawFullScreen(f, passes.roughness);
+            glTextureBarrier();
+        }
+        bindTargets(f, o, passes.writesNormals);
+        stats.drawCalls += drawFullScreen(f, passes.main);
+    }
+
+    // The tiled resolve's pass: one triangle over the viewport (decal_tiles.frag) into the targets
+    // attached, no depth test.
+    size_t drawFullScreen(const HostFrame& f, GLuint prog) {
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo.get());
+        GlStateGuard::neutralise();
+        glViewport(f.x, f.y, f.width, f.height);
+        glDisable(GL_SCISSOR_TEST);
+        glDisable(GL_STENCIL_TEST);
+        glDisable(GL_DEPTH_TEST);
+        glDepthMask(GL_FALSE);
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_FRAMEBUFFER_SRGB);
+        glUseProgram(prog);
+        glBindVertexArray(emptyVao.get());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        return 1;
     }
 
     // The pass itself: one instanced draw of the boxes (BoxDraws). Returns the draws made.
@@ -551,24 +656,7 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
     m.timers.beginFrame(m.draws);
     m.timers.begin(GpuPass::Decals);
     m.uploadFrame(host, camera);
-    ForwardGridGpu head{};
-    head.info.y = m.settings.normalFrame == DecalNormalFrame::DepthDerivatives ? 1 : 0;
-    head.params.x = m.settings.fadeStart;
-    if (onGpu) {
-        stats.bytesUploaded = m.uploadInstances(stats.instanceUploads) + m.uploadDrawOrder();
-        m.cullOnGpu(camera.cull, stats);
-        // Room for twice the visible decals of the latest count the GPU has given (this bin's with
-        // waitForTimers): a sudden jump past it leaves decals out for a frame.
-        const size_t capacity = std::min(m.batch.size(), std::max<size_t>(4096, 2 * stats.drawn));
-        stats.bytesUploaded += m.forward.binCulled(frame, m.settings.forwardTileSize, head, m.culling.draws(),
-                                                   capacity, uint32_t(m.settings.forwardTileCapacity));
-        stats.drawCalls = 5;
-    } else {
-        stats.bytesUploaded = m.uploadDecals(vis, stats.instanceUploads);
-        m.bindBuffers();
-        stats.bytesUploaded += m.forward.bin(frame, vis, m.settings.forwardTileSize, head);
-        stats.drawCalls = stats.skipped ? 0 : 4;
-    }
+    m.binVisible(frame, camera, onGpu, vis, stats);
     m.timers.end();
     const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
     stats.gpuMs = times.decalsMs;
@@ -590,34 +678,40 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     Impl& m = *impl_;
     if (const std::string p = hostFrameProblem(frame, options); !p.empty()) return fail("projector: " + p);
     const FrameCamera camera = frameCamera(frame);
+    const bool tiles = m.settings.deferredResolve == DeferredResolve::Tiles;
     const bool onGpu = m.cullsOnGpu();
     DecalVisibility vis;
     if (onGpu) {
         vis.flags = m.batch.flagsUnion();
     } else {
         CullView cull = camera.cull;
-        cull.rects = blendsIntoHost(options) && frame.normals.texture != 0; // for the normal copy
+        // Screen rectangles for the tiles, or for the normal copy.
+        cull.rects = tiles || (blendsIntoHost(options) && frame.normals.texture != 0);
         vis = m.cullOnCpu(cull);
     }
     ProjectorStats stats = m.cpuStats(vis, onGpu);
     if (fillsDBuffer(options)) m.dbuffer.prepare(frame.depth.texture); // cleared, even when nothing is drawn
     if (stats.skipped) return stats;
-    const uint32_t bits = m.variantBits(frame, options, vis.flags);
+    const uint32_t bits = m.variantBits(frame, options, vis.flags) | (tiles ? kVariantTiles : 0u);
+    Passes passes;
     Result<GLuint> program = m.program(bits);
     if (!program) return fail(program.error());
+    passes.main = program.value();
     stats.variant = join(variantDefines(bits));
-    GLuint roughnessProgram = 0;
     if (roughnessInAlpha(frame, options) && (vis.flags & kDecalRoughness)) {
         Result<GLuint> p =
             m.program((bits & ~(kVariantNormalMap | kVariantDepthFrame)) | kVariantRoughnessAlpha);
         if (!p) return fail(p.error());
-        roughnessProgram = p.value();
+        passes.roughness = p.value();
     }
-    // Decals that blend normal maps into the host's normals read a copy of them; others read the
-    // host's texture, which the draw then does not write.
-    const bool writesNormals = blendsIntoHost(options) && (bits & kVariantNormalMap);
-    if (writesNormals)
+    // Decals that blend normal maps into the host's normals read them as they were before the pass:
+    // from a copy, or in place where no pixel reads another's; others read the host's texture, which
+    // the draw then does not write.
+    passes.writesNormals = blendsIntoHost(options) && (bits & kVariantNormalMap);
+    if (passes.writesNormals && !tiles)
         if (Status s = m.normalCopy.prepare(); !s) return fail(s.error());
+    if (tiles)
+        if (Status s = m.forward.prepare(); !s) return fail(s.error());
     if (onGpu)
         if (Status s = m.culling.prepare(); !s) return fail(s.error());
 
@@ -625,30 +719,10 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     m.timers.beginFrame(m.draws);
     m.timers.begin(GpuPass::Decals);
     m.uploadFrame(frame, camera);
-    stats.bytesUploaded = m.uploadInstances(stats.instanceUploads);
-    BoxDraws boxes = cpuDraws(vis);
-    if (onGpu) {
-        stats.bytesUploaded += m.uploadDrawOrder();
-        boxes = m.cullOnGpu(camera.cull, stats);
-    } else {
-        stats.bytesUploaded += m.uploadVisible(vis);
-    }
-    const bool inPlace = !(vis.flags & kDecalWrap) && roughnessProgram == 0;
-    const NormalCopyMode copy = !writesNormals ? NormalCopyMode::None
-                                : onGpu        ? normalCopyMode(m.culling.visibleCount(false))
-                                               : normalCopyMode(vis, frame.width, frame.height, inPlace);
-    stats.normalCopy = normalCopyName(copy);
-    const bool depthTest = m.attachDepth(frame);
-    m.bindInputs(frame);
-    if (copy == NormalCopyMode::InPlace) {
-        glTextureBarrier(); // the decals read the host's normals in place: its last writes must show
-    } else if (copy != NormalCopyMode::None) {
-        stats.drawCalls += m.copyNormals(frame, vis, boxes, copy, depthTest);
-        glBindTextureUnit(1, m.normalCopy.texture());
-    }
-    m.bindTargets(frame, options, writesNormals);
-    stats.drawCalls += m.drawBoxes(frame, boxes, program.value(), depthTest);
-    if (roughnessProgram != 0) stats.drawCalls += m.roughnessPass(frame, boxes, roughnessProgram, depthTest);
+    if (tiles)
+        m.resolveWithTiles(frame, options, camera, onGpu, vis, passes, stats);
+    else
+        m.resolveWithBoxes(frame, options, camera, onGpu, vis, passes, stats);
     m.timers.end();
     const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
     stats.gpuMs = times.decalsMs;

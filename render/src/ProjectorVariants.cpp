@@ -19,7 +19,8 @@ constexpr const char* kVariantNames[] = {"IDS",
                                          "NORMAL_WORLD_UNORM",
                                          "NORMAL_VIEW_UNORM",
                                          "ROUGHNESS_ALPHA",
-                                         "DBUFFER"};
+                                         "DBUFFER",
+                                         "TILES"};
 
 } // namespace
 

@@ -5,6 +5,7 @@
 
 #include "ForeignHost.hpp"
 #include "RenderTestSupport.hpp"
+#include "ShotDecals.hpp"
 
 #include "TestData.hpp"
 
@@ -27,57 +28,6 @@ namespace {
 constexpr int kWidth = 160;
 constexpr int kHeight = 120;
 
-struct Placed {
-    test::CoverageInputs inputs;
-    size_t placed = 0;
-};
-
-// Shoots `shots` rays from the camera through random pixels, cycling through `types`. With
-// `proxies`, the rays are traced against them instead of the render meshes.
-Placed shootFromCamera(const Scene& scene, const Camera& cam, const std::vector<DecalType>& types, int shots,
-                       uint64_t seed, const std::vector<std::optional<Proxy>>& proxies = {}) {
-    Placed out;
-    WorldSettings ws;
-    ws.useColliders = false;
-    Result<CollisionWorld> world = CollisionWorld::build(scene, proxies, ws);
-    EXPECT_TRUE(world.ok()) << world.error();
-    if (!world) return out;
-    Result<DecalSystem> sys = DecalSystem::create(std::move(world.value()));
-    EXPECT_TRUE(sys.ok()) << sys.error();
-    if (!sys) return out;
-    std::vector<uint16_t> typeIndex;
-    for (const DecalType& t : types) {
-        Result<uint16_t> idx = sys->registerType(t);
-        EXPECT_TRUE(idx.ok()) << idx.error();
-        if (!idx) return out;
-        typeIndex.push_back(idx.value());
-    }
-    Rng rng(seed);
-    for (int s = 0; s < shots; ++s) {
-        const int i = int(rng.below(kWidth)), j = int(rng.below(kHeight));
-        Ray ray;
-        ray.origin = cam.eye;
-        ray.direction = pixelDirection(cam, kWidth, kHeight, i, j);
-        if (sys->spawn(ray, typeIndex[size_t(s) % typeIndex.size()]).placed()) ++out.placed;
-    }
-    out.inputs.decals = sys->decals();
-    out.inputs.types = types;
-    for (uint32_t o = 0; o < scene.objects.size(); ++o)
-        out.inputs.objectIds.push_back(sys->objectId(o));
-    return out;
-}
-
-DecalType makeType(const char* name, glm::vec2 size, DecalTexture tex, bool wrap = false,
-                   float halfDepth = 0.0f) {
-    DecalType t;
-    t.halfDepth = halfDepth; // deep boxes reach curved and hidden surfaces: the angle test must cut them
-    t.name = name;
-    t.size = size;
-    t.texture = int(tex);
-    t.wrapAround = wrap;
-    return t;
-}
-
 std::vector<uint8_t> renderCoverage(const Scene& scene, const test::CoverageInputs& in, const Camera& cam) {
     Result<Renderer> r = test::makeRenderer(kWidth, kHeight);
     EXPECT_TRUE(r.ok()) << r.error();
@@ -94,12 +44,16 @@ std::vector<uint8_t> renderCoverage(const Scene& scene, const test::CoverageInpu
     return im ? test::whiteMask(im.value()) : std::vector<uint8_t>{};
 }
 
-// The coverage of the same decals in the foreign host: projected into its frame (deferred), or applied
-// in its fragment shader through the forward path's tiles (forward).
+enum class HostPath { Boxes, Tiles, Forward };
+
+// The coverage of the same decals in the foreign host: projected into its frame by boxes or by the
+// tiled resolve (deferred), or applied in its fragment shader through the forward path's tiles.
 std::vector<uint8_t> foreignCoverage(const Scene& scene, const test::CoverageInputs& in, const Camera& cam,
-                                     bool forward) {
+                                     HostPath path) {
     Result<test::ForeignHost> host = test::ForeignHost::create(kWidth, kHeight);
-    Result<DecalProjector> projector = DecalProjector::create();
+    ProjectorSettings settings;
+    if (path == HostPath::Tiles) settings.deferredResolve = DeferredResolve::Tiles;
+    Result<DecalProjector> projector = DecalProjector::create(settings);
     EXPECT_TRUE(host.ok() && projector.ok());
     if (!host || !projector) return {};
     std::vector<glm::dmat4> transforms;
@@ -111,7 +65,7 @@ std::vector<uint8_t> foreignCoverage(const Scene& scene, const test::CoverageInp
     EXPECT_TRUE(projector->setObjects(transforms, ids).ok());
     projector->setDecalTypes(in.types);
     projector->setDecals(in.decals);
-    if (forward) {
+    if (path == HostPath::Forward) {
         Result<ProjectorStats> st = host->drawForward(transforms, ids, cam, projector.value());
         EXPECT_TRUE(st.ok()) << st.error();
         return test::whiteMask(host->read(host->coverageTexture()));
@@ -138,7 +92,7 @@ void expectMaskMatches(const std::string& name, const std::vector<uint8_t>& gpu,
 
 // Renders the coverage view in spatter's renderer and in the foreign host and compares each with the
 // reference.
-void expectCoverageMatches(const std::string& name, const Scene& scene, const Placed& placed,
+void expectCoverageMatches(const std::string& name, const Scene& scene, const test::Placed& placed,
                            const Camera& cam, double minIou) {
     const std::vector<uint8_t> cpu = test::referenceCoverage(scene, placed.inputs, cam, kWidth, kHeight);
     test::dumpMask(name + "-cpu", cpu, kWidth, kHeight);
@@ -147,10 +101,17 @@ void expectCoverageMatches(const std::string& name, const Scene& scene, const Pl
     const size_t decals = placed.inputs.decals.size();
     expectMaskMatches(name + "-gpu", renderCoverage(scene, placed.inputs, cam), cpu, decals, minIou);
     // A host of the projector is held to 0.99 (the projector's own contract).
-    expectMaskMatches(name + "-foreign", foreignCoverage(scene, placed.inputs, cam, false), cpu, decals,
-                      std::max(minIou, 0.99));
-    expectMaskMatches(name + "-forward", foreignCoverage(scene, placed.inputs, cam, true), cpu, decals,
-                      std::max(minIou, 0.99));
+    const std::vector<uint8_t> boxes = foreignCoverage(scene, placed.inputs, cam, HostPath::Boxes);
+    expectMaskMatches(name + "-foreign", boxes, cpu, decals, std::max(minIou, 0.99));
+    expectMaskMatches(name + "-forward", foreignCoverage(scene, placed.inputs, cam, HostPath::Forward), cpu,
+                      decals, std::max(minIou, 0.99));
+    // The tiled resolve runs the boxes' tests on the same numbers: the same pixels.
+    const std::vector<uint8_t> tiles = foreignCoverage(scene, placed.inputs, cam, HostPath::Tiles);
+    expectMaskMatches(name + "-tiles", tiles, cpu, decals, std::max(minIou, 0.99));
+    size_t differing = 0;
+    for (size_t i = 0; i < tiles.size() && i < boxes.size(); ++i)
+        differing += tiles[i] != boxes[i];
+    EXPECT_EQ(differing, 0u) << name << ": pixels the tiled resolve covers differently from the boxes";
 }
 
 Camera cameraFor(const Scene& scene, const glm::dvec3& direction) {
@@ -173,10 +134,10 @@ TEST(Coverage, MatchesCpuReferenceOnTheGallery) {
     cam.eye = {1.5, 2.2, 4.5};
     cam.target = {-0.5, 1.0, -3.0};
     const std::vector<DecalType> types = {
-        makeType("hole", {0.45f, 0.45f}, DecalTexture::BulletHole),
-        makeType("blood", {0.9f, 0.7f}, DecalTexture::Blood, true),
-        makeType("scorch", {1.2f, 1.2f}, DecalTexture::Scorch, false, 0.8f)};
-    const Placed placed = shootFromCamera(scene, cam, types, 60, 7);
+        test::makeType("hole", {0.45f, 0.45f}, DecalTexture::BulletHole),
+        test::makeType("blood", {0.9f, 0.7f}, DecalTexture::Blood, true),
+        test::makeType("scorch", {1.2f, 1.2f}, DecalTexture::Scorch, false, 0.8f)};
+    const test::Placed placed = test::shootFromCamera(scene, cam, types, 60, 7);
     ASSERT_GT(placed.placed, 40u);
     expectCoverageMatches("gallery", scene, placed, cam, 0.97);
 }
@@ -189,10 +150,11 @@ TEST(Coverage, MatchesCpuReferenceOnSharedMeshes) {
         ASSERT_TRUE(scene.ok()) << scene.error();
         const Camera cam = cameraFor(scene.value(), {0.6, 0.5, 1.0});
         const float s = float(scene->worldBounds().diagonal()) * 0.12f;
-        const std::vector<DecalType> types = {makeType("a", {s, s}, DecalTexture::Paint),
-                                              makeType("b", {1.5f * s, s}, DecalTexture::Blood, true),
-                                              makeType("c", {s, s}, DecalTexture::Scorch, false, 0.7f * s)};
-        const Placed placed = shootFromCamera(scene.value(), cam, types, 60, 11);
+        const std::vector<DecalType> types = {
+            test::makeType("a", {s, s}, DecalTexture::Paint),
+            test::makeType("b", {1.5f * s, s}, DecalTexture::Blood, true),
+            test::makeType("c", {s, s}, DecalTexture::Scorch, false, 0.7f * s)};
+        const test::Placed placed = test::shootFromCamera(scene.value(), cam, types, 60, 11);
         ASSERT_GT(placed.placed, 10u) << file;
         expectCoverageMatches(std::string(file).substr(7), scene.value(), placed, cam, 0.97);
     }
@@ -205,10 +167,10 @@ TEST(Coverage, MatchesCpuReferenceOnDamagedHelmet) {
     ASSERT_TRUE(scene.ok()) << scene.error();
     const Camera cam = cameraFor(scene.value(), {0.4, 0.3, 1.0});
     const float s = float(scene->worldBounds().diagonal()) * 0.1f;
-    const std::vector<DecalType> types = {makeType("a", {s, s}, DecalTexture::BulletHole),
-                                          makeType("b", {1.5f * s, s}, DecalTexture::Blood, true),
-                                          makeType("c", {s, s}, DecalTexture::Scorch, false, 0.5f * s)};
-    const Placed placed = shootFromCamera(scene.value(), cam, types, 60, 13);
+    const std::vector<DecalType> types = {test::makeType("a", {s, s}, DecalTexture::BulletHole),
+                                          test::makeType("b", {1.5f * s, s}, DecalTexture::Blood, true),
+                                          test::makeType("c", {s, s}, DecalTexture::Scorch, false, 0.5f * s)};
+    const test::Placed placed = test::shootFromCamera(scene.value(), cam, types, 60, 13);
     ASSERT_GT(placed.placed, 10u);
     expectCoverageMatches("DamagedHelmet", scene.value(), placed, cam, 0.97);
 }
@@ -223,9 +185,10 @@ TEST(Coverage, MatchesCpuReferenceWithTheCameraInsideDecalBoxes) {
     Camera shooter;
     shooter.eye = {1.5, 2.2, 4.5};
     shooter.target = {-0.5, 1.0, -3.0};
-    const std::vector<DecalType> types = {makeType("deep", {2.5f, 2.5f}, DecalTexture::Scorch, false, 3.0f),
-                                          makeType("wrap", {2.0f, 2.0f}, DecalTexture::Blood, true, 3.0f)};
-    const Placed placed = shootFromCamera(scene, shooter, types, 40, 17);
+    const std::vector<DecalType> types = {
+        test::makeType("deep", {2.5f, 2.5f}, DecalTexture::Scorch, false, 3.0f),
+        test::makeType("wrap", {2.0f, 2.0f}, DecalTexture::Blood, true, 3.0f)};
+    const test::Placed placed = test::shootFromCamera(scene, shooter, types, 40, 17);
     ASSERT_GT(placed.placed, 20u);
     // The eye 1 m in front of the first decal, looking at it: inside its box and others.
     const Decal& d = placed.inputs.decals.front();
@@ -267,10 +230,10 @@ TEST(Coverage, DecalsPlacedThroughACoarseProxyCoverTheDrawnSurface) {
     Camera cam;
     cam.eye = {-1.0, 2.0, 5.0};
     cam.target = {0.5, 1.0, -3.0};
-    DecalType t = makeType("splat", {0.6f, 0.6f}, DecalTexture::Blood);
+    DecalType t = test::makeType("splat", {0.6f, 0.6f}, DecalTexture::Blood);
     t.randomRotation = false; // the same ray gives the same footprint through either mesh
-    const Placed render = shootFromCamera(scene, cam, {t}, 60, 5);
-    const Placed proxy = shootFromCamera(scene, cam, {t}, 60, 5, proxies);
+    const test::Placed render = test::shootFromCamera(scene, cam, {t}, 60, 5);
+    const test::Placed proxy = test::shootFromCamera(scene, cam, {t}, 60, 5, proxies);
     ASSERT_GT(render.placed, 40u);
     ASSERT_GT(proxy.placed, 40u);
     // Every proxy decal's box holds the drawn surface: its half-depth covers h.

@@ -1,0 +1,52 @@
+#include "ShotDecals.hpp"
+
+#include "spatter/core/Random.hpp"
+#include "spatter/placement/DecalSystem.hpp"
+
+namespace spatter::test {
+
+Placed shootFromCamera(const Scene& scene, const Camera& cam, const std::vector<DecalType>& types, int shots,
+                       uint64_t seed, const std::vector<std::optional<Proxy>>& proxies) {
+    constexpr int kWidth = 160, kHeight = 120;
+    Placed out;
+    WorldSettings ws;
+    ws.useColliders = false;
+    Result<CollisionWorld> world = CollisionWorld::build(scene, proxies, ws);
+    EXPECT_TRUE(world.ok()) << world.error();
+    if (!world) return out;
+    Result<DecalSystem> sys = DecalSystem::create(std::move(world.value()));
+    EXPECT_TRUE(sys.ok()) << sys.error();
+    if (!sys) return out;
+    std::vector<uint16_t> typeIndex;
+    for (const DecalType& t : types) {
+        Result<uint16_t> idx = sys->registerType(t);
+        EXPECT_TRUE(idx.ok()) << idx.error();
+        if (!idx) return out;
+        typeIndex.push_back(idx.value());
+    }
+    Rng rng(seed);
+    for (int s = 0; s < shots; ++s) {
+        const int i = int(rng.below(kWidth)), j = int(rng.below(kHeight));
+        Ray ray;
+        ray.origin = cam.eye;
+        ray.direction = pixelDirection(cam, kWidth, kHeight, i, j);
+        if (sys->spawn(ray, typeIndex[size_t(s) % typeIndex.size()]).placed()) ++out.placed;
+    }
+    out.inputs.decals = sys->decals();
+    out.inputs.types = types;
+    for (uint32_t o = 0; o < scene.objects.size(); ++o)
+        out.inputs.objectIds.push_back(sys->objectId(o));
+    return out;
+}
+
+DecalType makeType(const char* name, glm::vec2 size, DecalTexture tex, bool wrap, float halfDepth) {
+    DecalType t;
+    t.halfDepth = halfDepth; // deep boxes reach curved and hidden surfaces: the angle test must cut them
+    t.name = name;
+    t.size = size;
+    t.texture = int(tex);
+    t.wrapAround = wrap;
+    return t;
+}
+
+} // namespace spatter::test

@@ -1,0 +1,29 @@
+#pragma once
+// Decals placed as a player would place them, for the render tests: shots from the camera through
+// random pixels, traced by a DecalSystem over the scene.
+
+#include "RenderTestSupport.hpp"
+
+#include "spatter/core/DecalType.hpp"
+#include "spatter/core/ProxyBuilder.hpp"
+
+#include <optional>
+#include <vector>
+
+namespace spatter::test {
+
+struct Placed {
+    CoverageInputs inputs; // the decals, their types and the objects' decal IDs
+    size_t placed = 0;
+};
+
+// Shoots `shots` rays from `cam` through random pixels of a 160 x 120 view, cycling through `types`.
+// With `proxies`, the rays are traced against them instead of the render meshes.
+Placed shootFromCamera(const Scene& scene, const Camera& cam, const std::vector<DecalType>& types, int shots,
+                       uint64_t seed, const std::vector<std::optional<Proxy>>& proxies = {});
+
+// A decal type of `size` with the built-in texture `tex`; a half-depth of 0 takes the decal system's.
+DecalType makeType(const char* name, glm::vec2 size, DecalTexture tex, bool wrap = false,
+                   float halfDepth = 0.0f);
+
+} // namespace spatter::test
