@@ -113,14 +113,16 @@ struct Measured {
 class VertexCache {
 public:
     explicit VertexCache(size_t n) : state_(n), value_(n) {}
+    // `queries` counts the vertex once, for the thread that stores it (two threads may measure it at
+    // once), so that the count does not depend on timing.
     template <class Measure> Measured get(uint32_t v, Measure&& measure, size_t& queries) {
         if (state_[v].load(std::memory_order_acquire) == 2) return value_[v];
         const Measured m = measure();
-        ++queries;
         uint8_t expected = 0;
         if (state_[v].compare_exchange_strong(expected, 1, std::memory_order_relaxed)) {
             value_[v] = m;
             state_[v].store(2, std::memory_order_release);
+            ++queries;
         }
         return m;
     }

@@ -63,6 +63,9 @@ constexpr double kStartFraction[3] = {0.0, 0.5, 0.4};
 // both a certified and a failed run it steps by a factor in this range (see nextTarget).
 constexpr double kSearchPrecision = 0.1;
 constexpr double kSearchStep = 1.5, kSearchStepMax = 4.0;
+// A proxy that misses the tolerance gets a sharp bound with this many times the certification margin:
+// its h only sizes decal boxes, and a tighter one costs many more queries.
+constexpr double kMissedMarginScale = 4.0;
 // Runs the progress of a build is scaled to (a typical search).
 constexpr double kExpectedRuns = 5.0;
 // Full angle of the normal cone a decimated face may sweep (ModNormalDeviation): it only rules out
@@ -245,10 +248,10 @@ void splitCreases(Mesh& m, float angleDegrees) {
 }
 
 // The mesh a backend returned, made into a proxy: welded, degenerate triangles dropped, creases split
-// (keepSharpFeatures), normals computed.
+// (so that normals stay crisp along sharp edges), normals computed.
 Mesh finishProxy(const Mesh& simplified, const ProxySettings& s) {
     Mesh out = weldedSurface(simplified);
-    if (s.keepSharpFeatures) splitCreases(out, s.featureAngleDegrees);
+    splitCreases(out, s.featureAngleDegrees);
     computeNormals(out);
     return out;
 }
@@ -535,11 +538,15 @@ struct SearchOutcome {
 // The next target of the search. While no run failed: up from the certified target by the room the
 // last run left (tolerance / its largest measured distance); while none was certified: down by how far
 // the last run overshot (its measured distance / tolerance); both within [kSearchStep,
-// kSearchStepMax]. Then the geometric middle of the bracket [lo, hi].
-double nextTarget(double lo, double hi, double measuredOverTolerance) {
+// kSearchStepMax], doubled for every earlier step the same way (a distance that hardly follows the
+// target, as where one collapse decides, is then bracketed in a few runs). Then the geometric middle
+// of the bracket [lo, hi].
+double nextTarget(double lo, double hi, double measuredOverTolerance, uint32_t runs) {
+    const double streak = std::ldexp(1.0, int(std::min(runs, 8u)) - 1);
     if (!std::isfinite(hi))
-        return lo * std::clamp(1.0 / std::max(measuredOverTolerance, 1e-9), kSearchStep, kSearchStepMax);
-    if (lo <= 0.0) return hi / std::clamp(measuredOverTolerance, kSearchStep, kSearchStepMax);
+        return lo * streak *
+               std::clamp(1.0 / std::max(measuredOverTolerance, 1e-9), kSearchStep, kSearchStepMax);
+    if (lo <= 0.0) return hi / (streak * std::clamp(measuredOverTolerance, kSearchStep, kSearchStepMax));
     return std::sqrt(lo * hi);
 }
 
@@ -587,12 +594,13 @@ Result<SearchOutcome> searchBackend(ProxyBackend backend, const Mesh& welded, do
             if (budgetLimited) break; // the budget decides the proxy, not the target
         }
         progress.nextRun();
-        target = nextTarget(lo, hi, measured / tolerance);
+        target = nextTarget(lo, hi, measured / tolerance, out.runs);
     }
     if (!out.best && !out.removedNothing && finest) {
         // Nothing certified: the finest candidate, with its sharp bound.
         HausdorffSettings sharp = certifying;
         sharp.tolerance = std::numeric_limits<double>::infinity();
+        sharp.margin *= kMissedMarginScale;
         if (Status st = certify(*finest, render, sharp, progress.stage(0.2, 0.8)); !st)
             return fail(st.error());
         notes.push_back(std::string(proxyBackendName(backend)) + ": no candidate in " +

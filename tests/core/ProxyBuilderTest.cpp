@@ -121,11 +121,10 @@ void expectValidProxy(const Proxy& p) {
     const double measured = std::max(p.proxyToRenderMax, p.renderToProxyMax);
     EXPECT_GE(p.errorBound, measured);
     EXPECT_NEAR(p.samplingMargin, p.errorBound - measured, 1e-12);
-    // The certificate refines until h is within the margin (0.05 of the tolerance by default) of what it
-    // measured, or under the tolerance.
-    EXPECT_LE(p.errorBound,
-              std::max(measured + ProxySettings{}.marginFraction * p.tolerance, p.tolerance) * (1.0 + 1e-9) +
-                  1e-9);
+    // The certificate refines until h is within the margin (0.05 of the tolerance by default, four times
+    // that for a proxy that missed the tolerance) of what it measured, or under the tolerance.
+    const double margin = (p.toleranceMet ? 1.0 : 4.0) * ProxySettings{}.marginFraction * p.tolerance;
+    EXPECT_LE(p.errorBound, std::max(measured + margin, p.tolerance) * (1.0 + 1e-9) + 1e-9);
 }
 
 class ProxyBackends : public ::testing::TestWithParam<ProxyBackend> {};
@@ -453,7 +452,10 @@ TEST(ProxyBuilder, FandiskAtHalfAPercentWithBothBackends) {
     const Mesh& render = scene->objects.at(0).mesh;
     for (ProxyBackend backend : {ProxyBackend::MeshOpt, ProxyBackend::OpenMesh}) {
         ProxySettings s = settingsFor(backend, 0.005f);
-        if (backend == ProxyBackend::OpenMesh) s.maxAttempts = 1; // keeps the suite fast
+        if (backend == ProxyBackend::OpenMesh) {
+            s.maxAttempts = 1;          // keeps the suite fast
+            s.keepSharpFeatures = true; // a CAD part: OpenMesh's one run needs its feature edges marked
+        }
         Result<Proxy> p = buildProxy(render, s);
         ASSERT_TRUE(p) << p.error();
         expectValidProxy(p.value());

@@ -86,7 +86,7 @@ struct HausdorffResult {
     // upper <= max(max(lower, knownLower) + margin, tolerance) up to the rounding allowance.
     double upper = 0.0;
     bool exceeded = false; // a measured distance is above the tolerance: stopped early
-    size_t queries = 0;    // exact closest-point queries made
+    size_t queries = 0;    // points measured (exact closest-point queries, each point counted once)
     // True when the distance is certified to be at most `tolerance`.
     bool within(double tolerance) const { return !exceeded && upper <= tolerance; }
 };

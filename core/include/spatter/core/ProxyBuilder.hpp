@@ -22,7 +22,8 @@
 // maxAttempts runs are spent, and the certified candidate with the fewest triangles is the proxy.
 // Its h is at most max(largest measured distance + marginFraction * tolerance, tolerance): the search
 // asks for the tolerance, not for the sharpest bound. When no candidate is certified, the finest one is
-// returned with its sharp bound and toleranceMet = false; the triangle budget is a hard limit and
+// returned with a sharp bound (within 4 * marginFraction * tolerance of the measured distance) and
+// toleranceMet = false; the triangle budget is a hard limit and
 // ends the search when it stops simplification.
 //
 // Cache: with a cache directory, a simplified proxy or a measured collider is stored on disk under a
@@ -75,17 +76,19 @@ struct ProxySettings {
     ProxyBackend backend = ProxyBackend::Auto;
     // Keep open boundaries in place (OpenMesh: boundary vertices locked; meshopt: LockBorder).
     bool keepBoundaries = true;
-    // Keep sharp edges (dihedral angle above featureAngleDegrees): they are only collapsed along
-    // themselves, and proxy normals are split along them.
-    bool keepSharpFeatures = true;
+    // Protect sharp edges (dihedral angle above featureAngleDegrees) during simplification: they are
+    // only collapsed along themselves. Off by default: the certified bound already keeps every edge
+    // within the tolerance, and protecting them all keeps far more triangles (relief on walls, CAD
+    // parts). Proxy normals are split along the sharp edges of the proxy either way.
+    bool keepSharpFeatures = false;
     float featureAngleDegrees = 45.0f;
     // A render mesh with fewer triangles than this is its own proxy (h = 0).
     uint32_t smallMeshTriangles = 512;
     // Certification margin, as a fraction of the absolute tolerance, in (0, 1): a bound within it
     // above the largest measured distance is not refined further. A candidate whose measured distance
     // lies within it below the tolerance may be left uncertified (the search counts it as too coarse);
-    // a bound computed without the tolerance (an authored collider, a proxy that missed it) exceeds
-    // the measured distance by at most this.
+    // the bound of an authored collider exceeds the measured distance by at most this (that of a
+    // proxy that missed the tolerance by at most 4 times this).
     float marginFraction = 0.05f;
     // The settings of the sampling measurement (measureMeshDistance), for callers that measure
     // proxies themselves; the builder's certificate does not sample and ignores them.
