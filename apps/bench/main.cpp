@@ -3,6 +3,7 @@
 
 #include "Memory.hpp"
 #include "PlacementBench.hpp"
+#include "ProxyBench.hpp"
 #include "RenderBench.hpp"
 #include "SkipBench.hpp"
 #include "StressReport.hpp"
@@ -33,6 +34,8 @@ const Command kCommands[] = {
      spatter::bench::runMemoryCommand},
     {"skip", "what each skip of the design saves: on against forced off, in one run",
      spatter::bench::runSkipCommand},
+    {"proxy", "certified proxies against plain meshoptimizer: triangles and time per mesh and tolerance",
+     spatter::bench::runProxyCommand},
     {"volumetric", "GPU time of volumetric decals against flat ones, 1 to 4096 in view (--json FILE)",
      spatter::bench::runVolumetricCommand},
 };

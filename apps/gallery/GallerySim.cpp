@@ -129,9 +129,12 @@ Status GallerySim::rebuildProxies(float tolerancePercent) {
     std::vector<std::string> errors(scene_.objects.size());
     std::atomic<size_t> next{0}, done{0};
     std::mutex say;
-    size_t receivers = 0;
-    for (const SceneObject& o : scene_.objects)
+    size_t receivers = 0, totalTriangles = 0;
+    std::atomic<size_t> doneTriangles{0};
+    for (const SceneObject& o : scene_.objects) {
         receivers += o.receivesDecals ? 1 : 0;
+        totalTriangles += o.receivesDecals ? o.mesh.triangleCount() : 0;
+    }
     auto work = [&]() {
         for (size_t i = next++; i < scene_.objects.size(); i = next++) {
             const SceneObject& o = scene_.objects[i];
@@ -139,10 +142,11 @@ Status GallerySim::rebuildProxies(float tolerancePercent) {
             const Mesh* collider = o.collider ? &*o.collider : nullptr;
             Result<Proxy> proxy = buildProxy(o.mesh, settings, collider);
             const size_t finished = ++done;
-            if (proxy && !proxy->cached) { // a cold build takes seconds: say which
+            const size_t triangles = doneTriangles += o.mesh.triangleCount();
+            if (proxy && !proxy->cached) { // a cold build: say how far it is
                 const std::lock_guard<std::mutex> lock(say);
-                std::fprintf(stderr,
-                             "spatter-gallery: built the collision proxy of %s (%zu of %zu, %.1f s)\n",
+                std::fprintf(stderr, "spatter-gallery: proxies %3d%%: built %s (%zu of %zu, %.2f s)\n",
+                             int(100.0 * double(triangles) / double(std::max<size_t>(totalTriangles, 1))),
                              o.name.c_str(), finished, receivers, proxy->seconds);
             }
             if (proxy)

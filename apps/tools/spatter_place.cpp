@@ -212,6 +212,10 @@ int main(int argc, char** argv) {
     if (proxyMode != "render") {
         proxies.resize(scene->objects.size());
         const bool terminal = isatty(fileno(stderr)) != 0;
+        // Progress: the fraction of all the receivers' triangles whose proxies are built.
+        double totalTriangles = 0.0, doneTriangles = 0.0;
+        for (const spatter::SceneObject& o : scene->objects)
+            totalTriangles += o.receivesDecals ? double(o.mesh.triangleCount()) : 0.0;
         for (size_t i = 0; i < scene->objects.size(); ++i) {
             const spatter::SceneObject& o = scene->objects[i];
             if (!o.receivesDecals) continue;
@@ -219,8 +223,10 @@ int main(int argc, char** argv) {
             spatter::ProgressCallback progress;
             if (terminal)
                 progress = [&](float fraction, const char* stage) {
-                    std::fprintf(stderr, "\rspatter-place: proxy %zu/%zu '%.40s': %s %3d%%\033[K", i + 1,
-                                 scene->objects.size(), o.name.c_str(), stage, int(100.0f * fraction));
+                    const double whole =
+                        (doneTriangles + double(fraction) * double(o.mesh.triangleCount())) / totalTriangles;
+                    std::fprintf(stderr, "\rspatter-place: proxies %3d%% (%zu/%zu '%.40s': %s)\033[K",
+                                 int(100.0 * whole), i + 1, scene->objects.size(), o.name.c_str(), stage);
                     return true;
                 };
             spatter::Result<spatter::Proxy> proxy =
@@ -230,6 +236,7 @@ int main(int argc, char** argv) {
                 std::cerr << "spatter-place: proxy of object '" << o.name << "': " << proxy.error() << "\n";
                 return 1;
             }
+            doneTriangles += double(o.mesh.triangleCount());
             proxiesBuilt += proxy->cached ? 0 : 1;
             proxiesCached += proxy->cached ? 1 : 0;
             proxies[i] = std::move(proxy).value();

@@ -90,31 +90,30 @@ bool writeObj(const std::string& path, const spatter::Proxy& proxy) {
     return std::fclose(f) == 0 && ok;
 }
 
-// Progress on stderr: on a terminal one line per stage, rewritten in place; otherwise a line at the
-// start of each stage and at every quarter.
+// Progress of the whole build on stderr: on a terminal one line, rewritten in place with the stage
+// at work; otherwise a line at every quarter.
 class ProgressPrinter {
 public:
     bool operator()(float fraction, const char* stage) {
         const int percent = int(std::lround(std::clamp(fraction, 0.0f, 1.0f) * 100.0f));
-        const bool newStage = stage_ != stage;
-        if (!newStage && percent == percent_) return true;
-        if (tty_) {
-            if (newStage && !stage_.empty()) std::fputc('\n', stderr);
-            std::fprintf(stderr, "\rspatter-proxy: %-8s %3d%%", stage, percent);
-        } else if (newStage || percent / 25 != percent_ / 25) {
-            std::fprintf(stderr, "spatter-proxy: %-8s %3d%%\n", stage, percent);
+        if (tty_ && (percent != percent_ || stage_ != stage)) {
+            std::fprintf(stderr, "\rspatter-proxy: %3d%% (%s)\033[K", percent, stage);
+            printed_ = true;
+        } else if (!tty_ && percent / 25 != percent_ / 25) {
+            std::fprintf(stderr, "spatter-proxy: %3d%%\n", percent);
         }
         stage_ = stage;
         percent_ = percent;
         return true;
     }
     void finish() {
-        if (tty_ && !stage_.empty()) std::fputc('\n', stderr);
-        stage_.clear();
+        if (printed_) std::fputc('\n', stderr);
+        printed_ = false;
     }
 
 private:
     bool tty_ = isatty(fileno(stderr)) != 0;
+    bool printed_ = false;
     std::string stage_;
     int percent_ = -1;
 };

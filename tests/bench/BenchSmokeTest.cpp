@@ -107,6 +107,32 @@ TEST(BenchSmoke, TradeoffWritesOneRowPerBackendAndTolerance) {
     EXPECT_TRUE(coarse["coverage_iou"].is_null()); // --no-render
 }
 
+TEST(BenchSmoke, ProxyComparesWithPlainMeshoptimizerInOneRun) {
+    const std::string dir = test::scratchDir("bench-proxy");
+    const std::string mesh = writeSphere(dir);
+    ASSERT_EQ(runBench("proxy --meshes " + mesh + " --tolerances 1,5 --samples 2000 --no-gallery --json " +
+                           dir + "/p.json",
+                       dir + "/log"),
+              0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/p.json");
+    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << readAll(dir + "/p.json");
+    ASSERT_EQ(j["rows"].size(), 2u);
+    for (const auto& row : j["rows"]) {
+        for (const char* key : {"mesh", "tolerance_pct", "input_triangles", "anchor_triangles",
+                                "anchor_target", "anchor_dense", "meshopt_s", "proxy_triangles", "proxy_h",
+                                "proxy_dense", "proxy_met", "proxy_s", "triangles_ratio", "time_ratio"})
+            EXPECT_TRUE(row.contains(key)) << key;
+        EXPECT_EQ(row["input_triangles"], 2048);
+        EXPECT_LT(row["proxy_triangles"].get<int>(), 2048);
+        // The certified bound is never below the dense estimate, and the anchor is within the tolerance.
+        EXPECT_GE(row["proxy_h"].get<double>(), row["proxy_dense"].get<double>());
+        EXPECT_LE(row["anchor_dense"].get<double>(), row["tolerance"].get<double>());
+    }
+    ASSERT_EQ(j["tenth_percent"].size(), 1u);
+    EXPECT_TRUE(j["gallery_cold"].is_null()); // --no-gallery
+}
+
 TEST(BenchSmoke, MemoryQuickReportsBytesPerDecal) {
     const std::string dir = test::scratchDir("bench-memory");
     ASSERT_EQ(runBench("memory --quick --no-gpu --json " + dir + "/m.json", dir + "/log"), 0)
