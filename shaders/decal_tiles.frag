@@ -1,8 +1,8 @@
-// Tiled decal resolve: the deferred paths' decals applied by one full-screen pass instead of a box per
-// decal. The forward path's binning (DecalProjector::bin) has sorted the visible decals into screen
-// tiles; each pixel reads the host's G-buffer once, runs through its tile's decals in drawing order
-// with the same tests and the same blending as decal.frag, and writes once what all of them made of
-// it. Blending a decal over another, c' = mix(c, decal, a), composes: after decals 1..k the pixel is
+// Tiled decal resolve: the deferred paths' decals applied by one pass over the screen tiles that have
+// decals (decal_tiles.vert) instead of a box per decal. The forward path's binning
+// (DecalProjector::bin) has sorted the visible decals into the tiles; each pixel reads the host's
+// G-buffer once, runs through its tile's decals in drawing order with the same tests and the same
+// blending as decal.frag, and writes once what all of them made of it. Blending a decal over another, c' = mix(c, decal, a), composes: after decals 1..k the pixel is
 //   c * T + S,  T = prod(1 - a_i),  S = sum(decal_i * a_i * prod_{j > i}(1 - a_j)),
 // so one output (S / (1 - T), 1 - T) through the box pass's blend state (or the DBuffer's) gives what
 // the boxes would have given one by one. Normals are read where they are written: each pixel reads

@@ -157,7 +157,7 @@ struct DecalProjector::Impl {
         if (it != programs.end()) return it->second.get();
         const bool tiles = bits & kVariantTiles;
         Result<GlProgram> p = buildProgram(shaderLibrary(kProjectorShaders),
-                                           {{GL_VERTEX_SHADER, tiles ? "fullscreen.vert" : "decal.vert"},
+                                           {{GL_VERTEX_SHADER, tiles ? "decal_tiles.vert" : "decal.vert"},
                                             {GL_FRAGMENT_SHADER, tiles ? "decal_tiles.frag" : "decal.frag"}},
                                            variantDefines(bits));
         if (!p) return fail("projector: " + p.error());
@@ -474,8 +474,8 @@ struct DecalProjector::Impl {
     }
 
     // The tiled resolve: the visible decals binned into tiles, then the roughness pass (which reads the
-    // normals before the main pass changes them) and the main pass, each over the viewport, each
-    // pixel reading and writing only its own texels.
+    // normals before the main pass changes them) and the main pass, each over the tiles with decals,
+    // each pixel reading and writing only its own texels.
     void resolveWithTiles(const HostFrame& f, const ProjectorDraw& o, const FrameCamera& camera, bool onGpu,
                           const DecalVisibility& vis, const Passes& passes, ProjectorStats& stats) {
         binVisible(forwardFrame(f), camera, onGpu, vis, stats);
@@ -487,16 +487,16 @@ struct DecalProjector::Impl {
         glTextureBarrier(); // the G-buffer's last writes must show to the reads of the pass
         if (passes.roughness != 0) {
             bindRoughnessTarget(f);
-            stats.drawCalls += drawFullScreen(f, passes.roughness);
+            stats.drawCalls += drawTiles(f, passes.roughness);
             glTextureBarrier();
         }
         bindTargets(f, o, passes.writesNormals);
-        stats.drawCalls += drawFullScreen(f, passes.main);
+        stats.drawCalls += drawTiles(f, passes.main);
     }
 
-    // The tiled resolve's pass: one triangle over the viewport (decal_tiles.frag) into the targets
+    // The tiled resolve's pass: a quad over each tile with decals (decal_tiles.vert) into the targets
     // attached, no depth test.
-    size_t drawFullScreen(const HostFrame& f, GLuint prog) {
+    size_t drawTiles(const HostFrame& f, GLuint prog) {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo.get());
         GlStateGuard::neutralise();
         glViewport(f.x, f.y, f.width, f.height);
@@ -508,7 +508,7 @@ struct DecalProjector::Impl {
         glEnable(GL_FRAMEBUFFER_SRGB);
         glUseProgram(prog);
         glBindVertexArray(emptyVao.get());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(forward.tileCount()));
         return 1;
     }
 

@@ -108,10 +108,11 @@ enum class DecalNormalFrame {
 // How draw() applies the visible decals to the host's G-buffer or to the DBuffer.
 enum class DeferredResolve {
     Boxes, // a box per decal, rasterised over the G-buffer (Krassnigg): each covers just its pixels
-    Tiles, // the decals binned into screen tiles as for the forward path (bin()), then one full-screen
-           // pass in which each pixel with decals reads the G-buffer once, applies its tile's decals
-           // in order and writes once: no normal copy, one G-buffer read and write per pixel however
-           // many decals overlap it. A tile holds up to forwardTileCapacity decals when culled on the GPU.
+    Tiles, // the decals binned into screen tiles as for the forward path (bin()), then one pass over
+           // the tiles with decals in which each pixel reads the G-buffer once, applies its tile's
+           // decals in order and writes once: no normal copy, one G-buffer read and write per pixel
+           // however many decals overlap it. A tile holds up to forwardTileCapacity decals when culled
+           // on the GPU.
 };
 
 struct HostDepth {
