@@ -408,6 +408,39 @@ Result<HausdorffResult> boundOneSided(const HausdorffSurface& from, const Hausdo
     return out;
 }
 
+Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSurface& to,
+                                 size_t maxTriangles, double stopAbove, const ProgressCallback& progress) {
+    const Impl& a = from.impl();
+    const Impl& b = to.impl();
+    if (a.triangles.empty()) return 0.0;
+    if (b.triangles.empty()) return fail("the target mesh has no surface (no triangle of non-zero area)");
+    const size_t stride = std::max<size_t>(1, a.triangles.size() / std::max<size_t>(maxTriangles, 1));
+    const size_t count = (a.triangles.size() + stride - 1) / stride;
+    const unsigned workers = detail::workerCount();
+    std::vector<double> worst(workers, 0.0);
+    std::atomic<bool> above{false};
+    auto distance = [&](const glm::dvec3& p) {
+        const std::optional<ClosestPoint> c = b.query.closest(p);
+        return c ? c->distance : std::numeric_limits<double>::infinity();
+    };
+    auto report = [&](double f) { return !progress || progress(float(f), "measure"); };
+    const bool finished = detail::parallelChunks(
+        count, 256, workers,
+        [&](size_t begin, size_t end, unsigned w) {
+            for (size_t i = begin; i < end && !above.load(std::memory_order_relaxed); ++i) {
+                const std::array<uint32_t, 3>& t = a.triangles[i * stride];
+                const glm::dvec3 p[3] = {a.positions[t[0]], a.positions[t[1]], a.positions[t[2]]};
+                worst[w] =
+                    std::max({worst[w], distance((p[0] + p[1] + p[2]) / 3.0), distance(0.5 * (p[0] + p[1])),
+                              distance(0.5 * (p[1] + p[2])), distance(0.5 * (p[2] + p[0]))});
+                if (worst[w] > stopAbove) above.store(true, std::memory_order_relaxed);
+            }
+        },
+        report, &above);
+    if (!finished) return fail("cancelled");
+    return *std::max_element(worst.begin(), worst.end());
+}
+
 Result<HausdorffResult> boundHausdorff(const HausdorffSurface& a, const HausdorffSurface& b,
                                        const HausdorffSettings& s, const ProgressCallback& progress) {
     if ((a.surfaceTriangleCount() == 0) != (b.surfaceTriangleCount() == 0))

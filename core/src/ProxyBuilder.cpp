@@ -63,6 +63,12 @@ constexpr double kStartFraction[3] = {0.0, 0.5, 0.4};
 // both a certified and a failed run it steps by a factor in this range (see nextTarget).
 constexpr double kSearchPrecision = 0.1;
 constexpr double kSearchStep = 1.5, kSearchStepMax = 4.0;
+// Triangles of each mesh sampled (centroid and edge midpoints) to judge a run of the search. A run
+// whose sampled distance is at most kLikelyFraction of the tolerance is taken as likely within and
+// certified at the end; one between that and the tolerance is certified at once (the samples
+// often miss the last few percent of the distance).
+constexpr size_t kSampledTriangles = 1024;
+constexpr double kLikelyFraction = 0.9;
 // A proxy that misses the tolerance gets a sharp bound with this many times the certification margin:
 // its h only sizes decal boxes, and a tighter one costs many more queries.
 constexpr double kMissedMarginScale = 4.0;
@@ -423,6 +429,7 @@ struct Candidate {
     // error, so a target between this and `target` gives the same mesh. For OpenMesh: `target`.
     double resultError = 0.0;
     HausdorffResult proxyToRender, renderToProxy;
+    bool certified = false; // the two results above are the certificate's
     double bound() const { return std::max(proxyToRender.upper, renderToProxy.upper); }
     double lower() const { return std::max(proxyToRender.lower, renderToProxy.lower); }
     bool within(double tolerance) const {
@@ -535,78 +542,181 @@ struct SearchOutcome {
     uint32_t runs = 0;
 };
 
-// The next target of the search. While no run failed: up from the certified target by the room the
-// last run left (tolerance / its largest measured distance); while none was certified: down by how far
-// the last run overshot (its measured distance / tolerance); both within [kSearchStep,
-// kSearchStepMax], doubled for every earlier step the same way (a distance that hardly follows the
-// target, as where one collapse decides, is then bracketed in a few runs). Then the geometric middle
-// of the bracket [lo, hi].
-double nextTarget(double lo, double hi, double measuredOverTolerance, uint32_t runs) {
+// How a run of the search is judged: by a sampled lower bound of its distance (a quick "likely
+// within", certified afterwards) or by the certificate itself.
+enum class Judge { Sampled, Certified };
+
+// A run of the search: simplified at `target`, judged, and whether it is within the tolerance.
+struct Judged {
+    Candidate candidate;
+    double measured = 0.0; // the largest distance measured
+    bool within = false;
+    bool removedNothing = false;
+};
+
+// The sampled judgement: the larger of the two sampled lower bounds, each stopping above the tolerance.
+Status sample(Candidate& c, const HausdorffSurface& render, double tolerance, double& measured,
+              const ProgressCallback& progress) {
+    if (c.mesh.indices.empty()) {
+        measured = std::numeric_limits<double>::infinity();
+        return {};
+    }
+    Result<HausdorffSurface> proxy = HausdorffSurface::create(c.mesh);
+    if (!proxy) return fail("proxy: " + proxy.error());
+    Result<double> p2r = sampledLowerBound(proxy.value(), render, kSampledTriangles, tolerance, progress);
+    if (!p2r) return fail(p2r.error());
+    measured = p2r.value();
+    if (measured > tolerance) return {};
+    Result<double> r2p = sampledLowerBound(render, proxy.value(), kSampledTriangles, tolerance, progress);
+    if (!r2p) return fail(r2p.error());
+    measured = std::max(measured, r2p.value());
+    return {};
+}
+
+// The next target of the search. While no run failed: up from the last target by the room that run
+// left (tolerance / its largest measured distance, within [kSearchStep, kSearchStepMax]); while none
+// was within: down by kSearchStep. Either step is doubled for every earlier step the same way (a
+// distance that hardly follows the target, as where one collapse decides, is then bracketed in a few
+// runs). Then the geometric middle of the bracket [lo, hi]. A failed run's measured distance is not
+// used: it stops at the first distance above the tolerance, which depends on timing.
+double nextTarget(double lo, double hi, double withinMeasuredOverTolerance, uint32_t runs) {
     const double streak = std::ldexp(1.0, int(std::min(runs, 8u)) - 1);
     if (!std::isfinite(hi))
         return lo * streak *
-               std::clamp(1.0 / std::max(measuredOverTolerance, 1e-9), kSearchStep, kSearchStepMax);
-    if (lo <= 0.0) return hi / (streak * std::clamp(measuredOverTolerance, kSearchStep, kSearchStepMax));
+               std::clamp(1.0 / std::max(withinMeasuredOverTolerance, 1e-9), kSearchStep, kSearchStepMax);
+    if (lo <= 0.0) return hi / (streak * kSearchStep);
     return std::sqrt(lo * hi);
 }
 
-// The coarsest certified proxy one backend gives (see "The search" in docs/PROXIES.md): the backend's
-// target error is bisected between a certified run (lo) and one that is not (hi) until hi <= (1 +
-// kSearchPrecision) lo, or maxAttempts runs are spent. Each candidate is certified with the early answer.
-Result<SearchOutcome> searchBackend(ProxyBackend backend, const Mesh& welded, double tolerance,
-                                    size_t surfaceTriangles, bool withinBudget,
-                                    const HausdorffSurface& render, const HausdorffSettings& certifying,
-                                    const ProxySettings& s, uint32_t maxRuns, SearchProgress& progress,
-                                    std::vector<std::string>& notes) {
-    Mesh meshoptInput;
-    if (backend == ProxyBackend::MeshOpt) {
-        meshoptInput = welded;
-        if (s.keepSharpFeatures) splitCreases(meshoptInput, s.featureAngleDegrees);
-    }
-    SearchOutcome out;
-    std::optional<Candidate> finest; // the finest run not certified, for when none is
+// The state of the search: the largest target judged within (lo), the smallest judged not (hi).
+struct Bracket {
     double lo = 0.0, hi = std::numeric_limits<double>::infinity();
-    double target = tolerance * kStartFraction[uint32_t(backend)];
-    while (out.runs < maxRuns && !(lo > 0.0 && hi <= (1.0 + kSearchPrecision) * lo)) {
-        Result<Candidate> c =
-            simplifyOnce(backend, welded, meshoptInput, target, s, progress.stage(0.0, 0.2), notes);
-        if (!c) return fail(c.error());
-        ++out.runs;
-        double measured = 0.0; // the largest distance the certification measured
-        const size_t triangles = c->mesh.triangleCount();
-        if (withinBudget && triangles >= surfaceTriangles) { // as good as the render mesh
-            out.removedNothing = !out.best;
-            lo = target;
-        } else {
-            if (Status st = certify(c.value(), render, certifying, progress.stage(0.2, 0.8)); !st)
-                return fail(st.error());
-            const bool budgetLimited = c->budgetLimited;
-            measured = c->lower();
-            if (c->within(tolerance)) {
-                if (out.best && out.best->mesh.triangleCount() == triangles) break; // converged
-                lo = target;
-                if (!out.best || triangles < out.best->mesh.triangleCount()) out.best = std::move(c.value());
-                out.removedNothing = false;
-            } else {
-                hi = std::min(hi, std::max(c->resultError, lo));
-                if (!finest || c->target < finest->target) finest = std::move(c.value());
-            }
-            if (budgetLimited) break; // the budget decides the proxy, not the target
-        }
-        progress.nextRun();
-        target = nextTarget(lo, hi, measured / tolerance, out.runs);
+    bool closed() const { return lo > 0.0 && hi <= (1.0 + kSearchPrecision) * lo; }
+};
+
+// Everything a search run needs besides its target.
+struct SearchContext {
+    ProxyBackend backend;
+    const Mesh& welded;
+    const Mesh& meshoptInput;
+    double tolerance;
+    size_t surfaceTriangles;
+    bool withinBudget;
+    const HausdorffSurface& render;
+    const HausdorffSettings& certifying;
+    const ProxySettings& settings;
+    SearchProgress& progress;
+    std::vector<std::string>& notes;
+};
+
+Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge) {
+    Result<Candidate> c = simplifyOnce(k.backend, k.welded, k.meshoptInput, target, k.settings,
+                                       k.progress.stage(0.0, 0.2), k.notes);
+    if (!c) return fail(c.error());
+    Judged j;
+    j.candidate = std::move(c).value();
+    if (k.withinBudget && j.candidate.mesh.triangleCount() >= k.surfaceTriangles) { // as good as the render
+        j.removedNothing = j.within = true;
+        return j;
     }
-    if (!out.best && !out.removedNothing && finest) {
-        // Nothing certified: the finest candidate, with its sharp bound.
-        HausdorffSettings sharp = certifying;
-        sharp.tolerance = std::numeric_limits<double>::infinity();
-        sharp.margin *= kMissedMarginScale;
-        if (Status st = certify(*finest, render, sharp, progress.stage(0.2, 0.8)); !st)
+    if (judge == Judge::Sampled) {
+        if (Status st = sample(j.candidate, k.render, k.tolerance, j.measured, k.progress.stage(0.2, 0.8));
+            !st)
             return fail(st.error());
-        notes.push_back(std::string(proxyBackendName(backend)) + ": no candidate in " +
-                        std::to_string(out.runs) + " runs was certified within the tolerance");
-        out.best = std::move(finest);
+        j.within = j.measured <= k.tolerance;
+        if (!j.within || j.measured <= kLikelyFraction * k.tolerance) return j;
     }
+    if (Status st = certify(j.candidate, k.render, k.certifying, k.progress.stage(0.2, 0.8)); !st)
+        return fail(st.error());
+    j.measured = j.candidate.lower();
+    j.within = j.candidate.within(k.tolerance);
+    j.candidate.certified = true;
+    return j;
+}
+
+// Bisects the target from `target` within `bracket` until it closes or the runs are spent. Candidates
+// judged within go to `accepted` (coarser ones later); the finest judged not within to `finest`.
+Status bisect(const SearchContext& k, Judge judge, double target, Bracket& bracket, uint32_t maxRuns,
+              SearchOutcome& out, std::vector<Candidate>& accepted, std::optional<Candidate>& finest) {
+    while (out.runs < maxRuns && !bracket.closed()) {
+        Result<Judged> j = runAndJudge(k, target, judge);
+        if (!j) return fail(j.error());
+        ++out.runs;
+        k.progress.nextRun();
+        Candidate& c = j->candidate;
+        const bool budgetLimited = c.budgetLimited;
+        if (j->removedNothing) {
+            out.removedNothing = accepted.empty();
+            bracket.lo = target;
+        } else if (j->within) {
+            if (!accepted.empty() && accepted.back().mesh.triangleCount() == c.mesh.triangleCount())
+                return {}; // converged: a coarser target gives the same proxy
+            bracket.lo = target;
+            out.removedNothing = false;
+            accepted.push_back(std::move(c));
+        } else {
+            bracket.hi = std::min(bracket.hi, std::max(c.resultError, bracket.lo));
+            if (!finest || c.target < finest->target) finest = std::move(c);
+        }
+        if (budgetLimited) return {}; // the budget decides the proxy, not the target
+        target = nextTarget(bracket.lo, bracket.hi, j->measured / k.tolerance, out.runs);
+    }
+    return {};
+}
+
+// The coarsest certified proxy one backend gives (see "The search" in docs/PROXIES.md). The
+// backend's target error is bisected, each run judged by a sampled lower bound of its distance, until
+// the coarsest target judged within is known within kSearchPrecision or maxRuns runs are spent; the
+// candidates judged within are then certified from the coarsest down, and the first certified is the
+// proxy. When none is, the search goes on below them with every run certified.
+Result<SearchOutcome> searchBackend(const SearchContext& k, uint32_t maxRuns) {
+    SearchOutcome out;
+    std::vector<Candidate> likely;
+    std::optional<Candidate> finest; // the finest run not within, for when none is
+    Bracket bracket;
+    if (Status st = bisect(k, Judge::Sampled, k.tolerance * kStartFraction[uint32_t(k.backend)], bracket,
+                           maxRuns, out, likely, finest);
+        !st)
+        return fail(st.error());
+    if (out.removedNothing) return out;
+    for (; !likely.empty(); likely.pop_back()) {
+        Candidate& c = likely.back();
+        if (!c.certified)
+            if (Status st = certify(c, k.render, k.certifying, k.progress.stage(0.2, 0.8)); !st)
+                return fail(st.error());
+        if (c.within(k.tolerance)) {
+            out.best = std::move(c);
+            return out;
+        }
+        if (!finest || c.target < finest->target) finest = std::move(c);
+    }
+    if (finest) {
+        std::vector<Candidate> certified;
+        Bracket below;
+        below.hi = finest->target;
+        const uint32_t moreRuns = std::max(2u, maxRuns / 2);
+        if (Status st = bisect(k, Judge::Certified, below.hi / kSearchStep, below, out.runs + moreRuns, out,
+                               certified, finest);
+            !st)
+            return fail(st.error());
+        if (!certified.empty()) {
+            out.best = std::move(*std::min_element(certified.begin(), certified.end(),
+                                                   [](const Candidate& x, const Candidate& y) {
+                                                       return x.mesh.triangleCount() < y.mesh.triangleCount();
+                                                   }));
+            return out;
+        }
+    }
+    if (out.removedNothing || !finest) return out;
+    // Nothing certified: the finest candidate, with its sharp bound.
+    HausdorffSettings sharp = k.certifying;
+    sharp.tolerance = std::numeric_limits<double>::infinity();
+    sharp.margin *= kMissedMarginScale;
+    if (Status st = certify(*finest, k.render, sharp, k.progress.stage(0.2, 0.8)); !st)
+        return fail(st.error());
+    k.notes.push_back(std::string(proxyBackendName(k.backend)) + ": no candidate in " +
+                      std::to_string(out.runs) + " runs was certified within the tolerance");
+    out.best = std::move(finest);
     return out;
 }
 
@@ -727,9 +837,15 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
     Result<HausdorffSurface> renderSurface = HausdorffSurface::create(render);
     if (!renderSurface) return fail("render mesh: " + renderSurface.error());
     SearchProgress searchProgress(progress, kExpectedRuns);
-    Result<SearchOutcome> outcome =
-        searchBackend(backend, welded, tolerance, surfaceTriangles, withinBudget, renderSurface.value(),
-                      certifying, s, s.maxAttempts, searchProgress, proxy.notes);
+    Mesh meshoptInput;
+    if (backend == ProxyBackend::MeshOpt) {
+        meshoptInput = welded;
+        if (s.keepSharpFeatures) splitCreases(meshoptInput, s.featureAngleDegrees);
+    }
+    const SearchContext context{
+        backend,    welded, meshoptInput,   tolerance,  surfaceTriangles, withinBudget, renderSurface.value(),
+        certifying, s,      searchProgress, proxy.notes};
+    Result<SearchOutcome> outcome = searchBackend(context, s.maxAttempts);
     if (!outcome) return fail(outcome.error());
     proxy.attempts = outcome->runs;
     if (!outcome->best) {

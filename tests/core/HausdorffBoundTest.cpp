@@ -219,3 +219,27 @@ TEST(HausdorffBound, NeverBelowTheDenseEstimateOnSharedMeshes) {
                     sampled->lowerBound(), sampled->upperBound(), h->queries, seconds);
     }
 }
+
+// The sampled lower bound steers the builder's search: it is a lower bound (never above the certified
+// bound), and it stops once a distance is above the level it is given.
+TEST(HausdorffBound, SampledLowerBoundStaysUnderTheCertifiedBound) {
+    SPATTER_REQUIRE_SHARED(path, "meshes/fandisk.obj");
+    Result<Scene> scene = loadScene(path);
+    ASSERT_TRUE(scene) << scene.error();
+    const Mesh& render = scene->objects.at(0).mesh;
+    const Mesh proxy = proxyOf(render, 0.01f);
+    const HausdorffSurface r = surface(render), p = surface(proxy);
+    HausdorffSettings s;
+    s.margin = 0.0005 * double(render.bounds().diagonal());
+    Result<HausdorffResult> h = boundHausdorff(p, r, s);
+    ASSERT_TRUE(h) << h.error();
+    const double inf = std::numeric_limits<double>::infinity();
+    Result<double> p2r = sampledLowerBound(p, r, 100000, inf), r2p = sampledLowerBound(r, p, 100000, inf);
+    ASSERT_TRUE(p2r && r2p);
+    EXPECT_GT(std::max(p2r.value(), r2p.value()), 0.5 * h->lower);
+    EXPECT_LE(std::max(p2r.value(), r2p.value()), h->upper);
+    Result<double> early = sampledLowerBound(p, r, 100000, 0.25 * p2r.value());
+    ASSERT_TRUE(early);
+    EXPECT_GT(early.value(), 0.25 * p2r.value());
+    EXPECT_THAT(sampledLowerBound(p, surface(Mesh{}), 10, inf).error(), HasSubstr("no surface"));
+}

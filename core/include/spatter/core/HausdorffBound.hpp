@@ -99,6 +99,14 @@ Result<HausdorffResult> boundOneSided(const HausdorffSurface& from, const Hausdo
                                       const HausdorffSettings& settings,
                                       const ProgressCallback& progress = {});
 
+// A lower bound only: the largest distance from `from` to `to` at the centroids and edge midpoints of
+// at most `maxTriangles` of from's triangles (a fixed stride), stopping as soon as one is above
+// `stopAbove`. No refinement and no upper bound: cheap, for steering a search whose answer is
+// certified afterwards. 0 for a `from` without surface; fails like boundOneSided.
+Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSurface& to,
+                                 size_t maxTriangles, double stopAbove,
+                                 const ProgressCallback& progress = {});
+
 // Both directions (a to b first, its lower bound then carried into b to a): lower and upper are the
 // two-sided ones; `exceeded` as soon as either direction exceeds. Fails like boundOneSided, and when
 // exactly one of the meshes has a surface.

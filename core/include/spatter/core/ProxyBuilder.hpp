@@ -16,10 +16,12 @@
 // surface points, so the true distance is at least their maximum; h exceeds it by at most
 // samplingMargin.
 //
-// The search. meshoptimizer (or OpenMesh, when asked for) runs at a target error; the candidate is
-// certified with the early answer to "is h <= tolerance?". The target is bisected between a certified
-// candidate and one that is not, until the coarsest certified target is known within 10% or
-// maxAttempts runs are spent, and the certified candidate with the fewest triangles is the proxy.
+// The search. meshoptimizer (or OpenMesh, when asked for) runs at a target error, bisected between a
+// candidate within the tolerance and one that is not, until the coarsest target within is known
+// within 10% or maxAttempts runs are spent. Runs are judged by a sampled lower bound of their
+// distance (a run close to the tolerance by the certificate at once); the candidates judged within are
+// then certified, coarsest first, with the early answer to "is h <= tolerance?", and the first
+// certified is the proxy (see docs/PROXIES.md, "The search").
 // Its h is at most max(largest measured distance + marginFraction * tolerance, tolerance): the search
 // asks for the tolerance, not for the sharpest bound. When no candidate is certified, the finest one is
 // returned with a sharp bound (within 4 * marginFraction * tolerance of the measured distance) and
