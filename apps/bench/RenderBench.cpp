@@ -33,14 +33,12 @@ on a flat floor seen from above, with decals laid on it directly: a number in th
 of them in view, each a square of a fraction of the screen height. Groups of rows:
 
   count        1080p, every decal in view: 100, 1,000, 10,000, 100,000, 1,000,000 decals
-  visible      1080p, 10,000 and 1,000,000 decals in the world, 0.01% to 10% of them in view (among
-               10,000 also resolved by tiles)
-  coverage     1080p, 10,000 decals in view, each 0.5%, 1.5% or 5% of the screen height, resolved by
-               boxes and by tiles (DeferredResolve)
+  visible      1080p, 10,000 and 1,000,000 decals in the world, 0.01% to 10% of them in view
+  coverage     1080p, 10,000 decals in view, each 0.5%, 1.5% or 5% of the screen height
   resolution   10,000 decals in view at 720p, 1080p and 4K
   features     1080p, 10,000 decals in view: minimal (no normal map, no fade), default (normal map
                and smooth fade), wrap-around, depth-derivative normal frame, object IDs (a dynamic
-               object in the scene), angle rejection off, the tiled resolve
+               object in the scene), angle rejection off
   cpu          1080p, 10,000 decals in view among 10,000 and among 1,000,000 in the world: the wall
                time of render() when it does not wait for the GPU (a glFinish after each frame,
                outside the time), with the GPU times of an earlier frame
@@ -76,8 +74,7 @@ struct Feature {
     bool depthFrame = false;
     bool ids = false;
     bool angleReject = true;
-    bool wait = true;   // render() waits for the frame's GPU times; false: CPU time of render() alone
-    bool tiles = false; // DeferredResolve::Tiles rather than boxes
+    bool wait = true; // render() waits for the frame's GPU times; false: CPU time of render() alone
 };
 
 const std::vector<Feature>& features() {
@@ -89,7 +86,6 @@ const std::vector<Feature>& features() {
         {"ids", true, DepthFade::Smooth, false, false, true, true},
         {"no-angle", true, DepthFade::Smooth, false, false, false, false},
         {"no-wait", true, DepthFade::Smooth, false, false, false, true, false},
-        {"tiles", true, DepthFade::Smooth, false, false, false, true, true, true},
     };
     return all;
 }
@@ -122,16 +118,14 @@ std::vector<Config> configs(const std::vector<std::string>& groups, bool quick) 
             out.push_back({"count", "1080p", n, n});
     if (want("visible")) {
         for (size_t v : quick ? std::vector<size_t>{100} : std::vector<size_t>{1000, 100, 10})
-            for (const char* f : {"default", "tiles"})
-                out.push_back({"visible", "1080p", 10000, v, 0.015, f});
+            out.push_back({"visible", "1080p", 10000, v});
         if (!quick)
             for (size_t v : {100000, 10000, 1000, 100})
                 out.push_back({"visible", "1080p", 1000000, v});
     }
     if (want("coverage"))
         for (double s : quick ? std::vector<double>{0.015} : std::vector<double>{0.005, 0.015, 0.05})
-            for (const char* f : {"default", "tiles"})
-                out.push_back({"coverage", "1080p", quick ? 1000u : 10000u, quick ? 1000u : 10000u, s, f});
+            out.push_back({"coverage", "1080p", quick ? 1000u : 10000u, quick ? 1000u : 10000u, s});
     if (want("resolution"))
         for (const char* r :
              quick ? std::vector<const char*>{"720p"} : std::vector<const char*>{"720p", "1080p", "4k"})
@@ -184,13 +178,12 @@ public:
         if (!resolutionByName(c.resolution, row.width, row.height))
             return fail("unknown resolution " + c.resolution);
         const Feature& f = feature(c.feature);
-        const int slot = !f.wait ? 2 : f.depthFrame ? 1 : f.tiles ? 3 : 0;
+        const int slot = !f.wait ? 2 : f.depthFrame ? 1 : 0;
         if (!renderers_[slot]) {
             RendererSettings rs;
             rs.width = row.width;
             rs.height = row.height;
             rs.waitForTimers = f.wait;
-            rs.deferredResolve = f.tiles ? DeferredResolve::Tiles : DeferredResolve::Boxes;
             rs.normalFrame = f.depthFrame ? DecalNormalFrame::DepthDerivatives : DecalNormalFrame::DecalAxes;
             Result<Renderer> r = Renderer::create(*context_, rs);
             if (!r) return fail(r.error());
@@ -331,10 +324,9 @@ private:
     glm::ivec2 pathSize_{0};
     std::optional<DecalProjector> projector_;
     std::tuple<size_t, size_t, double> projectorKey_;
-    // Waiting for GPU times, with the depth frame, not waiting, with the tiled resolve.
-    std::optional<Renderer> renderers_[4];
-    int sceneIds_[4] = {-1, -1, -1, -1};
-    std::tuple<size_t, size_t, double> decalsKey_[4];
+    std::optional<Renderer> renderers_[3]; // waiting for GPU times, with the depth frame, not waiting
+    int sceneIds_[3] = {-1, -1, -1};
+    std::tuple<size_t, size_t, double> decalsKey_[3];
 };
 
 Json rowJson(const Row& r) {
@@ -390,27 +382,20 @@ double perCoveredPixelRatio(const Row& r) {
 void printScaleTargets(const std::vector<Row>& rows, Json& targets) {
     for (const Row& r : rows) {
         if (!r.error.empty()) continue;
-        const bool tiles = r.config.feature == "tiles";
-        const std::string resolve = tiles ? "tiles" : "boxes";
         if (r.config.group == "visible" && r.config.visible == 10 && r.config.resolution == "1080p") {
-            const std::string key = tiles ? "visible_10_tiles" : "visible_10";
-            targets[key + "_ms"] = r.times.decalsMs;
-            targets[key + "_met"] = r.times.decalsMs <= 0.03;
-            std::printf("10 decals in view (%zu in the world), %s: %.3f ms (target <= 0.03 ms: %s)\n",
-                        r.config.world, resolve.c_str(), r.times.decalsMs,
-                        r.times.decalsMs <= 0.03 ? "met" : "missed");
+            targets["visible_10_ms"] = r.times.decalsMs;
+            targets["visible_10_met"] = r.times.decalsMs <= 0.03;
+            std::printf("10 decals in view (%zu in the world): %.3f ms (target <= 0.03 ms: %s)\n",
+                        r.config.world, r.times.decalsMs, r.times.decalsMs <= 0.03 ? "met" : "missed");
         }
         if (r.config.group != "coverage" || r.times.lightingMs <= 0.0) continue;
         const double ratio = perCoveredPixelRatio(r);
-        const std::string key = "per_covered_pixel_" +
-                                std::to_string(int(std::lround(r.config.size * r.height))) + "px" +
-                                (tiles ? "_tiles" : "");
+        const std::string key =
+            "per_covered_pixel_" + std::to_string(int(std::lround(r.config.size * r.height))) + "px";
         targets[key] = ratio;
-        std::printf(
-            "per covered pixel, %zu decals of %.0f px, %s: %.2fx the lighting pass's per pixel (target "
-            "<= 1.5x: %s)\n",
-            r.config.visible, r.config.size * r.height, resolve.c_str(), ratio,
-            ratio <= 1.5 ? "met" : "missed");
+        std::printf("per covered pixel, %zu decals of %.0f px: %.2fx the lighting pass's per pixel (target "
+                    "<= 1.5x: %s)\n",
+                    r.config.visible, r.config.size * r.height, ratio, ratio <= 1.5 ? "met" : "missed");
     }
 }
 

@@ -155,11 +155,9 @@ struct DecalProjector::Impl {
     Result<GLuint> program(uint32_t bits) {
         auto it = programs.find(bits);
         if (it != programs.end()) return it->second.get();
-        const bool tiles = bits & kVariantTiles;
-        Result<GlProgram> p = buildProgram(shaderLibrary(kProjectorShaders),
-                                           {{GL_VERTEX_SHADER, tiles ? "decal_tiles.vert" : "decal.vert"},
-                                            {GL_FRAGMENT_SHADER, tiles ? "decal_tiles.frag" : "decal.frag"}},
-                                           variantDefines(bits));
+        Result<GlProgram> p = buildProgram(
+            shaderLibrary(kProjectorShaders),
+            {{GL_VERTEX_SHADER, "decal.vert"}, {GL_FRAGMENT_SHADER, "decal.frag"}}, variantDefines(bits));
         if (!p) return fail("projector: " + p.error());
         const GLuint name = p->get();
         programs.emplace(bits, std::move(p.value()));
@@ -440,10 +438,10 @@ struct DecalProjector::Impl {
         }
     }
 
-    // The box resolve: the visible list (culled on the GPU, or `vis`), the normal copy the decals read
-    // when they write normals, then the boxes, and the roughness pass.
-    void resolveWithBoxes(const HostFrame& f, const ProjectorDraw& o, const FrameCamera& camera, bool onGpu,
-                          const DecalVisibility& vis, const Passes& passes, ProjectorStats& stats) {
+    // The visible list (culled on the GPU, or `vis`), the normal copy the decals read when they write
+    // normals, then the boxes, and the roughness pass.
+    void drawDecals(const HostFrame& f, const ProjectorDraw& o, const FrameCamera& camera, bool onGpu,
+                    const DecalVisibility& vis, const Passes& passes, ProjectorStats& stats) {
         stats.bytesUploaded = uploadInstances(stats.instanceUploads);
         BoxDraws boxes = cpuDraws(vis);
         if (onGpu) {
@@ -471,45 +469,6 @@ struct DecalProjector::Impl {
             bindRoughnessTarget(f);
             stats.drawCalls += drawBoxes(f, boxes, passes.roughness, depthTest);
         }
-    }
-
-    // The tiled resolve: the visible decals binned into tiles, then the roughness pass (which reads the
-    // normals before the main pass changes them) and the main pass, each over the tiles with decals,
-    // each pixel reading and writing only its own texels.
-    void resolveWithTiles(const HostFrame& f, const ProjectorDraw& o, const FrameCamera& camera, bool onGpu,
-                          const DecalVisibility& vis, const Passes& passes, ProjectorStats& stats) {
-        binVisible(forwardFrame(f), camera, onGpu, vis, stats);
-        stats.normalCopy =
-            normalCopyName(passes.writesNormals ? NormalCopyMode::InPlace : NormalCopyMode::None);
-        glNamedFramebufferTexture(fbo.get(), GL_DEPTH_ATTACHMENT, 0, 0);
-        bindInputs(f);
-        forward.bind(ForwardBindings{});
-        glTextureBarrier(); // the G-buffer's last writes must show to the reads of the pass
-        if (passes.roughness != 0) {
-            bindRoughnessTarget(f);
-            stats.drawCalls += drawTiles(f, passes.roughness);
-            glTextureBarrier();
-        }
-        bindTargets(f, o, passes.writesNormals);
-        stats.drawCalls += drawTiles(f, passes.main);
-    }
-
-    // The tiled resolve's pass: a quad over each tile with decals (decal_tiles.vert) into the targets
-    // attached, no depth test.
-    size_t drawTiles(const HostFrame& f, GLuint prog) {
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo.get());
-        GlStateGuard::neutralise();
-        glViewport(f.x, f.y, f.width, f.height);
-        glDisable(GL_SCISSOR_TEST);
-        glDisable(GL_STENCIL_TEST);
-        glDisable(GL_DEPTH_TEST);
-        glDepthMask(GL_FALSE);
-        glDisable(GL_CULL_FACE);
-        glEnable(GL_FRAMEBUFFER_SRGB);
-        glUseProgram(prog);
-        glBindVertexArray(emptyVao.get());
-        glDrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(forward.tileCount()));
-        return 1;
     }
 
     // The pass itself: one instanced draw of the boxes (BoxDraws). Returns the draws made.
@@ -678,21 +637,19 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     Impl& m = *impl_;
     if (const std::string p = hostFrameProblem(frame, options); !p.empty()) return fail("projector: " + p);
     const FrameCamera camera = frameCamera(frame);
-    const bool tiles = m.settings.deferredResolve == DeferredResolve::Tiles;
     const bool onGpu = m.cullsOnGpu();
     DecalVisibility vis;
     if (onGpu) {
         vis.flags = m.batch.flagsUnion();
     } else {
         CullView cull = camera.cull;
-        // Screen rectangles for the tiles, or for the normal copy.
-        cull.rects = tiles || (blendsIntoHost(options) && frame.normals.texture != 0);
+        cull.rects = blendsIntoHost(options) && frame.normals.texture != 0; // for the normal copy
         vis = m.cullOnCpu(cull);
     }
     ProjectorStats stats = m.cpuStats(vis, onGpu);
     if (fillsDBuffer(options)) m.dbuffer.prepare(frame.depth.texture); // cleared, even when nothing is drawn
     if (stats.skipped) return stats;
-    const uint32_t bits = m.variantBits(frame, options, vis.flags) | (tiles ? kVariantTiles : 0u);
+    const uint32_t bits = m.variantBits(frame, options, vis.flags);
     Passes passes;
     Result<GLuint> program = m.program(bits);
     if (!program) return fail(program.error());
@@ -704,14 +661,12 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
         if (!p) return fail(p.error());
         passes.roughness = p.value();
     }
-    // Decals that blend normal maps into the host's normals read them as they were before the pass:
-    // from a copy, or in place where no pixel reads another's; others read the host's texture, which
-    // the draw then does not write.
+    // Decals that blend normal maps into the host's normals read a copy of them (or read them in place
+    // where no pixel reads another's); others read the host's texture, which the draw then does not
+    // write.
     passes.writesNormals = blendsIntoHost(options) && (bits & kVariantNormalMap);
-    if (passes.writesNormals && !tiles)
+    if (passes.writesNormals)
         if (Status s = m.normalCopy.prepare(); !s) return fail(s.error());
-    if (tiles)
-        if (Status s = m.forward.prepare(); !s) return fail(s.error());
     if (onGpu)
         if (Status s = m.culling.prepare(); !s) return fail(s.error());
 
@@ -719,10 +674,7 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     m.timers.beginFrame(m.draws);
     m.timers.begin(GpuPass::Decals);
     m.uploadFrame(frame, camera);
-    if (tiles)
-        m.resolveWithTiles(frame, options, camera, onGpu, vis, passes, stats);
-    else
-        m.resolveWithBoxes(frame, options, camera, onGpu, vis, passes, stats);
+    m.drawDecals(frame, options, camera, onGpu, vis, passes, stats);
     m.timers.end();
     const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
     stats.gpuMs = times.decalsMs;

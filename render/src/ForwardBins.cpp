@@ -74,10 +74,9 @@ size_t ForwardBins::tileRects(const ForwardFrame& frame, const DecalVisibility& 
     return items;
 }
 
-glm::ivec2 ForwardBins::grid(const ForwardFrame& frame, int tileSize, ForwardGridGpu& head) {
+glm::ivec2 ForwardBins::grid(const ForwardFrame& frame, int tileSize, ForwardGridGpu& head) const {
     const glm::ivec2 tiles((frame.width + tileSize - 1) / tileSize, (frame.height + tileSize - 1) / tileSize);
     head.grid = glm::ivec4(frame.x, frame.y, tiles.x, tiles.y);
-    tileCount_ = size_t(tiles.x) * size_t(tiles.y);
     head.info.x = tileSize;
     return tiles;
 }

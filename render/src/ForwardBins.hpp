@@ -36,8 +36,6 @@ public:
     void bind(const ForwardBindings& b) const;
 
     GLuint decals() const { return decals_.get(); }
-    // The tiles of the latest bin: columns times rows.
-    size_t tileCount() const { return tileCount_; }
     GLuint tiles() const { return tiles_.get(); }
     GLuint items() const { return items_.get(); }
 
@@ -52,14 +50,13 @@ private:
     void dispatch(uint32_t visible, uint32_t tileCount) const;
 
     // The grid of `frame`'s tiles, the head's grid filled in.
-    glm::ivec2 grid(const ForwardFrame& frame, int tileSize, ForwardGridGpu& head);
+    glm::ivec2 grid(const ForwardFrame& frame, int tileSize, ForwardGridGpu& head) const;
 
     GlProgram prepare_, scan_, fill_, sort_, prepareCulled_, sortCulled_;
     GlBuffer decals_, tiles_, items_, rects_, counts_;
     size_t decalsCapacity_ = 0, tilesCapacity_ = 0, itemsCapacity_ = 0, rectsCapacity_ = 0,
            countsCapacity_ = 0;
     std::vector<glm::uvec2> rectsCpu_;
-    size_t tileCount_ = 0;
 };
 
 } // namespace spatter::render_detail

@@ -19,8 +19,7 @@ constexpr const char* kVariantNames[] = {"IDS",
                                          "NORMAL_WORLD_UNORM",
                                          "NORMAL_VIEW_UNORM",
                                          "ROUGHNESS_ALPHA",
-                                         "DBUFFER",
-                                         "TILES"};
+                                         "DBUFFER"};
 
 } // namespace
 

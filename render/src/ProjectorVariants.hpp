@@ -28,7 +28,6 @@ enum Variant : uint32_t {
     kVariantNormalViewUnorm = 8192u,
     kVariantRoughnessAlpha = 16384u,
     kVariantDBuffer = 32768u,
-    kVariantTiles = 65536u, // the tiled resolve (decal_tiles.frag) rather than boxes
 };
 
 // The defines of the set bits, in bit order.

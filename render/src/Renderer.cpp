@@ -431,7 +431,6 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
     projector.decalTextureSize = settings.decalTextureSize;
     projector.waitForTimers = settings.waitForTimers;
     projector.gpuCullingFrom = settings.gpuCullingFrom;
-    projector.deferredResolve = settings.deferredResolve;
     Result<DecalProjector> p = DecalProjector::create(projector);
     if (!p) return fail("renderer: " + p.error());
     impl->projector.emplace(std::move(p).value());

@@ -238,18 +238,6 @@ TEST(Projector, LeavesEveryListedGlStateAsItFoundIt) {
     bad.projection = glm::dmat4(0.0);
     EXPECT_FALSE(h->projector.draw(bad).ok());
     EXPECT_EQ(glStateSnapshot(), before) << "after a failed draw";
-    ProjectorSettings tiled;
-    tiled.deferredResolve = DeferredResolve::Tiles;
-    Result<DecalProjector> tiles = DecalProjector::create(tiled);
-    ASSERT_TRUE(tiles.ok()) << tiles.error();
-    ASSERT_TRUE(tiles->setObjects(h->wall.transforms, h->wall.ids).ok());
-    tiles->setDecalTypes(h->wall.types);
-    tiles->setDecals(h->wall.decals);
-    state.apply(); // creating a projector may bind its objects
-    ASSERT_TRUE(tiles->draw(h->host.frame(h->wall.camera, true)).ok());
-    ASSERT_TRUE(tiles->draw(alphaRoughness).ok());
-    ASSERT_TRUE(tiles->draw(h->host.frame(h->wall.camera, true), dbuffer).ok());
-    EXPECT_EQ(glStateSnapshot(), before) << "after draws of the tiled resolve";
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 

@@ -105,16 +105,6 @@ enum class DecalNormalFrame {
                       // decal's tangent projected into it (follows curvature and wrapped corners)
 };
 
-// How draw() applies the visible decals to the host's G-buffer or to the DBuffer.
-enum class DeferredResolve {
-    Boxes, // a box per decal, rasterised over the G-buffer (Krassnigg): each covers just its pixels
-    Tiles, // the decals binned into screen tiles as for the forward path (bin()), then one pass over
-           // the tiles with decals in which each pixel reads the G-buffer once, applies its tile's
-           // decals in order and writes once: no normal copy, one G-buffer read and write per pixel
-           // however many decals overlap it. A tile holds up to forwardTileCapacity decals when culled
-           // on the GPU.
-};
-
 struct HostDepth {
     uint32_t texture = 0; // GL_TEXTURE_2D name; required
     DepthEncoding encoding = DepthEncoding::Window;
@@ -188,7 +178,6 @@ struct ProjectorSettings {
     std::optional<size_t> gpuCullingFrom;
     static constexpr size_t kGpuCullingFrom = 65536;
     static constexpr size_t kGpuCullingFromSoftware = 262144;
-    DeferredResolve deferredResolve = DeferredResolve::Boxes;
     bool waitForTimers = false; // draw() waits for its GPU time (tools, benchmarks); otherwise the
                                 // time reported is that of an earlier frame, read without stalling
 };

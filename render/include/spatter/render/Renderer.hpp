@@ -103,7 +103,6 @@ struct RendererSettings {
     bool waitForTimers = false;           // render() waits for this frame's GPU times (tools, benchmarks)
     std::optional<size_t> gpuCullingFrom; // decals from which the projector culls on the GPU
                                           // (ProjectorSettings::gpuCullingFrom)
-    DeferredResolve deferredResolve = DeferredResolve::Boxes; // ProjectorSettings::deferredResolve
     LightSettings light;
 };
 
