@@ -248,13 +248,65 @@ private:
         return best;
     }
 
-    // The bound of a piece: Lipschitz from its corners, and when that is above the level, convexity
-    // against the corners' closest triangles of B, the smaller.
+    // Convexity against two triangles of B that share an edge, each over its side of the piece: the
+    // plane through the edge between them (along the mean of their normals) cuts the piece into two
+    // convex parts, and on each d_B is at most the distance to that side's triangle, whose largest
+    // value is at the part's corners. A piece lying across the edge, where no single triangle covers
+    // it, is then bounded without being cut. Infinity when the triangles share no edge.
+    double pairBound(const Piece& q, uint32_t ta, uint32_t tb, double cap) const {
+        glm::dvec3 a[3], b[3], shared[2];
+        int common = 0, aOnly = -1;
+        for (int k = 0; k < 3; ++k) {
+            a[k] = b_.corner(ta, k);
+            b[k] = b_.corner(tb, k);
+        }
+        for (int k = 0; k < 3; ++k) {
+            const bool inB = a[k] == b[0] || a[k] == b[1] || a[k] == b[2];
+            if (inB && common < 2)
+                shared[common++] = a[k];
+            else if (!inB)
+                aOnly = k;
+        }
+        if (common != 2 || aOnly < 0) return std::numeric_limits<double>::infinity();
+        glm::dvec3 na = glm::cross(a[1] - a[0], a[2] - a[0]), nb = glm::cross(b[1] - b[0], b[2] - b[0]);
+        na /= glm::length(na);
+        nb /= glm::length(nb);
+        if (glm::dot(na, nb) < 0.0) nb = -nb;
+        glm::dvec3 normal = glm::cross(shared[1] - shared[0], na + nb);
+        if (glm::dot(normal, a[aOnly] - shared[0]) < 0.0) normal = -normal; // positive side: ta's
+        double side[3];
+        for (int k = 0; k < 3; ++k)
+            side[k] = glm::dot(normal, q.p[k] - shared[0]);
+        double bound = 0.0;
+        auto take = [&](const glm::dvec3& p, uint32_t t) {
+            bound = std::max(bound, toTriangle(p, t));
+            return bound < cap;
+        };
+        for (int k = 0; k < 3; ++k) {
+            const int k1 = (k + 1) % 3;
+            if (side[k] >= 0.0 && !take(q.p[k], ta)) return cap;
+            if (side[k] <= 0.0 && !take(q.p[k], tb)) return cap;
+            if ((side[k] < 0.0) != (side[k1] < 0.0) && side[k] != 0.0 && side[k1] != 0.0) {
+                const glm::dvec3 cut = q.p[k] + (q.p[k1] - q.p[k]) * (side[k] / (side[k] - side[k1]));
+                if (!take(cut, ta) || !take(cut, tb)) return cap;
+            }
+        }
+        return bound;
+    }
+
+    // The bound of a piece: Lipschitz from its corners; when that is above the level, convexity
+    // against the corners' closest triangles of B one at a time, then two at a time across an edge
+    // they share. The smallest.
     double pieceBound(const Piece& q) const {
         const double lipschitz = std::max({q.m[0].distance, q.m[1].distance, q.m[2].distance}) +
                                  detail::enclosingRadius(q.p[0], q.p[1], q.p[2]);
         if (lipschitz <= level()) return lipschitz;
-        return convexBound(q, lipschitz);
+        double best = convexBound(q, lipschitz);
+        for (int i = 0; i < 3 && best > level(); ++i)
+            for (int j = i + 1; j < 3 && best > level(); ++j)
+                if (q.m[i].triangle != q.m[j].triangle)
+                    best = std::min(best, pairBound(q, q.m[i].triangle, q.m[j].triangle, best));
+        return best;
     }
 
     void triangle(const std::array<uint32_t, 3>& t) {

@@ -243,3 +243,30 @@ TEST(HausdorffBound, SampledLowerBoundStaysUnderTheCertifiedBound) {
     EXPECT_GT(early.value(), 0.25 * p2r.value());
     EXPECT_THAT(sampledLowerBound(p, surface(Mesh{}), 10, inf).error(), HasSubstr("no surface"));
 }
+
+// A coarse square over a fine grid in its plane: the distance is 0 everywhere, and pieces across the
+// grid's edges are bounded by the two triangles on either side instead of being cut down to the
+// tolerance along every edge (which takes about three times the queries here).
+TEST(HausdorffBound, PiecesAcrossCoplanarEdgesAreBoundedWithoutCutting) {
+    Mesh grid; // 61 x 61 cells over [-0.01, 1.01]^2, not aligned with the square's halvings
+    const uint32_t n = 61;
+    for (uint32_t i = 0; i <= n; ++i)
+        for (uint32_t j = 0; j <= n; ++j)
+            grid.positions.push_back(
+                {-0.01f + 1.02f * float(i) / float(n), -0.01f + 1.02f * float(j) / float(n), 0.0f});
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t j = 0; j < n; ++j) {
+            const uint32_t v = i * (n + 1) + j;
+            grid.indices.insert(grid.indices.end(), {v, v + n + 1, v + n + 2, v, v + n + 2, v + 1});
+        }
+    const HausdorffSurface square = surface(::square(0.0f, 1.0f)), fine = surface(grid);
+    HausdorffSettings s;
+    s.margin = 1e-4;
+    s.tolerance = 1e-3;
+    Result<HausdorffResult> h = boundOneSided(square, fine, s);
+    ASSERT_TRUE(h) << h.error();
+    EXPECT_TRUE(h->within(1e-3));
+    EXPECT_LT(h->lower, 1e-12);
+    std::printf("[ coplanar  ] %zu queries\n", h->queries);
+    EXPECT_LT(h->queries, 100000u);
+}

@@ -21,8 +21,10 @@
 // corners of its triangles, whose convex hull holds them), against the triangle of B closest to one of
 // its vertices, and by Lipschitz from that vertex to the farthest box corner. A node whose bound is at
 // most the acceptance level is done; otherwise its children are bounded in turn. At a leaf, each
-// triangle is bounded by convexity against the triangles of B closest to its three corners and by
-// Lipschitz; a triangle above the level is cut by halving its longest edge (one new exact distance)
+// triangle is bounded by Lipschitz and by convexity against the triangles of B closest to its three
+// corners, one at a time, or two sharing an edge at a time (the plane through the edge cuts the
+// triangle into two convex parts, each bounded against the triangle on its side); a triangle above
+// the level is cut by halving its longest edge (one new exact distance)
 // and the halves bounded again. The acceptance level is max(L + margin, tolerance), where L is the
 // largest distance measured so far, so pieces are refined only where the distance may exceed what is
 // already known (plus the margin) and what is asked. The bound reported is the largest bound of an
