@@ -63,11 +63,12 @@ constexpr double kStartFraction[3] = {0.0, 0.5, 0.4};
 // both a certified and a failed run it steps by a factor in this range (see nextTarget).
 constexpr double kSearchPrecision = 0.1;
 constexpr double kSearchStep = 1.5, kSearchStepMax = 4.0;
-// Triangles of each mesh sampled (centroid and edge midpoints) to judge a run of the search. A run
-// whose sampled distance is at most kLikelyFraction of the tolerance is taken as likely within and
-// certified at the end; one between that and the tolerance is certified at once (the samples
-// often miss the last few percent of the distance).
-constexpr size_t kSampledTriangles = 1024;
+// Triangles sampled (centroid and edge midpoints) to judge a run of the search: of the proxy, where a
+// coarse triangle hides its largest distance inside, and of the render mesh. A run whose sampled
+// distance is at most kLikelyFraction of the tolerance is taken as likely within and certified at the
+// end; one between that and the tolerance is certified at once (the samples often miss the last few
+// percent of the distance).
+constexpr size_t kSampledProxyTriangles = 8192, kSampledRenderTriangles = 1024;
 constexpr double kLikelyFraction = 0.9;
 // A proxy that misses the tolerance gets a sharp bound with this many times the certification margin:
 // its h only sizes decal boxes, and a tighter one costs many more queries.
@@ -563,11 +564,13 @@ Status sample(Candidate& c, const HausdorffSurface& render, double tolerance, do
     }
     Result<HausdorffSurface> proxy = HausdorffSurface::create(c.mesh);
     if (!proxy) return fail("proxy: " + proxy.error());
-    Result<double> p2r = sampledLowerBound(proxy.value(), render, kSampledTriangles, tolerance, progress);
+    Result<double> p2r =
+        sampledLowerBound(proxy.value(), render, kSampledProxyTriangles, tolerance, progress);
     if (!p2r) return fail(p2r.error());
     measured = p2r.value();
     if (measured > tolerance) return {};
-    Result<double> r2p = sampledLowerBound(render, proxy.value(), kSampledTriangles, tolerance, progress);
+    Result<double> r2p =
+        sampledLowerBound(render, proxy.value(), kSampledRenderTriangles, tolerance, progress);
     if (!r2p) return fail(r2p.error());
     measured = std::max(measured, r2p.value());
     return {};
@@ -579,6 +582,7 @@ Status sample(Candidate& c, const HausdorffSurface& render, double tolerance, do
 // distance that hardly follows the target, as where one collapse decides, is then bracketed in a few
 // runs). Then the geometric middle of the bracket [lo, hi]. A failed run's measured distance is not
 // used: it stops at the first distance above the tolerance, which depends on timing.
+// `runs`: the runs of this bisection so far.
 double nextTarget(double lo, double hi, double withinMeasuredOverTolerance, uint32_t runs) {
     const double streak = std::ldexp(1.0, int(std::min(runs, 8u)) - 1);
     if (!std::isfinite(hi))
@@ -638,7 +642,7 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge) {
 // judged within go to `accepted` (coarser ones later); the finest judged not within to `finest`.
 Status bisect(const SearchContext& k, Judge judge, double target, Bracket& bracket, uint32_t maxRuns,
               SearchOutcome& out, std::vector<Candidate>& accepted, std::optional<Candidate>& finest) {
-    while (out.runs < maxRuns && !bracket.closed()) {
+    for (uint32_t runs = 1; out.runs < maxRuns && !bracket.closed(); ++runs) {
         Result<Judged> j = runAndJudge(k, target, judge);
         if (!j) return fail(j.error());
         ++out.runs;
@@ -659,7 +663,7 @@ Status bisect(const SearchContext& k, Judge judge, double target, Bracket& brack
             if (!finest || c.target < finest->target) finest = std::move(c);
         }
         if (budgetLimited) return {}; // the budget decides the proxy, not the target
-        target = nextTarget(bracket.lo, bracket.hi, j->measured / k.tolerance, out.runs);
+        target = nextTarget(bracket.lo, bracket.hi, j->measured / k.tolerance, runs);
     }
     return {};
 }
