@@ -1,18 +1,27 @@
 // GPU culling, pass 1 of 3 (GpuCulling): one invocation per entry of the draw order marks its decal
 // visible (1) or culled (0) by the test DecalBatch::cull makes on the CPU, with margins that keep
-// float rounding from culling a box the CPU would keep. Each work group counts its visible decals
+// float rounding from culling a box the CPU would keep, and, with a depth pyramid of the host's frame
+// (DepthPyramid), culls the boxes hidden behind the scene. Each work group counts its visible decals
 // for the scan.
 #include "projector.glsl"
 
 layout(local_size_x = 256) in;
 layout(location = 0) uniform uint u_count;  // decals
 layout(location = 1) uniform vec4 u_camera; // y: 1 reversed Z; z: 1 clip depth -1..1
+// x: the depth pyramid's levels (0: no occlusion test); y: 0 window depth standard Z, 1 reversed Z,
+// 2 view distance; z, w: its level 0's size.
+layout(location = 2) uniform ivec4 u_occlusion;
+layout(binding = 0) uniform sampler2D s_pyramid;
 
 layout(std430, binding = 0) writeonly buffer Classes {
     uint classBits[]; // bit k of word w: entry 32 w + k is visible
 };
 layout(std430, binding = 2) writeonly buffer GroupCounts {
     uint groupCounts[];
+};
+layout(std430, binding = 5) buffer Counters {
+    uint drawCommand[4]; // the indirect draw (cull_scan.comp)
+    uint occludedCount;  // boxes in the frustum that the occlusion test culled
 };
 layout(std430, binding = 6) readonly buffer DrawOrder {
     uint drawOrder[];
@@ -43,6 +52,45 @@ bool outsideFrustum(DecalData d, ProjectorObject o) {
     return false;
 }
 
+// How far the clip-space point lies, in the depth pyramid's farness (depth_pyramid.comp).
+float farness(vec4 clip) {
+    if (u_occlusion.y == 2) return clip.w;
+    float z = clip.z / clip.w;
+    if (u_camera.z != 0.0) z = z * 0.5 + 0.5;
+    return u_occlusion.y == 1 ? -z : z;
+}
+
+// Whether the box lies wholly beyond the scene: its nearest point farther than the farthest surface
+// of every pyramid texel under its screen rectangle (a box that reaches behind the eye is not tested).
+bool hidden(DecalData d, ProjectorObject o) {
+    vec2 lo = vec2(1e30), hi = vec2(-1e30);
+    float near = 1e30;
+    for (int c = 0; c < 8; ++c) {
+        vec4 local = vec4((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0, 1.0);
+        vec3 p = vec3(dot(d.boxToObject[0], local), dot(d.boxToObject[1], local), dot(d.boxToObject[2], local));
+        vec4 clip = u_viewProj * (o.model * vec4(p, 1.0));
+        if (!(clip.w > 1e-6)) return false;
+        vec2 ndc = clip.xy / clip.w;
+        lo = min(lo, ndc);
+        hi = max(hi, ndc);
+        near = min(near, farness(clip));
+    }
+    // Level-0 texels (two pixels a side) under the rectangle, a pixel wider for rounding.
+    vec2 pixels = 1.0 / u_viewport.zw;
+    vec2 a = clamp((lo * 0.5 + 0.5) * pixels - 1.0, vec2(0.0), pixels - 1.0);
+    vec2 b = clamp((hi * 0.5 + 0.5) * pixels + 1.0, vec2(0.0), pixels - 1.0);
+    ivec2 t0 = ivec2(a) / 2, t1 = ivec2(b) / 2;
+    int extent = max(t1.x - t0.x, t1.y - t0.y);
+    int level = min(extent == 0 ? 0 : findMSB(extent) + 1, u_occlusion.x - 1);
+    t0 >>= level;
+    t1 >>= level;
+    float far = -1e30;
+    for (int y = t0.y; y <= t1.y; ++y)
+        for (int x = t0.x; x <= t1.x; ++x)
+            far = max(far, texelFetch(s_pyramid, ivec2(x, y), level).r);
+    return near > far + 1e-5 * abs(far) + 1e-30;
+}
+
 uint classify(uint i) {
     DecalRecord r = decalRecords[i];
     if (!decalRecordValid(r) || decalTypeIndex(r) >= uint(decalTypes.length()) ||
@@ -50,7 +98,12 @@ uint classify(uint i) {
         return 0u; // a degenerate box, or a type or object that cannot be drawn
     DecalData d = unpackDecal(r);
     ProjectorObject o = objects[d.info.x];
-    return o.info.z != 0u || outsideFrustum(d, o) ? 0u : 1u; // collapsed object, or out of view
+    if (o.info.z != 0u || outsideFrustum(d, o)) return 0u; // collapsed object, or out of view
+    if (u_occlusion.x > 0 && hidden(d, o)) {
+        atomicAdd(occludedCount, 1u);
+        return 0u;
+    }
+    return 1u;
 }
 
 void main() {

@@ -27,7 +27,7 @@ DecalFieldView decalFieldView(double aspect) {
     return v;
 }
 
-Scene decalFieldScene(const DecalFieldView& view, bool dynamicObject) {
+Scene decalFieldScene(const DecalFieldView& view, bool dynamicObject, bool roof) {
     Scene scene;
     scene.source = dynamicObject ? "decal field with a dynamic cube" : "decal field";
     const float extent = float(200.0 * view.halfWidth);
@@ -42,6 +42,15 @@ Scene decalFieldScene(const DecalFieldView& view, bool dynamicObject) {
         cube.dynamic = true;
         cube.transform[3] = glm::dvec4(0.8 * view.halfWidth, 0.5, 0.8 * view.halfHeight, 1.0);
         scene.objects.push_back(std::move(cube));
+    }
+    if (roof) { // its edges seen from the eye, 10 units up, 8 above it, fall on sqrt(0.9) of the floor's
+        const double s = std::sqrt(0.9) * 0.8;
+        SceneObject slab;
+        slab.name = "roof";
+        slab.mesh = makeGrid({float(-s * view.halfWidth), float(s * view.halfWidth)},
+                             {float(-s * view.halfHeight), float(s * view.halfHeight)});
+        slab.transform[3] = glm::dvec4(0.0, 2.0, 0.0, 1.0);
+        scene.objects.push_back(std::move(slab));
     }
     return scene;
 }

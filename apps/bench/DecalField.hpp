@@ -31,8 +31,9 @@ struct DecalFieldView {
 DecalFieldView decalFieldView(double aspect);
 
 // The floor (object 0, static, 2 triangles, 200 view widths across) and, with `dynamicObject`, a
-// dynamic 1-unit cube standing on it near a corner of the view (object 1).
-Scene decalFieldScene(const DecalFieldView& view, bool dynamicObject);
+// dynamic 1-unit cube standing on it near a corner of the view (object 1). With `roof`, a roof 2 units
+// above the floor (the next object) hides the middle of the view: nine tenths of the floor in view.
+Scene decalFieldScene(const DecalFieldView& view, bool dynamicObject, bool roof = false);
 
 // `total` decals of `type` on the floor, `visible` of them with centres inside the view (their boxes
 // entirely in it), the others entirely outside the frustum. Each is a square of `screenFraction`

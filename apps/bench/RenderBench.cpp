@@ -42,6 +42,9 @@ of them in view, each a square of a fraction of the screen height. Groups of row
   cpu          1080p, 10,000 decals in view among 10,000 and among 1,000,000 in the world: the wall
                time of render() when it does not wait for the GPU (a glFinish after each frame,
                outside the time), with the GPU times of an earlier frame
+  occlusion    1080p, 1,000,000 decals in the world, 10,000 in the view's frustum, with and without
+               occlusion culling (RendererSettings::occlusionCulling), with nothing hiding them and
+               with a roof over nine tenths of them
   paths        1080p, 100, 10,000 and 100,000 decals in view, the same decals through spatter's
                renderer and through the projector in a host of its own with the frame layout of
                spatter-example-deferred (24-bit standard Z, RGB10A2 world normals, roughness in
@@ -74,7 +77,8 @@ struct Feature {
     bool depthFrame = false;
     bool ids = false;
     bool angleReject = true;
-    bool wait = true; // render() waits for the frame's GPU times; false: CPU time of render() alone
+    bool wait = true;      // render() waits for the frame's GPU times; false: CPU time of render() alone
+    bool occlusion = true; // RendererSettings::occlusionCulling
 };
 
 const std::vector<Feature>& features() {
@@ -86,6 +90,7 @@ const std::vector<Feature>& features() {
         {"ids", true, DepthFade::Smooth, false, false, true, true},
         {"no-angle", true, DepthFade::Smooth, false, false, false, false},
         {"no-wait", true, DepthFade::Smooth, false, false, false, true, false},
+        {"no-occlusion", true, DepthFade::Smooth, false, false, false, true, true, false},
     };
     return all;
 }
@@ -103,8 +108,9 @@ struct Config {
     size_t visible = 0;
     double size = 0.015; // of the screen height
     std::string feature = "default";
+    bool roof = false; // the decal field's roof hides nine tenths of the floor in view
 
-    auto key() const { return std::make_tuple(resolution, world, visible, size, feature); }
+    auto key() const { return std::make_tuple(resolution, world, visible, size, feature, roof); }
 };
 
 std::vector<Config> configs(const std::vector<std::string>& groups, bool quick) {
@@ -138,6 +144,10 @@ std::vector<Config> configs(const std::vector<std::string>& groups, bool quick) 
     if (want("cpu"))
         for (size_t world : quick ? std::vector<size_t>{1000} : std::vector<size_t>{10000, 1000000})
             out.push_back({"cpu", "1080p", world, std::min<size_t>(world, 10000), 0.015, "no-wait"});
+    if (want("occlusion"))
+        for (bool roof : {false, true})
+            for (const char* f : {"default", "no-occlusion"})
+                out.push_back({"occlusion", "1080p", quick ? 100000u : 1000000u, 10000, 0.015, f, roof});
     if (want("paths"))
         for (size_t n : quick ? std::vector<size_t>{100, 1000} : std::vector<size_t>{100, 10000, 100000})
             for (const char* path : {"renderer", "blend", "dbuffer", "forward"})
@@ -178,12 +188,13 @@ public:
         if (!resolutionByName(c.resolution, row.width, row.height))
             return fail("unknown resolution " + c.resolution);
         const Feature& f = feature(c.feature);
-        const int slot = !f.wait ? 2 : f.depthFrame ? 1 : 0;
+        const int slot = !f.wait ? 2 : f.depthFrame ? 1 : !f.occlusion ? 3 : 0;
         if (!renderers_[slot]) {
             RendererSettings rs;
             rs.width = row.width;
             rs.height = row.height;
             rs.waitForTimers = f.wait;
+            rs.occlusionCulling = f.occlusion;
             rs.normalFrame = f.depthFrame ? DecalNormalFrame::DepthDerivatives : DecalNormalFrame::DecalAxes;
             Result<Renderer> r = Renderer::create(*context_, rs);
             if (!r) return fail(r.error());
@@ -194,12 +205,13 @@ public:
         if (r.settings().width != row.width || r.settings().height != row.height)
             if (Status s = r.resize(row.width, row.height); !s) return fail(s.error());
         const DecalFieldView view = decalFieldView(double(row.width) / double(row.height));
-        if (sceneIds_[slot] != int(f.ids)) {
-            const Scene scene = decalFieldScene(view, f.ids);
+        const int sceneKey = int(f.ids) | int(c.roof) << 1;
+        if (sceneIds_[slot] != sceneKey) {
+            const Scene scene = decalFieldScene(view, f.ids, c.roof);
             if (Status s = r.setScene(scene); !s) return fail(s.error());
             if (f.ids)
                 if (Status s = r.setObjectIds({0, 1}); !s) return fail(s.error());
-            sceneIds_[slot] = int(f.ids);
+            sceneIds_[slot] = sceneKey;
             decalsKey_[slot] = {};
         }
         DecalType type;
@@ -324,10 +336,16 @@ private:
     glm::ivec2 pathSize_{0};
     std::optional<DecalProjector> projector_;
     std::tuple<size_t, size_t, double> projectorKey_;
-    std::optional<Renderer> renderers_[3]; // waiting for GPU times, with the depth frame, not waiting
-    int sceneIds_[3] = {-1, -1, -1};
-    std::tuple<size_t, size_t, double> decalsKey_[3];
+    // Waiting for GPU times, with the depth frame, not waiting, without occlusion culling.
+    std::optional<Renderer> renderers_[4];
+    int sceneIds_[4] = {-1, -1, -1, -1};
+    std::tuple<size_t, size_t, double> decalsKey_[4];
 };
+
+// The feature, and whether the roof hides most of the view.
+std::string featureLabel(const Config& c) {
+    return c.roof ? c.feature + "+roof" : c.feature;
+}
 
 Json rowJson(const Row& r) {
     const Config& c = r.config;
@@ -342,6 +360,7 @@ Json rowJson(const Row& r) {
     j["decal_screen_fraction"] = c.size;
     j["decal_px"] = c.size * r.height;
     j["feature"] = c.feature;
+    j["roof"] = c.roof;
     if (!r.error.empty()) {
         j["error"] = r.error;
         return j;
@@ -396,6 +415,25 @@ void printScaleTargets(const std::vector<Row>& rows, Json& targets) {
         std::printf("per covered pixel, %zu decals of %.0f px: %.2fx the lighting pass's per pixel (target "
                     "<= 1.5x: %s)\n",
                     r.config.visible, r.config.size * r.height, ratio, ratio <= 1.5 ? "met" : "missed");
+    }
+}
+
+// The occlusion group: the decal pass with occlusion culling against without, with nothing hidden
+// (what the depth pyramid costs) and under the roof (what it saves).
+void printOcclusion(const std::vector<Row>& rows, Json& targets) {
+    for (bool roof : {false, true}) {
+        const Row *on = nullptr, *off = nullptr;
+        for (const Row& r : rows)
+            if (r.error.empty() && r.config.group == "occlusion" && r.config.roof == roof)
+                (r.config.feature == "no-occlusion" ? off : on) = &r;
+        if (!on || !off) continue;
+        const std::string key = roof ? "occlusion_roof_ratio" : "occlusion_open_ratio";
+        targets[key] = on->times.decalsMs / off->times.decalsMs;
+        std::printf(
+            "occlusion culling, %s: %.3f ms with it (%zu boxes drawn), %.3f ms without (%zu): %.2fx\n",
+            roof ? "nine tenths under a roof" : "nothing hidden", on->times.decalsMs,
+            on->times.last.decalsDrawn, off->times.decalsMs, off->times.last.decalsDrawn,
+            on->times.decalsMs / off->times.decalsMs);
     }
 }
 
@@ -481,7 +519,7 @@ int runRenderCommand(int argc, char** argv) {
         for (size_t a = 0, b; (b = list.find(',', a)) != std::string::npos; a = b + 1) {
             const std::string g = list.substr(a, b - a);
             if (g != "count" && g != "visible" && g != "coverage" && g != "resolution" && g != "features" &&
-                g != "paths" && g != "cpu")
+                g != "paths" && g != "cpu" && g != "occlusion")
                 return usageError(kCommand, "unknown group '" + g + "'");
             groups.push_back(g);
         }
@@ -552,11 +590,12 @@ int runRenderCommand(int argc, char** argv) {
         if (c.group == "paths") continue; // a table of their own
         if (!r.error.empty()) {
             table.push_back({c.group, c.resolution, std::to_string(c.world), std::to_string(c.visible),
-                             fixed(c.size * r.height, 0), c.feature, "-", "-", "-", "-", "-", "-", r.error});
+                             fixed(c.size * r.height, 0), featureLabel(c), "-", "-", "-", "-", "-", "-",
+                             r.error});
             continue;
         }
         table.push_back({c.group, c.resolution, std::to_string(c.world), std::to_string(c.visible),
-                         fixed(c.size * r.height, 0), c.feature, fixed(r.times.decalsMs, 3),
+                         fixed(c.size * r.height, 0), featureLabel(c), fixed(r.times.decalsMs, 3),
                          c.visible ? fixed(r.times.decalsMs * 1e6 / double(c.visible), 0) : "-",
                          fixed(r.times.geometryMs, 3), fixed(r.times.lightingMs, 3), fixed(r.times.cpuMs, 1),
                          std::to_string(r.times.frames) + (r.times.capped ? " (capped)" : ""),
@@ -599,6 +638,7 @@ int runRenderCommand(int argc, char** argv) {
     }
 
     printScaleTargets(rows, targets);
+    printOcclusion(rows, targets);
 
     if (args.has("--json")) {
         Json j;

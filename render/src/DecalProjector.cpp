@@ -3,6 +3,7 @@
 #include "DecalBatch.hpp"
 #include "DecalBuffers.hpp"
 #include "DecalTextureArray.hpp"
+#include "DepthPyramid.hpp"
 #include "ForwardBins.hpp"
 #include "GlObjects.hpp"
 #include "GlStateGuard.hpp"
@@ -148,6 +149,8 @@ struct DecalProjector::Impl {
     DecalBuffers dbuffer;
     ForwardBins forward;
     GpuCulling culling;
+    DepthPyramid pyramid;
+    int drawsSinceProbe = 15;  // draws since occlusion culling last ran (the first draw tries it)
     size_t gpuCullingFrom = 0; // settings.gpuCullingFrom, or its default for this context
     GpuTimers timers;
     uint64_t draws = 0;
@@ -402,9 +405,28 @@ struct DecalProjector::Impl {
 
     // Builds the visible list on the GPU and sets the counts of `stats` from it (this draw's with
     // waitForTimers, else the latest the GPU has finished); returns the indirect draw.
-    BoxDraws cullOnGpu(const CullView& cull, ProjectorStats& stats) {
+    // With a host frame (draw(); occlusionCulling) the boxes hidden behind its depth are culled too.
+    // Whether this draw tests the boxes against a depth pyramid (occlusionCulling): while the latest
+    // culling the GPU has finished hid at least 256 boxes and one in 20 of those in the frustum (the
+    // pyramid costs about what 500 small boxes cost), and otherwise once every 16 draws and on the
+    // first draw after setDecals, to notice when it would.
+    bool occlusionPays() {
+        if (!settings.occlusionCulling) return false;
+        const size_t hidden = culling.occludedCount(), inFrustum = hidden + visibleCount;
+        if ((hidden >= 256 && hidden * 20 >= inFrustum) || ++drawsSinceProbe >= 16) {
+            drawsSinceProbe = 0;
+            return true;
+        }
+        return false;
+    }
+
+    // Needs culling.prepare() and, with a host frame, pyramid.prepare().
+    BoxDraws cullOnGpu(const CullView& cull, const HostFrame* host, ProjectorStats& stats) {
+        const Occlusion occlusion =
+            host && occlusionPays() ? pyramid.build(*host, nearest.get()) : Occlusion{};
         bindBuffers();
-        culling.run(batch.size(), cull.reversedZ, cull.clipMinusOne, visibleBuffer, visibleCapacity);
+        culling.run(batch.size(), cull.reversedZ, cull.clipMinusOne, occlusion, visibleBuffer,
+                    visibleCapacity);
         bindBuffers(); // the visible list may have grown
         stats.drawn = culling.visibleCount(settings.waitForTimers);
         const size_t valid = batch.size() - batch.invalidCount();
@@ -423,7 +445,7 @@ struct DecalProjector::Impl {
         head.params.x = settings.fadeStart;
         if (onGpu) {
             stats.bytesUploaded += uploadInstances(stats.instanceUploads) + uploadDrawOrder();
-            cullOnGpu(camera.cull, stats);
+            cullOnGpu(camera.cull, nullptr, stats);
             // Room for twice the visible decals of the latest count the GPU has given (this one's with
             // waitForTimers): a sudden jump past it leaves decals out for a frame.
             const size_t capacity = std::min(batch.size(), std::max<size_t>(4096, 2 * stats.drawn));
@@ -446,7 +468,7 @@ struct DecalProjector::Impl {
         BoxDraws boxes = cpuDraws(vis);
         if (onGpu) {
             stats.bytesUploaded += uploadDrawOrder();
-            boxes = cullOnGpu(camera.cull, stats);
+            boxes = cullOnGpu(camera.cull, &f, stats);
         } else {
             stats.bytesUploaded += uploadVisible(vis);
         }
@@ -544,6 +566,7 @@ void DecalProjector::setDecalTypes(const std::vector<DecalType>& types) {
 
 void DecalProjector::setDecals(const std::vector<Decal>& decals) {
     impl_->batch.setDecals(decals);
+    impl_->drawsSinceProbe = 15; // a new set of decals: the next draw tries occlusion culling
 }
 
 void DecalProjector::updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes) {
@@ -669,6 +692,8 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
         if (Status s = m.normalCopy.prepare(); !s) return fail(s.error());
     if (onGpu)
         if (Status s = m.culling.prepare(); !s) return fail(s.error());
+    if (onGpu && m.settings.occlusionCulling)
+        if (Status s = m.pyramid.prepare(frame); !s) return fail(s.error());
 
     GlStateGuard guard;
     m.timers.beginFrame(m.draws);
@@ -713,7 +738,8 @@ ProjectorMemory DecalProjector::memory() const {
     ProjectorMemory r;
     r.cpuBytes = m.batch.cpuBytes();
     r.gpuBufferBytes = m.decalCapacity + m.visibleCapacity + m.objectCapacity + m.culling.gpuBytes() +
-                       m.forward.gpuBytes() + m.batch.typeRecords().size() * sizeof(DecalTypeGpu);
+                       m.forward.gpuBytes() + m.pyramid.gpuBytes() +
+                       m.batch.typeRecords().size() * sizeof(DecalTypeGpu);
     return r;
 }
 

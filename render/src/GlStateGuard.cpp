@@ -39,6 +39,15 @@ GlStateGuard::GlStateGuard() {
         glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, GLuint(i), &b.start);
         glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, GLuint(i), &b.size);
     }
+    for (int i = 0; i < kImageUnits; ++i) {
+        ImageUnit& u = image_[size_t(i)];
+        glGetIntegeri_v(GL_IMAGE_BINDING_NAME, GLuint(i), &u.texture);
+        glGetIntegeri_v(GL_IMAGE_BINDING_LEVEL, GLuint(i), &u.level);
+        glGetIntegeri_v(GL_IMAGE_BINDING_LAYERED, GLuint(i), &u.layered);
+        glGetIntegeri_v(GL_IMAGE_BINDING_LAYER, GLuint(i), &u.layer);
+        glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, GLuint(i), &u.access);
+        glGetIntegeri_v(GL_IMAGE_BINDING_FORMAT, GLuint(i), &u.format);
+    }
     glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniformBuffer_);
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storageBuffer_);
     glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &arrayBuffer_);
@@ -87,6 +96,12 @@ GlStateGuard::~GlStateGuard() {
         glBindTexture(GL_TEXTURE_2D, GLuint(texture2d_[size_t(i)]));
         glBindTexture(GL_TEXTURE_2D_ARRAY, GLuint(textureArray_[size_t(i)]));
         glBindSampler(GLuint(i), GLuint(sampler_[size_t(i)]));
+    }
+    for (int i = 0; i < kImageUnits; ++i) {
+        const ImageUnit& u = image_[size_t(i)];
+        const GLuint texture = u.texture != 0 && glIsTexture(GLuint(u.texture)) ? GLuint(u.texture) : 0u;
+        glBindImageTexture(GLuint(i), texture, u.level, GLboolean(u.layered), u.layer, GLenum(u.access),
+                           GLenum(u.format));
     }
     glActiveTexture(GLenum(activeTexture_));
     // A buffer deleted meanwhile (one of the projector's, which the host had bound, and which grew) is

@@ -17,6 +17,7 @@ public:
     static constexpr int kDrawBuffers = 4;
     static constexpr int kUniformBindings = 2;
     static constexpr int kStorageBindings = 9;
+    static constexpr int kImageUnits = 2;
 
     GlStateGuard();
     ~GlStateGuard();
@@ -30,6 +31,9 @@ private:
         GLint buffer = 0;
         GLint64 start = 0, size = 0;
     };
+    struct ImageUnit {
+        GLint texture = 0, level = 0, layered = GL_FALSE, layer = 0, access = GL_READ_ONLY, format = GL_R8;
+    };
     struct Blend {
         GLboolean enabled = GL_FALSE;
         GLint srcRgb = 0, dstRgb = 0, srcAlpha = 0, dstAlpha = 0, equationRgb = 0, equationAlpha = 0;
@@ -41,6 +45,7 @@ private:
     std::array<GLint, kTextureUnits> texture2d_{}, textureArray_{}, sampler_{};
     std::array<IndexedBuffer, kUniformBindings> uniform_{};
     std::array<IndexedBuffer, kStorageBindings> storage_{};
+    std::array<ImageUnit, kImageUnits> image_{};
     GLint uniformBuffer_ = 0, storageBuffer_ = 0, arrayBuffer_ = 0, unpackBuffer_ = 0, indirectBuffer_ = 0;
     std::array<Blend, kDrawBuffers> blend_{};
     GLboolean depthTest_ = GL_FALSE, depthMask_ = GL_TRUE, stencilTest_ = GL_FALSE, scissorTest_ = GL_FALSE;

@@ -14,8 +14,9 @@ constexpr uint32_t kGroup = 256; // local size of the classify and scatter passe
 // Binding points of the culling passes (shaders/cull*.comp).
 constexpr GLuint kClassesBinding = 0, kGroupsBinding = 2, kDrawsBinding = 5, kOrderBinding = 6,
                  kVisibleOutBinding = 7;
-constexpr size_t kDrawsBytes = 4 * sizeof(uint32_t);
-constexpr size_t kCountOffset = sizeof(uint32_t); // DrawArraysIndirectCommand::instanceCount
+constexpr size_t kDrawsBytes = 5 * sizeof(uint32_t); // the indirect draw, then the occluded count
+constexpr size_t kCountOffset = sizeof(uint32_t);    // DrawArraysIndirectCommand::instanceCount
+constexpr size_t kOccludedOffset = 4 * sizeof(uint32_t);
 
 Result<GlProgram> computeProgram(const char* file) {
     Result<GlProgram> p = buildProgram(shaderLibrary(kProjectorShaders), {{GL_COMPUTE_SHADER, file}}, {});
@@ -43,7 +44,7 @@ Status GpuCulling::prepare() {
     draws_ = createBuffer();
     glNamedBufferStorage(draws_.get(), GLsizeiptr(kDrawsBytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
     readback_ = createBuffer();
-    glNamedBufferStorage(readback_.get(), GLsizeiptr(sizeof(uint32_t)), nullptr, GL_CLIENT_STORAGE_BIT);
+    glNamedBufferStorage(readback_.get(), GLsizeiptr(2 * sizeof(uint32_t)), nullptr, GL_CLIENT_STORAGE_BIT);
     return {};
 }
 
@@ -67,8 +68,8 @@ size_t GpuCulling::updateDrawOrder(const std::vector<uint32_t>& entries,
     return sent;
 }
 
-void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, GlBuffer& visible,
-                     size_t& visibleCapacity) {
+void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, const Occlusion& occlusion,
+                     GlBuffer& visible, size_t& visibleCapacity) {
     const uint32_t count = entries_;
     const uint32_t groups = std::max<uint32_t>(1, (count + kGroup - 1) / kGroup);
     reserveBuffer(classes_, classesCapacity_, size_t(groups) * kGroup / 8, 4096); // a bit per entry
@@ -84,9 +85,16 @@ void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, GlBuffer&
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOrderBinding, order_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleOutBinding, visible.get());
 
+    const uint32_t zero = 0;
+    glClearNamedBufferSubData(draws_.get(), GL_R32UI, GLintptr(kOccludedOffset), sizeof zero, GL_RED_INTEGER,
+                              GL_UNSIGNED_INT, &zero);
     glUseProgram(classify_.get());
     glUniform1ui(0, count);
     glUniform4f(1, 0.0f, reversedZ ? 1.0f : 0.0f, clipMinusOne ? 1.0f : 0.0f, 0.0f);
+    glUniform4i(2, occlusion.texture ? occlusion.levels : 0, occlusion.convention, occlusion.size.x,
+                occlusion.size.y);
+    glBindTextureUnit(0, occlusion.texture);
+    glBindSampler(0, 0);
     glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(scan_.get());
@@ -98,6 +106,8 @@ void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, GlBuffer&
     glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     glCopyNamedBufferSubData(draws_.get(), readback_.get(), GLintptr(kCountOffset), 0, sizeof(uint32_t));
+    glCopyNamedBufferSubData(draws_.get(), readback_.get(), GLintptr(kOccludedOffset), sizeof(uint32_t),
+                             sizeof(uint32_t));
     if (fence_) glDeleteSync(fence_);
     fence_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
 }
@@ -107,7 +117,10 @@ uint32_t GpuCulling::visibleCount(bool wait) {
     const GLenum state =
         glClientWaitSync(fence_, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, wait ? ~GLuint64(0) : 0);
     if (state != GL_ALREADY_SIGNALED && state != GL_CONDITION_SATISFIED) return latest_;
-    glGetNamedBufferSubData(readback_.get(), 0, sizeof latest_, &latest_);
+    uint32_t counts[2] = {0, 0};
+    glGetNamedBufferSubData(readback_.get(), 0, sizeof counts, counts);
+    latest_ = counts[0];
+    latestOccluded_ = counts[1];
     glDeleteSync(fence_);
     fence_ = nullptr;
     return latest_;

@@ -11,11 +11,21 @@
 
 #include "spatter/core/Result.hpp"
 
+#include <glm/glm.hpp>
+
 #include <cstdint>
 #include <utility>
 #include <vector>
 
 namespace spatter::render_detail {
+
+// The depth pyramid the culling tests boxes against (DepthPyramid); no texture: no occlusion test.
+struct Occlusion {
+    GLuint texture = 0;
+    int levels = 0;
+    int convention = 0; // 0 window depth with standard Z, 1 reversed Z, 2 view distance
+    glm::ivec2 size{0}; // of level 0
+};
 
 class GpuCulling {
 public:
@@ -30,14 +40,19 @@ public:
     // returns the bytes sent.
     size_t updateDrawOrder(const std::vector<uint32_t>& entries,
                            const std::vector<std::pair<size_t, size_t>>& runs);
-    // Culls the decals of the draw order against the frame block's camera. The visible list goes
-    // into `visible` (grown to hold `decals` indices; `visibleCapacity` in bytes).
-    void run(size_t decals, bool reversedZ, bool clipMinusOne, GlBuffer& visible, size_t& visibleCapacity);
-    // One DrawArraysIndirectCommand: 36 vertices, the visible count as instances.
+    // Culls the decals of the draw order against the frame block's camera, and against `occlusion`'s
+    // pyramid when it has one. The visible list goes into `visible` (grown to hold `decals` indices;
+    // `visibleCapacity` in bytes).
+    void run(size_t decals, bool reversedZ, bool clipMinusOne, const Occlusion& occlusion, GlBuffer& visible,
+             size_t& visibleCapacity);
+    // One DrawArraysIndirectCommand: 36 vertices, the visible count as instances (followed by the
+    // occluded count).
     GLuint draws() const { return draws_.get(); }
     // The visible count of the last run when `wait` (waiting for the GPU), else that of the latest
     // run the GPU has finished (0 before the first).
     uint32_t visibleCount(bool wait);
+    // The boxes in the frustum the occlusion test culled, in the run visibleCount last read.
+    uint32_t occludedCount() const { return latestOccluded_; }
 
     // Bytes of the GPU buffers it holds.
     size_t gpuBytes() const { return classesCapacity_ + groupsCapacity_ + orderCapacity_; }
@@ -48,7 +63,7 @@ private:
     size_t classesCapacity_ = 0, groupsCapacity_ = 0, orderCapacity_ = 0;
     uint32_t entries_ = 0;   // of the draw order
     GLsync fence_ = nullptr; // signalled when the last run's count is in readback_
-    uint32_t latest_ = 0;
+    uint32_t latest_ = 0, latestOccluded_ = 0;
 };
 
 } // namespace spatter::render_detail

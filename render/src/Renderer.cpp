@@ -431,6 +431,7 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
     projector.decalTextureSize = settings.decalTextureSize;
     projector.waitForTimers = settings.waitForTimers;
     projector.gpuCullingFrom = settings.gpuCullingFrom;
+    projector.occlusionCulling = settings.occlusionCulling;
     Result<DecalProjector> p = DecalProjector::create(projector);
     if (!p) return fail("renderer: " + p.error());
     impl->projector.emplace(std::move(p).value());

@@ -1,6 +1,8 @@
 // Culling on the GPU (ProjectorSettings::gpuCullingFrom) is exact: the same decals give the same
 // coverage, bit for bit, and the same counts as culling on the CPU, with the camera inside boxes,
-// boxes across the frustum's edges and its near plane, and far from the world's origin.
+// boxes across the frustum's edges and its near plane, and far from the world's origin. Its occlusion
+// test (ProjectorSettings::occlusionCulling) culls the boxes hidden behind the scene and changes no
+// pixel.
 
 #include "ForeignHost.hpp"
 #include "HostedWall.hpp"
@@ -50,8 +52,9 @@ struct Culled {
 };
 
 // The coverage of `decals` on the wall moved by `offset`, seen by `camera` (moved too), culled on
-// the CPU or on the GPU.
-Culled coverage(const std::vector<Decal>& decals, const glm::dvec3& offset, Camera camera, bool onGpu) {
+// the CPU or on the GPU (with or without the occlusion test).
+Culled coverage(const std::vector<Decal>& decals, const glm::dvec3& offset, Camera camera, bool onGpu,
+                bool occlusion = true) {
     test::WallScene wall;
     const glm::dmat4 move = glm::translate(glm::dmat4(1.0), offset);
     for (size_t i = 0; i < wall.scene.objects.size(); ++i) {
@@ -64,6 +67,7 @@ Culled coverage(const std::vector<Decal>& decals, const glm::dvec3& offset, Came
     ProjectorSettings settings;
     settings.gpuCullingFrom = onGpu ? 0 : std::numeric_limits<size_t>::max();
     settings.waitForTimers = true; // this draw's counts
+    settings.occlusionCulling = occlusion;
     Result<DecalProjector> projector = DecalProjector::create(settings);
     EXPECT_TRUE(host.ok() && projector.ok());
     if (!host || !projector) return {};
@@ -127,4 +131,41 @@ TEST(GpuCulling, MatchesTheCpuFarFromTheOrigin) {
     const glm::dvec3 far(1.0e6, -2.0e5, 3.0e6);
     expectSameAsCpu("far", decals, far, test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0}));
     expectSameAsCpu("far close", decals, far, test::lookAt({0.2, 1.0, 0.6}, {0.0, 1.0, 0.0}));
+}
+
+// Decals on the wall behind the crate, hidden from the camera, and decals beside it: the occlusion
+// test culls exactly the hidden ones, and the coverage stays the same bit for bit.
+TEST(GpuCulling, OcclusionCullsTheBoxesHiddenBehindTheSceneAndNoPixelChanges) {
+    SPATTER_REQUIRE_GL(gl);
+    std::vector<Decal> decals;
+    // The camera faces the crate (x and y 0.5 to 1.1, z 0.2 to 0.8) from 2.5 m: it hides the wall from
+    // 0.36 to 1.24 in x and y.
+    const Camera camera = test::lookAt({0.8, 0.8, 2.5}, {0.8, 0.8, 0.0});
+    for (int i = 0; i < 6; ++i) { // hidden behind it, at least five pixels inside its shadow
+        Decal d =
+            test::WallScene::decalAt(0, {0.65f + 0.15f * float(i % 3), -0.3f + 0.2f * float(i / 3), 0.05f});
+        d.size = glm::vec2(0.08f);
+        d.halfDepth = 0.05f;
+        decals.push_back(d);
+    }
+    for (int i = 0; i < 4; ++i) { // in plain view
+        Decal d = test::WallScene::decalAt(
+            0, {i < 2 ? -1.0f + 0.4f * float(i) : 1.6f + 0.4f * float(i), 0.3f, 0.05f});
+        d.size = glm::vec2(0.3f);
+        decals.push_back(d);
+    }
+    const Culled open = coverage(decals, glm::dvec3(0.0), camera, true, false);
+    const Culled occluded = coverage(decals, glm::dvec3(0.0), camera, true, true);
+    EXPECT_EQ(open.stats.drawn, decals.size());
+    EXPECT_EQ(occluded.stats.drawn, 4u) << "the six boxes behind the crate are culled";
+    EXPECT_EQ(occluded.stats.culled, 6u);
+    ASSERT_EQ(occluded.coverage.size(), open.coverage.size());
+    EXPECT_GT(test::countSet(open.coverage), 0u);
+    EXPECT_EQ(occluded.coverage, open.coverage);
+    // Far from the origin too, where the depth of a box and of the crate differ by little.
+    const glm::dvec3 far(1.0e5, -2.0e4, 3.0e5);
+    const Culled openFar = coverage(decals, far, camera, true, false);
+    const Culled occludedFar = coverage(decals, far, camera, true, true);
+    EXPECT_EQ(occludedFar.coverage, openFar.coverage);
+    EXPECT_LE(occludedFar.stats.drawn, openFar.stats.drawn);
 }

@@ -68,6 +68,10 @@ std::vector<int64_t> glStateSnapshot() {
     for (GLenum name : {GL_UNIFORM_BUFFER_BINDING, GL_SHADER_STORAGE_BUFFER_BINDING, GL_ARRAY_BUFFER_BINDING,
                         GL_PIXEL_UNPACK_BUFFER_BINDING, GL_DRAW_INDIRECT_BUFFER_BINDING})
         get(name);
+    for (GLuint i = 0; i < 2; ++i)
+        for (GLenum name : {GL_IMAGE_BINDING_NAME, GL_IMAGE_BINDING_LEVEL, GL_IMAGE_BINDING_LAYERED,
+                            GL_IMAGE_BINDING_LAYER, GL_IMAGE_BINDING_ACCESS, GL_IMAGE_BINDING_FORMAT})
+            getIndexed(name, i);
     for (GLuint i = 0; i < 4; ++i) {
         v.push_back(glIsEnabledi(GL_BLEND, i));
         for (GLenum name : {GL_BLEND_SRC_RGB, GL_BLEND_DST_RGB, GL_BLEND_SRC_ALPHA, GL_BLEND_DST_ALPHA,
@@ -142,6 +146,7 @@ struct HostState {
         glDisable(GL_DEPTH_CLAMP);
         glDisable(GL_CLIP_DISTANCE0);
         glDisable(GL_CLIP_DISTANCE7);
+        glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
         glDeleteFramebuffers(1, &fbo);
         glDeleteProgram(program);
         glDeleteVertexArrays(1, &vao);
@@ -156,6 +161,7 @@ struct HostState {
         glUseProgram(program);
         glBindVertexArray(vao);
         glViewport(3, 5, 17, 11);
+        glBindImageTexture(1, textures[1], 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
         for (GLuint unit = 0; unit < 8; ++unit) {
             glActiveTexture(GL_TEXTURE0 + unit);
             glBindTexture(GL_TEXTURE_2D, textures[unit % 2]);

@@ -45,15 +45,15 @@
 // state exactly as it found it, as Dear ImGui's OpenGL 3 backend does: it saves and restores the
 // bound draw and read framebuffers, viewport, program, vertex array, active texture unit and the
 // 2D and 2D-array textures and samplers of units 0-7, the uniform buffer bindings 0-1 and shader
-// storage bindings 0-8 (with their ranges) and the generic uniform, shader storage, array, pixel
-// unpack and draw indirect buffer bindings, blending (enable per draw buffer 0-3, equations, functions),
-// colour masks of draw buffers 0-3, depth test, function and mask, stencil test, scissor test, face culling
-// and cull mode, front face, clip control, GL_FRAMEBUFFER_SRGB, the unpack alignment, and polygon mode,
-// rasterizer discard, colour logic op, depth clamp and clip distances 0-7 (which it switches off for
-// its draws, whatever the host left on). What it
-// changes are the contents of the textures it writes (draw) and its own GL objects. bindForward alone
-// changes bindings on purpose: those its ForwardBindings name, for the host's forward pass. It needs the
-// host's context current on the calling thread, and that context must outlive the projector.
+// storage bindings 0-8 (with their ranges), image units 0-1 and the generic uniform, shader storage, array,
+// pixel unpack and draw indirect buffer bindings, blending (enable per draw buffer 0-3, equations,
+// functions), colour masks of draw buffers 0-3, depth test, function and mask, stencil test, scissor test,
+// face culling and cull mode, front face, clip control, GL_FRAMEBUFFER_SRGB, the unpack alignment, and
+// polygon mode, rasterizer discard, colour logic op, depth clamp and clip distances 0-7 (which it switches
+// off for its draws, whatever the host left on). What it changes are the contents of the textures it writes
+// (draw) and its own GL objects. bindForward alone changes bindings on purpose: those its ForwardBindings
+// name, for the host's forward pass. It needs the host's context current on the calling thread, and that
+// context must outlive the projector.
 //
 // Bad input changes nothing: a HostFrame with a missing required texture, an unsupported format,
 // mismatched sizes, a viewport outside the textures or a camera that cannot be inverted fails with
@@ -178,6 +178,13 @@ struct ProjectorSettings {
     std::optional<size_t> gpuCullingFrom;
     static constexpr size_t kGpuCullingFrom = 65536;
     static constexpr size_t kGpuCullingFromSoftware = 262144;
+    // draw() culling on the GPU also culls the boxes hidden behind the host's depth where that pays: a
+    // depth pyramid of the frame (half its size, farthest depth per texel) is built, and a box whose
+    // nearest point lies beyond every texel under its screen rectangle is not drawn (it could not
+    // change a pixel). It runs while the GPU's latest counts show it hiding at least 256 boxes and one
+    // in 20 of those in the frustum, and otherwise once every 16 draws and on the first draw after
+    // setDecals. bin() has no depth to test.
+    bool occlusionCulling = true;
     bool waitForTimers = false; // draw() waits for its GPU time (tools, benchmarks); otherwise the
                                 // time reported is that of an earlier frame, read without stalling
 };

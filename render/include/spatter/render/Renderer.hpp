@@ -103,6 +103,7 @@ struct RendererSettings {
     bool waitForTimers = false;           // render() waits for this frame's GPU times (tools, benchmarks)
     std::optional<size_t> gpuCullingFrom; // decals from which the projector culls on the GPU
                                           // (ProjectorSettings::gpuCullingFrom)
+    bool occlusionCulling = true;         // ProjectorSettings::occlusionCulling
     LightSettings light;
 };
 
