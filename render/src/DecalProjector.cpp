@@ -13,6 +13,7 @@
 #include "HostFrameCheck.hpp"
 #include "NormalCopy.hpp"
 #include "NormalMatrix.hpp"
+#include "ProjectorBuffers.hpp"
 #include "ProjectorLayouts.hpp"
 #include "ProjectorShaders.hpp"
 #include "ProjectorVariants.hpp"
@@ -135,11 +136,7 @@ struct DecalProjector::Impl {
     std::vector<glm::dmat4> transforms;
     std::vector<uint8_t> ids;
 
-    GlBuffer frameBuffer, objectBuffer, decalBuffer, visibleBuffer, typeBuffer;
-    bool typesChanged = true;
-    size_t objectCapacity = 0, decalCapacity = 0, visibleCapacity = 0, visibleCount = 0;
-    size_t recordsOnGpu = 0; // records the decal buffer holds (past size() they are stale)
-    bool orderOnGpu = false; // the GPU culling's draw order is the batch's
+    ProjectorBuffers buffers;
     GlVertexArray emptyVao;
     GlFramebuffer fbo;
     GlTexture zeroIds;     // bound as s_ids when the frame has no ID texture
@@ -183,83 +180,9 @@ struct DecalProjector::Impl {
         return bits;
     }
 
-    void uploadFrame(const HostFrame& f, const FrameCamera& c) {
-        ProjectorFrameGpu g{};
-        g.viewProj = glm::mat4(c.viewProj);
-        g.view = glm::mat4(c.view);
-        g.invView = glm::mat4(glm::inverse(c.view));
-        g.invProjection = glm::mat4(glm::inverse(f.projection));
-        g.viewport = glm::vec4(float(f.x), float(f.y), 1.0f / float(f.width), 1.0f / float(f.height));
-        g.params = glm::vec4(settings.fadeStart, float(transforms.size()), 0.0f, 0.0f);
-        glNamedBufferSubData(frameBuffer.get(), 0, sizeof g, &g);
-
-        std::vector<ProjectorObjectGpu> objects(std::max<size_t>(1, transforms.size()));
-        const glm::dmat4 toEye = glm::translate(glm::dmat4(1.0), -f.eye);
-        for (size_t i = 0; i < transforms.size(); ++i) {
-            const glm::dmat4 rel = toEye * transforms[i];
-            ProjectorObjectGpu& o = objects[i];
-            o.model = glm::mat4(rel);
-            o.normalMatrix = glm::mat4(glm::mat3(normalMatrix(glm::dmat3(transforms[i]))));
-            o.worldToObject = glm::mat4(glm::inverse(rel)); // read only by decals, none on a singular one
-            const double det = glm::determinant(glm::dmat3(transforms[i]));
-            const bool collapsed =
-                !(std::fabs(det) > 0.0) || !std::isfinite(det); // boxes collapse: not drawn
-            o.info = glm::uvec4(ids[i], det < 0.0 ? 1u : 0u, collapsed ? 1u : 0u, 0u);
-        }
-        const size_t bytes = objects.size() * sizeof(ProjectorObjectGpu);
-        reserveBuffer(objectBuffer, objectCapacity, bytes, 64 * sizeof(ProjectorObjectGpu));
-        glNamedBufferSubData(objectBuffer.get(), 0, GLsizeiptr(bytes), objects.data());
-    }
-
-    // Sends changed decal instances and the visible list; returns the bytes sent.
+    // Sends changed decal records and the visible list culled on the CPU; returns the bytes sent.
     size_t uploadDecals(const DecalVisibility& vis, size_t& uploads) {
-        return uploadInstances(uploads) + uploadVisible(vis);
-    }
-
-    // Sends the draw order's changes to the GPU culling (all of it when the CPU culled since);
-    // returns the bytes sent.
-    size_t uploadDrawOrder() {
-        std::vector<std::pair<size_t, size_t>> runs = batch.takeOrderChanges();
-        if (!std::exchange(orderOnGpu, true)) runs = {{0, batch.order().entries().size()}};
-        return culling.updateDrawOrder(batch.order().entries(), runs);
-    }
-
-    // Sends the decal types when they changed; returns the bytes sent.
-    size_t uploadTypes() {
-        if (!std::exchange(typesChanged, false) && typeBuffer) return 0;
-        std::vector<DecalTypeGpu> records = batch.typeRecords();
-        if (records.empty()) records.emplace_back(); // a buffer of one type that cannot be drawn
-        const size_t bytes = records.size() * sizeof(DecalTypeGpu);
-        typeBuffer = createBuffer(); // sized exactly: the shaders take its length as the type count
-        glNamedBufferStorage(typeBuffer.get(), GLsizeiptr(bytes), records.data(), 0);
-        return bytes;
-    }
-
-    // Sends the decal records (and types) that changed; returns the bytes sent and counts the uploads.
-    size_t uploadInstances(size_t& uploads) {
-        size_t bytes = uploadTypes(), end = batch.size();
-        for (const StagedRecords& run : batch.staged())
-            end = std::max(end, run.begin + run.records.size());
-        growBuffer(decalBuffer, decalCapacity, std::max<size_t>(1, end) * sizeof(DecalRecordGpu),
-                   64 * sizeof(DecalRecordGpu), recordsOnGpu * sizeof(DecalRecordGpu));
-        for (const StagedRecords& run : batch.staged()) {
-            const size_t size = run.records.size() * sizeof(DecalRecordGpu);
-            glNamedBufferSubData(decalBuffer.get(), GLintptr(run.begin * sizeof(DecalRecordGpu)),
-                                 GLsizeiptr(size), run.records.data());
-            bytes += size;
-            ++uploads;
-        }
-        recordsOnGpu = std::max(batch.size(), end);
-        batch.markUploaded();
-        return bytes;
-    }
-
-    size_t uploadVisible(const DecalVisibility& vis) {
-        const std::vector<uint32_t>& list = vis.visible;
-        reserveBuffer(visibleBuffer, visibleCapacity, list.size() * sizeof(uint32_t), 64 * sizeof(uint32_t));
-        glNamedBufferSubData(visibleBuffer.get(), 0, GLsizeiptr(list.size() * sizeof(uint32_t)), list.data());
-        visibleCount = list.size();
-        return list.size() * sizeof(uint32_t);
+        return buffers.uploadRecords(batch, uploads) + buffers.uploadVisible(vis.visible);
     }
 
     // Takes the copy of the host's normals that the decals read (NormalCopy.hpp); returns the draws
@@ -314,9 +237,9 @@ struct DecalProjector::Impl {
                                   0);
         glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, normals, 0);
         glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT2, roughness, 0);
-        const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GLenum(normals ? GL_COLOR_ATTACHMENT1 : GL_NONE),
-                                   GLenum(roughness ? GL_COLOR_ATTACHMENT2 : GL_NONE)};
-        glNamedFramebufferDrawBuffers(fb, 3, buffers);
+        const GLenum drawBuffers[3] = {GL_COLOR_ATTACHMENT0, GLenum(normals ? GL_COLOR_ATTACHMENT1 : GL_NONE),
+                                       GLenum(roughness ? GL_COLOR_ATTACHMENT2 : GL_NONE)};
+        glNamedFramebufferDrawBuffers(fb, 3, drawBuffers);
         for (GLuint i = 0; i < GLuint(GlStateGuard::kDrawBuffers); ++i) {
             glBlendEquationi(i, GL_FUNC_ADD);
             glBlendFunci(i, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -349,16 +272,7 @@ struct DecalProjector::Impl {
             glBindSampler(unit, nearest.get());
         glBindSampler(3, 0);
         glBindSampler(4, 0);
-        bindBuffers();
-    }
-
-    // The frame block, objects, decal instances and visible list at their binding points.
-    void bindBuffers() const {
-        glBindBufferBase(GL_UNIFORM_BUFFER, kProjectorFrameBlock, frameBuffer.get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorObjectBuffer, objectBuffer.get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorDecalBuffer, decalBuffer.get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorVisibleBuffer, visibleBuffer.get());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalTypeBuffer, typeBuffer.get());
+        buffers.bind();
     }
 
     // Roughness in an alpha channel: the decals again, into that texture alone, with dual-source
@@ -385,7 +299,7 @@ struct DecalProjector::Impl {
 
     DecalVisibility cullOnCpu(const CullView& cull) {
         DecalVisibility vis = batch.cull(transforms, cull);
-        orderOnGpu = false; // the GPU's draw order falls behind: sent whole when the GPU culls again
+        buffers.orderLeftBehind();
         batch.takeOrderChanges();
         return vis;
     }
@@ -403,16 +317,13 @@ struct DecalProjector::Impl {
         return stats;
     }
 
-    // Builds the visible list on the GPU and sets the counts of `stats` from it (this draw's with
-    // waitForTimers, else the latest the GPU has finished); returns the indirect draw.
-    // With a host frame (draw(); occlusionCulling) the boxes hidden behind its depth are culled too.
     // Whether this draw tests the boxes against a depth pyramid (occlusionCulling): while the latest
     // culling the GPU has finished hid at least 256 boxes and one in 20 of those in the frustum (the
     // pyramid costs about what 500 small boxes cost), and otherwise once every 16 draws and on the
     // first draw after setDecals, to notice when it would.
     bool occlusionPays() {
         if (!settings.occlusionCulling) return false;
-        const size_t hidden = culling.occludedCount(), inFrustum = hidden + visibleCount;
+        const size_t hidden = culling.occludedCount(), inFrustum = hidden + buffers.visibleCount();
         if ((hidden >= 256 && hidden * 20 >= inFrustum) || ++drawsSinceProbe >= 16) {
             drawsSinceProbe = 0;
             return true;
@@ -420,18 +331,21 @@ struct DecalProjector::Impl {
         return false;
     }
 
-    // Needs culling.prepare() and, with a host frame, pyramid.prepare().
+    // Builds the visible list on the GPU and sets the counts of `stats` from it (this draw's with
+    // waitForTimers, else the latest the GPU has finished); returns the indirect draw. With a host
+    // frame (draw()) the boxes hidden behind its depth are culled too where that pays. Needs
+    // culling.prepare() and, with a host frame, pyramid.prepare().
     BoxDraws cullOnGpu(const CullView& cull, const HostFrame* host, ProjectorStats& stats) {
         const Occlusion occlusion =
             host && occlusionPays() ? pyramid.build(*host, nearest.get()) : Occlusion{};
-        bindBuffers();
-        culling.run(batch.size(), cull.reversedZ, cull.clipMinusOne, occlusion, visibleBuffer,
-                    visibleCapacity);
-        bindBuffers(); // the visible list may have grown
+        buffers.bind();
+        culling.run(batch.size(), cull.reversedZ, cull.clipMinusOne, occlusion, buffers.visible(),
+                    buffers.visibleCapacity());
+        buffers.bind(); // the visible list may have grown
         stats.drawn = culling.visibleCount(settings.waitForTimers);
         const size_t valid = batch.size() - batch.invalidCount();
         stats.culled = valid > stats.drawn ? valid - stats.drawn : 0; // counts of an earlier draw may exceed
-        visibleCount = stats.drawn;
+        buffers.setVisibleCount(stats.drawn);
         return {0, culling.draws()};
     }
 
@@ -444,7 +358,8 @@ struct DecalProjector::Impl {
         head.info.y = settings.normalFrame == DecalNormalFrame::DepthDerivatives ? 1 : 0;
         head.params.x = settings.fadeStart;
         if (onGpu) {
-            stats.bytesUploaded += uploadInstances(stats.instanceUploads) + uploadDrawOrder();
+            stats.bytesUploaded +=
+                buffers.uploadRecords(batch, stats.instanceUploads) + buffers.uploadDrawOrder(batch, culling);
             cullOnGpu(camera.cull, nullptr, stats);
             // Room for twice the visible decals of the latest count the GPU has given (this one's with
             // waitForTimers): a sudden jump past it leaves decals out for a frame.
@@ -454,7 +369,7 @@ struct DecalProjector::Impl {
             stats.drawCalls += 5;
         } else {
             stats.bytesUploaded += uploadDecals(vis, stats.instanceUploads);
-            bindBuffers();
+            buffers.bind();
             stats.bytesUploaded += forward.bin(frame, vis, settings.forwardTileSize, head);
             stats.drawCalls += stats.skipped ? 0 : 4;
         }
@@ -464,13 +379,13 @@ struct DecalProjector::Impl {
     // normals, then the boxes, and the roughness pass.
     void drawDecals(const HostFrame& f, const ProjectorDraw& o, const FrameCamera& camera, bool onGpu,
                     const DecalVisibility& vis, const Passes& passes, ProjectorStats& stats) {
-        stats.bytesUploaded = uploadInstances(stats.instanceUploads);
+        stats.bytesUploaded = buffers.uploadRecords(batch, stats.instanceUploads);
         BoxDraws boxes = cpuDraws(vis);
         if (onGpu) {
-            stats.bytesUploaded += uploadDrawOrder();
+            stats.bytesUploaded += buffers.uploadDrawOrder(batch, culling);
             boxes = cullOnGpu(camera.cull, &f, stats);
         } else {
-            stats.bytesUploaded += uploadVisible(vis);
+            stats.bytesUploaded += buffers.uploadVisible(vis.visible);
         }
         const bool inPlace = !(vis.flags & kDecalWrap) && passes.roughness == 0;
         const NormalCopyMode copy = !passes.writesNormals ? NormalCopyMode::None
@@ -542,8 +457,7 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
     if (Status s = impl->textures.create(settings.decalTextureSize); !s)
         return fail("projector: " + s.error());
     impl->batch.configure(settings.wrapMaxAngleDeg, impl->textures.layers());
-    impl->frameBuffer = createBuffer();
-    glNamedBufferStorage(impl->frameBuffer.get(), sizeof(ProjectorFrameGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    impl->buffers.create();
     impl->emptyVao = createVertexArray();
     impl->fbo = createFramebuffer();
     impl->nearest = createSampler();
@@ -561,7 +475,7 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
 
 void DecalProjector::setDecalTypes(const std::vector<DecalType>& types) {
     impl_->batch.setTypes(types);
-    impl_->typesChanged = true;
+    impl_->buffers.typesChanged();
 }
 
 void DecalProjector::setDecals(const std::vector<Decal>& decals) {
@@ -590,8 +504,10 @@ Status DecalProjector::setObjects(const std::vector<glm::dmat4>& transforms,
 Result<int> DecalProjector::addDecalTexture(const Image& albedo, const Image& normalMap) {
     GlStateGuard guard;
     Result<int> layer = impl_->textures.add(albedo, normalMap);
-    if (layer) impl_->batch.configure(impl_->settings.wrapMaxAngleDeg, impl_->textures.layers());
-    impl_->typesChanged = impl_->typesChanged || layer;
+    if (layer) {
+        impl_->batch.configure(impl_->settings.wrapMaxAngleDeg, impl_->textures.layers());
+        impl_->buffers.typesChanged();
+    }
     return layer;
 }
 
@@ -637,7 +553,7 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
     GlStateGuard guard;
     m.timers.beginFrame(m.draws);
     m.timers.begin(GpuPass::Decals);
-    m.uploadFrame(host, camera);
+    m.buffers.uploadFrame(host, camera.view, camera.viewProj, m.settings.fadeStart, m.transforms, m.ids);
     m.binVisible(frame, camera, onGpu, vis, stats);
     m.timers.end();
     const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
@@ -698,7 +614,7 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     GlStateGuard guard;
     m.timers.beginFrame(m.draws);
     m.timers.begin(GpuPass::Decals);
-    m.uploadFrame(frame, camera);
+    m.buffers.uploadFrame(frame, camera.view, camera.viewProj, m.settings.fadeStart, m.transforms, m.ids);
     m.drawDecals(frame, options, camera, onGpu, vis, passes, stats);
     m.timers.end();
     const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
@@ -713,11 +629,11 @@ ProjectorResources DecalProjector::resources() const {
     ProjectorResources r;
     r.albedoLayers = m.textures.albedoTexture();
     r.normalLayers = m.textures.normalTexture();
-    r.decals = m.decalBuffer.get();
-    r.types = m.typeBuffer.get();
-    r.visible = m.visibleBuffer.get();
-    r.objects = m.objectBuffer.get();
-    r.visibleCount = m.visibleCount;
+    r.decals = m.buffers.decals();
+    r.types = m.buffers.types();
+    r.visible = m.buffers.visibleBuffer();
+    r.objects = m.buffers.objects();
+    r.visibleCount = m.buffers.visibleCount();
     r.dbufferAlbedo = m.dbuffer.albedo();
     r.dbufferNormal = m.dbuffer.normal();
     r.dbufferMaterial = m.dbuffer.material();
@@ -737,9 +653,8 @@ ProjectorMemory DecalProjector::memory() const {
     const Impl& m = *impl_;
     ProjectorMemory r;
     r.cpuBytes = m.batch.cpuBytes();
-    r.gpuBufferBytes = m.decalCapacity + m.visibleCapacity + m.objectCapacity + m.culling.gpuBytes() +
-                       m.forward.gpuBytes() + m.pyramid.gpuBytes() +
-                       m.batch.typeRecords().size() * sizeof(DecalTypeGpu);
+    r.gpuBufferBytes =
+        m.buffers.gpuBytes() + m.culling.gpuBytes() + m.forward.gpuBytes() + m.pyramid.gpuBytes();
     return r;
 }
 
