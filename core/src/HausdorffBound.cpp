@@ -325,13 +325,7 @@ private:
                 accept(bound);
                 continue;
             }
-            int k = 0;
-            double longest = -1.0;
-            for (int e = 0; e < 3; ++e) {
-                const glm::dvec3 d = q.p[(e + 1) % 3] - q.p[e];
-                if (glm::dot(d, d) > longest) longest = glm::dot(d, d), k = e;
-            }
-            const int k1 = (k + 1) % 3;
+            const int k = detail::longestEdge(q.p), k1 = (k + 1) % 3;
             const glm::dvec3 mid = 0.5 * (q.p[k] + q.p[k1]);
             const Measured m = measure(mid);
             ++queries;

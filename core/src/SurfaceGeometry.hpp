@@ -36,6 +36,18 @@ inline Status checkTriangles(const Mesh& mesh) {
     return {};
 }
 
+// The corner k at which the longest edge of the triangle `p` starts (it runs from k to k + 1): the
+// edge a subdivision halves.
+inline int longestEdge(const glm::dvec3 p[3]) {
+    int k = 0;
+    double longest = -1.0;
+    for (int e = 0; e < 3; ++e) {
+        const glm::dvec3 d = p[(e + 1) % 3] - p[e];
+        if (glm::dot(d, d) > longest) longest = glm::dot(d, d), k = e;
+    }
+    return k;
+}
+
 inline glm::dvec3 corner(const Mesh& mesh, size_t triangle, int k) {
     return glm::dvec3(mesh.positions[mesh.indices[3 * triangle + size_t(k)]]);
 }

@@ -21,42 +21,6 @@ using ::testing::HasSubstr;
 
 namespace {
 
-glm::dvec3 corner(const Mesh& m, size_t t, int k) {
-    return glm::dvec3(m.positions[m.indices[3 * t + size_t(k)]]);
-}
-
-// Lower estimate of the one-sided distance from `from` to `to`: the largest exact distance at `count`
-// random area-weighted points of `from` and at the corners of its triangles of non-zero area (the
-// surface; isolated vertices and degenerate triangles are not part of it).
-double denseOneSided(const Mesh& from, const Mesh& to, size_t count, uint64_t seed) {
-    Result<ClosestPointQuery> q = ClosestPointQuery::create(to);
-    EXPECT_TRUE(q) << q.error();
-    std::vector<double> cumulative;
-    double total = 0.0, worst = 0.0;
-    for (size_t t = 0; t < from.triangleCount(); ++t) {
-        const double area = glm::length(
-            glm::cross(corner(from, t, 1) - corner(from, t, 0), corner(from, t, 2) - corner(from, t, 0)));
-        total += area;
-        cumulative.push_back(total);
-        if (area > 0.0)
-            for (int k = 0; k < 3; ++k)
-                worst = std::max(worst, q->closest(corner(from, t, k))->distance);
-    }
-    Rng rng(seed);
-    for (size_t i = 0; i < count; ++i) {
-        const size_t t =
-            std::min(size_t(std::upper_bound(cumulative.begin(), cumulative.end(), rng.uniform() * total) -
-                            cumulative.begin()),
-                     cumulative.size() - 1);
-        double u = rng.uniform(), v = rng.uniform();
-        if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
-        const glm::dvec3 p = corner(from, t, 0) + u * (corner(from, t, 1) - corner(from, t, 0)) +
-                             v * (corner(from, t, 2) - corner(from, t, 0));
-        worst = std::max(worst, q->closest(p)->distance);
-    }
-    return worst;
-}
-
 HausdorffSurface surface(const Mesh& m) {
     Result<HausdorffSurface> s = HausdorffSurface::create(m);
     EXPECT_TRUE(s) << s.error();

@@ -53,56 +53,12 @@ Mesh box(float h) {
     return m;
 }
 
-glm::dvec3 corner(const Mesh& m, size_t t, int k) {
-    return glm::dvec3(m.positions[m.indices[3 * t + size_t(k)]]);
-}
-
-// Area-weighted random points on the triangles of `m` with non-zero area (the drawn surface), plus
-// their corners.
-std::vector<glm::dvec3> surfacePoints(const Mesh& m, size_t count, uint64_t seed) {
-    std::vector<double> cumulative;
-    std::vector<glm::dvec3> out;
-    double total = 0.0;
-    for (size_t t = 0; t < m.triangleCount(); ++t) {
-        const double area =
-            glm::length(glm::cross(corner(m, t, 1) - corner(m, t, 0), corner(m, t, 2) - corner(m, t, 0)));
-        total += area;
-        cumulative.push_back(total);
-        if (area > 0.0)
-            for (int k = 0; k < 3; ++k)
-                out.push_back(corner(m, t, k));
-    }
-    Rng rng(seed);
-    for (size_t i = 0; i < count; ++i) {
-        const size_t t =
-            std::min(size_t(std::upper_bound(cumulative.begin(), cumulative.end(), rng.uniform() * total) -
-                            cumulative.begin()),
-                     cumulative.size() - 1);
-        double u = rng.uniform(), v = rng.uniform();
-        if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
-        out.push_back(corner(m, t, 0) + u * (corner(m, t, 1) - corner(m, t, 0)) +
-                      v * (corner(m, t, 2) - corner(m, t, 0)));
-    }
-    return out;
-}
-
 // Lower estimate of the one-sided Hausdorff distance from `from` to `to`, by brute force over every
 // triangle of `to` (independent of the library's closest-point code).
 double bruteOneSided(const Mesh& from, const Mesh& to, size_t samples, uint64_t seed) {
     double worst = 0.0;
     for (const glm::dvec3& p : surfacePoints(from, samples, seed))
         worst = std::max(worst, bruteMeshDistance(p, to));
-    return worst;
-}
-
-// Lower estimate from many samples through ClosestPointQuery (checked against brute force in
-// MeshDistanceTest).
-double denseOneSided(const Mesh& from, const Mesh& to, size_t samples, uint64_t seed) {
-    Result<ClosestPointQuery> q = ClosestPointQuery::create(to);
-    EXPECT_TRUE(q) << q.error();
-    double worst = 0.0;
-    for (const glm::dvec3& p : surfacePoints(from, samples, seed))
-        worst = std::max(worst, q->closest(p)->distance);
     return worst;
 }
 

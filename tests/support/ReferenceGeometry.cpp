@@ -1,5 +1,10 @@
 #include "ReferenceGeometry.hpp"
 
+#include "spatter/core/MeshDistance.hpp"
+#include "spatter/core/Random.hpp"
+
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -65,6 +70,42 @@ double bruteMeshDistance(const glm::dvec3& p, const Mesh& m) {
                                                glm::dvec3(m.positions[m.indices[3 * t + 1]]),
                                                glm::dvec3(m.positions[m.indices[3 * t + 2]])));
     return best;
+}
+
+std::vector<glm::dvec3> surfacePoints(const Mesh& m, size_t count, uint64_t seed) {
+    auto corner = [&m](size_t t, int k) { return glm::dvec3(m.positions[m.indices[3 * t + size_t(k)]]); };
+    std::vector<double> cumulative;
+    std::vector<glm::dvec3> out;
+    double total = 0.0;
+    for (size_t t = 0; t < m.triangleCount(); ++t) {
+        const double area = glm::length(glm::cross(corner(t, 1) - corner(t, 0), corner(t, 2) - corner(t, 0)));
+        total += area;
+        cumulative.push_back(total);
+        if (area > 0.0)
+            for (int k = 0; k < 3; ++k)
+                out.push_back(corner(t, k));
+    }
+    Rng rng(seed);
+    for (size_t i = 0; i < count && !cumulative.empty(); ++i) {
+        const size_t t =
+            std::min(size_t(std::upper_bound(cumulative.begin(), cumulative.end(), rng.uniform() * total) -
+                            cumulative.begin()),
+                     cumulative.size() - 1);
+        double u = rng.uniform(), v = rng.uniform();
+        if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+        out.push_back(corner(t, 0) + u * (corner(t, 1) - corner(t, 0)) + v * (corner(t, 2) - corner(t, 0)));
+    }
+    return out;
+}
+
+double denseOneSided(const Mesh& from, const Mesh& to, size_t count, uint64_t seed) {
+    Result<ClosestPointQuery> q = ClosestPointQuery::create(to);
+    EXPECT_TRUE(q) << q.error();
+    if (!q) return 0.0;
+    double worst = 0.0;
+    for (const glm::dvec3& p : surfacePoints(from, count, seed))
+        worst = std::max(worst, q->closest(p)->distance);
+    return worst;
 }
 
 } // namespace spatter::test

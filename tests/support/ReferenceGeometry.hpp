@@ -5,8 +5,10 @@
 
 #include "spatter/core/Mesh.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace spatter::test {
 
@@ -23,5 +25,14 @@ double triangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dve
 
 // Distance from `p` to the nearest triangle of `m`, over every triangle; infinity for no triangles.
 double bruteMeshDistance(const glm::dvec3& p, const Mesh& m);
+
+// The corners of the triangles of `m` with non-zero area (the drawn surface), then `count` seeded
+// area-weighted random points on them.
+std::vector<glm::dvec3> surfacePoints(const Mesh& m, size_t count, uint64_t seed);
+
+// Lower estimate of the one-sided distance from `from` to `to`: the largest exact distance, through
+// the library's ClosestPointQuery (checked against brute force in MeshDistanceTest), at
+// surfacePoints(from, count, seed). A failure to query fails the calling test and gives 0.
+double denseOneSided(const Mesh& from, const Mesh& to, size_t count, uint64_t seed);
 
 } // namespace spatter::test
