@@ -7,10 +7,6 @@ namespace spatter {
 
 namespace {
 
-bool finite(const glm::dvec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 // Below this length an axis is rounding noise, not a direction.
 constexpr double kMinAxis = 1e-12;
 
@@ -27,19 +23,18 @@ Frame Decal::frame() const {
 
 bool Decal::setFrame(const Frame& f) {
     const glm::dvec3 n0(f.normal), t0(f.tangent), b0(f.bitangent);
-    const double nl = glm::length(n0);
     orientation = glm::quat(0.0f, 0.0f, 0.0f, 0.0f);
     mirrored = false;
-    if (!finite(n0) || !finite(t0) || !finite(b0) || !(nl > kMinAxis)) return false;
-    const glm::dvec3 n = n0 / nl;
+    const double nn = glm::dot(n0, n0), t0t0 = glm::dot(t0, t0);
+    // Squares of floats stay finite in double: the sum is finite exactly when every component is.
+    if (!std::isfinite(nn + t0t0 + glm::dot(b0, b0)) || !(nn > kMinAxis * kMinAxis)) return false;
+    const glm::dvec3 n = n0 * (1.0 / std::sqrt(nn));
     const glm::dvec3 tp = t0 - n * glm::dot(n, t0);
-    const double tl = glm::length(tp);
-    if (!(tl > kMinAxis * std::max(1.0, glm::length(t0)))) return false;
-    const glm::dvec3 t = tp / tl;
+    const double tt = glm::dot(tp, tp);
+    if (!(tt > kMinAxis * kMinAxis * std::max(1.0, t0t0))) return false;
+    const glm::dvec3 t = tp * (1.0 / std::sqrt(tt));
     const glm::dvec3 b = glm::cross(n, t);
-    glm::dquat q = glm::quat_cast(glm::dmat3(t, b, n));
-    if (q.w < 0.0) q = -q; // q and -q are the same rotation; one sign keeps packing deterministic
-    orientation = glm::quat(q);
+    orientation = glm::quat(orientationOf(t, b, n));
     mirrored = glm::dot(b0, b) < 0.0;
     return true;
 }

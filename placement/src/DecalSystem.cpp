@@ -52,14 +52,17 @@ std::string formatNumber(double v) {
     return buf;
 }
 
-// A decal the renderer can use (its frame packed by setFrame): finite centre, size and half-depth finite and
+// A decal the renderer can use: finite orientation and centre, size and half-depth finite and
 // at least the smallest normal float (a box of zero, denormal or infinite extent cannot be inverted).
 bool soundBox(const Decal& d) {
     auto finite = [](const glm::vec3& v) {
         return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
     };
     auto extent = [](float v) { return std::isfinite(v) && v >= std::numeric_limits<float>::min(); };
-    return finite(d.center) && extent(d.size.x) && extent(d.size.y) && extent(d.halfDepth);
+    const glm::quat& q = d.orientation;
+    const bool oriented =
+        std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w);
+    return oriented && finite(d.center) && extent(d.size.x) && extent(d.size.y) && extent(d.halfDepth);
 }
 
 // The largest world-space extent (size or half-depth) a decal may have: its box goes to object space
@@ -318,7 +321,7 @@ struct DecalSystem::Impl {
         const glm::dvec3 bit = glm::cross(n, tan);
 
         Decal d;
-        const bool framed = d.setFrame(Frame{glm::vec3(tan), glm::vec3(bit), glm::vec3(n)});
+        d.orientation = glm::quat(orientationOf(tan, bit, n)); // orthonormal already: packed as it is
         d.center = glm::vec3(local);
         d.size = glm::vec2(float(size.x / glm::length(m * tan)), float(size.y / glm::length(m * bit)));
         d.halfDepth = float(halfDepth * glm::length(glm::transpose(inv) * n));
@@ -329,7 +332,7 @@ struct DecalSystem::Impl {
         d.spawnTime = time;
         d.opacity = 1.0f;
         const bool worldSound = std::max(size.x, size.y) <= kMaxWorldExtent && halfDepth <= kMaxWorldExtent;
-        if (!framed || !soundBox(d) || !worldSound) {
+        if (!soundBox(d) || !worldSound) {
             rng = unused;
             return reject(SpawnStatus::InvalidArgument,
                           "the box of a decal of type '" + t.name + "' on '" + o.name +
