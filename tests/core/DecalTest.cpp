@@ -105,3 +105,17 @@ TEST(Decal, BoxToObjectSpansTheBox) {
     EXPECT_NEAR(corner.y, 2.0f + 2.0f, 1e-6f);
     EXPECT_NEAR(corner.z, 3.0f + 0.5f, 1e-6f);
 }
+
+TEST(Decal, HalfTurnsAboutAnyAxisComeBack) {
+    // Rotations by 180 degrees, where w is 0 and the signs of x, y and z must come from the matrix's
+    // off-diagonal sums: about the coordinate axes and about diagonals with mixed signs.
+    const glm::vec3 axes[] = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1}, {1, -1, 0},
+                              {0, 1, -1}, {-1, 0, 1}, {1, -1, 1}};
+    for (const glm::vec3& a : axes) {
+        const glm::dmat3 r = glm::mat3_cast(glm::angleAxis(glm::pi<double>(), glm::normalize(glm::dvec3(a))));
+        const Frame f{glm::vec3(r[0]), glm::vec3(r[1]), glm::vec3(r[2])};
+        Decal d;
+        ASSERT_TRUE(d.setFrame(f));
+        EXPECT_LE(largestDifference(d.frame(), f), 4e-7f) << a.x << " " << a.y << " " << a.z;
+    }
+}
