@@ -30,14 +30,21 @@ layout(std430, binding = 6) readonly buffer DrawOrder {
 shared uint sVisible;
 shared uint sBits[8]; // the work group's 256 classes
 
-// Whether the box, corner by corner in clip space, lies beyond one of the view's planes.
-bool outsideFrustum(DecalData d, ProjectorObject o) {
-    int beyond[6] = int[6](0, 0, 0, 0, 0, 0);
-    bool reversed = u_camera.y != 0.0;
+// The box's eight corners in clip space.
+void boxCorners(DecalData d, ProjectorObject o, out vec4 corners[8]) {
     for (int c = 0; c < 8; ++c) {
         vec4 local = vec4((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0, 1.0);
         vec3 p = vec3(dot(d.boxToObject[0], local), dot(d.boxToObject[1], local), dot(d.boxToObject[2], local));
-        vec4 clip = u_viewProj * (o.model * vec4(p, 1.0));
+        corners[c] = u_viewProj * (o.model * vec4(p, 1.0));
+    }
+}
+
+// Whether the box, corner by corner in clip space, lies beyond one of the view's planes.
+bool outsideFrustum(vec4 corners[8]) {
+    int beyond[6] = int[6](0, 0, 0, 0, 0, 0);
+    bool reversed = u_camera.y != 0.0;
+    for (int c = 0; c < 8; ++c) {
+        vec4 clip = corners[c];
         float w = clip.w, slack = 1e-4 * abs(w) + 1e-30;
         float low = u_camera.z != 0.0 ? -w : 0.0;
         beyond[0] += clip.x < -w - slack ? 1 : 0;
@@ -62,13 +69,11 @@ float farness(vec4 clip) {
 
 // Whether the box lies wholly beyond the scene: its nearest point farther than the farthest surface
 // of every pyramid texel under its screen rectangle (a box that reaches behind the eye is not tested).
-bool hidden(DecalData d, ProjectorObject o) {
+bool hidden(vec4 corners[8]) {
     vec2 lo = vec2(1e30), hi = vec2(-1e30);
     float near = 1e30;
     for (int c = 0; c < 8; ++c) {
-        vec4 local = vec4((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0, 1.0);
-        vec3 p = vec3(dot(d.boxToObject[0], local), dot(d.boxToObject[1], local), dot(d.boxToObject[2], local));
-        vec4 clip = u_viewProj * (o.model * vec4(p, 1.0));
+        vec4 clip = corners[c];
         if (!(clip.w > 1e-6)) return false;
         vec2 ndc = clip.xy / clip.w;
         lo = min(lo, ndc);
@@ -98,8 +103,11 @@ uint classify(uint i) {
         return 0u; // a degenerate box, or a type or object that cannot be drawn
     DecalData d = unpackDecal(r);
     ProjectorObject o = objects[d.info.x];
-    if (o.info.z != 0u || outsideFrustum(d, o)) return 0u; // collapsed object, or out of view
-    if (u_occlusion.x > 0 && hidden(d, o)) {
+    if (o.info.z != 0u) return 0u; // a collapsed object
+    vec4 corners[8];
+    boxCorners(d, o, corners);
+    if (outsideFrustum(corners)) return 0u;
+    if (u_occlusion.x > 0 && hidden(corners)) {
         atomicAdd(occludedCount, 1u);
         return 0u;
     }

@@ -432,12 +432,12 @@ struct DecalSystem::Impl {
         const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(m));
         WorldDecal w;
         w.center = glm::dvec3(xf * glm::dvec4(glm::dvec3(d.center), 1.0));
+        const Frame f = d.frame();
         if (!(finite3(normalMatrix[0]) && finite3(normalMatrix[1]) &&
               finite3(normalMatrix[2]))) { // a singular transform: the object, and the box, collapse
-            w.frame = d.frame();
+            w.frame = f;
             return w;
         }
-        const Frame f = d.frame();
         const glm::dvec3 nScaled = normalMatrix * glm::dvec3(f.normal);
         const glm::dvec3 n = glm::normalize(nScaled);
         const glm::dvec3 tScaled = m * glm::dvec3(f.tangent);

@@ -21,14 +21,13 @@ uint32_t floatBits(float f) {
     return u;
 }
 
-// Whether the decal's numbers can make a box at all: finite, extents of normal floats.
+// Whether the decal's numbers can make a box at all: finite, extents of normal floats (its
+// orientation is checked as it is unpacked: frame() is zero for a zero or non-finite one).
 bool soundNumbers(const Decal& d) {
     constexpr float kMinExtent = std::numeric_limits<float>::min(); // a denormal cannot be inverted
-    return std::isfinite(d.orientation.x) && std::isfinite(d.orientation.y) &&
-           std::isfinite(d.orientation.z) && std::isfinite(d.orientation.w) && finite(d.center) &&
-           std::isfinite(d.size.x) && std::isfinite(d.size.y) && std::isfinite(d.halfDepth) &&
-           std::isfinite(d.opacity) && d.size.x >= kMinExtent && d.size.y >= kMinExtent &&
-           d.halfDepth >= kMinExtent;
+    return finite(d.center) && std::isfinite(d.size.x) && std::isfinite(d.size.y) &&
+           std::isfinite(d.halfDepth) && std::isfinite(d.opacity) && d.size.x >= kMinExtent &&
+           d.size.y >= kMinExtent && d.halfDepth >= kMinExtent;
 }
 
 } // namespace
