@@ -19,17 +19,6 @@ double timeOf(const Decal& d) {
     return std::isfinite(d.spawnTime) ? d.spawnTime : 0.0;
 }
 
-// The order within a priority: by spawn time, then by decal ID (decals spawned at one time, in one
-// frame, draw in the same order whether they arrive together or one by one), then by index.
-struct Newer {
-    const std::vector<Decal>& decals;
-    bool operator()(uint32_t a, uint32_t b) const {
-        const double ta = timeOf(decals[a]), tb = timeOf(decals[b]);
-        if (ta != tb) return ta < tb;
-        return decals[a].id != decals[b].id ? decals[a].id < decals[b].id : a < b;
-    }
-};
-
 } // namespace
 
 void DrawOrder::rebuild(const std::vector<Decal>& decals, const std::vector<uint32_t>& typeRank) {
@@ -37,7 +26,9 @@ void DrawOrder::rebuild(const std::vector<Decal>& decals, const std::vector<uint
     std::iota(order.begin(), order.end(), 0u);
     std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
         const uint32_t ra = rankOf(decals[a], typeRank), rb = rankOf(decals[b], typeRank);
-        return ra != rb ? ra < rb : Newer{decals}(a, b);
+        if (ra != rb) return ra < rb;
+        const double ta = timeOf(decals[a]), tb = timeOf(decals[b]);
+        return ta != tb ? ta < tb : a < b;
     });
     std::vector<std::vector<uint32_t>> byRank;
     for (const uint32_t i : order) {
@@ -75,71 +66,41 @@ void DrawOrder::remove(uint32_t index, uint32_t from) {
 }
 
 void DrawOrder::place(const std::vector<Decal>& decals, const std::vector<uint32_t>& typeRank) {
-    // The new decals by priority, each in draw order.
-    std::vector<std::vector<uint32_t>> added(regions_.size());
+    std::vector<size_t> wanted(regions_.size(), 0);
+    bool fits = true;
+    size_t live = 0, empty = 0;
+    for (const Region& g : regions_) {
+        live += g.used - g.empty;
+        empty += g.empty;
+    }
     for (const uint32_t i : pending_) {
         if (i == kEmpty) continue;
         const uint32_t r = rankOf(decals[i], typeRank);
-        if (added.size() <= r) added.resize(r + 1);
-        added[r].push_back(i);
-    }
-    pending_.clear();
-    for (std::vector<uint32_t>& a : added)
-        std::sort(a.begin(), a.end(), Newer{decals});
-    bool fits = added.size() == regions_.size();
-    size_t live = 0, empty = 0;
-    for (size_t r = 0; r < regions_.size(); ++r) {
-        live += regions_[r].used - regions_[r].empty;
-        empty += regions_[r].empty;
-        fits = fits && regions_[r].used + added[r].size() <= regions_[r].size;
+        if (r >= regions_.size() || regions_[r].used + ++wanted[r] > regions_[r].size) fits = false;
     }
     if (fits && empty <= live + 64) { // room, and not mostly holes
-        for (size_t r = 0; r < regions_.size(); ++r)
-            if (!added[r].empty()) mergeIntoTail(r, added[r], decals);
+        for (const uint32_t i : pending_) {
+            if (i == kEmpty) continue;
+            Region& g = regions_[rankOf(decals[i], typeRank)];
+            pos_[i] = uint32_t(g.start + g.used);
+            set(g.start + g.used++, i);
+        }
+        pending_.clear();
         return;
     }
-    // A new layout: the decals there in their order, the new ones merged in.
-    std::vector<std::vector<uint32_t>> byRank(std::max(regions_.size(), added.size()));
-    for (size_t r = 0; r < byRank.size(); ++r) {
-        if (r < regions_.size())
-            for (size_t e = regions_[r].start; e < regions_[r].start + regions_[r].used; ++e)
-                if (entries_[e] != kEmpty) byRank[r].push_back(entries_[e]);
-        if (r >= added.size()) continue;
-        const size_t middle = byRank[r].size();
-        byRank[r].insert(byRank[r].end(), added[r].begin(), added[r].end());
-        std::inplace_merge(byRank[r].begin(), byRank[r].begin() + std::ptrdiff_t(middle), byRank[r].end(),
-                           Newer{decals});
+    // A new layout: the decals there in their order, then the new ones.
+    std::vector<std::vector<uint32_t>> byRank(regions_.size());
+    for (size_t r = 0; r < regions_.size(); ++r)
+        for (size_t e = regions_[r].start; e < regions_[r].start + regions_[r].used; ++e)
+            if (entries_[e] != kEmpty) byRank[r].push_back(entries_[e]);
+    for (const uint32_t i : pending_) {
+        if (i == kEmpty) continue;
+        const uint32_t r = rankOf(decals[i], typeRank);
+        if (byRank.size() <= r) byRank.resize(r + 1);
+        byRank[r].push_back(i);
     }
+    pending_.clear();
     layout(byRank);
-}
-
-// Puts `added` (in draw order) at the end of region `r`: after the entries there that draw before
-// its first, merged with those that draw after it (decals of the same spawn time with larger IDs),
-// whose entries are written again without the holes among them.
-void DrawOrder::mergeIntoTail(size_t r, const std::vector<uint32_t>& added,
-                              const std::vector<Decal>& decals) {
-    Region& g = regions_[r];
-    const Newer newer{decals};
-    size_t tail = g.start + g.used;
-    while (tail > g.start && (entries_[tail - 1] == kEmpty || newer(added.front(), entries_[tail - 1])))
-        --tail;
-    std::vector<uint32_t> merged;
-    for (size_t e = tail; e < g.start + g.used; ++e)
-        if (entries_[e] != kEmpty)
-            merged.push_back(entries_[e]);
-        else
-            g.empty--;
-    const size_t middle = merged.size();
-    merged.insert(merged.end(), added.begin(), added.end());
-    std::inplace_merge(merged.begin(), merged.begin() + std::ptrdiff_t(middle), merged.end(), newer);
-    const size_t end = g.start + g.used;
-    for (size_t k = 0; k < merged.size(); ++k) {
-        pos_[merged[k]] = uint32_t(tail + k);
-        set(tail + k, merged[k]);
-    }
-    for (size_t e = tail + merged.size(); e < end; ++e)
-        set(e, kEmpty); // the holes the tail had, now past its end
-    g.used = tail + merged.size() - g.start;
 }
 
 std::vector<std::pair<size_t, size_t>> DrawOrder::takeChanged() {

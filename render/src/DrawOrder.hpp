@@ -1,11 +1,10 @@
 #pragma once
 // DrawOrder: the order the decal boxes are drawn in, kept as the decals change without sorting them
 // again. Decals draw by their type's priority (DecalType::priority), then by spawn time, then by
-// decal ID (then index): one region of entries per priority, lowest first, each in that order with
-// room to grow. A decal added later (DecalChanges) is at least as new as every decal there and goes
-// to the end of its priority's region, merged by ID with those of its own spawn time; a removed one
-// leaves an empty entry, and the decal moved into its index takes over its entry. Entries are decal
-// indices or kEmpty; the GPU culling walks them as they are.
+// index: one region of entries per priority, lowest first, each in spawn order with room to grow.
+// A decal added later (DecalChanges) is newer than every decal there and goes to the end of its
+// priority's region; a removed one leaves an empty entry, and the decal moved into its index takes
+// over its entry. Entries are decal indices or kEmpty; the GPU culling walks them as they are.
 
 #include "spatter/core/Decal.hpp"
 
@@ -48,7 +47,6 @@ private:
     static constexpr uint32_t kPending = 0x80000000u; // pos_ of an added decal not yet placed
 
     void layout(const std::vector<std::vector<uint32_t>>& byRank);
-    void mergeIntoTail(size_t rank, const std::vector<uint32_t>& added, const std::vector<Decal>& decals);
     void set(size_t entry, uint32_t value);
     size_t regionOf(size_t entry) const;
 

@@ -37,8 +37,7 @@ struct DecalType {
     float roughness = -1.0f; // roughness written under the decal; < 0 keeps the surface's
     // Draw order (Unreal's SortOrder, Unity's draw order): decals of a higher priority draw over those
     // of a lower one whatever their spawn order; within a priority, newer decals (Decal::spawnTime)
-    // draw over older ones, and decals of the same instant by their decal ID (Decal::id), then in the
-    // order they are given.
+    // draw over older ones, and decals of the same instant in the order they are given.
     int priority = 0;
     // Volumetric: instead of the projected texture, a crater model is drawn behind a stencil hole in
     // the surface (Renderer.hpp), with the surface's material continued into it; the decal system
