@@ -13,18 +13,14 @@ constexpr double kMinAxis = 1e-12;
 } // namespace
 
 Frame Decal::frame() const {
-    const glm::dquat q(orientation);
-    const double length = glm::length(q);
-    if (!(length > kMinAxis) || !std::isfinite(length))
-        return Frame{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
-    const glm::dmat3 m = glm::mat3_cast(q / length);
-    return Frame{glm::vec3(m[0]), glm::vec3(mirrored ? -m[1] : m[1]), glm::vec3(m[2])};
+    if (!hasOrientation(packedFrame)) return Frame{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+    const glm::dmat3 m = glm::mat3_cast(orientation());
+    return Frame{glm::vec3(m[0]), glm::vec3(mirrored() ? -m[1] : m[1]), glm::vec3(m[2])};
 }
 
 bool Decal::setFrame(const Frame& f) {
     const glm::dvec3 n0(f.normal), t0(f.tangent), b0(f.bitangent);
-    orientation = glm::quat(0.0f, 0.0f, 0.0f, 0.0f);
-    mirrored = false;
+    packedFrame = kNoOrientation;
     const double nn = glm::dot(n0, n0), t0t0 = glm::dot(t0, t0);
     // Squares of floats stay finite in double: the sum is finite exactly when every component is.
     if (!std::isfinite(nn + t0t0 + glm::dot(b0, b0)) || !(nn > kMinAxis * kMinAxis)) return false;
@@ -34,8 +30,7 @@ bool Decal::setFrame(const Frame& f) {
     if (!(tt > kMinAxis * kMinAxis * std::max(1.0, t0t0))) return false;
     const glm::dvec3 t = tp * (1.0 / std::sqrt(tt));
     const glm::dvec3 b = glm::cross(n, t);
-    orientation = glm::quat(orientationOf(t, b, n));
-    mirrored = glm::dot(b0, b) < 0.0;
+    setOrientation(orientationOf(t, b, n), glm::dot(b0, b) < 0.0);
     return true;
 }
 

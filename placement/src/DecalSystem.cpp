@@ -52,17 +52,15 @@ std::string formatNumber(double v) {
     return buf;
 }
 
-// A decal the renderer can use: finite orientation and centre, size and half-depth finite and
+// A decal the renderer can use: an orientation, a finite centre, size and half-depth finite and
 // at least the smallest normal float (a box of zero, denormal or infinite extent cannot be inverted).
 bool soundBox(const Decal& d) {
     auto finite = [](const glm::vec3& v) {
         return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
     };
     auto extent = [](float v) { return std::isfinite(v) && v >= std::numeric_limits<float>::min(); };
-    const glm::quat& q = d.orientation;
-    const bool oriented =
-        std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w);
-    return oriented && finite(d.center) && extent(d.size.x) && extent(d.size.y) && extent(d.halfDepth);
+    return hasOrientation(d.packedFrame) && finite(d.center) && extent(d.size.x) && extent(d.size.y) &&
+           extent(d.halfDepth);
 }
 
 // The largest world-space extent (size or half-depth) a decal may have: its box goes to object space
@@ -321,7 +319,7 @@ struct DecalSystem::Impl {
         const glm::dvec3 bit = glm::cross(n, tan);
 
         Decal d;
-        d.orientation = glm::quat(orientationOf(tan, bit, n)); // orthonormal already: packed as it is
+        d.setOrientation(orientationOf(tan, bit, n), false); // orthonormal already: packed as it is
         d.center = glm::vec3(local);
         d.size = glm::vec2(float(size.x / glm::length(m * tan)), float(size.y / glm::length(m * bit)));
         d.halfDepth = float(halfDepth * glm::length(glm::transpose(inv) * n));
@@ -445,7 +443,7 @@ struct DecalSystem::Impl {
         t = glm::normalize(t);
         w.frame.normal = glm::vec3(n);
         w.frame.tangent = glm::vec3(t);
-        w.frame.bitangent = glm::vec3(d.mirrored ? -glm::cross(n, t) : glm::cross(n, t));
+        w.frame.bitangent = glm::vec3(d.mirrored() ? -glm::cross(n, t) : glm::cross(n, t));
         w.size = glm::vec2(float(d.size.x * glm::length(tScaled)),
                            float(d.size.y * glm::length(m * glm::dvec3(f.bitangent))));
         w.halfDepth = float(d.halfDepth / glm::length(nScaled));

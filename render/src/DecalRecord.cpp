@@ -43,7 +43,7 @@ bool buildDecalRecord(const Decal& d, DecalRecordGpu& out) {
     const glm::dvec3 c(d.center);
     for (int r = 0; r < 3; ++r)
         out.objectToBox[r] = glm::vec4(glm::vec3(axes[r]), float(-glm::dot(axes[r], c)));
-    const uint32_t mirrored = d.mirrored ? kDecalMirrored : 0u;
+    const uint32_t mirrored = d.mirrored() ? kDecalMirrored : 0u;
     out.info = glm::uvec4(d.object, uint32_t(d.type) | uint32_t(d.objectId) << 16 | mirrored << 24,
                           floatBits(std::clamp(d.opacity, 0.0f, 1.0f)), d.id);
     return true;

@@ -70,8 +70,7 @@ uint64_t decalKey(const Decal& d) {
     mix(&d.object, sizeof d.object);
     mix(&d.type, sizeof d.type);
     mix(&d.center, sizeof d.center);
-    mix(&d.orientation, sizeof d.orientation);
-    mix(&d.mirrored, sizeof d.mirrored);
+    mix(&d.packedFrame, sizeof d.packedFrame);
     mix(&d.size, sizeof d.size);
     mix(&d.halfDepth, sizeof d.halfDepth);
     return h;

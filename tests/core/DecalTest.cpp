@@ -30,7 +30,7 @@ bool zeroFrame(const Frame& f) {
 
 } // namespace
 
-TEST(Decal, PackedFrameComesBackOrthonormalAndWithinFourTenMillionths) {
+TEST(Decal, PackedFrameComesBackOrthonormalAndWithinItsBound) {
     Rng rng(11);
     for (int i = 0; i < 200000; ++i) {
         const Frame f = frameFromNormalAndHint(randomUnit(rng), randomUnit(rng));
@@ -38,8 +38,8 @@ TEST(Decal, PackedFrameComesBackOrthonormalAndWithinFourTenMillionths) {
         ASSERT_TRUE(d.setFrame(f)) << i;
         const Frame back = d.frame();
         ASSERT_LE(frameError(back), 1e-6f) << i;
-        ASSERT_LE(largestDifference(back, f), 4e-7f) << i;
-        ASSERT_FALSE(d.mirrored) << i;
+        ASSERT_LE(largestDifference(back, f), float(kPackedFrameError)) << i;
+        ASSERT_FALSE(d.mirrored()) << i;
     }
 }
 
@@ -50,8 +50,8 @@ TEST(Decal, LeftHandedFrameIsKeptAsMirrored) {
         f.bitangent = -f.bitangent;
         Decal d;
         ASSERT_TRUE(d.setFrame(f)) << i;
-        ASSERT_TRUE(d.mirrored) << i;
-        ASSERT_LE(largestDifference(d.frame(), f), 4e-7f) << i;
+        ASSERT_TRUE(d.mirrored()) << i;
+        ASSERT_LE(largestDifference(d.frame(), f), float(kPackedFrameError)) << i;
     }
 }
 
@@ -76,21 +76,43 @@ TEST(Decal, FrameWithoutOrientationIsRefusedAndUnpacksToZero) {
     };
     for (const Frame& f : bad) {
         Decal d;
-        d.mirrored = true;
+        d.setOrientation(glm::dquat(1.0, 0.0, 0.0, 0.0), true);
         EXPECT_FALSE(d.setFrame(f));
-        EXPECT_EQ(d.orientation, glm::quat(0.0f, 0.0f, 0.0f, 0.0f));
-        EXPECT_FALSE(d.mirrored);
+        EXPECT_EQ(d.packedFrame, kNoOrientation);
+        EXPECT_EQ(d.orientation(), glm::dquat(0.0, 0.0, 0.0, 0.0));
+        EXPECT_FALSE(d.mirrored());
         EXPECT_TRUE(zeroFrame(d.frame()));
     }
 }
 
-TEST(Decal, NonFiniteOrUnnormalisedOrientationUnpacksSafely) {
+TEST(Decal, NonFiniteOrZeroQuaternionPacksToNoOrientation) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(packOrientation(glm::dquat(nan, 0.0, 0.0, 0.0), false), kNoOrientation);
+    EXPECT_EQ(packOrientation(glm::dquat(0.0, 0.0, 0.0, 0.0), true), kNoOrientation);
     Decal d;
-    d.orientation = glm::quat(std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f, 0.0f);
+    d.packedFrame = ~(uint64_t(1) << 63); // every bit but the frame bit: still no orientation
     EXPECT_TRUE(zeroFrame(d.frame()));
-    d.orientation = glm::quat(2.0f, 0.0f, 0.0f, 0.0f); // normalised on unpacking
-    EXPECT_LE(frameError(d.frame()), 1e-7f);
+}
+
+TEST(Decal, EveryPackedValueWithItsFrameBitUnpacksToAUnitQuaternion) {
+    // Bits a frame never packs to (a sum of squares above 1) still unpack to a rotation.
+    Rng rng(13);
+    for (int i = 0; i < 100000; ++i) {
+        const uint64_t bits = uint64_t(1) << 63 | uint64_t(rng.next()) << 32 | rng.next();
+        const glm::dquat q = unpackOrientation(bits);
+        ASSERT_NEAR(glm::length(q), 1.0, 1e-12) << std::hex << bits;
+    }
+}
+
+TEST(Decal, IdentityAndQuarterTurnsPackExactly) {
+    Decal d;
+    EXPECT_EQ(d.packedFrame, kIdentityOrientation);
+    EXPECT_EQ(d.frame().tangent, glm::vec3(1, 0, 0));
     EXPECT_EQ(d.frame().normal, glm::vec3(0, 0, 1));
+    ASSERT_TRUE(d.setFrame(Frame{glm::vec3(0, 1, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 0, 1)}));
+    EXPECT_LE(
+        largestDifference(d.frame(), Frame{glm::vec3(0, 1, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 0, 1)}),
+        1e-7f);
 }
 
 TEST(Decal, BoxToObjectSpansTheBox) {
@@ -116,6 +138,7 @@ TEST(Decal, HalfTurnsAboutAnyAxisComeBack) {
         const Frame f{glm::vec3(r[0]), glm::vec3(r[1]), glm::vec3(r[2])};
         Decal d;
         ASSERT_TRUE(d.setFrame(f));
-        EXPECT_LE(largestDifference(d.frame(), f), 4e-7f) << a.x << " " << a.y << " " << a.z;
+        EXPECT_LE(largestDifference(d.frame(), f), float(kPackedFrameError))
+            << a.x << " " << a.y << " " << a.z;
     }
 }

@@ -452,8 +452,7 @@ bool sameDecals(const std::vector<Decal>& a, const std::vector<Decal>& b) {
     if (a.size() != b.size()) return false;
     for (size_t i = 0; i < a.size(); ++i) {
         const Decal &x = a[i], &y = b[i];
-        if (std::memcmp(&x.orientation, &y.orientation, sizeof x.orientation) != 0 ||
-            x.mirrored != y.mirrored || std::memcmp(&x.center, &y.center, sizeof x.center) ||
+        if (x.packedFrame != y.packedFrame || std::memcmp(&x.center, &y.center, sizeof x.center) ||
             std::memcmp(&x.size, &y.size, sizeof x.size) || x.halfDepth != y.halfDepth ||
             x.object != y.object || x.objectId != y.objectId || x.id != y.id || x.type != y.type ||
             x.spawnTime != y.spawnTime || x.opacity != y.opacity)

@@ -20,7 +20,7 @@ namespace {
 // Every byte of two decals that holds a value (all but the padding) equal, field by field.
 bool sameBytes(const Decal& a, const Decal& b) {
     auto same = [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof x) == 0; };
-    return same(a.orientation, b.orientation) && same(a.mirrored, b.mirrored) && same(a.center, b.center) &&
+    return same(a.packedFrame, b.packedFrame) && same(a.center, b.center) &&
            same(a.size, b.size) && same(a.halfDepth, b.halfDepth) && same(a.object, b.object) &&
            same(a.id, b.id) && same(a.type, b.type) && same(a.objectId, b.objectId) &&
            same(a.spawnTime, b.spawnTime) && same(a.opacity, b.opacity) && same(a.clips, b.clips);

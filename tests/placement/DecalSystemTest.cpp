@@ -66,10 +66,10 @@ TEST(DecalSystem, FramesOnEveryFaceOfABox) {
             const Decal& decal = *s.get(r.handle);
             expectGoodFrames(s, decal);
             for (int c = 0; c < 3; ++c) {
-                EXPECT_NEAR(decal.frame().normal[c], n[c], 1e-6);
+                EXPECT_NEAR(decal.frame().normal[c], n[c], kPackedFrameError);
                 EXPECT_NEAR(decal.center[c], p[c], 1e-6);
             }
-            EXPECT_NEAR(glm::dot(glm::dvec3(decal.frame().tangent), n), 0.0, 1e-6);
+            EXPECT_NEAR(glm::dot(glm::dvec3(decal.frame().tangent), n), 0.0, kPackedFrameError);
         }
     }
     EXPECT_EQ(s.stats().placed, 240u);
@@ -86,22 +86,22 @@ TEST(DecalSystem, TangentFollowsTheProjectedRayWithoutRotation) {
     const Decal& decal = *s.get(r.handle);
     const glm::dvec3 expected = glm::normalize(glm::dvec3(0.6, -0.3, 0.0));
     for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(decal.frame().tangent[c], expected[c], 1e-6);
+        EXPECT_NEAR(decal.frame().tangent[c], expected[c], kPackedFrameError);
     expectGoodFrames(s, decal);
 
     // Straight on: the projection vanishes, the tangent falls back to world X.
     const SpawnResult straight = s.spawn(ray({0.2, 0.1, 4.0}, {0.0, 0.0, -1.0}), type);
     ASSERT_TRUE(straight.placed());
-    EXPECT_NEAR(s.get(straight.handle)->frame().tangent.x, 1.0, 1e-6);
+    EXPECT_NEAR(s.get(straight.handle)->frame().tangent.x, 1.0, kPackedFrameError);
     // Straight down onto the top face along X: world X lies in the plane too.
     const SpawnResult down = s.spawn(ray({0.2, 4.0, 0.1}, {0.0, -1.0, 0.0}), type);
     ASSERT_TRUE(down.placed());
-    EXPECT_NEAR(s.get(down.handle)->frame().tangent.x, 1.0, 1e-6);
+    EXPECT_NEAR(s.get(down.handle)->frame().tangent.x, 1.0, kPackedFrameError);
     // Straight onto the +X face: X is the normal, Duff et al. gives the frame.
     const SpawnResult side = s.spawn(ray({4.0, 0.1, 0.2}, {-1.0, 0.0, 0.0}), type);
     ASSERT_TRUE(side.placed());
     const Frame duff = basisFromNormal(glm::vec3(1, 0, 0));
-    EXPECT_NEAR(glm::length(s.get(side.handle)->frame().tangent - duff.tangent), 0.0, 1e-6);
+    EXPECT_NEAR(glm::length(s.get(side.handle)->frame().tangent - duff.tangent), 0.0, kPackedFrameError);
     expectGoodFrames(s, *s.get(side.handle));
 }
 
@@ -780,8 +780,8 @@ TEST(DecalSystem, SpawnAtSnapsToTheSurface) {
     EXPECT_NEAR(w.center.x, 3.0, 1e-9);
     EXPECT_NEAR(w.center.y, 0.0, 1e-6);
     EXPECT_NEAR(w.center.z, 2.0, 1e-9);
-    EXPECT_NEAR(w.frame.normal.y, 1.0, 1e-6);
-    EXPECT_NEAR(w.frame.tangent.x, 1.0, 1e-6); // world X
+    EXPECT_NEAR(w.frame.normal.y, 1.0, kPackedFrameError);
+    EXPECT_NEAR(w.frame.tangent.x, 1.0, kPackedFrameError); // world X
     EXPECT_EQ(s.get(r.handle)->object, 0u);
 }
 
@@ -794,8 +794,8 @@ TEST(DecalSystem, SpawnAttachedPlacesInObjectSpace) {
     ASSERT_TRUE(r.placed()) << r.reason;
     const Decal& d = *s.get(r.handle);
     EXPECT_EQ(d.center, glm::vec3(0.1f, 0.2f, 0.5f));
-    EXPECT_NEAR(d.frame().normal.z, 1.0f, 1e-6f);
-    EXPECT_NEAR(d.frame().tangent.x, 1.0f, 1e-6f); // the object's X axis
+    EXPECT_NEAR(d.frame().normal.z, 1.0f, float(kPackedFrameError));
+    EXPECT_NEAR(d.frame().tangent.x, 1.0f, float(kPackedFrameError)); // the object's X axis
     EXPECT_EQ(d.objectId, s.objectId(3));
     expectGoodFrames(s, d);
 }

@@ -90,8 +90,7 @@ inline bool sameBits(const void* a, const void* b, size_t n) {
 
 // Every field of two decals equal bit for bit.
 inline ::testing::AssertionResult sameDecal(const Decal& a, const Decal& b) {
-    const bool same = sameBits(&a.orientation, &b.orientation, sizeof(glm::quat)) &&
-                      a.mirrored == b.mirrored && sameBits(&a.center, &b.center, sizeof(glm::vec3)) &&
+    const bool same = a.packedFrame == b.packedFrame && sameBits(&a.center, &b.center, sizeof(glm::vec3)) &&
                       sameBits(&a.size, &b.size, sizeof(glm::vec2)) &&
                       sameBits(&a.halfDepth, &b.halfDepth, sizeof(float)) && a.object == b.object &&
                       a.objectId == b.objectId && a.id == b.id && a.type == b.type &&

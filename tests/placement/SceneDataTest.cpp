@@ -109,7 +109,7 @@ TEST(PlacementOnSharedData, FandiskHitsMatchRawEmbree) {
         EXPECT_NEAR(h->t, raw->t, 1e-5 * raw->t) << "ray " << i;
         const WorldDecal w = *s.worldBox(r.handle);
         EXPECT_LT(glm::length(w.center - h->position), 1e-5 * b.diagonal());
-        EXPECT_LT(glm::length(glm::dvec3(w.frame.normal) - h->normal), 1e-6);
+        EXPECT_LT(glm::length(glm::dvec3(w.frame.normal) - h->normal), kPackedFrameError);
         EXPECT_LE(frameError(w.frame), 1e-6f);
     }
     EXPECT_GT(hits, rays.size() / 4);

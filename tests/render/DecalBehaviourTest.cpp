@@ -521,7 +521,7 @@ TEST(DecalPass, SkipsInvalidDecalsWithoutCrashing) {
     decals[4].center.x = NAN;             // not finite
     decals[5].size = {0.0f, 1.0f};        // empty
     decals[6].halfDepth = -1.0f;          // negative depth
-    decals[7].orientation = {0, 0, 0, 0}; // no orientation (what setFrame makes of a degenerate frame)
+    decals[7].packedFrame = kNoOrientation; // what setFrame makes of a degenerate frame
     decals[8].opacity = INFINITY;         // not finite
     r->setDecals(decals);
     FrameStats st;

@@ -3,11 +3,12 @@
 // |x| <= size.x / 2, |y| <= size.y / 2, |z| <= halfDepth in its frame; the frame and centre are
 // stored in the space of the object it lies on, so it follows that object when it moves.
 //
-// The frame is packed: a unit quaternion that turns the box's x, y and z axes onto the tangent, the
-// bitangent and the normal, and a mirrored flag that turns the bitangent round (the texture drawn
-// mirrored). frame() unpacks it orthonormal and right-handed (left-handed when mirrored) to float
-// precision, within 4e-7 of an orthonormal frame given to setFrame. Each decal keeps 20 bytes that
-// three separate axes would spend.
+// The frame is packed in 64 bits (PackedFrame.hpp): a unit quaternion that turns the box's x, y and z
+// axes onto the tangent, the bitangent and the normal, and a mirrored flag that turns the bitangent
+// round (the texture drawn mirrored). frame() unpacks it orthonormal and right-handed (left-handed
+// when mirrored) to float precision, within kPackedFrameError (4e-6) of an orthonormal frame given to
+// setFrame. Each
+// decal keeps 28 bytes that three separate axes would spend.
 //
 //   Decal d;
 //   d.setFrame(frameFromNormalAndHint(normal, hint)); // false: no frame can be made of it
@@ -15,6 +16,7 @@
 
 #include "spatter/core/CraterClip.hpp"
 #include "spatter/core/Frame.hpp"
+#include "spatter/core/PackedFrame.hpp"
 
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -23,26 +25,34 @@
 namespace spatter {
 
 struct Decal {
-    glm::vec3 center{0.0f};            // object space
-    glm::quat orientation{1, 0, 0, 0}; // object space, unit: box axes to tangent, bitangent, normal
-    glm::vec2 size{0.1f};              // full width and height
+    glm::vec3 center{0.0f};  // object space
     float halfDepth = 0.05f; // half the projection depth; at least the proxy error bound plus a margin
-    uint32_t object = 0;     // index into Scene::objects
-    uint32_t id = 0;         // 32-bit random decal ID from the seeded generator
-    double spawnTime = 0.0;  // seconds, decal system clock
-    float opacity = 1.0f;    // 1 while alive; falls to 0 while fading out
-    uint16_t type = 0;       // index of its DecalType in the decal system's registry
-    uint8_t objectId = 0;    // 8-bit object decal ID: 0 for static geometry, 1..255 for dynamic
-    bool mirrored = false;   // the bitangent is -cross(normal, tangent): the texture drawn mirrored
-    CraterClip clips[2];     // volumetric decals: where the solid ends around the crater (CraterClip.hpp)
+    uint64_t packedFrame = kIdentityOrientation; // object space (PackedFrame.hpp); kNoOrientation: none
+    glm::vec2 size{0.1f};                        // full width and height
+    double spawnTime = 0.0;                      // seconds, decal system clock
+    uint32_t object = 0;                         // index into Scene::objects
+    uint32_t id = 0;                             // 32-bit random decal ID from the seeded generator
+    float opacity = 1.0f;                        // 1 while alive; falls to 0 while fading out
+    uint16_t type = 0;                           // index of its DecalType in the decal system's registry
+    uint8_t objectId = 0; // 8-bit object decal ID: 0 for static geometry, 1..255 for dynamic
+    CraterClip clips[2];  // volumetric decals: where the solid ends around the crater (CraterClip.hpp)
+
+    // The unit quaternion of the frame (the zero quaternion when it has none).
+    glm::dquat orientation() const { return unpackOrientation(packedFrame); }
+    // Whether the bitangent is -cross(normal, tangent): the texture drawn mirrored.
+    bool mirrored() const { return packedMirrored(packedFrame); }
+    // Packs a unit quaternion and the mirrored flag (packOrientation).
+    void setOrientation(const glm::dquat& unit, bool mirrored) {
+        packedFrame = packOrientation(unit, mirrored);
+    }
 
     // The unpacked frame; all three axes zero when the orientation is zero or not finite.
     Frame frame() const;
 
     // Packs `f`: its normal, its tangent made perpendicular to the normal, and mirrored when the
     // bitangent points against cross(normal, tangent). A frame with a zero, non-finite or parallel
-    // normal and tangent has no orientation: it stores the zero quaternion, which renderers reject,
-    // and returns false.
+    // normal and tangent has no orientation: it stores kNoOrientation, which renderers reject, and
+    // returns false.
     bool setFrame(const Frame& f);
 
     // Decal box to object space: maps the cube [-1, 1]^3 onto the box (columns: tangent * w/2,
@@ -50,7 +60,7 @@ struct Decal {
     glm::mat4 boxToObject() const;
 };
 
-// A record of 72 bytes: eight records fill nine cache lines.
-static_assert(sizeof(Decal) <= 72, "a Decal record grew past 72 bytes");
+// A record of 64 bytes: one cache line.
+static_assert(sizeof(Decal) <= 64, "a Decal record grew past 64 bytes");
 
 } // namespace spatter
