@@ -26,13 +26,17 @@ AreaLimits::AreaLimits(size_t objectCount, uint32_t budget, bool cellOrder, bool
     if (cellOrder) cellPos_ = stride_++;
 }
 
-size_t AreaLimits::hashOf(const Cell& c) {
+CellKey AreaLimits::keyOf(const Cell& c) {
     CellKey k;
     k.x = c.x;
     k.y = c.y;
     k.z = c.z;
     k.space = c.space;
-    return CellKeyHash()(k);
+    return k;
+}
+
+size_t AreaLimits::hashOf(const Cell& c) {
+    return CellKeyHash()(keyOf(c));
 }
 
 uint32_t AreaLimits::findCell(const CellKey& key) const {
@@ -163,6 +167,10 @@ void AreaLimits::unlink(uint32_t slot, uint32_t object) {
     else
         cells_[c].list.count--;
     if (cells_[c].list.count == 0) dropCell(c);
+}
+
+CellKey AreaLimits::cellOf(uint32_t slot) const {
+    return keyOf(cells_[cellOf_[slot]]);
 }
 
 uint32_t AreaLimits::oldestInCell(const CellKey& key) const {

@@ -60,6 +60,11 @@ public:
     uint32_t oldestInCell(const CellKey& key) const;
     uint32_t oldestOfObject(uint32_t object) const;
     uint32_t oldest() const { return global_.head; }
+    // The linked slot spawned after `slot` (linked) in the world's order, or kNone: from oldest(), the
+    // counted decals oldest first. A save walks them so that a load links them in the same order.
+    uint32_t newer(uint32_t slot) const { return links_[size_t(slot) * stride_].next; }
+    // The cell `slot` (linked) was linked with.
+    CellKey cellOf(uint32_t slot) const;
 
 private:
     struct Link {
@@ -77,6 +82,7 @@ private:
     };
     static_assert(sizeof(Cell) == 40, "a cell of the area grid grew past 40 bytes");
 
+    static CellKey keyOf(const Cell& c);
     static size_t hashOf(const Cell& c);
     // The index of the cell of `key`, or kNone.
     uint32_t findCell(const CellKey& key) const;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace spatter {
@@ -440,6 +441,36 @@ struct Packet {
     }
 };
 
+// CollisionObject::meshHash: FNV-1a over 32-bit little-endian words (a word at a time, so hashing a
+// mesh costs a fraction of building its BVH).
+uint64_t collisionMeshHash(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices,
+                           double errorBound) {
+    uint64_t h = 0xcbf29ce484222325ULL;
+    auto word = [&h](uint32_t w) {
+        h ^= w;
+        h *= 0x100000001b3ULL;
+    };
+    auto bits = [](float f) {
+        uint32_t u;
+        std::memcpy(&u, &f, 4);
+        return u;
+    };
+    word(uint32_t(positions.size()));
+    for (const glm::vec3& p : positions) {
+        word(bits(p.x));
+        word(bits(p.y));
+        word(bits(p.z));
+    }
+    word(uint32_t(indices.size()));
+    for (uint32_t i : indices)
+        word(i);
+    uint64_t e;
+    std::memcpy(&e, &errorBound, 8);
+    word(uint32_t(e));
+    word(uint32_t(e >> 32));
+    return h;
+}
+
 } // namespace
 
 struct CollisionWorld::Impl {
@@ -801,6 +832,7 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         od.indices.assign(mesh->indices.begin(), mesh->indices.begin() + mesh->triangleCount() * 3);
         od.info.triangles = mesh->triangleCount();
         od.info.localBounds = meshBounds(od.positions, od.indices);
+        od.info.meshHash = collisionMeshHash(od.positions, od.indices, h);
         // The frame's origin comes from the objects whose scale and condition the trace can use.
         od.info.untraced = floatLinearProblem(so.transform);
         if (!od.info.untraced.empty()) continue;

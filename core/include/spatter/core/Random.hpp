@@ -14,6 +14,18 @@ public:
         state_ += seed;
         next();
     }
+    // The generator as it stands: `state` and the odd `increment` (twice the stream, plus one), which
+    // fromState() takes back. A generator restored from them continues with the same numbers.
+    uint64_t state() const { return state_; }
+    uint64_t increment() const { return inc_; }
+    // The generator with `state` and `increment` (forced odd, as every increment of PCG32 is).
+    static Rng fromState(uint64_t state, uint64_t increment) {
+        Rng r;
+        r.state_ = state;
+        r.inc_ = increment | 1u;
+        return r;
+    }
+
     // Uniform 32-bit value.
     uint32_t next() {
         uint64_t old = state_;

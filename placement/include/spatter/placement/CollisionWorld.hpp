@@ -69,6 +69,11 @@ struct CollisionObject {
     double errorBound = 0.0;   // h, object-space units
     size_t triangles = 0;      // collision triangles (0 when not in the world)
     Bounds localBounds;        // of the collision mesh (of the render mesh when not in the world)
+    // What the decals on the object were placed against: a 64-bit hash (FNV-1a over little-endian
+    // 32-bit words) of the collision mesh's vertex count, positions, index count and indices and of the
+    // error bound; 0 for an object built outside the world. A save of a decal system keys its objects
+    // by it (DecalPersistence.hpp).
+    uint64_t meshHash = 0;
 };
 
 // One ray hit. Normals are unit, geometric (the hit triangle's face normal, the vector Embree reports

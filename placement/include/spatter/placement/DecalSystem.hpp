@@ -206,6 +206,7 @@ public:
     double time() const;
 
 private:
+    friend struct DecalSystemAccess; // saving and loading (DecalPersistence.hpp)
     struct Impl;
     explicit DecalSystem(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
