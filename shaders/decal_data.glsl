@@ -1,5 +1,5 @@
 // Decal instances as the projector stores them (DecalProjector::resources()), shared by the projector's
-// shaders and any host's debug drawing: the decal records (binding 3, 64 bytes each), the decal types
+// shaders and any host's debug drawing: the decal records (binding 3, 48 bytes each), the decal types
 // (binding 8), the visible list of the last draw (binding 4), the SPATTER_DECAL_* flags, and the
 // octahedral normal encoding. Mirrored on the C++ side by render/src/GpuLayouts.hpp (DecalRecordGpu,
 // DecalTypeGpu).
@@ -8,10 +8,12 @@
 
 // One decal: its box and what is its own; the rest comes from its type.
 struct DecalRecord {
-    vec4 objectToBox[3]; // rows: object space -> unit box [-1, 1]^3 (the inverse of the box's
-                         // axes and centre); all zero for a decal that cannot be drawn
-    uvec4 info;          // x: object index; y: type index (bits 0-15), object decal ID (16-23), SPATTER_DECAL_MIRRORED
-                         // when the frame is left-handed (24-31); z: opacity (float bits); w: 32-bit decal ID
+    vec4 centerDepth; // xyz: the box's centre in object space; w: its half depth, 0 for a decal that
+                      // cannot be drawn
+    uvec2 frame;      // the packed frame (spatter/core/PackedFrame.hpp): x its low 32 bits, y its high ones
+    vec2 halfSize;    // half the width and height
+    uvec4 info;       // x: object index; y: type index (bits 0-15), object decal ID (16-23), SPATTER_DECAL_MIRRORED
+                      // when the frame is left-handed (24-31); z: opacity (float bits); w: 32-bit decal ID
 };
 
 // A decal type as the shaders use it.
@@ -47,8 +49,32 @@ struct DecalData {
 
 // Whether record `r` can be drawn at all (its box is not degenerate; its type and object are checked apart).
 bool decalRecordValid(DecalRecord r) {
-    return r.objectToBox[0].xyz != vec3(0.0) && r.objectToBox[1].xyz != vec3(0.0) &&
-           r.objectToBox[2].xyz != vec3(0.0);
+    return r.centerDepth.w > 0.0;
+}
+
+// The rotation of a packed frame (PackedFrame.hpp): columns tangent, bitangent (not yet mirrored),
+// normal. The three smallest components of the unit quaternion are 20 bits each, offset by 2^19,
+// in the order w, x, y, z without the largest, which bits 60-61 name.
+mat3 unpackFrame(uvec2 bits) {
+    const float scale = 0.70710678 / 524287.0;
+    float small[3] = float[3](float(bitfieldExtract(bits.y, 8, 20)),
+                              float((bitfieldExtract(bits.y, 0, 8) << 12) | (bits.x >> 20)),
+                              float(bitfieldExtract(bits.x, 0, 20)));
+    uint largest = bitfieldExtract(bits.y, 28, 2);
+    vec4 q; // w, x, y, z
+    float sum = 0.0;
+    int k = 0;
+    for (uint i = 0u; i < 4u; ++i) {
+        if (i == largest) continue;
+        q[i] = (small[k++] - 524288.0) * scale;
+        sum += q[i] * q[i];
+    }
+    q[largest] = sqrt(max(0.0, 1.0 - sum));
+    q = normalize(q);
+    float w = q.x, x = q.y, y = q.z, z = q.w;
+    return mat3(1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y),
+                2.0 * (x * y - w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z + w * x),
+                2.0 * (x * z + w * y), 2.0 * (y * z - w * x), 1.0 - 2.0 * (x * x + y * y));
 }
 
 uint decalTypeIndex(DecalRecord r) {
@@ -58,17 +84,18 @@ uint decalTypeIndex(DecalRecord r) {
 DecalData unpackDecal(DecalRecord r) {
     DecalTypeRecord t = decalTypes[decalTypeIndex(r)];
     DecalData d;
-    mat3 toBox = transpose(mat3(r.objectToBox[0].xyz, r.objectToBox[1].xyz, r.objectToBox[2].xyz));
-    mat3 axes = inverse(toBox); // columns: the box's half axes in object space
-    vec3 center = -(axes * vec3(r.objectToBox[0].w, r.objectToBox[1].w, r.objectToBox[2].w));
+    mat3 frame = unpackFrame(r.frame); // orthonormal: its inverse is its transpose
+    if ((r.info.y & (SPATTER_DECAL_MIRRORED << 24)) != 0u) frame[1] = -frame[1];
+    vec3 center = r.centerDepth.xyz;
+    vec3 h = vec3(r.halfSize, r.centerDepth.w);
     for (int k = 0; k < 3; ++k) {
-        d.objectToBox[k] = r.objectToBox[k];
-        d.boxToObject[k] = vec4(axes[0][k], axes[1][k], axes[2][k], center[k]);
+        vec3 row = frame[k] / h[k];
+        d.objectToBox[k] = vec4(row, -dot(row, center));
+        d.boxToObject[k] = vec4(frame[0][k] * h.x, frame[1][k] * h.y, frame[2][k] * h.z, center[k]);
     }
-    vec3 h = vec3(length(axes[0]), length(axes[1]), length(axes[2]));
-    d.tangent = vec4(axes[0] / h.x, h.x);
-    d.bitangent = vec4(axes[1] / h.y, h.y);
-    d.normal = vec4(axes[2] / h.z, h.z);
+    d.tangent = vec4(frame[0], h.x);
+    d.bitangent = vec4(frame[1], h.y);
+    d.normal = vec4(frame[2], h.z);
     d.tint = vec4(t.tint.rgb, t.tint.a * uintBitsToFloat(r.info.z));
     d.info = uvec4(r.info.x, (r.info.y >> 16) & 0xffu, t.info.x, t.info.y | (r.info.y >> 24));
     d.params = t.params;

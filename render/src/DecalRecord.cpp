@@ -21,28 +21,29 @@ uint32_t floatBits(float f) {
     return u;
 }
 
-// Whether the decal's numbers can make a box at all: finite, extents of normal floats (its
-// orientation is checked as it is unpacked: frame() is zero for a zero or non-finite one).
+// Whether the decal's numbers make a box the shaders can invert in float: finite, half extents of
+// normal floats (a GPU flushes denormals to zero), and a centre that the inverse's translation,
+// up to |centre| / (smallest half extent), keeps finite.
 bool soundNumbers(const Decal& d) {
-    constexpr float kMinExtent = std::numeric_limits<float>::min(); // a denormal cannot be inverted
-    return finite(d.center) && std::isfinite(d.size.x) && std::isfinite(d.size.y) &&
-           std::isfinite(d.halfDepth) && std::isfinite(d.opacity) && d.size.x >= kMinExtent &&
-           d.size.y >= kMinExtent && d.halfDepth >= kMinExtent;
+    constexpr float kMinExtent = std::numeric_limits<float>::min();
+    const glm::vec3 h(0.5f * d.size, d.halfDepth);
+    if (!finite(d.center) || !finite(h) || !std::isfinite(d.opacity) ||
+        !(glm::min(h.x, glm::min(h.y, h.z)) >= kMinExtent))
+        return false;
+    const double reach =
+        std::fabs(double(d.center.x)) + std::fabs(double(d.center.y)) + std::fabs(double(d.center.z));
+    return reach / double(glm::min(h.x, glm::min(h.y, h.z))) <
+           0.5 * double(std::numeric_limits<float>::max());
 }
 
 } // namespace
 
 bool buildDecalRecord(const Decal& d, DecalRecordGpu& out) {
     out = DecalRecordGpu{};
-    if (!soundNumbers(d)) return false;
-    const Frame f = d.frame(); // orthonormal: its inverse is its transpose
-    if (f.normal == glm::vec3(0.0f)) return false;
-    const glm::dvec3 axes[3] = {glm::dvec3(f.tangent) / (0.5 * double(d.size.x)),
-                                glm::dvec3(f.bitangent) / (0.5 * double(d.size.y)),
-                                glm::dvec3(f.normal) / double(d.halfDepth)};
-    const glm::dvec3 c(d.center);
-    for (int r = 0; r < 3; ++r)
-        out.objectToBox[r] = glm::vec4(glm::vec3(axes[r]), float(-glm::dot(axes[r], c)));
+    if (!soundNumbers(d) || !hasOrientation(d.packedFrame)) return false;
+    out.centerDepth = glm::vec4(d.center, d.halfDepth);
+    out.frame = glm::uvec2(uint32_t(d.packedFrame), uint32_t(d.packedFrame >> 32));
+    out.halfSize = 0.5f * d.size;
     const uint32_t mirrored = d.mirrored() ? kDecalMirrored : 0u;
     out.info = glm::uvec4(d.object, uint32_t(d.type) | uint32_t(d.objectId) << 16 | mirrored << 24,
                           floatBits(std::clamp(d.opacity, 0.0f, 1.0f)), d.id);
@@ -71,11 +72,11 @@ DecalTypeGpu buildDecalType(const DecalType& type, float wrapMaxAngleDeg, int la
 }
 
 glm::dmat4 recordBoxToObject(const DecalRecordGpu& r) {
-    glm::dmat4 toBox(1.0);
-    for (int k = 0; k < 3; ++k)
-        for (int c = 0; c < 4; ++c)
-            toBox[c][k] = double(r.objectToBox[k][c]);
-    return glm::inverse(toBox);
+    const glm::dmat3 m = glm::mat3_cast(unpackOrientation(uint64_t(r.frame.y) << 32 | r.frame.x));
+    const glm::dvec3 h(r.halfSize.x, r.halfSize.y, r.centerDepth.w);
+    const double flip = packedMirrored(uint64_t(r.frame.y) << 32) ? -1.0 : 1.0;
+    return glm::dmat4(glm::dvec4(m[0] * h.x, 0.0), glm::dvec4(m[1] * (flip * h.y), 0.0),
+                      glm::dvec4(m[2] * h.z, 0.0), glm::dvec4(glm::dvec3(glm::vec3(r.centerDepth)), 1.0));
 }
 
 } // namespace spatter::render_detail

@@ -1,6 +1,6 @@
 #pragma once
 // DecalRecord: a Decal and a DecalType as the GPU keeps them (DecalRecordGpu, DecalTypeGpu in
-// GpuLayouts.hpp): 64 bytes per decal, its box and what is its own, and one entry per type for the
+// GpuLayouts.hpp): 48 bytes per decal, its box and what is its own, and one entry per type for the
 // rest of its look.
 
 #include "GpuLayouts.hpp"
@@ -12,10 +12,9 @@
 
 namespace spatter::render_detail {
 
-// The record of `d`; false (and a zero record) when its box is degenerate or not finite. The box is the
-// decal's frame scaled by its half extents, as it is (a frame need not be orthonormal in its object's
-// space: an orthogonal world box on an object of non-uniform scale is not); a left-handed frame is
-// flagged kDecalMirrored.
+// The record of `d`; false (and a zero record) when its box is degenerate, not finite, without an
+// orientation or too far from its object's origin for its size to be inverted in float. The record
+// keeps the decal's packed frame as it is: the shaders unpack it.
 bool buildDecalRecord(const Decal& d, DecalRecordGpu& out);
 
 // The type as the shaders read it; info.z is 0 when decals of the type cannot be drawn (a texture

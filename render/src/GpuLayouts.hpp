@@ -66,11 +66,13 @@ static_assert(sizeof(MaterialGpu) == 48, "MaterialGpu must match MaterialData (s
 // so it changes only when the decal does; the camera-relative world-to-box transform is composed in
 // the shaders with the object's, and the rest of the decal's look comes from its type (DecalTypeGpu).
 struct alignas(16) DecalRecordGpu {
-    glm::vec4 objectToBox[3]; // rows: object space -> unit box; all zero: not drawable
-    glm::uvec4 info;          // x: object index; y: type (bits 0-15), object decal ID (16-23),
-                              // kDecalMirrored << 24; z: opacity (float bits); w: decal ID
+    glm::vec4 centerDepth; // xyz: the box's centre in object space; w: its half depth (0: not drawable)
+    glm::uvec2 frame;      // Decal::packedFrame (PackedFrame.hpp): x its low 32 bits, y its high ones
+    glm::vec2 halfSize;    // half the width and height
+    glm::uvec4 info;       // x: object index; y: type (bits 0-15), object decal ID (16-23),
+                           // kDecalMirrored << 24; z: opacity (float bits); w: decal ID
 };
-static_assert(sizeof(DecalRecordGpu) == 64, "DecalRecordGpu must match DecalRecord (std430)");
+static_assert(sizeof(DecalRecordGpu) == 48, "DecalRecordGpu must match DecalRecord (std430)");
 
 // std430, binding kDecalTypeBuffer: one per decal type (DecalTypeRecord in decal_data.glsl).
 struct alignas(16) DecalTypeGpu {

@@ -10,7 +10,7 @@
 // sorts the visible decals into screen tiles on the GPU and the host's forward fragment shader
 // applies those of its pixel (hostShader("forward.glsl")).
 //
-// It owns the decal records (64 bytes each, object space, on the GPU; uploaded when they change), the
+// It owns the decal records (48 bytes each, object space, on the GPU; uploaded when they change), the
 // decal texture array
 // (built-in layers and addDecalTexture*), the shader variants and the GPU timer of its pass. It knows
 // nothing of scenes, meshes, materials or lighting: per frame the host hands it the decals (as
@@ -173,7 +173,7 @@ struct ProjectorSettings {
     // counts in ProjectorStats are those of an earlier draw (of this one with waitForTimers). 0: always
     // on the GPU. Unset: kGpuCullingFrom on a GPU, kGpuCullingFromSoftware on a software rasteriser
     // (llvmpipe), where the compute passes cost more than the CPU's test of a few decals. The first
-    // draw() or bin() that culls on the GPU lets the CPU copy of the decal records go (64 bytes per
+    // draw() or bin() that culls on the GPU lets the CPU copy of the decal records go (48 bytes per
     // decal). bin() culled on the GPU sizes its buffers by an earlier count (see bin()).
     std::optional<size_t> gpuCullingFrom;
     static constexpr size_t kGpuCullingFrom = 65536;
@@ -260,7 +260,7 @@ struct ProjectorStats {
 struct ProjectorResources {
     uint32_t albedoLayers = 0; // GL_TEXTURE_2D_ARRAY, SRGB8_ALPHA8: decal albedo, straight alpha
     uint32_t normalLayers = 0; // GL_TEXTURE_2D_ARRAY, RGBA8: tangent-space normal maps
-    uint32_t decals = 0;       // shader storage: DecalRecord (64 bytes) per decal given to setDecals
+    uint32_t decals = 0;       // shader storage: DecalRecord (48 bytes) per decal given to setDecals
     uint32_t types = 0;        // shader storage: DecalTypeRecord per decal type
     uint32_t visible = 0;      // shader storage: uint decal indices of the last draw, visibleCount of them
     uint32_t objects = 0;      // shader storage: ProjectorObject per object (relative to the last eye)
@@ -308,8 +308,8 @@ public:
     // draws over the older ones of its priority). The decals are taken whole, as by setDecals, when
     // the changes are not complete or do not fit the decals held, and after setDecalTypes changed the
     // types' priorities. The projector keeps no copy of the decals: the changes and `decals` together
-    // say what changed. Per decal it keeps 64 bytes on the GPU, and on the CPU about 10 bytes (its
-    // place in the draw order, a validity bit) plus a 64-byte record for culling on the CPU, which
+    // say what changed. Per decal it keeps 48 bytes on the GPU, and on the CPU about 10 bytes (its
+    // place in the draw order, a validity bit) plus a 48-byte record for culling on the CPU, which
     // goes once draw() culls on the GPU (ProjectorSettings::gpuCullingFrom).
     void updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes);
     // Object-to-world transforms (double) and 8-bit decal IDs, one entry per object that decals may
