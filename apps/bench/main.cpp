@@ -2,6 +2,7 @@
 // adding one is adding its entry (and its file).
 
 #include "Memory.hpp"
+#include "PersistenceBench.hpp"
 #include "PlacementBench.hpp"
 #include "ProxyBench.hpp"
 #include "RenderBench.hpp"
@@ -38,6 +39,8 @@ const Command kCommands[] = {
      spatter::bench::runProxyCommand},
     {"volumetric", "GPU time of volumetric decals against flat ones, 1 to 4096 in view (--json FILE)",
      spatter::bench::runVolumetricCommand},
+    {"persistence", "saving and loading a decal system: time and MB/s, bytes per decal (--json FILE)",
+     spatter::bench::runPersistenceCommand},
 };
 
 void usage(std::FILE* out) {

@@ -25,6 +25,9 @@ options:
   --tolerance T       proxy tolerance in % of each object's bounding diagonal (default 0.5)
   --cache DIR         proxy cache folder (default $XDG_CACHE_HOME/spatter or ~/.cache/spatter)
   --quit-after N      window: close after N frames
+  --load FILE         load the decals saved in FILE (by --save or a quick-save) before the session
+  --save FILE         headless: save the decals at the end of the run to FILE; window: the
+                      quick-save file (default OUT/quick.save)
   -h, --help          this text
 
 window controls:
@@ -33,6 +36,7 @@ window controls:
   left button         bullet hole (hold for automatic fire)
   right button        paint splat (large, wraps around corners)
   F                   scorch mark
+  F5, F9              quick-save, quick-load the decals (the --save file)
   Esc                 quit
 )";
 
@@ -89,6 +93,10 @@ Result<GalleryOptions> parseGalleryOptions(int argc, char** argv) {
             o.tolerancePercent = t;
         } else if (arg == "--cache") {
             if (!value(o.cacheDir)) return fail("--cache needs a folder");
+        } else if (arg == "--load") {
+            if (!value(o.loadPath) || o.loadPath.empty()) return fail("--load needs a file");
+        } else if (arg == "--save") {
+            if (!value(o.savePath) || o.savePath.empty()) return fail("--save needs a file");
         } else if (arg == "--quit-after") {
             if (!value(v) || !parseInt(v, 1, 100000000, n)) return fail("--quit-after needs a frame count");
             o.quitAfterFrames = int(n);

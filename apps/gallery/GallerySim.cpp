@@ -225,6 +225,16 @@ SpawnResult GallerySim::shoot(const Ray& ray, ShotKind kind) {
     return result;
 }
 
+Status GallerySim::save(const std::string& path) const {
+    return saveDecalsToFile(*system_, path);
+}
+
+Result<DecalLoadReport> GallerySim::load(const std::string& path) {
+    Result<DecalLoadReport> r = loadDecalsFromFile(*system_, path);
+    if (r) time_ = system_->time();
+    return r;
+}
+
 std::vector<uint8_t> GallerySim::objectIds() const {
     std::vector<uint8_t> ids(scene_.objects.size());
     for (uint32_t i = 0; i < ids.size(); ++i)

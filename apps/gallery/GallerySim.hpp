@@ -9,6 +9,7 @@
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/Random.hpp"
 #include "spatter/core/Scene.hpp"
+#include "spatter/placement/DecalPersistence.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
 #include <cstdint>
@@ -50,6 +51,13 @@ public:
     void advance(double dt);
     // Fires one shot and counts it.
     SpawnResult shoot(const Ray& ray, ShotKind kind);
+
+    // Writes the decal system's state to `path` (DecalPersistence.hpp).
+    Status save(const std::string& path) const;
+    // Loads a state that save() wrote; on failure nothing changes. The clock takes the saved time, and
+    // the targets their places on the rails then. Objects whose proxy differs (another tolerance, or
+    // another scene) drop their decals, as the report says.
+    Result<DecalLoadReport> load(const std::string& path);
 
     const Scene& scene() const { return scene_; }
     const DecalSystem& decals() const { return *system_; }

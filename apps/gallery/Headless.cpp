@@ -160,6 +160,17 @@ Result<nlohmann::ordered_json> trackTargetDecal(GallerySim& sim, Renderer& rende
     return out;
 }
 
+// Loads options.loadPath into the sim when given, and says what came back.
+Result<nlohmann::ordered_json> loadSaved(GallerySim& sim, const GalleryOptions& options) {
+    if (options.loadPath.empty()) return nlohmann::ordered_json();
+    Result<DecalLoadReport> r = sim.load(options.loadPath);
+    if (!r) return fail(r.error());
+    for (const std::string& line : r->droppedObjects)
+        std::cout << "spatter-gallery: " << options.loadPath << ": " << line << "\n";
+    return nlohmann::ordered_json{
+        {"file", options.loadPath}, {"decals", r->decals}, {"dropped", r->droppedDecals}};
+}
+
 } // namespace
 
 int runHeadless(const GalleryOptions& options) {
@@ -167,6 +178,11 @@ int runHeadless(const GalleryOptions& options) {
     Result<GallerySim> sim = GallerySim::create(options);
     if (!sim) {
         std::cerr << "spatter-gallery: " << sim.error() << "\n";
+        return 1;
+    }
+    Result<nlohmann::ordered_json> loaded = loadSaved(sim.value(), options);
+    if (!loaded) {
+        std::cerr << "spatter-gallery: " << loaded.error() << "\n";
         return 1;
     }
     Result<GlContext> gl = GlContext::createHeadless();
@@ -228,6 +244,11 @@ int runHeadless(const GalleryOptions& options) {
         return 1;
     }
 
+    if (!options.savePath.empty())
+        if (Status s = sim->save(options.savePath); !s) {
+            std::cerr << "spatter-gallery: " << s.error() << "\n";
+            return 1;
+        }
     std::error_code ec;
     std::filesystem::create_directories(options.outDir, ec);
     const std::string png = options.outDir + "/gallery.png", json = options.outDir + "/gallery.json";
@@ -261,6 +282,8 @@ int runHeadless(const GalleryOptions& options) {
     out["tracked_decal"] = tracked ? tracked.value() : nlohmann::ordered_json{{"error", tracked.error()}};
     out["size"] = {settings.width, settings.height};
     out["seed"] = options.seed;
+    if (!loaded->is_null()) out["loaded"] = loaded.value();
+    if (!options.savePath.empty()) out["saved"] = options.savePath;
     out["gl_renderer"] = glRenderer;
     out["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::ofstream file(json);

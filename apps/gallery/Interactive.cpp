@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 
 namespace spatter::gallery {
@@ -106,7 +107,8 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
     }
     if (!hud.status.empty()) ImGui::TextWrapped("%s", hud.status.c_str());
     ImGui::Separator();
-    ImGui::TextUnformatted("LMB bullet  RMB paint  F scorch  WASD/QE move  Tab cursor  Esc quit");
+    ImGui::TextUnformatted(
+        "LMB bullet  RMB paint  F scorch  WASD/QE move  F5/F9 save/load  Tab cursor  Esc quit");
     ImGui::End();
 
     // Crosshair.
@@ -114,6 +116,22 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
     const ImVec2 c(ImGui::GetIO().DisplaySize.x * 0.5f, ImGui::GetIO().DisplaySize.y * 0.5f);
     draw->AddLine(ImVec2(c.x - 8, c.y), ImVec2(c.x + 8, c.y), IM_COL32(255, 255, 255, 220), 1.5f);
     draw->AddLine(ImVec2(c.x, c.y - 8), ImVec2(c.x, c.y + 8), IM_COL32(255, 255, 255, 220), 1.5f);
+}
+
+// F5: the decals to `path`; what the HUD says.
+std::string quickSave(const GallerySim& sim, const std::string& path) {
+    std::error_code ec;
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
+    const Status s = sim.save(path);
+    return s ? "saved " + std::to_string(sim.decals().decals().size()) + " decals to " + path : s.error();
+}
+
+// F9: the decals from `path`; what the HUD says.
+std::string quickLoad(GallerySim& sim, const std::string& path) {
+    const Result<DecalLoadReport> r = sim.load(path);
+    if (!r) return r.error();
+    return "loaded " + std::to_string(r->decals) + " decals (" + std::to_string(r->droppedDecals) +
+           " dropped)";
 }
 
 } // namespace
@@ -124,6 +142,11 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
         std::cerr << "spatter-gallery: " << sim.error() << "\n";
         return 1;
     }
+    if (!options.loadPath.empty())
+        if (Result<DecalLoadReport> r = sim->load(options.loadPath); !r) {
+            std::cerr << "spatter-gallery: " << r.error() << "\n";
+            return 1;
+        }
     int fbw = 0, fbh = 0;
     context.framebufferSize(fbw, fbh);
     RendererSettings settings;
@@ -160,7 +183,9 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
     glfwSetInputMode(window, GLFW_STICKY_KEYS, GLFW_TRUE);
     double mx = 0.0, my = 0.0;
     glfwGetCursorPos(window, &mx, &my);
-    bool tabWasDown = false, scorchWasDown = false;
+    bool tabWasDown = false, scorchWasDown = false, saveWasDown = false, loadWasDown = false;
+    const std::string quickFile =
+        options.savePath.empty() ? options.outDir + "/quick.save" : options.savePath;
     Trigger bullet{0.1}, paint{0.25};
     Hud hud;
     hud.tolerance = options.tolerancePercent;
@@ -224,6 +249,12 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
         const bool scorchDown = glfwGetKey(window, GLFW_KEY_F) == GLFW_PRESS;
         if (scorchDown && !scorchWasDown && captured) fire(ShotKind::Scorch);
         scorchWasDown = scorchDown;
+        const bool saveDown = glfwGetKey(window, GLFW_KEY_F5) == GLFW_PRESS;
+        if (saveDown && !saveWasDown) hud.status = quickSave(sim.value(), quickFile);
+        saveWasDown = saveDown;
+        const bool loadDown = glfwGetKey(window, GLFW_KEY_F9) == GLFW_PRESS;
+        if (loadDown && !loadWasDown) hud.status = quickLoad(sim.value(), quickFile);
+        loadWasDown = loadDown;
 
         if (fbw > 0 && fbh > 0) {
             if (fbw != renderer->settings().width || fbh != renderer->settings().height)

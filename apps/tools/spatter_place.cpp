@@ -3,6 +3,7 @@
 
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/SceneLoader.hpp"
+#include "spatter/placement/DecalPersistence.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/placement/RayParser.hpp"
 
@@ -25,7 +26,7 @@ namespace {
 
 const char* kUsage = R"(usage: spatter-place SCENE [--rays FILE|-] [--seed N] [--size W[,H]] [--max-angle DEG]
                      [--proxy render|auto|TOL] [--cache DIR] [--translate X,Y,Z] [--out FILE]
-                     [--summary]
+                     [--save FILE] [--summary]
 
 Casts rays at SCENE (builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file) through the
 decal system and prints one JSON object per input ray, in input order (JSON Lines), on stdout or
@@ -68,6 +69,9 @@ Options:
   --translate X,Y,Z move the whole scene by this offset before building the collision world (the
                     rays are given in the moved world)
   --out FILE        write the records to FILE instead of stdout
+  --save FILE       write the decal system's final state to FILE (spatter/placement/
+                    DecalPersistence.hpp): loadDecals gives it back to a decal system of the same
+                    scene and proxies with a type named "spatter-place"
   --summary         print one JSON object on stderr: rays, placed, missed, rejected by reason,
                     render_triangles, proxy_triangles, proxies_built, proxies_cached,
                     proxy_seconds, trace_seconds, seconds
@@ -125,7 +129,7 @@ int main(int argc, char** argv) {
     using Clock = std::chrono::steady_clock;
     const Clock::time_point start = Clock::now();
 
-    std::string scenePath, raysPath = "-", outPath, proxyMode = "render", cacheDir;
+    std::string scenePath, raysPath = "-", outPath, savePath, proxyMode = "render", cacheDir;
     uint64_t seed = 1;
     float width = 0.1f, height = 0.1f, maxAngle = 80.0f;
     glm::dvec3 translate(0.0);
@@ -147,6 +151,8 @@ int main(int argc, char** argv) {
             if (!value(raysPath)) return usageError("--rays needs a file");
         } else if (a == "--out") {
             if (!value(outPath)) return usageError("--out needs a file");
+        } else if (a == "--save") {
+            if (!value(savePath) || savePath.empty()) return usageError("--save needs a file");
         } else if (a == "--proxy") {
             if (!value(proxyMode)) return usageError("--proxy needs render, auto or a tolerance");
         } else if (a == "--cache") {
@@ -345,6 +351,9 @@ int main(int argc, char** argv) {
         *out << rec.dump() << '\n';
     }
     out->flush();
+    if (!savePath.empty())
+        if (spatter::Status s = spatter::saveDecalsToFile(system.value(), savePath); !s)
+            return usageError(s.error());
 
     if (summary) {
         nlohmann::ordered_json s;

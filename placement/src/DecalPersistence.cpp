@@ -364,17 +364,17 @@ Status readSlots(ByteReader& r, DecalSystemState& st) {
 }
 
 Status checkDecal(const Decal& d, double time, size_t i) {
+    auto bad = [i](const char* what) { return corrupt("decal " + std::to_string(i) + ": " + what); };
     auto extent = [](float v) { return std::isfinite(v) && v >= std::numeric_limits<float>::min(); };
-    const std::string which = "decal " + std::to_string(i) + ": ";
     if (!std::isfinite(d.center.x) || !std::isfinite(d.center.y) || !std::isfinite(d.center.z))
-        return corrupt(which + "centre is not finite");
+        return bad("centre is not finite");
     if (!extent(d.size.x) || !extent(d.size.y) || !extent(d.halfDepth))
-        return corrupt(which + "size or half-depth is not finite, positive and normal");
-    if (d.frame().normal == glm::vec3(0.0f)) return corrupt(which + "frame has no orientation");
+        return bad("size or half-depth is not finite, positive and normal");
+    if (!hasOrientation(d.packedFrame)) return bad("frame has no orientation");
     if (!std::isfinite(d.spawnTime) || d.spawnTime < 0.0 || d.spawnTime > time || denormal(d.spawnTime))
-        return corrupt(which + "spawn time is not a normal time between 0 and the clock");
+        return bad("spawn time is not a normal time between 0 and the clock");
     if (!std::isfinite(d.opacity) || d.opacity < 0.0f || d.opacity > 1.0f || denormal(d.opacity))
-        return corrupt(which + "opacity is not a normal number in [0, 1]");
+        return bad("opacity is not a normal number in [0, 1]");
     return {};
 }
 
