@@ -63,6 +63,30 @@ template <class Get> void writeColumn(ByteWriter& w, size_t n, Get get) {
     }
 }
 
+// Per-decal values that most decals leave at their default: the kind (u8), then for kAbsent
+// nothing (every value the default), for kDense `n` values, for kSparse the count of the others
+// (u32), a column of their ascending indices and their values; whichever is smallest.
+enum : uint8_t { kAbsent = 0, kDense = 1, kSparse = 2 };
+
+template <class IsDefault, class Store>
+void writeSparse(ByteWriter& w, size_t n, size_t valueBytes, IsDefault isDefault, Store store) {
+    std::vector<uint32_t> others;
+    for (size_t i = 0; i < n; ++i)
+        if (!isDefault(i)) others.push_back(uint32_t(i));
+    const size_t indexBytes = n < (1u << 8) ? 1 : n < (1u << 16) ? 2 : n < (1u << 24) ? 3 : 4;
+    const bool sparse = 5 + others.size() * (indexBytes + valueBytes) < n * valueBytes;
+    w.u8(others.empty() ? kAbsent : sparse ? kSparse : kDense);
+    if (others.empty()) return;
+    if (sparse) {
+        w.u32(uint32_t(others.size()));
+        writeColumn(w, others.size(), [&](size_t k) { return others[k]; });
+    }
+    const size_t count = sparse ? others.size() : n;
+    uint8_t* p = w.grow(count * valueBytes);
+    for (size_t k = 0; k < count; ++k, p += valueBytes)
+        store(p, sparse ? others[k] : k);
+}
+
 void writeSettings(ByteWriter& w, const DecalSystemState& st) {
     const DecalSettings& s = st.settings;
     w.u64(s.seed);
@@ -136,25 +160,19 @@ void writeDecals(ByteWriter& w, const DecalSystemState& st) {
     uint8_t* p = w.grow(n * kSavedDecalBytes);
     for (size_t i = 0; i < n; ++i, p += kSavedDecalBytes)
         storeDecal(p, d[i]);
-    const bool opacities = std::any_of(d.begin(), d.end(), [](const Decal& x) { return x.opacity != 1.0f; });
-    w.u8(opacities ? 1 : 0);
-    if (opacities) {
-        p = w.grow(n * 4);
-        for (size_t i = 0; i < n; ++i)
-            storeF32(p + 4 * i, d[i].opacity);
-    }
+    writeSparse(
+        w, n, 4, [&](size_t i) { return d[i].opacity == 1.0f; },
+        [&](uint8_t* q, size_t i) { storeF32(q, d[i].opacity); });
     const Decal plain;
-    const bool clips = std::any_of(d.begin(), d.end(), [&](const Decal& x) { return !sameClips(x, plain); });
-    w.u8(clips ? 1 : 0);
-    if (clips) {
-        p = w.grow(n * 8);
-        for (size_t i = 0; i < n; ++i)
-            for (int k = 0; k < 2; ++k, p += 4) {
-                p[0] = uint8_t(d[i].clips[k].octX);
-                p[1] = uint8_t(d[i].clips[k].octY);
-                storeU16(p + 2, uint16_t(d[i].clips[k].offset));
+    writeSparse(
+        w, n, 8, [&](size_t i) { return sameClips(d[i], plain); },
+        [&](uint8_t* q, size_t i) {
+            for (int k = 0; k < 2; ++k, q += 4) {
+                q[0] = uint8_t(d[i].clips[k].octX);
+                q[1] = uint8_t(d[i].clips[k].octY);
+                storeU16(q + 2, uint16_t(d[i].clips[k].offset));
             }
-    }
+        });
     writeColumn(w, n, [&](size_t i) { return d[i].type; });
     writeColumn(w, n, [&](size_t i) { return d[i].object; });
     writeColumn(w, n, [&](size_t i) { return st.slotOf[i]; });
@@ -378,30 +396,45 @@ Status checkDecal(const Decal& d, double time, size_t i) {
     return {};
 }
 
+// The values writeSparse wrote for `n` decals, handed to `load` with their decal's index.
+template <class Load>
+Status readSparse(ByteReader& r, const char* what, size_t n, size_t valueBytes, Load load) {
+    uint8_t kind = 0;
+    uint32_t count = uint32_t(n);
+    std::vector<uint32_t> indices;
+    if (!r.u8(kind)) return truncated("DECL", what);
+    if (kind > kSparse)
+        return corrupt(std::string("unknown kind ") + std::to_string(kind) + " of the " + what);
+    if (kind == kAbsent) return {};
+    if (kind == kSparse) {
+        if (Status s = readCount(r, "DECL", what, valueBytes + 1, count); !s) return s;
+        if (Status s = readColumn(r, "DECL", what, count, indices); !s) return s;
+        for (size_t k = 0; k < count; ++k)
+            if (indices[k] >= n || (k > 0 && indices[k] <= indices[k - 1]))
+                return corrupt(std::string("the ") + what + " name decal " + std::to_string(indices[k]) +
+                               " out of order or range");
+    }
+    const uint8_t* p = count <= r.remaining() / valueBytes ? r.take(count * valueBytes) : nullptr;
+    if (!p) return truncated("DECL", what);
+    for (size_t k = 0; k < count; ++k, p += valueBytes)
+        load(p, kind == kSparse ? indices[k] : k);
+    return {};
+}
+
 Status readDecalColumns(ByteReader& r, DecalSystemState& st) {
     std::vector<Decal>& d = st.decals;
     const size_t n = d.size();
-    uint8_t opacities = 0, clips = 0;
-    if (!r.u8(opacities)) return truncated("DECL", "the opacities");
-    if (opacities > 1) return corrupt("unknown opacity column kind " + std::to_string(opacities));
-    if (opacities == 1) {
-        const uint8_t* p = n <= r.remaining() / 4 ? r.take(n * 4) : nullptr;
-        if (!p) return truncated("DECL", "the opacities");
-        for (size_t i = 0; i < n; ++i)
-            d[i].opacity = loadF32(p + 4 * i);
-    }
-    if (!r.u8(clips)) return truncated("DECL", "the clips");
-    if (clips > 1) return corrupt("unknown clip column kind " + std::to_string(clips));
-    if (clips == 1) {
-        const uint8_t* p = n <= r.remaining() / 8 ? r.take(n * 8) : nullptr;
-        if (!p) return truncated("DECL", "the clips");
-        for (size_t i = 0; i < n; ++i)
-            for (int k = 0; k < 2; ++k, p += 4) {
-                d[i].clips[k].octX = int8_t(p[0]);
-                d[i].clips[k].octY = int8_t(p[1]);
-                d[i].clips[k].offset = int16_t(loadU16(p + 2));
-            }
-    }
+    Status opacities =
+        readSparse(r, "opacities", n, 4, [&](const uint8_t* p, size_t i) { d[i].opacity = loadF32(p); });
+    if (!opacities) return opacities;
+    Status clips = readSparse(r, "clips", n, 8, [&](const uint8_t* p, size_t i) {
+        for (int k = 0; k < 2; ++k, p += 4) {
+            d[i].clips[k].octX = int8_t(p[0]);
+            d[i].clips[k].octY = int8_t(p[1]);
+            d[i].clips[k].offset = int16_t(loadU16(p + 2));
+        }
+    });
+    if (!clips) return clips;
     std::vector<uint32_t> column;
     if (Status s = readColumn(r, "DECL", "types", n, column); !s) return s;
     for (size_t i = 0; i < n; ++i) {
@@ -725,9 +758,15 @@ Result<DecalLoadReport> loadDecals(DecalSystem& system, std::istream& in) {
 }
 
 Result<DecalLoadReport> loadDecalsFromFile(DecalSystem& system, const std::string& path) {
+    std::error_code ec;
+    const uintmax_t size = std::filesystem::file_size(path, ec);
     std::ifstream in(path, std::ios::binary);
-    if (!in) return fail("decal save " + path + ": cannot be opened");
-    Result<DecalLoadReport> r = loadDecals(system, in);
+    if (ec || !in) return fail("decal save " + path + ": cannot be opened");
+    // The file's size is known: read it whole, in one allocation.
+    std::vector<uint8_t> bytes(static_cast<size_t>(size));
+    in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
+    if (size_t(in.gcount()) != bytes.size()) return fail("decal save " + path + ": cannot be read");
+    Result<DecalLoadReport> r = loadDecals(system, bytes.data(), bytes.size());
     if (!r) return fail(path + ": " + r.error());
     return r;
 }

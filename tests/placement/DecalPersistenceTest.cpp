@@ -176,6 +176,28 @@ size_t sectionAt(const std::vector<uint8_t>& b, const char* tag) {
     return 0;
 }
 
+size_t decalCount(const std::vector<uint8_t>& b) {
+    uint32_t n = 0;
+    std::memcpy(&n, &b[sectionAt(b, "DECL")], 4);
+    return n;
+}
+
+// The offset of the DECL section's type column: past the records, the opacities and the clips.
+size_t integerColumnsAt(const std::vector<uint8_t>& b) {
+    const size_t n = decalCount(b);
+    size_t at = sectionAt(b, "DECL") + 4 + n * 44;
+    for (size_t valueBytes : {4, 8}) { // opacities, clips: absent, dense or sparse
+        const uint8_t kind = b[at++];
+        if (kind == 1) at += n * valueBytes;
+        if (kind != 2) continue;
+        uint32_t count = 0;
+        std::memcpy(&count, &b[at], 4);
+        at += 4;
+        at += 1 + size_t(count) * (b[at] + valueBytes);
+    }
+    return at;
+}
+
 void put32(std::vector<uint8_t>& b, size_t at, uint32_t v) {
     for (int i = 0; i < 4; ++i)
         b[at + i] = uint8_t(v >> (8 * i));
@@ -427,14 +449,9 @@ TEST_F(DecalPersistence, UnknownTypeNameIsRefused) {
 
 TEST_F(DecalPersistence, DecalOnAnObjectTheSaveDoesNotHoldIsRefused) {
     std::vector<uint8_t> b = bytes;
-    const size_t decl = sectionAt(b, "DECL");
-    uint32_t n = 0;
-    std::memcpy(&n, &b[decl], 4);
-    size_t at = decl + 4 + size_t(n) * 44;
-    at += 1 + (b[at] == 1 ? 4 * size_t(n) : 0); // opacities
-    at += 1 + (b[at] == 1 ? 8 * size_t(n) : 0); // clips
-    at += 1 + size_t(n) * b[at];                // types
-    ASSERT_EQ(b[at], 1u);                       // object column, one byte each
+    size_t at = integerColumnsAt(b);
+    at += 1 + decalCount(b) * b[at]; // types
+    ASSERT_EQ(b[at], 1u);            // object column, one byte each
     b[at + 1] = 200;
     reseal(b);
     expectRefused(b, "decal 0 lies on object 200, which the save has not in its world");
@@ -442,18 +459,11 @@ TEST_F(DecalPersistence, DecalOnAnObjectTheSaveDoesNotHoldIsRefused) {
 
 TEST_F(DecalPersistence, SlotUsedTwiceIsRefused) {
     std::vector<uint8_t> b = bytes;
-    const size_t free = sectionAt(b, "SLOT");
-    uint32_t slots = 0;
-    std::memcpy(&slots, &b[free], 4);
-    ASSERT_GT(slots, 2u);
-    const size_t decl = sectionAt(b, "DECL");
-    uint32_t n = 0;
-    std::memcpy(&n, &b[decl], 4);
-    size_t at = decl + 4 + size_t(n) * 44;
-    at += 1 + (b[at] == 1 ? 4 * size_t(n) : 0);
-    at += 1 + (b[at] == 1 ? 8 * size_t(n) : 0);
-    at += 1 + size_t(n) * b[at]; // types
-    at += 1 + size_t(n) * b[at]; // objects
+    const size_t n = decalCount(b);
+    ASSERT_GT(n, 2u);
+    size_t at = integerColumnsAt(b);
+    at += 1 + n * b[at]; // types
+    at += 1 + n * b[at]; // objects
     const uint8_t width = b[at];
     std::memcpy(&b[at + 1 + width], &b[at + 1], width); // decal 1 takes decal 0's slot
     reseal(b);

@@ -27,6 +27,9 @@
 // removed is removed. Memory: a load allocates in proportion to the input (a few times its size at
 // most); counts that the input's bytes cannot hold are errors before anything is allocated.
 //
+// After a load, a renderer that follows changesSince() takes decals() whole: the versions go on from
+// the saved system's, which its copy of the decals never saw.
+//
 // Threading: saving is a const call (like decals(): never during a mutation); loading is a mutation
 // (it takes the system's lock).
 
