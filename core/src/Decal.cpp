@@ -30,7 +30,7 @@ bool Decal::setFrame(const Frame& f) {
     if (!(tt > kMinAxis * kMinAxis * std::max(1.0, t0t0))) return false;
     const glm::dvec3 t = tp * (1.0 / std::sqrt(tt));
     const glm::dvec3 b = glm::cross(n, t);
-    setOrientation(orientationOf(t, b, n), glm::dot(b0, b) < 0.0);
+    packedFrame = packFrame(t, b, n, glm::dot(b0, b) < 0.0);
     return true;
 }
 

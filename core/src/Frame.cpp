@@ -52,21 +52,6 @@ Frame rotateAboutNormal(const Frame& f, float angle) {
     return r;
 }
 
-glm::dquat orientationOf(const glm::dvec3& t, const glm::dvec3& b, const glm::dvec3& n) {
-    const double s[4] = {1.0 + t.x + b.y + n.z, 1.0 + t.x - b.y - n.z, 1.0 - t.x + b.y - n.z,
-                         1.0 - t.x - b.y + n.z};
-    int k = 0;
-    for (int i = 1; i < 4; ++i)
-        k = s[i] > s[k] ? i : k;
-    // Row r, column c of the matrix is m[c][r]: t is column 0, b column 1, n column 2.
-    const double wx = b.z - n.y, wy = n.x - t.z, wz = t.y - b.x, xy = b.x + t.y, xz = n.x + t.z,
-                 yz = n.y + b.z;
-    const double table[4][4] = {
-        {s[0], wx, wy, wz}, {wx, s[1], xy, xz}, {wy, xy, s[2], yz}, {wz, xz, yz, s[3]}};
-    const double scale = std::copysign(0.5 / std::sqrt(s[k]), table[k][0]); // w >= 0
-    return glm::dquat(table[k][0] * scale, table[k][1] * scale, table[k][2] * scale, table[k][3] * scale);
-}
-
 float frameError(const Frame& f) {
     const float terms[] = {
         std::fabs(glm::length(f.tangent) - 1.0f),

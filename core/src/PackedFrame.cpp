@@ -12,25 +12,49 @@ constexpr double kOffset = double(1 << (kBits - 1)); // 0 packs to 2^19
 constexpr double kRange = 0.70710678118654752440;    // |a smaller component| <= 1/sqrt(2)
 constexpr double kScale = (kOffset - 1.0) / kRange;  // +-1/sqrt(2) packs to 1 and 2^20 - 1
 
+// Bits 63, 62 and 60-61, and the three components other than `largest`, each of them times `scale`.
+uint64_t quantize(const double c[4], int largest, double scale, bool mirrored) {
+    constexpr int kOthers[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+    uint64_t bits = uint64_t(1) << 63 | uint64_t(mirrored) << 62 | uint64_t(largest) << 60;
+    for (int k = 0; k < 3; ++k) {
+        const double u = scale * c[kOthers[largest][k]];
+        const double v = u < -kRange ? -kRange : u > kRange ? kRange : u;
+        // Rounded to nearest: v * kScale + kOffset >= 1.
+        bits |= uint64_t(int64_t(v * kScale + (kOffset + 0.5))) << (2 - k) * kBits;
+    }
+    return bits;
+}
+
 } // namespace
+
+uint64_t packFrame(const glm::dvec3& t, const glm::dvec3& b, const glm::dvec3& n, bool mirrored) {
+    // 4 w^2, 4 x^2, 4 y^2, 4 z^2 from the trace and the diagonal; row r, column c of the matrix is
+    // m[c][r]: t is column 0, b column 1, n column 2.
+    const double s[4] = {1.0 + t.x + b.y + n.z, 1.0 + t.x - b.y - n.z, 1.0 - t.x + b.y - n.z,
+                         1.0 - t.x - b.y + n.z};
+    int k = 0;
+    for (int i = 1; i < 4; ++i)
+        k = s[i] > s[k] ? i : k;
+    const double wx = b.z - n.y, wy = n.x - t.z, wz = t.y - b.x, xy = b.x + t.y, xz = n.x + t.z,
+                 yz = n.y + b.z;
+    const double table[4][4] = {
+        {s[0], wx, wy, wz}, {wx, s[1], xy, xz}, {wy, xy, s[2], yz}, {wz, xz, yz, s[3]}};
+    if (!(s[k] > 0.0) || !std::isfinite(s[k])) return kNoOrientation;
+    return quantize(table[k], k, 0.5 / std::sqrt(s[k]), mirrored); // component k: sqrt(s[k]) / 2 > 0
+}
 
 uint64_t packOrientation(const glm::dquat& unit, bool mirrored) {
     const double c[4] = {unit.w, unit.x, unit.y, unit.z};
     const double sum = c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3];
     if (!std::isfinite(sum) || !(sum > 1e-24)) return kNoOrientation;
-    int largest = 0;
-    for (int i = 1; i < 4; ++i)
-        largest = std::fabs(c[i]) > std::fabs(c[largest]) ? i : largest;
-    const double sign = c[largest] < 0.0 ? -1.0 : 1.0; // q and -q are the same rotation
-    uint64_t bits = uint64_t(1) << 63 | uint64_t(mirrored) << 62 | uint64_t(largest) << 60;
-    int shift = 2 * kBits;
-    for (int i = 0; i < 4; ++i) {
-        if (i == largest) continue;
-        const double v = std::fmin(std::fmax(sign * c[i], -kRange), kRange);
-        bits |= uint64_t(std::lround(v * kScale + kOffset)) << shift;
-        shift -= kBits;
+    int largest = 0; // without branches: which component is largest is random to the predictor
+    double most = std::fabs(c[0]);
+    for (int i = 1; i < 4; ++i) {
+        const bool larger = std::fabs(c[i]) > most;
+        largest = larger ? i : largest;
+        most = larger ? std::fabs(c[i]) : most;
     }
-    return bits;
+    return quantize(c, largest, c[largest] < 0.0 ? -1.0 : 1.0, mirrored); // q and -q: the same rotation
 }
 
 glm::dquat unpackOrientation(uint64_t bits) {

@@ -320,7 +320,7 @@ struct DecalSystem::Impl {
         const glm::dvec3 bit = glm::cross(n, tan);
 
         Decal d;
-        d.setOrientation(orientationOf(tan, bit, n), false); // orthonormal already: packed as it is
+        d.packedFrame = packFrame(tan, bit, n, false); // orthonormal already: packed as it is
         d.center = glm::vec3(local);
         d.size = glm::vec2(float(size.x / glm::length(m * tan)), float(size.y / glm::length(m * bit)));
         d.halfDepth = float(halfDepth * glm::length(glm::transpose(inv) * n));

@@ -26,10 +26,6 @@ Frame frameFromNormalAndHint(const glm::vec3& n, const glm::vec3& hint);
 // The frame rotated by `angle` radians about its normal.
 Frame rotateAboutNormal(const Frame& f, float angle);
 
-// The unit quaternion, w >= 0, of the rotation whose columns are t, b and n, an orthonormal
-// right-handed frame (Decal::orientation()); Decal::setFrame makes any frame one first.
-glm::dquat orientationOf(const glm::dvec3& t, const glm::dvec3& b, const glm::dvec3& n);
-
 // Largest deviation from orthonormality and right-handedness (0 for a perfect frame).
 float frameError(const Frame& f);
 

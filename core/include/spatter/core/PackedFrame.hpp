@@ -24,6 +24,11 @@ constexpr double kPackedFrameError = 4e-6;
 constexpr uint64_t kIdentityOrientation =
     (uint64_t(1) << 63) | (uint64_t(1) << 59) | (uint64_t(1) << 39) | (uint64_t(1) << 19);
 
+// Packs the rotation whose columns are t, b and n, an orthonormal right-handed frame (not checked;
+// Decal::setFrame makes any frame one first), and the mirrored flag: Shepperd's method without a
+// branch, whose choice of the largest component is the one packing needs.
+uint64_t packFrame(const glm::dvec3& t, const glm::dvec3& b, const glm::dvec3& n, bool mirrored);
+
 // Packs a unit quaternion (its length is not checked: it is taken as unit) and the mirrored flag.
 // A quaternion that is not finite or too short to be a direction packs to kNoOrientation.
 uint64_t packOrientation(const glm::dquat& unit, bool mirrored);
