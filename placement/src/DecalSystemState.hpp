@@ -1,7 +1,7 @@
 #pragma once
 // DecalSystemState: everything a DecalSystem needs to carry on exactly where it stood, as plain
 // values, and the door through which a save takes it out and a load puts it back
-// (DecalPersistence.cpp). capture() copies it; restore() replaces the system's state with it.
+// (DecalPersistence.hpp). capture() copies it; restore() replaces the system's state with it.
 
 #include "AreaLimits.hpp"
 #include "spatter/core/Decal.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// SaveBytes: the little-endian byte layer of decal saves (DecalPersistence.cpp): stores and loads of
+// SaveBytes: the little-endian byte layer of decal saves (DecalSaveFormat.hpp): stores and loads of
 // fixed-width values that compile to plain moves on little-endian machines and stay correct on
 // others, a writer that appends to a byte vector, a bounds-checked reader, and CRC-32.
 

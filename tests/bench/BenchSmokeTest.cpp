@@ -144,6 +144,20 @@ TEST(BenchSmoke, MemoryQuickReportsBytesPerDecal) {
     EXPECT_GT(j["objects"]["proxy"]["bvh_user_bytes"].get<double>(), 0.0);
 }
 
+TEST(BenchSmoke, PersistenceQuickSavesAndLoadsEveryDecal) {
+    const std::string dir = test::scratchDir("bench-persistence");
+    ASSERT_EQ(runBench("persistence --quick --json " + dir + "/s.json", dir + "/log"), 0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/s.json");
+    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << readAll(dir + "/s.json");
+    EXPECT_EQ(j["rows"].size(), 4u);
+    EXPECT_GT(j["decals"].get<double>(), 0.0);
+    // At most the Decal record per decal, plus the fixed part, shared by 20,000 decals.
+    EXPECT_LE(j["bytes_per_decal"].get<double>(), j["decal_record_bytes"].get<double>());
+    for (const auto& row : j["rows"])
+        EXPECT_GT(row["mb_per_s"].get<double>(), 0.0) << row.dump();
+}
+
 TEST(BenchSmoke, RenderQuickTimesTheDecalPass) {
     if (!noGl().empty()) {
         if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
