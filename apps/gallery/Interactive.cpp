@@ -118,7 +118,7 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
     draw->AddLine(ImVec2(c.x, c.y - 8), ImVec2(c.x, c.y + 8), IM_COL32(255, 255, 255, 220), 1.5f);
 }
 
-// F5: the decals to `path`; what the HUD says.
+// F5: the decals to `path`; what the HUD and the console say.
 std::string quickSave(const GallerySim& sim, const std::string& path) {
     std::error_code ec;
     std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
@@ -126,7 +126,7 @@ std::string quickSave(const GallerySim& sim, const std::string& path) {
     return s ? "saved " + std::to_string(sim.decals().decals().size()) + " decals to " + path : s.error();
 }
 
-// F9: the decals from `path`; what the HUD says.
+// F9: the decals from `path`; what the HUD and the console say.
 std::string quickLoad(GallerySim& sim, const std::string& path) {
     const Result<DecalLoadReport> r = sim.load(path);
     if (!r) return r.error();
@@ -250,10 +250,12 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
         if (scorchDown && !scorchWasDown && captured) fire(ShotKind::Scorch);
         scorchWasDown = scorchDown;
         const bool saveDown = glfwGetKey(window, GLFW_KEY_F5) == GLFW_PRESS;
-        if (saveDown && !saveWasDown) hud.status = quickSave(sim.value(), quickFile);
+        if (saveDown && !saveWasDown)
+            std::cout << "spatter-gallery: " << (hud.status = quickSave(sim.value(), quickFile)) << std::endl;
         saveWasDown = saveDown;
         const bool loadDown = glfwGetKey(window, GLFW_KEY_F9) == GLFW_PRESS;
-        if (loadDown && !loadWasDown) hud.status = quickLoad(sim.value(), quickFile);
+        if (loadDown && !loadWasDown)
+            std::cout << "spatter-gallery: " << (hud.status = quickLoad(sim.value(), quickFile)) << std::endl;
         loadWasDown = loadDown;
 
         if (fbw > 0 && fbh > 0) {

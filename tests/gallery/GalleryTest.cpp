@@ -115,4 +115,26 @@ TEST(Gallery, WindowedModeRendersAndQuitsOnEscape) {
     if (run.exitCode == 77 && !test::runningInCi()) GTEST_SKIP() << run.output;
     ASSERT_EQ(run.exitCode, 0) << run.output;
     EXPECT_THAT(run.output, ::testing::ContainsRegex("decals placed in [1-9][0-9]* frames"));
+    EXPECT_THAT(run.output, ::testing::HasSubstr("saved 0 decals to " + dir + "/quick.save"));
+    EXPECT_THAT(run.output, ::testing::HasSubstr("loaded 0 decals (0 dropped)"));
+}
+
+TEST(Gallery, HeadlessSessionContinuesFromASave) {
+    const std::string dir = test::scratchDir("gallery-save");
+    const std::string base = std::string(SPATTER_GALLERY_EXE) + " --headless --size 320x180 --tolerance 2" +
+                             " --cache " + dir + "/cache --seed 3 --shots ";
+    const CommandRun first = runCommand(base + "40 --out " + dir + "/a --save " + dir + "/a.save", dir);
+    ASSERT_EQ(first.exitCode, 0) << first.output;
+    const CommandRun second =
+        runCommand(base + "0 --out " + dir + "/b --load " + dir + "/a.save --save " + dir + "/b.save", dir);
+    ASSERT_EQ(second.exitCode, 0) << second.output;
+    std::ifstream ina(dir + "/a/gallery.json"), inb(dir + "/b/gallery.json");
+    const json a = json::parse(ina, nullptr, false), b = json::parse(inb, nullptr, false);
+    ASSERT_TRUE(a.is_object() && b.is_object());
+    EXPECT_EQ(b["loaded"]["decals"], a["alive"]);
+    EXPECT_EQ(b["loaded"]["dropped"], 0);
+    EXPECT_EQ(b["placed"], a["placed"]) << "the statistics come back with the decals";
+    const CommandRun bad = runCommand(base + "0 --out " + dir + "/c --load " + dir + "/a/gallery.png", dir);
+    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_THAT(bad.output, ::testing::HasSubstr("not a decal save"));
 }
