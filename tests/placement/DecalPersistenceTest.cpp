@@ -300,6 +300,25 @@ TEST_F(DecalPersistence, TypesRegisteredInAnotherOrderAreMatchedByName) {
         EXPECT_EQ(loaded.type(loaded.decals()[i].type)->name, source.type(source.decals()[i].type)->name);
 }
 
+TEST_F(DecalPersistence, HandlesKeptAcrossASaveAndALoadFindTheSameDecals) {
+    std::vector<DecalHandle> handles;
+    for (uint32_t k = 0; k < 40; ++k)
+        if (SpawnResult r = source.spawn(shot(90000 + k, 0), 0); r.placed()) handles.push_back(r.handle);
+    ASSERT_GT(handles.size(), 10u);
+    ASSERT_TRUE(source.remove(handles[3]));
+    DecalSystem loaded = gameSystem(LimitPolicy::FadeOldest);
+    load(loaded, saved(source));
+    for (const DecalHandle& h : handles) {
+        const Decal* a = source.get(h);
+        const Decal* b = loaded.get(h);
+        ASSERT_EQ(a == nullptr, b == nullptr);
+        if (a) {
+            EXPECT_TRUE(sameDecal(*a, *b));
+        }
+    }
+    EXPECT_EQ(loaded.get(handles[3]), nullptr);
+}
+
 TEST_F(DecalPersistence, StreamAndBufferGiveTheSameSystem) {
     std::stringstream stream;
     ASSERT_TRUE(saveDecals(source, stream).ok());

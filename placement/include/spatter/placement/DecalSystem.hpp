@@ -18,11 +18,12 @@
 // - Same settings (seed), same types and same calls give bit-identical decals.
 // - Decal::center and Decal::frame are in the space of the decal's object (static objects too), so
 //   decals follow their object when it moves and go with it when it is removed.
-// - Mutations (registerType, spawn*, update, remove, setTransform, removeObject) may be called from
-//   any number of threads at once: they take the system's lock and run one at a time, each seeing
-//   the world as the previous one left it (a spawn traces against the objects where they are while
-//   it holds the lock). Const calls take no lock: they may run concurrently with each other, but
-//   not with a mutation (decals() and get() return references into state that mutations change).
+// - Mutations (registerType, spawn*, update, remove, setTransform, removeObject, and loadDecals of
+//   DecalPersistence.hpp) may be called from any number of threads at once: they take the system's
+//   lock and run one at a time, each seeing the world as the previous one left it (a spawn traces
+//   against the objects where they are while it holds the lock). Const calls take no lock: they may
+//   run concurrently with each other, but not with a mutation (decals() and get() return references
+//   into state that mutations change).
 //   version() and changesSince() are const calls like decals(): no lock, never during a mutation.
 // - Every change of decals() is logged (changesSince): a placement as Added; a removal by remove, an
 //   eviction, the end of a lifetime or fade in update, or removeObject as Removed, with the move that
