@@ -24,8 +24,9 @@
 // object of the save that the world lacks, calls otherwise, has out of the world, or holds with
 // another mesh or another dynamic flag is dropped with its decals (counted in stats().removed and
 // in the report); a dynamic object takes the transform it had when saved; an object the save had
-// removed is removed. Memory: a load allocates in proportion to the input (a few times its size at
-// most); counts that the input's bytes cannot hold are errors before anything is allocated.
+// removed is removed. Memory: a load allocates in proportion to the input (about three times its
+// size for a real save, about ten for one made of nothing but handle slots); counts that the
+// input's bytes cannot hold are errors before anything is allocated.
 //
 // After a load, a renderer that follows changesSince() takes decals() whole: the versions go on from
 // the saved system's, which its copy of the decals never saw.
