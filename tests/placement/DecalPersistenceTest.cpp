@@ -319,6 +319,36 @@ TEST_F(DecalPersistence, HandlesKeptAcrossASaveAndALoadFindTheSameDecals) {
     EXPECT_EQ(loaded.get(handles[3]), nullptr);
 }
 
+// Decals counted in cells of an object's space taken under a scale the object no longer has: the save
+// names their cells, and the limits evict after the load as they would have.
+TEST_F(DecalPersistence, CellsTakenUnderAnEarlierScaleComeBack) {
+    DecalSettings settings = settingsFor(LimitPolicy::EvictOldest);
+    settings.maxPerCell = 3;
+    DecalSystem reference = makeSystem(rangeScene(3), settings);
+    addType(reference, gameTypes()[0]);
+    auto spawnRow = [](DecalSystem& s, float z) {
+        for (int i = 0; i < 12; ++i)
+            s.spawnAttached(2, glm::vec3(0.08f * float(i) - 0.45f, 0.5f, z), glm::vec3(0, 1, 0), 0);
+    };
+    spawnRow(reference, 0.1f);
+    reference.setTransform(2, glm::scale(targetPose(0, 0), glm::dvec3(3.0)));
+    const std::vector<uint8_t> b = saved(reference);
+    const size_t limits = sectionAt(b, "LIMS");
+    uint32_t counted = 0;
+    std::memcpy(&counted, &b[limits], 4);
+    uint32_t exceptions = 0;
+    std::memcpy(&exceptions, &b[limits + 4 + 1 + size_t(counted) * b[limits + 4]], 4);
+    EXPECT_GT(exceptions, 0u);
+
+    DecalSystem loaded = makeSystem(rangeScene(3), settings);
+    addType(loaded, gameTypes()[0]);
+    load(loaded, b);
+    spawnRow(reference, 0.12f);
+    spawnRow(loaded, 0.12f);
+    EXPECT_GT(reference.stats().evicted, 0u);
+    EXPECT_TRUE(sameSystem(loaded, reference));
+}
+
 TEST_F(DecalPersistence, StreamAndBufferGiveTheSameSystem) {
     std::stringstream stream;
     ASSERT_TRUE(saveDecals(source, stream).ok());
