@@ -349,6 +349,16 @@ TEST_F(DecalPersistence, CellsTakenUnderAnEarlierScaleComeBack) {
     EXPECT_TRUE(sameSystem(loaded, reference));
 }
 
+TEST_F(DecalPersistence, LoadReplacesEverythingTheSystemHeld) {
+    DecalSystem target = gameSystem(LimitPolicy::EvictOldest);
+    play(target, 20000, 20400); // another history: other decals, clock, limits and object places
+    load(target, bytes);
+    EXPECT_TRUE(sameSystem(target, source));
+    play(source, 1500, 2500);
+    play(target, 1500, 2500);
+    EXPECT_TRUE(sameSystem(target, source));
+}
+
 TEST_F(DecalPersistence, StreamAndBufferGiveTheSameSystem) {
     std::stringstream stream;
     ASSERT_TRUE(saveDecals(source, stream).ok());
