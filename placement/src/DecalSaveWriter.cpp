@@ -8,12 +8,17 @@ namespace spatter::save {
 
 namespace {
 
-// Unsigned values in the fewest bytes (1 to 4) that hold the largest: the width, then the values.
+// The fewest bytes (1 to 4) that hold `largest`.
+unsigned widthFor(uint64_t largest) {
+    return largest < (1u << 8) ? 1 : largest < (1u << 16) ? 2 : largest < (1u << 24) ? 3 : 4;
+}
+
+// Unsigned values in the fewest bytes that hold the largest: the width, then the values.
 template <class Get> void writeColumn(ByteWriter& w, size_t n, Get get) {
     uint32_t largest = 0;
     for (size_t i = 0; i < n; ++i)
         largest = std::max(largest, uint32_t(get(i)));
-    const unsigned width = largest < (1u << 8) ? 1 : largest < (1u << 16) ? 2 : largest < (1u << 24) ? 3 : 4;
+    const unsigned width = widthFor(largest);
     w.u8(uint8_t(width));
     uint8_t* p = w.grow(n * width);
     for (size_t i = 0; i < n; ++i, p += width) {
@@ -26,14 +31,12 @@ template <class Get> void writeColumn(ByteWriter& w, size_t n, Get get) {
 // Per-decal values that most decals leave at their default: the kind (u8), then for kAbsent
 // nothing (every value the default), for kDense `n` values, for kSparse the count of the others
 // (u32), a column of their ascending indices and their values; whichever is smallest.
-
 template <class IsDefault, class Store>
 void writeSparse(ByteWriter& w, size_t n, size_t valueBytes, IsDefault isDefault, Store store) {
     std::vector<uint32_t> others;
     for (size_t i = 0; i < n; ++i)
         if (!isDefault(i)) others.push_back(uint32_t(i));
-    const size_t indexBytes = n < (1u << 8) ? 1 : n < (1u << 16) ? 2 : n < (1u << 24) ? 3 : 4;
-    const bool sparse = 5 + others.size() * (indexBytes + valueBytes) < n * valueBytes;
+    const bool sparse = 5 + others.size() * (widthFor(n) + valueBytes) < n * valueBytes;
     w.u8(others.empty() ? kAbsent : sparse ? kSparse : kDense);
     if (others.empty()) return;
     if (sparse) {
