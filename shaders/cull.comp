@@ -22,13 +22,18 @@ layout(std430, binding = 2) writeonly buffer GroupCounts {
 layout(std430, binding = 5) buffer Counters {
     uint drawCommand[4]; // the indirect draw (cull_scan.comp)
     uint occludedCount;  // boxes in the frustum that the occlusion test culled
+    uint invalidCount;   // decals that cannot be drawn: their box, type or object
+    uint hostDrawnCount; // decals of a type or on an object the host draws itself
 };
 layout(std430, binding = 6) readonly buffer DrawOrder {
     uint drawOrder[];
 };
 
 shared uint sVisible;
-shared uint sBits[8]; // the work group's 256 classes
+shared uint sBits[8];   // the work group's 256 classes
+shared uint sCounts[3]; // the work group's occluded, invalid and host-drawn decals
+
+const uint kCulled = 0u, kVisible = 1u, kOccluded = 2u, kInvalid = 3u, kHostDrawn = 4u;
 
 // The box's eight corners in clip space.
 void boxCorners(DecalData d, ProjectorObject o, out vec4 corners[8]) {
@@ -98,34 +103,41 @@ bool hidden(vec4 corners[8]) {
 
 uint classify(uint i) {
     DecalRecord r = decalRecords[i];
-    if (!decalRecordValid(r) || decalTypeIndex(r) >= uint(decalTypes.length()) ||
-        decalTypes[decalTypeIndex(r)].info.z == 0u || float(r.info.x) >= u_params.y)
-        return 0u; // a degenerate box, or a type or object that cannot be drawn
-    DecalData d = unpackDecal(r);
-    ProjectorObject o = objects[d.info.x];
-    if (o.info.z != 0u) return 0u; // a collapsed object
+    uint type = decalTypeIndex(r);
+    bool typeKnown = type < uint(decalTypes.length()), objectKnown = float(r.info.x) < u_params.y;
+    // The host's decals, valid or not (it counts its invalid ones), then those that cannot be drawn.
+    if ((typeKnown && decalTypes[type].info.z == 2u) || (objectKnown && objects[r.info.x].info.w != 0u))
+        return kHostDrawn;
+    if (!decalRecordValid(r) || !typeKnown || decalTypes[type].info.z == 0u || !objectKnown) return kInvalid;
+    ProjectorObject o = objects[r.info.x];
+    if (o.info.z != 0u) return kCulled; // a collapsed object
     vec4 corners[8];
-    boxCorners(d, o, corners);
-    if (outsideFrustum(corners)) return 0u;
-    if (u_occlusion.x > 0 && hidden(corners)) {
-        atomicAdd(occludedCount, 1u);
-        return 0u;
-    }
-    return 1u;
+    boxCorners(unpackDecal(r), o, corners);
+    if (outsideFrustum(corners)) return kCulled;
+    if (u_occlusion.x > 0 && hidden(corners)) return kOccluded;
+    return kVisible;
 }
 
 void main() {
     if (gl_LocalInvocationIndex == 0u) sVisible = 0u;
     if (gl_LocalInvocationIndex < 8u) sBits[gl_LocalInvocationIndex] = 0u;
+    if (gl_LocalInvocationIndex < 3u) sCounts[gl_LocalInvocationIndex] = 0u;
     barrier();
     uint place = gl_GlobalInvocationID.x;
     uint entry = place < u_count ? drawOrder[place] : 0xffffffffu; // an empty entry of the order
-    uint c = entry != 0xffffffffu ? classify(entry) : 0u;
-    if (c == 1u) {
+    uint c = entry != 0xffffffffu ? classify(entry) : kCulled;
+    if (c == kVisible) {
         atomicAdd(sVisible, 1u);
         atomicOr(sBits[gl_LocalInvocationIndex / 32u], 1u << (gl_LocalInvocationIndex % 32u));
+    } else if (c >= kOccluded) {
+        atomicAdd(sCounts[c - kOccluded], 1u);
     }
     barrier();
+    if (gl_LocalInvocationIndex == 0u) {
+        if (sCounts[0] != 0u) atomicAdd(occludedCount, sCounts[0]);
+        if (sCounts[1] != 0u) atomicAdd(invalidCount, sCounts[1]);
+        if (sCounts[2] != 0u) atomicAdd(hostDrawnCount, sCounts[2]);
+    }
     if (gl_LocalInvocationIndex < 8u) classBits[gl_WorkGroupID.x * 8u + gl_LocalInvocationIndex] = sBits[gl_LocalInvocationIndex];
     if (gl_LocalInvocationIndex == 0u) groupCounts[gl_WorkGroupID.x] = sVisible;
 }

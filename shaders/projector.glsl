@@ -21,7 +21,8 @@ struct ProjectorObject {
     mat4 model;         // object -> camera-relative world
     mat4 normalMatrix;  // upper left 3x3: inverse transpose of model
     mat4 worldToObject; // camera-relative world -> object
-    uvec4 info;         // x: object decal ID, y: 1 when model mirrors
+    uvec4 info;         // x: object decal ID, y: 1 when model mirrors, z: 1 when it is singular (its
+                        // decals collapse), w: 1 when the host draws its decals itself
 };
 
 layout(std430, binding = 1) readonly buffer ProjectorObjects {

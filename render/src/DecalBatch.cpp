@@ -19,11 +19,19 @@ void DecalBatch::setTypes(std::vector<DecalType> types) {
     rebuildTypes();
 }
 
+void DecalBatch::setHostDrawn(std::vector<uint8_t> types, std::vector<uint8_t> objects) {
+    hostTypes_ = std::move(types);
+    hostObjects_ = std::move(objects);
+    rebuildTypes();
+}
+
 void DecalBatch::rebuildTypes() {
     typeRecords_.clear();
     std::vector<int> priorities;
-    for (const DecalType& t : types_) {
+    for (size_t i = 0; i < types_.size(); ++i) {
+        const DecalType& t = types_[i];
         typeRecords_.push_back(buildDecalType(t, wrapMaxAngleDeg_, layerCount_));
+        if (i < hostTypes_.size() && hostTypes_[i] != 0) typeRecords_.back().info.z = 2; // the host's
         priorities.push_back(t.priority);
     }
     std::sort(priorities.begin(), priorities.end());
@@ -140,8 +148,13 @@ size_t DecalBatch::invalidCount() const {
 uint32_t DecalBatch::flagsUnion() const {
     uint32_t flags = kDecalMirrored;
     for (const DecalTypeGpu& t : typeRecords_)
-        flags |= t.info.z != 0 ? t.info.y : 0u;
+        flags |= t.info.z == 1 ? t.info.y : 0u;
     return flags;
+}
+
+bool DecalBatch::hostDrawn(const DecalRecordGpu& r) const {
+    return (recordType(r) < typeRecords_.size() && typeRecords_[recordType(r)].info.z == 2) ||
+           hostDrawnObject(r.info.x);
 }
 
 bool DecalBatch::valid(size_t i) const {
@@ -176,12 +189,19 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
     }
     for (const uint32_t i : order_.entries()) {
         if (i == DrawOrder::kEmpty) continue;
+        if (hostDrawn(records_[i])) { // the host's, valid or not
+            ++vis.hostDrawn;
+            continue;
+        }
         if (!valid(i)) {
             ++vis.invalid;
             continue;
         }
         const uint32_t object = records_[i].info.x;
-        if (object >= objectTransforms.size() || collapsed[object]) continue;
+        if (object >= objectTransforms.size() || collapsed[object]) {
+            ++vis.culled;
+            continue;
+        }
         const glm::dmat4 boxToWorld = objectTransforms[object] * recordBoxToObject(records_[i]);
 
         // Frustum: the box is outside when all eight corners lie beyond one clip plane.

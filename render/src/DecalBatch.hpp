@@ -1,5 +1,5 @@
 #pragma once
-// DecalBatch: the CPU side of the decal store. The decals live on the GPU as 64-byte records
+// DecalBatch: the CPU side of the decal store. The decals live on the GPU as 48-byte records
 // (DecalRecord.hpp); the batch builds the records of the decals that changed (all of them on
 // setDecals, those a DecalChanges names on applyChanges) and stages them for upload, keeps the
 // draw order (DrawOrder.hpp) and a validity bit per decal. It keeps a CPU copy of the records only
@@ -28,8 +28,9 @@ struct DecalVisibility {
     std::vector<uint32_t> visible; // decal indices in draw order
     size_t inside = 0;             // of those, boxes that may contain the eye or cross the near plane
     uint32_t flags = 0;            // union of the DecalFlag bits of the visible decals
-    size_t culled = 0;             // valid decals outside the view
+    size_t culled = 0;             // valid decals outside the view or on a singular object
     size_t invalid = 0;            // decals that cannot be drawn (box, object or type)
+    size_t hostDrawn = 0;          // valid decals the host draws itself (setHostDrawn)
     // With CullView::rects: for each of `visible`, the normalised device x, y bounds of its box
     // (min x, min y, max x, max y) clamped to [-1, 1]; the whole view where the box reaches behind
     // the eye or may hold it.
@@ -57,6 +58,9 @@ public:
     // Settings that shape the type records.
     void configure(float wrapMaxAngleDeg, int layerCount);
     void setTypes(std::vector<DecalType> types);
+    // Types and objects (nonzero entries) whose decals the host draws itself: kept, not drawn. Their
+    // type records say so (info.z 2); objects are told to the shaders by the host (ProjectorObjectGpu).
+    void setHostDrawn(std::vector<uint8_t> types, std::vector<uint8_t> objects);
     // Decals naming an object at or past `objectCount` are not drawn.
     void setObjectCount(size_t objectCount) { objectCount_ = objectCount; }
     // The CPU copy of the records is kept while fewer decals than this are held.
@@ -81,6 +85,9 @@ public:
     // The CPU copy of the records (mirrored() only) and whether record i can be drawn.
     const std::vector<DecalRecordGpu>& instances() const { return records_; }
     bool valid(size_t i) const;
+    // Whether the host draws the decal of a record itself (it counts its invalid ones too).
+    bool hostDrawn(const DecalRecordGpu& r) const;
+    bool hostDrawnObject(size_t object) const { return object < hostObjects_.size() && hostObjects_[object]; }
     // The types as the shaders read them (one entry per type given to setTypes).
     const std::vector<DecalTypeGpu>& typeRecords() const { return typeRecords_; }
     // The DecalFlag bits of a record: its type's and its own.
@@ -112,6 +119,7 @@ private:
     size_t mirrorLimit_ = std::numeric_limits<size_t>::max();
     std::vector<DecalType> types_;
     std::vector<DecalTypeGpu> typeRecords_;
+    std::vector<uint8_t> hostTypes_, hostObjects_;
     std::vector<uint32_t> typeRank_;
     bool ranksChanged_ = false;
     DrawOrder order_;

@@ -309,6 +309,7 @@ struct DecalProjector::Impl {
         ProjectorStats stats;
         stats.decals = batch.size();
         stats.invalid = onGpu ? batch.invalidCount() : vis.invalid;
+        stats.hostDrawn = vis.hostDrawn;
         stats.culled = vis.culled;
         stats.drawn = vis.visible.size();
         stats.inside = vis.inside;
@@ -343,8 +344,11 @@ struct DecalProjector::Impl {
                     buffers.visibleCapacity());
         buffers.bind(); // the visible list may have grown
         stats.drawn = culling.visibleCount(settings.waitForTimers);
-        const size_t valid = batch.size() - batch.invalidCount();
-        stats.culled = valid > stats.drawn ? valid - stats.drawn : 0; // counts of an earlier draw may exceed
+        stats.invalid = culling.invalidCount();
+        stats.hostDrawn = culling.hostDrawnCount();
+        const size_t counted = stats.invalid + stats.hostDrawn + stats.drawn;
+        stats.culled =
+            batch.size() > counted ? batch.size() - counted : 0; // counts of an earlier draw may exceed
         buffers.setVisibleCount(stats.drawn);
         return {0, culling.draws()};
     }
@@ -487,6 +491,11 @@ void DecalProjector::updateDecals(const std::vector<Decal>& decals, const DecalC
     impl_->batch.applyChanges(decals, changes);
 }
 
+void DecalProjector::setHostDrawn(std::vector<uint8_t> types, std::vector<uint8_t> objects) {
+    impl_->batch.setHostDrawn(std::move(types), std::move(objects));
+    impl_->buffers.typesChanged();
+}
+
 Status DecalProjector::setObjects(const std::vector<glm::dmat4>& transforms,
                                   const std::vector<uint8_t>& ids) {
     if (transforms.size() != ids.size())
@@ -553,7 +562,8 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
     GlStateGuard guard;
     m.timers.beginFrame(m.draws);
     m.timers.begin(GpuPass::Decals);
-    m.buffers.uploadFrame(host, camera.view, camera.viewProj, m.settings.fadeStart, m.transforms, m.ids);
+    m.buffers.uploadFrame(host, camera.view, camera.viewProj, m.settings.fadeStart, m.transforms, m.ids,
+                          m.batch);
     m.binVisible(frame, camera, onGpu, vis, stats);
     m.timers.end();
     const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
@@ -614,7 +624,8 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     GlStateGuard guard;
     m.timers.beginFrame(m.draws);
     m.timers.begin(GpuPass::Decals);
-    m.buffers.uploadFrame(frame, camera.view, camera.viewProj, m.settings.fadeStart, m.transforms, m.ids);
+    m.buffers.uploadFrame(frame, camera.view, camera.viewProj, m.settings.fadeStart, m.transforms, m.ids,
+                          m.batch);
     m.drawDecals(frame, options, camera, onGpu, vis, passes, stats);
     m.timers.end();
     const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);

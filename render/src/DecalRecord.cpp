@@ -40,13 +40,14 @@ bool soundNumbers(const Decal& d) {
 
 bool buildDecalRecord(const Decal& d, DecalRecordGpu& out) {
     out = DecalRecordGpu{};
+    const uint32_t mirrored = d.mirrored() ? kDecalMirrored : 0u;
+    out.info =
+        glm::uvec4(d.object, uint32_t(d.type) | uint32_t(d.objectId) << 16 | mirrored << 24,
+                   floatBits(std::isfinite(d.opacity) ? std::clamp(d.opacity, 0.0f, 1.0f) : 0.0f), d.id);
     if (!soundNumbers(d) || !hasOrientation(d.packedFrame)) return false;
     out.centerDepth = glm::vec4(d.center, d.halfDepth);
     out.frame = glm::uvec2(uint32_t(d.packedFrame), uint32_t(d.packedFrame >> 32));
     out.halfSize = 0.5f * d.size;
-    const uint32_t mirrored = d.mirrored() ? kDecalMirrored : 0u;
-    out.info = glm::uvec4(d.object, uint32_t(d.type) | uint32_t(d.objectId) << 16 | mirrored << 24,
-                          floatBits(std::clamp(d.opacity, 0.0f, 1.0f)), d.id);
     return true;
 }
 

@@ -14,9 +14,11 @@ constexpr uint32_t kGroup = 256; // local size of the classify and scatter passe
 // Binding points of the culling passes (shaders/cull*.comp).
 constexpr GLuint kClassesBinding = 0, kGroupsBinding = 2, kDrawsBinding = 5, kOrderBinding = 6,
                  kVisibleOutBinding = 7;
-constexpr size_t kDrawsBytes = 5 * sizeof(uint32_t); // the indirect draw, then the occluded count
-constexpr size_t kCountOffset = sizeof(uint32_t);    // DrawArraysIndirectCommand::instanceCount
-constexpr size_t kOccludedOffset = 4 * sizeof(uint32_t);
+// The indirect draw, then the occluded, invalid and host-drawn counts (Counters in cull.comp).
+constexpr size_t kDrawsBytes = 7 * sizeof(uint32_t);
+constexpr size_t kCountOffset = sizeof(uint32_t); // DrawArraysIndirectCommand::instanceCount
+constexpr size_t kCountersOffset = 4 * sizeof(uint32_t);
+constexpr size_t kCounters = 3;
 
 Result<GlProgram> computeProgram(const char* file) {
     Result<GlProgram> p = buildProgram(shaderLibrary(kProjectorShaders), {{GL_COMPUTE_SHADER, file}}, {});
@@ -44,7 +46,8 @@ Status GpuCulling::prepare() {
     draws_ = createBuffer();
     glNamedBufferStorage(draws_.get(), GLsizeiptr(kDrawsBytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
     readback_ = createBuffer();
-    glNamedBufferStorage(readback_.get(), GLsizeiptr(2 * sizeof(uint32_t)), nullptr, GL_CLIENT_STORAGE_BIT);
+    glNamedBufferStorage(readback_.get(), GLsizeiptr((1 + kCounters) * sizeof(uint32_t)), nullptr,
+                         GL_CLIENT_STORAGE_BIT);
     return {};
 }
 
@@ -86,8 +89,8 @@ void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, const Occ
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleOutBinding, visible.get());
 
     const uint32_t zero = 0;
-    glClearNamedBufferSubData(draws_.get(), GL_R32UI, GLintptr(kOccludedOffset), sizeof zero, GL_RED_INTEGER,
-                              GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferSubData(draws_.get(), GL_R32UI, GLintptr(kCountersOffset), kCounters * sizeof zero,
+                              GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glUseProgram(classify_.get());
     glUniform1ui(0, count);
     glUniform4f(1, 0.0f, reversedZ ? 1.0f : 0.0f, clipMinusOne ? 1.0f : 0.0f, 0.0f);
@@ -106,8 +109,8 @@ void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, const Occ
     glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     glCopyNamedBufferSubData(draws_.get(), readback_.get(), GLintptr(kCountOffset), 0, sizeof(uint32_t));
-    glCopyNamedBufferSubData(draws_.get(), readback_.get(), GLintptr(kOccludedOffset), sizeof(uint32_t),
-                             sizeof(uint32_t));
+    glCopyNamedBufferSubData(draws_.get(), readback_.get(), GLintptr(kCountersOffset), sizeof(uint32_t),
+                             kCounters * sizeof(uint32_t));
     if (fence_) glDeleteSync(fence_);
     fence_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
 }
@@ -117,10 +120,12 @@ uint32_t GpuCulling::visibleCount(bool wait) {
     const GLenum state =
         glClientWaitSync(fence_, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, wait ? ~GLuint64(0) : 0);
     if (state != GL_ALREADY_SIGNALED && state != GL_CONDITION_SATISFIED) return latest_;
-    uint32_t counts[2] = {0, 0};
+    uint32_t counts[1 + kCounters] = {};
     glGetNamedBufferSubData(readback_.get(), 0, sizeof counts, counts);
     latest_ = counts[0];
     latestOccluded_ = counts[1];
+    latestInvalid_ = counts[2];
+    latestHostDrawn_ = counts[3];
     glDeleteSync(fence_);
     fence_ = nullptr;
     return latest_;

@@ -46,13 +46,17 @@ public:
     void run(size_t decals, bool reversedZ, bool clipMinusOne, const Occlusion& occlusion, GlBuffer& visible,
              size_t& visibleCapacity);
     // One DrawArraysIndirectCommand: 36 vertices, the visible count as instances (followed by the
-    // occluded count).
+    // occluded, invalid and host-drawn counts).
     GLuint draws() const { return draws_.get(); }
     // The visible count of the last run when `wait` (waiting for the GPU), else that of the latest
     // run the GPU has finished (0 before the first).
     uint32_t visibleCount(bool wait);
-    // The boxes in the frustum the occlusion test culled, in the run visibleCount last read.
+    // In the run visibleCount last read: the boxes in the frustum the occlusion test culled, the
+    // decals that cannot be drawn (their box, type or object) and those the host draws itself
+    // (DecalProjector::setHostDrawn).
     uint32_t occludedCount() const { return latestOccluded_; }
+    uint32_t invalidCount() const { return latestInvalid_; }
+    uint32_t hostDrawnCount() const { return latestHostDrawn_; }
 
     // Bytes of the GPU buffers it holds.
     size_t gpuBytes() const { return classesCapacity_ + groupsCapacity_ + orderCapacity_; }
@@ -63,7 +67,7 @@ private:
     size_t classesCapacity_ = 0, groupsCapacity_ = 0, orderCapacity_ = 0;
     uint32_t entries_ = 0;   // of the draw order
     GLsync fence_ = nullptr; // signalled when the last run's count is in readback_
-    uint32_t latest_ = 0, latestOccluded_ = 0;
+    uint32_t latest_ = 0, latestOccluded_ = 0, latestInvalid_ = 0, latestHostDrawn_ = 0;
 };
 
 } // namespace spatter::render_detail

@@ -17,7 +17,7 @@ void ProjectorBuffers::create() {
 
 void ProjectorBuffers::uploadFrame(const HostFrame& f, const glm::dmat4& view, const glm::dmat4& viewProj,
                                    float fadeStart, const std::vector<glm::dmat4>& transforms,
-                                   const std::vector<uint8_t>& ids) {
+                                   const std::vector<uint8_t>& ids, const DecalBatch& batch) {
     ProjectorFrameGpu g{};
     g.viewProj = glm::mat4(viewProj);
     g.view = glm::mat4(view);
@@ -37,7 +37,8 @@ void ProjectorBuffers::uploadFrame(const HostFrame& f, const glm::dmat4& view, c
         o.worldToObject = glm::mat4(glm::inverse(rel)); // read only by decals, none on a singular one
         const double det = glm::determinant(glm::dmat3(transforms[i]));
         const bool collapsed = !(std::fabs(det) > 0.0) || !std::isfinite(det); // boxes collapse: not drawn
-        o.info = glm::uvec4(ids[i], det < 0.0 ? 1u : 0u, collapsed ? 1u : 0u, 0u);
+        o.info =
+            glm::uvec4(ids[i], det < 0.0 ? 1u : 0u, collapsed ? 1u : 0u, batch.hostDrawnObject(i) ? 1u : 0u);
     }
     const size_t bytes = objects.size() * sizeof(ProjectorObjectGpu);
     reserveBuffer(objects_, objectCapacity_, bytes, 64 * sizeof(ProjectorObjectGpu));

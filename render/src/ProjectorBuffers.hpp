@@ -24,9 +24,11 @@ public:
     void create();
 
     // The frame block (camera and viewport of `f`; `view` and `viewProj` camera-relative) and the
-    // objects relative to the frame's eye, sent every draw.
+    // objects relative to the frame's eye (those whose decals the host draws itself flagged from
+    // `batch`), sent every draw.
     void uploadFrame(const HostFrame& f, const glm::dmat4& view, const glm::dmat4& viewProj, float fadeStart,
-                     const std::vector<glm::dmat4>& transforms, const std::vector<uint8_t>& ids);
+                     const std::vector<glm::dmat4>& transforms, const std::vector<uint8_t>& ids,
+                     const DecalBatch& batch);
     // Sends the decal records (and types) `batch` staged; returns the bytes sent and counts the
     // uploads.
     size_t uploadRecords(DecalBatch& batch, size_t& uploads);

@@ -35,7 +35,8 @@ struct alignas(16) ProjectorObjectGpu {
     glm::mat4 model;         // object -> camera-relative world
     glm::mat4 normalMatrix;  // inverse transpose of model's 3x3 part, in the upper left
     glm::mat4 worldToObject; // camera-relative world -> object
-    glm::uvec4 info;         // x: object decal ID, y: 1 when model mirrors
+    glm::uvec4 info;         // x: object decal ID, y: 1 when model mirrors, z: 1 when it is singular,
+                             // w: 1 when the host draws its decals itself
 };
 static_assert(sizeof(ProjectorObjectGpu) == 208, "ProjectorObjectGpu must match ProjectorObject (std430)");
 

@@ -110,7 +110,105 @@ struct Renderer::Impl {
     std::vector<Decal> pendingSplats;
     std::vector<std::unordered_set<uint64_t>> splatted; // keys of the decals splatted per object
     size_t decalsTextureSpace = 0;
+
+    // The decals the renderer draws itself (DecalProjector::setHostDrawn): per decal of the last
+    // setDecals or updateDecals its kind, while some type is volumetric or some object texture-space
+    // (else empty). current: the kinds follow the types and object modes as they are.
+    static constexpr uint8_t kProjected = 0, kVolumetric = 1, kTextureSpace = 2, kStale = 0x80;
+    std::vector<uint8_t> kinds;
+    bool kindsCurrent = false;
     GlBuffer splatBuffer, splatTypes, splatLists;
+
+    bool drawsSome() const {
+        return textureSpace.objectCount() != 0 ||
+               std::any_of(types.begin(), types.end(), [](const DecalType& t) { return t.volumetric; });
+    }
+    uint8_t kindOf(const Decal& d) const {
+        if (d.type < types.size() && types[d.type].volumetric)
+            return kVolumetric; // a crater wherever it lies
+        if (d.object < modes.size() && modes[d.object] == DecalMode::TextureSpace) return kTextureSpace;
+        return kProjected;
+    }
+    // Tells the projector which decals are the renderer's; the kinds are taken afresh with the next decals.
+    void updateHostDrawn() {
+        std::vector<uint8_t> hostTypes(types.size()), hostObjects(modes.size());
+        for (size_t i = 0; i < types.size(); ++i)
+            hostTypes[i] = types[i].volumetric ? 1 : 0;
+        for (size_t i = 0; i < modes.size(); ++i)
+            hostObjects[i] = modes[i] == DecalMode::TextureSpace ? 1 : 0;
+        projector->setHostDrawn(std::move(hostTypes), std::move(hostObjects));
+        kindsCurrent = false;
+    }
+    void splat(const Decal& d) {
+        if (splatted[d.object].insert(decalKey(d)).second) pendingSplats.push_back(d);
+    }
+    void setVolumetric(const std::vector<Decal>& decals) {
+        std::vector<Decal> craters;
+        for (size_t i = 0; i < kinds.size(); ++i)
+            if (kinds[i] == kVolumetric) craters.push_back(decals[i]);
+        volumetric.setDecals(craters, types, transforms.size());
+    }
+    // The kinds of every decal afresh: the volumetric ones, the texture-space ones counted and splatted.
+    void takeKinds(const std::vector<Decal>& decals) {
+        kinds.clear();
+        decalsTextureSpace = 0;
+        if (drawsSome()) kinds.resize(decals.size());
+        for (size_t i = 0; i < kinds.size(); ++i) {
+            kinds[i] = kindOf(decals[i]);
+            if (kinds[i] != kTextureSpace) continue;
+            ++decalsTextureSpace;
+            splat(decals[i]);
+        }
+        std::vector<uint8_t>(kinds).swap(kinds); // no room kept past the decals
+        setVolumetric(decals);
+        kindsCurrent = true;
+    }
+    // Marks the kind at `i` stale (its decal is read again at the end), taking the old decal out.
+    void markStale(uint32_t i, std::vector<uint32_t>& stale, bool& cratersChanged) {
+        const uint8_t k = kinds[i];
+        if (k & kStale) return;
+        cratersChanged = cratersChanged || k == kVolumetric;
+        decalsTextureSpace -= k == kTextureSpace ? 1 : 0;
+        kinds[i] = kStale;
+        stale.push_back(i);
+    }
+    // Replays `changes` on the kinds (DecalChanges.hpp), as the projector does on its records: a new
+    // texture-space decal is splatted; a change to a volumetric one takes the volumetric decals afresh
+    // (a scan of the decals: volumetric types carve craters, a few decals). False when they do not fit.
+    bool replayKinds(const std::vector<Decal>& decals, const DecalChanges& changes) {
+        if (!kindsCurrent || !changes.complete) return false;
+        if (kinds.empty() && !drawsSome()) return true;
+        std::vector<uint32_t> stale;
+        bool cratersChanged = false;
+        for (const DecalChange& c : changes.changes) {
+            const size_t n = kinds.size();
+            if (c.kind == DecalChangeKind::Added) {
+                if (c.index != n) return false;
+                kinds.push_back(kStale);
+                stale.push_back(c.index);
+            } else if (c.kind == DecalChangeKind::Changed) {
+                if (c.index >= n) return false;
+                markStale(c.index, stale, cratersChanged);
+            } else {
+                if (c.index >= n || c.from != n - 1) return false;
+                markStale(c.index, stale, cratersChanged); // takes the removed decal out
+                kinds[c.index] = kinds[c.from];
+                kinds.pop_back();
+                if (c.index != c.from && (kinds[c.index] & kStale)) stale.push_back(c.index);
+            }
+        }
+        if (kinds.size() != decals.size()) return false;
+        for (const uint32_t i : stale) {
+            if (i >= kinds.size() || !(kinds[i] & kStale)) continue;
+            kinds[i] = kindOf(decals[i]);
+            cratersChanged = cratersChanged || kinds[i] == kVolumetric;
+            if (kinds[i] != kTextureSpace) continue;
+            ++decalsTextureSpace;
+            splat(decals[i]);
+        }
+        if (cratersChanged) setVolumetric(decals);
+        return true;
+    }
 
     GlProgram geometryProgram, lightingProgram, viewProgram;
     GlProgram meshOverlayProgram, boxOverlayProgram; // built on first use
@@ -494,8 +592,9 @@ Status Renderer::setScene(const Scene& scene) {
         glNamedBufferStorage(m.objectBuffer.get(), GLsizeiptr(m.objectCapacity * sizeof(ObjectGpu)), nullptr,
                              GL_DYNAMIC_STORAGE_BIT);
     }
+    m.updateHostDrawn();
     m.projector->setDecals({});
-    m.volumetric.setDecals({}, m.types, n);
+    m.takeKinds({});
     m.overlayMeshes.clear();
     return {};
 }
@@ -530,6 +629,7 @@ Status Renderer::setObjectDecalMode(uint32_t object, DecalMode mode, int texture
         m.textureSpace.disable(object);
         m.splatted[object].clear();
         m.modes[object] = mode;
+        m.updateHostDrawn();
         return {};
     }
     if (textureSize < 16 || textureSize > 4096 || (textureSize & (textureSize - 1)) != 0)
@@ -542,6 +642,7 @@ Status Renderer::setObjectDecalMode(uint32_t object, DecalMode mode, int texture
         return fail("renderer: " + s.error());
     m.splatted[object].clear();
     m.modes[object] = mode;
+    m.updateHostDrawn();
     return {};
 }
 
@@ -580,52 +681,17 @@ void Renderer::setDecalTypes(const std::vector<DecalType>& types) {
     impl_->types = types;
     impl_->projector->setDecalTypes(types);
     impl_->splatBatch.setTypes(types);
+    impl_->updateHostDrawn();
 }
 
 void Renderer::setDecals(const std::vector<Decal>& decals) {
-    Impl& m = *impl_;
-    const size_t n = m.transforms.size();
-    std::vector<Decal> volumetric, flat;
-    for (const Decal& d : decals)
-        if (d.type < m.types.size() && m.types[d.type].volumetric) volumetric.push_back(d);
-    m.volumetric.setDecals(volumetric, m.types, n);
-    const std::vector<Decal>* rest = &decals;
-    if (!volumetric.empty()) {
-        flat.reserve(decals.size() - volumetric.size());
-        for (const Decal& d : decals)
-            if (!(d.type < m.types.size() && m.types[d.type].volumetric)) flat.push_back(d);
-        rest = &flat;
-    }
-    if (m.textureSpace.objectCount() == 0) {
-        m.decalsTextureSpace = 0;
-        m.projector->setDecals(*rest);
-        return;
-    }
-    std::vector<Decal> projected;
-    projected.reserve(rest->size());
-    m.decalsTextureSpace = 0;
-    for (const Decal& d : *rest) {
-        if (d.object >= n || m.modes[d.object] != DecalMode::TextureSpace) {
-            projected.push_back(d);
-            continue;
-        }
-        ++m.decalsTextureSpace;
-        if (m.splatted[d.object].insert(decalKey(d)).second) m.pendingSplats.push_back(d);
-    }
-    m.projector->setDecals(projected);
+    impl_->projector->setDecals(decals);
+    impl_->takeKinds(decals);
 }
 
 void Renderer::updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes) {
-    Impl& m = *impl_;
-    const bool volumetric =
-        std::any_of(m.types.begin(), m.types.end(), [](const DecalType& t) { return t.volumetric; });
-    if (volumetric || m.textureSpace.objectCount() != 0) {
-        setDecals(decals);
-        return;
-    }
-    m.decalsTextureSpace = 0;
-    m.volumetric.setDecals({}, m.types, m.transforms.size());
-    m.projector->updateDecals(decals, changes);
+    impl_->projector->updateDecals(decals, changes);
+    if (!impl_->replayKinds(decals, changes)) impl_->takeKinds(decals);
 }
 
 Result<int> Renderer::addDecalTexture(const Image& albedo, const Image& normalMap) {
@@ -756,7 +822,7 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
         m.timers.endFrame(false);
         return fail("renderer: " + decals.error());
     }
-    stats.decals = decals->decals;
+    stats.decals = decals->decals - m.volumetric.size() - m.decalsTextureSpace; // those projected
     stats.decalsInvalid += decals->invalid;
     stats.decalsCulled = decals->culled;
     stats.decalsDrawn = decals->drawn;

@@ -232,7 +232,9 @@ struct ProjectorDraw {
 struct ProjectorStats {
     size_t decals = 0;          // decals given to setDecals
     size_t invalid = 0;         // skipped: object or type out of range, degenerate or non-finite box
-    size_t culled = 0;          // outside the view frustum (test of the box corners)
+    size_t hostDrawn = 0;       // left to the host (setHostDrawn): kept, not drawn
+    size_t culled = 0;          // outside the view frustum (test of the box corners) or occluded, or on
+                                // an object whose transform is singular
     size_t drawn = 0;           // instances drawn
     size_t inside = 0;          // of those, boxes that may hold the eye or cross the near plane (a
                                 // conservative test; 0 with GPU culling, which does not tell)
@@ -316,6 +318,14 @@ public:
     // name (Decal::object). Fails, changing nothing, when the counts differ or a transform is not
     // finite and affine; a singular transform is taken (its decals collapse and are not drawn).
     Status setObjects(const std::vector<glm::dmat4>& transforms, const std::vector<uint8_t>& ids);
+    // Decals the host draws by other means, which the projector keeps but does not draw (counted in
+    // ProjectorStats::hostDrawn): those of the types with a nonzero entry in `types` (indexed as
+    // setDecalTypes' types) and those on the objects with a nonzero entry in `objects` (indexed as
+    // setObjects' objects). Entries past the end are 0. spatter's renderer draws the decals of
+    // volumetric types as craters and splats those on texture-space objects into their textures,
+    // and gives the projector every decal with its change list all the same. Takes effect at the next
+    // draw; the decals are kept as they are.
+    void setHostDrawn(std::vector<uint8_t> types, std::vector<uint8_t> objects);
 
     // Adds a decal texture layer (resized to the layer size); `normalMap` may be empty for a flat
     // one. Returns its layer index.

@@ -33,16 +33,17 @@ struct FrameStats {
     int height = 0;
     View view = View::Final;
 
-    size_t decals = 0;             // decals given to setDecals
+    size_t decals = 0;             // decals given to setDecals for the decal pass (neither volumetric nor
+                                   // on a texture-space object)
     size_t decalsInvalid = 0;      // skipped: object or type out of range, degenerate or non-finite box
-    size_t decalsCulled = 0;       // outside the view frustum (CPU test of the box corners)
+    size_t decalsCulled = 0;       // outside the view frustum (test of the box corners) or occluded
     size_t decalsDrawn = 0;        // instances drawn in the decal pass
     size_t decalsInside = 0;       // of those, drawn as "camera inside" (box crosses the near plane)
     size_t decalBytesUploaded = 0; // instance and visibility data sent to the GPU this frame
     bool decalPassSkipped = true;  // no visible decal: no normal copy, no decal pass
     std::string decalVariant;      // features of the decal shader used, e.g. "IDS WRAP NORMAL_MAP FADE"
-    std::string decalNormalCopy;   // ProjectorStats::normalCopy: "", "in-place", "rects", "boxes" or "viewport"
-    size_t overlayLines = 0;       // line segments drawn by the overlays (RenderOverlays)
+    std::string decalNormalCopy; // ProjectorStats::normalCopy: "", "in-place", "rects", "boxes" or "viewport"
+    size_t overlayLines = 0;     // line segments drawn by the overlays (RenderOverlays)
 
     // Texture-space decals (DecalMode::TextureSpace objects).
     size_t decalsTextureSpace = 0;  // decals given to setDecals that lie on texture-space objects

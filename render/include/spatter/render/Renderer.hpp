@@ -134,8 +134,8 @@ public:
     // textures at textureSize x textureSize (a power of two in [16, 4096]), cleared, and renders its
     // UV mask; it fails, changing nothing, when the object's render mesh has no UVs or its UV layout
     // is not usable (findUvOverlaps: overlapping triangles or UVs outside [0, 1]; the error names the
-    // object and the first overlapping pair). Projected frees them. Decals already given to setDecals
-    // are routed anew by the next setDecals call (on a texture-space object: splatted).
+    // object and the first overlapping pair). Projected frees them. Decals already given are routed
+    // anew by the next setDecals or updateDecals call (on a texture-space object: splatted).
     Status setObjectDecalMode(uint32_t object, DecalMode mode, int textureSize = 512);
     DecalMode objectDecalMode(uint32_t object) const; // Projected for an index out of range
     // Erases the texture-space decals splatted on `object` so far (decals still given to setDecals
@@ -158,8 +158,11 @@ public:
     // there.
     void setDecals(const std::vector<Decal>& decals);
     // The decals after `changes` (DecalSystem::changesSince): only the decals the changes name are
-    // built and uploaded (DecalProjector::updateDecals). While a scene has texture-space objects or
-    // volumetric types the decals are routed one by one, and this is setDecals.
+    // built and uploaded (DecalProjector::updateDecals), new decals on texture-space objects splatted.
+    // While some type is volumetric or some object texture-space the renderer keeps a byte per decal
+    // (its kind), and a change to a volumetric decal takes the volumetric decals afresh (a scan of
+    // `decals`). Takes the decals whole, as setDecals, when the changes are not complete or do not
+    // fit, and after setDecalTypes or setObjectDecalMode.
     void updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes);
     // Adds a decal texture layer (resized to the layer size); `normalMap` may be empty for a flat
     // one. Returns its layer index.
