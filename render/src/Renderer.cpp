@@ -1,6 +1,7 @@
 #include "spatter/render/Renderer.hpp"
 
 #include "DecalBatch.hpp"
+#include "DecalRouting.hpp"
 #include "GBuffer.hpp"
 #include "GlObjects.hpp"
 #include "GlState.hpp"
@@ -22,7 +23,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <map>
 #include <optional>
-#include <unordered_set>
 
 namespace spatter {
 
@@ -58,24 +58,6 @@ void distanceRange(const DBounds& b, const glm::dvec3& p, double& nearest, doubl
     farthest = glm::length(far);
 }
 
-// What identifies a decal for splatting: the same decal given again is not splatted twice.
-uint64_t decalKey(const Decal& d) {
-    uint64_t h = 1469598103934665603ull;
-    auto mix = [&h](const void* data, size_t n) {
-        const unsigned char* p = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < n; ++i)
-            h = (h ^ p[i]) * 1099511628211ull;
-    };
-    mix(&d.id, sizeof d.id);
-    mix(&d.object, sizeof d.object);
-    mix(&d.type, sizeof d.type);
-    mix(&d.center, sizeof d.center);
-    mix(&d.packedFrame, sizeof d.packedFrame);
-    mix(&d.size, sizeof d.size);
-    mix(&d.halfDepth, sizeof d.halfDepth);
-    return h;
-}
-
 bool finiteDirection(const glm::vec3& v) {
     return finiteVec(v) && glm::length(v) > 1e-12f;
 }
@@ -97,118 +79,20 @@ struct Renderer::Impl {
 
     std::optional<DecalProjector> projector; // the decal pass, as any host uses it
     VolumetricDecals volumetric;
-    std::vector<DecalType> types; // as given to setDecalTypes, for routing volumetric decals
+    std::vector<DecalType> types; // as given to setDecalTypes, for the craters
 
     // Texture-space decals and deformation, per object.
     std::vector<Mesh> meshes; // render meshes, for the UV check of setObjectDecalMode
     std::vector<std::string> names;
-    std::vector<DecalMode> modes;
     std::vector<Deformation> deformations;
     double time = 0.0;
     TextureSpaceDecals textureSpace;
     DecalBatch splatBatch;
-    std::vector<Decal> pendingSplats;
-    std::vector<std::unordered_set<uint64_t>> splatted; // keys of the decals splatted per object
-    size_t decalsTextureSpace = 0;
-
-    // The decals the renderer draws itself (DecalProjector::setHostDrawn): per decal of the last
-    // setDecals or updateDecals its kind, while some type is volumetric or some object texture-space
-    // (else empty). current: the kinds follow the types and object modes as they are.
-    static constexpr uint8_t kProjected = 0, kVolumetric = 1, kTextureSpace = 2, kStale = 0x80;
-    std::vector<uint8_t> kinds;
-    bool kindsCurrent = false;
+    DecalRouting routing; // which decals the renderer draws itself: craters and splats
     GlBuffer splatBuffer, splatTypes, splatLists;
 
-    bool drawsSome() const {
-        return textureSpace.objectCount() != 0 ||
-               std::any_of(types.begin(), types.end(), [](const DecalType& t) { return t.volumetric; });
-    }
-    uint8_t kindOf(const Decal& d) const {
-        if (d.type < types.size() && types[d.type].volumetric)
-            return kVolumetric; // a crater wherever it lies
-        if (d.object < modes.size() && modes[d.object] == DecalMode::TextureSpace) return kTextureSpace;
-        return kProjected;
-    }
-    // Tells the projector which decals are the renderer's; the kinds are taken afresh with the next decals.
-    void updateHostDrawn() {
-        std::vector<uint8_t> hostTypes(types.size()), hostObjects(modes.size());
-        for (size_t i = 0; i < types.size(); ++i)
-            hostTypes[i] = types[i].volumetric ? 1 : 0;
-        for (size_t i = 0; i < modes.size(); ++i)
-            hostObjects[i] = modes[i] == DecalMode::TextureSpace ? 1 : 0;
-        projector->setHostDrawn(std::move(hostTypes), std::move(hostObjects));
-        kindsCurrent = false;
-    }
-    void splat(const Decal& d) {
-        if (splatted[d.object].insert(decalKey(d)).second) pendingSplats.push_back(d);
-    }
-    void setVolumetric(const std::vector<Decal>& decals) {
-        std::vector<Decal> craters;
-        for (size_t i = 0; i < kinds.size(); ++i)
-            if (kinds[i] == kVolumetric) craters.push_back(decals[i]);
-        volumetric.setDecals(craters, types, transforms.size());
-    }
-    // The kinds of every decal afresh: the volumetric ones, the texture-space ones counted and splatted.
-    void takeKinds(const std::vector<Decal>& decals) {
-        kinds.clear();
-        decalsTextureSpace = 0;
-        if (drawsSome()) kinds.resize(decals.size());
-        for (size_t i = 0; i < kinds.size(); ++i) {
-            kinds[i] = kindOf(decals[i]);
-            if (kinds[i] != kTextureSpace) continue;
-            ++decalsTextureSpace;
-            splat(decals[i]);
-        }
-        std::vector<uint8_t>(kinds).swap(kinds); // no room kept past the decals
-        setVolumetric(decals);
-        kindsCurrent = true;
-    }
-    // Marks the kind at `i` stale (its decal is read again at the end), taking the old decal out.
-    void markStale(uint32_t i, std::vector<uint32_t>& stale, bool& cratersChanged) {
-        const uint8_t k = kinds[i];
-        if (k & kStale) return;
-        cratersChanged = cratersChanged || k == kVolumetric;
-        decalsTextureSpace -= k == kTextureSpace ? 1 : 0;
-        kinds[i] = kStale;
-        stale.push_back(i);
-    }
-    // Replays `changes` on the kinds (DecalChanges.hpp), as the projector does on its records: a new
-    // texture-space decal is splatted; a change to a volumetric one takes the volumetric decals afresh
-    // (a scan of the decals: volumetric types carve craters, a few decals). False when they do not fit.
-    bool replayKinds(const std::vector<Decal>& decals, const DecalChanges& changes) {
-        if (!kindsCurrent || !changes.complete) return false;
-        if (kinds.empty() && !drawsSome()) return true;
-        std::vector<uint32_t> stale;
-        bool cratersChanged = false;
-        for (const DecalChange& c : changes.changes) {
-            const size_t n = kinds.size();
-            if (c.kind == DecalChangeKind::Added) {
-                if (c.index != n) return false;
-                kinds.push_back(kStale);
-                stale.push_back(c.index);
-            } else if (c.kind == DecalChangeKind::Changed) {
-                if (c.index >= n) return false;
-                markStale(c.index, stale, cratersChanged);
-            } else {
-                if (c.index >= n || c.from != n - 1) return false;
-                markStale(c.index, stale, cratersChanged); // takes the removed decal out
-                kinds[c.index] = kinds[c.from];
-                kinds.pop_back();
-                if (c.index != c.from && (kinds[c.index] & kStale)) stale.push_back(c.index);
-            }
-        }
-        if (kinds.size() != decals.size()) return false;
-        for (const uint32_t i : stale) {
-            if (i >= kinds.size() || !(kinds[i] & kStale)) continue;
-            kinds[i] = kindOf(decals[i]);
-            cratersChanged = cratersChanged || kinds[i] == kVolumetric;
-            if (kinds[i] != kTextureSpace) continue;
-            ++decalsTextureSpace;
-            splat(decals[i]);
-        }
-        if (cratersChanged) setVolumetric(decals);
-        return true;
-    }
+    // Tells the projector which decals are the renderer's.
+    void updateHostDrawn() { projector->setHostDrawn(routing.hostTypes(), routing.hostObjects()); }
 
     GlProgram geometryProgram, lightingProgram, viewProgram;
     GlProgram meshOverlayProgram, boxOverlayProgram; // built on first use
@@ -454,6 +338,7 @@ struct Renderer::Impl {
     // Splats the pending decals of texture-space objects into their textures, one instanced draw per
     // object, then dilates each; returns the decals splatted.
     Result<size_t> splatPending(size_t& invalid) {
+        std::vector<Decal>& pendingSplats = routing.pendingSplats();
         if (pendingSplats.empty()) return size_t(0);
         splatBatch.setObjectCount(transforms.size());
         splatBatch.setDecals(pendingSplats);
@@ -566,11 +451,8 @@ Status Renderer::setScene(const Scene& scene) {
     m.hasLate = false;
     m.meshes.resize(n);
     m.names.resize(n);
-    m.modes.assign(n, DecalMode::Projected);
     m.deformations.assign(n, Deformation{});
-    m.splatted.assign(n, {});
-    m.pendingSplats.clear();
-    m.decalsTextureSpace = 0;
+    m.routing.reset(n);
     m.textureSpace.reset(n);
     for (size_t i = 0; i < n; ++i) {
         const SceneObject& o = scene.objects[i];
@@ -594,7 +476,7 @@ Status Renderer::setScene(const Scene& scene) {
     }
     m.updateHostDrawn();
     m.projector->setDecals({});
-    m.takeKinds({});
+    m.routing.take({}, m.types, m.volumetric);
     m.overlayMeshes.clear();
     return {};
 }
@@ -627,8 +509,7 @@ Status Renderer::setObjectDecalMode(uint32_t object, DecalMode mode, int texture
     const std::string name = "renderer: object " + std::to_string(object) + " (" + m.names[object] + ")";
     if (mode == DecalMode::Projected) {
         m.textureSpace.disable(object);
-        m.splatted[object].clear();
-        m.modes[object] = mode;
+        m.routing.setMode(object, mode);
         m.updateHostDrawn();
         return {};
     }
@@ -640,14 +521,13 @@ Status Renderer::setObjectDecalMode(uint32_t object, DecalMode mode, int texture
     if (!uv->usable()) return fail(name + " cannot take texture-space decals: its UVs have " + uv->summary());
     if (Status s = m.textureSpace.enable(object, textureSize, m.scene.mesh(object)); !s)
         return fail("renderer: " + s.error());
-    m.splatted[object].clear();
-    m.modes[object] = mode;
+    m.routing.setMode(object, mode);
     m.updateHostDrawn();
     return {};
 }
 
 DecalMode Renderer::objectDecalMode(uint32_t object) const {
-    return object < impl_->modes.size() ? impl_->modes[object] : DecalMode::Projected;
+    return impl_->routing.mode(object);
 }
 
 Status Renderer::clearObjectDecals(uint32_t object) {
@@ -681,17 +561,21 @@ void Renderer::setDecalTypes(const std::vector<DecalType>& types) {
     impl_->types = types;
     impl_->projector->setDecalTypes(types);
     impl_->splatBatch.setTypes(types);
+    impl_->routing.setTypes(types);
     impl_->updateHostDrawn();
 }
 
 void Renderer::setDecals(const std::vector<Decal>& decals) {
-    impl_->projector->setDecals(decals);
-    impl_->takeKinds(decals);
+    Impl& m = *impl_;
+    m.projector->setDecals(decals);
+    m.routing.take(decals, m.types, m.volumetric);
 }
 
 void Renderer::updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes) {
-    impl_->projector->updateDecals(decals, changes);
-    if (!impl_->replayKinds(decals, changes)) impl_->takeKinds(decals);
+    Impl& m = *impl_;
+    m.projector->updateDecals(decals, changes);
+    if (!m.routing.replay(decals, changes, m.types, m.volumetric))
+        m.routing.take(decals, m.types, m.volumetric);
 }
 
 Result<int> Renderer::addDecalTexture(const Image& albedo, const Image& normalMap) {
@@ -778,7 +662,7 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
     }
 
     m.timers.beginFrame(m.frame);
-    if (!m.pendingSplats.empty()) {
+    if (!m.routing.pendingSplats().empty()) {
         m.timers.begin(GpuPass::Splat);
         size_t invalid = 0;
         Result<size_t> splatted = m.splatPending(invalid);
@@ -790,7 +674,7 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
         stats.decalsSplatted = splatted.value();
         stats.decalsInvalid += invalid;
     }
-    stats.decalsTextureSpace = m.decalsTextureSpace;
+    stats.decalsTextureSpace = m.routing.textureSpaceCount();
     stats.textureSpaceObjects = m.textureSpace.objectCount();
     stats.textureSpaceBytes = m.textureSpace.bytes();
     m.uploadFrame(camera);
@@ -822,7 +706,7 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
         m.timers.endFrame(false);
         return fail("renderer: " + decals.error());
     }
-    stats.decals = decals->decals - m.volumetric.size() - m.decalsTextureSpace; // those projected
+    stats.decals = decals->decals - m.volumetric.size() - m.routing.textureSpaceCount(); // those projected
     stats.decalsInvalid += decals->invalid;
     stats.decalsCulled = decals->culled;
     stats.decalsDrawn = decals->drawn;
