@@ -15,6 +15,9 @@
 
 #include "spatter/core/SceneLoader.hpp"
 
+#include "GltfAccessor.hpp"
+#include "GltfAnimation.hpp"
+
 #include <tiny_gltf.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -34,6 +37,8 @@ namespace spatter {
 
 namespace {
 
+using namespace gltf;
+
 // Required extensions whose data is read correctly here. KHR_mesh_quantization only allows integer
 // component types for vertex attributes, which the accessor reader handles anyway.
 const char* const kSupportedRequiredExtensions[] = {"KHR_mesh_quantization"};
@@ -42,45 +47,6 @@ constexpr uint32_t kGlbJsonChunk = 0x4E4F534A; // "JSON"
 
 // Upper bound on the vertices, and on the indices, of all objects and colliders of one scene.
 constexpr size_t kMaxSceneElements = size_t(1) << 26;
-
-// --- small helpers ------------------------------------------------------------------------------
-
-std::string num(size_t value) {
-    return std::to_string(value);
-}
-
-std::string named(const char* kind, size_t index, const std::string& name) {
-    const std::string s = std::string(kind) + " " + num(index);
-    return name.empty() ? s : s + " (" + name + ")";
-}
-
-bool validIndex(int index, size_t count) {
-    return index >= 0 && size_t(index) < count;
-}
-
-// True when [begin, begin + length) lies inside [0, size), without overflow.
-bool rangeInside(size_t begin, size_t length, size_t size) {
-    return begin <= size && length <= size - begin;
-}
-
-// out = a * b + c; false on overflow.
-bool mulAdd(size_t a, size_t b, size_t c, size_t& out) {
-    if (b != 0 && a > (std::numeric_limits<size_t>::max() - c) / b) return false;
-    out = a * b + c;
-    return true;
-}
-
-template <class T> T load(const unsigned char* p) {
-    T value;
-    std::memcpy(&value, p, sizeof value);
-    return value;
-}
-
-template <int N> bool finite(const glm::vec<N, float>& v) {
-    for (int i = 0; i < N; ++i)
-        if (!std::isfinite(v[i])) return false;
-    return true;
-}
 
 // tinygltf's messages are newline-terminated and may quote whole data URIs: join them into one line
 // and cut each data URI after its header.
@@ -105,176 +71,6 @@ std::string tidyParserMessage(const std::string& text) {
         ++i;
     }
     return out;
-}
-
-// --- component types ----------------------------------------------------------------------------
-
-size_t componentSize(int componentType) {
-    switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-        return 4;
-    default:
-        return 0; // INT and DOUBLE are not glTF 2.0 component types
-    }
-}
-
-constexpr unsigned componentBit(int componentType) {
-    return 1u << unsigned(componentType - 5120);
-}
-
-constexpr unsigned kIndexTypes = componentBit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) |
-                                 componentBit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) |
-                                 componentBit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
-constexpr unsigned kVertexTypes =
-    componentBit(TINYGLTF_COMPONENT_TYPE_FLOAT) | componentBit(TINYGLTF_COMPONENT_TYPE_BYTE) |
-    componentBit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) | componentBit(TINYGLTF_COMPONENT_TYPE_SHORT) |
-    componentBit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
-
-int componentCount(int type) {
-    switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-        return 1;
-    case TINYGLTF_TYPE_VEC2:
-        return 2;
-    case TINYGLTF_TYPE_VEC3:
-        return 3;
-    case TINYGLTF_TYPE_VEC4:
-        return 4;
-    default:
-        return 0;
-    }
-}
-
-std::string typeName(int type) {
-    switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-        return "SCALAR";
-    case TINYGLTF_TYPE_VEC2:
-        return "VEC2";
-    case TINYGLTF_TYPE_VEC3:
-        return "VEC3";
-    case TINYGLTF_TYPE_VEC4:
-        return "VEC4";
-    case TINYGLTF_TYPE_MAT2:
-        return "MAT2";
-    case TINYGLTF_TYPE_MAT3:
-        return "MAT3";
-    case TINYGLTF_TYPE_MAT4:
-        return "MAT4";
-    default:
-        return "type " + std::to_string(type);
-    }
-}
-
-// --- accessors ----------------------------------------------------------------------------------
-
-// The elements of one accessor, after its byte range was checked against its buffer view and buffer:
-// every read stays inside the buffer.
-struct AccessorView {
-    const unsigned char* data = nullptr; // element 0
-    size_t count = 0;
-    size_t stride = 0;
-    int componentType = 0;
-    bool normalized = false;
-    bool present = false; // false for an attribute the primitive does not have
-
-    // Component `c` of element `i` as a float; normalized integers map to [0, 1] or [-1, 1].
-    float component(size_t i, int c) const {
-        const unsigned char* p = data + i * stride + size_t(c) * componentSize(componentType);
-        switch (componentType) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE: {
-            const float v = load<int8_t>(p);
-            return normalized ? std::max(v / 127.0f, -1.0f) : v;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
-            const float v = load<uint8_t>(p);
-            return normalized ? v / 255.0f : v;
-        }
-        case TINYGLTF_COMPONENT_TYPE_SHORT: {
-            const float v = load<int16_t>(p);
-            return normalized ? std::max(v / 32767.0f, -1.0f) : v;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-            const float v = load<uint16_t>(p);
-            return normalized ? v / 65535.0f : v;
-        }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-            return float(load<uint32_t>(p));
-        default:
-            return load<float>(p);
-        }
-    }
-
-    template <int N> glm::vec<N, float> vec(size_t i) const {
-        glm::vec<N, float> v;
-        for (int c = 0; c < N; ++c)
-            v[c] = component(i, c);
-        return v;
-    }
-
-    // Element `i` of an unsigned integer scalar accessor.
-    uint32_t index(size_t i) const {
-        const unsigned char* p = data + i * stride;
-        switch (componentType) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-            return load<uint8_t>(p);
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-            return load<uint16_t>(p);
-        default:
-            return load<uint32_t>(p);
-        }
-    }
-};
-
-// Checks accessor `index` for use as `role` (type and allowed component types) and that every
-// element it reads lies inside its buffer view. Buffer views were checked against their buffers.
-Result<AccessorView> viewAccessor(const tinygltf::Model& model, int index, const char* role, int type,
-                                  unsigned allowedComponentTypes) {
-    if (!validIndex(index, model.accessors.size()))
-        return fail(std::string(role) + " refers to accessor " + std::to_string(index) +
-                    ", which does not exist");
-    const tinygltf::Accessor& a = model.accessors[size_t(index)];
-    const std::string what = "accessor " + std::to_string(index) + " (" + role + ")";
-    if (a.sparse.isSparse) return fail(what + " is sparse, which is not supported");
-    if (a.type != type) return fail(what + " is " + typeName(a.type) + ", expected " + typeName(type));
-    const size_t size = componentSize(a.componentType);
-    if (size == 0 || (componentBit(a.componentType) & allowedComponentTypes) == 0)
-        return fail(what + " has component type " + std::to_string(a.componentType) + ", which " + role +
-                    " cannot use");
-    if (a.bufferView < 0)
-        return fail(what + " has no buffer view (zero-filled or extension-provided data is not supported)");
-    if (!validIndex(a.bufferView, model.bufferViews.size()))
-        return fail(what + " refers to buffer view " + std::to_string(a.bufferView) +
-                    ", which does not exist");
-    const tinygltf::BufferView& view = model.bufferViews[size_t(a.bufferView)];
-    const size_t elementSize = size * size_t(componentCount(type));
-    const size_t stride = view.byteStride != 0 ? view.byteStride : elementSize;
-    if (stride < elementSize)
-        return fail(what + ": byte stride " + num(stride) + " of buffer view " +
-                    std::to_string(a.bufferView) + " is smaller than one element (" + num(elementSize) +
-                    " bytes)");
-
-    AccessorView v;
-    v.present = true;
-    v.count = a.count;
-    v.stride = stride;
-    v.componentType = a.componentType;
-    v.normalized = a.normalized;
-    if (a.count == 0) return v;
-    size_t span = 0;
-    if (!mulAdd(a.count - 1, stride, elementSize, span) || !rangeInside(a.byteOffset, span, view.byteLength))
-        return fail(what + " reads past the end of buffer view " + std::to_string(a.bufferView) + " (" +
-                    num(a.count) + " elements from byte " + num(a.byteOffset) + ", the view has " +
-                    num(view.byteLength) + " bytes)");
-    v.data = model.buffers[size_t(view.buffer)].data.data() + view.byteOffset + a.byteOffset;
-    return v;
 }
 
 Status checkBufferViews(const tinygltf::Model& model) {
@@ -429,15 +225,21 @@ void finishTangents(Mesh& mesh) {
     }
 }
 
-// The render mesh of glTF mesh `index`: its triangle primitives as submeshes. Normals are computed
-// where the file has none and repaired where they are unusable.
-Result<Mesh> convertMesh(const tinygltf::Model& model, size_t index) {
+// The render mesh of glTF mesh `index`: its triangle primitives as submeshes, with their joint
+// influences and morph targets in `deformation`. Normals are computed where the file has none and
+// repaired where they are unusable.
+Result<Mesh> convertMesh(const tinygltf::Model& model, size_t index, MeshDeformation& deformation) {
     const tinygltf::Mesh& source = model.meshes[index];
     Mesh mesh;
     AttributeCounts counts;
-    for (size_t p = 0; p < source.primitives.size(); ++p)
-        if (Status s = appendPrimitive(model, source.primitives[p], mesh, counts); !s)
-            return fail(named("mesh", index, source.name) + " primitive " + num(p) + ": " + s.error());
+    for (size_t p = 0; p < source.primitives.size(); ++p) {
+        const size_t base = mesh.vertexCount();
+        Status s = appendPrimitive(model, source.primitives[p], mesh, counts);
+        if (s && mesh.vertexCount() > base)
+            s = appendDeformation(model, source.primitives[p], base, mesh.vertexCount() - base, deformation);
+        if (!s) return fail(named("mesh", index, source.name) + " primitive " + num(p) + ": " + s.error());
+    }
+    finishDeformation(mesh.vertexCount(), deformation);
     if (counts.normals == 0)
         computeNormals(mesh);
     else
@@ -756,6 +558,7 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
     if (!roots) return fail(roots.error());
 
     std::vector<std::optional<Mesh>> meshes(model.meshes.size()); // converted on first use
+    std::vector<MeshDeformation> deformations(model.meshes.size());
     std::vector<Placement> drawn, colliders;
     struct Visit {
         int node;
@@ -792,7 +595,7 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
                 return fail(what + " refers to mesh " + std::to_string(node.mesh) + ", which does not exist");
             const size_t m = size_t(node.mesh);
             if (!meshes[m]) {
-                Result<Mesh> converted = convertMesh(model, m);
+                Result<Mesh> converted = convertMesh(model, m, deformations[m]);
                 if (!converted) return fail(converted.error());
                 meshes[m] = std::move(converted.value());
             }
@@ -830,6 +633,9 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
         o.transform = p.world;
         o.dynamic = p.dynamic;
         o.receivesDecals = p.decals;
+        o.node = int(p.node);
+        o.skinWeights = deformations[p.mesh].skinWeights;
+        o.morphTargets = deformations[p.mesh].morphTargets;
         scene.objects.push_back(std::move(o));
     }
     for (const Placement& p : colliders) {
@@ -870,6 +676,7 @@ Result<Scene> buildScene(tinygltf::Model& model) {
         scene.materials.push_back(std::move(m.value()));
     }
     if (Status s = addObjects(model, scene); !s) return fail(s.error());
+    if (Status s = addAnimation(model, scene); !s) return fail(s.error());
     if (Status s = validateScene(scene); !s) return fail(s.error());
     return scene;
 }

@@ -51,6 +51,7 @@ std::string transformProblem(const glm::dmat4& m) {
 }
 
 Status validateScene(const Scene& scene) {
+    if (Status s = validateAnimation(scene.animation); !s) return fail("animation data: " + s.error());
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& o = scene.objects[i];
         const std::string what = "object " + std::to_string(i) + " (" + o.name + ")";
@@ -59,6 +60,7 @@ Status validateScene(const Scene& scene) {
             if (Status s = validateMesh(*o.collider); !s) return fail(what + ": collider " + s.error());
         if (const std::string problem = transformProblem(o.transform); !problem.empty())
             return fail(what + ": " + problem);
+        if (Status s = validateObjectAnimation(o, scene.animation); !s) return fail(what + " " + s.error());
         for (const Submesh& sm : o.mesh.submeshes)
             if (sm.material < -1 || sm.material >= int(scene.materials.size()))
                 return fail(what + ": submesh material " + std::to_string(sm.material) + " does not exist");

@@ -3,6 +3,7 @@
 // double-precision object-to-world transform, a material, and the flags that decide how decals
 // treat it.
 
+#include "spatter/core/Animation.hpp"
 #include "spatter/core/Bounds.hpp"
 #include "spatter/core/Image.hpp"
 #include "spatter/core/Mesh.hpp"
@@ -31,6 +32,12 @@ struct SceneObject {
     bool dynamic = false;         // moves at run time: placed as an Embree instance, gets an object ID
     bool receivesDecals = true;   // false: not in the collision world, never decaled
     std::optional<Mesh> collider; // authored collision proxy (UCX_ / -col), object space
+
+    // Animation (spatter/core/Animation.hpp); `mesh` and `transform` are the rest pose.
+    int node = -1;                         // index into Scene::animation.nodes; -1 when not animated
+    int skin = -1;                         // index into Scene::animation.skins; -1: not skinned
+    SkinWeights skinWeights;               // joint influences of `mesh`'s vertices when skinned
+    std::vector<MorphTarget> morphTargets; // of `mesh`; the weights are its node's
 };
 
 // An object of `mesh` placed by `transform`, static or dynamic, receiving decals.
@@ -42,6 +49,7 @@ struct Scene {
     std::vector<SceneObject> objects;
     std::vector<Material> materials;
     std::vector<Image> images;
+    SceneAnimation animation; // node hierarchy, skins and animations; empty when nothing animates
 
     size_t triangleCount() const; // render triangles of all objects
     size_t dynamicObjectCount() const;
@@ -56,8 +64,9 @@ struct Scene {
 // trace every transform that single precision cannot use (spatter/placement/TraceTransform.hpp).
 std::string transformProblem(const glm::dmat4& transform);
 
-// Checks every mesh (validateMesh), every transform (transformProblem), and every material's
-// texture indices. The error names the object or material.
+// Checks every mesh (validateMesh), every transform (transformProblem), every material's texture
+// indices, the animation data (validateAnimation) and each object's skin, joint influences and morph
+// targets against it. The error names the object, material or animation part.
 Status validateScene(const Scene& scene);
 
 } // namespace spatter

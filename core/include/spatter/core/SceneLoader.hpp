@@ -16,7 +16,10 @@ Result<Scene> loadScene(const std::string& source);
 // glTF 2.0 (.gltf with external or embedded buffers, or .glb) through tinygltf. The default scene's
 // node hierarchy becomes objects, one per node with a mesh (its triangle primitives become
 // submeshes). Node extras {"dynamic": true} and {"decals": false} set the flags. Nodes named
-// UCX_* or *-col become the collider of their parent's object and are not drawn.
+// UCX_* or *-col become the collider of their parent's object and are not drawn. Animations, skins
+// and morph targets fill Scene::animation and each object's node, skin, joint influences and morph
+// targets (spatter/core/Animation.hpp); objects stay in their rest pose, and an object that an
+// animation moves or deforms is dynamic without extras.
 Result<Scene> loadGltf(const std::string& path);
 
 // OBJ, PLY, OFF or STL through OpenMesh, as one static object named after the file.

@@ -1,0 +1,33 @@
+#pragma once
+// The glTF loader's animation part: joint influences and morph targets of meshes, and the nodes,
+// skins and animations of a scene. Internal to spatter::core (called from GltfLoader.cpp).
+
+#include "spatter/core/Scene.hpp"
+
+#include <tiny_gltf.h>
+
+namespace spatter::gltf {
+
+// The deforming data of one glTF mesh, gathered primitive by primitive like its render mesh.
+struct MeshDeformation {
+    SkinWeights skinWeights;               // influences 0 when no primitive has JOINTS_0
+    std::vector<MorphTarget> morphTargets; // empty when the primitives have no targets
+};
+
+// Appends the joint influences (JOINTS_n / WEIGHTS_n, weights normalised) and morph target deltas of
+// `prim`, whose `vertexCount` vertices were just appended to the render mesh of `vertexBase`
+// vertices before. Attributes a primitive lacks are zero. The error names the accessor and the problem.
+Status appendDeformation(const tinygltf::Model& model, const tinygltf::Primitive& prim, size_t vertexBase,
+                         size_t vertexCount, MeshDeformation& out);
+
+// Pads every array of `out` to `vertexCount` vertices once the whole mesh was read.
+void finishDeformation(size_t vertexCount, MeshDeformation& out);
+
+// Fills `scene.animation` (nodes, skins, animations) when the file has animations, skins or morph
+// targets, binds every object to its node and skin, and makes every object that an animation moves
+// or deforms dynamic. Objects carry the glTF index of their node in `node` and their mesh's
+// deformation on entry. Without animation data every object's node becomes -1 and its deformation is
+// dropped. The error names the glTF part and the problem.
+Status addAnimation(const tinygltf::Model& model, Scene& scene);
+
+} // namespace spatter::gltf
