@@ -141,6 +141,7 @@ bool DecalRouting::replay(const std::vector<Decal>& decals, const DecalChanges& 
     std::vector<uint32_t> stale;
     bool cratersChanged = false;
     if (!replayChanges(changes, stale, cratersChanged) || kinds_.size() != decals.size()) return false;
+    std::sort(stale.begin(), stale.end()); // splatted in the order of decals(), as take() splats
     for (const uint32_t i : stale) {
         if (i >= kinds_.size() || !(kinds_[i] & kStale)) continue;
         kinds_[i] = kindOf(decals[i]);
