@@ -80,11 +80,16 @@ Status readInfluenceSet(const tinygltf::Model& model, const tinygltf::Primitive&
     Result<AccessorView> weights =
         attribute(model, weightsIt->second, weightsName, TINYGLTF_TYPE_VEC4, kUnitTypes, count, true);
     if (!weights) return fail(weights.error());
+    // Normalised integers are scaled here in double rather than by the float reader.
+    weights->normalized = false;
+    const double scale = weights->componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1.0 / 255.0
+                         : weights->componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 1.0 / 65535.0
+                                                                                            : 1.0;
     for (size_t i = 0; i < count; ++i)
         for (int c = 0; c < 4; ++c) {
             const size_t slot = (base + i) * size_t(w.influences) + size_t(4 * set + c);
-            const float weight = weights->component(i, c);
-            if (!(weight >= 0.0f) || !std::isfinite(weight))
+            const double weight = weights->component(i, c) * scale;
+            if (!(weight >= 0.0) || !std::isfinite(weight))
                 return fail("accessor " + std::to_string(weightsIt->second) + " (" + weightsName +
                             ") element " + num(i) + " has a negative or non-finite weight");
             w.joints[slot] = uint16_t(joints->component(i, c));
