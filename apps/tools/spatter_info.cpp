@@ -1,4 +1,5 @@
-// spatter-info SCENE: prints one JSON object describing a scene (objects, triangles, bounds).
+// spatter-info SCENE: prints one JSON object describing a scene (objects, triangles, bounds,
+// animations, skins, morph targets).
 
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/placement/CollisionWorld.hpp"
@@ -14,9 +15,12 @@ static const char* kUsage = R"(usage: spatter-info SCENE
 Loads SCENE and prints one JSON object on stdout:
   {"objects": N, "triangles": T, "dynamic_objects": D,
    "bounds": {"min": [x,y,z], "max": [x,y,z]},
+   "animations": [{"name", "duration", "channels"}], "skins": [{"name", "joints"}],
    "objects_detail": [{"name", "triangles", "dynamic", "receives_decals", "has_collider",
-                       "traced"}]}
-Bounds are world-space, over every render mesh. traced is whether shots can hit the object: it
+                       "traced", "skin", "morph_targets"}]}
+Bounds are world-space, over every render mesh, in the rest pose. duration is in seconds; skin is
+the index into "skins" of the object's skin, or null; morph_targets counts the object's morph
+targets. An object that an animation moves or deforms is dynamic. traced is whether shots can hit the object: it
 receives decals and its transform is one single-precision ray tracing can use (finite inverse,
 condition number at most 65536, scales within 2^-25..2^25, within 2^32 of the world's centre, not
 smaller than a few float steps there). For
@@ -56,6 +60,13 @@ int main(int argc, char** argv) {
     out["triangles"] = scene->triangleCount();
     out["dynamic_objects"] = scene->dynamicObjectCount();
     out["bounds"] = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
+    out["animations"] = nlohmann::ordered_json::array();
+    for (const spatter::Animation& a : scene->animation.animations)
+        out["animations"].push_back(
+            {{"name", a.name}, {"duration", a.duration}, {"channels", a.channels.size()}});
+    out["skins"] = nlohmann::ordered_json::array();
+    for (const spatter::Skin& s : scene->animation.skins)
+        out["skins"].push_back({{"name", s.name}, {"joints", s.joints.size()}});
     nlohmann::ordered_json detail = nlohmann::ordered_json::array();
     for (uint32_t i = 0; i < scene->objects.size(); ++i) {
         const spatter::SceneObject& o = scene->objects[i];
@@ -64,7 +75,9 @@ int main(int argc, char** argv) {
                           {"dynamic", o.dynamic},
                           {"receives_decals", o.receivesDecals},
                           {"has_collider", o.collider.has_value()},
-                          {"traced", world->object(i)->traced}});
+                          {"traced", world->object(i)->traced},
+                          {"skin", o.skin == -1 ? nlohmann::ordered_json() : nlohmann::ordered_json(o.skin)},
+                          {"morph_targets", o.morphTargets.size()}});
     }
     out["objects_detail"] = std::move(detail);
     std::cout << out.dump() << "\n";
