@@ -4,6 +4,7 @@
 #include "Memory.hpp"
 #include "PersistenceBench.hpp"
 #include "PlacementBench.hpp"
+#include "PoseBench.hpp"
 #include "ProxyBench.hpp"
 #include "RenderBench.hpp"
 #include "SkipBench.hpp"
@@ -41,6 +42,8 @@ const Command kCommands[] = {
      spatter::bench::runVolumetricCommand},
     {"persistence", "saving and loading a decal system: time and MB/s, bytes per decal (--json FILE)",
      spatter::bench::runPersistenceCommand},
+    {"pose", "posing an animated scene per frame on one core: evaluation, posed positions (--json FILE)",
+     spatter::bench::runPoseCommand},
 };
 
 void usage(std::FILE* out) {

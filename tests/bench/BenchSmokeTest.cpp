@@ -158,6 +158,18 @@ TEST(BenchSmoke, PersistenceQuickSavesAndLoadsEveryDecal) {
         EXPECT_GT(row["mb_per_s"].get<double>(), 0.0) << row.dump();
 }
 
+TEST(BenchSmoke, PoseQuickTimesCesiumMansPosePerFrame) {
+    SPATTER_REQUIRE_SHARED(scene, "gltf/CesiumMan/CesiumMan.glb");
+    const std::string dir = test::scratchDir("bench-pose");
+    ASSERT_EQ(runBench("pose --quick --json " + dir + "/p.json", dir + "/log"), 0) << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/p.json");
+    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << readAll(dir + "/p.json");
+    EXPECT_EQ(j["joints"], 19);
+    EXPECT_EQ(j["rows"].size(), 3u);
+    for (const auto& row : j["rows"])
+        EXPECT_GT(row["us_per_frame"].get<double>(), 0.0) << row.dump();
+}
+
 TEST(BenchSmoke, RenderQuickTimesTheDecalPass) {
     if (!noGl().empty()) {
         if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
