@@ -2,10 +2,13 @@
 // content). A loaded scene must pass validateScene and have unit normals; a failure must name the file.
 // A loaded scene is then traced as a game would: its collision world is built (render meshes) and
 // shot at every object, with single rays and with a burst (an Embree packet), so that node transforms
-// the trace cannot use (TraceTransform.hpp) reach Embree if the world let them through.
+// the trace cannot use (TraceTransform.hpp) reach Embree if the world let them through. Its animations
+// are posed (SceneEvaluator) and its skinned and morphed meshes deformed, which must never read out
+// of bounds.
 
 #include "FuzzSupport.hpp"
 
+#include "spatter/core/SceneEvaluator.hpp"
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/placement/CollisionWorld.hpp"
 
@@ -48,6 +51,18 @@ void shootAt(const spatter::Scene& scene) {
     }
 }
 
+// Poses the first 4 animations at their start, inside and at their end, with the posed positions of
+// the first 16 objects at each pose.
+void pose(const spatter::Scene& scene) {
+    spatter::SceneEvaluator evaluator(scene);
+    for (size_t a = 0; a < scene.animation.animations.size() && a < 4; ++a)
+        for (double f : {0.0, 0.37, 1.0}) {
+            evaluator.evaluate(int(a), f * scene.animation.animations[a].duration);
+            for (size_t o = 0; o < scene.objects.size() && o < 16; ++o)
+                (void)spatter::posedPositions(scene, o, evaluator);
+        }
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
@@ -68,6 +83,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     spatter::fuzz::writeFile(path, data, size);
     spatter::Result<spatter::Scene> scene = spatter::loadGltf(path);
     if (scene ? !sceneIsSound(scene.value()) : scene.error().rfind(path + ": ", 0) != 0) std::abort();
-    if (scene) shootAt(scene.value());
+    if (!scene) return 0;
+    shootAt(scene.value());
+    pose(scene.value());
     return 0;
 }

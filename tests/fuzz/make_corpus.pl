@@ -109,6 +109,45 @@ for my $name (sort keys %untraceable) {
     put('gltf', "untraceable-$name.gltf", $doc);
 }
 
+# A triangle skinned to two joints and morphed by one target, animated by a LINEAR rotation, a
+# CUBICSPLINE weights channel and a STEP translation: the animation part of the loader.
+my $anim_bin = $tri                                              # 0: positions, 36: indices, pad
+  . pack('C12', 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0)             # 44: JOINTS_0
+  . pack('f<12', 1, 0, 0, 0, 0.5, 0.5, 0, 0, 1, 0, 0, 0)         # 56: WEIGHTS_0
+  . pack('f<9', 0, 0, 1, 0, 0, 1, 0, 0, 1)                       # 104: target POSITION
+  . pack('f<32', 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+                 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1, 0, 0, 1) # 140: inverse bind matrices
+  . pack('f<2', 0, 1)                                            # 268: key times
+  . pack('f<8', 0, 0, 0, 1, 0, 0, 0.7071068, 0.7071068)          # 276: rotations
+  . pack('f<6', 0, 0, 1, -1, 1, 0)                               # 308: cubic weights
+  . pack('f<6', 0, 0, 0, 0, 1, 0);                               # 332: step translations
+my $anim_uri = 'data:application/octet-stream;base64,' . encode_base64($anim_bin, '');
+my $anim = <<"JSON";
+{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],
+ "nodes":[{"name":"skinned","mesh":0,"skin":0},{"name":"joint0","children":[2]},
+          {"name":"joint1","translation":[1,0,0]}],
+ "skins":[{"joints":[1,2],"inverseBindMatrices":5}],
+ "meshes":[{"weights":[0.25],"primitives":[{"attributes":{"POSITION":0,"JOINTS_0":2,"WEIGHTS_0":3},
+            "indices":1,"targets":[{"POSITION":4}]}]}],
+ "animations":[{"name":"wave","samplers":[{"input":6,"output":7},
+                {"input":6,"output":8,"interpolation":"CUBICSPLINE"},{"input":6,"output":9,"interpolation":"STEP"}],
+   "channels":[{"sampler":0,"target":{"node":2,"path":"rotation"}},{"sampler":1,"target":{"node":0,"path":"weights"}},
+               {"sampler":2,"target":{"node":1,"path":"translation"}}]}],
+ "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+              {"bufferView":0,"byteOffset":36,"componentType":5123,"count":3,"type":"SCALAR"},
+              {"bufferView":0,"byteOffset":44,"componentType":5121,"count":3,"type":"VEC4"},
+              {"bufferView":0,"byteOffset":56,"componentType":5126,"count":3,"type":"VEC4"},
+              {"bufferView":0,"byteOffset":104,"componentType":5126,"count":3,"type":"VEC3"},
+              {"bufferView":0,"byteOffset":140,"componentType":5126,"count":2,"type":"MAT4"},
+              {"bufferView":0,"byteOffset":268,"componentType":5126,"count":2,"type":"SCALAR","min":[0],"max":[1]},
+              {"bufferView":0,"byteOffset":276,"componentType":5126,"count":2,"type":"VEC4"},
+              {"bufferView":0,"byteOffset":308,"componentType":5126,"count":6,"type":"SCALAR"},
+              {"bufferView":0,"byteOffset":332,"componentType":5126,"count":2,"type":"VEC3"}],
+ "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":356}],
+ "buffers":[{"byteLength":356,"uri":"$anim_uri"}]}
+JSON
+put('gltf', 'skinned-morphed-animated.gltf', $anim);
+
 # --- ray lines ----------------------------------------------------------------------------------
 put('ray_parser', 'rays.txt',
     "# origin and direction\n0 1 5 0 0 -1\n  -3.5e2\t1e-3 +7   0x1p-3 -0X1.8P+1 1  # hex\n\n"
