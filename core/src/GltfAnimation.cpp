@@ -24,7 +24,10 @@ namespace spatter::gltf {
 namespace {
 
 // Upper bound on the morph target deltas of one mesh (targets x vertices).
-constexpr size_t kMaxMorphDeltas = size_t(1) << 26;
+constexpr size_t kMaxMorphDeltas = size_t(1) << 24;
+// Upper bound on the joint influences and morph target deltas of all objects of a scene; instancing
+// a mesh copies its deformation.
+constexpr size_t kMaxDeformationElements = size_t(1) << 26;
 
 constexpr unsigned kJointTypes = componentBit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) |
                                  componentBit(TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
@@ -418,15 +421,39 @@ bool animatesWeights(const SceneAnimation& a, int node) {
     return false;
 }
 
-Status bindObject(const tinygltf::Model& model, const std::vector<bool>& moving, const SceneAnimation& a,
-                  SceneObject& o) {
-    o.skin = model.nodes[size_t(o.node)].skin;
-    if (o.skin == -1) {
-        o.skinWeights = SkinWeights{};
-    } else {
+// The joint influences (when the node is skinned) and morph target deltas the object of `node`
+// takes from its mesh.
+size_t deformationElements(const tinygltf::Node& node, const MeshDeformation& d) {
+    size_t n = node.skin == -1 ? 0 : d.skinWeights.joints.size();
+    for (const MorphTarget& t : d.morphTargets)
+        n += t.positions.size() + t.normals.size() + t.tangents.size();
+    return n;
+}
+
+Status checkDeformationSize(const tinygltf::Model& model, const std::vector<MeshDeformation>& deformations,
+                            const Scene& scene) {
+    size_t total = 0;
+    for (const SceneObject& o : scene.objects) {
+        const tinygltf::Node& node = model.nodes[size_t(o.node)];
+        total += deformationElements(node, deformations[size_t(node.mesh)]);
+        if (total > kMaxDeformationElements)
+            return fail("the default scene has more joint influences and morph target deltas in all than the "
+                        "limit of " +
+                        num(kMaxDeformationElements));
+    }
+    return {};
+}
+
+Status bindObject(const tinygltf::Model& model, const MeshDeformation& deformation,
+                  const std::vector<bool>& moving, const SceneAnimation& a, SceneObject& o) {
+    const tinygltf::Node& node = model.nodes[size_t(o.node)];
+    o.skin = node.skin;
+    o.morphTargets = deformation.morphTargets;
+    if (o.skin != -1) {
         if (!validIndex(o.skin, a.skins.size()))
             return fail("refers to skin " + std::to_string(o.skin) + ", which does not exist");
-        if (o.skinWeights.influences == 0) return fail("has a skin, but its mesh has no JOINTS_0");
+        if (deformation.skinWeights.influences == 0) return fail("has a skin, but its mesh has no JOINTS_0");
+        o.skinWeights = deformation.skinWeights;
     }
     bool dynamic = moving[size_t(o.node)] || animatesWeights(a, o.node);
     if (o.skin != -1)
@@ -463,15 +490,14 @@ void finishDeformation(size_t vertexCount, MeshDeformation& out) {
     }
 }
 
-Status addAnimation(const tinygltf::Model& model, Scene& scene) {
+Status addAnimation(const tinygltf::Model& model, const std::vector<MeshDeformation>& deformations,
+                    Scene& scene) {
     if (!hasAnimationData(model)) {
-        for (SceneObject& o : scene.objects) {
+        for (SceneObject& o : scene.objects)
             o.node = -1;
-            o.skinWeights = SkinWeights{};
-            o.morphTargets.clear();
-        }
         return {};
     }
+    if (Status s = checkDeformationSize(model, deformations, scene); !s) return s;
     SceneAnimation& a = scene.animation;
     Result<std::vector<SceneNode>> nodes = convertNodes(model);
     if (!nodes) return fail(nodes.error());
@@ -488,7 +514,9 @@ Status addAnimation(const tinygltf::Model& model, Scene& scene) {
     }
     const std::vector<bool> moving = movingNodes(a);
     for (SceneObject& o : scene.objects)
-        if (Status s = bindObject(model, moving, a, o); !s)
+        if (Status s =
+                bindObject(model, deformations[size_t(model.nodes[size_t(o.node)].mesh)], moving, a, o);
+            !s)
             return fail(named("node", size_t(o.node), model.nodes[size_t(o.node)].name) + " " + s.error());
     return {};
 }

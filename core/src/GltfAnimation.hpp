@@ -24,10 +24,11 @@ Status appendDeformation(const tinygltf::Model& model, const tinygltf::Primitive
 void finishDeformation(size_t vertexCount, MeshDeformation& out);
 
 // Fills `scene.animation` (nodes, skins, animations) when the file has animations, skins or morph
-// targets, binds every object to its node and skin, and makes every object that an animation moves
-// or deforms dynamic. Objects carry the glTF index of their node in `node` and their mesh's
-// deformation on entry. Without animation data every object's node becomes -1 and its deformation is
-// dropped. The error names the glTF part and the problem.
-Status addAnimation(const tinygltf::Model& model, Scene& scene);
+// targets, binds every object to its node, skin and its mesh's deformation (`deformations`, one per
+// glTF mesh), and makes every object that an animation moves or deforms dynamic. Objects carry the
+// glTF index of their node in `node` on entry. Without animation data every object's node becomes
+// -1. The error names the glTF part and the problem, or the limit on the deforming data of a scene.
+Status addAnimation(const tinygltf::Model& model, const std::vector<MeshDeformation>& deformations,
+                    Scene& scene);
 
 } // namespace spatter::gltf

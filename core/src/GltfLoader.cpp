@@ -634,8 +634,6 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
         o.dynamic = p.dynamic;
         o.receivesDecals = p.decals;
         o.node = int(p.node);
-        o.skinWeights = deformations[p.mesh].skinWeights;
-        o.morphTargets = deformations[p.mesh].morphTargets;
         scene.objects.push_back(std::move(o));
     }
     for (const Placement& p : colliders) {
@@ -648,7 +646,7 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
     }
     for (SceneObject& o : scene.objects)
         if (o.collider) computeNormals(*o.collider);
-    return {};
+    return addAnimation(model, deformations, scene);
 }
 
 Result<Scene> buildScene(tinygltf::Model& model) {
@@ -676,7 +674,6 @@ Result<Scene> buildScene(tinygltf::Model& model) {
         scene.materials.push_back(std::move(m.value()));
     }
     if (Status s = addObjects(model, scene); !s) return fail(s.error());
-    if (Status s = addAnimation(model, scene); !s) return fail(s.error());
     if (Status s = validateScene(scene); !s) return fail(s.error());
     return scene;
 }

@@ -19,7 +19,7 @@ using ::testing::HasSubstr;
 namespace {
 
 // The error of loading `g`, which must fail and name the file.
-std::string rejection(GltfBuilder& g) {
+std::string rejection(GltfBuilder g) {
     const std::string dir =
         scratchDir(std::string("animbad-") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     const std::string path = g.writeGltf(dir, "bad");
@@ -368,4 +368,37 @@ TEST(AnimationValidation, RejectsMorphTargetsWithoutWeights) {
     scene.objects[0].morphTargets[0].positions.assign(4, glm::vec3(0.0f));
     EXPECT_THAT(validateScene(scene).error(),
                 HasSubstr("has 1 morph targets but its node has no weight for each"));
+}
+
+// --- limits --------------------------------------------------------------------------------------
+
+namespace {
+
+// One mesh of `vertices` vertices with `targets` morph targets (all one accessor of zero deltas),
+// placed by `instances` nodes.
+GltfBuilder manyTargets(size_t vertices, size_t targets, size_t instances) {
+    GltfBuilder g;
+    std::vector<glm::vec3> positions(vertices, glm::vec3(0.0f));
+    positions[1] = glm::vec3(1, 0, 0);
+    positions[2] = glm::vec3(0, 1, 0);
+    g.addMesh(positions, {0, 1, 2});
+    const int zeros = addFloats(g, std::vector<float>(vertices * 3, 0.0f), "VEC3");
+    g.doc["meshes"][0]["primitives"][0]["targets"] =
+        nlohmann::json::array_t(targets, nlohmann::json{{"POSITION", zeros}});
+    nlohmann::json roots = nlohmann::json::array();
+    for (size_t i = 0; i < instances; ++i)
+        roots.push_back(g.push("nodes", {{"mesh", 0}, {"translation", {double(i), 0, 0}}}));
+    g.doc["scenes"] = {{{"nodes", roots}}};
+    return g;
+}
+
+} // namespace
+
+TEST(GltfAnimationRejection, MeshWithTooManyMorphTargetDeltas) {
+    EXPECT_THAT(rejection(manyTargets(4096, 4097, 1)), HasSubstr("more morph target deltas than the limit"));
+}
+
+TEST(GltfAnimationRejection, SceneWhoseInstancesCopyTooManyMorphTargetDeltas) {
+    EXPECT_THAT(rejection(manyTargets(2048, 2048, 17)),
+                HasSubstr("more joint influences and morph target deltas in all than the limit"));
 }
