@@ -20,7 +20,7 @@ layout(std430, binding = 2) writeonly buffer GroupCounts {
     uint groupCounts[];
 };
 layout(std430, binding = 5) buffer Counters {
-    uint drawCommand[4]; // the indirect draw (cull_scan.comp)
+    uint drawCommand[5]; // the indirect draw (cull_scan.comp)
     uint occludedCount;  // boxes in the frustum that the occlusion test culled
     uint invalidCount;   // decals that cannot be drawn: their box, type or object
     uint hostDrawnCount; // decals of a type or on an object the host draws itself

@@ -1,6 +1,6 @@
 // GPU culling, pass 2 of 3: one work group turns the groups' visible counts into each group's first
 // place in the visible list (an exclusive prefix sum, in draw order), and writes the indirect draw
-// (36 vertices, the list's length as instance count).
+// (the cube's 36 indices, the list's length as instance count).
 layout(local_size_x = 256) in;
 layout(location = 0) uniform uint u_groups;
 
@@ -8,11 +8,11 @@ layout(std430, binding = 2) buffer GroupCounts {
     uint groupCounts[]; // in: counts; out: first places
 };
 
-struct DrawArraysIndirect {
-    uint count, instanceCount, first, baseInstance;
+struct DrawElementsIndirect {
+    uint count, instanceCount, firstIndex, baseVertex, baseInstance;
 };
 layout(std430, binding = 5) writeonly buffer Draws {
-    DrawArraysIndirect draw;
+    DrawElementsIndirect draw;
 };
 
 shared uint partial[256];
@@ -37,5 +37,5 @@ void main() {
         groupCounts[g] = first;
         first += c;
     }
-    if (t == 255u) draw = DrawArraysIndirect(36u, partial[255], 0u, 0u);
+    if (t == 255u) draw = DrawElementsIndirect(36u, partial[255], 0u, 0u, 0u);
 }

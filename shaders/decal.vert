@@ -12,16 +12,11 @@ flat out vec4 v_tint;
 flat out uvec4 v_info;         // x: object decal ID, y: texture layer, z: SPATTER_DECAL_* flags
 flat out vec2 v_params;        // x: cosine of the largest accepted angle, y: roughness
 
-// Corner i of the cube: x from bit 0, y from bit 1, z from bit 2; triangles wound
-// counter-clockwise seen from outside.
-const int kCubeIndices[36] = int[36](0, 4, 6, 0, 6, 2,  1, 3, 7, 1, 7, 5,  0, 1, 5, 0, 5, 4,
-                                     2, 6, 7, 2, 7, 3,  0, 2, 3, 0, 3, 1,  4, 5, 7, 4, 7, 6);
-
 void main() {
     DecalData d = decalData(visibleDecals[uint(gl_InstanceID)]);
     ProjectorObject o = objects[d.info.x];
 
-    int corner = kCubeIndices[gl_VertexID];
+    int corner = gl_VertexID; // of the cube's eight: x from bit 0, y from bit 1, z from bit 2 (indexed draw)
     vec3 c = vec3((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0, (corner & 4) != 0 ? 1.0 : -1.0);
     // A mirroring box-to-world transform turns the winding inside out; mirroring the cube in its
     // own space (it maps onto itself) turns it back.

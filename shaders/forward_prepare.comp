@@ -20,7 +20,7 @@ layout(location = 1) uniform uint u_tileCapacity; // items per tile
 
 // The GPU culling's indirect draw: its instance count is the length of the visible list.
 layout(std430, binding = 0) readonly buffer CulledDraw {
-    uint drawVertices, visibleCount, drawFirst, drawBaseInstance;
+    uint drawIndices, visibleCount, drawFirstIndex, drawBaseVertex, drawBaseInstance;
 };
 
 // The tiles of the box's screen rectangle (x0, y0, x1, y1, inclusive), a pixel wider on each side for

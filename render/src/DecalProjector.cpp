@@ -87,6 +87,12 @@ struct Passes {
 // also where the eye is inside it or the near plane cuts it, and culling on the CPU and on the GPU then
 // draw the very same fragments). The count is known on the CPU, or read by the GPU from `indirect`
 // (GpuCulling).
+// The unit cube drawn per decal: corner i has x from bit 0, y from bit 1 and z from bit 2
+// (decal.vert), triangles wound counter-clockwise seen from outside. Indexed, so that each box runs
+// the vertex shader for its eight corners rather than for 36 vertices.
+constexpr uint16_t kCubeIndices[36] = {0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5, 0, 1, 5, 0, 5, 4,
+                                       2, 6, 7, 2, 7, 3, 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6};
+
 struct BoxDraws {
     size_t count = 0;
     GLuint indirect = 0;
@@ -137,7 +143,8 @@ struct DecalProjector::Impl {
     std::vector<uint8_t> ids;
 
     ProjectorBuffers buffers;
-    GlVertexArray emptyVao;
+    GlVertexArray boxVao; // no attributes; the cube's indices (kCubeIndices)
+    GlBuffer cubeIndices;
     GlFramebuffer fbo;
     GlTexture zeroIds;     // bound as s_ids when the frame has no ID texture
     GlSampler nearest;     // for the host's textures, whatever their own filters (an integer texture
@@ -435,12 +442,12 @@ struct DecalProjector::Impl {
         }
         glEnable(GL_DEPTH_CLAMP);
         glUseProgram(prog);
-        glBindVertexArray(emptyVao.get());
+        glBindVertexArray(boxVao.get());
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, boxes.indirect);
         if (boxes.indirect)
-            glDrawArraysIndirect(GL_TRIANGLES, nullptr);
+            glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_SHORT, nullptr);
         else
-            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, GLsizei(boxes.count));
+            glDrawElementsInstanced(GL_TRIANGLES, 36, GL_UNSIGNED_SHORT, nullptr, GLsizei(boxes.count));
         return 1;
     }
 };
@@ -462,7 +469,10 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
         return fail("projector: " + s.error());
     impl->batch.configure(settings.wrapMaxAngleDeg, impl->textures.layers());
     impl->buffers.create();
-    impl->emptyVao = createVertexArray();
+    impl->boxVao = createVertexArray();
+    impl->cubeIndices = createBuffer();
+    glNamedBufferStorage(impl->cubeIndices.get(), sizeof kCubeIndices, kCubeIndices, 0);
+    glVertexArrayElementBuffer(impl->boxVao.get(), impl->cubeIndices.get());
     impl->fbo = createFramebuffer();
     impl->nearest = createSampler();
     glSamplerParameteri(impl->nearest.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);

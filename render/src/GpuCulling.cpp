@@ -15,9 +15,9 @@ constexpr uint32_t kGroup = 256; // local size of the classify and scatter passe
 constexpr GLuint kClassesBinding = 0, kGroupsBinding = 2, kDrawsBinding = 5, kOrderBinding = 6,
                  kVisibleOutBinding = 7;
 // The indirect draw, then the occluded, invalid and host-drawn counts (Counters in cull.comp).
-constexpr size_t kDrawsBytes = 7 * sizeof(uint32_t);
-constexpr size_t kCountOffset = sizeof(uint32_t); // DrawArraysIndirectCommand::instanceCount
-constexpr size_t kCountersOffset = 4 * sizeof(uint32_t);
+constexpr size_t kDrawsBytes = 8 * sizeof(uint32_t);
+constexpr size_t kCountOffset = sizeof(uint32_t); // DrawElementsIndirectCommand::instanceCount
+constexpr size_t kCountersOffset = 5 * sizeof(uint32_t);
 constexpr size_t kCounters = 3;
 
 Result<GlProgram> computeProgram(const char* file) {

@@ -45,7 +45,7 @@ public:
     // `visibleCapacity` in bytes).
     void run(size_t decals, bool reversedZ, bool clipMinusOne, const Occlusion& occlusion, GlBuffer& visible,
              size_t& visibleCapacity);
-    // One DrawArraysIndirectCommand: 36 vertices, the visible count as instances (followed by the
+    // One DrawElementsIndirectCommand: the cube's 36 indices, the visible count as instances (followed by the
     // occluded, invalid and host-drawn counts).
     GLuint draws() const { return draws_.get(); }
     // The visible count of the last run when `wait` (waiting for the GPU), else that of the latest
