@@ -2,19 +2,37 @@
 
 namespace spatter::gltf {
 
-Result<AccessorView> viewAccessor(const tinygltf::Model& model, int index, const char* role, int type,
-                                  unsigned allowedComponentTypes) {
+namespace {
+
+std::string accessorName(int index, const char* role) {
+    return "accessor " + std::to_string(index) + " (" + role + ")";
+}
+
+// Checks that accessor `index` exists and has `type` and an allowed component type.
+Result<const tinygltf::Accessor*> checkedAccessor(const tinygltf::Model& model, int index, const char* role,
+                                                  int type, unsigned allowedComponentTypes) {
     if (!validIndex(index, model.accessors.size()))
         return fail(std::string(role) + " refers to accessor " + std::to_string(index) +
                     ", which does not exist");
     const tinygltf::Accessor& a = model.accessors[size_t(index)];
-    const std::string what = "accessor " + std::to_string(index) + " (" + role + ")";
-    if (a.sparse.isSparse) return fail(what + " is sparse, which is not supported");
+    const std::string what = accessorName(index, role);
     if (a.type != type) return fail(what + " is " + typeName(a.type) + ", expected " + typeName(type));
     const size_t size = componentSize(a.componentType);
     if (size == 0 || (componentBit(a.componentType) & allowedComponentTypes) == 0)
         return fail(what + " has component type " + std::to_string(a.componentType) + ", which " + role +
                     " cannot use");
+    return &a;
+}
+
+// The view of an accessor that has a buffer view, its sparse part left aside.
+Result<AccessorView> viewDense(const tinygltf::Model& model, int index, const char* role, int type,
+                               unsigned allowedComponentTypes) {
+    Result<const tinygltf::Accessor*> checked =
+        checkedAccessor(model, index, role, type, allowedComponentTypes);
+    if (!checked) return fail(checked.error());
+    const tinygltf::Accessor& a = *checked.value();
+    const std::string what = accessorName(index, role);
+    const size_t size = componentSize(a.componentType);
     if (a.bufferView < 0)
         return fail(what + " has no buffer view (zero-filled or extension-provided data is not supported)");
     if (!validIndex(a.bufferView, model.bufferViews.size()))
@@ -42,6 +60,85 @@ Result<AccessorView> viewAccessor(const tinygltf::Model& model, int index, const
                     num(view.byteLength) + " bytes)");
     v.data = model.buffers[size_t(view.buffer)].data.data() + view.byteOffset + a.byteOffset;
     return v;
+}
+
+// `count` tightly packed elements of `elementSize` bytes at `offset` in buffer view `view`, or an
+// error saying what they are (`what`).
+Result<const unsigned char*> sparseRange(const tinygltf::Model& model, int view, int offset, size_t count,
+                                         size_t elementSize, const std::string& what) {
+    if (!validIndex(view, model.bufferViews.size()))
+        return fail(what + " refer to buffer view " + std::to_string(view) + ", which does not exist");
+    const tinygltf::BufferView& v = model.bufferViews[size_t(view)];
+    size_t span = 0;
+    if (offset < 0 || !mulAdd(count, elementSize, 0, span) ||
+        !rangeInside(size_t(offset), span, v.byteLength))
+        return fail(what + " read past the end of buffer view " + std::to_string(view));
+    return model.buffers[size_t(v.buffer)].data.data() + v.byteOffset + size_t(offset);
+}
+
+// Applies the sparse part of accessor `a` to `out` (one element per accessor element).
+Status applySparse(const tinygltf::Model& model, const tinygltf::Accessor& a, const std::string& what,
+                   std::vector<glm::vec3>& out) {
+    const auto& sparse = a.sparse;
+    if (sparse.count < 1 || size_t(sparse.count) > a.count)
+        return fail(what + " has a sparse count of " + std::to_string(sparse.count) + " for " + num(a.count) +
+                    " elements");
+    const size_t n = size_t(sparse.count);
+    const int indexType = sparse.indices.componentType;
+    if (componentSize(indexType) == 0 || (componentBit(indexType) & kIndexTypes) == 0)
+        return fail(what + " has sparse indices of component type " + std::to_string(indexType));
+    Result<const unsigned char*> indices =
+        sparseRange(model, sparse.indices.bufferView, sparse.indices.byteOffset, n, componentSize(indexType),
+                    what + ": its sparse indices");
+    if (!indices) return fail(indices.error());
+    const size_t elementSize = componentSize(a.componentType) * 3;
+    Result<const unsigned char*> values =
+        sparseRange(model, sparse.values.bufferView, sparse.values.byteOffset, n, elementSize,
+                    what + ": its sparse values");
+    if (!values) return fail(values.error());
+    AccessorView iv{indices.value(), n, componentSize(indexType), indexType, false, true};
+    AccessorView vv{values.value(), n, elementSize, a.componentType, a.normalized, true};
+    for (size_t i = 0; i < n; ++i) {
+        const uint32_t target = iv.index(i);
+        if (target >= a.count || (i > 0 && target <= iv.index(i - 1)))
+            return fail(what + " has sparse index " + num(target) + " (entry " + num(i) +
+                        ") that is past the elements or does not increase");
+        out[target] = vv.vec<3>(i);
+    }
+    return {};
+}
+
+} // namespace
+
+Result<AccessorView> viewAccessor(const tinygltf::Model& model, int index, const char* role, int type,
+                                  unsigned allowedComponentTypes) {
+    if (validIndex(index, model.accessors.size()) && model.accessors[size_t(index)].sparse.isSparse)
+        return fail(accessorName(index, role) + " is sparse, which is not supported");
+    return viewDense(model, index, role, type, allowedComponentTypes);
+}
+
+Result<std::vector<glm::vec3>> readVec3(const tinygltf::Model& model, int index, const char* role,
+                                        unsigned allowedComponentTypes, size_t count) {
+    Result<const tinygltf::Accessor*> checked =
+        checkedAccessor(model, index, role, TINYGLTF_TYPE_VEC3, allowedComponentTypes);
+    if (!checked) return fail(checked.error());
+    const tinygltf::Accessor& a = *checked.value();
+    const std::string what = accessorName(index, role);
+    if (a.count != count)
+        return fail(what + " has " + num(a.count) + " elements, the primitive has " + num(count) +
+                    " vertices");
+    std::vector<glm::vec3> out(count, glm::vec3(0.0f));
+    if (a.bufferView >= 0 || !a.sparse.isSparse) {
+        Result<AccessorView> dense = viewDense(model, index, role, TINYGLTF_TYPE_VEC3, allowedComponentTypes);
+        if (!dense) return fail(dense.error());
+        for (size_t i = 0; i < count; ++i)
+            out[i] = dense->vec<3>(i);
+    }
+    if (a.sparse.isSparse)
+        if (Status s = applySparse(model, a, what, out); !s) return fail(s.error());
+    for (size_t i = 0; i < count; ++i)
+        if (!finite(out[i])) return fail(what + " element " + num(i) + " is not finite (NaN or Inf)");
+    return out;
 }
 
 } // namespace spatter::gltf

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace spatter::gltf {
 
@@ -188,5 +189,13 @@ struct AccessorView {
 // buffers. The error names the accessor and the role.
 Result<AccessorView> viewAccessor(const tinygltf::Model& model, int index, const char* role, int type,
                                   unsigned allowedComponentTypes);
+
+// Every element of VEC3 accessor `index`, used as `role`, which must have `count` elements: dense,
+// zero-filled (no buffer view) and sparse (its indices strictly increasing and inside the accessor,
+// its values replacing the elements they index) alike; integer components as AccessorView reads them.
+// Every element must be finite. Buffer views must have been checked against their buffers. The error
+// names the accessor, the role and the problem.
+Result<std::vector<glm::vec3>> readVec3(const tinygltf::Model& model, int index, const char* role,
+                                        unsigned allowedComponentTypes, size_t count);
 
 } // namespace spatter::gltf

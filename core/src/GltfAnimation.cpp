@@ -6,7 +6,8 @@
 // - Joint influences come from every JOINTS_n / WEIGHTS_n pair (n = 0, 1, ...), joints as unsigned
 //   bytes or shorts, weights as floats or normalised unsigned bytes or shorts; each vertex's weights
 //   are normalised to sum to 1. They are kept only for objects whose node has a skin.
-// - Morph targets keep POSITION, NORMAL and TANGENT deltas; other target attributes are ignored.
+// - Morph targets keep POSITION, NORMAL and TANGENT deltas, dense, zero-filled or sparse; other target
+//   attributes are ignored.
 // - Channels without a target node (left to extensions) are ignored.
 // - An object is dynamic when an animation moves its node or an ancestor, moves a joint of its skin
 //   (or an ancestor of one), or animates its morph weights.
@@ -132,16 +133,10 @@ Status appendDeltas(const tinygltf::Model& model, const tinygltf::Primitive& pri
     const auto it = prim.targets[t].find(name);
     if (it == prim.targets[t].end()) return {};
     const std::string role = "morph target " + num(t) + " " + name;
-    Result<AccessorView> v =
-        attribute(model, it->second, role, TINYGLTF_TYPE_VEC3, kVertexTypes, count, false);
+    Result<std::vector<glm::vec3>> v = readVec3(model, it->second, role.c_str(), kVertexTypes, count);
     if (!v) return fail(v.error());
     deltas.resize(base, glm::vec3(0.0f));
-    for (size_t i = 0; i < count; ++i) {
-        deltas.push_back(v->vec<3>(i));
-        if (!finite(deltas.back()))
-            return fail("accessor " + std::to_string(it->second) + " (" + role + ") element " + num(i) +
-                        " is not finite (NaN or Inf)");
-    }
+    deltas.insert(deltas.end(), v->begin(), v->end());
     return {};
 }
 

@@ -121,6 +121,24 @@ inline GltfBuilder morphQuad() {
     return g;
 }
 
+// Makes morph target `target`'s `attribute` of morphQuad() a sparse accessor that moves vertices 1
+// and 2 by (0, 0, 2) and (0, 3, 0) (unsigned-byte indices), over zeros when `bufferless`, else over
+// the dense deltas it had. Returns the accessor's index.
+inline int makeSparse(GltfBuilder& g, int target, const char* attribute, bool bufferless) {
+    nlohmann::json& targets = g.doc["meshes"][0]["primitives"][0]["targets"];
+    const int index = targets[target][attribute];
+    nlohmann::json a = g.doc["accessors"][index];
+    if (bufferless) a.erase("bufferView");
+    const std::vector<uint8_t> indices = {1, 2, 0, 0};
+    const std::vector<float> values = {0, 0, 2, 0, 3, 0};
+    a["sparse"] = {{"count", 2},
+                   {"indices", {{"bufferView", g.addView(indices)}, {"componentType", kUnsignedByte}}},
+                   {"values", {{"bufferView", g.addView(values)}}}};
+    const int sparse = g.push("accessors", a);
+    targets[target][attribute] = sparse;
+    return sparse;
+}
+
 // Writes `g` as `name`.glb in `dir`; returns the path.
 inline std::string writeGlb(const GltfBuilder& g, const std::string& dir, const std::string& name) {
     const std::string path = dir + "/" + name + ".glb";

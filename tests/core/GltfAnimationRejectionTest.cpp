@@ -292,6 +292,54 @@ TEST(GltfAnimationRejection, WeightsChannelOfAnotherWidth) {
     EXPECT_THAT(rejection(g), HasSubstr("has 6 output values for 2 keys, expected 12"));
 }
 
+TEST(GltfAnimationRejection, SparseIndexPastTheElements) {
+    GltfBuilder g = morphQuad();
+    const int sparse = makeSparse(g, 1, "POSITION", true);
+    g.doc["accessors"][sparse]["sparse"]["indices"]["bufferView"] =
+        g.addView(std::vector<uint8_t>{1, 4, 0, 0});
+    EXPECT_THAT(rejection(g),
+                HasSubstr("(morph target 1 POSITION) has sparse index 4 (entry 1) that is past the "
+                          "elements or does not increase"));
+}
+
+TEST(GltfAnimationRejection, SparseIndicesThatDoNotIncrease) {
+    GltfBuilder g = morphQuad();
+    const int sparse = makeSparse(g, 1, "POSITION", true);
+    g.doc["accessors"][sparse]["sparse"]["indices"]["bufferView"] =
+        g.addView(std::vector<uint8_t>{2, 1, 0, 0});
+    EXPECT_THAT(rejection(g),
+                HasSubstr("has sparse index 1 (entry 1) that is past the elements or does not increase"));
+}
+
+TEST(GltfAnimationRejection, SparseCountAboveTheAccessorCount) {
+    GltfBuilder g = morphQuad();
+    const int sparse = makeSparse(g, 1, "POSITION", true);
+    g.doc["accessors"][sparse]["sparse"]["count"] = 5;
+    EXPECT_THAT(rejection(g), HasSubstr("has a sparse count of 5 for 4 elements"));
+}
+
+TEST(GltfAnimationRejection, SparseValuesPastTheirBufferView) {
+    GltfBuilder g = morphQuad();
+    const int sparse = makeSparse(g, 1, "POSITION", true);
+    g.doc["accessors"][sparse]["sparse"]["values"]["byteOffset"] = 8;
+    EXPECT_THAT(rejection(g), HasSubstr("its sparse values read past the end of buffer view"));
+}
+
+TEST(GltfAnimationRejection, SparseIndicesOfAFloatType) {
+    GltfBuilder g = morphQuad();
+    const int sparse = makeSparse(g, 1, "POSITION", true);
+    g.doc["accessors"][sparse]["sparse"]["indices"]["componentType"] = kFloat;
+    EXPECT_THAT(rejection(g), HasSubstr("has sparse indices of component type 5126"));
+}
+
+TEST(GltfAnimationRejection, NaNSparseMorphDelta) {
+    GltfBuilder g = morphQuad();
+    const int sparse = makeSparse(g, 1, "POSITION", true);
+    g.doc["accessors"][sparse]["sparse"]["values"]["bufferView"] =
+        g.addView(std::vector<float>{0, 0, kNaN, 0, 0, 0});
+    EXPECT_THAT(rejection(g), HasSubstr("(morph target 1 POSITION) element 1 is not finite"));
+}
+
 // --- validateScene on animation data built by hand ----------------------------------------------
 
 namespace {

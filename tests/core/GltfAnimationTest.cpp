@@ -225,3 +225,18 @@ TEST(GltfAnimation, MorphedPositionsFollowCubicSplineWeights) {
     const GltfReference reference(path);
     EXPECT_LT(worstDistance(scene, reference, kTimes), 1e-12);
 }
+
+TEST(GltfAnimation, SparseMorphTargetsOverZerosAndOverDenseDeltas) {
+    GltfBuilder g = morphQuad();
+    makeSparse(g, 1, "POSITION", true);  // bufferless: zeros but for vertices 1 and 2
+    makeSparse(g, 0, "POSITION", false); // over the dense (0, 0, 1) of every vertex
+    std::string path;
+    Scene scene = loadedGlb(g, path);
+    ASSERT_EQ(scene.objects.size(), 1u);
+    const std::vector<MorphTarget>& targets = scene.objects[0].morphTargets;
+    ASSERT_EQ(targets.size(), 2u);
+    EXPECT_EQ(targets[1].positions, (std::vector<glm::vec3>{{0, 0, 0}, {0, 0, 2}, {0, 3, 0}, {0, 0, 0}}));
+    EXPECT_EQ(targets[0].positions, (std::vector<glm::vec3>{{0, 0, 1}, {0, 0, 2}, {0, 3, 0}, {0, 0, 1}}));
+    const GltfReference reference(path);
+    EXPECT_LT(worstDistance(scene, reference, kTimes), 1e-12);
+}

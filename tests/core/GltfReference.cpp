@@ -91,19 +91,40 @@ GltfReference::GltfReference(const std::string& glbPath) {
 
 std::vector<double> GltfReference::read(int accessor) const {
     const json& a = doc_["accessors"][size_t(accessor)];
-    const json& view = doc_["bufferViews"][a["bufferView"].get<size_t>()];
     const int type = a["componentType"];
     const int n = components(a["type"]);
     const bool normalized = a.value("normalized", false);
-    const size_t elementSize = componentBytes(type) * size_t(n);
-    const size_t stride =
-        view.value("byteStride", size_t(0)) ? view["byteStride"].get<size_t>() : elementSize;
-    const size_t start = view.value("byteOffset", size_t(0)) + a.value("byteOffset", size_t(0));
-    std::vector<double> out;
-    for (size_t i = 0; i < a["count"].get<size_t>(); ++i)
+    const size_t count = a["count"];
+    std::vector<double> out(count * size_t(n), 0.0); // an accessor without a buffer view is zeros
+    if (a.contains("bufferView")) {
+        const json& view = doc_["bufferViews"][a["bufferView"].get<size_t>()];
+        const size_t elementSize = componentBytes(type) * size_t(n);
+        const size_t stride =
+            view.value("byteStride", size_t(0)) ? view["byteStride"].get<size_t>() : elementSize;
+        const size_t start = view.value("byteOffset", size_t(0)) + a.value("byteOffset", size_t(0));
+        for (size_t i = 0; i < count; ++i)
+            for (int c = 0; c < n; ++c)
+                out[i * size_t(n) + size_t(c)] =
+                    component(&bin_[start + i * stride + size_t(c) * componentBytes(type)], type, normalized);
+    }
+    if (!a.contains("sparse")) return out;
+    const json& sparse = a["sparse"];
+    const json& indices = sparse["indices"];
+    const json& values = sparse["values"];
+    const int indexType = indices["componentType"];
+    const size_t indexAt =
+        doc_["bufferViews"][indices["bufferView"].get<size_t>()].value("byteOffset", size_t(0)) +
+        indices.value("byteOffset", size_t(0));
+    const size_t valueAt =
+        doc_["bufferViews"][values["bufferView"].get<size_t>()].value("byteOffset", size_t(0)) +
+        values.value("byteOffset", size_t(0));
+    for (size_t k = 0; k < sparse["count"].get<size_t>(); ++k) {
+        const size_t target =
+            size_t(component(&bin_[indexAt + k * componentBytes(indexType)], indexType, false));
         for (int c = 0; c < n; ++c)
-            out.push_back(
-                component(&bin_[start + i * stride + size_t(c) * componentBytes(type)], type, normalized));
+            out[target * size_t(n) + size_t(c)] = component(
+                &bin_[valueAt + (k * size_t(n) + size_t(c)) * componentBytes(type)], type, normalized);
+    }
     return out;
 }
 
