@@ -339,25 +339,30 @@ struct DecalProjector::Impl {
         return false;
     }
 
-    // Builds the visible list on the GPU and sets the counts of `stats` from it (this draw's with
-    // waitForTimers, else the latest the GPU has finished); returns the indirect draw. With a host
-    // frame (draw()) the boxes hidden behind its depth are culled too where that pays. Needs
+    // Builds the visible list on the GPU and sets the counts of `stats` from it (this run's when
+    // `wait`, else the latest the GPU has finished); returns the indirect draw. With a host frame
+    // (draw()) the boxes hidden behind its depth are culled too where that pays. Needs
     // culling.prepare() and, with a host frame, pyramid.prepare().
-    BoxDraws cullOnGpu(const CullView& cull, const HostFrame* host, ProjectorStats& stats) {
+    BoxDraws cullOnGpu(const CullView& cull, const HostFrame* host, bool wait, ProjectorStats& stats) {
         const Occlusion occlusion =
             host && occlusionPays() ? pyramid.build(*host, nearest.get()) : Occlusion{};
         buffers.bind();
         culling.run(batch.size(), cull.reversedZ, cull.clipMinusOne, occlusion, buffers.visible(),
                     buffers.visibleCapacity());
         buffers.bind(); // the visible list may have grown
-        stats.drawn = culling.visibleCount(settings.waitForTimers);
+        takeGpuCounts(wait, stats);
+        return {0, culling.draws()};
+    }
+
+    // The counts of the GPU culling (visibleCount) in `stats`.
+    void takeGpuCounts(bool wait, ProjectorStats& stats) {
+        stats.drawn = culling.visibleCount(wait);
         stats.invalid = culling.invalidCount();
         stats.hostDrawn = culling.hostDrawnCount();
         const size_t counted = stats.invalid + stats.hostDrawn + stats.drawn;
         stats.culled =
             batch.size() > counted ? batch.size() - counted : 0; // counts of an earlier draw may exceed
         buffers.setVisibleCount(stats.drawn);
-        return {0, culling.draws()};
     }
 
     // Bins the visible decals into the screen tiles of `frame` (ForwardBins): those the GPU culls, or
@@ -371,7 +376,7 @@ struct DecalProjector::Impl {
         if (onGpu) {
             stats.bytesUploaded +=
                 buffers.uploadRecords(batch, stats.instanceUploads) + buffers.uploadDrawOrder(batch, culling);
-            cullOnGpu(camera.cull, nullptr, stats);
+            cullOnGpu(camera.cull, nullptr, settings.waitForTimers, stats);
             // Room for twice the visible decals of the latest count the GPU has given (this one's with
             // waitForTimers): a sudden jump past it leaves decals out for a frame.
             const size_t capacity = std::min(batch.size(), std::max<size_t>(4096, 2 * stats.drawn));
@@ -394,7 +399,7 @@ struct DecalProjector::Impl {
         BoxDraws boxes = cpuDraws(vis);
         if (onGpu) {
             stats.bytesUploaded += buffers.uploadDrawOrder(batch, culling);
-            boxes = cullOnGpu(camera.cull, &f, stats);
+            boxes = cullOnGpu(camera.cull, &f, false, stats); // waitForTimers: read after the pass
         } else {
             stats.bytesUploaded += buffers.uploadVisible(vis.visible);
         }
@@ -638,6 +643,9 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
                           m.batch);
     m.drawDecals(frame, options, camera, onGpu, vis, passes, stats);
     m.timers.end();
+    // This draw's counts once the pass is queued: waiting between the culling and the boxes would
+    // leave the GPU idle inside the pass.
+    if (onGpu && m.settings.waitForTimers) m.takeGpuCounts(true, stats);
     const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
     stats.gpuMs = times.decalsMs;
     stats.gpuFrame = times.frame;
