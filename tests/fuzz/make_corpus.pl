@@ -147,6 +147,10 @@ my $anim = <<"JSON";
  "buffers":[{"byteLength":356,"uri":"$anim_uri"}]}
 JSON
 put('gltf', 'skinned-morphed-animated.gltf', $anim);
+# The same with its morph target in a sparse accessor without a buffer view (one delta, its index
+# read from the triangle's index data).
+(my $sparse = $anim) =~ s/\{"bufferView":0,"byteOffset":104,("componentType":5126,"count":3,"type":"VEC3")\}/{$1,"sparse":{"count":1,"indices":{"bufferView":0,"byteOffset":36,"componentType":5123},"values":{"bufferView":0,"byteOffset":104}}}/;
+put('gltf', 'skinned-sparse-morph.gltf', $sparse);
 
 # --- ray lines ----------------------------------------------------------------------------------
 put('ray_parser', 'rays.txt',
