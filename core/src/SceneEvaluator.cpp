@@ -137,17 +137,20 @@ void SceneEvaluator::poseLocals(int animation, double t) {
         weights_[n].assign(nodes[n].weights.begin(), nodes[n].weights.end());
     }
     if (animation == -1) return;
+    double v[3];
     for (const AnimationChannel& ch : scene_.animation.animations[size_t(animation)].channels) {
         const size_t n = size_t(ch.node);
         switch (ch.path) {
         case AnimationPath::Translation:
-            sample(ch, t, &translation_[n].x);
+            sample(ch, t, v);
+            translation_[n] = glm::dvec3(v[0], v[1], v[2]);
             break;
         case AnimationPath::Rotation:
             rotation_[n] = sampleRotation(ch, t);
             break;
         case AnimationPath::Scale:
-            sample(ch, t, &scale_[n].x);
+            sample(ch, t, v);
+            scale_[n] = glm::dvec3(v[0], v[1], v[2]);
             break;
         case AnimationPath::Weights:
             sample(ch, t, weights_[n].data());
