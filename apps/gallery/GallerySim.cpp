@@ -118,6 +118,12 @@ Status GallerySim::registerTypes() {
 }
 
 Status GallerySim::rebuildProxies(float tolerancePercent) {
+    Result<ProxySet> set = buildProxies(tolerancePercent);
+    if (!set) return fail(set.error());
+    return useProxies(std::move(set).value());
+}
+
+Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<float>* progress) const {
     const Clock::time_point start = Clock::now();
     ProxySettings settings;
     settings.tolerance = tolerancePercent / 100.0f;
@@ -125,7 +131,9 @@ Status GallerySim::rebuildProxies(float tolerancePercent) {
     settings.cacheDirectory = options_.cacheDir;
     // The fast path, one object per thread: a cold start builds the whole gallery in seconds.
     settings.backend = ProxyBackend::MeshOpt;
-    std::vector<std::optional<Proxy>> proxies(scene_.objects.size());
+    ProxySet set;
+    set.tolerancePercent = tolerancePercent;
+    set.proxies.resize(scene_.objects.size());
     std::vector<std::string> errors(scene_.objects.size());
     std::atomic<size_t> next{0}, done{0};
     std::mutex say;
@@ -143,14 +151,15 @@ Status GallerySim::rebuildProxies(float tolerancePercent) {
             Result<Proxy> proxy = buildProxy(o.mesh, settings, collider);
             const size_t finished = ++done;
             const size_t triangles = doneTriangles += o.mesh.triangleCount();
+            const double fraction = double(triangles) / double(std::max<size_t>(totalTriangles, 1));
+            if (progress) progress->store(float(fraction));
             if (proxy && !proxy->cached) { // a cold build: say how far it is
                 const std::lock_guard<std::mutex> lock(say);
                 std::fprintf(stderr, "spatter-gallery: proxies %3d%%: built %s (%zu of %zu, %.2f s)\n",
-                             int(100.0 * double(triangles) / double(std::max<size_t>(totalTriangles, 1))),
-                             o.name.c_str(), finished, receivers, proxy->seconds);
+                             int(100.0 * fraction), o.name.c_str(), finished, receivers, proxy->seconds);
             }
             if (proxy)
-                proxies[i] = std::move(proxy).value();
+                set.proxies[i] = std::move(proxy).value();
             else
                 errors[i] = "proxy of " + o.name + ": " + proxy.error();
         }
@@ -163,10 +172,16 @@ Status GallerySim::rebuildProxies(float tolerancePercent) {
         t.join();
     for (const std::string& e : errors)
         if (!e.empty()) return fail(e);
-    proxyMeshes_.assign(scene_.objects.size(), Mesh{});
-    for (size_t i = 0; i < proxies.size(); ++i)
-        if (proxies[i]) proxyMeshes_[i] = proxies[i]->mesh;
-    Result<CollisionWorld> world = CollisionWorld::build(scene_, proxies);
+    set.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return set;
+}
+
+Status GallerySim::useProxies(ProxySet set) {
+    const Clock::time_point start = Clock::now();
+    std::vector<Mesh> meshes(scene_.objects.size());
+    for (size_t i = 0; i < set.proxies.size() && i < meshes.size(); ++i)
+        if (set.proxies[i]) meshes[i] = set.proxies[i]->mesh;
+    Result<CollisionWorld> world = CollisionWorld::build(scene_, set.proxies);
     if (!world) return fail(world.error());
     for (const std::string& warning : world->warnings())
         std::fprintf(stderr, "spatter-gallery: warning: %s\n", warning.c_str());
@@ -180,12 +195,13 @@ Status GallerySim::rebuildProxies(float tolerancePercent) {
     Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), decalSettings);
     if (!system) return fail(system.error());
     system_.emplace(std::move(system).value());
+    proxyMeshes_ = std::move(meshes);
     if (Status s = registerTypes(); !s) return s;
     for (const Rail& rail : rails_)
         system_->setTransform(rail.object, transform(rail.object));
     counters_ = {};
-    tolerancePercent_ = tolerancePercent;
-    proxySeconds_ = std::chrono::duration<double>(Clock::now() - start).count();
+    tolerancePercent_ = set.tolerancePercent;
+    proxySeconds_ = set.seconds + std::chrono::duration<double>(Clock::now() - start).count();
     return {};
 }
 

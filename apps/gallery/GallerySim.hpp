@@ -12,6 +12,7 @@
 #include "spatter/placement/DecalPersistence.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -39,6 +40,13 @@ struct ShotCounters {
     double placementSeconds = 0.0; // spent in spawn calls
 };
 
+// Proxies built at one tolerance, waiting to be used (GallerySim::buildProxies).
+struct ProxySet {
+    std::vector<std::optional<Proxy>> proxies; // per scene object; none for those that receive no decals
+    float tolerancePercent = 0.0f;
+    double seconds = 0.0;
+};
+
 class GallerySim {
 public:
     static Result<GallerySim> create(const GalleryOptions& options);
@@ -46,6 +54,12 @@ public:
     // Builds the proxies of every receiver at `tolerancePercent` of its bounding diagonal (cached on
     // disk), and a fresh decal system on them. Decals placed so far are dropped.
     Status rebuildProxies(float tolerancePercent);
+    // The proxies alone, object by object on several threads, saying each cold build on stderr. It
+    // reads only the scene and the options, so it may run on a thread of its own while the gallery
+    // plays on; `progress` (when given) follows the fraction of the receivers' triangles done.
+    Result<ProxySet> buildProxies(float tolerancePercent, std::atomic<float>* progress = nullptr) const;
+    // A fresh collision world and decal system on `set`; decals placed so far are dropped.
+    Status useProxies(ProxySet set);
 
     // Advances the clock: targets move along their rails, decals age.
     void advance(double dt);

@@ -8,9 +8,11 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <future>
 #include <iostream>
 
 namespace spatter::gallery {
@@ -59,7 +61,33 @@ struct Hud {
     double lastPlacementUs = 0.0;
     std::string lastResult;
     std::string status;
+    // A rebuild of the proxies on a thread of its own while the gallery plays on (declared in this
+    // order so that the future, which waits for the thread, goes before the progress it writes).
+    std::atomic<float> rebuildProgress{0.0f};
+    std::future<Result<ProxySet>> rebuild;
 };
+
+// Starts building the proxies at the HUD's tolerance on a thread of its own, unless a build runs.
+void startRebuild(Hud& hud, const GallerySim& sim) {
+    if (hud.rebuild.valid()) return;
+    hud.rebuildProgress = 0.0f;
+    const float tolerance = hud.tolerance;
+    hud.rebuild = std::async(std::launch::async, [&sim, &hud, tolerance] {
+        return sim.buildProxies(tolerance, &hud.rebuildProgress);
+    });
+}
+
+// Takes the rebuilt proxies once their thread is done: a fresh decal system, the renderer prepared
+// for it, and what the HUD and the console say.
+void finishRebuild(Hud& hud, GallerySim& sim, Renderer& renderer) {
+    if (!hud.rebuild.valid() || hud.rebuild.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+        return;
+    Result<ProxySet> set = hud.rebuild.get();
+    Status s = set ? sim.useProxies(std::move(set).value()) : Status(fail(set.error()));
+    if (s) s = prepareRenderer(renderer, sim);
+    hud.status = s ? "proxies rebuilt in " + std::to_string(sim.proxySeconds()) + " s" : s.error();
+    std::cout << "spatter-gallery: " << hud.status << std::endl;
+}
 
 const View kViews[] = {View::Final, View::Albedo, View::Normal, View::Depth, View::Ids, View::Coverage};
 
@@ -100,15 +128,15 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
     }
     ImGui::Checkbox("volumetric bullet holes", &hud.volumetricBullets);
     ImGui::SliderFloat("proxy tolerance %", &hud.tolerance, 0.0f, 5.0f, "%.2f");
-    if (ImGui::Button("rebuild proxies (clears decals)")) {
-        const Status s = sim.rebuildProxies(hud.tolerance);
-        hud.status = s ? "proxies rebuilt in " + std::to_string(sim.proxySeconds()) + " s" : s.error();
-        if (s) prepareRenderer(renderer, sim);
+    if (hud.rebuild.valid()) {
+        ImGui::ProgressBar(hud.rebuildProgress.load(), ImVec2(-1.0f, 0.0f), "building proxies");
+    } else if (ImGui::Button("rebuild proxies (clears decals)")) {
+        startRebuild(hud, sim);
     }
     if (!hud.status.empty()) ImGui::TextWrapped("%s", hud.status.c_str());
     ImGui::Separator();
-    ImGui::TextUnformatted(
-        "LMB bullet  RMB paint  F scorch  WASD/QE move  F5/F9 save/load  Tab cursor  Esc quit");
+    ImGui::TextUnformatted("LMB bullet  RMB paint  F scorch  WASD/QE move  F5/F9 save/load  R rebuild "
+                           "proxies  Tab cursor  Esc quit");
     ImGui::End();
 
     // Crosshair.
@@ -183,7 +211,8 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
     glfwSetInputMode(window, GLFW_STICKY_KEYS, GLFW_TRUE);
     double mx = 0.0, my = 0.0;
     glfwGetCursorPos(window, &mx, &my);
-    bool tabWasDown = false, scorchWasDown = false, saveWasDown = false, loadWasDown = false;
+    bool tabWasDown = false, scorchWasDown = false, saveWasDown = false, loadWasDown = false,
+         rebuildWasDown = false;
     const std::string quickFile =
         options.savePath.empty() ? options.outDir + "/quick.save" : options.savePath;
     Trigger bullet{0.1}, paint{0.25};
@@ -257,6 +286,9 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
         if (loadDown && !loadWasDown)
             std::cout << "spatter-gallery: " << (hud.status = quickLoad(sim.value(), quickFile)) << std::endl;
         loadWasDown = loadDown;
+        const bool rebuildDown = glfwGetKey(window, GLFW_KEY_R) == GLFW_PRESS;
+        if (rebuildDown && !rebuildWasDown) startRebuild(hud, sim.value());
+        rebuildWasDown = rebuildDown;
 
         if (fbw > 0 && fbh > 0) {
             if (fbw != renderer->settings().width || fbh != renderer->settings().height)
@@ -266,6 +298,7 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
             renderer->present(fbw, fbh);
         }
 
+        finishRebuild(hud, sim.value(), renderer.value());
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();

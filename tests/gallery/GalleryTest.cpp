@@ -117,6 +117,7 @@ TEST(Gallery, WindowedModeRendersAndQuitsOnEscape) {
     EXPECT_THAT(run.output, ::testing::ContainsRegex("decals placed in [1-9][0-9]* frames"));
     EXPECT_THAT(run.output, ::testing::HasSubstr("saved 0 decals to " + dir + "/quick.save"));
     EXPECT_THAT(run.output, ::testing::HasSubstr("loaded 0 decals (0 dropped)"));
+    EXPECT_THAT(run.output, ::testing::HasSubstr("proxies rebuilt in"));
 }
 
 TEST(Gallery, HeadlessSessionContinuesFromASave) {

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Starts the gallery in a window on a private Xvfb display, waits for its window, lets it render,
-# quick-saves (F5) and quick-loads (F9) the decals into CACHE_DIR/quick.save, sends Escape as a real X
-# key event, and waits for it to quit. Prints the gallery's output.
+# quick-saves (F5) and quick-loads (F9) the decals into CACHE_DIR/quick.save, rebuilds the proxies (R),
+# sends Escape as a real X key event, and waits for it to quit. Prints the gallery's output.
 # usage: windowed.sh GALLERY_EXE CACHE_DIR
 set -u
 exe=$1 cache=$2
@@ -31,6 +31,9 @@ xdotool key --window "$win" F5
 for _ in $(seq 50); do grep -q "saved .* decals" "$cache/out.txt" && break; sleep 0.1; done
 xdotool key --window "$win" F9
 for _ in $(seq 50); do grep -q "loaded .* decals" "$cache/out.txt" && break; sleep 0.1; done
+# R rebuilds the proxies on a thread of their own while the window keeps drawing.
+xdotool key --window "$win" r
+for _ in $(seq 600); do grep -q "proxies rebuilt" "$cache/out.txt" && break; sleep 0.1; done
 xdotool key --window "$win" Escape
 xdotool key Escape
 for _ in $(seq 100); do kill -0 $app 2>/dev/null || break; sleep 0.1; done
