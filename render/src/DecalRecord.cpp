@@ -25,15 +25,14 @@ uint32_t floatBits(float f) {
 // normal floats (a GPU flushes denormals to zero), and a centre that the inverse's translation,
 // up to |centre| / (smallest half extent), keeps finite.
 bool soundNumbers(const Decal& d) {
-    constexpr float kMinExtent = std::numeric_limits<float>::min();
     const glm::vec3 h(0.5f * d.size, d.halfDepth);
+    const float smallest = glm::min(h.x, glm::min(h.y, h.z));
     if (!finite(d.center) || !finite(h) || !std::isfinite(d.opacity) ||
-        !(glm::min(h.x, glm::min(h.y, h.z)) >= kMinExtent))
+        !(smallest >= std::numeric_limits<float>::min()))
         return false;
     const double reach =
         std::fabs(double(d.center.x)) + std::fabs(double(d.center.y)) + std::fabs(double(d.center.z));
-    return reach / double(glm::min(h.x, glm::min(h.y, h.z))) <
-           0.5 * double(std::numeric_limits<float>::max());
+    return reach / double(smallest) < 0.5 * double(std::numeric_limits<float>::max());
 }
 
 } // namespace
