@@ -1,6 +1,7 @@
 // spatter-place SCENE: casts rays at a scene through the decal system and prints one JSON record
 // per ray (JSON Lines), in input order.
 
+#include "spatter/core/DecalType.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/placement/DecalPersistence.hpp"
@@ -53,7 +54,9 @@ half_depth = h + 0.25 * max(w, h).
 
 Options:
   --seed N          seed of the decal IDs and rotations (default 1)
-  --size W[,H]      decal width and height in world units (default 0.1; H defaults to W)
+  --size W[,H]      decal width and height in world units (H defaults to W; default 2% of the
+                    scene's bounding diagonal, so that decals fit a model of centimetres and one
+                    of a hundred metres alike)
   --max-angle DEG   largest angle between the reversed ray and the surface normal, in (0, 90]
                     (default 80); steeper hits are rejected
   --proxy MODE      collision meshes: render (the render meshes as they are, h = 0; the
@@ -131,7 +134,8 @@ int main(int argc, char** argv) {
 
     std::string scenePath, raysPath = "-", outPath, savePath, proxyMode = "render", cacheDir;
     uint64_t seed = 1;
-    float width = 0.1f, height = 0.1f, maxAngle = 80.0f;
+    std::optional<glm::dvec2> decalSize; // default: decalSizeForScene
+    float maxAngle = 80.0f;
     glm::dvec3 translate(0.0);
     bool summary = false;
     for (int i = 1; i < argc; ++i) {
@@ -170,9 +174,7 @@ int main(int argc, char** argv) {
             if (parts.empty() || parts.size() > 2 || !parseDouble(parts[0], w) ||
                 (parts.size() == 2 && !parseDouble(parts[1], h)))
                 return usageError("--size needs W or W,H");
-            if (parts.size() == 1) h = w;
-            width = float(w);
-            height = float(h);
+            decalSize = glm::dvec2(w, parts.size() == 1 ? w : h);
         } else if (a == "--max-angle") {
             double d = 0.0;
             if (!value(v) || !parseDouble(v, d)) return usageError("--max-angle needs a number of degrees");
@@ -273,7 +275,8 @@ int main(int argc, char** argv) {
     }
     spatter::DecalType type;
     type.name = "spatter-place";
-    type.size = glm::vec2(width, height);
+    type.size = decalSize ? glm::vec2(*decalSize)
+                          : spatter::decalSizeForScene(glm::length(scene->worldBounds().extent()));
     type.maxAngleDeg = maxAngle;
     spatter::Result<uint16_t> typeIndex = system->registerType(type);
     if (!typeIndex) return usageError(typeIndex.error());

@@ -19,6 +19,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,7 +42,9 @@ Decals:
                   ("normal", "tangent", "bitangent"), "size", "half_depth", "max_angle_deg" and
                   "object_id" (the object's 8-bit decal ID). Other records are ignored.
   --rays FILE     one ray per line, "ox oy oz dx dy dz" ('#' starts a comment), placed here through
-                  the decal system on the render meshes, with --decal-size (default 0.3),
+                  the decal system on the render meshes, with --decal-size W[,H] in world
+                  units (default 2% of the scene's bounding diagonal, so that decals fit a
+                  model of centimetres and one of a hundred metres alike),
                   --max-angle (default 80) and --seed (default 1).
   --texture NAME  look of the decals: bullet_hole (default), blood, paint, scorch, or mixed (the
                   four in turn, decal by decal).
@@ -119,7 +122,8 @@ int main(int argc, char** argv) {
     int width = 960, height = 540;
     spatter::View view = spatter::View::Final;
     glm::dvec3 translate(0.0);
-    double decalW = 0.3, decalH = 0.3, maxAngle = 80.0;
+    std::optional<glm::dvec2> decalSize; // default: decalSizeForScene
+    double maxAngle = 80.0;
     uint64_t seed = 1;
     std::vector<std::pair<std::string, int>> textureSpace; // object name, texture size
     bool volumetric = false;
@@ -182,10 +186,11 @@ int main(int argc, char** argv) {
         } else if (a == "--decal-size") {
             const std::vector<std::string> p =
                 value() ? spatter::splitFields(v, ',') : std::vector<std::string>();
-            if (p.empty() || p.size() > 2 || !parseFinite(p[0], decalW) ||
-                (p.size() == 2 && !parseFinite(p[1], decalH)))
+            double w = 0.0, h = 0.0;
+            if (p.empty() || p.size() > 2 || !parseFinite(p[0], w) ||
+                (p.size() == 2 && !parseFinite(p[1], h)))
                 return usageError("--decal-size needs W or W,H");
-            if (p.size() == 1) decalH = decalW;
+            decalSize = glm::dvec2(w, p.size() == 1 ? w : h);
         } else if (a == "--max-angle") {
             if (!value() || !parseFinite(v, maxAngle))
                 return usageError("--max-angle needs a number of degrees");
@@ -222,7 +227,8 @@ int main(int argc, char** argv) {
 
     spatter::DecalType type;
     type.name = "spatter-render";
-    type.size = glm::vec2(float(decalW), float(decalH));
+    type.size = decalSize ? glm::vec2(*decalSize)
+                          : spatter::decalSizeForScene(glm::length(scene->worldBounds().extent()));
     type.maxAngleDeg = float(maxAngle);
     type.volumetric = volumetric;
 

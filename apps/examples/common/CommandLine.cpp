@@ -137,7 +137,8 @@ std::string usage(const std::string& program, const std::string& description,
   --decals FILE   spatter-place output (JSON Lines): every "placed" record becomes a decal on the
                   object it names
   --rays FILE     one ray per line, "ox oy oz dx dy dz" ('#' starts a comment), placed here through
-                  the decal system on the render meshes (decals of 0.3 within 80 degrees, seed 1)
+                  the decal system on the render meshes (decals of 2% of the scene's bounding
+                  diagonal within 80 degrees, seed 1)
   --camera "eye=x,y,z;target=x,y,z;up=x,y,z;fov=DEG"
                   perspective camera; up defaults to 0,1,0 and fov (vertical, degrees) to 60.
                   Default: looking at the centre of the scene's bounds from the front, above.
@@ -169,7 +170,7 @@ spatter::Result<Inputs> loadInputs(const Options& options) {
     in.projection = projectionFor(in.camera, in.scene, double(options.width) / double(options.height));
     spatter::DecalType type; // spatter-render's defaults
     type.name = "spatter-render";
-    type.size = glm::vec2(0.3f);
+    type.size = spatter::decalSizeForScene(glm::length(in.scene.worldBounds().extent()));
     type.maxAngleDeg = 80.0f;
     const int look = int(spatter::DecalTexture::BulletHole);
     spatter::Result<spatter::LoadedDecals> decals = spatter::LoadedDecals{};

@@ -45,4 +45,10 @@ struct DecalType {
     bool volumetric = false;
 };
 
+// The decal size the tools take when none is given: 2% of the scene's bounding diagonal, so that
+// decals fit a model of a few centimetres and a level of a hundred metres alike.
+inline glm::vec2 decalSizeForScene(double sceneDiagonal) {
+    return glm::vec2(float(0.02 * sceneDiagonal));
+}
+
 } // namespace spatter
