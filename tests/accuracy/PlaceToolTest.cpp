@@ -108,3 +108,27 @@ TEST(SpatterPlaceProxy, UsesTheBuildersBoundAndTheCacheMakesTheSecondRunBuildNot
 }
 
 } // namespace
+
+TEST(SpatterPlaceSize, DecalsWithoutASizeTakeTwoPercentOfTheScenesDiagonal) {
+    if (!test::kPlaceTool) GTEST_SKIP() << "spatter-place is not built (SPATTER_BUILD_APPS=OFF)";
+    const std::string dir = test::scratchDir("accuracy-place-size");
+    const std::string scene = dir + "/sphere.obj";
+    ASSERT_TRUE(writeBumpySphere(scene));
+    {
+        std::ofstream rays(dir + "/rays.txt");
+        rays << "0 0 10 0 0 -1\n";
+    }
+    Result<Scene> loaded = loadScene(scene);
+    ASSERT_TRUE(loaded) << loaded.error();
+    const double expected = 0.02 * glm::length(loaded->worldBounds().extent());
+    for (const auto& [extra, size] : {std::pair<std::string, double>{"", expected}, {"--size 0.25", 0.25}}) {
+        const test::PlaceToolRun run =
+            test::runPlaceTool("'" + scene + "' --rays '" + dir + "/rays.txt' " + extra, dir);
+        ASSERT_EQ(run.status, 0) << run.records;
+        const nlohmann::json rec =
+            nlohmann::json::parse(run.records.substr(0, run.records.find('\n')), nullptr, false);
+        ASSERT_TRUE(rec.is_object() && rec["status"] == "placed") << run.records;
+        EXPECT_NEAR(rec["size"][0].get<double>(), size, 1e-6 * size) << extra;
+        EXPECT_NEAR(rec["size"][1].get<double>(), size, 1e-6 * size) << extra;
+    }
+}
