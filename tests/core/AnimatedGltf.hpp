@@ -60,8 +60,9 @@ inline GltfBuilder animatedQuad() {
 
 // A strip of 3 x 2 vertices along +X skinned to joints "root" (node 1, at the origin) and "tip"
 // (node 2, child of root at x = 1). Set 0 holds unsigned-byte joints with normalised unsigned-byte
-// weights, set 1 unsigned-short joints with float weights; the weights of a vertex do not sum to 1
-// (the loader normalises them). "tip" is rotated about +Z by a LINEAR channel.
+// weights, set 1 unsigned-short joints with normalised unsigned-short weights, set 2 unsigned-byte
+// joints with float weights; the weights of vertices 3 and 4 do not sum to 1 (the loader normalises
+// them). "tip" is rotated about +Z by a LINEAR channel and "root" moved up by another.
 inline GltfBuilder skinnedStrip() {
     GltfBuilder g;
     const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0},
@@ -74,15 +75,26 @@ inline GltfBuilder skinnedStrip() {
                                            200, 0, 0, 0, 60,  180, 0, 0, 128, 0, 0, 0};
     const std::vector<uint16_t> joints1 = {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
                                            1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-    const std::vector<float> weights1 = {0,     0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
-                                         0.25f, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    const std::vector<uint16_t> weights1 = {0,     0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+                                            16384, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    const std::vector<uint8_t> joints2 = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+                                          0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0};
+    const std::vector<float> weights2 = {0, 0, 0, 0, 0,    0, 0, 0, 0, 0, 0, 0,
+                                         0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0, 0, 0};
     const int j0 = g.addAccessor(g.addView(joints0), kUnsignedByte, 6, "VEC4");
     const int w0 = g.addAccessor(g.addView(weights0), kUnsignedByte, 6, "VEC4");
     g.doc["accessors"][w0]["normalized"] = true;
     const int j1 = g.addAccessor(g.addView(joints1), kUnsignedShort, 6, "VEC4");
-    const int w1 = addFloats(g, weights1, "VEC4");
-    g.doc["meshes"][0]["primitives"][0]["attributes"].update(
-        {{"JOINTS_0", j0}, {"WEIGHTS_0", w0}, {"JOINTS_1", j1}, {"WEIGHTS_1", w1}});
+    const int w1 = g.addAccessor(g.addView(weights1), kUnsignedShort, 6, "VEC4");
+    g.doc["accessors"][w1]["normalized"] = true;
+    const int j2 = g.addAccessor(g.addView(joints2), kUnsignedByte, 6, "VEC4");
+    const int w2 = addFloats(g, weights2, "VEC4");
+    g.doc["meshes"][0]["primitives"][0]["attributes"].update({{"JOINTS_0", j0},
+                                                              {"WEIGHTS_0", w0},
+                                                              {"JOINTS_1", j1},
+                                                              {"WEIGHTS_1", w1},
+                                                              {"JOINTS_2", j2},
+                                                              {"WEIGHTS_2", w2}});
     // Inverse bind matrices: root at the origin, tip at x = 1.
     std::vector<float> ibm(32, 0.0f);
     for (int i = 0; i < 4; ++i)

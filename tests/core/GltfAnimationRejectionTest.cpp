@@ -201,7 +201,7 @@ TEST(GltfAnimationRejection, NodeWithAMissingSkin) {
 
 TEST(GltfAnimationRejection, SkinnedMeshWithoutJoints) {
     GltfBuilder g = skinnedStrip();
-    for (const char* name : {"JOINTS_0", "WEIGHTS_0", "JOINTS_1", "WEIGHTS_1"})
+    for (const char* name : {"JOINTS_0", "WEIGHTS_0", "JOINTS_1", "WEIGHTS_1", "JOINTS_2", "WEIGHTS_2"})
         g.doc["meshes"][0]["primitives"][0]["attributes"].erase(name);
     EXPECT_THAT(rejection(g), HasSubstr("node 0 (strip) has a skin, but its mesh has no JOINTS_0"));
 }
@@ -224,8 +224,8 @@ TEST(GltfAnimationRejection, NegativeWeight) {
     GltfBuilder g = skinnedStrip();
     std::vector<float> weights(24, 0.0f);
     weights[0] = -1.0f;
-    replaceFloats(g, g.doc["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_1"], weights, "VEC4");
-    EXPECT_THAT(rejection(g), HasSubstr("(WEIGHTS_1) element 0 has a negative or non-finite weight"));
+    replaceFloats(g, g.doc["meshes"][0]["primitives"][0]["attributes"]["WEIGHTS_2"], weights, "VEC4");
+    EXPECT_THAT(rejection(g), HasSubstr("(WEIGHTS_2) element 0 has a negative or non-finite weight"));
 }
 
 TEST(GltfAnimationRejection, SkinnedVertexWithoutWeight) {

@@ -189,12 +189,12 @@ TEST(GltfAnimation, SkinnedPositionsMatchTheReferenceWithEveryJointAndWeightType
     ASSERT_EQ(scene.objects.size(), 1u);
     const SceneObject& strip = scene.objects[0];
     EXPECT_EQ(strip.skin, 0);
-    EXPECT_EQ(strip.skinWeights.influences, 8); // two sets of four
+    EXPECT_EQ(strip.skinWeights.influences, 12); // three sets of four
     EXPECT_TRUE(strip.dynamic);
     for (size_t v = 0; v < strip.mesh.vertexCount(); ++v) {
         double sum = 0.0;
-        for (size_t k = 0; k < 8; ++k)
-            sum += strip.skinWeights.weights[v * 8 + k];
+        for (size_t k = 0; k < 12; ++k)
+            sum += strip.skinWeights.weights[v * 12 + k];
         EXPECT_NEAR(sum, 1.0, 1e-15) << v;
     }
     const GltfReference reference(path);
