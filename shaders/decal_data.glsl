@@ -19,7 +19,8 @@ struct DecalRecord {
 // A decal type as the shaders use it.
 struct DecalTypeRecord {
     vec4 tint;   // rgb; a: alpha
-    uvec4 info;  // x: texture layer; y: SPATTER_DECAL_* flags; z: 1 when decals of the type can be drawn
+    uvec4 info;  // x: texture layer; y: SPATTER_DECAL_* flags; z: 1 when decals of the type can be drawn,
+                 // 2 when the host draws them itself (DecalProjector::setHostDrawn), 0 otherwise
     vec4 params; // x: cosine of the largest accepted angle; y: roughness written
 };
 

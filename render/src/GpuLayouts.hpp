@@ -77,7 +77,8 @@ static_assert(sizeof(DecalRecordGpu) == 48, "DecalRecordGpu must match DecalReco
 // std430, binding kDecalTypeBuffer: one per decal type (DecalTypeRecord in decal_data.glsl).
 struct alignas(16) DecalTypeGpu {
     glm::vec4 tint;   // rgb; a: alpha
-    glm::uvec4 info;  // x: texture layer; y: DecalFlag bits; z: 1 when decals of the type can be drawn
+    glm::uvec4 info;  // x: texture layer; y: DecalFlag bits; z: 1 when decals of the type can be drawn,
+                      // 2 when the host draws them itself (DecalProjector::setHostDrawn), 0 otherwise
     glm::vec4 params; // x: cosine of the largest accepted angle; y: roughness written
 };
 static_assert(sizeof(DecalTypeGpu) == 48, "DecalTypeGpu must match DecalTypeRecord (std430)");
