@@ -339,6 +339,7 @@ Result<AnimationChannel> convertChannel(const tinygltf::Model& model, const tiny
                                         size_t index, const std::vector<SceneNode>& nodes) {
     const tinygltf::AnimationChannel& source = anim.channels[index];
     AnimationChannel ch;
+    if (source.target_path.empty()) return fail("has no target (or a target without a path)");
     if (source.target_node == -1) return ch;
     if (!validIndex(source.target_node, nodes.size()))
         return fail("targets node " + std::to_string(source.target_node) + ", which does not exist");

@@ -17,6 +17,7 @@
 
 #include "GltfAccessor.hpp"
 #include "GltfAnimation.hpp"
+#include "GltfRequired.hpp"
 
 #include <tiny_gltf.h>
 
@@ -525,7 +526,14 @@ Status parseModel(const std::string& path, tinygltf::Model& model) {
     } catch (const std::exception& e) {
         return fail(std::string("not valid glTF: ") + e.what());
     }
-    if (!parsed) return fail("not valid glTF: " + tidyParserMessage(err.empty() ? warn : err));
+    if (!parsed) {
+        std::string why = tidyParserMessage(err.empty() ? warn : err);
+        if (why.empty()) // tinygltf refuses some documents that lack a required property in silence
+            why = binary ? missingRequiredProperty(reinterpret_cast<const char*>(bytes->data()) + 20,
+                                                   le32(bytes.value(), 12))
+                         : missingRequiredProperty(reinterpret_cast<const char*>(bytes->data()), length);
+        return fail("not valid glTF: " + (why.empty() ? std::string("the parser gave no reason") : why));
+    }
     return {};
 }
 

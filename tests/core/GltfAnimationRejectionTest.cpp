@@ -167,6 +167,31 @@ TEST(GltfAnimationRejection, SkinWithoutJoints) {
     EXPECT_THAT(rejection(g), HasSubstr("skin 0 has no joints"));
 }
 
+TEST(GltfAnimationRejection, SkinWithoutTheJointsPropertyIsNamed) {
+    GltfBuilder g = skinnedStrip();
+    g.doc["skins"][0].erase("joints");
+    EXPECT_THAT(rejection(g), HasSubstr("not valid glTF: skin 0 lacks the required property \"joints\""));
+    const std::string glb = writeGlb(g, scratchDir("animbad-glb-joints"), "bad");
+    Result<Scene> scene = loadGltf(glb);
+    ASSERT_FALSE(scene.ok());
+    EXPECT_THAT(scene.error(), HasSubstr("skin 0 lacks the required property \"joints\""));
+}
+
+TEST(GltfAnimationRejection, ChannelWithoutATarget) {
+    GltfBuilder g = animatedQuad();
+    channel0(g).erase("target");
+    EXPECT_THAT(rejection(g), HasSubstr("animation 0 (move) channel 0 has no target"));
+}
+
+TEST(GltfAnimationRejection, ChannelTargetingNoNodeIsLeftToExtensions) {
+    GltfBuilder g = animatedQuad();
+    channel0(g)["target"] = {{"path", "pointer"}};
+    Result<Scene> scene = loadGltf(g.writeGltf(scratchDir("anim-pointer"), "pointer"));
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    EXPECT_TRUE(scene->animation.animations[0].channels.empty());
+    EXPECT_FALSE(scene->objects[0].dynamic);
+}
+
 TEST(GltfAnimationRejection, SkinJointThatIsNotANode) {
     GltfBuilder g = skinnedStrip();
     g.doc["skins"][0]["joints"] = {1, 7};
