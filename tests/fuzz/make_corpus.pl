@@ -151,6 +151,9 @@ put('gltf', 'skinned-morphed-animated.gltf', $anim);
 # read from the triangle's index data).
 (my $sparse = $anim) =~ s/\{"bufferView":0,"byteOffset":104,("componentType":5126,"count":3,"type":"VEC3")\}/{$1,"sparse":{"count":1,"indices":{"bufferView":0,"byteOffset":36,"componentType":5123},"values":{"bufferView":0,"byteOffset":104}}}/;
 put('gltf', 'skinned-sparse-morph.gltf', $sparse);
+# A skin without its required "joints", which the parser refuses without a reason of its own.
+(my $jointless = $anim) =~ s/"joints":\[1,2\],//;
+put('gltf', 'skin-without-joints.gltf', $jointless);
 
 # --- ray lines ----------------------------------------------------------------------------------
 put('ray_parser', 'rays.txt',
