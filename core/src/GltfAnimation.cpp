@@ -187,33 +187,6 @@ Result<std::vector<double>> restWeights(const tinygltf::Model& model, const tiny
     return weights;
 }
 
-Status readTrs(const tinygltf::Node& node, SceneNode& out) {
-    if (!node.matrix.empty()) {
-        if (node.matrix.size() != 16)
-            return fail("has a matrix of " + num(node.matrix.size()) + " numbers, not 16");
-        out.hasMatrix = true;
-        for (int i = 0; i < 16; ++i)
-            out.matrix[i / 4][i % 4] = node.matrix[size_t(i)];
-        return {};
-    }
-    if (!node.translation.empty() && node.translation.size() != 3)
-        return fail("has a translation of " + num(node.translation.size()) + " numbers, not 3");
-    if (!node.rotation.empty() && node.rotation.size() != 4)
-        return fail("has a rotation of " + num(node.rotation.size()) + " numbers, not 4");
-    if (!node.scale.empty() && node.scale.size() != 3)
-        return fail("has a scale of " + num(node.scale.size()) + " numbers, not 3");
-    if (!node.translation.empty())
-        out.translation = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
-    if (!node.rotation.empty()) {
-        const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
-        const double len = glm::length(q);
-        if (!(len > 1e-12)) return fail("has a zero rotation quaternion");
-        out.rotation = q / len;
-    }
-    if (!node.scale.empty()) out.scale = glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
-    return {};
-}
-
 Result<std::vector<SceneNode>> convertNodes(const tinygltf::Model& model) {
     std::vector<SceneNode> nodes(model.nodes.size());
     for (size_t i = 0; i < model.nodes.size(); ++i) {
@@ -468,6 +441,33 @@ bool hasAnimationData(const tinygltf::Model& model) {
 }
 
 } // namespace
+
+Status readTrs(const tinygltf::Node& node, SceneNode& out) {
+    if (!node.matrix.empty()) {
+        if (node.matrix.size() != 16)
+            return fail("has a matrix of " + num(node.matrix.size()) + " numbers, not 16");
+        out.hasMatrix = true;
+        for (int i = 0; i < 16; ++i)
+            out.matrix[i / 4][i % 4] = node.matrix[size_t(i)];
+        return {};
+    }
+    if (!node.translation.empty() && node.translation.size() != 3)
+        return fail("has a translation of " + num(node.translation.size()) + " numbers, not 3");
+    if (!node.rotation.empty() && node.rotation.size() != 4)
+        return fail("has a rotation of " + num(node.rotation.size()) + " numbers, not 4");
+    if (!node.scale.empty() && node.scale.size() != 3)
+        return fail("has a scale of " + num(node.scale.size()) + " numbers, not 3");
+    if (!node.translation.empty())
+        out.translation = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
+    if (!node.rotation.empty()) {
+        const glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+        const double len = glm::length(q);
+        if (!(len > 1e-12)) return fail("has a zero rotation quaternion");
+        out.rotation = q / len;
+    }
+    if (!node.scale.empty()) out.scale = glm::dvec3(node.scale[0], node.scale[1], node.scale[2]);
+    return {};
+}
 
 Status appendDeformation(const tinygltf::Model& model, const tinygltf::Primitive& prim, size_t vertexBase,
                          size_t vertexCount, MeshDeformation& out) {

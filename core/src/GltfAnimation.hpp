@@ -20,6 +20,11 @@ struct MeshDeformation {
 Status appendDeformation(const tinygltf::Model& model, const tinygltf::Primitive& prim, size_t vertexBase,
                          size_t vertexCount, MeshDeformation& out);
 
+// The local transform of `node` in `out`: its matrix (hasMatrix), or its translation, rotation
+// (normalised) and scale. The error says which property has the wrong number of components, or that
+// the rotation is zero.
+Status readTrs(const tinygltf::Node& node, SceneNode& out);
+
 // Pads every array of `out` to `vertexCount` vertices once the whole mesh was read.
 void finishDeformation(size_t vertexCount, MeshDeformation& out);
 

@@ -257,31 +257,11 @@ Result<Mesh> convertMesh(const tinygltf::Model& model, size_t index, MeshDeforma
 
 Result<glm::dmat4> localTransform(const tinygltf::Node& node) {
     // JSON numbers are finite; a composed transform that overflows is caught by validateScene.
-    if (!node.matrix.empty()) {
-        if (node.matrix.size() != 16)
-            return fail("has a matrix of " + num(node.matrix.size()) + " numbers, not 16");
-        return glm::make_mat4(node.matrix.data());
-    }
-    if (!node.translation.empty() && node.translation.size() != 3)
-        return fail("has a translation of " + num(node.translation.size()) + " numbers, not 3");
-    if (!node.rotation.empty() && node.rotation.size() != 4)
-        return fail("has a rotation of " + num(node.rotation.size()) + " numbers, not 4");
-    if (!node.scale.empty() && node.scale.size() != 3)
-        return fail("has a scale of " + num(node.scale.size()) + " numbers, not 3");
-    glm::dmat4 m(1.0);
-    if (!node.translation.empty()) m = glm::translate(m, glm::make_vec3(node.translation.data()));
-    if (!node.rotation.empty()) {
-        glm::dquat q;
-        q.x = node.rotation[0];
-        q.y = node.rotation[1];
-        q.z = node.rotation[2];
-        q.w = node.rotation[3];
-        const double len = glm::length(q);
-        if (!(len > 1e-12)) return fail("has a zero rotation quaternion");
-        m *= glm::mat4_cast(q / len);
-    }
-    if (!node.scale.empty()) m = glm::scale(m, glm::make_vec3(node.scale.data()));
-    return m;
+    SceneNode trs;
+    if (Status s = gltf::readTrs(node, trs); !s) return fail(s.error());
+    if (trs.hasMatrix) return trs.matrix;
+    return glm::scale(glm::translate(glm::dmat4(1.0), trs.translation) * glm::mat4_cast(trs.rotation),
+                      trs.scale);
 }
 
 // The parent of every node (-1 for roots), after checking that the children lists form a forest:
