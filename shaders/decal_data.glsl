@@ -12,8 +12,8 @@ struct DecalRecord {
                       // cannot be drawn
     uvec2 frame;      // the packed frame (spatter/core/PackedFrame.hpp): x its low 32 bits, y its high ones
     vec2 halfSize;    // half the width and height
-    uvec4 info;       // x: object index; y: type index (bits 0-15), object decal ID (16-23), SPATTER_DECAL_MIRRORED
-                      // when the frame is left-handed (24-31); z: opacity (float bits); w: 32-bit decal ID
+    uvec4 info;       // x: object index; y: type index (bits 0-15), object decal ID (16-23); z: opacity
+                      // (float bits); w: 32-bit decal ID. A left-handed frame: bit 62 of the packed frame
 };
 
 // A decal type as the shaders use it.
@@ -86,7 +86,8 @@ DecalData unpackDecal(DecalRecord r) {
     DecalTypeRecord t = decalTypes[decalTypeIndex(r)];
     DecalData d;
     mat3 frame = unpackFrame(r.frame); // orthonormal: its inverse is its transpose
-    if ((r.info.y & (SPATTER_DECAL_MIRRORED << 24)) != 0u) frame[1] = -frame[1];
+    bool mirrored = (r.frame.y & (1u << 30)) != 0u; // bit 62 of the packed frame
+    if (mirrored) frame[1] = -frame[1];
     vec3 center = r.centerDepth.xyz;
     vec3 h = vec3(r.halfSize, r.centerDepth.w);
     for (int k = 0; k < 3; ++k) {
@@ -98,7 +99,7 @@ DecalData unpackDecal(DecalRecord r) {
     d.bitangent = vec4(frame[1], h.y);
     d.normal = vec4(frame[2], h.z);
     d.tint = vec4(t.tint.rgb, t.tint.a * uintBitsToFloat(r.info.z));
-    d.info = uvec4(r.info.x, (r.info.y >> 16) & 0xffu, t.info.x, t.info.y | (r.info.y >> 24));
+    d.info = uvec4(r.info.x, (r.info.y >> 16) & 0xffu, t.info.x, t.info.y | (mirrored ? SPATTER_DECAL_MIRRORED : 0u));
     d.params = t.params;
     return d;
 }

@@ -39,9 +39,8 @@ bool soundNumbers(const Decal& d) {
 
 bool buildDecalRecord(const Decal& d, DecalRecordGpu& out) {
     out = DecalRecordGpu{};
-    const uint32_t mirrored = d.mirrored() ? kDecalMirrored : 0u;
     out.info =
-        glm::uvec4(d.object, uint32_t(d.type) | uint32_t(d.objectId) << 16 | mirrored << 24,
+        glm::uvec4(d.object, uint32_t(d.type) | uint32_t(d.objectId) << 16,
                    floatBits(std::isfinite(d.opacity) ? std::clamp(d.opacity, 0.0f, 1.0f) : 0.0f), d.id);
     if (!soundNumbers(d) || !hasOrientation(d.packedFrame)) return false;
     out.centerDepth = glm::vec4(d.center, d.halfDepth);
@@ -74,7 +73,7 @@ DecalTypeGpu buildDecalType(const DecalType& type, float wrapMaxAngleDeg, int la
 glm::dmat4 recordBoxToObject(const DecalRecordGpu& r) {
     const glm::dmat3 m = glm::mat3_cast(unpackOrientation(uint64_t(r.frame.y) << 32 | r.frame.x));
     const glm::dvec3 h(r.halfSize.x, r.halfSize.y, r.centerDepth.w);
-    const double flip = packedMirrored(uint64_t(r.frame.y) << 32) ? -1.0 : 1.0;
+    const double flip = recordFlags(r) & kDecalMirrored ? -1.0 : 1.0;
     return glm::dmat4(glm::dvec4(m[0] * h.x, 0.0), glm::dvec4(m[1] * (flip * h.y), 0.0),
                       glm::dvec4(m[2] * h.z, 0.0), glm::dvec4(glm::dvec3(glm::vec3(r.centerDepth)), 1.0));
 }

@@ -28,8 +28,9 @@ glm::dmat4 recordBoxToObject(const DecalRecordGpu& r);
 inline uint16_t recordType(const DecalRecordGpu& r) {
     return uint16_t(r.info.y & 0xffffu);
 }
+// The record's own DecalFlag bits: kDecalMirrored when its packed frame is mirrored.
 inline uint32_t recordFlags(const DecalRecordGpu& r) {
-    return r.info.y >> 24;
+    return packedMirrored(uint64_t(r.frame.y) << 32) ? kDecalMirrored : 0u;
 }
 
 } // namespace spatter::render_detail

@@ -17,7 +17,7 @@ enum Binding : uint32_t {
     kDecalTypeBuffer = 8,
 };
 
-// Decal flags (DecalTypeGpu::info.y; kDecalMirrored in DecalRecordGpu::info.y >> 24), as SPATTER_DECAL_* in
+// Decal flags (DecalTypeGpu::info.y; kDecalMirrored from DecalRecordGpu::frame), as SPATTER_DECAL_* in
 // shaders/decal_flags.glsl.
 enum DecalFlag : uint32_t {
     kDecalWrap = 1u,
@@ -69,8 +69,8 @@ struct alignas(16) DecalRecordGpu {
     glm::vec4 centerDepth; // xyz: the box's centre in object space; w: its half depth (0: not drawable)
     glm::uvec2 frame;      // Decal::packedFrame (PackedFrame.hpp): x its low 32 bits, y its high ones
     glm::vec2 halfSize;    // half the width and height
-    glm::uvec4 info;       // x: object index; y: type (bits 0-15), object decal ID (16-23),
-                           // kDecalMirrored << 24; z: opacity (float bits); w: decal ID
+    glm::uvec4 info;       // x: object index; y: type (bits 0-15), object decal ID (16-23); z: opacity
+                           // (float bits); w: decal ID. Mirrored: bit 62 of the frame
 };
 static_assert(sizeof(DecalRecordGpu) == 48, "DecalRecordGpu must match DecalRecord (std430)");
 

@@ -515,14 +515,14 @@ TEST(DecalPass, SkipsInvalidDecalsWithoutCrashing) {
     r->setDecalTypes({type(), badTexture});
     const Decal good = decal(0, {0.0f, 0.1f, 0.0f}, {0, 1, 0}, {1, 0, 0}, {1, 1}, 0.2f);
     std::vector<Decal> decals(9, good);
-    decals[1].object = 7;                 // no such object
-    decals[2].type = 5;                   // no such type
-    decals[3].type = 1;                   // its texture layer does not exist
-    decals[4].center.x = NAN;             // not finite
-    decals[5].size = {0.0f, 1.0f};        // empty
-    decals[6].halfDepth = -1.0f;          // negative depth
+    decals[1].object = 7;                   // no such object
+    decals[2].type = 5;                     // no such type
+    decals[3].type = 1;                     // its texture layer does not exist
+    decals[4].center.x = NAN;               // not finite
+    decals[5].size = {0.0f, 1.0f};          // empty
+    decals[6].halfDepth = -1.0f;            // negative depth
     decals[7].packedFrame = kNoOrientation; // what setFrame makes of a degenerate frame
-    decals[8].opacity = INFINITY;         // not finite
+    decals[8].opacity = INFINITY;           // not finite
     r->setDecals(decals);
     FrameStats st;
     const Image im =
@@ -698,4 +698,37 @@ TEST(DecalPass, PngImagesBecomeDecalTextureLayers) {
     EXPECT_NEAR(centre[0], 20, 3);
     EXPECT_NEAR(centre[1], 220, 3);
     EXPECT_NEAR(centre[2], 40, 3);
+}
+
+TEST(DecalPass, MirroredFrameDrawsTheTextureMirrored) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    Image halves; // rows 0-19 red, rows 20-39 blue: the texture's v axis runs along the bitangent
+    halves.width = halves.height = 40;
+    halves.name = "halves";
+    for (int i = 0; i < 40 * 40; ++i)
+        halves.rgba.insert(halves.rgba.end(), i < 20 * 40 ? std::initializer_list<uint8_t>{230, 20, 20, 255}
+                                                          : std::initializer_list<uint8_t>{20, 20, 230, 255});
+    Result<int> layer = r->addDecalTexture(halves);
+    ASSERT_TRUE(layer.ok()) << layer.error();
+    ASSERT_TRUE(r->setScene(wallScene()).ok());
+    DecalType t = type();
+    t.texture = layer.value();
+    t.normalMap = false;
+    t.depthFade = DepthFade::None;
+    r->setDecalTypes({t});
+    const Camera cam = test::lookAt({0.0, 1.5, 2.0}, {0.0, 1.5, 0.0});
+    const size_t above = size_t(kH / 2 - kH / 8) * kW + kW / 2, below = size_t(kH / 2 + kH / 8) * kW + kW / 2;
+    Decal d = decal(0, {0.0f, 0.0f, 0.1f}, {0, 0, 1}, {1, 0, 0}, {1.0f, 1.0f}, 0.2f);
+    r->setDecals({d});
+    const Image plain = test::renderView(r.value(), cam, View::Albedo);
+    ASSERT_TRUE(d.setFrame({{1, 0, 0}, {0, -1, 0}, {0, 0, 1}})); // left-handed: the bitangent turned round
+    ASSERT_TRUE(d.mirrored());
+    r->setDecals({d});
+    const Image mirrored = test::renderView(r.value(), cam, View::Albedo);
+    EXPECT_GT(px(plain, above)[0], 150) << "red above";
+    EXPECT_GT(px(plain, below)[2], 150) << "blue below";
+    EXPECT_GT(px(mirrored, above)[2], 150) << "blue above";
+    EXPECT_GT(px(mirrored, below)[0], 150) << "red below";
 }
