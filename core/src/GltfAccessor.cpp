@@ -76,9 +76,10 @@ Result<const unsigned char*> sparseRange(const tinygltf::Model& model, int view,
     return model.buffers[size_t(v.buffer)].data.data() + v.byteOffset + size_t(offset);
 }
 
-// Applies the sparse part of accessor `a` to `out` (one element per accessor element).
+// Copies the sparse values of accessor `a` (elements of `elementSize` bytes) over the elements of
+// `out` (tightly packed, one per accessor element) that its indices name.
 Status applySparse(const tinygltf::Model& model, const tinygltf::Accessor& a, const std::string& what,
-                   std::vector<glm::vec3>& out) {
+                   size_t elementSize, unsigned char* out) {
     const auto& sparse = a.sparse;
     if (sparse.count < 1 || size_t(sparse.count) > a.count)
         return fail(what + " has a sparse count of " + std::to_string(sparse.count) + " for " + num(a.count) +
@@ -91,29 +92,69 @@ Status applySparse(const tinygltf::Model& model, const tinygltf::Accessor& a, co
         sparseRange(model, sparse.indices.bufferView, sparse.indices.byteOffset, n, componentSize(indexType),
                     what + ": its sparse indices");
     if (!indices) return fail(indices.error());
-    const size_t elementSize = componentSize(a.componentType) * 3;
     Result<const unsigned char*> values =
         sparseRange(model, sparse.values.bufferView, sparse.values.byteOffset, n, elementSize,
                     what + ": its sparse values");
     if (!values) return fail(values.error());
-    AccessorView iv{indices.value(), n, componentSize(indexType), indexType, false, true};
-    AccessorView vv{values.value(), n, elementSize, a.componentType, a.normalized, true};
+    AccessorView iv;
+    iv.data = indices.value();
+    iv.count = n;
+    iv.stride = componentSize(indexType);
+    iv.componentType = indexType;
     for (size_t i = 0; i < n; ++i) {
         const uint32_t target = iv.index(i);
         if (target >= a.count || (i > 0 && target <= iv.index(i - 1)))
             return fail(what + " has sparse index " + num(target) + " (entry " + num(i) +
                         ") that is past the elements or does not increase");
-        out[target] = vv.vec<3>(i);
+        std::memcpy(out + size_t(target) * elementSize, values.value() + i * elementSize, elementSize);
     }
     return {};
+}
+
+// The view of an accessor without a buffer view (zeros) or with a sparse part, copied and packed.
+Result<AccessorView> viewCopied(const tinygltf::Model& model, int index, const char* role, int type,
+                                unsigned allowedComponentTypes) {
+    Result<const tinygltf::Accessor*> checked =
+        checkedAccessor(model, index, role, type, allowedComponentTypes);
+    if (!checked) return fail(checked.error());
+    const tinygltf::Accessor& a = *checked.value();
+    const std::string what = accessorName(index, role);
+    const size_t elementSize = componentSize(a.componentType) * size_t(componentCount(type));
+    if (a.bufferView < 0 && a.count > kMaxBufferlessElements)
+        return fail(what + " has " + num(a.count) +
+                    " elements without a buffer view, more than the limit of " + num(kMaxBufferlessElements));
+    auto bytes = std::make_shared<std::vector<unsigned char>>();
+    if (a.bufferView >= 0) {
+        Result<AccessorView> dense = viewDense(model, index, role, type, allowedComponentTypes);
+        if (!dense) return fail(dense.error());
+        bytes->resize(a.count * elementSize); // the dense range was checked: no overflow
+        for (size_t i = 0; i < a.count; ++i)
+            std::memcpy(bytes->data() + i * elementSize, dense->data + i * dense->stride, elementSize);
+    } else {
+        bytes->assign(a.count * elementSize, 0);
+    }
+    if (a.sparse.isSparse)
+        if (Status s = applySparse(model, a, what, elementSize, bytes->data()); !s) return fail(s.error());
+    AccessorView v;
+    v.present = true;
+    v.count = a.count;
+    v.stride = elementSize;
+    v.componentType = a.componentType;
+    v.normalized = a.normalized;
+    v.data = bytes->data();
+    v.owned = std::move(bytes);
+    return v;
 }
 
 } // namespace
 
 Result<AccessorView> viewAccessor(const tinygltf::Model& model, int index, const char* role, int type,
                                   unsigned allowedComponentTypes) {
-    if (validIndex(index, model.accessors.size()) && model.accessors[size_t(index)].sparse.isSparse)
-        return fail(accessorName(index, role) + " is sparse, which is not supported");
+    if (validIndex(index, model.accessors.size())) {
+        const tinygltf::Accessor& a = model.accessors[size_t(index)];
+        if (a.sparse.isSparse || a.bufferView < 0)
+            return viewCopied(model, index, role, type, allowedComponentTypes);
+    }
     return viewDense(model, index, role, type, allowedComponentTypes);
 }
 
@@ -122,22 +163,17 @@ Result<std::vector<glm::vec3>> readVec3(const tinygltf::Model& model, int index,
     Result<const tinygltf::Accessor*> checked =
         checkedAccessor(model, index, role, TINYGLTF_TYPE_VEC3, allowedComponentTypes);
     if (!checked) return fail(checked.error());
-    const tinygltf::Accessor& a = *checked.value();
     const std::string what = accessorName(index, role);
-    if (a.count != count)
-        return fail(what + " has " + num(a.count) + " elements, the primitive has " + num(count) +
-                    " vertices");
-    std::vector<glm::vec3> out(count, glm::vec3(0.0f));
-    if (a.bufferView >= 0 || !a.sparse.isSparse) {
-        Result<AccessorView> dense = viewDense(model, index, role, TINYGLTF_TYPE_VEC3, allowedComponentTypes);
-        if (!dense) return fail(dense.error());
-        for (size_t i = 0; i < count; ++i)
-            out[i] = dense->vec<3>(i);
-    }
-    if (a.sparse.isSparse)
-        if (Status s = applySparse(model, a, what, out); !s) return fail(s.error());
-    for (size_t i = 0; i < count; ++i)
+    if (checked.value()->count != count)
+        return fail(what + " has " + num(checked.value()->count) + " elements, the primitive has " +
+                    num(count) + " vertices");
+    Result<AccessorView> view = viewAccessor(model, index, role, TINYGLTF_TYPE_VEC3, allowedComponentTypes);
+    if (!view) return fail(view.error());
+    std::vector<glm::vec3> out(count);
+    for (size_t i = 0; i < count; ++i) {
+        out[i] = view->vec<3>(i);
         if (!finite(out[i])) return fail(what + " element " + num(i) + " is not finite (NaN or Inf)");
+    }
     return out;
 }
 

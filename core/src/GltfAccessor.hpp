@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -126,8 +127,13 @@ inline std::string typeName(int type) {
 
 // --- accessors ----------------------------------------------------------------------------------
 
+// Upper bound on the elements of an accessor without a buffer view: its zeros cost memory that the
+// file does not pay for.
+constexpr size_t kMaxBufferlessElements = size_t(1) << 22;
+
 // The elements of one accessor, after its byte range was checked against its buffer view and buffer:
-// every read stays inside the buffer.
+// every read stays inside the buffer. A sparse accessor, or one without a buffer view, is copied into
+// `owned` first (its elements tightly packed), and `data` points there.
 struct AccessorView {
     const unsigned char* data = nullptr; // element 0
     size_t count = 0;
@@ -135,6 +141,7 @@ struct AccessorView {
     int componentType = 0;
     bool normalized = false;
     bool present = false; // false for an attribute the primitive does not have
+    std::shared_ptr<const std::vector<unsigned char>> owned; // the elements when copied, else null
 
     // Component `c` of element `i` as a float; normalized integers map to [0, 1] or [-1, 1].
     float component(size_t i, int c) const {
@@ -185,8 +192,10 @@ struct AccessorView {
 };
 
 // Checks accessor `index` for use as `role` (type and allowed component types) and that every
-// element it reads lies inside its buffer view. Buffer views must have been checked against their
-// buffers. The error names the accessor and the role.
+// element it reads lies inside its buffer view. An accessor without a buffer view reads as zeros (at
+// most kMaxBufferlessElements of them); a sparse accessor's values replace the elements its indices
+// name (strictly increasing, inside the accessor). Buffer views must have been checked against their
+// buffers. The error names the accessor, the role and the problem.
 Result<AccessorView> viewAccessor(const tinygltf::Model& model, int index, const char* role, int type,
                                   unsigned allowedComponentTypes);
 

@@ -403,6 +403,7 @@ Status checkDeformationSize(const tinygltf::Model& model, const std::vector<Mesh
                             const Scene& scene) {
     size_t total = 0;
     for (const SceneObject& o : scene.objects) {
+        if (o.node == -1) continue; // an instance (EXT_mesh_gpu_instancing): not animated
         const tinygltf::Node& node = model.nodes[size_t(o.node)];
         total += deformationElements(node, deformations[size_t(node.mesh)]);
         if (total > kMaxDeformationElements)
@@ -511,7 +512,9 @@ Status addAnimation(const tinygltf::Model& model, const std::vector<MeshDeformat
     const std::vector<bool> moving = movingNodes(a);
     for (SceneObject& o : scene.objects)
         if (Status s =
-                bindObject(model, deformations[size_t(model.nodes[size_t(o.node)].mesh)], moving, a, o);
+                o.node == -1
+                    ? Status{}
+                    : bindObject(model, deformations[size_t(model.nodes[size_t(o.node)].mesh)], moving, a, o);
             !s)
             return fail(named("node", size_t(o.node), model.nodes[size_t(o.node)].name) + " " + s.error());
     return {};

@@ -31,8 +31,9 @@ void finishDeformation(size_t vertexCount, MeshDeformation& out);
 // Fills `scene.animation` (nodes, skins, animations) when the file has animations, skins or morph
 // targets, binds every object to its node, skin and its mesh's deformation (`deformations`, one per
 // glTF mesh), and makes every object that an animation moves or deforms dynamic. Objects carry the
-// glTF index of their node in `node` on entry. Without animation data every object's node becomes
-// -1. The error names the glTF part and the problem, or the limit on the deforming data of a scene.
+// glTF index of their node in `node` on entry, or -1 for an object that stays as loaded (an instance
+// of EXT_mesh_gpu_instancing). Without animation data every object's node becomes -1. The error names the
+// glTF part and the problem, or the limit on the deforming data of a scene.
 Status addAnimation(const tinygltf::Model& model, const std::vector<MeshDeformation>& deformations,
                     Scene& scene);
 

@@ -17,7 +17,13 @@
 
 #include "GltfAccessor.hpp"
 #include "GltfAnimation.hpp"
+#include "GltfDraco.hpp"
+#include "GltfExtension.hpp"
+#include "GltfInstancing.hpp"
+#include "GltfMeshopt.hpp"
+#include "GltfPrepare.hpp"
 #include "GltfRequired.hpp"
+#include "GltfTextureTransform.hpp"
 
 #include <tiny_gltf.h>
 
@@ -32,6 +38,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <optional>
 
 namespace spatter {
@@ -42,7 +49,9 @@ using namespace gltf;
 
 // Required extensions whose data is read correctly here. KHR_mesh_quantization only allows integer
 // component types for vertex attributes, which the accessor reader handles anyway.
-const char* const kSupportedRequiredExtensions[] = {"KHR_mesh_quantization"};
+const char* const kSupportedRequiredExtensions[] = {"KHR_mesh_quantization",   "KHR_draco_mesh_compression",
+                                                    "EXT_meshopt_compression", "EXT_mesh_gpu_instancing",
+                                                    "KHR_texture_transform",   "KHR_materials_unlit"};
 
 constexpr uint32_t kGlbJsonChunk = 0x4E4F534A; // "JSON"
 
@@ -122,15 +131,25 @@ Result<std::vector<uint32_t>> triangleCorners(const std::vector<uint32_t>& order
     return corners;
 }
 
+void addWarning(std::vector<std::string>& warnings, const std::string& warning) {
+    if (!warning.empty() && std::find(warnings.begin(), warnings.end(), warning) == warnings.end())
+        warnings.push_back(warning);
+}
+
 // Appends one primitive's triangles to `mesh` as a submesh. Points and lines add nothing.
-// Attributes the primitive lacks are filled with zeros and counted in `counts`.
+// Attributes the primitive lacks are filled with zeros and counted in `counts`. The UVs get the
+// material's texture transform (GltfTextureTransform.hpp).
 Status appendPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, Mesh& mesh,
-                       AttributeCounts& counts) {
+                       AttributeCounts& counts, std::vector<std::string>& warnings) {
     if (prim.mode >= TINYGLTF_MODE_POINTS && prim.mode <= TINYGLTF_MODE_LINE_STRIP) return {};
     if (prim.mode < TINYGLTF_MODE_TRIANGLES || prim.mode > TINYGLTF_MODE_TRIANGLE_FAN)
         return fail("mode " + std::to_string(prim.mode) + " is not a glTF primitive mode");
     if (prim.material != -1 && !validIndex(prim.material, model.materials.size()))
         return fail("refers to material " + std::to_string(prim.material) + ", which does not exist");
+    std::string uvWarning;
+    Result<std::optional<glm::dmat3>> uvTransform = materialUvTransform(model, prim.material, uvWarning);
+    if (!uvTransform) return fail(uvTransform.error());
+    addWarning(warnings, uvWarning);
 
     const auto posIt = prim.attributes.find("POSITION");
     if (posIt == prim.attributes.end()) return fail("has no POSITION attribute");
@@ -195,6 +214,12 @@ Status appendPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& 
         mesh.normals.push_back(normal->present ? normal->vec<3>(i) : glm::vec3(0.0f));
         mesh.uvs.push_back(uv->present ? uv->vec<2>(i) : glm::vec2(0.0f));
         if (!finite(mesh.uvs.back())) return notFinite("TEXCOORD_0", i);
+        if (uv->present && uvTransform.value()) {
+            transformUvs(*uvTransform.value(), mesh.uvs, mesh.uvs.size() - 1, mesh.uvs.size());
+            if (!finite(mesh.uvs.back()))
+                return fail("TEXCOORD_0 element " + num(i) + " is not finite after the material's " +
+                            "KHR_texture_transform");
+        }
         mesh.tangents.push_back(tangent->present ? tangent->vec<4>(i) : glm::vec4(0.0f));
         if (!finite(mesh.tangents.back())) return notFinite("TANGENT", i);
     }
@@ -229,13 +254,14 @@ void finishTangents(Mesh& mesh) {
 // The render mesh of glTF mesh `index`: its triangle primitives as submeshes, with their joint
 // influences and morph targets in `deformation`. Normals are computed where the file has none and
 // repaired where they are unusable.
-Result<Mesh> convertMesh(const tinygltf::Model& model, size_t index, MeshDeformation& deformation) {
+Result<Mesh> convertMesh(const tinygltf::Model& model, size_t index, MeshDeformation& deformation,
+                         std::vector<std::string>& warnings) {
     const tinygltf::Mesh& source = model.meshes[index];
     Mesh mesh;
     AttributeCounts counts;
     for (size_t p = 0; p < source.primitives.size(); ++p) {
         const size_t base = mesh.vertexCount();
-        Status s = appendPrimitive(model, source.primitives[p], mesh, counts);
+        Status s = appendPrimitive(model, source.primitives[p], mesh, counts, warnings);
         if (s && mesh.vertexCount() > base)
             s = appendDeformation(model, source.primitives[p], base, mesh.vertexCount() - base, deformation);
         if (!s) return fail(named("mesh", index, source.name) + " primitive " + num(p) + ": " + s.error());
@@ -394,6 +420,7 @@ Result<Material> convertMaterial(const tinygltf::Model& model, size_t index) {
     if (!normal) return fail(what + ": normal texture " + normal.error());
     m.baseColorTexture = base.value();
     m.normalTexture = normal.value();
+    m.unlit = findExtension(source.extensions, "KHR_materials_unlit") != nullptr;
     return m;
 }
 
@@ -401,11 +428,20 @@ std::string imageName(const tinygltf::Image& image, int index) {
     return named("image", size_t(index), image.uri.empty() ? image.name : image.uri);
 }
 
-// tinygltf image callback: decodes to RGBA8 with decodeImage. `user` is the Model being filled;
-// its buffers and buffer views are already parsed when images are.
+// What the image callback needs and finds: the model being filled (its buffers and buffer views are
+// parsed before its images) and why each image that did not decode failed.
+struct ImageDecoding {
+    const tinygltf::Model* model = nullptr;
+    std::map<int, std::string> errors; // by image index
+};
+
+// tinygltf image callback: decodes to RGBA8 with decodeImage. `user` is an ImageDecoding. An image
+// that does not decode is left empty and its reason kept: buildScene decides whether the scene can
+// do without it (usedOnlyByExtensions).
 bool decodeGltfImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                      const unsigned char* bytes, int size, void* user) {
-    const auto& model = *static_cast<const tinygltf::Model*>(user);
+    auto& decoding = *static_cast<ImageDecoding*>(user);
+    const auto& model = *decoding.model;
     const std::string name = imageName(*image, index);
     auto reject = [&](const std::string& message) {
         if (err) *err += message + "\n";
@@ -422,9 +458,12 @@ bool decodeGltfImage(tinygltf::Image* image, const int index, std::string* err, 
         if (!inside)
             return reject(name + ": buffer view " + std::to_string(v) + " reads past the end of its buffer");
     }
-    if (size <= 0) return reject(name + ": image data is empty");
-    Result<Image> decoded = decodeImage(bytes, size_t(size), name);
-    if (!decoded) return reject(decoded.error());
+    Result<Image> decoded = size <= 0 ? Result<Image>(fail(name + ": image data is empty"))
+                                      : decodeImage(bytes, size_t(size), name);
+    if (!decoded) {
+        decoding.errors[index] = decoded.error();
+        return true;
+    }
     image->width = decoded->width;
     image->height = decoded->height;
     image->component = 4;
@@ -468,6 +507,38 @@ Result<size_t> checkGlbLayout(const std::vector<unsigned char>& bytes) {
     return size_t(length);
 }
 
+// The GLB `bytes` (`length` of them, checked by checkGlbLayout) with its JSON chunk replaced by `json`.
+std::vector<unsigned char> replaceGlbJson(const std::vector<unsigned char>& bytes, size_t length,
+                                          std::string json) {
+    while (json.size() % 4 != 0)
+        json += ' ';
+    const size_t rest = 20 + size_t(le32(bytes, 12)); // the chunks after the JSON chunk
+    std::vector<unsigned char> out(20 + json.size() + (length - rest));
+    std::memcpy(out.data(), bytes.data(), 20);
+    std::memcpy(out.data() + 20, json.data(), json.size());
+    if (length > rest) std::memcpy(out.data() + 20 + json.size(), bytes.data() + rest, length - rest);
+    const uint32_t total = uint32_t(out.size()), jsonLength = uint32_t(json.size());
+    std::memcpy(out.data() + 8, &total, 4);
+    std::memcpy(out.data() + 12, &jsonLength, 4);
+    return out;
+}
+
+// The bytes of `path` as tinygltf should see them (GltfPrepare.hpp). `length` is the length to parse.
+Status prepareDocument(std::vector<unsigned char>& bytes, bool binary, size_t& length) {
+    const char* json = reinterpret_cast<const char*>(bytes.data()) + (binary ? 20 : 0);
+    const size_t jsonLength = binary ? size_t(le32(bytes, 12)) : length;
+    std::optional<std::string> rewritten = prepareJson(json, jsonLength);
+    if (!rewritten) return {};
+    if (binary) {
+        bytes = replaceGlbJson(bytes, length, std::move(rewritten.value()));
+    } else {
+        bytes.assign(rewritten->begin(), rewritten->end());
+    }
+    length = bytes.size();
+    if (length > std::numeric_limits<uint32_t>::max()) return fail("file is larger than 4 GiB");
+    return {};
+}
+
 Result<std::vector<unsigned char>> readFile(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return fail("file not found");
@@ -479,7 +550,7 @@ Result<std::vector<unsigned char>> readFile(const std::string& path) {
 }
 
 // Parses .gltf (JSON, detected by content) or .glb (binary) with tinygltf, images decoded to RGBA8.
-Status parseModel(const std::string& path, tinygltf::Model& model) {
+Status parseModel(const std::string& path, tinygltf::Model& model, ImageDecoding& images) {
     Result<std::vector<unsigned char>> bytes = readFile(path);
     if (!bytes) return fail(bytes.error());
     if (bytes->empty()) return fail("file is empty");
@@ -491,9 +562,11 @@ Status parseModel(const std::string& path, tinygltf::Model& model) {
         if (!declared) return fail(declared.error());
         length = declared.value();
     }
+    if (Status s = prepareDocument(bytes.value(), binary, length); !s) return s;
 
     tinygltf::TinyGLTF parser;
-    parser.SetImageLoader(&decodeGltfImage, &model);
+    images.model = &model;
+    parser.SetImageLoader(&decodeGltfImage, &images);
     const std::string baseDir = std::filesystem::path(path).parent_path().string();
     std::string err, warn;
     bool parsed = false;
@@ -508,12 +581,17 @@ Status parseModel(const std::string& path, tinygltf::Model& model) {
     }
     if (!parsed) {
         std::string why = tidyParserMessage(err.empty() ? warn : err);
+        if (!binary && err.find("'uri' is missing") != std::string::npos)
+            if (std::string m = bufferWithoutUri(reinterpret_cast<const char*>(bytes->data()), length);
+                !m.empty())
+                why = m;
         if (why.empty()) // tinygltf refuses some documents that lack a required property in silence
             why = binary ? missingRequiredProperty(reinterpret_cast<const char*>(bytes->data()) + 20,
                                                    le32(bytes.value(), 12))
                          : missingRequiredProperty(reinterpret_cast<const char*>(bytes->data()), length);
         return fail("not valid glTF: " + (why.empty() ? std::string("the parser gave no reason") : why));
     }
+    restoreMovedIndices(model);
     return {};
 }
 
@@ -535,7 +613,8 @@ struct Placement {
     glm::dmat4 world;
     bool dynamic;
     bool decals;
-    int owner; // for a collider, the drawn placement it joins; -1 for drawn ones
+    int owner;         // for a collider, the drawn placement it joins; -1 for drawn ones
+    int instance = -1; // EXT_mesh_gpu_instancing: which instance of the node; -1 for none
 };
 
 // Walks the default scene's hierarchy and makes the objects and colliders.
@@ -583,7 +662,7 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
                 return fail(what + " refers to mesh " + std::to_string(node.mesh) + ", which does not exist");
             const size_t m = size_t(node.mesh);
             if (!meshes[m]) {
-                Result<Mesh> converted = convertMesh(model, m, deformations[m]);
+                Result<Mesh> converted = convertMesh(model, m, deformations[m], scene.warnings);
                 if (!converted) return fail(converted.error());
                 meshes[m] = std::move(converted.value());
             }
@@ -592,8 +671,13 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
                     return fail("collider " + what + " has no ancestor node with a drawn mesh to attach to");
                 colliders.push_back({index, m, world, dynamic, decals, visit.drawnAncestor});
             } else if (meshes[m]->triangleCount() > 0) {
-                drawnAncestor = int(drawn.size());
-                drawn.push_back({index, m, world, dynamic, decals, -1});
+                Result<std::optional<std::vector<glm::dmat4>>> instances = instanceTransforms(model, node);
+                if (!instances) return fail(what + " " + instances.error());
+                drawnAncestor = int(drawn.size()); // colliders below an instanced node join instance 0
+                if (!instances.value()) drawn.push_back({index, m, world, dynamic, decals, -1});
+                for (size_t i = 0; instances.value() && i < instances.value()->size(); ++i)
+                    drawn.push_back({index, m, world * (*instances.value())[i], dynamic, decals, -1, int(i)});
+                if (drawnAncestor == int(drawn.size())) drawnAncestor = visit.drawnAncestor;
             }
         }
         for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
@@ -617,11 +701,12 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
         const tinygltf::Node& node = model.nodes[p.node];
         const std::string& meshName = model.meshes[p.mesh].name;
         o.name = !node.name.empty() ? node.name : !meshName.empty() ? meshName : "node" + num(p.node);
-        o.mesh = *meshes[p.mesh];
+        if (p.instance >= 0) o.name += "#" + std::to_string(p.instance);
+        o.mesh = *meshes[p.mesh]; // each instance its own copy: Scene holds meshes by value
         o.transform = p.world;
         o.dynamic = p.dynamic;
         o.receivesDecals = p.decals;
-        o.node = int(p.node);
+        o.node = p.instance >= 0 ? -1 : int(p.node);
         scene.objects.push_back(std::move(o));
     }
     for (const Placement& p : colliders) {
@@ -637,24 +722,65 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
     return addAnimation(model, deformations, scene);
 }
 
-Result<Scene> buildScene(tinygltf::Model& model) {
+// Image extensions whose texture names its own source (in a format the core images may lack).
+const char* const kImageExtensions[] = {"KHR_texture_basisu", "EXT_texture_webp", "MSFT_texture_dds",
+                                        "EXT_texture_avif"};
+
+// True when image `index` is the source of some texture only through an image extension, never as a
+// texture's core source: a scene can do without it.
+bool usedOnlyByExtensions(const tinygltf::Model& model, int index) {
+    bool byExtension = false;
+    for (const tinygltf::Texture& t : model.textures) {
+        if (t.source == index) return false;
+        for (const char* name : kImageExtensions)
+            if (const tinygltf::Value* ext = findExtension(t.extensions, name))
+                byExtension = byExtension || numberField(*ext, "source", -1.0) == double(index);
+    }
+    return byExtension;
+}
+
+// Image `index` of `model` as a scene image. One that could not be read or decoded (`decodeErrors`)
+// is an error, unless only image extensions use it: then a 1x1 white image stands in for it and a
+// warning says so.
+Result<Image> convertImage(tinygltf::Model& model, size_t index,
+                           const std::map<int, std::string>& decodeErrors,
+                           std::vector<std::string>& warnings) {
+    tinygltf::Image& source = model.images[index];
+    Image image;
+    image.name = !source.uri.empty()    ? source.uri
+                 : !source.name.empty() ? source.name
+                                        : "image " + num(index);
+    if (source.image.empty()) {
+        const auto error = decodeErrors.find(int(index));
+        // tinygltf only warns when an external image file is missing; here it is an error.
+        const std::string why =
+            error != decodeErrors.end()
+                ? error->second
+                : imageName(source, int(index)) + " cannot be read (missing or unreadable file)";
+        if (!usedOnlyByExtensions(model, int(index))) return fail(why);
+        addWarning(warnings, why + "; only an image extension uses it, so the texture falls back to its core "
+                                   "image, or to none");
+        image.width = image.height = 1;
+        image.rgba = {255, 255, 255, 255};
+        return image;
+    }
+    image.width = source.width;
+    image.height = source.height;
+    image.rgba = std::move(source.image);
+    return image;
+}
+
+Result<Scene> buildScene(tinygltf::Model& model, const std::map<int, std::string>& decodeErrors) {
     if (Status s = checkRequiredExtensions(model); !s) return fail(s.error());
+    if (Status s = decodeMeshoptViews(model); !s) return fail(s.error());
     if (Status s = checkBufferViews(model); !s) return fail(s.error());
+    if (Status s = decodeDracoPrimitives(model); !s) return fail(s.error());
 
     Scene scene;
     for (size_t i = 0; i < model.images.size(); ++i) {
-        tinygltf::Image& source = model.images[i];
-        // tinygltf only warns when an external image file is missing; here it is an error.
-        if (source.image.empty())
-            return fail(imageName(source, int(i)) + " cannot be read (missing or unreadable file)");
-        Image image;
-        image.width = source.width;
-        image.height = source.height;
-        image.rgba = std::move(source.image);
-        image.name = !source.uri.empty()    ? source.uri
-                     : !source.name.empty() ? source.name
-                                            : "image " + num(i);
-        scene.images.push_back(std::move(image));
+        Result<Image> image = convertImage(model, i, decodeErrors, scene.warnings);
+        if (!image) return fail(image.error());
+        scene.images.push_back(std::move(image.value()));
     }
     for (size_t i = 0; i < model.materials.size(); ++i) {
         Result<Material> m = convertMaterial(model, i);
@@ -670,8 +796,9 @@ Result<Scene> buildScene(tinygltf::Model& model) {
 
 Result<Scene> loadGltf(const std::string& path) {
     tinygltf::Model model;
-    if (Status s = parseModel(path, model); !s) return fail(path + ": " + s.error());
-    Result<Scene> scene = buildScene(model);
+    ImageDecoding images;
+    if (Status s = parseModel(path, model, images); !s) return fail(path + ": " + s.error());
+    Result<Scene> scene = buildScene(model, images.errors);
     if (!scene) return fail(path + ": " + scene.error());
     scene->source = path;
     return scene;

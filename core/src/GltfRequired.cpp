@@ -81,4 +81,14 @@ std::string missingRequiredProperty(const char* text, size_t size) {
     return checkNested(doc, "meshes", "mesh", "primitives", "primitive", {"attributes"});
 }
 
+std::string bufferWithoutUri(const char* text, size_t size) {
+    const json doc = json::parse(text, text + size, nullptr, false);
+    if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) return "";
+    const json& buffers = doc["buffers"];
+    for (size_t i = 0; i < buffers.size(); ++i)
+        if (buffers[i].is_object() && !buffers[i].contains("uri"))
+            return "buffer " + std::to_string(i) + " has no uri and the file is not a .glb";
+    return "";
+}
+
 } // namespace spatter::gltf

@@ -13,4 +13,9 @@ namespace spatter::gltf {
 // required is missing. Reads only the given bytes.
 std::string missingRequiredProperty(const char* text, size_t size);
 
+// "buffer N has no uri and the file is not a .glb" for the first buffer of the glTF JSON `text` that
+// has no uri (only a .glb's binary chunk can stand in for one), or an empty string when every buffer
+// has one or the text is not JSON.
+std::string bufferWithoutUri(const char* text, size_t size);
+
 } // namespace spatter::gltf

@@ -23,6 +23,11 @@ struct Material {
     float normalScale = 1.0f;
     float roughness = 1.0f;
     float metallic = 0.0f;
+    // KHR_materials_unlit: the material's colour is meant to be shown as it is, without lighting.
+    // Loaded and kept here; spatter's renderer lights it like any other material.
+    bool unlit = false;
+    // A glTF material's KHR_texture_transform is not kept here: the loader applies it to the UVs of
+    // the primitives that use the material.
 };
 
 struct SceneObject {
@@ -50,6 +55,9 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Image> images;
     SceneAnimation animation; // node hierarchy, skins and animations; empty when nothing animates
+    // What the loader substituted or left out and the scene still works without, one line each
+    // (an image it cannot decode that only an extension uses, a texture transform it could not follow).
+    std::vector<std::string> warnings;
 
     size_t triangleCount() const; // render triangles of all objects
     size_t dynamicObjectCount() const;
