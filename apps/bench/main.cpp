@@ -1,6 +1,7 @@
 // spatter-bench COMMAND [ARGS...]: benchmarks and reports. Each command is one entry of kCommands;
 // adding one is adding its entry (and its file).
 
+#include "LoadBench.hpp"
 #include "Memory.hpp"
 #include "PersistenceBench.hpp"
 #include "PlacementBench.hpp"
@@ -44,6 +45,8 @@ const Command kCommands[] = {
      spatter::bench::runPersistenceCommand},
     {"pose", "posing an animated scene per frame on one core: evaluation, posed positions (--json FILE)",
      spatter::bench::runPoseCommand},
+    {"load", "loading a Draco-compressed glTF against its uncompressed twin: the time ratio (--json FILE)",
+     spatter::bench::runLoadCommand},
 };
 
 void usage(std::FILE* out) {

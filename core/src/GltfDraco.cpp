@@ -6,6 +6,8 @@
 #include <draco/compression/decode.h>
 #include <draco/mesh/mesh.h>
 
+#include <type_traits>
+
 namespace spatter::gltf {
 
 namespace {
@@ -30,15 +32,32 @@ Result<std::unique_ptr<draco::Mesh>> decodeMesh(const tinygltf::Model& model, co
     return std::move(decoded).value();
 }
 
+// The draco::DataType that holds a T.
+template <class T> constexpr draco::DataType dracoType() {
+    if constexpr (std::is_same_v<T, float>) return draco::DT_FLOAT32;
+    if constexpr (std::is_same_v<T, int8_t>) return draco::DT_INT8;
+    if constexpr (std::is_same_v<T, uint8_t>) return draco::DT_UINT8;
+    if constexpr (std::is_same_v<T, int16_t>) return draco::DT_INT16;
+    if constexpr (std::is_same_v<T, uint16_t>) return draco::DT_UINT16;
+    return draco::DT_UINT32;
+}
+
 template <class T>
 bool writeValues(const draco::PointAttribute& att, const draco::Mesh& mesh, int components,
                  unsigned char* out) {
+    const size_t bytes = sizeof(T) * size_t(components);
+    // Values already of this type and width are copied as they are; others converted one by one.
+    const bool copy = att.data_type() == dracoType<T>() && att.num_components() == components;
     T value[16];
-    for (draco::PointIndex p(0); p < mesh.num_points(); ++p) {
+    for (draco::PointIndex p(0); p < mesh.num_points(); ++p, out += bytes) {
         const draco::AttributeValueIndex i = att.mapped_index(p);
-        if (i.value() >= att.size() || !att.ConvertValue<T>(i, int8_t(components), value)) return false;
-        std::memcpy(out, value, sizeof(T) * size_t(components));
-        out += sizeof(T) * size_t(components);
+        if (i.value() >= att.size()) return false;
+        if (copy) {
+            std::memcpy(out, att.GetAddress(i), bytes);
+        } else {
+            if (!att.ConvertValue<T>(i, int8_t(components), value)) return false;
+            std::memcpy(out, value, bytes);
+        }
     }
     return true;
 }
