@@ -155,6 +155,117 @@ put('gltf', 'skinned-sparse-morph.gltf', $sparse);
 (my $jointless = $anim) =~ s/"joints":\[1,2\],//;
 put('gltf', 'skin-without-joints.gltf', $jointless);
 
+# --- glTF geometry as exporters write it ---------------------------------------------------------
+# A quad whose positions, indices and UVs are sparse: dense positions with vertex 2 wrong and one
+# sparse value that puts it back, dense indices with one sparse replacement, and UVs in an accessor
+# without a buffer view (zeros) with one sparse value.
+my $sparse_bin = pack('f<12', 0, 0, 0, 1, 0, 0, 5, 5, 5, 0, 1, 0)   # 0: positions
+  . pack('S<6', 0, 1, 3, 0, 2, 3)                                  # 48: indices
+  . pack('S<2', 2, 0) . pack('f<3', 1, 1, 0)                        # 60: position index, 64: value
+  . pack('S<2', 2, 0) . pack('S<2', 2, 0)                           # 76: index index, 80: value
+  . pack('S<2', 3, 0) . pack('f<2', 0, 1);                          # 84: UV index, 88: value
+my $sparse_uri = 'data:application/octet-stream;base64,' . encode_base64($sparse_bin, '');
+put('gltf', 'sparse-geometry.gltf', <<"JSON");
+{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"name":"quad","mesh":0}],
+ "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":2},"indices":1}]}],
+ "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3",
+               "sparse":{"count":1,"indices":{"bufferView":0,"byteOffset":60,"componentType":5123},
+                         "values":{"bufferView":0,"byteOffset":64}}},
+              {"bufferView":0,"byteOffset":48,"componentType":5123,"count":6,"type":"SCALAR",
+               "sparse":{"count":1,"indices":{"bufferView":0,"byteOffset":76,"componentType":5123},
+                         "values":{"bufferView":0,"byteOffset":80}}},
+              {"componentType":5126,"count":4,"type":"VEC2",
+               "sparse":{"count":1,"indices":{"bufferView":0,"byteOffset":84,"componentType":5123},
+                         "values":{"bufferView":0,"byteOffset":88}}}],
+ "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":96}],
+ "buffers":[{"byteLength":96,"uri":"$sparse_uri"}]}
+JSON
+
+# The triangle drawn three times by EXT_mesh_gpu_instancing (rotations in normalized shorts), with
+# a material that is unlit and moves its texture coordinates (KHR_texture_transform).
+my $inst_bin = $tri
+  . pack('f<9', 0, 0, 0, 2, 0, 0, 0, 3, 1)                                       # 44: translations
+  . pack('s<12', 0, 0, 0, 32767, 0, 0, 23170, 23170, 0, 0, 0, 32767)               # 80: rotations
+  . pack('f<9', 1, 1, 1, 1, 1, 1, 2, 2, 2)                                       # 104: scales
+  . pack('f<6', 0, 0, 1, 0, 0, 1);                                               # 140: UVs
+my $inst_uri = 'data:application/octet-stream;base64,' . encode_base64($inst_bin, '');
+put('gltf', 'instanced-transformed.gltf', <<"JSON");
+{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],
+ "extensionsUsed":["EXT_mesh_gpu_instancing","KHR_texture_transform","KHR_materials_unlit"],
+ "extensionsRequired":["EXT_mesh_gpu_instancing","KHR_texture_transform"],
+ "nodes":[{"name":"tri","mesh":0,"translation":[10,0,0],
+           "extensions":{"EXT_mesh_gpu_instancing":{"attributes":{"TRANSLATION":2,"ROTATION":3,"SCALE":4}}}}],
+ "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":5},"indices":1,"material":0}]}],
+ "materials":[{"extensions":{"KHR_materials_unlit":{}},
+               "pbrMetallicRoughness":{"baseColorTexture":{"index":0,"extensions":{"KHR_texture_transform":
+                 {"offset":[0.5,0],"rotation":0.39,"scale":[2,2]}}}}}],
+ "textures":[{"source":0}],"images":[{"uri":"image.png"}],
+ "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},
+              {"bufferView":0,"byteOffset":36,"componentType":5123,"count":3,"type":"SCALAR"},
+              {"bufferView":0,"byteOffset":44,"componentType":5126,"count":3,"type":"VEC3"},
+              {"bufferView":0,"byteOffset":80,"componentType":5122,"normalized":true,"count":3,"type":"VEC4"},
+              {"bufferView":0,"byteOffset":104,"componentType":5126,"count":3,"type":"VEC3"},
+              {"bufferView":0,"byteOffset":140,"componentType":5126,"count":3,"type":"VEC2"}],
+ "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":164}],
+ "buffers":[{"byteLength":164,"uri":"$inst_uri"}]}
+JSON
+
+# A quad compressed by libdraco (positions quantised to 11 bits), by its edgebreaker and its
+# sequential coder: the accessors have no buffer view, as exporters write them.
+my %draco = (
+    'edgebreaker' => '445241434f02020101000000040200020000011fff011101ff0000010009030000020101010003030130011003002882980000000000ff0700000000000000000000000000000000803f0b',
+    'sequential'  => '445241434f02020100000002040100010200020301010009030000020001010003030130011003003482880400000000ff0700000000000000000000000000000000803f0b');
+for my $coder (sort keys %draco) {
+    my $bytes = pack('H*', $draco{$coder});
+    my $uri = 'data:application/octet-stream;base64,' . encode_base64($bytes, '');
+    my $length = length($bytes);
+    put('gltf', "draco-$coder.gltf", <<"JSON");
+{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"name":"quad","mesh":0}],
+ "extensionsUsed":["KHR_draco_mesh_compression"],"extensionsRequired":["KHR_draco_mesh_compression"],
+ "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,
+   "extensions":{"KHR_draco_mesh_compression":{"bufferView":0,"attributes":{"POSITION":0}}}}]}],
+ "accessors":[{"componentType":5126,"count":4,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+              {"componentType":5123,"count":6,"type":"SCALAR"}],
+ "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":$length}],
+ "buffers":[{"byteLength":$length,"uri":"$uri"}]}
+JSON
+}
+
+# The quad compressed by meshoptimizer (EXT_meshopt_compression): positions by the vertex codec,
+# indices by the index codec (TRIANGLES) or as an index sequence (INDICES), over a fallback buffer
+# without a uri; as .gltf and as .glb.
+my $mo_pos = pack('H*', 'a000000133000000ffff01330000007e7d0000010c000000ff010c0000007e000000000000000000000000000000000000000000000000000000000000000000000000');
+my %mo_index = ('triangles' => ['TRIANGLES', pack('H*', 'e0f000007687566778a9866589689801690000')],
+                'sequence'  => ['INDICES', pack('H*', 'd000040406080400000000')]);
+for my $name (sort keys %mo_index) {
+    my ($mode, $idx) = @{$mo_index{$name}};
+    my $bin = $mo_pos . "\0" . $idx;                     # positions: 67 bytes, indices from 68
+    $bin .= "\0" x ((4 - length($bin) % 4) % 4);
+    my ($plen, $ilen, $blen) = (length($mo_pos), length($idx), length($bin));
+    my $doc = <<"JSON";
+{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"name":"quad","mesh":0}],
+ "extensionsUsed":["EXT_meshopt_compression"],"extensionsRequired":["EXT_meshopt_compression"],
+ "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
+ "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+              {"bufferView":1,"componentType":5125,"count":6,"type":"SCALAR"}],
+ "bufferViews":[{"buffer":1,"byteOffset":0,"byteLength":48,"byteStride":12,
+                 "extensions":{"EXT_meshopt_compression":{"buffer":0,"byteOffset":0,"byteLength":$plen,
+                   "byteStride":12,"count":4,"mode":"ATTRIBUTES"}}},
+                {"buffer":1,"byteOffset":48,"byteLength":24,
+                 "extensions":{"EXT_meshopt_compression":{"buffer":0,"byteOffset":68,"byteLength":$ilen,
+                   "byteStride":4,"count":6,"mode":"$mode"}}}],
+ "buffers":[{"byteLength":$blen,"uri":"BUFFER0"},
+            {"byteLength":72,"extensions":{"EXT_meshopt_compression":{"fallback":true}}}]}
+JSON
+    (my $gltf_doc = $doc) =~ s/"BUFFER0"/'"data:application\/octet-stream;base64,' . encode_base64($bin, '') . '"'/e;
+    put('gltf', "meshopt-$name.gltf", $gltf_doc);
+    (my $glb_json = $doc) =~ s/,"uri":"BUFFER0"//;
+    $glb_json .= ' ' x ((4 - length($glb_json) % 4) % 4);
+    put('gltf', "meshopt-$name.glb",
+        pack('a4 L< L<', 'glTF', 2, 12 + 8 + length($glb_json) + 8 + length($bin))
+          . pack('L< a4', length($glb_json), 'JSON') . $glb_json . pack('L< a4', length($bin), "BIN\0") . $bin);
+}
+
 # --- ray lines ----------------------------------------------------------------------------------
 put('ray_parser', 'rays.txt',
     "# origin and direction\n0 1 5 0 0 -1\n  -3.5e2\t1e-3 +7   0x1p-3 -0X1.8P+1 1  # hex\n\n"
