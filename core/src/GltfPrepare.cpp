@@ -56,7 +56,7 @@ std::optional<std::string> prepareJson(const char* text, size_t size) {
     const bool placeholders = addMeshoptPlaceholders(doc);
     const bool moved = moveBufferlessIndices(doc);
     if (!placeholders && !moved) return std::nullopt;
-    return doc.dump();
+    return doc.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 void restoreMovedIndices(tinygltf::Model& model) {

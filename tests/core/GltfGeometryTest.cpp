@@ -119,6 +119,17 @@ TEST(GltfGeometry, AccessorWithoutBufferViewIsZerosUnderItsSparseValues) {
     EXPECT_EQ(scene.objects[0].mesh.uvs, std::vector<glm::vec2>(4, glm::vec2(0.0f)));
 }
 
+TEST(GltfGeometry, IndicesWithoutBufferViewComeFromTheirSparseValues) {
+    GltfBuilder g = quadScene();
+    g.doc["accessors"][1].erase("bufferView");
+    g.doc["accessors"][1].erase("byteOffset");
+    // Index 0 of each triangle stays 0; the other five come from the sparse part.
+    makeSparse(g, 1, {1, 2, 4, 5}, bytesOf(std::vector<uint16_t>{1, 2, 2, 3}));
+    Scene scene = loaded(g.writeGltf(scratch(), "sparse-indices"));
+    ASSERT_EQ(scene.objects.size(), 1u);
+    EXPECT_EQ(scene.objects[0].mesh.indices, kQuadIndices);
+}
+
 TEST(GltfGeometry, SparseValuesInNormalizedShortsUnderMeshQuantization) {
     GltfBuilder g = quadScene();
     const std::vector<int16_t> zeros(16, 0);
@@ -304,6 +315,27 @@ TEST(GltfGeometry, RejectsBadInstanceAccessors) {
         EXPECT_THAT(rejection(g.writeGltf(dir, "many")),
                     HasSubstr("has 70000 instances, more than the limit of 65536"));
     }
+}
+
+TEST(GltfGeometry, InstancesOfAnAnimatedNodeStayInTheRestPose) {
+    GltfBuilder g = instancedQuad();
+    const std::vector<float> times = {0, 1};
+    const std::vector<glm::vec3> moves = {{0, 0, 0}, {0, 5, 0}};
+    const int input = g.addAccessor(g.addView(times), kFloat, 2, "SCALAR");
+    g.doc["accessors"][input]["min"] = {0};
+    g.doc["accessors"][input]["max"] = {1};
+    const int output = g.addAccessor(g.addView(moves), kFloat, 2, "VEC3");
+    nlohmann::json sampler = {{"input", input}, {"output", output}};
+    nlohmann::json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}};
+    g.push("animations",
+           {{"samplers", nlohmann::json::array({sampler})}, {"channels", nlohmann::json::array({channel})}});
+    Scene scene = loaded(g.writeGltf(scratch(), "animated-instances"));
+    ASSERT_EQ(scene.objects.size(), 3u);
+    for (const SceneObject& o : scene.objects) {
+        EXPECT_EQ(o.node, -1);
+        EXPECT_FALSE(o.dynamic);
+    }
+    EXPECT_NEAR(scene.objects[1].transform[3][0], 12.0, 1e-12);
 }
 
 // --- materials: KHR_texture_transform, KHR_materials_unlit, images only an extension uses ---------
