@@ -12,8 +12,10 @@ struct DecalRecord {
                       // cannot be drawn
     uvec2 frame;      // the packed frame (spatter/core/PackedFrame.hpp): x its low 32 bits, y its high ones
     vec2 halfSize;    // half the width and height
-    uvec4 info;       // x: object index; y: type index (bits 0-15), object decal ID (16-23); z: opacity
-                      // (float bits); w: 32-bit decal ID. A left-handed frame: bit 62 of the packed frame
+    uvec4 info;       // x: object index; y: type index (bits 0-15), object decal ID (16-23), opacity in
+                      // 1/255 (24-31); z: slant, the projection axis's slopes along the tangent and
+                      // bitangent as two halves (spatter/core/DecalProjection.hpp); w: 32-bit decal ID.
+                      // A left-handed frame: bit 62 of the packed frame
 };
 
 // A decal type as the shaders use it.
@@ -90,15 +92,20 @@ DecalData unpackDecal(DecalRecord r) {
     if (mirrored) frame[1] = -frame[1];
     vec3 center = r.centerDepth.xyz;
     vec3 h = vec3(r.halfSize, r.centerDepth.w);
+    // The box's depth axis runs along the projection axis, normal + slant.x * tangent + slant.y *
+    // bitangent: a parallelepiped whose rows of the inverse subtract the slant's share of the depth.
+    vec2 slant = unpackHalf2x16(r.info.z);
+    vec3 depthAxis = frame[2] + slant.x * frame[0] + slant.y * frame[1];
+    vec3 rows[3] = vec3[3]((frame[0] - slant.x * frame[2]) / h.x, (frame[1] - slant.y * frame[2]) / h.y,
+                           frame[2] / h.z);
     for (int k = 0; k < 3; ++k) {
-        vec3 row = frame[k] / h[k];
-        d.objectToBox[k] = vec4(row, -dot(row, center));
-        d.boxToObject[k] = vec4(frame[0][k] * h.x, frame[1][k] * h.y, frame[2][k] * h.z, center[k]);
+        d.objectToBox[k] = vec4(rows[k], -dot(rows[k], center));
+        d.boxToObject[k] = vec4(frame[0][k] * h.x, frame[1][k] * h.y, depthAxis[k] * h.z, center[k]);
     }
     d.tangent = vec4(frame[0], h.x);
     d.bitangent = vec4(frame[1], h.y);
     d.normal = vec4(frame[2], h.z);
-    d.tint = vec4(t.tint.rgb, t.tint.a * uintBitsToFloat(r.info.z));
+    d.tint = vec4(t.tint.rgb, t.tint.a * float(r.info.y >> 24) / 255.0);
     d.info = uvec4(r.info.x, (r.info.y >> 16) & 0xffu, t.info.x, t.info.y | (mirrored ? SPATTER_DECAL_MIRRORED : 0u));
     d.params = t.params;
     return d;

@@ -34,10 +34,25 @@ bool Decal::setFrame(const Frame& f) {
     return true;
 }
 
+glm::vec3 Decal::projectionAxis() const {
+    const Frame f = frame();
+    const glm::vec2 s = unpackSlant(slant);
+    const glm::vec3 axis = f.normal + s.x * f.tangent + s.y * f.bitangent;
+    const float length = glm::length(axis);
+    return length > 0.0f ? axis / length : axis;
+}
+
+void Decal::setProjectionAxis(const glm::vec3& axis) {
+    const Frame f = frame();
+    slant = slantOf(glm::dvec3(f.tangent), glm::dvec3(f.bitangent), glm::dvec3(f.normal), glm::dvec3(axis));
+}
+
 glm::mat4 Decal::boxToObject() const {
     const Frame f = frame();
+    const glm::vec2 s = unpackSlant(slant);
     return glm::mat4(glm::vec4(f.tangent * (size.x * 0.5f), 0.0f),
-                     glm::vec4(f.bitangent * (size.y * 0.5f), 0.0f), glm::vec4(f.normal * halfDepth, 0.0f),
+                     glm::vec4(f.bitangent * (size.y * 0.5f), 0.0f),
+                     glm::vec4((f.normal + s.x * f.tangent + s.y * f.bitangent) * halfDepth, 0.0f),
                      glm::vec4(center, 1.0f));
 }
 

@@ -14,9 +14,6 @@ namespace {
 bool denormal(double v) {
     return v != 0.0 && std::fabs(v) < std::numeric_limits<double>::min();
 }
-bool denormal(float v) {
-    return v != 0.0f && std::fabs(v) < std::numeric_limits<float>::min();
-}
 
 // A section tag as it reads, bytes outside printable ASCII as \xNN.
 std::string tagText(const uint8_t* tag) {
@@ -72,7 +69,7 @@ Status readCount(ByteReader& r, const char* section, const char* what, size_t it
     return {};
 }
 
-Status readSettings(ByteReader& r, DecalSystemState& st) {
+Status readSettings(ByteReader& r, DecalSystemState& st, uint32_t /*version*/) {
     DecalSettings& s = st.settings;
     uint8_t policy = 0;
     if (!(r.u64(s.seed) && r.f32(s.cellSize) && r.u32(s.maxPerCell) && r.u8(policy) && r.u32(s.budget) &&
@@ -84,7 +81,7 @@ Status readSettings(ByteReader& r, DecalSystemState& st) {
     return {};
 }
 
-Status readClock(ByteReader& r, DecalSystemState& st) {
+Status readClock(ByteReader& r, DecalSystemState& st, uint32_t /*version*/) {
     if (!(r.f64(st.time) && r.u64(st.rngState) && r.u64(st.rngIncrement)))
         return truncated("CLCK", "the clock");
     if (!std::isfinite(st.time) || st.time < 0.0 || denormal(st.time))
@@ -93,7 +90,7 @@ Status readClock(ByteReader& r, DecalSystemState& st) {
     return {};
 }
 
-Status readStats(ByteReader& r, DecalSystemState& st) {
+Status readStats(ByteReader& r, DecalSystemState& st, uint32_t /*version*/) {
     DecalStats& s = st.stats;
     uint32_t statuses = 0;
     if (!(r.u64(s.placed) && r.u32(statuses))) return truncated("STAT", "the statistics");
@@ -111,7 +108,7 @@ Status readStats(ByteReader& r, DecalSystemState& st) {
     return {};
 }
 
-Status readTypes(ByteReader& r, DecalSystemState& st) {
+Status readTypes(ByteReader& r, DecalSystemState& st, uint32_t /*version*/) {
     uint32_t n = 0;
     if (Status s = readCount(r, "TYPE", "types", 4, n); !s) return s;
     if (n > 65535) return corrupt(std::to_string(n) + " decal types (65535 at most)");
@@ -127,7 +124,7 @@ Status readTypes(ByteReader& r, DecalSystemState& st) {
     return {};
 }
 
-Status readObjects(ByteReader& r, DecalSystemState& st) {
+Status readObjects(ByteReader& r, DecalSystemState& st, uint32_t /*version*/) {
     uint32_t n = 0;
     if (Status s = readCount(r, "OBJS", "objects", kObjectMinBytes, n); !s) return s;
     st.objects.resize(n);
@@ -149,7 +146,7 @@ Status readObjects(ByteReader& r, DecalSystemState& st) {
     return {};
 }
 
-Status readSlots(ByteReader& r, DecalSystemState& st) {
+Status readSlots(ByteReader& r, DecalSystemState& st, uint32_t /*version*/) {
     uint32_t slots = 0, free = 0;
     if (!r.u32(slots)) return truncated("SLOT", "the slot count");
     if (Status s = readColumn(r, "SLOT", "generations", slots, st.generations); !s) return s;
@@ -168,8 +165,7 @@ Status checkDecal(const Decal& d, double time, size_t i) {
     if (!hasOrientation(d.packedFrame)) return bad("frame has no orientation");
     if (!std::isfinite(d.spawnTime) || d.spawnTime < 0.0 || d.spawnTime > time || denormal(d.spawnTime))
         return bad("spawn time is not a normal time between 0 and the clock");
-    if (!std::isfinite(d.opacity) || d.opacity < 0.0f || d.opacity > 1.0f || denormal(d.opacity))
-        return bad("opacity is not a normal number in [0, 1]");
+    if (!validSlant(d.slant)) return bad("slant is not one a projection axis packs to");
     return {};
 }
 
@@ -198,12 +194,23 @@ Status readSparse(ByteReader& r, const char* what, size_t n, size_t valueBytes, 
     return {};
 }
 
-Status readDecalColumns(ByteReader& r, DecalSystemState& st) {
+// Version 1 kept opacities as floats and every decal along its normal.
+Status readDecalColumns(ByteReader& r, DecalSystemState& st, uint32_t version) {
     std::vector<Decal>& d = st.decals;
     const size_t n = d.size();
-    Status opacities =
-        readSparse(r, "opacities", n, 4, [&](const uint8_t* p, size_t i) { d[i].opacity = loadF32(p); });
+    size_t badOpacity = n;
+    Status opacities = version == 1 ? readSparse(r, "opacities", n, 4,
+                                                 [&](const uint8_t* p, size_t i) {
+                                                     const float o = loadF32(p);
+                                                     if (!(o >= 0.0f && o <= 1.0f)) badOpacity = i;
+                                                     d[i].opacity = o;
+                                                 })
+                                    : readSparse(r, "opacities", n, 1, [&](const uint8_t* p, size_t i) {
+                                          d[i].opacity = Opacity::fromBits(p[0]);
+                                      });
     if (!opacities) return opacities;
+    if (badOpacity < n)
+        return corrupt("decal " + std::to_string(badOpacity) + ": opacity is not a number in [0, 1]");
     Status clips = readSparse(r, "clips", n, 8, [&](const uint8_t* p, size_t i) {
         for (int k = 0; k < 2; ++k, p += 4) {
             d[i].clips[k].octX = int8_t(p[0]);
@@ -212,6 +219,11 @@ Status readDecalColumns(ByteReader& r, DecalSystemState& st) {
         }
     });
     if (!clips) return clips;
+    if (version >= 2) {
+        Status slants =
+            readSparse(r, "slants", n, 4, [&](const uint8_t* p, size_t i) { d[i].slant = loadU32(p); });
+        if (!slants) return slants;
+    }
     std::vector<uint32_t> column;
     if (Status s = readColumn(r, "DECL", "types", n, column); !s) return s;
     for (size_t i = 0; i < n; ++i) {
@@ -232,20 +244,20 @@ Status readDecalColumns(ByteReader& r, DecalSystemState& st) {
     return readColumn(r, "DECL", "slots", n, st.slotOf);
 }
 
-Status readDecals(ByteReader& r, DecalSystemState& st) {
+Status readDecals(ByteReader& r, DecalSystemState& st, uint32_t version) {
     uint32_t n = 0;
     if (Status s = readCount(r, "DECL", "decals", kSavedDecalBytes, n); !s) return s;
     st.decals.resize(n);
     const uint8_t* p = r.take(size_t(n) * kSavedDecalBytes);
     for (uint32_t i = 0; i < n; ++i, p += kSavedDecalBytes)
         loadDecal(p, st.decals[i]);
-    if (Status s = readDecalColumns(r, st); !s) return s;
+    if (Status s = readDecalColumns(r, st, version); !s) return s;
     for (uint32_t i = 0; i < n; ++i)
         if (Status s = checkDecal(st.decals[i], st.time, i); !s) return s;
     return {};
 }
 
-Status readLimits(ByteReader& r, DecalSystemState& st) {
+Status readLimits(ByteReader& r, DecalSystemState& st, uint32_t /*version*/) {
     uint32_t n = 0, exceptions = 0;
     if (!r.u32(n)) return truncated("LIMS", "the count");
     if (Status s = readColumn(r, "LIMS", "counted slots", n, st.limitOrder); !s) return s;
@@ -261,7 +273,7 @@ Status readLimits(ByteReader& r, DecalSystemState& st) {
     return {};
 }
 
-Status readFading(ByteReader& r, DecalSystemState& st) {
+Status readFading(ByteReader& r, DecalSystemState& st, uint32_t /*version*/) {
     uint32_t n = 0;
     if (Status s = readCount(r, "FADE", "fading decals", kFadingBytes, n); !s) return s;
     st.fading.resize(n);
@@ -273,7 +285,7 @@ Status readFading(ByteReader& r, DecalSystemState& st) {
     return {};
 }
 
-Status readChanges(ByteReader& r, DecalSystemState& st) {
+Status readChanges(ByteReader& r, DecalSystemState& st, uint32_t /*version*/) {
     uint32_t n = 0;
     if (!r.u64(st.changeLogBase)) return truncated("CHNG", "the change log");
     if (Status s = readCount(r, "CHNG", "changes", kChangeBytes, n); !s) return s;
@@ -383,7 +395,7 @@ Status checkHeader(const uint8_t* data, size_t size) {
                            : std::to_string(size - total) + " bytes past the end of the save");
     if (loadU32(data + kChecksumAt) != checksum(data, size)) return corrupt("checksum mismatch");
     if (loadU32(data + 28) != kSectionCount)
-        return corrupt(std::to_string(loadU32(data + 28)) + " sections, version 1 has " +
+        return corrupt(std::to_string(loadU32(data + 28)) + " sections, a save has " +
                        std::to_string(kSectionCount));
     return {};
 }
@@ -405,7 +417,7 @@ Status checkPreamble(const uint8_t* data) {
 
 Result<DecalSystemState> decode(const uint8_t* data, size_t size) {
     if (Status s = checkHeader(data, size); !s) return fail(s.error());
-    using Reader = Status (*)(ByteReader&, DecalSystemState&);
+    using Reader = Status (*)(ByteReader&, DecalSystemState&, uint32_t version);
     static const Reader kReaders[kSectionCount] = {readSettings, readClock,  readStats,  readTypes,
                                                    readObjects,  readSlots,  readDecals, readLimits,
                                                    readFading,   readChanges};
@@ -414,7 +426,7 @@ Result<DecalSystemState> decode(const uint8_t* data, size_t size) {
     for (uint32_t k = 0; k < kSectionCount; ++k) {
         Result<ByteReader> section = openSection(r, kSections[k]);
         if (!section) return fail(section.error());
-        if (Status s = kReaders[k](section.value(), st); !s) return fail(s.error());
+        if (Status s = kReaders[k](section.value(), st, loadU32(data + 8)); !s) return fail(s.error());
         if (section->remaining() != 0)
             return corrupt(std::string("section ") + kSections[k] + " has " +
                            std::to_string(section->remaining()) + " bytes past its content");

@@ -123,8 +123,8 @@ void writeDecals(ByteWriter& w, const DecalSystemState& st) {
     for (size_t i = 0; i < n; ++i, p += kSavedDecalBytes)
         storeDecal(p, d[i]);
     writeSparse(
-        w, n, 4, [&](size_t i) { return d[i].opacity == 1.0f; },
-        [&](uint8_t* q, size_t i) { storeF32(q, d[i].opacity); });
+        w, n, 1, [&](size_t i) { return d[i].opacity.bits() == 255; },
+        [&](uint8_t* q, size_t i) { q[0] = d[i].opacity.bits(); });
     const Decal plain;
     writeSparse(
         w, n, 8, [&](size_t i) { return sameClips(d[i], plain); },
@@ -135,6 +135,9 @@ void writeDecals(ByteWriter& w, const DecalSystemState& st) {
                 storeU16(q + 2, uint16_t(d[i].clips[k].offset));
             }
         });
+    writeSparse(
+        w, n, 4, [&](size_t i) { return d[i].slant == 0; },
+        [&](uint8_t* q, size_t i) { storeU32(q, d[i].slant); });
     writeColumn(w, n, [&](size_t i) { return d[i].type; });
     writeColumn(w, n, [&](size_t i) { return d[i].object; });
     writeColumn(w, n, [&](size_t i) { return st.slotOf[i]; });

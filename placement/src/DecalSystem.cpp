@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <limits>
 #include <mutex>
 #include <system_error>
@@ -293,10 +292,12 @@ struct DecalSystem::Impl {
     }
 
     // Places a decal of `typeIndex` on `objectIndex` at `local` (object space) facing `worldNormal`
-    // (unit), its tangent from `worldHint`. Every check but the box and the limits has passed. The
-    // random numbers are drawn first and given back (the generator restored) when a check fails.
+    // (unit), its tangent from `worldHint`, which is the shot's direction when `shot` is set (and then
+    // the projection axis of a type projected along the shot). Every check but the box and the limits
+    // has passed. The random numbers are drawn first and given back (the generator restored) when a
+    // check fails.
     SpawnResult place(uint32_t objectIndex, const glm::dvec3& local, const glm::dvec3& worldNormal,
-                      const glm::dvec3& worldHint, uint16_t typeIndex) {
+                      const glm::dvec3& worldHint, uint16_t typeIndex, bool shot = false) {
         const CollisionObject& o = object(objectIndex);
         const DecalType& t = types[typeIndex];
         const Rng unused = rng;
@@ -321,6 +322,9 @@ struct DecalSystem::Impl {
 
         Decal d;
         d.packedFrame = packFrame(tan, bit, n, false); // orthonormal already: packed as it is
+        if (shot && t.projection == Projection::Shot && !t.volumetric)
+            d.slant =
+                slantOf(tan, bit, n, -(inv * worldHint)); // directions go to object space by the inverse
         d.center = glm::vec3(local);
         d.size = glm::vec2(float(size.x / glm::length(m * tan)), float(size.y / glm::length(m * bit)));
         d.halfDepth = float(halfDepth * glm::length(glm::transpose(inv) * n));
@@ -389,7 +393,7 @@ struct DecalSystem::Impl {
                                                          formatNumber(angle) +
                                                          " degrees from its normal (type '" + t.name +
                                                          "' allows " + formatNumber(t.maxAngleDeg) + ")");
-        return place(hit->object, hit->localPosition, hit->normal, dir, typeIndex);
+        return place(hit->object, hit->localPosition, hit->normal, dir, typeIndex, true);
     }
 
     // world.intersectBatch(rays), traced in slices by up to settings.batchThreads threads (each
@@ -435,6 +439,7 @@ struct DecalSystem::Impl {
         if (!(finite3(normalMatrix[0]) && finite3(normalMatrix[1]) &&
               finite3(normalMatrix[2]))) { // a singular transform: the object, and the box, collapse
             w.frame = f;
+            w.projection = f.normal;
             return w;
         }
         const glm::dvec3 nScaled = normalMatrix * glm::dvec3(f.normal);
@@ -448,6 +453,7 @@ struct DecalSystem::Impl {
         w.size = glm::vec2(float(d.size.x * glm::length(tScaled)),
                            float(d.size.y * glm::length(m * glm::dvec3(f.bitangent))));
         w.halfDepth = float(d.halfDepth / glm::length(nScaled));
+        w.projection = glm::vec3(glm::normalize(m * glm::dvec3(d.projectionAxis())));
         return w;
     }
 };
@@ -656,8 +662,8 @@ Status DecalSystem::update(double dt) {
         }
         if (remove) {
             s.removeDense(i);
-        } else if (std::memcmp(&d.opacity, &opacity, sizeof opacity) != 0) {
-            d.opacity = opacity;
+        } else if (const Opacity stored(opacity); stored.bits() != d.opacity.bits()) {
+            d.opacity = stored; // a change only when the stored step does
             s.logChange(i, i, DecalChangeKind::Changed);
         }
     }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 namespace spatter::render_detail {
@@ -15,19 +14,13 @@ bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-uint32_t floatBits(float f) {
-    uint32_t u = 0;
-    std::memcpy(&u, &f, sizeof u);
-    return u;
-}
-
 // Whether the decal's numbers make a box the shaders can invert in float: finite, half extents of
 // normal floats (a GPU flushes denormals to zero), and a centre that the inverse's translation,
 // up to |centre| / (smallest half extent), keeps finite.
 bool soundNumbers(const Decal& d) {
     const glm::vec3 h(0.5f * d.size, d.halfDepth);
     const float smallest = glm::min(h.x, glm::min(h.y, h.z));
-    if (!finite(d.center) || !finite(h) || !std::isfinite(d.opacity) ||
+    if (!finite(d.center) || !finite(h) || !validSlant(d.slant) ||
         !(smallest >= std::numeric_limits<float>::min()))
         return false;
     const double reach =
@@ -40,8 +33,8 @@ bool soundNumbers(const Decal& d) {
 bool buildDecalRecord(const Decal& d, DecalRecordGpu& out) {
     out = DecalRecordGpu{};
     out.info =
-        glm::uvec4(d.object, uint32_t(d.type) | uint32_t(d.objectId) << 16,
-                   floatBits(std::isfinite(d.opacity) ? std::clamp(d.opacity, 0.0f, 1.0f) : 0.0f), d.id);
+        glm::uvec4(d.object, uint32_t(d.type) | uint32_t(d.objectId) << 16 | uint32_t(d.opacity.bits()) << 24,
+                   d.slant, d.id);
     if (!soundNumbers(d) || !hasOrientation(d.packedFrame)) return false;
     out.centerDepth = glm::vec4(d.center, d.halfDepth);
     out.frame = glm::uvec2(uint32_t(d.packedFrame), uint32_t(d.packedFrame >> 32));
@@ -73,9 +66,11 @@ DecalTypeGpu buildDecalType(const DecalType& type, float wrapMaxAngleDeg, int la
 glm::dmat4 recordBoxToObject(const DecalRecordGpu& r) {
     const glm::dmat3 m = glm::mat3_cast(unpackOrientation(uint64_t(r.frame.y) << 32 | r.frame.x));
     const glm::dvec3 h(r.halfSize.x, r.halfSize.y, r.centerDepth.w);
-    const double flip = recordFlags(r) & kDecalMirrored ? -1.0 : 1.0;
-    return glm::dmat4(glm::dvec4(m[0] * h.x, 0.0), glm::dvec4(m[1] * (flip * h.y), 0.0),
-                      glm::dvec4(m[2] * h.z, 0.0), glm::dvec4(glm::dvec3(glm::vec3(r.centerDepth)), 1.0));
+    const glm::dvec3 b = recordFlags(r) & kDecalMirrored ? -m[1] : m[1];
+    const glm::dvec2 s(unpackSlant(r.info.z));
+    return glm::dmat4(glm::dvec4(m[0] * h.x, 0.0), glm::dvec4(b * h.y, 0.0),
+                      glm::dvec4((m[2] + s.x * m[0] + s.y * b) * h.z, 0.0),
+                      glm::dvec4(glm::dvec3(glm::vec3(r.centerDepth)), 1.0));
 }
 
 } // namespace spatter::render_detail

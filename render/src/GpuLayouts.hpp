@@ -69,8 +69,9 @@ struct alignas(16) DecalRecordGpu {
     glm::vec4 centerDepth; // xyz: the box's centre in object space; w: its half depth (0: not drawable)
     glm::uvec2 frame;      // Decal::packedFrame (PackedFrame.hpp): x its low 32 bits, y its high ones
     glm::vec2 halfSize;    // half the width and height
-    glm::uvec4 info;       // x: object index; y: type (bits 0-15), object decal ID (16-23); z: opacity
-                           // (float bits); w: decal ID. Mirrored: bit 62 of the frame
+    glm::uvec4 info;       // x: object index; y: type (bits 0-15), object decal ID (16-23), opacity in
+                           // 1/255 (24-31); z: slant (DecalProjection.hpp); w: decal ID. Mirrored: bit
+                           // 62 of the frame
 };
 static_assert(sizeof(DecalRecordGpu) == 48, "DecalRecordGpu must match DecalRecord (std430)");
 

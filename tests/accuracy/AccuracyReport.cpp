@@ -46,12 +46,13 @@ struct Pooled {
     std::string proxy;
     size_t renderTriangles = 0, proxyTriangles = 0, rays = 0, proxyHits = 0;
     size_t disagreements = 0, proxyOnly = 0, renderOnly = 0, otherObject = 0;
-    size_t decals = 0, holding = 0, tightDecals = 0, tightHolding = 0, beyond = 0;
+    size_t decals = 0, holding = 0, tightDecals = 0, tightHolding = 0, beyond = 0, shotDecals = 0,
+           shotInSlab = 0;
     double hRelative = 0.0;   // largest h / diagonal
     double distanceRatio = 0; // largest proxy-hit distance / h over objects with h > 0
     double exactDistance = 0; // largest proxy-hit distance / diagonal over objects with h = 0
     bool anyExact = false, anyBounded = false, allMet = true;
-    double defaultDepthUse = 0.0, tightDepthUse = 0.0, lateralUse = 0.0;
+    double defaultDepthUse = 0.0, tightDepthUse = 0.0, lateralUse = 0.0, shotLateralUse = 0.0;
     std::vector<double> offsets, angles;
 };
 
@@ -75,6 +76,9 @@ Pooled pool(const CaseReport& c, const std::vector<const ObjectMismatch*>& objec
         p.tightDecals += o->tightDecals;
         p.tightHolding += o->tightHolding;
         p.beyond += o->hitsBeyondBound;
+        p.shotDecals += o->shotDecals;
+        p.shotInSlab += o->shotInSlab;
+        p.shotLateralUse = std::max(p.shotLateralUse, o->shotLateralUse);
         p.defaultDepthUse = std::max(p.defaultDepthUse, o->defaultDepthUse);
         p.tightDepthUse = std::max(p.tightDepthUse, o->tightDepthUse);
         p.lateralUse = std::max(p.lateralUse, o->lateralUse);
@@ -99,8 +103,9 @@ const char* kHeader =
     "| %s | tol | proxy | triangles render -> proxy | h (%% of diag) | max d / h | along-ray offset "
     "p50 / p99 / max (%% of diag) | normal angle p50 / p99 / max (deg) | hit/miss disagreement | decal "
     "boxes holding the nearest render point (default / tight) | nearest render point: largest \\|z\\| / "
-    "half-depth (default, tight); lateral | rays (proxy hits) |\n"
-    "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    "half-depth (default, tight); lateral | along the shot: render hits within the half-depth; largest "
+    "\\|u\\|, \\|v\\| | rays (proxy hits) |\n"
+    "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 
 std::string row(const std::string& label, const CaseReport& c, const Pooled& p) {
     std::string distance;
@@ -120,8 +125,9 @@ std::string row(const std::string& label, const CaseReport& c, const Pooled& p) 
            triple(summarize(p.offsets), 100.0, "%.2g") + " | " + triple(summarize(p.angles), 1.0, "%.2g") +
            " | " + disagreement + " | " + count(p.holding) + " of " + count(p.decals) + " / " +
            count(p.tightHolding) + " of " + count(p.tightDecals) + " | " + fmt("%.3f", p.defaultDepthUse) +
-           ", " + fmt("%.3f", p.tightDepthUse) + "; " + fmt("%.3f", p.lateralUse) + " | " + count(p.rays) +
-           " (" + count(p.proxyHits) + ") |\n";
+           ", " + fmt("%.3f", p.tightDepthUse) + "; " + fmt("%.3f", p.lateralUse) + " | " +
+           count(p.shotInSlab) + " of " + count(p.shotDecals) + "; " + fmt("%.4f", p.shotLateralUse) + " | " +
+           count(p.rays) + " (" + count(p.proxyHits) + ") |\n";
 }
 
 class ReportEnvironment : public ::testing::Environment {

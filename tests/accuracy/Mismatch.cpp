@@ -97,6 +97,15 @@ bool boxHoldsNearestRenderPoint(const Decal& d, const ClosestPointQuery& render,
     return x <= hw + allowance && y <= hh + allowance && z <= hd + allowance;
 }
 
+// `point` (object space) in the unit box of `d` (a slanted box's own coordinates): `depthUse` gets
+// |w|, `lateralUse` max(|u|, |v|).
+void boxCoordinates(const Decal& d, const glm::dvec3& point, double& depthUse, double& lateralUse) {
+    const glm::dmat4 toBox = glm::inverse(glm::dmat4(d.boxToObject()));
+    const glm::dvec3 b(toBox * glm::dvec4(point, 1.0));
+    depthUse = std::fabs(b.z);
+    lateralUse = std::max(std::fabs(b.x), std::fabs(b.y));
+}
+
 Result<DecalSystem> makeSystem(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
                                const WorldSettings& worldSettings, uint64_t seed, float depthMargin) {
     Result<CollisionWorld> world = CollisionWorld::build(scene, proxies, worldSettings);
@@ -154,7 +163,8 @@ Result<std::vector<ObjectMismatch>> measureMismatch(const Scene& scene,
     std::vector<ObjectMismatch> out;
     std::vector<size_t> slot(scene.objects.size(), SIZE_MAX);
     std::vector<ClosestPointQuery> render;
-    std::vector<uint16_t> type(scene.objects.size(), 0);
+    std::vector<uint16_t> type(scene.objects.size(), 0), tightType(scene.objects.size(), 0),
+        shotType(scene.objects.size(), 0);
     std::vector<double> worldDiagonal(scene.objects.size(), 0.0);
     std::vector<Ray> rays;
     std::vector<uint32_t> aimedAt;
@@ -182,10 +192,16 @@ Result<std::vector<ObjectMismatch>> measureMismatch(const Scene& scene,
         t.name = "decal on " + o.name + " #" + std::to_string(i);
         t.size = glm::vec2(decalSize);
         t.maxAngleDeg = 90.0f;
+        t.projection = Projection::Normal;
         Result<uint16_t> a = loose->registerType(t);
         Result<uint16_t> b = tight->registerType(t);
-        if (!a || !b) return fail(where + (a ? b.error() : a.error()));
+        t.name += " along the shot";
+        t.projection = Projection::Shot;
+        Result<uint16_t> c = loose->registerType(t);
+        if (!a || !b || !c) return fail(where + (!a ? a.error() : !b ? b.error() : c.error()));
         type[i] = a.value();
+        tightType[i] = b.value();
+        shotType[i] = c.value();
 
         Rng rng(settings.seed * 0x9E3779B97F4A7C15ULL + i);
         for (const Ray& r : raysAt(o, bounds, settings.raysPerObject, rng)) {
@@ -237,7 +253,19 @@ Result<std::vector<ObjectMismatch>> measureMismatch(const Scene& scene,
                 m.defaultDepthUse = std::max(m.defaultDepthUse, depthUse);
             }
         }
-        const SpawnResult b = tight->spawn(rays[k], type[counted]);
+        const SpawnResult shot = loose->spawn(rays[k], shotType[counted]);
+        const bool steep = angleDegrees(-rays[k].direction, hp->normal) > kMaxSlantDeg;
+        if (shot.placed() && hr && hr->object == counted && !steep) {
+            const Decal& d = *loose->get(shot.handle);
+            m.shotDecals++;
+            boxCoordinates(d, hr->localPosition, depthUse, lateralUse);
+            m.shotDepthUse = std::max(m.shotDepthUse, depthUse);
+            if (depthUse <= 1.0) {
+                m.shotInSlab++;
+                m.shotLateralUse = std::max(m.shotLateralUse, lateralUse);
+            }
+        }
+        const SpawnResult b = tight->spawn(rays[k], tightType[counted]);
         if (b.placed()) {
             const Decal& d = *tight->get(b.handle);
             m.tightDecals++;

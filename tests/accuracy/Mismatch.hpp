@@ -13,9 +13,12 @@
 //    angle between their geometric normals;
 //  - where one world hits and the other misses, or they hit different objects: a disagreement;
 //  - a decal spawned by the ray through a DecalSystem on the proxy world (one with the default
-//    depth margin, one with a margin of tightMargin * size, so that half-depth ~ h): the render
-//    surface point nearest to the decal centre, expressed in the decal's frame (object space, as
-//    the renderer uses it), must satisfy |x| <= w/2, |y| <= h/2, |z| <= half_depth.
+//    depth margin, one with a margin of tightMargin * size, so that half-depth ~ h), projected
+//    along the normal: the render surface point nearest to the decal centre, expressed in the
+//    decal's frame (object space, as the renderer uses it), must satisfy |x| <= w/2, |y| <= h/2,
+//    |z| <= half_depth;
+//  - a decal projected along the shot (default margin): the render hit of the same ray, where it is
+//    on the same object, expressed in the decal's slanted box.
 // Every ray is counted for the object the proxy world hit (else the render world, else the object
 // it was aimed at).
 
@@ -83,6 +86,14 @@ struct ObjectMismatch {
     double defaultDepthUse = 0.0;
     double tightDepthUse = 0.0;
     double lateralUse = 0.0;
+    // Decals projected along the shot (default margin) where the render world hits the same object
+    // and the shot is within kMaxSlantDeg of the proxy normal: how many have that render hit within
+    // the half-depth of their plane (|w| <= 1 in the unit box), its largest |w| over all of them, and
+    // its largest max(|u|, |v|) over those (0 on the box's axis, but for the slope's rounding).
+    size_t shotDecals = 0;
+    size_t shotInSlab = 0;
+    double shotDepthUse = 0.0;
+    double shotLateralUse = 0.0;
 
     size_t disagreements() const { return proxyOnly + renderOnly + otherObject; }
 };

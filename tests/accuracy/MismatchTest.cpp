@@ -144,6 +144,13 @@ void expectGuarantees(const std::vector<ObjectMismatch>& objects) {
         // size): half_depth >= 2h, so the nearest render point lies in the inner half of the box, where
         // the renderer's default depth fade has not started.
         EXPECT_LE(o.defaultDepthUse, 0.5 + 1e-4);
+        // Projected along the shot: the render hit of the same shot, wherever it lies within the
+        // half-depth of the decal's plane, is on the box's axis (the footprint centred on it) but for
+        // the slope's half-float rounding; it lies farther only where the proxy is not the decal's
+        // plane across the shot (edges, silhouettes), for at most 3% of the decals.
+        EXPECT_LE(o.shotLateralUse, 0.005);
+        EXPECT_GE(double(o.shotInSlab), 0.97 * double(o.shotDecals))
+            << o.shotInSlab << " of " << o.shotDecals << " render hits within the half-depth";
     }
     EXPECT_GT(hits, rays / 2) << "most rays must hit for the distributions to mean something";
 }

@@ -307,8 +307,9 @@ struct Run {
         for (const Decal& d : decals) {
             if (d.object >= system.world().objectCount() || d.type >= system.typeCount())
                 violated("a decal refers to an object or type that does not exist", op);
-            if (!finite(d.center) || !finite(d.frame.normal) || !finite(d.frame.tangent) ||
-                !finite(d.frame.bitangent) || !(frameError(d.frame) < 1e-3f))
+            const Frame f = d.frame();
+            if (!finite(d.center) || !finite(f.normal) || !finite(f.tangent) || !finite(f.bitangent) ||
+                !(frameError(f) < 1e-3f))
                 violated("a decal's centre or frame is not finite and orthonormal", op);
             if (!std::isfinite(d.size.x) || !std::isfinite(d.size.y) || !(d.size.x > 0.0f) ||
                 !(d.size.y > 0.0f) || !std::isfinite(d.halfDepth) || !(d.halfDepth > 0.0f)) {
@@ -316,8 +317,7 @@ struct Run {
                              double(d.size.x), double(d.size.y), double(d.halfDepth));
                 violated("a decal's size or half-depth is not finite and positive", op);
             }
-            if (!(d.opacity >= 0.0f && d.opacity <= 1.0f))
-                violated("a decal's opacity is outside [0, 1]", op);
+            if (!validSlant(d.slant)) violated("a decal's slant is not one a projection axis packs to", op);
             if (d.objectId != system.objectId(d.object))
                 violated("a decal's object ID is not its object's", op);
         }
@@ -455,7 +455,7 @@ bool sameDecals(const std::vector<Decal>& a, const std::vector<Decal>& b) {
         if (x.packedFrame != y.packedFrame || std::memcmp(&x.center, &y.center, sizeof x.center) ||
             std::memcmp(&x.size, &y.size, sizeof x.size) || x.halfDepth != y.halfDepth ||
             x.object != y.object || x.objectId != y.objectId || x.id != y.id || x.type != y.type ||
-            x.spawnTime != y.spawnTime || x.opacity != y.opacity)
+            x.spawnTime != y.spawnTime || x.opacity.bits() != y.opacity.bits() || x.slant != y.slant)
             return false;
     }
     return true;

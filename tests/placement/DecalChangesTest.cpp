@@ -20,16 +20,16 @@ namespace {
 // Every byte of two decals that holds a value (all but the padding) equal, field by field.
 bool sameBytes(const Decal& a, const Decal& b) {
     auto same = [](const auto& x, const auto& y) { return std::memcmp(&x, &y, sizeof x) == 0; };
-    return same(a.packedFrame, b.packedFrame) && same(a.center, b.center) &&
-           same(a.size, b.size) && same(a.halfDepth, b.halfDepth) && same(a.object, b.object) &&
-           same(a.id, b.id) && same(a.type, b.type) && same(a.objectId, b.objectId) &&
-           same(a.spawnTime, b.spawnTime) && same(a.opacity, b.opacity) && same(a.clips, b.clips);
+    return same(a.packedFrame, b.packedFrame) && same(a.center, b.center) && same(a.size, b.size) &&
+           same(a.halfDepth, b.halfDepth) && same(a.object, b.object) && same(a.id, b.id) &&
+           same(a.type, b.type) && same(a.objectId, b.objectId) && same(a.spawnTime, b.spawnTime) &&
+           same(a.opacity, b.opacity) && same(a.slant, b.slant) && same(a.clips, b.clips);
 }
-// A field added to Decal must be added to sameBytes.
-static_assert(sizeof(glm::quat) + sizeof(bool) + sizeof(glm::vec3) + sizeof(glm::vec2) + 2 * sizeof(float) +
-                      2 * sizeof(uint32_t) + sizeof(uint16_t) + sizeof(uint8_t) + sizeof(double) +
-                      2 * sizeof(CraterClip) ==
-                  72,
+// A field added to Decal must be added to sameBytes (the record has no padding: its fields fill it).
+static_assert(sizeof(glm::vec3) + sizeof(float) + sizeof(uint64_t) + sizeof(glm::vec2) + sizeof(double) +
+                      2 * sizeof(uint32_t) + sizeof(uint16_t) + sizeof(uint8_t) + sizeof(Opacity) +
+                      sizeof(uint32_t) + 2 * sizeof(CraterClip) ==
+                  sizeof(Decal),
               "Decal has fields sameBytes does not compare");
 
 ::testing::AssertionResult sameArray(const std::vector<Decal>& a, const std::vector<Decal>& b) {
@@ -335,8 +335,8 @@ TEST(DecalChanges, AFadingDecalLogsAChangeEachUpdateItsOpacityChanges) {
     EXPECT_EQ(s.version(), v);
     ASSERT_TRUE(s.update(0.5).ok()); // age 1.25: fading
     expectOnly(DecalChangeKind::Changed, 1, "fading");
-    EXPECT_FLOAT_EQ(s.decals()[1].opacity, 0.75f);
-    ASSERT_TRUE(s.update(0.0).ok()); // same age, same opacity
+    EXPECT_EQ(s.decals()[1].opacity.bits(), Opacity(0.75f).bits()); // kept in steps of 1/255
+    ASSERT_TRUE(s.update(0.0).ok());                                // same age, same opacity
     EXPECT_EQ(s.version(), v);
     ASSERT_TRUE(s.update(0.25).ok());
     expectOnly(DecalChangeKind::Changed, 1, "fading further");

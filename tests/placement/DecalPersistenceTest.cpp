@@ -186,7 +186,7 @@ size_t decalCount(const std::vector<uint8_t>& b) {
 size_t integerColumnsAt(const std::vector<uint8_t>& b) {
     const size_t n = decalCount(b);
     size_t at = sectionAt(b, "DECL") + 4 + n * 44;
-    for (size_t valueBytes : {4, 8}) { // opacities, clips: absent, dense or sparse
+    for (size_t valueBytes : {1, 8, 4}) { // opacities, clips, slants: absent, dense or sparse
         const uint8_t kind = b[at++];
         if (kind == 1) at += n * valueBytes;
         if (kind != 2) continue;

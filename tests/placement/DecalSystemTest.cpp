@@ -456,14 +456,14 @@ TEST(DecalSystem, FadeOldestFadesTheEvictedDecalThenRemovesIt) {
     EXPECT_EQ(s.decals().size(), 3u); // the evicted one is still fading
     EXPECT_EQ(s.stats().evicted, 1u);
     ASSERT_TRUE(s.update(0.5).ok());
-    EXPECT_FLOAT_EQ(s.get(h[0])->opacity, 0.75f);
+    EXPECT_EQ(s.get(h[0])->opacity.bits(), Opacity(0.75f).bits());
     EXPECT_FLOAT_EQ(s.get(h[1])->opacity, 1.0f);
     // The fading decal no longer counts: one more fits only after evicting h[1].
     ASSERT_TRUE(s.spawn(ray({0.6, 1.3, 0.0}, {0.0, 0.0, -1.0}), type).placed());
     EXPECT_EQ(s.stats().evicted, 2u);
     ASSERT_TRUE(s.update(1.5).ok());
     EXPECT_EQ(s.get(h[0]), nullptr);
-    EXPECT_FLOAT_EQ(s.get(h[1])->opacity, 0.25f);
+    EXPECT_EQ(s.get(h[1])->opacity.bits(), Opacity(0.25f).bits());
     EXPECT_EQ(s.decals().size(), 3u);
     EXPECT_EQ(s.stats().expired, 0u);
 }
@@ -680,7 +680,7 @@ TEST(DecalSystem, LifetimeFadesThenExpires) {
     ASSERT_TRUE(s.update(0.5).ok());
     EXPECT_FLOAT_EQ(s.get(h)->opacity, 1.0f);
     ASSERT_TRUE(s.update(1.0).ok());
-    EXPECT_FLOAT_EQ(s.get(h)->opacity, 0.5f);
+    EXPECT_EQ(s.get(h)->opacity.bits(), Opacity(0.5f).bits());
     EXPECT_FALSE(s.update(-1.0).ok());
     EXPECT_FALSE(s.update(std::numeric_limits<double>::quiet_NaN()).ok());
     EXPECT_DOUBLE_EQ(s.time(), 1.5);

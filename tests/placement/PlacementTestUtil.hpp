@@ -95,7 +95,7 @@ inline ::testing::AssertionResult sameDecal(const Decal& a, const Decal& b) {
                       sameBits(&a.halfDepth, &b.halfDepth, sizeof(float)) && a.object == b.object &&
                       a.objectId == b.objectId && a.id == b.id && a.type == b.type &&
                       sameBits(&a.spawnTime, &b.spawnTime, sizeof(double)) &&
-                      sameBits(&a.opacity, &b.opacity, sizeof(float));
+                      a.opacity.bits() == b.opacity.bits() && a.slant == b.slant;
     if (same) return ::testing::AssertionSuccess();
     return ::testing::AssertionFailure()
            << "decals differ: id " << a.id << " vs " << b.id << ", object " << a.object << " vs " << b.object

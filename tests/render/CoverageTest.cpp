@@ -179,14 +179,16 @@ TEST(Coverage, MatchesCpuReferenceWithTheCameraInsideDecalBoxes) {
         test::makeType("wrap", {2.0f, 2.0f}, DecalTexture::Blood, true, 3.0f)};
     const test::Placed placed = test::shootFromCamera(scene, shooter, types, 40, 17);
     ASSERT_GT(placed.placed, 20u);
-    // The eye 1 m in front of the first decal, looking at it: inside its box and others.
+    // The eye 1 m in front of the first decal on its projection axis (the shot's), looking at it:
+    // inside its box and others.
     const Decal& d = placed.inputs.decals.front();
     const glm::dmat4& m = scene.objects[d.object].transform;
     const glm::dvec3 centre(m * glm::dvec4(glm::dvec3(d.center), 1.0));
     const glm::dvec3 normal =
         glm::normalize(glm::transpose(glm::inverse(glm::dmat3(m))) * glm::dvec3(d.frame().normal));
+    const glm::dvec3 axis = glm::normalize(glm::dmat3(m) * glm::dvec3(d.projectionAxis()));
     Camera inside;
-    inside.eye = centre + normal * 1.0;
+    inside.eye = centre + axis * (1.0 / glm::dot(axis, normal));
     inside.target = centre - glm::dvec3(0.3, 0.2, 0.1);
     const glm::dvec3 box(glm::inverse(m * glm::dmat4(d.boxToObject())) * glm::dvec4(inside.eye, 1.0));
     ASSERT_LE(std::max({std::fabs(box.x), std::fabs(box.y), std::fabs(box.z)}), 1.0)

@@ -522,7 +522,7 @@ TEST(DecalPass, SkipsInvalidDecalsWithoutCrashing) {
     decals[5].size = {0.0f, 1.0f};          // empty
     decals[6].halfDepth = -1.0f;            // negative depth
     decals[7].packedFrame = kNoOrientation; // what setFrame makes of a degenerate frame
-    decals[8].opacity = INFINITY;           // not finite
+    decals[8].slant = 0x7c00u;              // a projection axis of infinite slope
     r->setDecals(decals);
     FrameStats st;
     const Image im =

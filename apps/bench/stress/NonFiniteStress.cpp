@@ -597,7 +597,8 @@ StressResult runNonFiniteRender(const StressConfig& cfg) {
              {"orientation without its frame bit", [](Decal& d) { d.packedFrame &= ~(uint64_t(1) << 63); }},
              {"NaN size", [](Decal& d) { d.size.y = kNaNf; }},
              {"Inf half-depth", [](Decal& d) { d.halfDepth = kInff; }},
-             {"NaN opacity", [](Decal& d) { d.opacity = kNaNf; }},
+             {"NaN slant", [](Decal& d) { d.slant = 0x7e00u; }},
+             {"infinite slant", [](Decal& d) { d.slant = 0x7c00u << 16; }},
              {"no orientation", [](Decal& d) { d.packedFrame = kNoOrientation; }},
              {"denormal size", [](Decal& d) { d.size = glm::vec2(kDenormalf); }},
              {"denormal half-depth", [](Decal& d) { d.halfDepth = kDenormalf; }}}) {

@@ -10,12 +10,17 @@
 // setFrame. Each
 // decal keeps 28 bytes that three separate axes would spend.
 //
+// The box is projected along the normal or, slanted, along the shot that placed the decal
+// (DecalProjection.hpp): `slant` keeps the axis, and boxToObject() the parallelepiped it makes.
+//
 //   Decal d;
 //   d.setFrame(frameFromNormalAndHint(normal, hint)); // false: no frame can be made of it
 //   const Frame f = d.frame();                        // tangent, bitangent, normal
 
 #include "spatter/core/CraterClip.hpp"
+#include "spatter/core/DecalProjection.hpp"
 #include "spatter/core/Frame.hpp"
+#include "spatter/core/Opacity.hpp"
 #include "spatter/core/PackedFrame.hpp"
 
 #include <cstdint>
@@ -32,9 +37,10 @@ struct Decal {
     double spawnTime = 0.0;                      // seconds, decal system clock
     uint32_t object = 0;                         // index into Scene::objects
     uint32_t id = 0;                             // 32-bit random decal ID from the seeded generator
-    float opacity = 1.0f;                        // 1 while alive; falls to 0 while fading out
     uint16_t type = 0;                           // index of its DecalType in the decal system's registry
     uint8_t objectId = 0; // 8-bit object decal ID: 0 for static geometry, 1..255 for dynamic
+    Opacity opacity;      // 1 while alive; falls to 0 while fading out (in steps of 1/255)
+    uint32_t slant = 0;   // projection axis relative to the frame (DecalProjection.hpp); 0: the normal
     CraterClip clips[2];  // volumetric decals: where the solid ends around the crater (CraterClip.hpp)
 
     // The unit quaternion of the frame (the zero quaternion when it has none).
@@ -55,8 +61,16 @@ struct Decal {
     // returns false.
     bool setFrame(const Frame& f);
 
+    // The unit projection axis in object space: the normal, slanted by `slant`.
+    glm::vec3 projectionAxis() const;
+    // Projects the decal along `axis` (object space, pointing out of the surface; need not be unit):
+    // sets `slant` from it and the frame, turned to kMaxSlantDeg when farther from the normal. An axis
+    // that is zero, not finite or points into the surface projects along the normal.
+    void setProjectionAxis(const glm::vec3& axis);
+
     // Decal box to object space: maps the cube [-1, 1]^3 onto the box (columns: tangent * w/2,
-    // bitangent * h/2, normal * halfDepth, centre).
+    // bitangent * h/2, the projection axis scaled to reach halfDepth along the normal
+    // (normal + slopes.x * tangent + slopes.y * bitangent) * halfDepth, centre).
     glm::mat4 boxToObject() const;
 };
 

@@ -2,6 +2,8 @@
 // DecalType: what a kind of decal looks like and how it is placed. Registered by name with the
 // decal system; the renderer reads the appearance half.
 
+#include "spatter/core/DecalProjection.hpp"
+
 #include <glm/glm.hpp>
 #include <string>
 
@@ -27,6 +29,11 @@ struct DecalType {
     float fadeOutTime = 1.0f;   // seconds of fading before a decal is removed (lifetime, eviction)
     float halfDepth = 0.0f;     // override of the automatic half-depth; 0 = automatic
     bool onDynamic = true;      // may land on dynamic objects
+    // The axis the texture is projected along (DecalProjection.hpp). Shot: a decal placed by spawn or
+    // spawnBatch lands where its ray meets the drawn surface, even where that lies off the collision
+    // proxy; spawnAt and spawnAttached have no shot and project along the normal, as do volumetric
+    // types (a crater is carved along the normal).
+    Projection projection = Projection::Shot;
 
     // Appearance.
     int texture = int(DecalTexture::BulletHole); // layer in the decal texture array

@@ -89,14 +89,17 @@ struct DecalStats {
 };
 
 // A decal's box in world space: |x| <= size.x / 2, |y| <= size.y / 2, |z| <= halfDepth in `frame`
-// around `center`. Exact for rigid transforms with uniform or axis-aligned scale (TRS); under shear
-// the world box is the object-space box mapped by the transform, and this is its nearest
-// orthonormal description.
+// around `center`, its depth lines running along `projection` (a decal projected along its shot:
+// the rectangle at height z above the plane is shifted along the plane with the axis). Exact for rigid
+// transforms with uniform or axis-aligned scale (TRS); under shear the world box is the object-space box
+// mapped by the transform, and this is its nearest orthonormal description.
 struct WorldDecal {
     glm::dvec3 center{0.0};
     Frame frame;
     glm::vec2 size{0.0f};
     float halfDepth = 0.0f;
+    glm::vec3 projection{0.0f}; // unit axis the texture is projected along: the normal, or slanted
+                                // along the shot (DecalProjection.hpp)
 };
 
 class DecalSystem {
