@@ -116,7 +116,7 @@ bool addMeshoptPlaceholders(nlohmann::json& doc) {
     if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) return false;
     bool changed = false;
     for (nlohmann::json& buffer : doc["buffers"]) {
-        if (!buffer.is_object() || buffer.contains("uri")) continue;
+        if (!buffer.is_object()) continue;
         const auto exts = buffer.find("extensions");
         if (exts == buffer.end() || !exts->is_object()) continue;
         const auto ext = exts->find(kMeshopt);

@@ -9,8 +9,9 @@
 
 namespace spatter::gltf {
 
-// Gives each fallback buffer of the extension that has no uri, in the glTF document `doc`, a one-byte
-// placeholder (the parser would look for a file otherwise); true when it changed something.
+// Gives each fallback buffer of the extension in the glTF document `doc` a one-byte placeholder for
+// its uri: only compressed views refer to such a buffer, so its data (no uri, or a file that need not
+// exist) is never read. True when it changed something.
 bool addMeshoptPlaceholders(nlohmann::json& doc);
 
 // Decodes every buffer view that has the extension (meshopt_decodeVertexBuffer, IndexBuffer or

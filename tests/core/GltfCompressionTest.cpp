@@ -395,6 +395,17 @@ TEST(GltfCompression, MeshoptGivesThePlainGeometryInGltfAndGlb) {
     }
 }
 
+TEST(GltfCompression, MeshoptFallbackFileIsNeverRead) {
+    const Plain plain = wavyGrid();
+    size_t fallback = 0;
+    const GltfBuilder g = meshoptScene(plain, false, fallback);
+    json buffers = fallbackBuffer(fallback);
+    buffers[0]["uri"] = "absent-fallback.bin";
+    Scene scene = loaded(writeWithBuffers(g, scratch(), "fallback-file", buffers));
+    ASSERT_EQ(scene.objects.size(), 1u);
+    EXPECT_EQ(scene.objects[0].mesh.positions, plain.positions);
+}
+
 TEST(GltfCompression, RejectsTruncatedOrInconsistentMeshoptData) {
     const Plain plain = wavyGrid();
     const std::string dir = scratch();
