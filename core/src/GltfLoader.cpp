@@ -226,6 +226,10 @@ Status appendPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& 
         if (!finite(mesh.tangents.back())) return notFinite("TANGENT", i);
     }
 
+    if (tangent->present && uv->present && uvTransform.value())
+        transformTangents(*uvTransform.value(), mesh.normals, mesh.tangents, mesh.tangents.size() - n,
+                          mesh.tangents.size());
+
     Submesh sub;
     sub.firstIndex = uint32_t(mesh.indices.size());
     sub.indexCount = uint32_t(corners->size());

@@ -74,4 +74,23 @@ void transformUvs(const glm::dmat3& transform, std::vector<glm::vec2>& uvs, size
         uvs[i] = glm::vec2(transform * glm::dvec3(glm::dvec2(uvs[i]), 1.0));
 }
 
+void transformTangents(const glm::dmat3& transform, const std::vector<glm::vec3>& normals,
+                       std::vector<glm::vec4>& tangents, size_t begin, size_t end) {
+    const glm::dmat2 a(transform[0][0], transform[0][1], transform[1][0], transform[1][1]);
+    const double det = glm::determinant(a);
+    if (!(std::abs(det) > 1e-300) || !std::isfinite(det)) return;
+    const glm::dmat2 inv = glm::inverse(a); // inv[0]: d(u, v)/du', inv[1]: d(u, v)/dv'
+    for (size_t i = begin; i < end; ++i) {
+        const glm::dvec3 n(normals[i]), t(tangents[i]);
+        if (glm::dot(n, n) == 0.0) continue;
+        const glm::dvec3 b = double(tangents[i].w < 0.0f ? -1.0f : 1.0f) * glm::cross(n, t);
+        const glm::dvec3 du = t * inv[0][0] + b * inv[0][1];
+        const glm::dvec3 dv = t * inv[1][0] + b * inv[1][1];
+        const double length = glm::length(du);
+        if (!(length > 0.0) || !std::isfinite(length)) continue;
+        const double w = glm::dot(glm::cross(n, du), dv) < 0.0 ? -1.0 : 1.0;
+        tangents[i] = glm::vec4(glm::vec3(du / length), float(w));
+    }
+}
+
 } // namespace spatter::gltf

@@ -26,4 +26,11 @@ Result<std::optional<glm::dmat3>> materialUvTransform(const tinygltf::Model& mod
 // Applies `transform` to uvs[begin, end).
 void transformUvs(const glm::dmat3& transform, std::vector<glm::vec2>& uvs, size_t begin, size_t end);
 
+// Turns tangents[begin, end) so that each follows the transformed u direction again (the derivative
+// of the position by the new u, from the tangent, its bitangent w * cross(normal, tangent) and the
+// inverse of the transform), its w the handedness of the new frame. A tangent whose normal is zero,
+// or a transform that cannot be inverted, leaves the tangents as they are.
+void transformTangents(const glm::dmat3& transform, const std::vector<glm::vec3>& normals,
+                       std::vector<glm::vec4>& tangents, size_t begin, size_t end);
+
 } // namespace spatter::gltf

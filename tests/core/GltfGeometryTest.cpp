@@ -387,6 +387,37 @@ TEST(GltfGeometry, TextureTransformIsAppliedToTheUvs) {
     EXPECT_TRUE(scene.warnings.empty());
 }
 
+TEST(GltfGeometry, TextureTransformTurnsTheTangentsWithTheUvs) {
+    const std::string dir = scratch();
+    // A quarter turn: u' = -v, v' = u, so the new u runs along -y; a mirror in u flips the handedness.
+    struct Case {
+        const char* name;
+        nlohmann::json transform;
+        glm::vec4 tangent;
+    };
+    const Case cases[] = {{"turn", {{"rotation", glm::half_pi<double>()}}, {0, -1, 0, 1}},
+                          {"mirror", {{"scale", {-1, 1}}}, {-1, 0, 0, -1}}};
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        GltfBuilder g =
+            texturedQuad(dir, {{"index", 0}, {"extensions", {{"KHR_texture_transform", c.transform}}}});
+        const std::vector<glm::vec3> normals(4, glm::vec3(0, 0, 1));
+        const std::vector<glm::vec4> tangents(4, glm::vec4(1, 0, 0, 1));
+        auto& attributes = g.doc["meshes"][0]["primitives"][0]["attributes"];
+        attributes["NORMAL"] = g.addAccessor(g.addView(normals), kFloat, 4, "VEC3");
+        attributes["TANGENT"] = g.addAccessor(g.addView(tangents), kFloat, 4, "VEC4");
+        Scene scene = loaded(g.writeGltf(dir, c.name));
+        ASSERT_EQ(scene.objects.size(), 1u);
+        ASSERT_EQ(scene.objects[0].mesh.tangents.size(), 4u);
+        for (const glm::vec4& t : scene.objects[0].mesh.tangents) {
+            EXPECT_NEAR(t.x, c.tangent.x, 1e-6);
+            EXPECT_NEAR(t.y, c.tangent.y, 1e-6);
+            EXPECT_NEAR(t.z, c.tangent.z, 1e-6);
+            EXPECT_EQ(t.w, c.tangent.w);
+        }
+    }
+}
+
 TEST(GltfGeometry, RejectsTextureTransformThatIsNotNumbers) {
     const std::string dir = scratch();
     GltfBuilder g =
