@@ -49,7 +49,9 @@ then one proxy per backend and tolerance. Columns:
   n99       angle between the proxy and render hit normals, p99 (degrees)
   disagree  rays that hit one surface and miss the other (%)
   IoU       decal coverage (render view 'coverage') of decals placed through the proxy against
-            decals placed on the render mesh, same rays from the camera (needs an OpenGL context)
+            decals placed on the render mesh, same rays from the camera (needs an OpenGL context),
+            projected along the shot (the default)
+  IoU-n     the same, both projected along the normal
   h         the proxy's certified error bound (% of the diagonal); '!' marks a missed tolerance
 
 The three.js peer (bench/peers/threejs: three-mesh-bvh raycast and DecalGeometry, on the same mesh
@@ -72,7 +74,7 @@ and rays) is run when node and npm are available and reported beside the rows.
 --quick            2000 rays, one pass, tolerances 0.5,2, 60 coverage decals, peer capped at 5 s
 --json FILE        {"rows": [{"backend", "tolerance_rel", "proxy_triangles", "build_s", "placement_ns",
                    "batch_ns", "dist_p50_rel", "dist_p99_rel", "dist_max_rel", "normal_deg_p99",
-                   "disagree_rate", "coverage_iou", ...}], "peers": [...], ...}
+                   "disagree_rate", "coverage_iou", "coverage_iou_normal", ...}], "peers": [...], ...}
 )";
 
 constexpr double kRadToDeg = 57.295779513082320876;
@@ -86,7 +88,7 @@ struct Row {
     double placementNs = std::nan(""), batchNs = std::nan("");
     double distP50 = std::nan(""), distP99 = std::nan(""), distMax = std::nan("");
     double offsetP99 = std::nan(""), normalP99 = std::nan(""), disagree = std::nan("");
-    double iou = std::nan(""), errorBoundRel = std::nan("");
+    double iou = std::nan(""), iouNormal = std::nan(""), errorBoundRel = std::nan("");
     bool toleranceMet = true;
     uint32_t attempts = 0;
     size_t placed = 0;
@@ -149,14 +151,17 @@ public:
 
     const std::string& glRenderer() const { return context_->info().renderer; }
 
-    // The coverage mask of the decals the rays place through `proxies` (empty: the render mesh).
+    // The coverage mask of the decals the rays place through `proxies` (empty: the render mesh),
+    // projected along `projection`.
     Result<std::vector<uint8_t>> mask(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
-                                      double diagonal, uint64_t seed) {
+                                      double diagonal, uint64_t seed, Projection projection) {
         Result<CollisionWorld> world = CollisionWorld::build(scene, proxies);
         if (!world) return fail(world.error());
         Result<DecalSystem> sys = DecalSystem::create(std::move(world).value(), unlimited(diagonal, seed));
         if (!sys) return fail(sys.error());
-        const uint16_t type = sys->registerType(type_).value();
+        DecalType t = type_;
+        t.projection = projection;
+        const uint16_t type = sys->registerType(t).value();
         std::vector<SpawnResult> results;
         sys->spawnBatch(rays_, type, results);
         renderer_.setDecals(sys->decals());
@@ -272,6 +277,7 @@ Json rowJson(const Row& r) {
     j["normal_deg_p99"] = number(r.normalP99);
     j["disagree_rate"] = number(r.disagree);
     j["coverage_iou"] = number(r.iou);
+    j["coverage_iou_normal"] = number(r.iouNormal);
     j["status"] = r.status;
     j["reload_s"] = number(r.reloadS);
     j["bvh_s"] = number(r.bvhS);
@@ -306,6 +312,7 @@ std::vector<std::string> tableRow(const Row& r) {
             fmt(r.normalP99, 3),
             pct(r.disagree),
             std::isnan(r.iou) ? "-" : fixed(r.iou, 4),
+            std::isnan(r.iouNormal) ? "-" : fixed(r.iouNormal, 4),
             done ? h : r.status};
 }
 
@@ -425,7 +432,7 @@ int runTradeoffCommand(int argc, char** argv) {
 
     // Coverage, when an OpenGL context can be had.
     std::optional<CoverageProbe> probe;
-    std::vector<uint8_t> referenceMask;
+    std::vector<uint8_t> referenceMask, referenceNormalMask; // render-placed, along the shot and the normal
     std::string glRenderer, noCoverage;
     if (!args.has("--no-render")) {
         Camera camera;
@@ -443,12 +450,14 @@ int runTradeoffCommand(int argc, char** argv) {
                                                         coverageDecals, diagonal, seed + 7);
         if (p) {
             probe.emplace(std::move(p).value());
-            Result<std::vector<uint8_t>> m = probe->mask(scene, {}, diagonal, seed);
-            if (m) {
+            Result<std::vector<uint8_t>> m = probe->mask(scene, {}, diagonal, seed, Projection::Shot);
+            Result<std::vector<uint8_t>> n = probe->mask(scene, {}, diagonal, seed, Projection::Normal);
+            if (m && n) {
                 referenceMask = std::move(m).value();
+                referenceNormalMask = std::move(n).value();
                 glRenderer = probe->glRenderer();
             } else {
-                noCoverage = m.error();
+                noCoverage = m ? n.error() : m.error();
                 probe.reset();
             }
         } else {
@@ -482,7 +491,7 @@ int runTradeoffCommand(int argc, char** argv) {
         }
         measureErrors(renderHits, renderHits, rays, renderQuery.value(), diagonal, r);
         r.errorBoundRel = 0.0;
-        if (probe) r.iou = iou(referenceMask, referenceMask);
+        if (probe) r.iou = r.iouNormal = 1.0;
         rows.push_back(r);
         progress(r);
     }
@@ -538,8 +547,12 @@ int runTradeoffCommand(int argc, char** argv) {
                             r.placed = t->placed;
                         }
                         if (probe) {
-                            Result<std::vector<uint8_t>> m = probe->mask(scene, proxies, diagonal, seed);
+                            Result<std::vector<uint8_t>> m =
+                                probe->mask(scene, proxies, diagonal, seed, Projection::Shot);
+                            Result<std::vector<uint8_t>> n =
+                                probe->mask(scene, proxies, diagonal, seed, Projection::Normal);
                             if (m) r.iou = iou(referenceMask, m.value());
+                            if (n) r.iouNormal = iou(referenceNormalMask, n.value());
                         }
                     }
                 }
@@ -586,11 +599,11 @@ int runTradeoffCommand(int argc, char** argv) {
         };
         table.push_back({"three.js", "0", std::to_string(input.mesh.triangleCount()), "0", "-",
                          fixed(get("bvh_build_s"), 3), fixed(get("per_decal_ns"), 0), "-", "0", "0", "0", "0",
-                         "0", "0", "-", "0"});
+                         "0", "0", "-", "-", "0"});
     }
     std::printf("\n");
     printTable({"backend", "tol%", "tris", "build s", "reload s", "bvh s", "spawn ns", "batch ns", "d50%",
-                "d99%", "dmax%", "off99%", "n99 deg", "disagree%", "IoU", "h%"},
+                "d99%", "dmax%", "off99%", "n99 deg", "disagree%", "IoU", "IoU-n", "h%"},
                table);
 
     if (args.has("--json")) {

@@ -40,14 +40,16 @@ lines with nothing but blanks and comments are not rays. Rays are numbered from 
 Records:
   {"ray":0,"status":"placed","reason":"","object":"name","object_id":0,"decal_id":123,
    "position":[x,y,z],"normal":[x,y,z],"tangent":[x,y,z],"bitangent":[x,y,z],"size":[w,h],
-   "half_depth":d,"max_angle_deg":a,"proxy_error_bound":h}
+   "half_depth":d,"projection":[x,y,z],"max_angle_deg":a,"proxy_error_bound":h}
   {"ray":1,"status":"missed","reason":"..."}
   {"ray":2,"status":"rejected","reason":"..."}
 status is placed, missed (the ray hits no decal receiver) or rejected (a line that cannot be
 parsed, an invalid ray, a grazing hit, ...); non-placed records carry only ray, status and reason.
 position is the decal centre in world space (the hit on the collision mesh); normal, tangent and
 bitangent are the unit axes of its right-handed frame; the decal box is |x| <= w/2, |y| <= h/2,
-|z| <= half_depth in that frame. object_id is the object's 8-bit decal ID (0 for static
+|z| <= half_depth in that frame, its depth lines along projection (the unit axis the texture is
+projected along: the reversed ray, turned to 85 degrees from the normal at most, so the decal lands
+where the ray meets the drawn surface; the normal for a type projected along it). object_id is the object's 8-bit decal ID (0 for static
 geometry), decal_id the decal's 32-bit random ID. proxy_error_bound is the collision mesh's error
 bound h in world units (the render surface lies within h of the collision surface);
 half_depth = h + 0.25 * max(w, h).
@@ -339,6 +341,7 @@ int main(int argc, char** argv) {
                 rec["bitangent"] = vec3(w.frame.bitangent);
                 rec["size"] = {shortFloat(w.size.x), shortFloat(w.size.y)};
                 rec["half_depth"] = shortFloat(w.halfDepth);
+                rec["projection"] = vec3(w.projection);
                 rec["max_angle_deg"] = shortFloat(maxAngle);
                 rec["proxy_error_bound"] = system->world().worldErrorBound(d.object);
             } else if (res.status == spatter::SpawnStatus::Missed) {

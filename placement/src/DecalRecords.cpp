@@ -67,6 +67,10 @@ Status readBox(const Json& rec, WorldDecalBox& box) {
     if (!halfDepth || !(*halfDepth > 0.0))
         return fail("a placed record needs \"half_depth\": a finite positive number");
     box.halfDepth = *halfDepth;
+    if (!rec.contains("projection")) return {};
+    if (Status s = readVec3(rec, "projection", box.projection); !s) return s;
+    if (!(glm::dot(box.projection, box.axes[2]) > 0.0))
+        return fail("a placed record's \"projection\" must point to the side of its \"normal\"");
     return {};
 }
 
@@ -177,6 +181,7 @@ Decal toObjectSpace(const SceneObject& object, uint32_t index, const WorldDecalB
         Frame{glm::vec3(glm::normalize(a)), glm::vec3(glm::normalize(b)), glm::vec3(glm::normalize(c))});
     d.size = glm::vec2(float(2.0 * glm::length(a)), float(2.0 * glm::length(b)));
     d.halfDepth = float(glm::length(c));
+    if (box.projection != glm::dvec3(0.0)) d.setProjectionAxis(glm::vec3(invLinear * box.projection));
     return d;
 }
 

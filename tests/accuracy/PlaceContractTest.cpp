@@ -128,6 +128,9 @@ void checkRecords(const std::string& scene, const Scene& loaded, const std::vect
         EXPECT_LE(glm::length(glm::cross(fromOrigin, u)), slack); // on the ray
         EXPECT_GT(glm::dot(fromOrigin, u), 0.0);
         EXPECT_LE(glm::dot(nrm, u), 0.0); // facing the ray
+        const std::vector<double> pv = vec(rec["projection"]);
+        ASSERT_FALSE(pv.empty());
+        EXPECT_LT(glm::length(toVec(pv) + u), 2e-3); // along the reversed ray (within 85 degrees)
         ASSERT_TRUE(rec["size"].is_array() && rec["size"].size() == 2u);
         EXPECT_NEAR(rec["size"][0].get<double>(), 0.05, 1e-7); // --size, in world units
         EXPECT_NEAR(rec["size"][1].get<double>(), 0.05, 1e-7);

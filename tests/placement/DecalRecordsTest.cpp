@@ -35,7 +35,7 @@ std::string placedRecord(const DecalSystem& sys, const Decal& d, double maxAngle
       << json3(w.center) << R"(,"normal":)" << json3(glm::dvec3(w.frame.normal)) << R"(,"tangent":)"
       << json3(glm::dvec3(w.frame.tangent)) << R"(,"bitangent":)" << json3(glm::dvec3(w.frame.bitangent))
       << R"(,"size":[)" << w.size.x << "," << w.size.y << R"(],"half_depth":)" << w.halfDepth
-      << R"(,"max_angle_deg":)" << maxAngle << "}";
+      << R"(,"projection":)" << json3(glm::dvec3(w.projection)) << R"(,"max_angle_deg":)" << maxAngle << "}";
     return r.str();
 }
 
@@ -88,6 +88,8 @@ TEST(DecalRecords, PlacedRecordsGiveBackTheObjectSpaceDecals) {
         expectNear(a.frame().normal, b.frame().normal, 1e-5f);
         EXPECT_NEAR(a.size.x, b.size.x, 1e-5f);
         EXPECT_NEAR(a.halfDepth, b.halfDepth, 1e-5f);
+        EXPECT_EQ(b.slant != 0u, k == 0) << "the turned target is hit at an angle, the wall head on";
+        expectNear(a.projectionAxis(), b.projectionAxis(), 1e-3f);
         // Mixed looks: the k-th decal has the k-th built-in texture and its record's angle.
         const DecalType& t = loaded->types[a.type];
         EXPECT_EQ(t.texture, int(k));
@@ -122,6 +124,8 @@ TEST(DecalRecords, ErrorsNameTheFileLineAndField) {
         {good.substr(0, good.size() - 1) + ",\"half_depth\":0}", "\"half_depth\""},
         {good.substr(0, good.size() - 1) + ",\"object_id\":256}", "\"object_id\""},
         {good.substr(0, good.size() - 1) + ",\"object\":\"crate\"}", "no object named 'crate'"},
+        {good.substr(0, good.size() - 1) + ",\"projection\":[0,1]}", "\"projection\""},
+        {good.substr(0, good.size() - 1) + ",\"projection\":[0,0.3,-1]}", "side of its \"normal\""},
     };
     for (const Case& c : cases) {
         const std::string path = writeFile("bad.jsonl", good + "\n" + c.line + "\n");

@@ -38,6 +38,7 @@ struct WorldDecalBox {
     glm::dvec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}; // unit tangent, bitangent and normal
     glm::dvec2 size{0.0};                                   // full width and height
     double halfDepth = 0.0;
+    glm::dvec3 projection{0.0}; // the axis the texture is projected along; zero: the normal
 };
 
 // The object a record names: among the objects called `name`, the one whose world bounds lie
@@ -51,7 +52,8 @@ Decal toObjectSpace(const SceneObject& object, uint32_t index, const WorldDecalB
 
 // Reads spatter-place's JSON Lines output: every record with "status": "placed" becomes a decal on
 // the object it names ("object", found by findObject), from its world-space "position", "tangent",
-// "bitangent", "normal", "size" and "half_depth", with "object_id" (0..255, default 0) as its
+// "bitangent", "normal", "size", "half_depth" and "projection" (optional: the normal when absent),
+// with "object_id" (0..255, default 0) as its
 // object's decal ID and "decal_id" as its ID when given. Its type is `base` with "max_angle_deg"
 // (default 80) and the look lookOf(look, k) for the k-th decal, one type per distinct pair. Other
 // records and blank lines are skipped. Dynamic objects that no record names get the smallest object
