@@ -21,7 +21,7 @@ constexpr uint32_t kLeafTriangles = 4;
 // its surface) instead of its box corners.
 constexpr uint32_t kHullTriangles = 16;
 // Triangle centroids of A measured before the walk: the starting lower bound of every subtree.
-constexpr size_t kStartSamples = 1024;
+constexpr size_t kStartSamples = 1024, kStartChunk = 64;
 // Subtrees handed out to the threads, per thread.
 constexpr size_t kSubtreesPerWorker = 32;
 
@@ -100,8 +100,16 @@ void buildHierarchy(Impl& s) {
     for (size_t i = 0; i < order.size(); ++i)
         sorted[i] = s.triangles[order[i]];
     s.triangles = std::move(sorted);
-    for (Node& n : s.nodes)
-        fitBox(s, n);
+    // Leaves from their triangles, inner nodes from their children (which come after them).
+    for (size_t i = s.nodes.size(); i-- > 0;) {
+        Node& n = s.nodes[i];
+        if (n.child == 0) {
+            fitBox(s, n);
+        } else {
+            n.lo = glm::min(s.nodes[n.child].lo, s.nodes[n.child + 1].lo);
+            n.hi = glm::max(s.nodes[n.child].hi, s.nodes[n.child + 1].hi);
+        }
+    }
 }
 
 struct Measured {
@@ -399,59 +407,143 @@ size_t HausdorffSurface::surfaceTriangleCount() const {
     return impl_->triangles.size();
 }
 
-Result<HausdorffResult> boundOneSided(const HausdorffSurface& from, const HausdorffSurface& to,
-                                      const HausdorffSettings& s, const ProgressCallback& progress) {
+namespace {
+
+Status checkSettings(const HausdorffSettings& s) {
     if (!(std::isfinite(s.margin) && s.margin > 0.0))
         return fail("Hausdorff bound: margin " + std::to_string(s.margin) + " is not finite and > 0");
     if (!(s.tolerance >= 0.0)) return fail("Hausdorff bound: tolerance is negative or NaN");
-    const Impl& a = from.impl();
-    const Impl& b = to.impl();
-    HausdorffResult out;
-    if (a.triangles.empty()) return out;
-    if (b.triangles.empty()) return fail("the target mesh has no surface (no triangle of non-zero area)");
+    return {};
+}
 
-    VertexCache cache(a.positions.size());
-    std::atomic<bool> exceeded{false};
+// One direction of the bound in steps, so that two directions can share one pool of threads and one
+// early answer: the starting samples, the walks of the subtrees, the result.
+class OneSided {
+public:
+    OneSided(const Impl& a, const Impl& b, const HausdorffSettings& s, std::atomic<bool>& exceeded)
+        : a_(a), b_(b), s_(s), exceeded_(exceeded), cache_(a.positions.size()) {}
+
     // The starting lower bound of every subtree: distances at the centroids of a fixed stride of A's
     // triangles (where a coarse proxy is farthest from the render mesh, so a "no" comes early).
-    Walker start(a, b, s, cache, exceeded, std::max(0.0, s.knownLower));
-    const size_t stride = std::max<size_t>(1, a.triangles.size() / kStartSamples);
-    for (size_t i = 0; i < a.triangles.size() && !exceeded.load(); i += stride) {
-        const std::array<uint32_t, 3>& t = a.triangles[i];
-        start.sample((a.positions[t[0]] + a.positions[t[1]] + a.positions[t[2]]) / 3.0);
+    void sampleStart(unsigned workers) {
+        starts_.reserve(workers);
+        for (unsigned w = 0; w < workers; ++w)
+            starts_.emplace_back(a_, b_, s_, cache_, exceeded_, std::max(0.0, s_.knownLower));
+        const size_t stride = std::max<size_t>(1, a_.triangles.size() / kStartSamples);
+        detail::parallelChunks(
+            (a_.triangles.size() + stride - 1) / stride, kStartChunk, workers,
+            [&](size_t begin, size_t end, unsigned w) {
+                for (size_t i = begin; i < end && !exceeded_.load(std::memory_order_relaxed); ++i) {
+                    const std::array<uint32_t, 3>& t = a_.triangles[i * stride];
+                    starts_[w].sample((a_.positions[t[0]] + a_.positions[t[1]] + a_.positions[t[2]]) / 3.0);
+                }
+            },
+            [](double) { return true; }, &exceeded_);
+        for (const Walker& w : starts_)
+            walkLower_ = std::max(walkLower_, w.lower);
+        roots_ = subtrees(a_, kSubtreesPerWorker * workers);
+        parts_.assign(roots_.size(), {});
     }
-
-    const unsigned workers = detail::workerCount();
-    const std::vector<uint32_t> roots = subtrees(a, kSubtreesPerWorker * workers);
-    std::vector<HausdorffResult> parts(roots.size());
-    auto report = [&](double f) { return !progress || progress(float(f), "measure"); };
-    const bool finished = detail::parallelChunks(
-        roots.size(), 1, workers,
-        [&](size_t begin, size_t end, unsigned) {
-            for (size_t i = begin; i < end; ++i) {
-                Walker w(a, b, s, cache, exceeded, start.lower);
-                w.walk(roots[i]);
-                parts[i] = {w.measured, w.upper, false, w.queries};
-            }
-        },
-        report, &exceeded);
-    if (!finished) return fail("cancelled");
-    out.lower = start.measured;
-    out.queries = start.queries;
-    for (const HausdorffResult& r : parts) {
-        out.lower = std::max(out.lower, r.lower);
-        out.upper = std::max(out.upper, r.upper);
-        out.queries += r.queries;
+    double startLower() const { return walkLower_; }
+    // Every subtree's walk starts from at least this distance (one known to be attained).
+    void raiseWalkLower(double known) { walkLower_ = std::max(walkLower_, known); }
+    size_t subtreeCount() const { return roots_.size(); }
+    void walk(size_t i) {
+        Walker w(a_, b_, s_, cache_, exceeded_, walkLower_);
+        w.walk(roots_[i]);
+        parts_[i] = {w.measured, w.upper, false, w.queries};
     }
-    out.exceeded = exceeded.load();
-    if (out.exceeded) {
-        out.upper = std::numeric_limits<double>::infinity();
+    HausdorffResult result() const {
+        HausdorffResult out;
+        for (const Walker& w : starts_) {
+            out.lower = std::max(out.lower, w.measured);
+            out.queries += w.queries;
+        }
+        for (const HausdorffResult& r : parts_) {
+            out.lower = std::max(out.lower, r.lower);
+            out.upper = std::max(out.upper, r.upper);
+            out.queries += r.queries;
+        }
+        out.exceeded = exceeded_.load();
+        if (out.exceeded) {
+            out.upper = std::numeric_limits<double>::infinity();
+            return out;
+        }
+        out.upper = std::max(out.upper, out.lower) * (1.0 + detail::kRoundingAllowance) +
+                    detail::kRoundingAllowance * a_.scale;
         return out;
     }
-    if (progress && !progress(1.0f, "measure")) return fail("cancelled");
-    out.upper = std::max(out.upper, out.lower) * (1.0 + detail::kRoundingAllowance) +
-                detail::kRoundingAllowance * a.scale;
-    return out;
+
+private:
+    const Impl& a_;
+    const Impl& b_;
+    const HausdorffSettings& s_;
+    std::atomic<bool>& exceeded_;
+    VertexCache cache_;
+    std::vector<Walker> starts_; // one per thread
+    double walkLower_ = 0.0;
+    std::vector<uint32_t> roots_;
+    std::vector<HausdorffResult> parts_;
+};
+
+// Walks the subtrees of the given directions on one pool of threads, taking them in turn.
+bool walkAll(const std::vector<OneSided*>& jobs, unsigned workers, std::atomic<bool>& exceeded,
+             const ProgressCallback& progress) {
+    std::vector<std::pair<OneSided*, size_t>> order;
+    for (size_t i = 0, more = 1; more; ++i) {
+        more = 0;
+        for (OneSided* j : jobs)
+            if (i < j->subtreeCount()) {
+                order.emplace_back(j, i);
+                more = 1;
+            }
+    }
+    auto report = [&](double f) { return !progress || progress(float(f), "measure"); };
+    return detail::parallelChunks(
+        order.size(), 1, workers,
+        [&](size_t begin, size_t end, unsigned) {
+            for (size_t i = begin; i < end; ++i)
+                order[i].first->walk(order[i].second);
+        },
+        report, &exceeded);
+}
+
+} // namespace
+
+Result<HausdorffResult> boundOneSided(const HausdorffSurface& from, const HausdorffSurface& to,
+                                      const HausdorffSettings& s, const ProgressCallback& progress) {
+    if (Status st = checkSettings(s); !st) return fail(st.error());
+    const Impl& a = from.impl();
+    const Impl& b = to.impl();
+    if (a.triangles.empty()) return HausdorffResult{};
+    if (b.triangles.empty()) return fail("the target mesh has no surface (no triangle of non-zero area)");
+    const unsigned workers = detail::workerCount();
+    std::atomic<bool> exceeded{false};
+    OneSided job(a, b, s, exceeded);
+    job.sampleStart(workers);
+    if (!walkAll({&job}, workers, exceeded, progress)) return fail("cancelled");
+    if (!exceeded.load() && progress && !progress(1.0f, "measure")) return fail("cancelled");
+    return job.result();
+}
+
+Result<HausdorffPair> boundBothWays(const HausdorffSurface& a, const HausdorffSurface& b,
+                                    const HausdorffSettings& s, const ProgressCallback& progress) {
+    if (Status st = checkSettings(s); !st) return fail(st.error());
+    if ((a.surfaceTriangleCount() == 0) != (b.surfaceTriangleCount() == 0))
+        return fail(std::string("mesh ") + (a.surfaceTriangleCount() == 0 ? "A" : "B") +
+                    " has no surface (no triangle of non-zero area) but the other has one");
+    if (a.surfaceTriangleCount() == 0) return HausdorffPair{};
+    const unsigned workers = detail::workerCount();
+    std::atomic<bool> exceeded{false};
+    OneSided ab(a.impl(), b.impl(), s, exceeded), ba(b.impl(), a.impl(), s, exceeded);
+    ab.sampleStart(workers);
+    ba.sampleStart(workers);
+    const double known = std::max(ab.startLower(), ba.startLower());
+    ab.raiseWalkLower(known);
+    ba.raiseWalkLower(known);
+    if (!walkAll({&ab, &ba}, workers, exceeded, progress)) return fail("cancelled");
+    if (!exceeded.load() && progress && !progress(1.0f, "measure")) return fail("cancelled");
+    return HausdorffPair{ab.result(), ba.result()};
 }
 
 Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSurface& to,

@@ -93,6 +93,8 @@ Result<ClosestPointQuery> ClosestPointQuery::create(const Mesh& mesh) {
     impl->device = rtcNewDevice(nullptr);
     if (!impl->device) return fail("Embree could not create a device");
     impl->scene = rtcNewScene(impl->device);
+    // Built once per mesh and queried a few times per triangle: a quick build pays.
+    rtcSetSceneBuildQuality(impl->scene, RTC_BUILD_QUALITY_LOW);
     RTCGeometry geom = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
         geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));

@@ -14,7 +14,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -68,8 +70,12 @@ constexpr double kSearchStep = 1.5, kSearchStepMax = 4.0;
 // distance is at most kLikelyFraction of the tolerance is taken as likely within and certified at the
 // end; one between that and the tolerance is certified at once (the samples often miss the last few
 // percent of the distance).
-constexpr size_t kSampledProxyTriangles = 8192, kSampledRenderTriangles = 1024;
+constexpr size_t kSampledProxyTriangles = 2048, kSampledRenderTriangles = 1024;
 constexpr double kLikelyFraction = 0.9;
+// A certificate left undecided by its margin (measured within the tolerance, bounded above it) is
+// redone with kSharpenShare of the room left as its margin, when that room is at least kSharpenRoom
+// of the tolerance.
+constexpr double kSharpenShare = 0.25, kSharpenRoom = 0.01;
 // A proxy that misses the tolerance gets a sharp bound with this many times the certification margin:
 // its h only sizes decal boxes, and a tighter one costs many more queries.
 constexpr double kMissedMarginScale = 4.0;
@@ -429,6 +435,8 @@ struct Candidate {
     // meshoptimizer: the error it reports for the result (absolute); its collapses run in order of
     // error, so a target between this and `target` gives the same mesh. For OpenMesh: `target`.
     double resultError = 0.0;
+    // The mesh prepared for the certifier, made once for the judgement and the certificate.
+    std::shared_ptr<const HausdorffSurface> surface;
     HausdorffResult proxyToRender, renderToProxy;
     bool certified = false; // the two results above are the certificate's
     double bound() const { return std::max(proxyToRender.upper, renderToProxy.upper); }
@@ -483,36 +491,66 @@ Result<Candidate> simplifyOnce(ProxyBackend backend, const Mesh& welded, const M
     return c;
 }
 
-// Certifies a candidate against the render mesh (HausdorffBound.hpp): proxy to render first (the
-// proxy is the smaller mesh, so a "no" costs little), then render to proxy. With a finite
-// `settings.tolerance` it stops at the first distance above it.
+// The candidate's mesh prepared for the certifier (once).
+Status prepare(Candidate& c) {
+    if (c.surface) return {};
+    Result<HausdorffSurface> proxy = HausdorffSurface::create(c.mesh);
+    if (!proxy) return fail("proxy: " + proxy.error());
+    c.surface = std::make_shared<const HausdorffSurface>(std::move(proxy).value());
+    return {};
+}
+
+// The error of a direction of the certificate, named.
+std::string directionError(const std::string& error, const char* which) {
+    return error == "cancelled" ? error : std::string(which) + ": " + error;
+}
+
+// A direction the margin left undecided (every distance measured within the tolerance, the bound
+// above it), bounded again with kSharpenShare of the room left under the tolerance as its margin,
+// while that room is at least kSharpenRoom of it: the bound then ends at most at the tolerance unless
+// a distance above it is found. `measured`: the largest distance measured either way.
+Status sharpen(HausdorffResult& r, const HausdorffSurface& from, const HausdorffSurface& to,
+               const HausdorffSettings& settings, double measured, const ProgressCallback& progress,
+               const char* which) {
+    const double room = settings.tolerance - measured;
+    const bool undecided = !r.exceeded && r.upper > settings.tolerance;
+    if (!undecided || !(room >= kSharpenRoom * settings.tolerance) || kSharpenShare * room >= settings.margin)
+        return {};
+    HausdorffSettings sharp = settings;
+    sharp.margin = kSharpenShare * room;
+    sharp.knownLower = measured;
+    Result<HausdorffResult> again = boundOneSided(from, to, sharp, progress);
+    if (!again) return fail(directionError(again.error(), which));
+    again->queries += r.queries;
+    r = again.value();
+    return {};
+}
+
+// Certifies a candidate against the render mesh (HausdorffBound.hpp): both directions at once
+// (boundBothWays: with a finite `settings.tolerance`, the first distance above it either way stops
+// both), then each direction the margin left undecided sharpened.
 Status certify(Candidate& c, const HausdorffSurface& render, HausdorffSettings settings,
                const ProgressCallback& progress) {
     if (c.mesh.indices.empty()) { // simplified away entirely: never within a tolerance
         c.proxyToRender.exceeded = c.renderToProxy.exceeded = true;
         c.proxyToRender.upper = c.renderToProxy.upper = std::numeric_limits<double>::infinity();
+        c.certified = true;
         return {};
     }
-    Result<HausdorffSurface> proxy = HausdorffSurface::create(c.mesh);
-    if (!proxy) return fail("proxy: " + proxy.error());
-    auto half = [&progress](float offset) -> ProgressCallback {
-        return [&progress, offset](float f, const char* stage) {
-            return !progress || progress(offset + 0.5f * f, stage);
-        };
-    };
-    Result<HausdorffResult> p2r = boundOneSided(proxy.value(), render, settings, half(0.0f));
-    if (!p2r) return fail(p2r.error() == "cancelled" ? p2r.error() : "proxy to render: " + p2r.error());
-    c.proxyToRender = p2r.value();
-    c.renderToProxy = {};
-    if (p2r->exceeded) {
-        c.renderToProxy.upper = std::numeric_limits<double>::infinity();
-        return {};
-    }
-    settings.knownLower = p2r->lower;
-    Result<HausdorffResult> r2p = boundOneSided(render, proxy.value(), settings, half(0.5f));
-    if (!r2p) return fail(r2p.error() == "cancelled" ? r2p.error() : "render to proxy: " + r2p.error());
-    c.renderToProxy = r2p.value();
-    return {};
+    if (Status st = prepare(c); !st) return st;
+    const HausdorffSurface& proxy = *c.surface;
+    Result<HausdorffPair> both = boundBothWays(render, proxy, settings, progress);
+    if (!both) return fail(directionError(both.error(), "certificate"));
+    c.renderToProxy = both->ab;
+    c.proxyToRender = both->ba;
+    c.certified = true;
+    if (c.renderToProxy.exceeded || c.proxyToRender.exceeded) return {};
+    const double measured = std::max({settings.knownLower, c.renderToProxy.lower, c.proxyToRender.lower});
+    if (Status st = sharpen(c.renderToProxy, render, proxy, settings, measured, progress, "render to proxy");
+        !st)
+        return st;
+    if (c.renderToProxy.exceeded) return {};
+    return sharpen(c.proxyToRender, proxy, render, settings, measured, progress, "proxy to render");
 }
 
 // Progress of the whole search as one fraction: run k of an expected number, each run split into
@@ -555,22 +593,18 @@ struct Judged {
     bool removedNothing = false;
 };
 
-// The sampled judgement: the larger of the two sampled lower bounds, each stopping above the tolerance.
-Status sample(Candidate& c, const HausdorffSurface& render, double tolerance, double& measured,
-              const ProgressCallback& progress) {
-    if (c.mesh.indices.empty()) {
-        measured = std::numeric_limits<double>::infinity();
-        return {};
-    }
-    Result<HausdorffSurface> proxy = HausdorffSurface::create(c.mesh);
-    if (!proxy) return fail("proxy: " + proxy.error());
-    Result<double> p2r =
-        sampledLowerBound(proxy.value(), render, kSampledProxyTriangles, tolerance, progress);
+// The quick judgement of a run: the larger of two sampled lower bounds, proxy to render first (where
+// a coarse triangle hides its largest distance inside), each stopping above the tolerance.
+Status judgeQuickly(Candidate& c, const HausdorffSurface& render, double tolerance, double& measured,
+                    const ProgressCallback& progress) {
+    measured = std::numeric_limits<double>::infinity();
+    if (c.mesh.indices.empty()) return {};
+    if (Status st = prepare(c); !st) return st;
+    Result<double> p2r = sampledLowerBound(*c.surface, render, kSampledProxyTriangles, tolerance, progress);
     if (!p2r) return fail(p2r.error());
     measured = p2r.value();
     if (measured > tolerance) return {};
-    Result<double> r2p =
-        sampledLowerBound(render, proxy.value(), kSampledRenderTriangles, tolerance, progress);
+    Result<double> r2p = sampledLowerBound(render, *c.surface, kSampledRenderTriangles, tolerance, progress);
     if (!r2p) return fail(r2p.error());
     measured = std::max(measured, r2p.value());
     return {};
@@ -598,6 +632,24 @@ struct Bracket {
     bool closed() const { return lo > 0.0 && hi <= (1.0 + kSearchPrecision) * lo; }
 };
 
+// The render mesh prepared for the certifier (its hierarchy and closest-point structure) on a thread
+// of its own, while the mesh is welded and first simplified; the first judgement waits for it.
+class PendingSurface {
+public:
+    explicit PendingSurface(const Mesh& render)
+        : future_(std::async(std::launch::async, [&render] { return HausdorffSurface::create(render); })) {}
+    // The surface, once ready; fails like HausdorffSurface::create.
+    Result<const HausdorffSurface*> get() {
+        if (!result_) result_.emplace(future_.get());
+        if (!*result_) return fail("render mesh: " + result_->error());
+        return &result_->value();
+    }
+
+private:
+    std::future<Result<HausdorffSurface>> future_;
+    std::optional<Result<HausdorffSurface>> result_;
+};
+
 // Everything a search run needs besides its target.
 struct SearchContext {
     ProxyBackend backend;
@@ -606,7 +658,7 @@ struct SearchContext {
     double tolerance;
     size_t surfaceTriangles;
     bool withinBudget;
-    const HausdorffSurface& render;
+    PendingSurface& render;
     const HausdorffSettings& certifying;
     const ProxySettings& settings;
     SearchProgress& progress;
@@ -623,18 +675,20 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge) {
         j.removedNothing = j.within = true;
         return j;
     }
+    Result<const HausdorffSurface*> render = k.render.get();
+    if (!render) return fail(render.error());
     if (judge == Judge::Sampled) {
-        if (Status st = sample(j.candidate, k.render, k.tolerance, j.measured, k.progress.stage(0.2, 0.8));
+        if (Status st = judgeQuickly(j.candidate, *render.value(), k.tolerance, j.measured,
+                                     k.progress.stage(0.2, 0.8));
             !st)
             return fail(st.error());
         j.within = j.measured <= k.tolerance;
         if (!j.within || j.measured <= kLikelyFraction * k.tolerance) return j;
     }
-    if (Status st = certify(j.candidate, k.render, k.certifying, k.progress.stage(0.2, 0.8)); !st)
+    if (Status st = certify(j.candidate, *render.value(), k.certifying, k.progress.stage(0.2, 0.8)); !st)
         return fail(st.error());
     j.measured = j.candidate.lower();
     j.within = j.candidate.within(k.tolerance);
-    j.candidate.certified = true;
     return j;
 }
 
@@ -683,40 +737,50 @@ Result<SearchOutcome> searchBackend(const SearchContext& k, uint32_t maxRuns) {
         !st)
         return fail(st.error());
     if (out.removedNothing) return out;
+    const uint32_t moreRuns = std::max(2u, maxRuns / 2);
+    double failedAbove = std::numeric_limits<double>::infinity(); // finest likely run that failed
     for (; !likely.empty(); likely.pop_back()) {
         Candidate& c = likely.back();
         if (!c.certified)
-            if (Status st = certify(c, k.render, k.certifying, k.progress.stage(0.2, 0.8)); !st)
+            if (Status st = certify(c, *k.render.get().value(), k.certifying, k.progress.stage(0.2, 0.8));
+                !st)
                 return fail(st.error());
         if (c.within(k.tolerance)) {
             out.best = std::move(c);
-            return out;
+            break;
         }
+        failedAbove = c.resultError;
         if (!finest || c.target < finest->target) finest = std::move(c);
     }
-    if (finest) {
-        std::vector<Candidate> certified;
-        Bracket below;
-        below.hi = finest->target;
-        const uint32_t moreRuns = std::max(2u, maxRuns / 2);
-        if (Status st = bisect(k, Judge::Certified, below.hi / kSearchStep, below, out.runs + moreRuns, out,
-                               certified, finest);
+    std::vector<Candidate> certified;
+    Bracket rest; // where the search goes on with every run certified
+    if (out.best) {
+        rest.lo = out.best->target; // between it and the finest likely run that failed
+        rest.hi = std::max(failedAbove, rest.lo);
+        certified.push_back(std::move(*out.best));
+    } else if (finest) {
+        rest.hi = finest->target; // below every run
+    }
+    if (std::isfinite(rest.hi) && !rest.closed()) {
+        const double target = rest.lo > 0.0 ? std::sqrt(rest.lo * rest.hi) : rest.hi / kSearchStep;
+        if (Status st =
+                bisect(k, Judge::Certified, target, rest, out.runs + moreRuns, out, certified, finest);
             !st)
             return fail(st.error());
-        if (!certified.empty()) {
-            out.best = std::move(*std::min_element(certified.begin(), certified.end(),
-                                                   [](const Candidate& x, const Candidate& y) {
-                                                       return x.mesh.triangleCount() < y.mesh.triangleCount();
-                                                   }));
-            return out;
-        }
+    }
+    if (!certified.empty()) {
+        out.best = std::move(
+            *std::min_element(certified.begin(), certified.end(), [](const Candidate& x, const Candidate& y) {
+                return x.mesh.triangleCount() < y.mesh.triangleCount();
+            }));
+        return out;
     }
     if (out.removedNothing || !finest) return out;
     // Nothing certified: the finest candidate, with its sharp bound.
     HausdorffSettings sharp = k.certifying;
     sharp.tolerance = std::numeric_limits<double>::infinity();
     sharp.margin *= kMissedMarginScale;
-    if (Status st = certify(*finest, k.render, sharp, k.progress.stage(0.2, 0.8)); !st)
+    if (Status st = certify(*finest, *k.render.get().value(), sharp, k.progress.stage(0.2, 0.8)); !st)
         return fail(st.error());
     k.notes.push_back(std::string(proxyBackendName(k.backend)) + ": no candidate in " +
                       std::to_string(out.runs) + " runs was certified within the tolerance");
@@ -837,18 +901,17 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
     }
 
     const ProxyBackend backend = resolveProxyBackend(s.backend, inputTriangles, tolerance, diagonal);
+    PendingSurface renderSurface(render);
     const Mesh welded = weldedSurface(render);
-    Result<HausdorffSurface> renderSurface = HausdorffSurface::create(render);
-    if (!renderSurface) return fail("render mesh: " + renderSurface.error());
     SearchProgress searchProgress(progress, kExpectedRuns);
     Mesh meshoptInput;
     if (backend == ProxyBackend::MeshOpt) {
         meshoptInput = welded;
         if (s.keepSharpFeatures) splitCreases(meshoptInput, s.featureAngleDegrees);
     }
-    const SearchContext context{
-        backend,    welded, meshoptInput,   tolerance,  surfaceTriangles, withinBudget, renderSurface.value(),
-        certifying, s,      searchProgress, proxy.notes};
+    const SearchContext context{backend,      welded,        meshoptInput, tolerance, surfaceTriangles,
+                                withinBudget, renderSurface, certifying,   s,         searchProgress,
+                                proxy.notes};
     Result<SearchOutcome> outcome = searchBackend(context, s.maxAttempts);
     if (!outcome) return fail(outcome.error());
     proxy.attempts = outcome->runs;

@@ -819,8 +819,6 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
             measure.tolerance = 0.05f;
             measure.toleranceRelative = true;
             measure.marginFraction = 0.2f;
-            measure.maxSamples = 200'000;
-            measure.randomSamples = 1024;
             Result<Proxy> measured = buildProxy(so.mesh, measure, &*so.collider);
             if (!measured) return fail(where + ": collider of object '" + so.name + "': " + measured.error());
             mesh = &*so.collider;

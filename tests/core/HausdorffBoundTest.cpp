@@ -102,6 +102,42 @@ TEST(HausdorffBound, BumpOverASquareIsBoundedAndAnsweredEarly) {
     EXPECT_LE(yes->queries, h->queries);
 }
 
+// Both directions at once: each bound is a true upper bound of its direction, a "no" in either
+// direction stops both, and the answer is the same on every run.
+TEST(HausdorffBound, BothWaysBoundsEachDirectionAndStopsOnEitherNo) {
+    Mesh bumpy = square(0.0f, 1.0f);
+    bumpy.positions.push_back({0.5f, 0.5f, 0.2f}); // a tent over the square's diagonal
+    bumpy.indices = {0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4};
+    const Mesh flat = square(0.0f, 1.0f);
+    const HausdorffSurface a = surface(bumpy), b = surface(flat);
+    HausdorffSettings s;
+    s.margin = 1e-3;
+    Result<HausdorffPair> both = boundBothWays(a, b, s);
+    ASSERT_TRUE(both) << both.error();
+    EXPECT_FALSE(both->ab.exceeded || both->ba.exceeded);
+    EXPECT_GE(both->ab.upper, denseOneSided(bumpy, flat, 20000, 1));
+    EXPECT_GE(both->ba.upper, denseOneSided(flat, bumpy, 20000, 2));
+    EXPECT_NEAR(both->ab.lower, 0.2, 1e-6); // the tent's top
+    EXPECT_LE(both->ab.upper, 0.2 + s.margin + 1e-6);
+    EXPECT_LE(both->ba.upper, 0.2 + s.margin + 1e-6);
+
+    s.tolerance = 0.15; // the tent's top strays in one direction only: both stop
+    Result<HausdorffPair> no = boundBothWays(a, b, s);
+    ASSERT_TRUE(no);
+    EXPECT_TRUE(no->ab.exceeded && no->ba.exceeded);
+    EXPECT_FALSE(no->ab.within(s.tolerance) || no->ba.within(s.tolerance));
+    s.tolerance = 0.25;
+    Result<HausdorffPair> yes = boundBothWays(a, b, s), again = boundBothWays(a, b, s);
+    ASSERT_TRUE(yes && again);
+    EXPECT_TRUE(yes->ab.within(s.tolerance) && yes->ba.within(s.tolerance));
+    EXPECT_EQ(yes->ab.upper, again->ab.upper);
+    EXPECT_EQ(yes->ba.queries, again->ba.queries);
+    Mesh degenerate;
+    degenerate.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+    degenerate.indices = {0, 1, 2};
+    EXPECT_FALSE(boundBothWays(a, surface(degenerate), s));
+}
+
 TEST(HausdorffBound, RejectsBadSettingsAndAOneSidedSurface) {
     const HausdorffSurface a = surface(square(0.0f, 1.0f));
     Mesh degenerate;

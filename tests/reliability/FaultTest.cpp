@@ -62,8 +62,6 @@ ProxySettings cachedSettings(const std::string& dir) {
     ProxySettings s;
     s.tolerance = 0.02f;
     s.cacheDirectory = dir;
-    s.maxSamples = 100'000;
-    s.randomSamples = 1024;
     return s;
 }
 

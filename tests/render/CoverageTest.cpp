@@ -206,8 +206,6 @@ TEST(Coverage, DecalsPlacedThroughACoarseProxyCoverTheDrawnSurface) {
     ps.tolerance = 0.02f;
     ps.backend = ProxyBackend::MeshOpt;
     ps.marginFraction = 0.5f; // a looser (still certified) bound keeps the measurement quick
-    ps.maxSamples = 200000;
-    ps.randomSamples = 2048;
     std::vector<std::optional<Proxy>> proxies(scene.objects.size());
     size_t proxyTriangles = 0;
     for (size_t i = 0; i < scene.objects.size(); ++i) {

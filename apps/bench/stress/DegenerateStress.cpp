@@ -254,10 +254,7 @@ void survey(const std::string& what, const Scene& scene, const StressConfig& cfg
         ps.backend = backend;
         ps.smallMeshTriangles = 0;
         ps.tolerance = 0.01f;
-        ps.maxSamples = 200'000;
-        ps.randomSamples = 1024;
         ps.maxAttempts = 2;
-        ps.seed = cfg.seed;
         std::vector<std::optional<Proxy>> proxies(scene.objects.size());
         const std::string name = what + " (" + proxyBackendName(backend) + " proxy)";
         for (size_t i = 0; i < scene.objects.size(); ++i) {

@@ -101,6 +101,18 @@ Result<HausdorffResult> boundOneSided(const HausdorffSurface& from, const Hausdo
                                       const HausdorffSettings& settings,
                                       const ProgressCallback& progress = {});
 
+// Both one-sided bounds at once, from a to b (`ab`) and from b to a (`ba`), on one pool of threads with
+// one early answer: a measured distance above the tolerance in either direction stops both, and both
+// are then `exceeded` (a "no" costs about what the direction that strays needs to show it). Each
+// direction starts from the larger of the two directions' starting samples (a distance attained), so
+// each bound is at most max(max(lower of both, knownLower) + margin, tolerance). Fails like
+// boundHausdorff.
+struct HausdorffPair {
+    HausdorffResult ab, ba;
+};
+Result<HausdorffPair> boundBothWays(const HausdorffSurface& a, const HausdorffSurface& b,
+                                    const HausdorffSettings& settings, const ProgressCallback& progress = {});
+
 // A lower bound only: the largest distance from `from` to `to` at the centroids and edge midpoints of
 // at most `maxTriangles` of from's triangles (a fixed stride), stopping as soon as one is above
 // `stopAbove`. No refinement and no upper bound: cheap, for steering a search whose answer is

@@ -20,8 +20,9 @@
 // candidate within the tolerance and one that is not, until the coarsest target within is known
 // within 10% or maxAttempts runs are spent. Runs are judged by a sampled lower bound of their
 // distance (a run close to the tolerance by the certificate at once); the candidates judged within are
-// then certified, coarsest first, with the early answer to "is h <= tolerance?", and the first
-// certified is the proxy (see docs/PROXIES.md, "The search").
+// then certified, coarsest first, both directions at once with the early answer to "is h <=
+// tolerance?", and the first certified is the proxy, unless certified runs between it and a coarser
+// candidate that failed give fewer triangles (see docs/PROXIES.md, "The search").
 // Its h is at most max(largest measured distance + marginFraction * tolerance, tolerance): the search
 // asks for the tolerance, not for the sharpest bound. When no candidate is certified, the finest one is
 // returned with a sharp bound (within 4 * marginFraction * tolerance of the measured distance) and
@@ -92,11 +93,6 @@ struct ProxySettings {
     // the bound of an authored collider exceeds the measured distance by at most this (that of a
     // proxy that missed the tolerance by at most 4 times this).
     float marginFraction = 0.05f;
-    // The settings of the sampling measurement (measureMeshDistance), for callers that measure
-    // proxies themselves; the builder's certificate does not sample and ignores them.
-    uint32_t maxSamples = 2'000'000;
-    uint32_t randomSamples = 16384;
-    uint64_t seed = 1;
     // Simplification runs the search may make (>= 1).
     uint32_t maxAttempts = 8;
     // Directory of the on-disk cache; empty for no cache. Created when missing.
