@@ -417,6 +417,69 @@ TEST_F(DecalPersistence, MissingObjectDropsItsDecals) {
         EXPECT_NE(d.object, 3u);
 }
 
+// `b`, a save whose decals all project along their normal and have no clipped crater, as version 1
+// wrote it: its opacities as floats, no column of slants.
+std::vector<uint8_t> asVersion1(const std::vector<uint8_t>& b) {
+    const size_t decl = sectionAt(b, "DECL"), n = decalCount(b);
+    size_t at = decl + 4 + n * 44;
+    std::vector<uint8_t> out(b.begin(), b.begin() + std::ptrdiff_t(at) + 1);
+    size_t values = b[at] == 1 ? n : 0; // dense: one value per decal
+    ++at;
+    if (b[at - 1] == 2) { // sparse: a count, a column of indices, the values
+        uint32_t count = 0;
+        std::memcpy(&count, &b[at], 4);
+        const size_t indexBytes = 4 + 1 + size_t(count) * b[at + 4];
+        out.insert(out.end(), b.begin() + std::ptrdiff_t(at), b.begin() + std::ptrdiff_t(at + indexBytes));
+        at += indexBytes;
+        values = count;
+    }
+    for (size_t k = 0; k < values; ++k, ++at) {
+        const float opacity = float(Opacity::fromBits(b[at]));
+        uint8_t f[4];
+        std::memcpy(f, &opacity, 4);
+        out.insert(out.end(), f, f + 4);
+    }
+    EXPECT_EQ(b[at], 0u) << "clips";
+    EXPECT_EQ(b[at + 1], 0u) << "slants";
+    out.push_back(b[at]);
+    out.insert(out.end(), b.begin() + std::ptrdiff_t(at + 2), b.end()); // the slants left out
+    const int64_t grown = int64_t(out.size()) - int64_t(b.size());
+    uint64_t length = 0;
+    std::memcpy(&length, &out[decl - 8], 8);
+    length = uint64_t(int64_t(length) + grown);
+    std::memcpy(&out[decl - 8], &length, 8);
+    const uint64_t total = out.size();
+    std::memcpy(&out[16], &total, 8);
+    put32(out, 8, 1);
+    reseal(out);
+    return out;
+}
+
+// Saves of version 1 load into this build: the same decals, their float opacities kept in the steps
+// a decal now holds.
+TEST(DecalPersistenceVersions, Version1SavesLoadWithTheirOpacities) {
+    DecalSystem source = makeSystem(rangeScene(3), settingsFor(LimitPolicy::FadeOldest));
+    DecalType fading;
+    fading.name = "hole";
+    fading.lifetime = 2.0f;
+    fading.fadeOutTime = 2.0f;
+    const uint16_t type = addType(source, fading);
+    for (int k = 0; k < 40; ++k) {
+        ASSERT_TRUE(
+            source.spawnAttached(k % 2, glm::vec3(0.3f * float(k) - 6.0f, 0.1f, -1.0f), {0, 1, 0}, type)
+                .placed());
+        if (k % 10 == 9) {
+            ASSERT_TRUE(source.update(0.3).ok());
+        }
+    }
+    const std::vector<uint8_t> v1 = asVersion1(saved(source));
+    DecalSystem loaded = makeSystem(rangeScene(3), settingsFor(LimitPolicy::FadeOldest));
+    addType(loaded, fading);
+    load(loaded, v1);
+    EXPECT_TRUE(sameSystem(source, loaded));
+    EXPECT_LT(float(loaded.decals()[0].opacity), 1.0f);
+}
+
 TEST_F(DecalPersistence, NewerVersionIsRefusedNamingBothVersions) {
     std::vector<uint8_t> b = bytes;
     put32(b, 8, kDecalSaveVersion + 1);
