@@ -38,7 +38,8 @@ of them in view, each a square of a fraction of the screen height. Groups of row
   resolution   10,000 decals in view at 720p, 1080p and 4K
   features     1080p, 10,000 decals in view: minimal (no normal map, no fade), default (normal map
                and smooth fade), wrap-around, depth-derivative normal frame, object IDs (a dynamic
-               object in the scene), angle rejection off
+               object in the scene), angle rejection off, projected along a shot 45 degrees from
+               the floor's normal
   cpu          1080p, 10,000 decals in view among 10,000 and among 1,000,000 in the world: the wall
                time of render() when it does not wait for the GPU (a glFinish after each frame,
                outside the time), with the GPU times of an earlier frame
@@ -79,6 +80,7 @@ struct Feature {
     bool angleReject = true;
     bool wait = true;      // render() waits for the frame's GPU times; false: CPU time of render() alone
     bool occlusion = true; // RendererSettings::occlusionCulling
+    bool shot = false;     // the decals projected along a shot 45 degrees from the floor's normal
 };
 
 const std::vector<Feature>& features() {
@@ -91,6 +93,7 @@ const std::vector<Feature>& features() {
         {"no-angle", true, DepthFade::Smooth, false, false, false, false},
         {"no-wait", true, DepthFade::Smooth, false, false, false, true, false},
         {"no-occlusion", true, DepthFade::Smooth, false, false, false, true, true, false},
+        {"shot", true, DepthFade::Smooth, false, false, false, true, true, true, true},
     };
     return all;
 }
@@ -220,9 +223,12 @@ public:
         type.depthFade = f.fade;
         type.wrapAround = f.wrap;
         r.setDecalTypes({type});
-        const auto key = std::make_tuple(c.world, c.visible, c.size);
+        const auto key = std::make_tuple(c.world, c.visible, c.size, f.shot);
         if (decalsKey_[slot] != key) {
-            const std::vector<Decal> decals = decalField(view, c.world, c.visible, c.size, 0, 1);
+            std::vector<Decal> decals = decalField(view, c.world, c.visible, c.size, 0, 1);
+            if (f.shot)
+                for (Decal& d : decals)
+                    d.setProjectionAxis(glm::vec3(0.70710678f, 0.70710678f, 0.0f));
             const double start = now();
             r.setDecals(decals);
             row.setDecalsS = now() - start;
@@ -339,7 +345,7 @@ private:
     // Waiting for GPU times, with the depth frame, not waiting, without occlusion culling.
     std::optional<Renderer> renderers_[4];
     int sceneIds_[4] = {-1, -1, -1, -1};
-    std::tuple<size_t, size_t, double> decalsKey_[4];
+    std::tuple<size_t, size_t, double, bool> decalsKey_[4];
 };
 
 // The feature, and whether the roof hides most of the view.
