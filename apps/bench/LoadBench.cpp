@@ -9,6 +9,7 @@
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
+#include <meshoptimizer.h>
 
 #include <cmath>
 #include <cstdio>
@@ -35,14 +36,16 @@ default (positions 14 bits, normals 10, UVs 12) at the speeds of three exporters
 Each row is the median wall time of R loads (loadGltf: read, parse, decode, convert, validate), the
 files loaded in turns; the ratio is to the uncompressed file's time. The last row is libdraco's
 decoder alone on the level-6 data (DecodeMeshFromBuffer), the part of that load spatter cannot cut.
+The meshopt row is the same mesh compressed by meshoptimizer's vertex and index codecs
+(EXT_meshopt_compression; float attributes, no filters).
 
 Target: a Draco file at Blender's default (level 6) loads in at most 3x the time of its twin.
 
 --grid N    vertices a side (default 512: 262,144 vertices, 522,242 triangles)
 --repeat R  loads of each file (default 9)
 --quick     a grid of 128, 3 loads (smoke test)
---json FILE {"grid", "vertices", "triangles", "rows": [{"file", "encoder_speed", "bytes", "ms", "ratio"}],
-            "ratio_level6"}
+--json FILE {"grid", "vertices", "triangles", "ratio_level6", "rows": [{"file", "encoder_speed",
+            "bytes", "ms", "ratio"}]} (encoder_speed -1: uncompressed, -2: meshopt)
 )";
 
 struct Grid {
@@ -71,11 +74,14 @@ Grid wavyGrid(size_t n) {
     return g;
 }
 
-// Writes a GLB of `doc` with `bin` as its binary chunk (buffer 0).
-Status writeGlb(Json doc, std::vector<uint8_t> bin, const std::string& path) {
+// Writes a GLB of `doc` with `bin` as its binary chunk (buffer 0), then the buffers `extra`.
+Status writeGlb(Json doc, std::vector<uint8_t> bin, const std::string& path,
+                const Json& extra = Json::array()) {
     while (bin.size() % 4)
         bin.push_back(0);
     doc["buffers"] = Json::array({{{"byteLength", bin.size()}}});
+    for (const Json& b : extra)
+        doc["buffers"].push_back(b);
     std::string text = doc.dump();
     while (text.size() % 4)
         text += ' ';
@@ -184,6 +190,57 @@ Status writeDraco(const Grid& g, int speed, const std::string& path, std::vector
     return writeGlb(doc, std::vector<uint8_t>(buffer.data(), buffer.data() + buffer.size()), path);
 }
 
+// The grid compressed by meshoptimizer without quantisation or filters: the vertex codec
+// for each attribute, the index codec for the triangles, over a fallback buffer without data.
+Status writeMeshopt(const Grid& g, const std::string& path) {
+    std::vector<uint8_t> bin;
+    Json views = Json::array();
+    size_t fallback = 0;
+    auto add = [&](const std::vector<uint8_t>& encoded, size_t count, size_t stride, const char* mode) {
+        while (bin.size() % 4)
+            bin.push_back(0);
+        Json view = {{"buffer", 1},
+                     {"byteOffset", fallback},
+                     {"byteLength", count * stride},
+                     {"extensions",
+                      {{"EXT_meshopt_compression",
+                        {{"buffer", 0},
+                         {"byteOffset", bin.size()},
+                         {"byteLength", encoded.size()},
+                         {"byteStride", stride},
+                         {"count", count},
+                         {"mode", mode}}}}}};
+        if (std::string(mode) == "ATTRIBUTES") view["byteStride"] = stride;
+        views.push_back(view);
+        bin.insert(bin.end(), encoded.begin(), encoded.end());
+        fallback += (count * stride + 3) / 4 * 4;
+        return int(views.size()) - 1;
+    };
+    auto vertices = [](const float* data, size_t count, size_t stride) {
+        std::vector<uint8_t> out(meshopt_encodeVertexBufferBound(count, stride));
+        out.resize(meshopt_encodeVertexBuffer(out.data(), out.size(), data, count, stride));
+        return out;
+    };
+    const size_t n = g.positions.size() / 3;
+    std::vector<uint8_t> triangles(meshopt_encodeIndexBufferBound(g.indices.size(), n));
+    triangles.resize(
+        meshopt_encodeIndexBuffer(triangles.data(), triangles.size(), g.indices.data(), g.indices.size()));
+    Json doc = sceneOf({{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}});
+    doc["accessors"] = Json::array(
+        {accessor(add(vertices(g.positions.data(), n, 12), n, 12, "ATTRIBUTES"), 5126, n, "VEC3"),
+         accessor(add(vertices(g.normals.data(), n, 12), n, 12, "ATTRIBUTES"), 5126, n, "VEC3"),
+         accessor(add(vertices(g.uvs.data(), n, 8), n, 8, "ATTRIBUTES"), 5126, n, "VEC2"),
+         accessor(add(triangles, g.indices.size(), 4, "TRIANGLES"), 5125, g.indices.size(), "SCALAR")});
+    doc["accessors"][0]["min"] = {0, 0, -0.3};
+    doc["accessors"][0]["max"] = {10, 10, 0.3};
+    doc["bufferViews"] = views;
+    doc["extensionsUsed"] = {"EXT_meshopt_compression"};
+    doc["extensionsRequired"] = {"EXT_meshopt_compression"};
+    const Json fallbackBuffer = {{"byteLength", fallback},
+                                 {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}};
+    return writeGlb(doc, bin, path, Json::array({fallbackBuffer}));
+}
+
 size_t fileSize(const std::string& path) {
     std::ifstream in(path, std::ios::binary | std::ios::ate);
     return in ? size_t(in.tellg()) : 0;
@@ -211,16 +268,19 @@ int runLoadCommand(int argc, char** argv) {
     const std::string dir = scratchDirectory("load");
     struct File {
         std::string name, path;
-        int speed; // -1: uncompressed
+        int speed; // Draco's encoder speed; -1: uncompressed, -2: meshopt
         std::vector<double> times;
     };
     std::vector<File> files = {{"uncompressed", dir + "/plain.glb", -1, {}},
                                {"Draco level 7", dir + "/draco-speed3.glb", 3, {}},
                                {"Draco level 6", dir + "/draco-speed4.glb", 4, {}},
-                               {"Draco speed 5", dir + "/draco-speed5.glb", 5, {}}};
+                               {"Draco speed 5", dir + "/draco-speed5.glb", 5, {}},
+                               {"meshopt", dir + "/meshopt.glb", -2, {}}};
     std::vector<uint8_t> bitstream, level6; // the Draco data at level 6, decoded alone below
     for (const File& f : files)
-        if (Status s = f.speed < 0 ? writePlain(grid, f.path) : writeDraco(grid, f.speed, f.path, bitstream);
+        if (Status s = f.speed == -1   ? writePlain(grid, f.path)
+                       : f.speed == -2 ? writeMeshopt(grid, f.path)
+                                       : writeDraco(grid, f.speed, f.path, bitstream);
             !s) {
             std::fprintf(stderr, "spatter-bench load: %s\n", s.error().c_str());
             return 1;
