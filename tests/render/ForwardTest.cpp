@@ -22,12 +22,14 @@ using ::testing::HasSubstr;
 namespace {
 
 // The wall's decals and a stack of `count` more over the first, alternating looks and offsets, so
-// that many decals share tiles and their order shows.
+// that many decals share tiles and their order shows; every third projected along a slanted shot.
 std::vector<Decal> stackedDecals(const test::WallScene& wall, int count) {
     std::vector<Decal> decals = wall.decals;
     for (int i = 0; i < count; ++i) {
         Decal d = test::WallScene::decalAt(0, {-0.8f + 0.02f * float(i), 0.1f * float(i % 3), 0.05f});
         d.type = uint16_t(i % 2);
+        const Frame f = d.frame();
+        if (i % 3 == 0) d.setProjectionAxis(f.normal + 0.8f * f.tangent - 0.4f * f.bitangent);
         decals.push_back(d);
     }
     return decals;
