@@ -81,6 +81,8 @@ Result<GallerySim> GallerySim::create(const GalleryOptions& options) {
     sim.options_ = options;
     if (sim.options_.cacheDir.empty()) sim.options_.cacheDir = defaultCacheDir();
     sim.scene_ = std::move(scene).value();
+    for (const std::string& w : sim.scene_.warnings)
+        std::fprintf(stderr, "spatter-gallery: warning: %s\n", w.c_str());
     sim.rng_ = Rng(options.seed, 0x9a11e7);
 
     // Rails: every dynamic receiver slides along world X and turns about the vertical; the

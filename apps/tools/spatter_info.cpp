@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
         std::cerr << "spatter-info: " << scene.error() << "\n";
         return 1;
     }
+    for (const std::string& w : scene->warnings)
+        std::cerr << "spatter-info: warning: " << w << "\n";
     spatter::WorldSettings worldSettings;
     worldSettings.useColliders = false; // only the transforms matter here
     spatter::Result<spatter::CollisionWorld> world =

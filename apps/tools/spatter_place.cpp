@@ -214,6 +214,8 @@ int main(int argc, char** argv) {
         std::cerr << "spatter-place: " << scene.error() << "\n";
         return 1;
     }
+    for (const std::string& w : scene->warnings)
+        std::cerr << "spatter-place: warning: " << w << "\n";
     scene->translate(translate);
 
     std::vector<std::optional<spatter::Proxy>> proxies;

@@ -186,6 +186,8 @@ int main(int argc, char** argv) {
         std::cerr << "spatter-proxy: " << scene.error() << "\n";
         return 1;
     }
+    for (const std::string& w : scene->warnings)
+        std::cerr << "spatter-proxy: warning: " << w << "\n";
     const spatter::Mesh world = mergeWorld(scene.value());
     for (const spatter::SceneObject& o : scene->objects)
         if (o.collider && !quiet)

@@ -215,6 +215,8 @@ int main(int argc, char** argv) {
 
     spatter::Result<spatter::Scene> scene = spatter::loadScene(scenePath);
     if (!scene) return failure(scene.error());
+    for (const std::string& w : scene->warnings)
+        std::cerr << "spatter-render: warning: " << w << "\n";
     scene->translate(translate);
 
     spatter::Camera camera = defaultCamera(scene.value());
