@@ -70,12 +70,20 @@ constexpr double kSearchStep = 1.5, kSearchStepMax = 4.0;
 // distance is at most kLikelyFraction of the tolerance is taken as likely within and certified at the
 // end; one between that and the tolerance is certified at once (the samples often miss the last few
 // percent of the distance).
-constexpr size_t kSampledProxyTriangles = 2048, kSampledRenderTriangles = 1024;
+constexpr size_t kSampledProxyTriangles = 8192, kSampledRenderTriangles = 1024;
 constexpr double kLikelyFraction = 0.9;
 // A certificate left undecided by its margin (measured within the tolerance, bounded above it) is
 // redone with kSharpenShare of the room left as its margin, when that room is at least kSharpenRoom
 // of the tolerance.
 constexpr double kSharpenShare = 0.25, kSharpenRoom = 0.01;
+// Where likely candidates failed their certificate, the search goes on between the coarsest certified
+// one and them only when that one has more than this many times the triangles of the finest that
+// failed (less is all further runs could gain).
+constexpr double kRefineGain = 1.1;
+// Render meshes of more than kCoarseInputTriangles (welded) are simplified once at kCoarseInputFraction
+// of the tolerance, and the search's runs at or above that target start from the result.
+constexpr size_t kCoarseInputTriangles = 100'000;
+constexpr double kCoarseInputFraction = 0.05;
 // A proxy that misses the tolerance gets a sharp bound with this many times the certification margin:
 // its h only sizes decal boxes, and a tighter one costs many more queries.
 constexpr double kMissedMarginScale = 4.0;
@@ -655,6 +663,10 @@ struct SearchContext {
     ProxyBackend backend;
     const Mesh& welded;
     const Mesh& meshoptInput;
+    // A large render mesh simplified once at coarseTarget: the runs at or above that target start
+    // from it (0 and empty when there is none).
+    const Mesh& coarseInput;
+    double coarseTarget;
     double tolerance;
     size_t surfaceTriangles;
     bool withinBudget;
@@ -666,8 +678,9 @@ struct SearchContext {
 };
 
 Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge) {
-    Result<Candidate> c = simplifyOnce(k.backend, k.welded, k.meshoptInput, target, k.settings,
-                                       k.progress.stage(0.0, 0.2), k.notes);
+    const bool coarse = k.coarseTarget > 0.0 && target >= k.coarseTarget;
+    Result<Candidate> c = simplifyOnce(k.backend, k.welded, coarse ? k.coarseInput : k.meshoptInput, target,
+                                       k.settings, k.progress.stage(0.0, 0.2), k.notes);
     if (!c) return fail(c.error());
     Judged j;
     j.candidate = std::move(c).value();
@@ -739,6 +752,7 @@ Result<SearchOutcome> searchBackend(const SearchContext& k, uint32_t maxRuns) {
     if (out.removedNothing) return out;
     const uint32_t moreRuns = std::max(2u, maxRuns / 2);
     double failedAbove = std::numeric_limits<double>::infinity(); // finest likely run that failed
+    size_t failedTriangles = 0;                                   // and its triangles
     for (; !likely.empty(); likely.pop_back()) {
         Candidate& c = likely.back();
         if (!c.certified)
@@ -750,13 +764,16 @@ Result<SearchOutcome> searchBackend(const SearchContext& k, uint32_t maxRuns) {
             break;
         }
         failedAbove = c.resultError;
+        failedTriangles = c.mesh.triangleCount();
         if (!finest || c.target < finest->target) finest = std::move(c);
     }
     std::vector<Candidate> certified;
     Bracket rest; // where the search goes on with every run certified
     if (out.best) {
-        rest.lo = out.best->target; // between it and the finest likely run that failed
-        rest.hi = std::max(failedAbove, rest.lo);
+        // Between it and the finest likely run that failed, where that one is enough coarser.
+        rest.lo = out.best->target;
+        const bool worth = double(out.best->mesh.triangleCount()) > kRefineGain * double(failedTriangles);
+        rest.hi = worth ? std::max(failedAbove, rest.lo) : rest.lo;
         certified.push_back(std::move(*out.best));
     } else if (finest) {
         rest.hi = finest->target; // below every run
@@ -909,9 +926,19 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
         meshoptInput = welded;
         if (s.keepSharpFeatures) splitCreases(meshoptInput, s.featureAngleDegrees);
     }
-    const SearchContext context{backend,      welded,        meshoptInput, tolerance, surfaceTriangles,
-                                withinBudget, renderSurface, certifying,   s,         searchProgress,
-                                proxy.notes};
+    // A large mesh is first simplified far below the tolerance, and the search's runs start from that
+    // (a run costs in proportion to its input); the certificate still measures against the render mesh.
+    Mesh coarseInput;
+    double coarseTarget = 0.0;
+    if (backend == ProxyBackend::MeshOpt && s.maxTriangles == 0 &&
+        welded.triangleCount() > kCoarseInputTriangles) {
+        double ignored = 0.0;
+        coarseTarget = kCoarseInputFraction * tolerance;
+        coarseInput = simplifyMeshopt(meshoptInput, coarseTarget, 0, s.keepBoundaries, ignored);
+    }
+    const SearchContext context{backend,   welded,           meshoptInput, coarseInput,   coarseTarget,
+                                tolerance, surfaceTriangles, withinBudget, renderSurface, certifying,
+                                s,         searchProgress,   proxy.notes};
     Result<SearchOutcome> outcome = searchBackend(context, s.maxAttempts);
     if (!outcome) return fail(outcome.error());
     proxy.attempts = outcome->runs;

@@ -401,6 +401,27 @@ TEST(ProxyBuilder, HundredThousandTrianglesToOnePercentOnTheFastPath) {
     RecordProperty("seconds", std::to_string(p->seconds));
 }
 
+// Over 100,000 triangles the search's runs start from one simplification far below the tolerance;
+// the certificate still measures against the render mesh, so the bound holds as ever.
+TEST(ProxyBuilder, LargeMeshIsSearchedFromACoarserCopyAndCertifiedAgainstTheRenderMesh) {
+    const Mesh render = latLongSphere(1.0f, 241, 250, 0.05f);
+    ASSERT_GT(render.triangleCount(), 100000u);
+    Result<Proxy> p = buildProxy(render, settingsFor(ProxyBackend::MeshOpt, 0.01f));
+    ASSERT_TRUE(p) << p.error();
+    EXPECT_EQ(p->source, ProxySource::Simplified);
+    EXPECT_TRUE(p->toleranceMet);
+    EXPECT_LT(p->proxyTriangles, render.triangleCount() / 10);
+    expectValidProxy(p.value());
+    const double dense =
+        std::max(denseOneSided(p->mesh, render, 50000, 5), denseOneSided(render, p->mesh, 50000, 6));
+    EXPECT_GE(p->errorBound, dense);
+    EXPECT_LE(p->errorBound, p->tolerance * (1.0 + 1e-9));
+    Result<Proxy> again = buildProxy(render, settingsFor(ProxyBackend::MeshOpt, 0.01f));
+    ASSERT_TRUE(again);
+    EXPECT_EQ(again->mesh.indices, p->mesh.indices);
+    EXPECT_EQ(again->errorBound, p->errorBound);
+}
+
 TEST(ProxyBuilder, FandiskAtHalfAPercentWithBothBackends) {
     SPATTER_REQUIRE_SHARED(path, "meshes/fandisk.obj");
     Result<Scene> scene = loadScene(path);
