@@ -645,7 +645,9 @@ struct Bracket {
 class PendingSurface {
 public:
     explicit PendingSurface(const Mesh& render)
-        : future_(std::async(std::launch::async, [&render] { return HausdorffSurface::create(render); })) {}
+        // (Built on this thread when a thread cannot be started.)
+        : future_(std::async(std::launch::async | std::launch::deferred,
+                             [&render] { return HausdorffSurface::create(render); })) {}
     // The surface, once ready; fails like HausdorffSurface::create.
     Result<const HausdorffSurface*> get() {
         if (!result_) result_.emplace(future_.get());
