@@ -3,11 +3,13 @@
 #include "BenchSupport.hpp"
 #include "DecalField.hpp"
 
+#include "spatter/core/MeshBuilder.hpp"
 #include "spatter/placement/DecalPersistence.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
 #include <cstdio>
 #include <functional>
+#include <glm/gtc/matrix_transform.hpp>
 #include <string>
 #include <vector>
 
@@ -17,7 +19,8 @@ namespace {
 
 const char* kCommand = "persistence";
 
-const char* kUsage = R"(usage: spatter-bench persistence [--decals N] [--repeat R] [--quick] [--json FILE]
+const char* kUsage =
+    R"(usage: spatter-bench persistence [--decals N] [--repeat R] [--worst] [--quick] [--json FILE]
 
 Saving and loading a decal system (DecalPersistence.hpp), single-threaded, wall clock, the median
 of R runs each:
@@ -28,19 +31,34 @@ of R runs each:
   load file     loadDecalsFromFile: from that file
 
 N decals lie on a floor as in `memory` (spawnAttached, about 8 to a cell of the area grid), with
-random rotations and sizes, under a budget of N. The loaded system is checked: its own save equals
+random rotations and sizes, under a budget of N. With --worst every decal takes every optional
+column a save has room for: the floor is a slab 1 cm thick and the type volumetric, so each crater
+is clipped at its back, and the type's lifetime has every decal fading (its opacity differs from 1
+and its change fills the change log). The loaded system is checked: its own save equals
 the one it was loaded from, byte for byte. MB/s are of the save's size.
 
 Target: saving and loading 1,000,000 decals each within 0.5 s; at most sizeof(Decal) bytes a decal
 plus a fixed part.
 
 --decals N  decals (default 1000000)     --repeat R  runs per row (default 5)
+--worst     the largest save a decal can take (above)
 --quick     20,000 decals, 3 runs (smoke test)
 --json FILE {"decals", "save_bytes", "bytes_per_decal", "decal_record_bytes", "rows": [...]}
 )";
 
-// The decal system of the benchmark: `n` decals spawned, or none.
-Result<DecalSystem> makeSystem(const Scene& field, size_t n, size_t spawned) {
+// The floor of the worst case: a slab 1 cm thick, as wide as the field's floor, its top at y = 0.
+Scene slabFloor(const Scene& field) {
+    Scene s = field;
+    const Bounds b = s.objects[0].mesh.bounds();
+    const glm::vec3 half(0.5f * (b.max.x - b.min.x), 0.005f, 0.5f * (b.max.z - b.min.z));
+    s.objects[0].mesh = makeBox(half, 1);
+    s.objects[0].transform =
+        glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.005, 0.0)) * s.objects[0].transform;
+    return s;
+}
+
+// The decal system of the benchmark: `n` decals spawned, or none; `worst`: craters that fade.
+Result<DecalSystem> makeSystem(const Scene& field, size_t n, size_t spawned, bool worst) {
     DecalSettings ds;
     ds.budget = uint32_t(n);
     ds.maxPerObject = uint32_t(n);
@@ -49,14 +67,19 @@ Result<DecalSystem> makeSystem(const Scene& field, size_t n, size_t spawned) {
     DecalType type;
     type.name = "hole";
     type.sizeJitter = 0.2f;
+    type.volumetric = worst;
+    type.lifetime = worst ? 100.0f : 0.0f;
+    type.fadeOutTime = 100.0f;
     const uint16_t ti = sys->registerType(type).value();
     const double side = std::sqrt(double(n) / 8.0) * double(ds.cellSize);
     Rng rng(1);
     for (size_t i = 0; i < spawned; ++i) {
-        const glm::vec3 p(float(side) * rng.uniform(-0.5f, 0.5f), 0.0f,
+        const glm::vec3 p(float(side) * rng.uniform(-0.5f, 0.5f), worst ? 0.005f : 0.0f, // on the slab's top
                           float(side) * rng.uniform(-0.5f, 0.5f));
         sys->spawnAttached(0, p, glm::vec3(0.0f, 1.0f, 0.0f), ti);
     }
+    if (worst && spawned > 0)
+        if (Status s = sys->update(1.0); !s) return fail(s.error());
     return sys;
 }
 
@@ -80,8 +103,8 @@ Status loaded(Result<DecalLoadReport> r) {
 
 int runPersistenceCommand(int argc, char** argv) {
     int exitCode = 0;
-    const std::optional<Args> parsed =
-        commandArgs(argc, argv, kCommand, kUsage, {"--decals", "--repeat", "--json"}, {"--quick"}, exitCode);
+    const std::optional<Args> parsed = commandArgs(
+        argc, argv, kCommand, kUsage, {"--decals", "--repeat", "--json"}, {"--quick", "--worst"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
     if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
@@ -97,9 +120,11 @@ int runPersistenceCommand(int argc, char** argv) {
     const MachineInfo machine = machineInfo();
     std::printf("spatter-bench persistence: %zu decals, %zu runs a row\nmachine: %s\n", n, runs,
                 describe(machine).c_str());
-    const Scene field = decalFieldScene(decalFieldView(16.0 / 9.0), false);
-    Result<DecalSystem> source = makeSystem(field, n, n);
-    Result<DecalSystem> target = makeSystem(field, n, 0);
+    const bool worst = args.has("--worst");
+    const Scene flat = decalFieldScene(decalFieldView(16.0 / 9.0), false);
+    const Scene field = worst ? slabFloor(flat) : flat;
+    Result<DecalSystem> source = makeSystem(field, n, n, worst);
+    Result<DecalSystem> target = makeSystem(field, n, 0, worst);
     if (!source || !target) {
         std::fprintf(stderr, "spatter-bench persistence: %s\n", (source ? target : source).error().c_str());
         return 1;
@@ -130,12 +155,22 @@ int runPersistenceCommand(int argc, char** argv) {
 
     const size_t placed = src.decals().size();
     const double perDecal = double(bytes.size()) / double(placed);
-    std::printf("\n%zu decals placed; save %zu bytes: %.2f B per decal (sizeof(Decal) %zu)\n\n", placed,
-                bytes.size(), perDecal, sizeof(Decal));
+    size_t clipped = 0, fading = 0;
+    for (const Decal& d : src.decals()) {
+        clipped += d.clips[0].active() || d.clips[1].active() ? 1 : 0;
+        fading += float(d.opacity) < 1.0f ? 1 : 0;
+    }
+    std::printf(
+        "\n%zu decals placed (%zu with clipped craters, %zu fading); save %zu bytes: %.2f B per decal "
+        "(sizeof(Decal) %zu)\n\n",
+        placed, clipped, fading, bytes.size(), perDecal, sizeof(Decal));
     Json j;
     j["command"] = kCommand;
     j["machine"] = toJson(machine);
     j["decals"] = placed;
+    j["worst"] = worst;
+    j["clipped"] = clipped;
+    j["fading"] = fading;
     j["save_bytes"] = bytes.size();
     j["bytes_per_decal"] = number(perDecal);
     j["decal_record_bytes"] = sizeof(Decal);

@@ -28,7 +28,8 @@ constexpr uint32_t kSectionCount = sizeof(kSections) / sizeof(kSections[0]);
 constexpr size_t kObjectMinBytes = 4 + 8 + 1 + 1 + 16 * 8;
 constexpr size_t kExceptionBytes = 4 + 3 * 8 + 4;
 constexpr size_t kFadingBytes = 4 + 8;
-constexpr size_t kChangeBytes = 4 + 4 + 1;
+constexpr size_t kChangeBytes = 4 + 4 + 1;       // version 1: index, from and kind of a change
+constexpr size_t kChangeColumnBytes = 1 + 1 + 1; // later versions: a change's least in the columns
 constexpr uint8_t kDynamicFlag = 1, kInWorldFlag = 2;
 // Kinds of an optional column (writeSparse): every value the default, all values, or the others.
 enum : uint8_t { kAbsent = 0, kDense = 1, kSparse = 2 };

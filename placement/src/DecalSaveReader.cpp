@@ -285,18 +285,36 @@ Status readFading(ByteReader& r, DecalSystemState& st, uint32_t /*version*/) {
     return {};
 }
 
-Status readChanges(ByteReader& r, DecalSystemState& st, uint32_t /*version*/) {
+// Version 1 kept each change as u32 index, u32 from and u8 kind; later versions keep columns.
+Status readChangeEntries(ByteReader& r, uint32_t version, uint32_t n, std::vector<DecalChange>& log) {
+    std::vector<uint32_t> index, from;
+    std::vector<uint8_t> kind(n);
+    if (version == 1) {
+        index.resize(n), from.resize(n);
+        for (uint32_t i = 0; i < n; ++i)
+            r.u32(index[i]), r.u32(from[i]), r.u8(kind[i]); // counted by the caller
+    } else {
+        if (Status s = readColumn(r, "CHNG", "change indices", n, index); !s) return s;
+        if (Status s = readColumn(r, "CHNG", "change sources", n, from); !s) return s;
+        const uint8_t* p = r.take(n);
+        if (!p && n > 0) return truncated("CHNG", "the change kinds");
+        std::copy(p, p + n, kind.begin());
+    }
+    log.resize(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        if (kind[i] > uint8_t(DecalChangeKind::Removed))
+            return corrupt("a change of unknown kind " + std::to_string(kind[i]));
+        log[i] = DecalChange{index[i], from[i], DecalChangeKind(kind[i])};
+    }
+    return {};
+}
+
+Status readChanges(ByteReader& r, DecalSystemState& st, uint32_t version) {
     uint32_t n = 0;
     if (!r.u64(st.changeLogBase)) return truncated("CHNG", "the change log");
-    if (Status s = readCount(r, "CHNG", "changes", kChangeBytes, n); !s) return s;
-    st.changeLog.resize(n);
-    for (DecalChange& c : st.changeLog) {
-        uint8_t kind = 0;
-        r.u32(c.index), r.u32(c.from), r.u8(kind); // counted above
-        if (kind > uint8_t(DecalChangeKind::Removed))
-            return corrupt("a change of unknown kind " + std::to_string(kind));
-        c.kind = DecalChangeKind(kind);
-    }
+    if (Status s = readCount(r, "CHNG", "changes", version == 1 ? kChangeBytes : kChangeColumnBytes, n); !s)
+        return s;
+    if (Status s = readChangeEntries(r, version, n, st.changeLog); !s) return s;
     if (st.changeLogBase > std::numeric_limits<uint64_t>::max() - n)
         return corrupt("the change log's version overflows");
     return {};

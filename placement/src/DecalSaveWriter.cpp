@@ -166,12 +166,13 @@ void writeFading(ByteWriter& w, const DecalSystemState& st) {
 
 void writeChanges(ByteWriter& w, const DecalSystemState& st) {
     w.u64(st.changeLogBase);
-    w.u32(uint32_t(st.changeLog.size()));
-    for (const DecalChange& c : st.changeLog) {
-        w.u32(c.index);
-        w.u32(c.from);
-        w.u8(uint8_t(c.kind));
-    }
+    const std::vector<DecalChange>& log = st.changeLog;
+    w.u32(uint32_t(log.size()));
+    writeColumn(w, log.size(), [&](size_t i) { return log[i].index; });
+    writeColumn(w, log.size(), [&](size_t i) { return log[i].from; });
+    uint8_t* kinds = w.grow(log.size());
+    for (size_t i = 0; i < log.size(); ++i)
+        kinds[i] = uint8_t(log[i].kind);
 }
 
 } // namespace

@@ -417,12 +417,47 @@ TEST_F(DecalPersistence, MissingObjectDropsItsDecals) {
         EXPECT_NE(d.object, 3u);
 }
 
-// `b`, a save whose decals all project along their normal and have no clipped crater, as version 1
-// wrote it: its opacities as floats, no column of slants.
-std::vector<uint8_t> asVersion1(const std::vector<uint8_t>& b) {
+// `b` with the payload of section `tag` replaced by `payload` (its length and the save's size put
+// right; the checksum is left to reseal).
+std::vector<uint8_t> withSection(const std::vector<uint8_t>& b, const char* tag,
+                                 const std::vector<uint8_t>& payload) {
+    const size_t at = sectionAt(b, tag);
+    uint64_t length = 0;
+    std::memcpy(&length, &b[at - 8], 8);
+    std::vector<uint8_t> out(b.begin(), b.begin() + std::ptrdiff_t(at));
+    out.insert(out.end(), payload.begin(), payload.end());
+    out.insert(out.end(), b.begin() + std::ptrdiff_t(at + length), b.end());
+    length = payload.size();
+    std::memcpy(&out[at - 8], &length, 8);
+    const uint64_t total = out.size();
+    std::memcpy(&out[16], &total, 8);
+    return out;
+}
+
+void append(std::vector<uint8_t>& out, const void* value, size_t bytes) {
+    const uint8_t* p = static_cast<const uint8_t*>(value);
+    out.insert(out.end(), p, p + bytes);
+}
+
+// A column of `n` values as the writer lays it out (a width byte, then little-endian values) at `at`,
+// read and stepped over.
+std::vector<uint32_t> column(const std::vector<uint8_t>& b, size_t& at, size_t n) {
+    const unsigned width = b[at++];
+    std::vector<uint32_t> v(n, 0);
+    for (size_t i = 0; i < n; ++i, at += width)
+        for (unsigned k = 0; k < width; ++k)
+            v[i] |= uint32_t(b[at + k]) << (8 * k);
+    return v;
+}
+
+// The DECL payload of `b` as version 1 wrote it: float opacities, no column of slants (every decal
+// of `b` projects along its normal and has no clipped crater).
+std::vector<uint8_t> declVersion1(const std::vector<uint8_t>& b) {
     const size_t decl = sectionAt(b, "DECL"), n = decalCount(b);
+    uint64_t length = 0;
+    std::memcpy(&length, &b[decl - 8], 8);
     size_t at = decl + 4 + n * 44;
-    std::vector<uint8_t> out(b.begin(), b.begin() + std::ptrdiff_t(at) + 1);
+    std::vector<uint8_t> out(b.begin() + std::ptrdiff_t(decl), b.begin() + std::ptrdiff_t(at) + 1);
     size_t values = b[at] == 1 ? n : 0; // dense: one value per decal
     ++at;
     if (b[at - 1] == 2) { // sparse: a count, a column of indices, the values
@@ -435,21 +470,35 @@ std::vector<uint8_t> asVersion1(const std::vector<uint8_t>& b) {
     }
     for (size_t k = 0; k < values; ++k, ++at) {
         const float opacity = float(Opacity::fromBits(b[at]));
-        uint8_t f[4];
-        std::memcpy(f, &opacity, 4);
-        out.insert(out.end(), f, f + 4);
+        append(out, &opacity, 4);
     }
     EXPECT_EQ(b[at], 0u) << "clips";
     EXPECT_EQ(b[at + 1], 0u) << "slants";
     out.push_back(b[at]);
-    out.insert(out.end(), b.begin() + std::ptrdiff_t(at + 2), b.end()); // the slants left out
-    const int64_t grown = int64_t(out.size()) - int64_t(b.size());
-    uint64_t length = 0;
-    std::memcpy(&length, &out[decl - 8], 8);
-    length = uint64_t(int64_t(length) + grown);
-    std::memcpy(&out[decl - 8], &length, 8);
-    const uint64_t total = out.size();
-    std::memcpy(&out[16], &total, 8);
+    out.insert(out.end(), b.begin() + std::ptrdiff_t(at + 2), b.begin() + std::ptrdiff_t(decl + length));
+    return out;
+}
+
+// The CHNG payload of `b` as version 1 wrote it: each change as u32 index, u32 from, u8 kind.
+std::vector<uint8_t> changesVersion1(const std::vector<uint8_t>& b) {
+    size_t at = sectionAt(b, "CHNG");
+    std::vector<uint8_t> out(b.begin() + std::ptrdiff_t(at), b.begin() + std::ptrdiff_t(at + 12));
+    uint32_t n = 0;
+    std::memcpy(&n, &b[at + 8], 4);
+    at += 12;
+    const std::vector<uint32_t> index = column(b, at, n), from = column(b, at, n);
+    for (uint32_t i = 0; i < n; ++i) {
+        append(out, &index[i], 4);
+        append(out, &from[i], 4);
+        out.push_back(b[at + i]);
+    }
+    return out;
+}
+
+// `b` as version 1 wrote it (see declVersion1).
+std::vector<uint8_t> asVersion1(const std::vector<uint8_t>& b) {
+    std::vector<uint8_t> out =
+        withSection(withSection(b, "DECL", declVersion1(b)), "CHNG", changesVersion1(b));
     put32(out, 8, 1);
     reseal(out);
     return out;
