@@ -5,6 +5,7 @@
 #include "spatter/core/SceneLoader.hpp"
 
 #include "GltfBuilder.hpp"
+#include "GltfLoading.hpp"
 #include "TestData.hpp"
 
 #include <draco/compression/encode.h>
@@ -53,22 +54,6 @@ Plain wavyGrid(int n = 12) {
             p.indices.insert(p.indices.end(), {a, b, d, a, d, c});
         }
     return p;
-}
-
-Scene loaded(const std::string& path) {
-    Result<Scene> scene = loadGltf(path);
-    EXPECT_TRUE(scene.ok()) << scene.error();
-    return scene.ok() ? std::move(scene.value()) : Scene{};
-}
-
-std::string rejection(const std::string& path) {
-    Result<Scene> scene = loadGltf(path);
-    if (scene.ok()) {
-        ADD_FAILURE() << path << " loaded but should have been rejected";
-        return "";
-    }
-    EXPECT_THAT(scene.error(), HasSubstr(path));
-    return scene.error();
 }
 
 // Triangles as their smallest corner first, winding kept, then sorted.

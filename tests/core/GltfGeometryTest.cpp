@@ -7,6 +7,7 @@
 #include "spatter/core/SceneLoader.hpp"
 
 #include "GltfBuilder.hpp"
+#include "GltfLoading.hpp"
 #include "TestData.hpp"
 
 #include <glm/gtc/constants.hpp>
@@ -47,22 +48,6 @@ GltfBuilder quadScene() {
     g.doc["scenes"] = {{{"nodes", {0}}}};
     g.doc["scene"] = 0;
     return g;
-}
-
-Scene loaded(const std::string& path) {
-    Result<Scene> scene = loadGltf(path);
-    EXPECT_TRUE(scene.ok()) << scene.error();
-    return scene.ok() ? std::move(scene.value()) : Scene{};
-}
-
-std::string rejection(const std::string& path) {
-    Result<Scene> scene = loadGltf(path);
-    if (scene.ok()) {
-        ADD_FAILURE() << path << " loaded but should have been rejected";
-        return "";
-    }
-    EXPECT_THAT(scene.error(), HasSubstr(path));
-    return scene.error();
 }
 
 // A sparse part for accessor `accessor`: `indices` (16-bit) and their `values` (raw bytes).
