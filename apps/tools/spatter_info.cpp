@@ -16,11 +16,13 @@ Loads SCENE and prints one JSON object on stdout:
   {"objects": N, "triangles": T, "dynamic_objects": D,
    "bounds": {"min": [x,y,z], "max": [x,y,z]},
    "animations": [{"name", "duration", "channels"}], "skins": [{"name", "joints"}],
+   "extensions_used": [...], "extensions_required": [...],
    "objects_detail": [{"name", "triangles", "dynamic", "receives_decals", "has_collider",
                        "traced", "skin", "morph_targets"}]}
 Bounds are world-space, over every render mesh, in the rest pose. duration is in seconds; skin is
 the index into "skins" of the object's skin, or null; morph_targets counts the object's morph
-targets. An object that an animation moves or deforms is dynamic. traced is whether shots can hit the object: it
+targets; the extensions are the glTF file's lists (empty for other formats). An object that an
+animation moves or deforms is dynamic. traced is whether shots can hit the object: it
 receives decals and its transform is one single-precision ray tracing can use (finite inverse,
 condition number at most 65536, scales within 2^-25..2^25, within 2^32 of the world's centre, not
 smaller than a few float steps there). For
@@ -69,6 +71,8 @@ int main(int argc, char** argv) {
     out["skins"] = nlohmann::ordered_json::array();
     for (const spatter::Skin& s : scene->animation.skins)
         out["skins"].push_back({{"name", s.name}, {"joints", s.joints.size()}});
+    out["extensions_used"] = scene->extensionsUsed;
+    out["extensions_required"] = scene->extensionsRequired;
     nlohmann::ordered_json detail = nlohmann::ordered_json::array();
     for (uint32_t i = 0; i < scene->objects.size(); ++i) {
         const spatter::SceneObject& o = scene->objects[i];

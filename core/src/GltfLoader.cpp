@@ -686,6 +686,8 @@ Result<Scene> buildScene(tinygltf::Model& model, const std::map<int, std::string
     if (Status s = decodeDracoPrimitives(model); !s) return fail(s.error());
 
     Scene scene;
+    scene.extensionsUsed = model.extensionsUsed;
+    scene.extensionsRequired = model.extensionsRequired;
     for (size_t i = 0; i < model.images.size(); ++i) {
         Result<Image> image = convertImage(model, i, decodeErrors, scene.warnings);
         if (!image) return fail(image.error());

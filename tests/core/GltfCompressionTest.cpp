@@ -365,6 +365,9 @@ TEST(GltfCompression, MeshoptGivesThePlainGeometryInGltfAndGlb) {
             SCOPED_TRACE(path);
             Scene scene = loaded(path);
             ASSERT_EQ(scene.objects.size(), 1u);
+            const std::vector<std::string> extensions = {"EXT_meshopt_compression", "KHR_mesh_quantization"};
+            EXPECT_EQ(scene.extensionsUsed, extensions);
+            EXPECT_EQ(scene.extensionsRequired, extensions);
             const Mesh& mesh = scene.objects[0].mesh;
             // Positions and UVs are lossless; normals went through 16-bit octahedral encoding.
             EXPECT_EQ(mesh.positions, plain.positions);

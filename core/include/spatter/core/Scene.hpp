@@ -58,6 +58,8 @@ struct Scene {
     // What the loader substituted or left out and the scene still works without, one line each
     // (an image it cannot decode that only an extension uses, a texture transform it could not follow).
     std::vector<std::string> warnings;
+    // The glTF extensions the file uses and those it requires, as it lists them (empty for other formats).
+    std::vector<std::string> extensionsUsed, extensionsRequired;
 
     size_t triangleCount() const; // render triangles of all objects
     size_t dynamicObjectCount() const;
