@@ -84,4 +84,28 @@ struct alignas(16) DecalTypeGpu {
 };
 static_assert(sizeof(DecalTypeGpu) == 48, "DecalTypeGpu must match DecalTypeRecord (std430)");
 
+// Binding points of the geometry pass's skinning and morphing buffers (shaders/pose.glsl).
+enum PoseBinding : uint32_t {
+    kPoseObjectBuffer = 9,  // PoseObjectGpu per object, uploaded with the scene
+    kInfluenceBuffer = 10,  // InfluenceGpu per vertex and influence, uploaded with the scene
+    kMorphDeltaBuffer = 11, // vec4 (position, normal, tangent delta) per target and vertex, with the scene
+    kJointBuffer = 12,      // mat4 per skin joint, camera-relative, every frame
+    kMorphWeightBuffer = 13 // float per object morph target, every frame
+};
+
+// std430, binding kPoseObjectBuffer: where an object's skin and morph data start.
+struct alignas(16) PoseObjectGpu {
+    glm::uvec4 skin;  // x: first influence; y: influences per vertex (0: not skinned); z: first joint
+    glm::uvec4 morph; // x: first delta (three per target and vertex); y: targets; z: first weight;
+                      // w: vertices
+};
+static_assert(sizeof(PoseObjectGpu) == 32, "PoseObjectGpu must match PoseObject (std430)");
+
+// std430, binding kInfluenceBuffer: one joint influence of a vertex.
+struct InfluenceGpu {
+    uint32_t joint; // index into the object's skin joints
+    float weight;
+};
+static_assert(sizeof(InfluenceGpu) == 8, "InfluenceGpu must match Influence (std430)");
+
 } // namespace spatter::render_detail

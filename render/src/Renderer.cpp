@@ -62,6 +62,73 @@ bool finiteDirection(const glm::vec3& v) {
     return finiteVec(v) && glm::length(v) > 1e-12f;
 }
 
+// Bounds of the position deltas of every morph target of `o`.
+std::vector<Bounds> morphBounds(const SceneObject& o) {
+    std::vector<Bounds> out(o.morphTargets.size());
+    for (size_t t = 0; t < out.size(); ++t)
+        for (const glm::vec3& d : o.morphTargets[t].positions)
+            out[t].extend(d);
+    return out;
+}
+
+// `rest` grown by every delta the weighted targets can add (per axis, a bound of the sum).
+Bounds morphedBounds(const Bounds& rest, const std::vector<Bounds>& deltas, const std::vector<double>& w) {
+    if (rest.empty()) return rest;
+    Bounds b = rest;
+    for (size_t t = 0; t < deltas.size() && t < w.size(); ++t) {
+        if (deltas[t].empty()) continue;
+        const glm::vec3 a = deltas[t].min * float(w[t]), c = deltas[t].max * float(w[t]);
+        b.min += glm::min(a, c);
+        b.max += glm::max(a, c);
+    }
+    return b;
+}
+
+// Extends `world` by the corners of `b` mapped by `m`.
+void extendByBox(DBounds& world, const Bounds& b, const glm::dmat4& m) {
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 p((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y,
+                           (c & 4) ? b.max.z : b.min.z);
+        world.extend(glm::dvec3(m * glm::dvec4(p, 1.0)));
+    }
+}
+
+// Empty when `pose` fits a scene of these counts, else the first problem.
+std::string poseProblem(const ScenePose& pose, const std::vector<size_t>& skinJoints,
+                        const std::vector<size_t>& morphTargets) {
+    const size_t n = morphTargets.size();
+    if (pose.objectTransforms.size() != n)
+        return std::to_string(pose.objectTransforms.size()) + " object transforms for " + std::to_string(n) +
+               " objects";
+    if (pose.morphWeights.size() != n)
+        return std::to_string(pose.morphWeights.size()) + " morph weight lists for " + std::to_string(n) +
+               " objects";
+    if (pose.jointMatrices.size() != skinJoints.size())
+        return std::to_string(pose.jointMatrices.size()) + " joint matrix lists for " +
+               std::to_string(skinJoints.size()) + " skins";
+    for (size_t i = 0; i < n; ++i) {
+        const std::string object = "object " + std::to_string(i);
+        if (const std::string p = transformProblem(pose.objectTransforms[i]); !p.empty())
+            return object + ": " + p;
+        const std::vector<double>& w = pose.morphWeights[i];
+        if (w.size() != morphTargets[i])
+            return object + ": " + std::to_string(w.size()) + " morph weights for " +
+                   std::to_string(morphTargets[i]) + " morph targets";
+        for (double v : w)
+            if (!std::isfinite(v)) return object + ": morph weight is not finite";
+    }
+    for (size_t s = 0; s < skinJoints.size(); ++s) {
+        const std::string skin = "skin " + std::to_string(s);
+        if (pose.jointMatrices[s].size() != skinJoints[s])
+            return skin + ": " + std::to_string(pose.jointMatrices[s].size()) + " joint matrices for " +
+                   std::to_string(skinJoints[s]) + " joints";
+        for (size_t j = 0; j < skinJoints[s]; ++j)
+            if (const std::string p = transformProblem(pose.jointMatrices[s][j]); !p.empty())
+                return skin + " joint " + std::to_string(j) + ": " + p;
+    }
+    return {};
+}
+
 } // namespace
 
 struct Renderer::Impl {
@@ -72,8 +139,8 @@ struct Renderer::Impl {
     SceneGpu scene;
     std::vector<glm::dmat4> transforms;
     std::vector<uint8_t> objectIds;
-    std::vector<uint8_t> receivers; // 1: drawn before the decals
-    std::vector<Bounds> localBounds;
+    std::vector<uint8_t> receivers;  // 1: drawn before the decals
+    std::vector<Bounds> localBounds; // object space, morphed by the current pose
     bool hasDynamic = false;
     bool hasLate = false;
 
@@ -103,6 +170,17 @@ struct Renderer::Impl {
     size_t objectCapacity = 0;
     GlVertexArray emptyVao;
     GlTexture zeroIds; // bound as s_ids when there is no ID target
+
+    // Skinning and morphing (setPose): counts of the scene, then the pose, in double.
+    size_t nodeCount = 0;
+    std::vector<int> objectSkins;                // SceneObject::skin, -1 where not skinned
+    std::vector<size_t> skinJoints, morphCounts; // joints per skin, morph targets per object
+    std::vector<Bounds> restBounds;
+    std::vector<std::vector<Bounds>> deltaBounds; // per object, per morph target
+    bool posed = false;
+    std::vector<std::vector<glm::dmat4>> jointMatrices;
+    GlBuffer jointBuffer, weightBuffer;
+    std::vector<glm::mat4> jointScratch;
 
     GpuTimers timers;
     uint64_t frame = 0;
@@ -142,8 +220,84 @@ struct Renderer::Impl {
         bindBuffers();
     }
 
+    bool skinned(size_t object) const { return posed && objectSkins[object] >= 0; }
+
+    void bindPoseBuffers() const {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPoseObjectBuffer, scene.poseObjectBuffer());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInfluenceBuffer, scene.influenceBuffer());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMorphDeltaBuffer, scene.morphDeltaBuffer());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kJointBuffer, jointBuffer.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMorphWeightBuffer, weightBuffer.get());
+    }
+
+    // Camera-relative joint matrices of the pose, composed in double, sent as float.
+    void uploadJoints(const glm::dvec3& eye) {
+        if (!posed || scene.jointCount() == 0) return;
+        const glm::dmat4 toEye = glm::translate(glm::dmat4(1.0), -eye);
+        jointScratch.resize(scene.jointCount());
+        for (size_t s = 0; s < jointMatrices.size(); ++s)
+            for (size_t j = 0; j < jointMatrices[s].size(); ++j)
+                jointScratch[scene.firstJoint(s) + j] = glm::mat4(toEye * jointMatrices[s][j]);
+        glNamedBufferSubData(jointBuffer.get(), 0, GLsizeiptr(jointScratch.size() * sizeof(glm::mat4)),
+                             jointScratch.data());
+    }
+
+    // World bounds of object i at the current pose.
+    void extendWorld(DBounds& world, size_t i) const {
+        const Bounds& b = localBounds[i];
+        if (b.empty()) return;
+        if (!skinned(i)) return extendByBox(world, b, transforms[i]);
+        // A skinned vertex is a convex combination of its joints' images: inside the joints' boxes.
+        for (const glm::dmat4& j : jointMatrices[size_t(objectSkins[i])])
+            extendByBox(world, b, j);
+    }
+
+    // Takes the scene's skinning and morphing counts; the scene starts unposed.
+    void resetPose(const Scene& s) {
+        const size_t n = s.objects.size();
+        nodeCount = s.animation.nodes.size();
+        objectSkins.resize(n);
+        morphCounts.resize(n);
+        restBounds.resize(n);
+        deltaBounds.resize(n);
+        for (size_t i = 0; i < n; ++i) {
+            objectSkins[i] = s.objects[i].skinWeights.influences > 0 ? s.objects[i].skin : -1;
+            morphCounts[i] = s.objects[i].morphTargets.size();
+            restBounds[i] = s.objects[i].mesh.bounds();
+            deltaBounds[i] = morphBounds(s.objects[i]);
+        }
+        skinJoints.clear();
+        for (const Skin& skin : s.animation.skins)
+            skinJoints.push_back(skin.joints.size());
+        posed = false;
+        jointMatrices.clear();
+        jointBuffer = createBuffer();
+        glNamedBufferStorage(jointBuffer.get(), GLsizeiptr(std::max<size_t>(1, scene.jointCount()) * 64),
+                             nullptr, GL_DYNAMIC_STORAGE_BIT);
+        weightBuffer = createBuffer();
+        glNamedBufferStorage(weightBuffer.get(), GLsizeiptr(std::max<size_t>(1, scene.weightCount()) * 4),
+                             nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+
+    // Takes a pose that passed poseProblem.
+    void applyPose(const ScenePose& pose) {
+        transforms = pose.objectTransforms;
+        jointMatrices = pose.jointMatrices;
+        std::vector<float> weights(std::max<size_t>(1, scene.weightCount()), 0.0f);
+        for (size_t i = 0; i < morphCounts.size(); ++i) {
+            for (size_t t = 0; t < morphCounts[i]; ++t)
+                weights[scene.firstWeight(i) + t] = float(pose.morphWeights[i][t]);
+            localBounds[i] = morphedBounds(restBounds[i], deltaBounds[i], pose.morphWeights[i]);
+        }
+        glNamedBufferSubData(weightBuffer.get(), 0, GLsizeiptr(weights.size() * sizeof(float)),
+                             weights.data());
+        posed = true;
+    }
+
     void drawObjects(bool receiversPass) {
         glUseProgram(geometryProgram.get());
+        bindPoseBuffers();
+        glUniform1ui(2, posed ? 1u : 0u);
         for (size_t i = 0; i < scene.objectCount(); ++i) {
             if ((receivers[i] != 0) != receiversPass) continue;
             const GpuMesh& mesh = scene.mesh(i);
@@ -297,15 +451,8 @@ struct Renderer::Impl {
         f.groundAmbient = glm::vec4(l.groundAmbient, 0.0f);
 
         DBounds world;
-        for (size_t i = 0; i < transforms.size(); ++i) {
-            const Bounds& b = localBounds[i];
-            if (b.empty()) continue;
-            for (int c = 0; c < 8; ++c) {
-                const glm::dvec3 p((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y,
-                                   (c & 4) ? b.max.z : b.min.z);
-                world.extend(glm::dvec3(transforms[i] * glm::dvec4(p, 1.0)));
-            }
-        }
+        for (size_t i = 0; i < transforms.size(); ++i)
+            extendWorld(world, i);
         double nearest = 0.0, farthest = 1.0;
         if (!world.empty()) distanceRange(world, camera.eye, nearest, farthest);
         f.depthRange =
@@ -319,8 +466,12 @@ struct Renderer::Impl {
             ObjectGpu& o = objects[i];
             o.model = glm::mat4(rel);
             o.normalMatrix = glm::mat4(glm::mat3(normalMatrix(glm::dmat3(transforms[i]))));
+            // A skinned object mirrors as its first joint does (skins rarely mix handedness).
+            const glm::dmat4& handed = skinned(i) && !jointMatrices[size_t(objectSkins[i])].empty()
+                                           ? jointMatrices[size_t(objectSkins[i])][0]
+                                           : transforms[i];
             o.info = glm::uvec4(gbuffer.hasIds() ? objectIds[i] : 0u,
-                                glm::determinant(glm::dmat3(transforms[i])) < 0.0 ? 1u : 0u,
+                                glm::determinant(glm::dmat3(handed)) < 0.0 ? 1u : 0u,
                                 textureSpace.enabled(i) ? 1u : 0u, 0u);
             const Deformation& d = deformations[i];
             if (d.amplitude != 0.0f) {
@@ -333,6 +484,7 @@ struct Renderer::Impl {
         if (!objects.empty())
             glNamedBufferSubData(objectBuffer.get(), 0, GLsizeiptr(objects.size() * sizeof(ObjectGpu)),
                                  objects.data());
+        uploadJoints(camera.eye);
     }
 
     // Splats the pending decals of texture-space objects into their textures, one instanced draw per
@@ -465,6 +617,7 @@ Status Renderer::setScene(const Scene& scene) {
         m.hasLate = m.hasLate || !o.receivesDecals;
     }
     m.objectIds.assign(n, 0);
+    m.resetPose(scene);
     if (m.hasDynamic != m.gbuffer.hasIds())
         if (Status s = m.gbuffer.create(m.gbuffer.width(), m.gbuffer.height(), m.hasDynamic); !s)
             return fail("renderer: " + s.error());
@@ -490,6 +643,29 @@ Status Renderer::setObjectTransform(uint32_t object, const glm::dmat4& transform
         return fail("renderer: object " + std::to_string(object) + ": " + problem);
     m.transforms[object] = transform;
     return {};
+}
+
+Status Renderer::setPose(const ScenePose& pose) {
+    Impl& m = *impl_;
+    if (const std::string p = poseProblem(pose, m.skinJoints, m.morphCounts); !p.empty())
+        return fail("renderer: pose: " + p);
+    m.applyPose(pose);
+    return {};
+}
+
+Status Renderer::setPose(const SceneEvaluator& evaluator) {
+    Impl& m = *impl_;
+    if (evaluator.nodeWorld().size() != m.nodeCount)
+        return fail("renderer: pose: the evaluator has " + std::to_string(evaluator.nodeWorld().size()) +
+                    " nodes, the scene " + std::to_string(m.nodeCount));
+    ScenePose pose;
+    for (size_t i = 0; i < m.transforms.size(); ++i) {
+        pose.objectTransforms.push_back(evaluator.objectTransform(i));
+        pose.morphWeights.push_back(evaluator.morphWeights(i));
+    }
+    for (size_t s = 0; s < m.skinJoints.size(); ++s)
+        pose.jointMatrices.push_back(evaluator.jointMatrices(s));
+    return setPose(pose);
 }
 
 Status Renderer::setObjectIds(const std::vector<uint8_t>& ids) {

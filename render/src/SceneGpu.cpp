@@ -33,7 +33,59 @@ GlTexture uploadImage(const Image& image, bool srgb) {
     return t;
 }
 
+// A storage buffer holding `data` (one placeholder byte when empty, so that it can be bound).
+template <typename T> GlBuffer storageBuffer(const std::vector<T>& data) {
+    GlBuffer b = createBuffer();
+    glNamedBufferStorage(b.get(), GLsizeiptr(std::max<size_t>(1, data.size() * sizeof(T))),
+                         data.empty() ? nullptr : data.data(), 0);
+    return b;
+}
+
+// Morph deltas of `object` appended to `out`: per target, per vertex, its position, normal and
+// tangent deltas (zero where the target has none).
+void appendMorphDeltas(const SceneObject& object, std::vector<glm::vec4>& out) {
+    const size_t vertices = object.mesh.positions.size();
+    for (const MorphTarget& t : object.morphTargets)
+        for (size_t v = 0; v < vertices; ++v) {
+            out.emplace_back(t.positions[v], 0.0f);
+            out.emplace_back(v < t.normals.size() ? t.normals[v] : glm::vec3(0.0f), 0.0f);
+            out.emplace_back(v < t.tangents.size() ? t.tangents[v] : glm::vec3(0.0f), 0.0f);
+        }
+}
+
 } // namespace
+
+void SceneGpu::uploadPose(const Scene& scene) {
+    firstJoint_.clear();
+    jointCount_ = 0;
+    for (const Skin& skin : scene.animation.skins) {
+        firstJoint_.push_back(uint32_t(jointCount_));
+        jointCount_ += skin.joints.size();
+    }
+    firstWeight_.clear();
+    weightCount_ = 0;
+    std::vector<PoseObjectGpu> objects;
+    std::vector<InfluenceGpu> influences;
+    std::vector<glm::vec4> deltas;
+    for (const SceneObject& o : scene.objects) {
+        PoseObjectGpu p{};
+        if (o.skin >= 0 && o.skinWeights.influences > 0) {
+            p.skin = glm::uvec4(uint32_t(influences.size()), uint32_t(o.skinWeights.influences),
+                                firstJoint_[size_t(o.skin)], 0u);
+            for (size_t i = 0; i < o.skinWeights.joints.size(); ++i)
+                influences.push_back({o.skinWeights.joints[i], float(o.skinWeights.weights[i])});
+        }
+        p.morph = glm::uvec4(uint32_t(deltas.size()), uint32_t(o.morphTargets.size()), uint32_t(weightCount_),
+                             uint32_t(o.mesh.positions.size()));
+        appendMorphDeltas(o, deltas);
+        firstWeight_.push_back(uint32_t(weightCount_));
+        weightCount_ += o.morphTargets.size();
+        objects.push_back(p);
+    }
+    poseObjects_ = storageBuffer(objects);
+    influences_ = storageBuffer(influences);
+    morphDeltas_ = storageBuffer(deltas);
+}
 
 Status SceneGpu::upload(const Scene& scene) {
     if (Status s = validateScene(scene); !s) return fail("renderer: " + s.error());
@@ -121,6 +173,7 @@ Status SceneGpu::upload(const Scene& scene) {
     materialBuffer_ = createBuffer();
     glNamedBufferStorage(materialBuffer_.get(), GLsizeiptr(materials.size() * sizeof(MaterialGpu)),
                          materials.data(), 0);
+    uploadPose(scene);
     return {};
 }
 

@@ -1,6 +1,7 @@
 #pragma once
-// SceneGpu: a Scene's render meshes, materials and textures on the GPU. Object transforms stay on
-// the CPU in double; the renderer makes them camera-relative every frame.
+// SceneGpu: a Scene's render meshes, materials and textures on the GPU, and what skinning and morphing
+// need of it (joint influences and morph target deltas, uploaded once). Object transforms, joint
+// matrices and morph weights stay on the CPU in double; the renderer sends them every frame.
 
 #include "GlObjects.hpp"
 #include "GpuLayouts.hpp"
@@ -38,12 +39,29 @@ public:
     GLuint baseColorTexture(uint32_t m) const { return m < baseTextures_.size() ? baseTextures_[m] : 0; }
     GLuint normalTexture(uint32_t m) const { return m < normalTextures_.size() ? normalTextures_[m] : 0; }
 
+    // Skinning and morphing (shaders/pose.glsl): per-object offsets, influences and morph deltas.
+    GLuint poseObjectBuffer() const { return poseObjects_.get(); }
+    GLuint influenceBuffer() const { return influences_.get(); }
+    GLuint morphDeltaBuffer() const { return morphDeltas_.get(); }
+    // First entry of skin s in the per-frame joint buffer; jointCount() entries in all.
+    uint32_t firstJoint(size_t skin) const { return firstJoint_[skin]; }
+    size_t jointCount() const { return jointCount_; }
+    // First entry of object o in the per-frame morph weight buffer; weightCount() entries in all.
+    uint32_t firstWeight(size_t object) const { return firstWeight_[object]; }
+    size_t weightCount() const { return weightCount_; }
+
 private:
+    void uploadPose(const Scene& scene);
+
     std::vector<GpuMesh> meshes_;
     GlBuffer materialBuffer_;
     std::vector<GlTexture> textures_;    // every image uploaded, sRGB and linear as needed
     std::vector<GLuint> baseTextures_;   // per material
     std::vector<GLuint> normalTextures_; // per material
+    GlBuffer poseObjects_, influences_, morphDeltas_;
+    std::vector<uint32_t> firstJoint_;  // per skin
+    std::vector<uint32_t> firstWeight_; // per object
+    size_t jointCount_ = 0, weightCount_ = 0;
 };
 
 } // namespace spatter::render_detail

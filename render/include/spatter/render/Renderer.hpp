@@ -4,10 +4,10 @@
 //   0. splats     only when decals have arrived for texture-space objects (DecalMode.hpp): each is
 //                 rendered once into its object's decal texture through the UVs, then the texture's
 //                 UV islands are dilated by a texel;
-//   1. geometry   the render meshes of every decal receiver, moved by their Deformation and with
-//                 their texture-space decal layer, fill the G-buffer (albedo, octahedral
-//                 normal, roughness/metallic, reversed-Z float depth, and object decal IDs when the
-//                 scene has dynamic objects);
+//   1. geometry   the render meshes of every decal receiver, morphed and skinned by the pose
+//                 (setPose) on the GPU, moved by their Deformation and with their texture-space
+//                 decal layer, fill the G-buffer (albedo, octahedral normal, roughness/metallic,
+//                 reversed-Z float depth, and object decal IDs when the scene has dynamic objects);
 //   1b. volumetric only with decals of a volumetric type (DecalType::volumetric): each crater's
 //                 footprint marks the stencil where the surface is visible (and the ID matches),
 //                 then the crater mesh, behind the surface, replaces it there in the G-buffer with the
@@ -43,6 +43,10 @@
 //   Result<FrameStats> stats = r->render(camera, View::Final);
 //   Result<Image> image = r->readback();
 //
+// Animation (skins, morph targets and animated nodes; spatter/core/SceneEvaluator.hpp), every frame:
+//   evaluator.evaluate(0, std::fmod(seconds, scene.animation.animations[0].duration));
+//   r->setPose(evaluator);               // or a ScenePose from the host's own animation system
+//
 // Debugging aids (RenderOptions.hpp):
 //   r->setOverlayMeshes(proxyMeshes);    // after setScene: one object-space mesh per object
 //   RenderOptions o;
@@ -61,6 +65,7 @@
 #include "spatter/core/Image.hpp"
 #include "spatter/core/Result.hpp"
 #include "spatter/core/Scene.hpp"
+#include "spatter/core/SceneEvaluator.hpp"
 #include "spatter/render/Camera.hpp"
 #include "spatter/render/DecalMode.hpp"
 #include "spatter/render/DecalProjector.hpp"
@@ -107,6 +112,17 @@ struct RendererSettings {
     LightSettings light;
 };
 
+// A pose of the scene last given to Renderer::setScene, in plain values: what a host with its own
+// animation system passes (spatter's SceneEvaluator fills one through Renderer::setPose).
+struct ScenePose {
+    std::vector<glm::dmat4> objectTransforms; // one per object, as setObjectTransform takes them
+    // One list per skin of Scene::animation.skins, one matrix per joint: the joint's world transform
+    // times its inverse bind matrix (bind space to world), finite and affine.
+    std::vector<std::vector<glm::dmat4>> jointMatrices;
+    // One list per object: one finite weight per morph target of the object (empty for none).
+    std::vector<std::vector<double>> morphWeights;
+};
+
 class Renderer {
 public:
     // Compiles the shaders, creates the G-buffer at settings.width x settings.height and the decal
@@ -125,6 +141,19 @@ public:
     // Moves an object (double precision, like SceneObject::transform). Fails for an index out of
     // range or a transform that is not finite and invertible.
     Status setObjectTransform(uint32_t object, const glm::dmat4& transform);
+    // Poses the scene: every object moves to its transform, skinned objects (SceneObject::skin) are
+    // skinned on the GPU by their joint matrices (their own transform then only places their decals,
+    // as glTF ignores a skinned mesh's node transform), and morph targets are added with the weights.
+    // Joint influences and morph deltas went to the GPU with setScene; a pose sends only the matrices
+    // (camera-relative, every frame) and the weights. Until the first pose, skinned and morphed
+    // objects are drawn in their rest pose as static meshes. Decals on skinned or morphed objects
+    // follow the object's transform only. Fails, changing nothing, when a count does not match the
+    // scene (the error names the list, object or skin), a transform or joint matrix is not finite and
+    // affine, or a weight is not finite.
+    Status setPose(const ScenePose& pose);
+    // The same at `evaluator`'s current pose. Precondition: the evaluator was made for the scene last
+    // given to setScene (one whose node count differs is refused).
+    Status setPose(const SceneEvaluator& evaluator);
     // The 8-bit object decal ID of every object (0 for static geometry), as the decal system
     // assigns them; one entry per scene object. Without dynamic objects there is no ID target and
     // IDs are not compared. Before this call every object has ID 0.
