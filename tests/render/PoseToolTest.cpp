@@ -1,0 +1,78 @@
+// spatter-render --time: the scene posed at a time of its first animation, run as a separate process.
+
+#include "TestData.hpp"
+
+#include "spatter/core/Image.hpp"
+#include "spatter/render/GlContext.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+using namespace spatter;
+
+namespace {
+
+// Runs the tool with `args`; returns its exit code (-1 when it did not exit normally).
+int runTool(const std::string& args) {
+    const std::string cmd = std::string(SPATTER_RENDER_TOOL) + " " + args + " >/dev/null 2>&1";
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Why the tool cannot render here (no headless GL context), or an empty string.
+std::string noGl() {
+    static const std::string why = [] {
+        Result<GlContext> gl = GlContext::createHeadless();
+        return gl.ok() ? std::string() : gl.error();
+    }();
+    return why;
+}
+
+// Pixels whose colours differ by more than 8 in some channel.
+size_t differingPixels(const Image& a, const Image& b) {
+    size_t n = 0;
+    for (size_t i = 0; i + 3 < a.rgba.size() && i + 3 < b.rgba.size(); i += 4)
+        for (size_t c = 0; c < 3; ++c)
+            if (std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c])) > 8) {
+                ++n;
+                break;
+            }
+    return n;
+}
+
+} // namespace
+
+TEST(SpatterRenderTime, PosesTheSceneAtTheGivenTime) {
+    SPATTER_REQUIRE_SHARED(path, "gltf/CesiumMan/CesiumMan.glb");
+    if (!noGl().empty()) {
+        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
+        GTEST_SKIP() << "no headless OpenGL context (" << noGl() << ")";
+    }
+    const std::string dir = test::scratchDir("render_time");
+    const std::string common = path + " --size 128x96 --camera \"eye=0.4,1.2,3;target=0,0.8,0\" ";
+    ASSERT_EQ(runTool(common + "--out " + dir + "/rest.png"), 0);
+    ASSERT_EQ(runTool(common + "--time 0.5 --out " + dir + "/a.png --stats " + dir + "/a.json"), 0);
+    ASSERT_EQ(runTool(common + "--time 0.5 --out " + dir + "/b.png"), 0);
+    ASSERT_EQ(runTool(common + "--time 1.2 --out " + dir + "/c.png"), 0);
+    Result<Image> rest = loadImage(dir + "/rest.png"), a = loadImage(dir + "/a.png"),
+                  b = loadImage(dir + "/b.png"), c = loadImage(dir + "/c.png");
+    ASSERT_TRUE(rest.ok() && a.ok() && b.ok() && c.ok());
+    EXPECT_EQ(differingPixels(a.value(), b.value()), 0u); // a pose is a function of the time
+    EXPECT_GT(differingPixels(a.value(), rest.value()), 200u);
+    EXPECT_GT(differingPixels(a.value(), c.value()), 100u);
+    std::ifstream stats(dir + "/a.json");
+    const nlohmann::json j = nlohmann::json::parse(stats);
+    EXPECT_DOUBLE_EQ(j.at("time").get<double>(), 0.5);
+}
+
+TEST(SpatterRenderTime, RefusesATimeThatIsNotANumber) {
+    EXPECT_EQ(runTool("builtin:gallery --time"), 2);
+    EXPECT_EQ(runTool("builtin:gallery --time nan"), 2);
+    EXPECT_EQ(runTool("builtin:gallery --time 1s"), 2);
+}
