@@ -16,7 +16,9 @@ With a display it opens a window (first-person controls below); without one, or 
 it runs a scripted, seeded session and writes DIR/gallery.png and DIR/gallery.json.
 
 options:
-  --scene FILE        glTF/GLB (its dynamic nodes are the targets) or builtin:gallery (default)
+  --scene FILE        glTF/GLB (its dynamic nodes are the targets, sliding on rails; in a scene with
+                      an animation its nodes follow the first animation instead) or builtin:gallery
+                      (default)
   --headless          run the scripted session even when a display is present
   --out DIR           output folder of the headless run (default gallery-out)
   --shots N           shots of the headless run (default 160)
@@ -25,6 +27,9 @@ options:
   --tolerance T       proxy tolerance in % of each object's bounding diagonal (default 0.5)
   --cache DIR         proxy cache folder (default $XDG_CACHE_HOME/spatter or ~/.cache/spatter)
   --quit-after N      window: close after N frames
+  --time T            the scene's first animation (glTF: animated nodes, skins, morph targets)
+                      starts at T seconds (default 0) and plays looping, in the window and in the
+                      headless session (which advances the clock by each shot's interval)
   --load FILE         load the decals saved in FILE (by --save or a quick-save) before the session
   --save FILE         headless: save the decals at the end of the run to FILE; window: the
                       quick-save file (default OUT/quick.save)
@@ -97,6 +102,13 @@ Result<GalleryOptions> parseGalleryOptions(int argc, char** argv) {
             if (!value(o.loadPath) || o.loadPath.empty()) return fail("--load needs a file");
         } else if (arg == "--save") {
             if (!value(o.savePath) || o.savePath.empty()) return fail("--save needs a file");
+        } else if (arg == "--time") {
+            char* end = nullptr;
+            if (!value(v)) return fail("--time needs a number of seconds");
+            const double t = std::strtod(v.c_str(), &end);
+            if (v.empty() || *end != '\0' || !std::isfinite(t))
+                return fail("--time needs a finite number of seconds");
+            o.startTime = t;
         } else if (arg == "--quit-after") {
             if (!value(v) || !parseInt(v, 1, 100000000, n)) return fail("--quit-after needs a frame count");
             o.quitAfterFrames = int(n);

@@ -19,6 +19,7 @@ struct GalleryOptions {
     float tolerancePercent = 0.5f; // proxy tolerance, % of each object's bounding diagonal
     std::string cacheDir;          // proxy cache; empty: $XDG_CACHE_HOME/spatter or ~/.cache/spatter
     int quitAfterFrames = 0;       // window: close after this many frames (0: run until closed)
+    double startTime = 0.0;        // where the scene's first animation starts, seconds (--time)
     std::string loadPath;          // decal state to load at the start (DecalPersistence.hpp); empty: none
     std::string savePath;          // headless: where the final decal state goes; window: the quick-save
                                    // file (empty: OUT/quick.save)

@@ -80,18 +80,23 @@ Result<GallerySim> GallerySim::create(const GalleryOptions& options) {
     GallerySim sim;
     sim.options_ = options;
     if (sim.options_.cacheDir.empty()) sim.options_.cacheDir = defaultCacheDir();
-    sim.scene_ = std::move(scene).value();
-    for (const std::string& w : sim.scene_.warnings)
+    sim.scene_ = std::make_unique<Scene>(std::move(scene).value());
+    for (const std::string& w : sim.scene_->warnings)
         std::fprintf(stderr, "spatter-gallery: warning: %s\n", w.c_str());
+    if (!sim.scene_->animation.animations.empty()) {
+        sim.evaluator_ = std::make_unique<SceneEvaluator>(*sim.scene_);
+        for (uint32_t i = 0; i < sim.scene_->objects.size(); ++i)
+            if (sim.scene_->objects[i].node >= 0) sim.animated_.push_back(i);
+    }
     sim.rng_ = Rng(options.seed, 0x9a11e7);
 
     // Rails: every dynamic receiver slides along world X and turns about the vertical; the
     // gallery's banners wave in place instead (GalleryView).
-    for (uint32_t i = 0; i < sim.scene_.objects.size(); ++i) {
-        const SceneObject& o = sim.scene_.objects[i];
+    for (uint32_t i = 0; i < sim.scene_->objects.size(); ++i) {
+        const SceneObject& o = sim.scene_->objects[i];
         if (!o.dynamic || !o.receivesDecals) continue;
         sim.moving_.push_back(i);
-        if (isBanner(o)) continue;
+        if (isBanner(o) || (o.node >= 0 && sim.evaluator_)) continue;
         const Bounds b = o.mesh.bounds();
         Rail rail;
         rail.object = i;
@@ -135,19 +140,19 @@ Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<fl
     settings.backend = ProxyBackend::MeshOpt;
     ProxySet set;
     set.tolerancePercent = tolerancePercent;
-    set.proxies.resize(scene_.objects.size());
-    std::vector<std::string> errors(scene_.objects.size());
+    set.proxies.resize(scene_->objects.size());
+    std::vector<std::string> errors(scene_->objects.size());
     std::atomic<size_t> next{0}, done{0};
     std::mutex say;
     size_t receivers = 0, totalTriangles = 0;
     std::atomic<size_t> doneTriangles{0};
-    for (const SceneObject& o : scene_.objects) {
+    for (const SceneObject& o : scene_->objects) {
         receivers += o.receivesDecals ? 1 : 0;
         totalTriangles += o.receivesDecals ? o.mesh.triangleCount() : 0;
     }
     auto work = [&]() {
-        for (size_t i = next++; i < scene_.objects.size(); i = next++) {
-            const SceneObject& o = scene_.objects[i];
+        for (size_t i = next++; i < scene_->objects.size(); i = next++) {
+            const SceneObject& o = scene_->objects[i];
             if (!o.receivesDecals) continue;
             const Mesh* collider = o.collider ? &*o.collider : nullptr;
             Result<Proxy> proxy = buildProxy(o.mesh, settings, collider);
@@ -180,10 +185,10 @@ Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<fl
 
 Status GallerySim::useProxies(ProxySet set) {
     const Clock::time_point start = Clock::now();
-    std::vector<Mesh> meshes(scene_.objects.size());
+    std::vector<Mesh> meshes(scene_->objects.size());
     for (size_t i = 0; i < set.proxies.size() && i < meshes.size(); ++i)
         if (set.proxies[i]) meshes[i] = set.proxies[i]->mesh;
-    Result<CollisionWorld> world = CollisionWorld::build(scene_, set.proxies);
+    Result<CollisionWorld> world = CollisionWorld::build(*scene_, set.proxies);
     if (!world) return fail(world.error());
     for (const std::string& warning : world->warnings())
         std::fprintf(stderr, "spatter-gallery: warning: %s\n", warning.c_str());
@@ -201,13 +206,26 @@ Status GallerySim::useProxies(ProxySet set) {
     if (Status s = registerTypes(); !s) return s;
     for (const Rail& rail : rails_)
         system_->setTransform(rail.object, transform(rail.object));
+    pose();
     counters_ = {};
     tolerancePercent_ = set.tolerancePercent;
     proxySeconds_ = set.seconds + std::chrono::duration<double>(Clock::now() - start).count();
     return {};
 }
 
+void GallerySim::pose() {
+    if (!evaluator_) return;
+    const double duration = scene_->animation.animations[0].duration;
+    const double t = options_.startTime + time_;
+    evaluator_->evaluate(0, duration > 0.0 ? t - duration * std::floor(t / duration) : 0.0);
+    for (uint32_t object : animated_)
+        if (scene_->objects[object].dynamic && scene_->objects[object].receivesDecals)
+            system_->setTransform(object, evaluator_->objectTransform(object));
+}
+
 glm::dmat4 GallerySim::transform(uint32_t object) const {
+    if (evaluator_ && object < scene_->objects.size() && scene_->objects[object].node >= 0)
+        return evaluator_->objectTransform(object);
     for (const Rail& rail : rails_) {
         if (rail.object != object) continue;
         const double slide = rail.amplitude * std::sin(rail.speed * time_ + rail.phase);
@@ -219,13 +237,14 @@ glm::dmat4 GallerySim::transform(uint32_t object) const {
         m[3] = glm::dvec4(origin, 1.0);
         return m;
     }
-    return object < scene_.objects.size() ? scene_.objects[object].transform : glm::dmat4(1.0);
+    return object < scene_->objects.size() ? scene_->objects[object].transform : glm::dmat4(1.0);
 }
 
 void GallerySim::advance(double dt) {
     time_ += dt;
     for (const Rail& rail : rails_)
         system_->setTransform(rail.object, transform(rail.object));
+    pose();
     system_->update(dt);
 }
 
@@ -238,7 +257,7 @@ SpawnResult GallerySim::shoot(const Ray& ray, ShotKind kind) {
     ++counters_.shots;
     if (result.placed()) {
         const Decal* decal = system_->get(result.handle);
-        if (decal && scene_.objects[decal->object].dynamic) ++counters_.onMovingTargets;
+        if (decal && scene_->objects[decal->object].dynamic) ++counters_.onMovingTargets;
     }
     return result;
 }
@@ -249,12 +268,15 @@ Status GallerySim::save(const std::string& path) const {
 
 Result<DecalLoadReport> GallerySim::load(const std::string& path) {
     Result<DecalLoadReport> r = loadDecalsFromFile(*system_, path);
-    if (r) time_ = system_->time();
+    if (r) {
+        time_ = system_->time();
+        pose();
+    }
     return r;
 }
 
 std::vector<uint8_t> GallerySim::objectIds() const {
-    std::vector<uint8_t> ids(scene_.objects.size());
+    std::vector<uint8_t> ids(scene_->objects.size());
     for (uint32_t i = 0; i < ids.size(); ++i)
         ids[i] = system_->objectId(i);
     return ids;
@@ -266,7 +288,7 @@ size_t GallerySim::proxyTriangles() const {
 
 double GallerySim::errorBound() const {
     double h = 0.0;
-    for (uint32_t i = 0; i < scene_.objects.size(); ++i)
+    for (uint32_t i = 0; i < scene_->objects.size(); ++i)
         h = std::max(h, system_->world().worldErrorBound(i));
     return h;
 }

@@ -9,11 +9,13 @@
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/Random.hpp"
 #include "spatter/core/Scene.hpp"
+#include "spatter/core/SceneEvaluator.hpp"
 #include "spatter/placement/DecalPersistence.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -61,7 +63,8 @@ public:
     // A fresh collision world and decal system on `set`; decals placed so far are dropped.
     Status useProxies(ProxySet set);
 
-    // Advances the clock: targets move along their rails, decals age.
+    // Advances the clock: targets move along their rails, the scene's first animation plays
+    // (looping, from GalleryOptions::startTime), decals age.
     void advance(double dt);
     // Fires one shot and counts it.
     SpawnResult shoot(const Ray& ray, ShotKind kind);
@@ -73,7 +76,9 @@ public:
     // another scene) drop their decals, as the report says.
     Result<DecalLoadReport> load(const std::string& path);
 
-    const Scene& scene() const { return scene_; }
+    const Scene& scene() const { return *scene_; }
+    // The scene posed at the clock's time of its first animation; null for a scene without animations.
+    const SceneEvaluator* evaluator() const { return evaluator_.get(); }
     const DecalSystem& decals() const { return *system_; }
     const std::vector<Rail>& rails() const { return rails_; }
     // Dynamic decal receivers: the targets on rails and the waving banners.
@@ -86,7 +91,7 @@ public:
     glm::dmat4 transform(uint32_t object) const;
 
     float tolerancePercent() const { return tolerancePercent_; }
-    size_t renderTriangles() const { return scene_.triangleCount(); }
+    size_t renderTriangles() const { return scene_->triangleCount(); }
     size_t proxyTriangles() const;
     double errorBound() const; // largest world-space proxy error bound h
     double proxySeconds() const { return proxySeconds_; }
@@ -102,9 +107,13 @@ public:
 private:
     GallerySim() = default;
     Status registerTypes();
+    // Poses the animation at the clock's time and moves its dynamic receivers in the decal system.
+    void pose();
 
     GalleryOptions options_;
-    Scene scene_;
+    std::unique_ptr<Scene> scene_; // on the heap: the evaluator keeps a reference to it
+    std::unique_ptr<SceneEvaluator> evaluator_;
+    std::vector<uint32_t> animated_; // objects the animation places (they ride no rail)
     std::optional<DecalSystem> system_;
     std::vector<DecalType> types_;
     std::vector<uint16_t> typeOf_[4]; // registry indices per ShotKind

@@ -53,6 +53,7 @@ Status prepareRenderer(Renderer& renderer, const GallerySim& sim) {
 
 void syncRenderer(Renderer& renderer, const GallerySim& sim) {
     renderer.setTime(sim.time());
+    if (sim.evaluator()) renderer.setPose(*sim.evaluator()); // before the rails, which it would undo
     for (const Rail& rail : sim.rails())
         renderer.setObjectTransform(rail.object, sim.transform(rail.object));
     renderer.setDecals(sim.decals().decals());

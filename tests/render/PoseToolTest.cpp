@@ -1,4 +1,5 @@
-// spatter-render --time: the scene posed at a time of its first animation, run as a separate process.
+// spatter-render --time and the gallery's --time: the scene posed at a time of its first animation,
+// run as separate processes.
 
 #include "TestData.hpp"
 
@@ -18,11 +19,15 @@ using namespace spatter;
 
 namespace {
 
-// Runs the tool with `args`; returns its exit code (-1 when it did not exit normally).
-int runTool(const std::string& args) {
-    const std::string cmd = std::string(SPATTER_RENDER_TOOL) + " " + args + " >/dev/null 2>&1";
+// Runs `exe` with `args`; returns its exit code (-1 when it did not exit normally).
+int run(const std::string& exe, const std::string& args) {
+    const std::string cmd = exe + " " + args + " >/dev/null 2>&1";
     const int status = std::system(cmd.c_str());
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int runTool(const std::string& args) {
+    return run(SPATTER_RENDER_TOOL, args);
 }
 
 // Why the tool cannot render here (no headless GL context), or an empty string.
@@ -76,3 +81,27 @@ TEST(SpatterRenderTime, RefusesATimeThatIsNotANumber) {
     EXPECT_EQ(runTool("builtin:gallery --time nan"), 2);
     EXPECT_EQ(runTool("builtin:gallery --time 1s"), 2);
 }
+
+#ifdef SPATTER_GALLERY_EXE
+// The headless gallery session on an animated scene: the animation plays from --time, so the same
+// time gives the same image and another time another pose.
+TEST(GalleryTime, PlaysTheSceneAnimationFromTheGivenTime) {
+    SPATTER_REQUIRE_SHARED(path, "gltf/CesiumMan/CesiumMan.glb");
+    if (!noGl().empty()) {
+        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
+        GTEST_SKIP() << "no headless OpenGL context (" << noGl() << ")";
+    }
+    const std::string dir = test::scratchDir("gallery_time");
+    const std::string common =
+        "--headless --scene " + path + " --shots 8 --size 160x90 --cache " + dir + "/cache --time ";
+    ASSERT_EQ(run(SPATTER_GALLERY_EXE, common + "0.5 --out " + dir + "/a"), 0);
+    ASSERT_EQ(run(SPATTER_GALLERY_EXE, common + "0.5 --out " + dir + "/b"), 0);
+    ASSERT_EQ(run(SPATTER_GALLERY_EXE, common + "1.3 --out " + dir + "/c"), 0);
+    Result<Image> a = loadImage(dir + "/a/gallery.png"), b = loadImage(dir + "/b/gallery.png"),
+                  c = loadImage(dir + "/c/gallery.png");
+    ASSERT_TRUE(a.ok() && b.ok() && c.ok());
+    EXPECT_EQ(differingPixels(a.value(), b.value()), 0u);
+    EXPECT_GT(differingPixels(a.value(), c.value()), 50u);
+    EXPECT_EQ(run(SPATTER_GALLERY_EXE, "--headless --time later"), 2);
+}
+#endif
