@@ -212,8 +212,9 @@ void expectCoverageOnSharedScenes(const ExampleHost& host) {
     }
 }
 
-// The eye 1 m in front of a decal, inside its box, looking at it: the projector draws the boxes that
-// hold the eye by their far faces (the forward path tests the shaded point against every box).
+// The eye 1 m in front of a decal on its projection axis (the shot's), inside its box, looking at it:
+// the projector draws the boxes that hold the eye by their far faces (the forward path tests the
+// shaded point against every box).
 void expectCoverageWithTheCameraInsideADecalBox(const ExampleHost& host) {
     const std::string rays = writeRays(host.name + "-inside", galleryCamera(), 30, 17);
     const std::vector<std::string> args = {"builtin:gallery", "--decals",
@@ -225,7 +226,9 @@ void expectCoverageWithTheCameraInsideADecalBox(const ExampleHost& host) {
     const glm::dvec3 centre(m * glm::dvec4(glm::dvec3(d.center), 1.0));
     const glm::dvec3 normal =
         glm::normalize(glm::transpose(glm::inverse(glm::dmat3(m))) * glm::dvec3(d.frame().normal));
-    const Camera inside = lookingAt(centre + normal, centre - glm::dvec3(0.3, 0.2, 0.1));
+    const glm::dvec3 axis = glm::normalize(glm::dmat3(m) * glm::dvec3(d.projectionAxis()));
+    const Camera inside =
+        lookingAt(centre + axis / glm::dot(axis, normal), centre - glm::dvec3(0.3, 0.2, 0.1));
     const glm::dvec3 box(glm::inverse(m * glm::dmat4(d.boxToObject())) * glm::dvec4(inside.eye, 1.0));
     ASSERT_LE(std::max({std::fabs(box.x), std::fabs(box.y), std::fabs(box.z)}), 1.0)
         << "the eye is not in the box";
