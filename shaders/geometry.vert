@@ -29,7 +29,7 @@ void main() {
     if (u_posed != 0u && po.skin.y != 0u) {
         mat4 skin = skinMatrix(po, vertex);
         gl_Position = u_viewProj * (skin * vec4(p, 1.0));
-        v_normal = normalTransform(mat3(skin)) * n;
+        v_normal = safeNormalize(normalTransform(mat3(skin)) * n); // joints may scale unevenly
         v_tangent = vec4(mat3(skin) * t, a_tangent.w);
         return;
     }

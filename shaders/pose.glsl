@@ -29,8 +29,16 @@ layout(std430, binding = 13) readonly buffer MorphWeightBuffer {
     float morphWeights[];
 };
 
-// Adds the object's weighted morph target deltas of `vertex` to its position, normal and tangent.
+// Unit `v`, or `v` itself when it is zero.
+vec3 safeNormalize(vec3 v) {
+    float l = length(v);
+    return l > 0.0 ? v / l : v;
+}
+
+// Adds the object's weighted morph target deltas of `vertex` to its position, normal and tangent;
+// the normal comes out of unit length again (it is interpolated like an unmorphed one).
 void morphVertex(PoseObject po, uint vertex, inout vec3 p, inout vec3 n, inout vec3 t) {
+    if (po.morph.y == 0u) return;
     for (uint k = 0u; k < po.morph.y; ++k) {
         float w = morphWeights[po.morph.z + k];
         if (w == 0.0) continue;
@@ -39,6 +47,7 @@ void morphVertex(PoseObject po, uint vertex, inout vec3 p, inout vec3 n, inout v
         n += w * morphDeltas[d + 1u].xyz;
         t += w * morphDeltas[d + 2u].xyz;
     }
+    n = safeNormalize(n);
 }
 
 // The weighted sum of the joint matrices that influence `vertex`: bind space to camera-relative world.

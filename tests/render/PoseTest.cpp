@@ -4,7 +4,8 @@
 // by float rounding (the GPU blends float joint matrices; measured: at most 2e-6 of the model's
 // diagonal), far below a pixel. So coverage may differ only where a pixel's centre lies on an edge,
 // and depth by the rounding: at most 0.5% of the covered pixels (plus two) may differ in coverage or
-// by more than 1e-4 of the diagonal in depth, fifty times the rounding. The rest pose, drawn for
+// by more than 1e-4 of the diagonal in depth, fifty times the rounding. The normal views are compared
+// the same way against normals posed here in double (posedNormals). The rest pose, drawn for
 // comparison, differs from the pose on hundreds of pixels: the check can fail.
 
 #include "RenderTestSupport.hpp"
@@ -30,8 +31,33 @@ namespace {
 constexpr int kW = 128;
 constexpr int kH = 96;
 
-// `scene` with every mesh replaced by its positions at the evaluator's pose, placed by the object's
-// transform at that pose, with no skin, morph targets or node: static geometry.
+// Normals of object `object` at the evaluator's pose, in double, in the object's space at that pose:
+// morph target normal deltas added with the weights, then for a skinned object the normal mapped by
+// the inverse transpose of its blended joint matrix and brought back into the object's space (by the
+// transpose of the object's transform, the inverse of its normal matrix). Not normalised.
+std::vector<glm::dvec3> posedNormals(const Scene& scene, size_t object, const SceneEvaluator& evaluator) {
+    const SceneObject& o = scene.objects[object];
+    std::vector<glm::dvec3> out(o.mesh.normals.begin(), o.mesh.normals.end());
+    const std::vector<double>& weights = evaluator.morphWeights(object);
+    for (size_t t = 0; t < o.morphTargets.size(); ++t)
+        for (size_t v = 0; v < out.size() && v < o.morphTargets[t].normals.size(); ++v)
+            out[v] += weights[t] * glm::dvec3(o.morphTargets[t].normals[v]);
+    if (o.skin == -1) return out;
+    const std::vector<glm::dmat4>& joints = evaluator.jointMatrices(size_t(o.skin));
+    const glm::dmat3 toObject = glm::transpose(glm::dmat3(evaluator.objectTransform(object)));
+    const size_t stride = size_t(o.skinWeights.influences);
+    for (size_t v = 0; v < out.size(); ++v) {
+        glm::dmat3 blended(0.0);
+        for (size_t k = 0; k < stride; ++k)
+            blended += o.skinWeights.weights[v * stride + k] *
+                       glm::dmat3(joints[o.skinWeights.joints[v * stride + k]]);
+        out[v] = toObject * (glm::transpose(glm::inverse(blended)) * out[v]);
+    }
+    return out;
+}
+
+// `scene` with every mesh replaced by its positions and normals at the evaluator's pose, placed by
+// the object's transform at that pose, with no skin, morph targets or node: static geometry.
 Scene cpuPosed(const Scene& scene, const SceneEvaluator& evaluator) {
     Scene out = scene;
     for (size_t i = 0; i < out.objects.size(); ++i) {
@@ -39,6 +65,9 @@ Scene cpuPosed(const Scene& scene, const SceneEvaluator& evaluator) {
         const std::vector<glm::dvec3> posed = posedPositions(scene, i, evaluator);
         for (size_t v = 0; v < posed.size(); ++v)
             o.mesh.positions[v] = glm::vec3(posed[v]);
+        const std::vector<glm::dvec3> normals = posedNormals(scene, i, evaluator);
+        for (size_t v = 0; v < normals.size(); ++v)
+            o.mesh.normals[v] = glm::vec3(glm::normalize(normals[v]));
         o.transform = evaluator.objectTransform(i);
         o.node = o.skin = -1;
         o.skinWeights = {};
@@ -64,6 +93,22 @@ std::vector<float> depthOf(Renderer& r, const Camera& cam) {
     return d.ok() ? d.value() : std::vector<float>(size_t(kW) * kH, 0.0f);
 }
 
+// Pixels covered in both depth images whose normal views differ by more than `levels` in a channel.
+size_t normalsDiffering(const Image& a, const Image& b, const std::vector<float>& da,
+                        const std::vector<float>& db, int levels) {
+    size_t n = 0;
+    for (size_t i = 0;
+         i < da.size() && i < db.size() && 4 * i + 2 < a.rgba.size() && 4 * i + 2 < b.rgba.size(); ++i) {
+        if (da[i] <= 0.0f || db[i] <= 0.0f) continue;
+        for (size_t c = 0; c < 3; ++c)
+            if (std::abs(int(a.rgba[4 * i + c]) - int(b.rgba[4 * i + c])) > levels) {
+                ++n;
+                break;
+            }
+    }
+    return n;
+}
+
 struct DepthAgreement {
     size_t covered = 0;         // pixels covered in both
     size_t coverageDiffers = 0; // pixels covered in one only
@@ -87,7 +132,9 @@ DepthAgreement compare(const std::vector<float>& a, const std::vector<float>& b,
 
 // Renders `scene` posed at (animation, t) on the GPU and its CPU-posed twin, and checks that they
 // agree while the rest pose does not.
-void expectGpuPoseMatchesCpu(const Scene& scene, int animation, double t) {
+void expectGpuPoseMatchesCpu(Scene scene, int animation, double t) {
+    for (Material& m : scene.materials)
+        m.normalTexture = -1; // the normal views compare the posed vertex normals, not normal maps
     SceneEvaluator evaluator(scene);
     evaluator.evaluate(animation, t);
     const Scene reference = cpuPosed(scene, evaluator);
@@ -105,19 +152,23 @@ void expectGpuPoseMatchesCpu(const Scene& scene, int animation, double t) {
     ASSERT_TRUE(posed.ok()) << posed.error();
     const std::vector<float> a = depthOf(gpu.value(), cam);
     const std::vector<float> b = depthOf(cpu.value(), cam);
+    const Image normalsA = test::renderView(gpu.value(), cam, View::Normal);
+    const Image normalsB = test::renderView(cpu.value(), cam, View::Normal);
+    const size_t normalDiffers = normalsDiffering(normalsA, normalsB, a, b, 3);
 
     const double tolerance = 1e-4 * diagonal;
     const DepthAgreement posedAgreement = compare(a, b, tolerance);
     const DepthAgreement restAgreement = compare(rest, b, tolerance);
     const size_t pixels = size_t(kW) * kH;
     std::printf("[pose] %s t=%.3f: covered %zu, coverage differs %zu, depth differs %zu (worst %.3g of "
-                "the diagonal); rest pose: coverage differs %zu, depth differs %zu\n",
+                "the diagonal), normal differs %zu; rest pose: coverage differs %zu, depth differs %zu\n",
                 scene.source.c_str(), t, posedAgreement.covered, posedAgreement.coverageDiffers,
-                posedAgreement.depthDiffers, posedAgreement.worstDepth / diagonal,
+                posedAgreement.depthDiffers, posedAgreement.worstDepth / diagonal, normalDiffers,
                 restAgreement.coverageDiffers, restAgreement.depthDiffers);
     EXPECT_GT(posedAgreement.covered, pixels / 50);
     EXPECT_LE(posedAgreement.coverageDiffers, posedAgreement.covered / 200 + 2);
     EXPECT_LE(posedAgreement.depthDiffers, posedAgreement.covered / 200 + 2);
+    EXPECT_LE(normalDiffers, posedAgreement.covered / 200 + 2);
     // The pose is not the rest pose: the check above could fail.
     EXPECT_GT(restAgreement.coverageDiffers + restAgreement.depthDiffers,
               20 * (posedAgreement.coverageDiffers + posedAgreement.depthDiffers) + 20);
@@ -131,8 +182,8 @@ SceneNode node(const glm::dvec3& translation, int parent = -1) {
 }
 
 // A scene written here: a bar bent by a two-joint skin (four influences per vertex, two of them 0)
-// and a box with one morph target, both `offset` from the origin, at rest as the pose to draw (the
-// upper joint turned by 50 degrees, the morph weight 0.7).
+// and a box with one morph target (position and normal deltas), both `offset` from the origin, at
+// rest as the pose to draw (the upper joint turned by 50 degrees, the morph weight 0.7).
 Scene bentBarAndMorphedBox(const glm::dvec3& offset) {
     Scene scene;
     scene.source = "written";
@@ -163,8 +214,10 @@ Scene bentBarAndMorphedBox(const glm::dvec3& offset) {
                                       glm::translate(glm::dmat4(1.0), a.nodes[3].translation));
     box.node = 3;
     MorphTarget target;
-    for (const glm::vec3& p : box.mesh.positions)
+    for (const glm::vec3& p : box.mesh.positions) {
         target.positions.push_back(p.y > 0.0f ? glm::vec3(0.2f, 0.6f, 0.0f) : glm::vec3(0.0f));
+        target.normals.push_back(p.y > 0.0f ? glm::vec3(-0.6f, 0.0f, 0.3f) : glm::vec3(0.0f));
+    }
     box.morphTargets.push_back(target);
     scene.objects.push_back(box);
     return scene;
