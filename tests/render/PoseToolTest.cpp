@@ -76,6 +76,25 @@ TEST(SpatterRenderTime, PosesTheSceneAtTheGivenTime) {
     EXPECT_DOUBLE_EQ(j.at("time").get<double>(), 0.5);
 }
 
+// --translate moves the pose with the scene: the same view of the moved world gives the same image.
+TEST(SpatterRenderTime, PoseMovesWithTranslate) {
+    SPATTER_REQUIRE_SHARED(path, "gltf/CesiumMan/CesiumMan.glb");
+    if (!noGl().empty()) {
+        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
+        GTEST_SKIP() << "no headless OpenGL context (" << noGl() << ")";
+    }
+    const std::string dir = test::scratchDir("render_time_translate");
+    ASSERT_EQ(runTool(path + " --size 128x96 --time 0.7 --camera \"eye=0.4,1.2,3;target=0,0.8,0\" --out " +
+                      dir + "/a.png"),
+              0);
+    ASSERT_EQ(runTool(path + " --size 128x96 --time 0.7 --translate 5000,0,-3000 " +
+                      "--camera \"eye=5000.4,1.2,-2997;target=5000,0.8,-3000\" --out " + dir + "/b.png"),
+              0);
+    Result<Image> a = loadImage(dir + "/a.png"), b = loadImage(dir + "/b.png");
+    ASSERT_TRUE(a.ok() && b.ok());
+    EXPECT_LE(differingPixels(a.value(), b.value()), 10u);
+}
+
 TEST(SpatterRenderTime, RefusesATimeThatIsNotANumber) {
     EXPECT_EQ(runTool("builtin:gallery --time"), 2);
     EXPECT_EQ(runTool("builtin:gallery --time nan"), 2);
