@@ -24,6 +24,17 @@ Result<const tinygltf::Accessor*> checkedAccessor(const tinygltf::Model& model, 
     return &a;
 }
 
+// A view of `a`'s elements `stride` bytes apart, its data still to be set.
+AccessorView viewOf(const tinygltf::Accessor& a, size_t stride) {
+    AccessorView v;
+    v.present = true;
+    v.count = a.count;
+    v.stride = stride;
+    v.componentType = a.componentType;
+    v.normalized = a.normalized;
+    return v;
+}
+
 // The view of an accessor that has a buffer view, its sparse part left aside.
 Result<AccessorView> viewDense(const tinygltf::Model& model, int index, const char* role, int type,
                                unsigned allowedComponentTypes) {
@@ -46,12 +57,7 @@ Result<AccessorView> viewDense(const tinygltf::Model& model, int index, const ch
                     std::to_string(a.bufferView) + " is smaller than one element (" + num(elementSize) +
                     " bytes)");
 
-    AccessorView v;
-    v.present = true;
-    v.count = a.count;
-    v.stride = stride;
-    v.componentType = a.componentType;
-    v.normalized = a.normalized;
+    AccessorView v = viewOf(a, stride);
     if (a.count == 0) return v;
     size_t span = 0;
     if (!mulAdd(a.count - 1, stride, elementSize, span) || !rangeInside(a.byteOffset, span, view.byteLength))
@@ -135,12 +141,7 @@ Result<AccessorView> viewCopied(const tinygltf::Model& model, int index, const c
     }
     if (a.sparse.isSparse)
         if (Status s = applySparse(model, a, what, elementSize, bytes->data()); !s) return fail(s.error());
-    AccessorView v;
-    v.present = true;
-    v.count = a.count;
-    v.stride = elementSize;
-    v.componentType = a.componentType;
-    v.normalized = a.normalized;
+    AccessorView v = viewOf(a, elementSize);
     v.data = bytes->data();
     v.owned = std::move(bytes);
     return v;
