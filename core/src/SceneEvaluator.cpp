@@ -1,4 +1,5 @@
 #include "spatter/core/SceneEvaluator.hpp"
+#include "spatter/core/VertexDeformation.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -194,14 +195,8 @@ std::vector<glm::dvec3> posedPositions(const Scene& scene, size_t object, const 
     if (o.skin == -1) return out;
     const std::vector<glm::dmat4>& joints = evaluator.jointMatrices(size_t(o.skin));
     const glm::dmat4 toObject = glm::inverse(evaluator.objectTransform(object));
-    const size_t stride = size_t(o.skinWeights.influences);
-    for (size_t v = 0; v < out.size(); ++v) {
-        glm::dmat4 skinning(0.0);
-        for (size_t k = 0; k < stride; ++k)
-            if (const double w = o.skinWeights.weights[v * stride + k]; w > 0.0)
-                skinning += w * joints[o.skinWeights.joints[v * stride + k]];
-        out[v] = glm::dvec3(toObject * (skinning * glm::dvec4(out[v], 1.0)));
-    }
+    for (size_t v = 0; v < out.size(); ++v)
+        out[v] = glm::dvec3(toObject * glm::dvec4(skinVertex(o.skinWeights, v, joints, out[v]), 1.0));
     return out;
 }
 

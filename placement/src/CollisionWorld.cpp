@@ -1,5 +1,7 @@
 #include "spatter/placement/CollisionWorld.hpp"
 
+#include "PosedCollisionMesh.hpp"
+
 #include "spatter/placement/TraceTransform.hpp"
 
 #include <embree3/rtcore.h>
@@ -22,7 +24,8 @@ struct ObjectData {
     std::vector<glm::vec3> traced; // the vertices Embree sees: float frame (static) or object space
     double reach = 0.0;            // largest |ray origin| in the space of `traced` that the boxes allow
     glm::dmat4 inverse{1.0};
-    RTCScene scene = nullptr;     // dynamic objects: their own object-space scene
+    std::optional<PosedCollisionMesh> posable; // dynamic skinned or morphed objects: what setPose poses
+    RTCScene scene = nullptr;                  // dynamic objects: their own object-space scene
     unsigned geomId = kInvalidId; // static: geometry in the static scene; dynamic: instance in the top scene
 };
 
@@ -516,6 +519,8 @@ struct CollisionWorld::Impl {
         rtcSetGeometryUserData(g, &od);
         rtcSetGeometryBoundsFunction(g, triangleBounds, nullptr);
         rtcSetGeometryIntersectFunction(g, intersectTriangle);
+        // A posed mesh keeps its triangles and moves its vertices: its hierarchy is refitted.
+        if (od.posable) rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_REFIT);
         rtcCommitGeometry(g);
         return g;
     }
@@ -831,6 +836,11 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         od.info.triangles = mesh->triangleCount();
         od.info.localBounds = meshBounds(od.positions, od.indices);
         od.info.meshHash = collisionMeshHash(od.positions, od.indices, h);
+        if (so.dynamic) {
+            Result<std::optional<PosedCollisionMesh>> posable = posedCollisionMesh(scene, i, *mesh);
+            if (!posable) return fail(where + ": object '" + so.name + "': " + posable.error());
+            od.posable = std::move(posable).value();
+        }
         // The frame's origin comes from the objects whose scale and condition the trace can use.
         od.info.untraced = floatLinearProblem(so.transform);
         if (!od.info.untraced.empty()) continue;
@@ -864,6 +874,8 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
             anyStatic = true;
         } else {
             od.scene = impl->newScene();
+            // Per-geometry build qualities (the refit of a posed mesh) apply in two-level scenes.
+            if (od.posable) rtcSetSceneBuildQuality(od.scene, RTC_BUILD_QUALITY_LOW);
             RTCGeometry g = impl->triangleGeometry(od, nullptr);
             rtcAttachGeometry(od.scene, g);
             rtcReleaseGeometry(g);
@@ -970,6 +982,30 @@ Result<TransformUpdate> CollisionWorld::setTransform(uint32_t object, const glm:
     update.traced = od.info.traced;
     if (!update.traced) update.warning = impl_->untracedLine(object);
     return update;
+}
+
+Result<TransformUpdate> CollisionWorld::setPose(uint32_t object, const glm::dmat4& transform,
+                                                const std::vector<glm::dmat4>& joints,
+                                                const std::vector<double>& morphWeights) {
+    if (object >= impl_->objects.size())
+        return fail("setPose: object " + std::to_string(object) + " out of range");
+    ObjectData& od = impl_->objects[object];
+    const std::string name = "setPose: object '" + od.info.name + "'";
+    if (!od.info.dynamic) return fail(name + " is static");
+    if (!od.info.inWorld) return fail(name + " is not in the collision world");
+    if (!od.posable) return fail(name + " has no skin and no morph targets (move it with setTransform)");
+    if (const std::string problem = transformProblem(transform); !problem.empty())
+        return fail(name + ": " + problem);
+    Result<std::vector<glm::vec3>> posed = poseCollisionMesh(*od.posable, transform, joints, morphWeights);
+    if (!posed) return fail(name + ": " + posed.error());
+    od.positions = std::move(posed).value();
+    od.traced = od.positions; // a dynamic object is traced in its own space
+    od.info.localBounds = meshBounds(od.positions, od.indices);
+    if (od.scene) {
+        rtcCommitGeometry(rtcGetGeometry(od.scene, 0));
+        rtcCommitScene(od.scene);
+    }
+    return setTransform(object, transform);
 }
 
 Status CollisionWorld::removeObject(uint32_t object) {

@@ -29,7 +29,7 @@
 // geometry): a ray through an edge or a vertex shared by triangles always meets one of them.
 //
 // Threading: intersect and intersectBatch are const and may run concurrently from any number of
-// threads; setTransform and removeObject must not run concurrently with anything else.
+// threads; setTransform, setPose and removeObject must not run concurrently with anything else.
 
 #include "spatter/core/Bounds.hpp"
 #include "spatter/core/Mesh.hpp"
@@ -133,6 +133,21 @@ public:
     // of TraceTransform.hpp is taken: the object keeps it (its decals follow it) but is left out of
     // the trace until a later call gives it a usable one, and the result says so.
     Result<TransformUpdate> setTransform(uint32_t object, const glm::dmat4& transform);
+    // Poses a dynamic skinned or morphed object as it is drawn: its object-to-world `transform` (as
+    // setTransform), its skin's joint matrices `joints` (bind space to world, one per joint of the
+    // skin, as SceneEvaluator::jointMatrices gives them or a host's own animation system computes
+    // them; empty when not skinned) and its `morphWeights` (one per morph target). The collision mesh
+    // moves as the render mesh does: a render mesh by its own weights and targets, a proxy or collider
+    // by those transferred from the render mesh at build time (transferDeformation: each of its
+    // vertices follows the nearest point of the render surface). Its hierarchy is refitted, not
+    // rebuilt. The error bound stays the one certified at the rest pose (docs/ACCURACY.md says how
+    // far it holds at other poses). Fails, and changes nothing, for an index out of range, a static
+    // object, an object not in the world or without skin and morph targets, a transform setTransform
+    // refuses, joints or weights that do not fit the object (their count, a non-finite or non-affine
+    // matrix, a non-finite weight), or a pose that puts a vertex at a non-finite position.
+    Result<TransformUpdate> setPose(uint32_t object, const glm::dmat4& transform,
+                                    const std::vector<glm::dmat4>& joints,
+                                    const std::vector<double>& morphWeights);
     // Takes an object out of the world (later rays pass through it). Fails for an index out of range
     // or an object not in the world.
     Status removeObject(uint32_t object);

@@ -1,0 +1,105 @@
+#include "spatter/core/DeformingProxy.hpp"
+
+#include "spatter/core/MeshDistance.hpp"
+#include "spatter/core/SceneEvaluator.hpp"
+
+#include <string>
+
+namespace spatter {
+
+namespace {
+
+struct Candidate {
+    Proxy proxy;
+    VertexDeformation deformation;
+    PoseBound poses;
+};
+
+Result<Candidate> judged(const Scene& scene, size_t object, Proxy proxy, int samples) {
+    const SceneObject& o = scene.objects[object];
+    Result<VertexDeformation> d = transferDeformation(o.mesh, deformationOf(o), proxy.mesh);
+    if (!d) return fail(d.error());
+    const double margin =
+        0.1 *
+        std::max(proxy.errorBound, 1e-9 * double(glm::length(o.mesh.bounds().max - o.mesh.bounds().min)));
+    Result<PoseBound> b = boundOverPoses(scene, object, proxy.mesh, d.value(), samples, margin);
+    if (!b) return fail(b.error());
+    return Candidate{std::move(proxy), std::move(d).value(), b.value()};
+}
+
+// `posed` (a mesh of the render mesh's pose `render`) brought back to the rest pose: each vertex to the
+// rest position of the nearest point of the posed render surface.
+Result<Mesh> toRest(const Mesh& posed, const Mesh& render, const Mesh& renderRest) {
+    Result<ClosestPointQuery> query = ClosestPointQuery::create(render);
+    if (!query) return fail(query.error());
+    Mesh out = posed;
+    for (glm::vec3& p : out.positions) {
+        const std::optional<ClosestPoint> near = query->closest(glm::dvec3(p));
+        if (!near) return fail("the posed render mesh has no surface");
+        const uint32_t* c = &render.indices[3 * size_t(near->triangle)];
+        const glm::dvec3 b =
+            barycentric(near->point, glm::dvec3(render.positions[c[0]]), glm::dvec3(render.positions[c[1]]),
+                        glm::dvec3(render.positions[c[2]]));
+        p = glm::vec3(b.x * glm::dvec3(renderRest.positions[c[0]]) +
+                      b.y * glm::dvec3(renderRest.positions[c[1]]) +
+                      b.z * glm::dvec3(renderRest.positions[c[2]]));
+    }
+    computeNormals(out);
+    return out;
+}
+
+// The proxy simplified in the pose (animation, t), brought back to rest.
+Result<Proxy> simplifiedInPose(const Scene& scene, size_t object, int animation, double t,
+                               const ProxySettings& settings) {
+    const SceneObject& o = scene.objects[object];
+    SceneEvaluator evaluator(scene);
+    evaluator.evaluate(animation, t);
+    Mesh posed = o.mesh;
+    const std::vector<glm::dvec3> p = posedPositions(scene, object, evaluator);
+    for (size_t v = 0; v < p.size(); ++v)
+        posed.positions[v] = glm::vec3(p[v]);
+    computeNormals(posed);
+    Result<Proxy> proxy = buildProxy(posed, settings);
+    if (!proxy) return fail(proxy.error());
+    Result<Mesh> rest = toRest(proxy->mesh, posed, o.mesh);
+    if (!rest) return fail(rest.error());
+    proxy->mesh = std::move(rest).value();
+    return proxy;
+}
+
+} // namespace
+
+Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, const ProxySettings& settings,
+                                           int samples) {
+    if (object >= scene.objects.size())
+        return fail("deforming proxy: object " + std::to_string(object) + " out of range");
+    const SceneObject& o = scene.objects[object];
+    const std::string name = "deforming proxy of '" + o.name + "': ";
+    if (o.skin == -1 && o.morphTargets.empty())
+        return fail(name + "the object is neither skinned nor morphed");
+    Result<Proxy> rest = buildProxy(o.mesh, settings);
+    if (!rest) return fail(name + rest.error());
+    Result<Candidate> best = judged(scene, object, std::move(rest).value(), samples);
+    if (!best) return fail(name + best.error());
+    DeformingProxy out;
+    out.restPoses = best->poses;
+    if (best->poses.bound > best->proxy.errorBound) {
+        Result<Proxy> posed =
+            simplifiedInPose(scene, object, best->poses.worstAnimation, best->poses.worstTime, settings);
+        if (!posed) return fail(name + posed.error());
+        Result<Candidate> other = judged(scene, object, std::move(posed).value(), samples);
+        if (!other) return fail(name + other.error());
+        if (other->poses.bound < best->poses.bound) {
+            best = std::move(other);
+            out.simplifiedPosed = true;
+        }
+    }
+    out.proxy = std::move(best->proxy);
+    out.proxy.errorBound = best->poses.bound;
+    out.proxy.toleranceMet = out.proxy.errorBound <= out.proxy.tolerance;
+    out.deformation = std::move(best->deformation);
+    out.poses = best->poses;
+    return out;
+}
+
+} // namespace spatter
