@@ -17,35 +17,40 @@ struct Influence {
     double weight = 0.0;
 };
 
-// The joint weights of the corners `corner` blended by `bary`, the `count` largest kept and
-// renormalised, written to the target's vertex `vertex`.
-void blendInfluences(const SkinWeights& from, const std::array<uint32_t, 3>& corner, const glm::dvec3& bary,
-                     size_t vertex, SkinWeights& to) {
+// The joint weights of the corners blended by `bary`, largest first (ties to the smaller joint).
+std::vector<Influence> blended(const SkinWeights& from, const std::array<uint32_t, 3>& corner,
+                               const glm::dvec3& bary) {
     const size_t stride = size_t(from.influences);
-    std::vector<Influence> blended;
-    blended.reserve(3 * stride);
+    std::vector<Influence> out;
+    out.reserve(3 * stride);
     for (int c = 0; c < 3; ++c)
         for (size_t k = 0; k < stride; ++k) {
             const size_t at = size_t(corner[size_t(c)]) * stride + k;
             const double w = bary[c] * from.weights[at];
             if (!(w > 0.0)) continue;
-            auto same = std::find_if(blended.begin(), blended.end(),
+            auto same = std::find_if(out.begin(), out.end(),
                                      [&](const Influence& i) { return i.joint == from.joints[at]; });
-            if (same == blended.end())
-                blended.push_back({from.joints[at], w});
+            if (same == out.end())
+                out.push_back({from.joints[at], w});
             else
                 same->weight += w;
         }
-    std::sort(blended.begin(), blended.end(), [](const Influence& a, const Influence& b) {
+    std::sort(out.begin(), out.end(), [](const Influence& a, const Influence& b) {
         return a.weight != b.weight ? a.weight > b.weight : a.joint < b.joint;
     });
-    blended.resize(std::min(blended.size(), stride));
+    return out;
+}
+
+// Writes the `count` largest of `influences`, renormalised, to `joints` and `weights`.
+template <class Joints, class Weights>
+void keepLargest(std::vector<Influence> influences, size_t count, Joints joints, Weights weights) {
+    influences.resize(std::min(influences.size(), count));
     double sum = 0.0;
-    for (const Influence& i : blended)
+    for (const Influence& i : influences)
         sum += i.weight;
-    for (size_t k = 0; k < blended.size(); ++k) {
-        to.joints[vertex * stride + k] = blended[k].joint;
-        to.weights[vertex * stride + k] = blended[k].weight / sum;
+    for (size_t k = 0; k < influences.size(); ++k) {
+        joints[k] = influences[k].joint;
+        weights[k] = influences[k].weight / sum;
     }
 }
 
@@ -108,7 +113,10 @@ Result<VertexDeformation> transferDeformation(const Mesh& source, const VertexDe
         const glm::dvec3 bary =
             barycentric(near->point, glm::dvec3(source.positions[corner[0]]),
                         glm::dvec3(source.positions[corner[1]]), glm::dvec3(source.positions[corner[2]]));
-        if (stride > 0) blendInfluences(deformation.skin, corner, bary, v, out.skin);
+        if (stride > 0)
+            keepLargest(blended(deformation.skin, corner, bary), stride,
+                        out.skin.joints.begin() + std::ptrdiff_t(v * stride),
+                        out.skin.weights.begin() + std::ptrdiff_t(v * stride));
         for (size_t t = 0; t < out.morphs.size(); ++t) {
             const std::vector<glm::vec3>& delta = deformation.morphs[t];
             out.morphs[t][v] =
@@ -129,18 +137,23 @@ glm::dvec3 skinVertex(const SkinWeights& skin, size_t vertex, const std::vector<
     return glm::dvec3(skinning * glm::dvec4(p, 1.0));
 }
 
+glm::dvec3 posedVertex(const std::vector<glm::vec3>& rest, const VertexDeformation& deformation,
+                       size_t vertex, const std::vector<glm::dmat4>& joints,
+                       const std::vector<double>& weights, const glm::dmat4& toObject) {
+    glm::dvec3 p(rest[vertex]);
+    for (size_t t = 0; t < deformation.morphs.size(); ++t)
+        if (weights[t] != 0.0) p += weights[t] * glm::dvec3(deformation.morphs[t][vertex]);
+    if (deformation.skin.influences == 0) return p;
+    return glm::dvec3(toObject * glm::dvec4(skinVertex(deformation.skin, vertex, joints, p), 1.0));
+}
+
 std::vector<glm::dvec3> posePositions(const std::vector<glm::vec3>& rest,
                                       const VertexDeformation& deformation,
                                       const std::vector<glm::dmat4>& joints,
                                       const std::vector<double>& weights, const glm::dmat4& toObject) {
-    std::vector<glm::dvec3> out(rest.begin(), rest.end());
-    for (size_t t = 0; t < deformation.morphs.size(); ++t)
-        if (weights[t] != 0.0)
-            for (size_t v = 0; v < out.size(); ++v)
-                out[v] += weights[t] * glm::dvec3(deformation.morphs[t][v]);
-    if (deformation.skin.influences == 0) return out;
-    for (size_t v = 0; v < out.size(); ++v)
-        out[v] = glm::dvec3(toObject * glm::dvec4(skinVertex(deformation.skin, v, joints, out[v]), 1.0));
+    std::vector<glm::dvec3> out(rest.size());
+    for (size_t v = 0; v < rest.size(); ++v)
+        out[v] = posedVertex(rest, deformation, v, joints, weights, toObject);
     return out;
 }
 

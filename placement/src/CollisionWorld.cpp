@@ -25,6 +25,8 @@ struct ObjectData {
     double reach = 0.0;            // largest |ray origin| in the space of `traced` that the boxes allow
     glm::dmat4 inverse{1.0};
     std::optional<PosedCollisionMesh> posable; // dynamic skinned or morphed objects: what setPose poses
+    std::vector<glm::dmat4> poseJoints;        // the joint matrices of the last setPose (empty: rest)
+    std::vector<double> poseMorphs;            // the morph weights of the last setPose
     RTCScene scene = nullptr;                  // dynamic objects: their own object-space scene
     unsigned geomId = kInvalidId; // static: geometry in the static scene; dynamic: instance in the top scene
 };
@@ -999,6 +1001,8 @@ Result<TransformUpdate> CollisionWorld::setPose(uint32_t object, const glm::dmat
     Result<std::vector<glm::vec3>> posed = poseCollisionMesh(*od.posable, transform, joints, morphWeights);
     if (!posed) return fail(name + ": " + posed.error());
     od.positions = std::move(posed).value();
+    od.poseJoints = joints;
+    od.poseMorphs = morphWeights;
     od.traced = od.positions; // a dynamic object is traced in its own space
     od.info.localBounds = meshBounds(od.positions, od.indices);
     if (od.scene) {
@@ -1006,6 +1010,26 @@ Result<TransformUpdate> CollisionWorld::setPose(uint32_t object, const glm::dmat
         rtcCommitScene(od.scene);
     }
     return setTransform(object, transform);
+}
+
+std::optional<SurfaceAnchor> CollisionWorld::anchorAt(uint32_t object, uint32_t primitive,
+                                                      const glm::dvec3& localPosition) const {
+    if (object >= impl_->objects.size()) return std::nullopt;
+    const ObjectData& od = impl_->objects[object];
+    if (!od.posable || !od.info.inWorld || size_t(primitive) >= od.indices.size() / 3) return std::nullopt;
+    const uint32_t* c = &od.indices[3 * size_t(primitive)];
+    const glm::dvec3 bary = barycentric(localPosition, glm::dvec3(od.positions[c[0]]),
+                                        glm::dvec3(od.positions[c[1]]), glm::dvec3(od.positions[c[2]]));
+    return anchorOf(*od.posable, od.indices, primitive, bary, localPosition,
+                    Pose{od.poseJoints, od.poseMorphs, glm::inverse(od.info.transform)});
+}
+
+std::optional<glm::dmat4> CollisionWorld::anchorFrame(uint32_t object, const SurfaceAnchor& anchor) const {
+    if (object >= impl_->objects.size()) return std::nullopt;
+    const ObjectData& od = impl_->objects[object];
+    if (!od.posable) return std::nullopt;
+    return spatter::anchorFrame(*od.posable, od.indices, anchor,
+                                Pose{od.poseJoints, od.poseMorphs, glm::inverse(od.info.transform)});
 }
 
 Status CollisionWorld::removeObject(uint32_t object) {

@@ -4,6 +4,7 @@
 #include "CappedGrowth.hpp"
 #include "CraterClipping.hpp"
 #include "DecalSystemState.hpp"
+#include "SkinAnchors.hpp"
 #include "spatter/core/Random.hpp"
 #include "spatter/placement/ObjectIds.hpp"
 
@@ -159,6 +160,7 @@ struct DecalSystem::Impl {
     std::vector<Slot> slots;
     std::vector<uint32_t> freeSlots;
     AreaLimits limits;
+    SkinAnchors anchors; // the decals on skinned objects, which setPose moves with the skin
     DecalStats stats;
     std::mutex mutex; // held by every mutation
 
@@ -229,6 +231,7 @@ struct DecalSystem::Impl {
     void removeDense(uint32_t dense) {
         const uint32_t slot = slotOf[dense];
         if (!fadingSince.empty() && fadingSince.erase(slot) != 0) stats.fading--;
+        anchors.erase(slot);
         limits.unlink(slot, decals[dense].object);
         slots[slot].dense = kNone;
         slots[slot].generation++;
@@ -393,7 +396,9 @@ struct DecalSystem::Impl {
                                                          formatNumber(angle) +
                                                          " degrees from its normal (type '" + t.name +
                                                          "' allows " + formatNumber(t.maxAngleDeg) + ")");
-        return place(hit->object, hit->localPosition, hit->normal, dir, typeIndex, true);
+        SpawnResult placed = place(hit->object, hit->localPosition, hit->normal, dir, typeIndex, true);
+        if (placed.placed()) anchors.bind(placed.handle.slot, decals.back(), hit->primitive, world);
+        return placed;
     }
 
     // world.intersectBatch(rays), traced in slices by up to settings.batchThreads threads (each
@@ -727,6 +732,19 @@ Result<TransformUpdate> DecalSystem::setTransform(uint32_t object, const glm::dm
     return impl_->world.setTransform(object, transform);
 }
 
+Result<TransformUpdate> DecalSystem::setPose(uint32_t object, const glm::dmat4& transform,
+                                             const std::vector<glm::dmat4>& joints,
+                                             const std::vector<double>& morphWeights) {
+    Impl& s = *impl_;
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    Result<TransformUpdate> update = s.world.setPose(object, transform, joints, morphWeights);
+    if (!update) return update;
+    s.anchors.repose(
+        object, s.world, s.decals, [&s](uint32_t slot) { return s.slots[slot].dense; },
+        [&s](uint32_t dense) { s.logChange(dense, dense, DecalChangeKind::Changed); });
+    return update;
+}
+
 Status DecalSystem::removeObject(uint32_t object) {
     Impl& s = *impl_;
     const std::lock_guard<std::mutex> lock(s.mutex);
@@ -842,6 +860,7 @@ void DecalSystemAccess::restoreDecals(DecalSystem::Impl& s, DecalSystemState& st
     for (uint32_t i = 0; i < s.slotOf.size(); ++i)
         s.slots[s.slotOf[i]].dense = i;
     s.freeSlots = std::move(st.freeSlots);
+    s.anchors.clear(); // a save keeps the decals where they were drawn, not their skin bindings
     s.fadingSince = std::unordered_map<uint32_t, double>(st.fading.begin(), st.fading.end());
     s.timed = DenseIndexSet();
     for (uint32_t i = 0; i < s.decals.size(); ++i)

@@ -1,5 +1,6 @@
 #include "PosedCollisionMesh.hpp"
 
+#include <array>
 #include <cmath>
 
 namespace spatter {
@@ -13,11 +14,19 @@ Result<std::optional<PosedCollisionMesh>> posedCollisionMesh(const Scene& scene,
     if (so.skin != -1) out.jointCount = scene.animation.skins[size_t(so.skin)].joints.size();
     if (&collision == &so.mesh) {
         out.deformation = deformationOf(so);
-    } else {
-        Result<VertexDeformation> moved = transferDeformation(so.mesh, deformationOf(so), collision);
-        if (!moved) return fail(moved.error());
-        out.deformation = std::move(moved).value();
+        return std::optional<PosedCollisionMesh>(std::move(out));
     }
+    Result<VertexDeformation> moved = transferDeformation(so.mesh, deformationOf(so), collision);
+    if (!moved) return fail(moved.error());
+    out.deformation = std::move(moved).value();
+    PosedCollisionMesh::Drawn drawn;
+    drawn.rest.positions = so.mesh.positions;
+    drawn.rest.indices.assign(so.mesh.indices.begin(), so.mesh.indices.begin() + so.mesh.triangleCount() * 3);
+    drawn.deformation = deformationOf(so);
+    Result<ClosestPointQuery> query = ClosestPointQuery::create(drawn.rest);
+    if (!query) return fail(query.error());
+    drawn.query = std::make_shared<const ClosestPointQuery>(std::move(query).value());
+    out.drawn = std::move(drawn);
     return std::optional<PosedCollisionMesh>(std::move(out));
 }
 
@@ -38,6 +47,54 @@ Result<std::vector<glm::vec3>> poseCollisionMesh(const PosedCollisionMesh& mesh,
                         "that is not finite");
     }
     return out;
+}
+
+namespace {
+
+// The corners of render triangle `triangle` at a pose (rest positions before the first pose).
+std::array<glm::dvec3, 3> posedCorners(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
+                                       uint32_t triangle, const std::vector<glm::dmat4>& joints,
+                                       const std::vector<double>& morphWeights, const glm::dmat4& toObject) {
+    const std::vector<glm::vec3>& rest = mesh.drawn ? mesh.drawn->rest.positions : mesh.rest;
+    const VertexDeformation& deformation = mesh.drawn ? mesh.drawn->deformation : mesh.deformation;
+    const uint32_t* c = &(mesh.drawn ? mesh.drawn->rest.indices : indices)[3 * size_t(triangle)];
+    std::array<glm::dvec3, 3> p;
+    for (size_t k = 0; k < 3; ++k)
+        p[k] = joints.empty() && morphWeights.empty()
+                   ? glm::dvec3(rest[c[k]])
+                   : posedVertex(rest, deformation, c[k], joints, morphWeights, toObject);
+    return p;
+}
+
+} // namespace
+
+SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
+                       uint32_t primitive, const glm::dvec3& bary, const glm::dvec3& localPosition,
+                       const Pose& pose) {
+    if (!mesh.drawn) return {primitive, bary};
+    // The collision mesh is not the render mesh: the hit at rest, the nearest render point there,
+    // then that point's barycentric coordinates refined at the pose (the foot of the hit on the
+    // render triangle as it stands).
+    const uint32_t* c = &indices[3 * size_t(primitive)];
+    const glm::dvec3 atRest = bary.x * glm::dvec3(mesh.rest[c[0]]) + bary.y * glm::dvec3(mesh.rest[c[1]]) +
+                              bary.z * glm::dvec3(mesh.rest[c[2]]);
+    const std::optional<ClosestPoint> near = mesh.drawn->query->closest(atRest);
+    if (!near) return {primitive, bary};
+    const std::array<glm::dvec3, 3> render =
+        posedCorners(mesh, indices, near->triangle, pose.joints, pose.morphWeights, pose.toObject);
+    return {near->triangle, barycentric(localPosition, render[0], render[1], render[2])};
+}
+
+std::optional<glm::dmat4> anchorFrame(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
+                                      const SurfaceAnchor& anchor, const Pose& pose) {
+    const std::array<glm::dvec3, 3> p =
+        posedCorners(mesh, indices, anchor.triangle, pose.joints, pose.morphWeights, pose.toObject);
+    const glm::dvec3 t = glm::normalize(p[1] - p[0]);
+    const glm::dvec3 n = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
+    const glm::dvec3 b = glm::cross(n, t);
+    if (!std::isfinite(t.x + t.y + t.z + n.x + n.y + n.z)) return std::nullopt;
+    const glm::dvec3 at = anchor.bary.x * p[0] + anchor.bary.y * p[1] + anchor.bary.z * p[2];
+    return glm::dmat4(glm::dvec4(t, 0.0), glm::dvec4(b, 0.0), glm::dvec4(n, 0.0), glm::dvec4(at, 1.0));
 }
 
 } // namespace spatter

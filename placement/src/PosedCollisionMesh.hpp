@@ -3,13 +3,21 @@
 // is drawn: its rest positions and the deformation of its vertices, its render mesh's own when the
 // render mesh is the collision mesh, otherwise transferred from the render mesh (transferDeformation:
 // each proxy vertex moves as the nearest point of the render surface does).
+//
+// It also anchors decals to the drawn surface: a shot's hit on the collision mesh is taken back to
+// the rest pose and to the nearest point of the render mesh there (a triangle and barycentric
+// coordinates, SurfaceAnchor), and that point's triangle, posed like the render mesh, gives the frame
+// the decal rides at any later pose.
 
 #include "spatter/core/Mesh.hpp"
+#include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/Result.hpp"
 #include "spatter/core/Scene.hpp"
 #include "spatter/core/VertexDeformation.hpp"
+#include "spatter/placement/CollisionWorld.hpp"
 
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -19,6 +27,14 @@ struct PosedCollisionMesh {
     std::vector<glm::vec3> rest; // collision mesh positions, object space, rest pose
     VertexDeformation deformation;
     size_t jointCount = 0; // joints of the object's skin (0 when not skinned)
+    // The render mesh at rest (positions and indices), its deformation and a nearest-point query on
+    // it, when the collision mesh is not the render mesh itself.
+    struct Drawn {
+        Mesh rest;
+        VertexDeformation deformation;
+        std::shared_ptr<const ClosestPointQuery> query;
+    };
+    std::optional<Drawn> drawn;
 };
 
 // The posing data of `scene.objects[object]` for its collision mesh `collision` (the render mesh
@@ -34,5 +50,26 @@ Result<std::optional<PosedCollisionMesh>> posedCollisionMesh(const Scene& scene,
 Result<std::vector<glm::vec3>> poseCollisionMesh(const PosedCollisionMesh& mesh, const glm::dmat4& transform,
                                                  const std::vector<glm::dmat4>& joints,
                                                  const std::vector<double>& morphWeights);
+
+// A pose as setPose last gave it: joint matrices and morph weights (both empty before the first),
+// and the inverse of the object's transform.
+struct Pose {
+    const std::vector<glm::dmat4>& joints;
+    const std::vector<double>& morphWeights;
+    glm::dmat4 toObject;
+};
+
+// The point of the drawn surface under the point `localPosition` (object space) of collision triangle
+// `primitive` (`indices`: the collision mesh's), which has barycentric coordinates `bary` there, at
+// `pose`.
+SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
+                       uint32_t primitive, const glm::dvec3& bary, const glm::dvec3& localPosition,
+                       const Pose& pose);
+
+// The frame of `anchor` at `pose`: columns the direction of its triangle's first edge, the in-plane
+// perpendicular, the triangle's normal and, as translation, the anchor's point, in object space.
+// Empty when the posed triangle has collapsed.
+std::optional<glm::dmat4> anchorFrame(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
+                                      const SurfaceAnchor& anchor, const Pose& pose);
 
 } // namespace spatter

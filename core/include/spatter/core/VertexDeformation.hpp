@@ -46,6 +46,11 @@ Result<VertexDeformation> transferDeformation(const Mesh& source, const VertexDe
 glm::dvec3 skinVertex(const SkinWeights& skin, size_t vertex, const std::vector<glm::dmat4>& joints,
                       const glm::dvec3& p);
 
+// Vertex `vertex` of `rest` deformed by a pose, as posePositions deforms every vertex.
+glm::dvec3 posedVertex(const std::vector<glm::vec3>& rest, const VertexDeformation& deformation,
+                       size_t vertex, const std::vector<glm::dmat4>& joints,
+                       const std::vector<double>& weights, const glm::dmat4& toObject);
+
 // The positions `rest` deformed by a pose, in double: morph deltas times `weights` added, then, when
 // skinned, each vertex skinned by `joints` and brought into the object's space at the pose by
 // `toObject` (the inverse of the object's transform there). Preconditions: `deformation` matches

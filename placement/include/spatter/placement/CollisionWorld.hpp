@@ -91,6 +91,13 @@ struct Hit {
     bool frontFace = true;
 };
 
+// A point of a deforming object's render surface: a triangle of its render mesh and barycentric
+// coordinates in it, so that it moves with the surface at any pose.
+struct SurfaceAnchor {
+    uint32_t triangle = 0;
+    glm::dvec3 bary{1.0, 0.0, 0.0};
+};
+
 // What setTransform did with a transform it accepted.
 struct TransformUpdate {
     bool traced = true;  // false: the transform breaks the rule of TraceTransform.hpp; shots pass
@@ -148,6 +155,17 @@ public:
     Result<TransformUpdate> setPose(uint32_t object, const glm::dmat4& transform,
                                     const std::vector<glm::dmat4>& joints,
                                     const std::vector<double>& morphWeights);
+    // The point of a skinned or morphed object's drawn surface that a hit on its collision mesh lies
+    // on: the hit (triangle `primitive`, Hit::primitive, at `localPosition`, Hit::localPosition) taken
+    // back to the rest pose and to the nearest point of the render mesh there. Empty for an object
+    // that does not deform, is not in the world, or a primitive out of range.
+    std::optional<SurfaceAnchor> anchorAt(uint32_t object, uint32_t primitive,
+                                          const glm::dvec3& localPosition) const;
+    // The frame of `anchor` at the object's current pose, in its object space: columns the direction
+    // of the anchor's render triangle's first edge, the perpendicular in its plane and its normal,
+    // and, as translation, the anchor's point. What a decal on a deforming surface rides. Empty for
+    // an object that does not deform or a posed triangle that has collapsed.
+    std::optional<glm::dmat4> anchorFrame(uint32_t object, const SurfaceAnchor& anchor) const;
     // Takes an object out of the world (later rays pass through it). Fails for an index out of range
     // or an object not in the world.
     Status removeObject(uint32_t object);

@@ -18,12 +18,12 @@
 // - Same settings (seed), same types and same calls give bit-identical decals.
 // - Decal::center and Decal::frame are in the space of the decal's object (static objects too), so
 //   decals follow their object when it moves and go with it when it is removed.
-// - Mutations (registerType, spawn*, update, remove, setTransform, removeObject, and loadDecals of
-//   DecalPersistence.hpp) may be called from any number of threads at once: they take the system's
-//   lock and run one at a time, each seeing the world as the previous one left it (a spawn traces
-//   against the objects where they are while it holds the lock). Const calls take no lock: they may
-//   run concurrently with each other, but not with a mutation (decals() and get() return references
-//   into state that mutations change).
+// - Mutations (registerType, spawn*, update, remove, setTransform, setPose, removeObject, and
+//   loadDecals of DecalPersistence.hpp) may be called from any number of threads at once: they take
+//   the system's lock and run one at a time, each seeing the world as the previous one left it (a
+//   spawn traces against the objects where they are while it holds the lock). Const calls take no
+//   lock: they may run concurrently with each other, but not with a mutation (decals() and get()
+//   return references into state that mutations change).
 //   version() and changesSince() are const calls like decals(): no lock, never during a mutation.
 // - Every change of decals() is logged (changesSince): a placement as Added; a removal by remove, an
 //   eviction, the end of a lifetime or fade in update, or removeObject as Removed, with the move that
@@ -198,6 +198,15 @@ public:
     // cannot use (TraceTransform.hpp) takes the object out of the trace until a usable one, and the
     // result says so; its decals stay.
     Result<TransformUpdate> setTransform(uint32_t object, const glm::dmat4& transform);
+    // Poses a skinned or morphed dynamic object as it is drawn (CollisionWorld::setPose: later shots
+    // meet the posed surface). The decals that shots placed on a skinned object follow its skin: each
+    // keeps the skin binding of the point it was placed on and is moved, turned and bent with it (its
+    // centre and frame change in place, logged as Changed); decals placed by spawnAt or spawnAttached,
+    // and decals loaded from a save, ride the object's transform only. Fails, and changes nothing,
+    // as CollisionWorld::setPose does.
+    Result<TransformUpdate> setPose(uint32_t object, const glm::dmat4& transform,
+                                    const std::vector<glm::dmat4>& joints,
+                                    const std::vector<double>& morphWeights);
     // Removes an object from the world together with its decals (counted in stats().removed).
     Status removeObject(uint32_t object);
     // The 8-bit object decal ID of an object (0 for static objects and indices out of range).

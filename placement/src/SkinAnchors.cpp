@@ -1,0 +1,32 @@
+#include "SkinAnchors.hpp"
+
+namespace spatter {
+
+void SkinAnchors::bind(uint32_t slot, const Decal& decal, uint32_t primitive, const CollisionWorld& world) {
+    const std::optional<SurfaceAnchor> surface =
+        world.anchorAt(decal.object, primitive, glm::dvec3(decal.center));
+    if (!surface) return;
+    const std::optional<glm::dmat4> frame = world.anchorFrame(decal.object, *surface);
+    if (!frame) return;
+    // The frame is orthonormal: its inverse rotation is its transpose.
+    const glm::dmat3 toLocal = glm::transpose(glm::dmat3(*frame));
+    const Frame f = decal.frame();
+    Anchor a;
+    a.object = decal.object;
+    a.surface = *surface;
+    a.center = toLocal * (glm::dvec3(decal.center) - glm::dvec3((*frame)[3]));
+    a.tangent = toLocal * glm::dvec3(f.tangent);
+    a.normal = toLocal * glm::dvec3(f.normal);
+    anchors_[slot] = a;
+}
+
+void SkinAnchors::place(const Anchor& anchor, const glm::dmat4& frame, Decal& decal) {
+    const glm::dmat3 rotation(frame);
+    const glm::dvec3 n = glm::normalize(rotation * anchor.normal);
+    glm::dvec3 t = rotation * anchor.tangent;
+    t = glm::normalize(t - n * glm::dot(n, t));
+    decal.center = glm::vec3(glm::dvec3(frame[3]) + rotation * anchor.center);
+    decal.packedFrame = packFrame(t, glm::cross(n, t), n, decal.mirrored());
+}
+
+} // namespace spatter

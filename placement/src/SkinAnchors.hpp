@@ -1,0 +1,57 @@
+#pragma once
+// SkinAnchors: the decals that stay on a deforming object's drawn surface. A decal placed by a shot on
+// a skinned or morphed object keeps the point of the render surface it was placed on
+// (CollisionWorld::anchorAt: a render triangle and barycentric coordinates) and its centre and frame
+// relative to that triangle's frame at the pose of the shot. Each new pose (DecalSystem::setPose)
+// puts them back relative to the triangle's frame at that pose, so the decal moves, turns and bends
+// with the surface it lies on instead of riding the object's transform alone. Only decals on
+// deforming objects are kept here, so the other decals pay nothing for it.
+
+#include "spatter/core/Decal.hpp"
+#include "spatter/placement/CollisionWorld.hpp"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <unordered_map>
+
+namespace spatter {
+
+class SkinAnchors {
+public:
+    // Anchors the decal of handle slot `slot`, just placed as `decal` by a hit on collision triangle
+    // `primitive` of its object; does nothing when the object does not deform.
+    void bind(uint32_t slot, const Decal& decal, uint32_t primitive, const CollisionWorld& world);
+    void erase(uint32_t slot) {
+        if (!anchors_.empty()) anchors_.erase(slot);
+    }
+    void clear() { anchors_.clear(); }
+    size_t size() const { return anchors_.size(); }
+
+    // Poses the decals anchored on `object` as the world's pose of it now stands: each one's centre
+    // and frame in `decals` (at denseOf(slot)); changed(dense) is called for each.
+    template <class DenseOf, class Changed>
+    void repose(uint32_t object, const CollisionWorld& world, std::vector<Decal>& decals, DenseOf denseOf,
+                Changed changed) const {
+        for (const auto& [slot, anchor] : anchors_) {
+            if (anchor.object != object) continue;
+            const std::optional<glm::dmat4> frame = world.anchorFrame(object, anchor.surface);
+            if (!frame) continue; // a collapsed triangle: the decal stays where it was
+            const uint32_t dense = denseOf(slot);
+            place(anchor, *frame, decals[dense]);
+            changed(dense);
+        }
+    }
+
+private:
+    struct Anchor {
+        uint32_t object = 0;
+        SurfaceAnchor surface;
+        glm::dvec3 center{0.0}, tangent{0.0}, normal{0.0}; // in the anchor's frame
+    };
+    // The decal's centre and frame from the anchor's, under the anchor's frame `frame`.
+    static void place(const Anchor& anchor, const glm::dmat4& frame, Decal& decal);
+
+    std::unordered_map<uint32_t, Anchor> anchors_; // by handle slot
+};
+
+} // namespace spatter

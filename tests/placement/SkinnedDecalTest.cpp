@@ -1,0 +1,199 @@
+#include "PlacementTestUtil.hpp"
+
+#include "spatter/core/DeformingProxy.hpp"
+#include "spatter/core/MeshDistance.hpp"
+#include "spatter/core/SceneEvaluator.hpp"
+#include "spatter/core/SkinnedArm.hpp"
+#include "spatter/placement/DecalSystem.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace spatter;
+using namespace spatter::test;
+
+namespace {
+
+constexpr float kDecalSize = 0.05f;
+
+// The arm's render mesh at time t, in its object space.
+Mesh drawnMesh(const Scene& arm, double t) {
+    SceneEvaluator evaluator(arm);
+    evaluator.evaluate(0, t);
+    Mesh m = arm.objects[0].mesh;
+    const std::vector<glm::dvec3> p = posedPositions(arm, 0, evaluator);
+    for (size_t v = 0; v < p.size(); ++v)
+        m.positions[v] = glm::vec3(p[v]);
+    return m;
+}
+
+Status poseAt(DecalSystem& system, const Scene& arm, double t) {
+    SceneEvaluator evaluator(arm);
+    evaluator.evaluate(0, t);
+    Result<TransformUpdate> r = system.setPose(0, evaluator.objectTransform(0), evaluator.jointMatrices(0),
+                                               evaluator.morphWeights(0));
+    if (!r) return fail(r.error());
+    return {};
+}
+
+// A point of the render surface, by triangle and barycentric coordinates.
+struct SurfacePoint {
+    uint32_t triangle = 0;
+    glm::dvec3 bary{0.0};
+
+    // The normal of its triangle in `m`.
+    glm::dvec3 normal(const Mesh& m) const {
+        const uint32_t* c = &m.indices[3 * size_t(triangle)];
+        const glm::dvec3 a(m.positions[c[0]]), b(m.positions[c[1]]), d(m.positions[c[2]]);
+        return glm::normalize(glm::cross(b - a, d - a));
+    }
+
+    glm::dvec3 on(const Mesh& m) const {
+        const uint32_t* c = &m.indices[3 * size_t(triangle)];
+        return bary.x * glm::dvec3(m.positions[c[0]]) + bary.y * glm::dvec3(m.positions[c[1]]) +
+               bary.z * glm::dvec3(m.positions[c[2]]);
+    }
+};
+
+SurfacePoint nearestOn(const Mesh& m, const glm::dvec3& p) {
+    const ClosestPoint c = ClosestPointQuery::create(m).value().closest(p).value();
+    const uint32_t* k = &m.indices[3 * size_t(c.triangle)];
+    return {c.triangle, barycentric(c.point, glm::dvec3(m.positions[k[0]]), glm::dvec3(m.positions[k[1]]),
+                                    glm::dvec3(m.positions[k[2]]))};
+}
+
+// Shots from the front at the forearm and the elbow as they stand at time t (the arm's transform is
+// the identity, so object space is world space).
+std::vector<Ray> shotsAtForearm(const Mesh& drawn) {
+    std::vector<Ray> rays;
+    for (size_t i = 0; i < drawn.triangleCount(); i += 7) {
+        glm::dvec3 c(0.0);
+        for (int k = 0; k < 3; ++k)
+            c += glm::dvec3(drawn.positions[drawn.indices[3 * i + size_t(k)]]) / 3.0;
+        const glm::dvec3 from = c + glm::dvec3(0.1, 0.2, 2.0);
+        rays.push_back(ray(from, c - from));
+    }
+    return rays;
+}
+
+// Room for every shot of the tests in one cell.
+DecalSettings roomy() {
+    DecalSettings s;
+    s.maxPerCell = 1024;
+    return s;
+}
+
+DecalType bulletHole() {
+    DecalType t;
+    t.name = "hole";
+    t.size = glm::vec2(kDecalSize);
+    t.maxAngleDeg = 80.0f;
+    return t;
+}
+
+struct Drift {
+    double along = 0.0; // the largest, over the decals, along the surface: what an image shows
+    double whole = 0.0; // the largest distance
+};
+
+// Spawns at time t0, poses at t1 and measures, over the decals, how far a decal's centre is from the
+// render surface point it was placed on (the nearest to its centre at t0), both at t1.
+Drift largestDrift(DecalSystem& system, const Scene& arm, double t0, double t1, size_t& decals) {
+    const uint16_t type = addType(system, bulletHole());
+    EXPECT_TRUE(poseAt(system, arm, t0).ok());
+    const Mesh at0 = drawnMesh(arm, t0), at1 = drawnMesh(arm, t1);
+    std::vector<std::pair<DecalHandle, SurfacePoint>> placed;
+    for (const Ray& r : shotsAtForearm(at0)) {
+        const SpawnResult s = system.spawn(r, type);
+        if (s.placed())
+            placed.emplace_back(s.handle, nearestOn(at0, glm::dvec3(system.get(s.handle)->center)));
+    }
+    EXPECT_TRUE(poseAt(system, arm, t1).ok());
+    Drift drift;
+    for (const auto& [handle, point] : placed) {
+        const Decal* d = system.get(handle);
+        EXPECT_NE(d, nullptr);
+        if (!d) continue;
+        const glm::dvec3 off = glm::dvec3(d->center) - point.on(at1), n = point.normal(at1);
+        drift.whole = std::max(drift.whole, glm::length(off));
+        drift.along = std::max(drift.along, glm::length(off - n * glm::dot(n, off)));
+    }
+    decals = placed.size();
+    return drift;
+}
+
+} // namespace
+
+TEST(SkinnedDecals, StayOnTheSkinPointTheyWerePlacedOn) {
+    const Scene arm = makeSkinnedArm();
+    DecalSystem system = makeSystem(arm, roomy());
+    size_t decals = 0;
+    const Drift drift = largestDrift(system, arm, 0.3, 1.0, decals);
+    EXPECT_GT(decals, 20u);
+    EXPECT_LT(drift.whole, 1e-5) << "the render mesh is its own collision mesh";
+}
+
+TEST(SkinnedDecals, StayOnTheSkinOverADeformingProxy) {
+    const Scene arm = makeSkinnedArm();
+    ProxySettings settings;
+    settings.tolerance = 0.005f;
+    settings.toleranceRelative = true;
+    Result<DeformingProxy> proxy = buildDeformingProxy(arm, 0, settings, 16);
+    ASSERT_TRUE(proxy.ok()) << proxy.error();
+    Result<CollisionWorld> world = CollisionWorld::build(arm, {std::optional<Proxy>(proxy->proxy)});
+    ASSERT_TRUE(world.ok()) << world.error();
+    Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), roomy());
+    ASSERT_TRUE(system.ok()) << system.error();
+    size_t decals = 0;
+    const Drift drift = largestDrift(system.value(), arm, 0.3, 1.0, decals);
+    EXPECT_GT(decals, 20u);
+    // The decal's centre lies on the proxy, within h of the render surface, and keeps its offset from
+    // the point it was placed on as the surface turns: across the surface it stays on that point.
+    EXPECT_LT(drift.whole, proxy->poses.sampledMax);
+    EXPECT_LT(drift.along, 0.02 * kDecalSize);
+}
+
+TEST(SkinnedDecals, PosingLogsEveryMovedDecalAsChanged) {
+    const Scene arm = makeSkinnedArm();
+    DecalSystem system = makeSystem(arm, roomy());
+    const uint16_t type = addType(system, bulletHole());
+    for (const Ray& r : shotsAtForearm(arm.objects[0].mesh))
+        system.spawn(r, type);
+    ASSERT_GT(system.decals().size(), 10u);
+    const std::vector<Decal> before = system.decals();
+    const uint64_t version = system.version();
+    ASSERT_TRUE(poseAt(system, arm, 0.8).ok());
+    const DecalChanges changes = system.changesSince(version);
+    ASSERT_TRUE(changes.complete);
+    EXPECT_EQ(changes.changes.size(), before.size());
+    for (const DecalChange& c : changes.changes) {
+        EXPECT_EQ(c.kind, DecalChangeKind::Changed);
+        EXPECT_EQ(c.index, c.from);
+    }
+    size_t moved = 0;
+    for (size_t i = 0; i < before.size(); ++i)
+        moved += before[i].center != system.decals()[i].center;
+    EXPECT_GT(moved, before.size() / 2);
+}
+
+TEST(SkinnedDecals, RemovedDecalsNoLongerMoveAndBadPosesChangeNothing) {
+    const Scene arm = makeSkinnedArm();
+    DecalSystem system = makeSystem(arm, roomy());
+    const uint16_t type = addType(system, bulletHole());
+    std::vector<DecalHandle> handles;
+    for (const Ray& r : shotsAtForearm(arm.objects[0].mesh))
+        if (const SpawnResult s = system.spawn(r, type); s.placed()) handles.push_back(s.handle);
+    ASSERT_GT(handles.size(), 10u);
+    for (size_t i = 0; i < handles.size(); i += 2)
+        ASSERT_TRUE(system.remove(handles[i]));
+    ASSERT_TRUE(poseAt(system, arm, 1.0).ok());
+    const uint64_t version = system.version();
+    EXPECT_EQ(system.changesSince(version - system.decals().size()).changes.size(), system.decals().size());
+
+    const std::vector<Decal> before = system.decals();
+    EXPECT_FALSE(system.setPose(0, glm::dmat4(1.0), {glm::dmat4(1.0)}, {}).ok());
+    EXPECT_EQ(system.version(), version);
+    for (size_t i = 0; i < before.size(); ++i)
+        EXPECT_TRUE(sameDecal(before[i], system.decals()[i]));
+}
