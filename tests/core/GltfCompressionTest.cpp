@@ -1,6 +1,7 @@
 // loadGltf on compressed geometry the test writes itself: KHR_draco_mesh_compression through
 // libdraco's encoder and EXT_meshopt_compression through meshoptimizer's, each compared with the
-// plain mesh within its quantisation step; truncated and inconsistent compressed data is refused.
+// plain mesh within its quantisation step (Draco also with what libdraco decodes, to the bit);
+// truncated and inconsistent compressed data is refused.
 
 #include "spatter/core/SceneLoader.hpp"
 
@@ -8,6 +9,7 @@
 #include "GltfLoading.hpp"
 #include "TestData.hpp"
 
+#include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 #include <gmock/gmock.h>
@@ -17,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 
 using namespace spatter;
@@ -145,25 +148,31 @@ struct DracoBits {
     int position = 14, normal = 10, uv = 12;
 };
 
-// `plain` encoded by libdraco; `ids` receives the unique ids of POSITION, NORMAL and TEXCOORD_0.
+// `plain` encoded by libdraco; `ids` receives the unique ids of POSITION, NORMAL and TEXCOORD_0. With
+// `shortUvs` the UVs are normalised 16-bit integers, which libdraco does not quantise.
 std::vector<uint8_t> dracoEncode(const Plain& plain, const DracoBits& bits, int speed,
-                                 std::array<int, 3>& ids) {
+                                 std::array<int, 3>& ids, bool shortUvs = false) {
     draco::TriangleSoupMeshBuilder builder;
     const int faces = int(plain.indices.size() / 3);
     builder.Start(faces);
     const int pos = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
     const int nor = builder.AddAttribute(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32);
-    const int tex = builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32);
+    const int tex = builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2,
+                                         shortUvs ? draco::DT_UINT16 : draco::DT_FLOAT32);
+    std::vector<std::array<uint16_t, 2>> uvShorts;
+    for (const glm::vec2& uv : plain.uvs)
+        uvShorts.push_back({uint16_t(std::lround(uv.x * 65535.0f)), uint16_t(std::lround(uv.y * 65535.0f))});
+    auto uv = [&](uint32_t v) -> const void* { return shortUvs ? (const void*)&uvShorts[v] : &plain.uvs[v]; };
     for (int f = 0; f < faces; ++f) {
         const uint32_t* c = &plain.indices[size_t(f) * 3];
         builder.SetAttributeValuesForFace(pos, draco::FaceIndex(f), &plain.positions[c[0]],
                                           &plain.positions[c[1]], &plain.positions[c[2]]);
         builder.SetAttributeValuesForFace(nor, draco::FaceIndex(f), &plain.normals[c[0]],
                                           &plain.normals[c[1]], &plain.normals[c[2]]);
-        builder.SetAttributeValuesForFace(tex, draco::FaceIndex(f), &plain.uvs[c[0]], &plain.uvs[c[1]],
-                                          &plain.uvs[c[2]]);
+        builder.SetAttributeValuesForFace(tex, draco::FaceIndex(f), uv(c[0]), uv(c[1]), uv(c[2]));
     }
     std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+    mesh->attribute(tex)->set_normalized(shortUvs);
     ids = {int(mesh->attribute(pos)->unique_id()), int(mesh->attribute(nor)->unique_id()),
            int(mesh->attribute(tex)->unique_id())};
     draco::Encoder encoder;
@@ -205,6 +214,58 @@ GltfBuilder dracoScene(const Plain& plain, const std::vector<uint8_t>& draco, co
     return g;
 }
 
+// The uncompressed twin of the Draco data: what libdraco's decoder gives with all its transforms done,
+// every point's POSITION, NORMAL and TEXCOORD_0 as floats (ConvertValue, as the loader converts values
+// of another type) and the faces as 32-bit indices.
+GltfBuilder decodedTwin(const std::vector<uint8_t>& bytes, const std::array<int, 3>& ids) {
+    draco::DecoderBuffer buffer;
+    buffer.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    draco::Decoder decoder;
+    std::unique_ptr<draco::Mesh> mesh = std::move(decoder.DecodeMeshFromBuffer(&buffer)).value();
+    GltfBuilder g;
+    json attributes;
+    const char* names[] = {"POSITION", "NORMAL", "TEXCOORD_0"};
+    for (int a = 0; a < 3; ++a) {
+        const draco::PointAttribute& att = *mesh->GetAttributeByUniqueId(uint32_t(ids[size_t(a)]));
+        const int n = a == 2 ? 2 : 3;
+        std::vector<float> values(size_t(mesh->num_points()) * size_t(n));
+        for (draco::PointIndex p(0); p < mesh->num_points(); ++p)
+            EXPECT_TRUE(
+                att.ConvertValue<float>(att.mapped_index(p), int8_t(n), &values[p.value() * size_t(n)]));
+        attributes[names[a]] =
+            g.addAccessor(g.addView(values), kFloat, mesh->num_points(), n == 3 ? "VEC3" : "VEC2");
+    }
+    std::vector<uint32_t> indices;
+    for (draco::FaceIndex f(0); f < mesh->num_faces(); ++f)
+        for (const draco::PointIndex& p : mesh->face(f))
+            indices.push_back(p.value());
+    const int i = g.addAccessor(g.addView(indices), kUnsignedInt, indices.size(), "SCALAR");
+    g.push("meshes", {{"primitives", {{{"attributes", attributes}, {"indices", i}}}}});
+    g.push("nodes", {{"name", "grid"}, {"mesh", 0}});
+    g.doc["scenes"] = {{{"nodes", {0}}}};
+    g.doc["scene"] = 0;
+    return g;
+}
+
+template <class T> bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+// The Draco file loads to the same bits as its decoded twin: positions, normals, UVs and triangles.
+void expectSameAsDecodedTwin(const std::vector<uint8_t>& bytes, const std::array<int, 3>& ids,
+                             const Plain& plain, const std::string& name) {
+    const std::string dir = scratch();
+    Scene draco = loaded(dracoScene(plain, bytes, ids).writeGltf(dir, name));
+    Scene twin = loaded(decodedTwin(bytes, ids).writeGltf(dir, name + "-twin"));
+    ASSERT_EQ(draco.objects.size(), 1u);
+    ASSERT_EQ(twin.objects.size(), 1u);
+    const Mesh &a = draco.objects[0].mesh, &b = twin.objects[0].mesh;
+    EXPECT_TRUE(sameBits(a.positions, b.positions));
+    EXPECT_TRUE(sameBits(a.normals, b.normals));
+    EXPECT_TRUE(sameBits(a.uvs, b.uvs));
+    EXPECT_EQ(a.indices, b.indices);
+}
+
 } // namespace
 
 TEST(GltfCompression, DracoGivesThePlainGeometryWithinTheQuantisationStep) {
@@ -233,6 +294,35 @@ TEST(GltfCompression, DracoInAGlbWithIndicesOfSixteenBits) {
     Scene scene = loaded(path);
     ASSERT_EQ(scene.objects.size(), 1u);
     expectSameGeometry(scene.objects[0].mesh, plain, 4.0f / (1 << 14), 4.0f / (1 << 10), 1.0f / (1 << 12));
+}
+
+// The loader dequantises positions, normals and UVs itself (libdraco skips that step): the floats
+// must be those libdraco's own dequantisation gives, to the bit, whatever the coder and prediction.
+TEST(GltfCompression, DracoDequantisedByTheLoaderAsByLibdraco) {
+    const Plain plain = wavyGrid(40);
+    for (int speed : {0, 4, 5, 10}) {
+        SCOPED_TRACE(speed);
+        std::array<int, 3> ids{};
+        const std::vector<uint8_t> bytes = dracoEncode(plain, DracoBits{}, speed, ids);
+        expectSameAsDecodedTwin(bytes, ids, plain, "speed" + std::to_string(speed));
+    }
+}
+
+// Integer UVs for a float accessor keep their normalisation: libdraco would hand them over as plain
+// 32-bit integers when told to skip the transforms of UVs. The floats then come dequantised by
+// libdraco, copied point by point (edgebreaker) or as one block (the sequential coder).
+TEST(GltfCompression, DracoNormalisedIntegerUvsForAFloatAccessor) {
+    const Plain plain = wavyGrid();
+    for (int speed : {5, 10}) {
+        SCOPED_TRACE(speed);
+        std::array<int, 3> ids{};
+        const std::vector<uint8_t> bytes = dracoEncode(plain, DracoBits{}, speed, ids, true);
+        const std::string name = "short-uvs" + std::to_string(speed);
+        expectSameAsDecodedTwin(bytes, ids, plain, name);
+        Scene scene = loaded(dracoScene(plain, bytes, ids).writeGltf(scratch(), name + "-plain"));
+        ASSERT_EQ(scene.objects.size(), 1u);
+        expectSameGeometry(scene.objects[0].mesh, plain, 4.0f / (1 << 14), 4.0f / (1 << 10), 1.0f / 65535);
+    }
 }
 
 TEST(GltfCompression, RejectsTruncatedOrInconsistentDracoData) {
