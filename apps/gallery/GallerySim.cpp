@@ -1,5 +1,6 @@
 #include "GallerySim.hpp"
 
+#include "spatter/core/DeformingProxy.hpp"
 #include "spatter/core/SceneLoader.hpp"
 
 #include <atomic>
@@ -68,6 +69,21 @@ static std::vector<std::pair<ShotKind, DecalType>> galleryTypes() {
     scorch.normalMap = false;
     types.push_back({ShotKind::Scorch, scorch});
     return types;
+}
+
+// Whether the object's render mesh deforms with the pose (skinned or morphed) while it moves.
+static bool deforms(const SceneObject& o) {
+    return o.dynamic && (o.skin >= 0 || !o.morphTargets.empty());
+}
+
+// The collision proxy of object `i`: one whose bound holds over the scene's animation for an object
+// that deforms, otherwise one certified at rest (against the object's authored collider, if any).
+static Result<Proxy> proxyOf(const Scene& scene, size_t i, const ProxySettings& settings) {
+    const SceneObject& o = scene.objects[i];
+    if (!deforms(o)) return buildProxy(o.mesh, settings, o.collider ? &*o.collider : nullptr);
+    Result<DeformingProxy> p = buildDeformingProxy(scene, i, settings, 64);
+    if (!p) return fail(p.error());
+    return std::move(p->proxy);
 }
 
 bool isBanner(const SceneObject& object) {
@@ -154,8 +170,7 @@ Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<fl
         for (size_t i = next++; i < scene_->objects.size(); i = next++) {
             const SceneObject& o = scene_->objects[i];
             if (!o.receivesDecals) continue;
-            const Mesh* collider = o.collider ? &*o.collider : nullptr;
-            Result<Proxy> proxy = buildProxy(o.mesh, settings, collider);
+            Result<Proxy> proxy = proxyOf(*scene_, i, settings);
             const size_t finished = ++done;
             const size_t triangles = doneTriangles += o.mesh.triangleCount();
             const double fraction = double(triangles) / double(std::max<size_t>(totalTriangles, 1));
@@ -218,9 +233,17 @@ void GallerySim::pose() {
     const double duration = scene_->animation.animations[0].duration;
     const double t = options_.startTime + time_;
     evaluator_->evaluate(0, duration > 0.0 ? t - duration * std::floor(t / duration) : 0.0);
-    for (uint32_t object : animated_)
-        if (scene_->objects[object].dynamic && scene_->objects[object].receivesDecals)
+    static const std::vector<glm::dmat4> noJoints;
+    for (uint32_t object : animated_) {
+        const SceneObject& o = scene_->objects[object];
+        if (!o.dynamic || !o.receivesDecals) continue;
+        if (deforms(o))
+            system_->setPose(object, evaluator_->objectTransform(object),
+                             o.skin >= 0 ? evaluator_->jointMatrices(size_t(o.skin)) : noJoints,
+                             evaluator_->morphWeights(object));
+        else
             system_->setTransform(object, evaluator_->objectTransform(object));
+    }
 }
 
 glm::dmat4 GallerySim::transform(uint32_t object) const {

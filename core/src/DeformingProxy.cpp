@@ -79,6 +79,12 @@ Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, co
         return fail(name + "the object is neither skinned nor morphed");
     Result<Proxy> rest = buildProxy(o.mesh, settings);
     if (!rest) return fail(name + rest.error());
+    if (rest->source == ProxySource::OwnMesh) { // the render mesh moves exactly as it is drawn
+        DeformingProxy own;
+        own.proxy = std::move(rest).value();
+        own.deformation = deformationOf(o);
+        return own;
+    }
     Result<Candidate> best = judged(scene, object, std::move(rest).value(), samples);
     if (!best) return fail(name + best.error());
     DeformingProxy out;

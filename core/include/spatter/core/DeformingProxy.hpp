@@ -11,7 +11,8 @@
 // render vertex's own joint weights and morph deltas (transferDeformation finds them again). Of the
 // two proxies the one with the smaller bound over the poses (boundOverPoses) is kept, and its
 // errorBound is that bound, so that decal boxes sized by it hold the drawn surface at every sampled
-// pose.
+// pose. When the proxy builder keeps the render mesh itself (ProxySource::OwnMesh), it moves exactly
+// as it is drawn: its bound stays 0 and no pose is sampled.
 
 #include "spatter/core/PoseBound.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
