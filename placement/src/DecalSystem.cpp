@@ -397,8 +397,41 @@ struct DecalSystem::Impl {
                                                          " degrees from its normal (type '" + t.name +
                                                          "' allows " + formatNumber(t.maxAngleDeg) + ")");
         SpawnResult placed = place(hit->object, hit->localPosition, hit->normal, dir, typeIndex, true);
-        if (placed.placed()) anchors.bind(placed.handle.slot, decals.back(), hit->primitive, world);
+        if (placed.placed()) settleOnDrawnSurface(placed.handle.slot, hit->primitive, dir);
         return placed;
+    }
+
+    // A decal just placed on a skinned or morphed object: moved onto the drawn surface and anchored
+    // there (SkinAnchors), so that it follows the pose. Its centre goes to the render surface point
+    // under the hit and its normal to that triangle's, so no proxy error is left for the box to hold:
+    // it is as deep as on a render mesh, which keeps it off the body behind a limb. Volumetric decals
+    // keep the box their crater was clipped in.
+    void settleOnDrawnSurface(uint32_t slot, uint32_t primitive, const glm::dvec3& shot) {
+        Decal& d = decals.back();
+        const std::optional<SkinAnchors::Location> at = SkinAnchors::locate(d, primitive, world);
+        if (!at) return;
+        const DecalType& t = types[d.type];
+        if (!t.volumetric) moveOntoSurface(d, at->frame, shot, t);
+        anchors.add(slot, d, *at);
+    }
+
+    void moveOntoSurface(Decal& d, const glm::dmat4& frame, const glm::dvec3& shot,
+                         const DecalType& t) const {
+        const glm::dmat3 m(object(d.object).transform);
+        const glm::dmat3 inv = glm::inverse(m);
+        const glm::dvec3 n(frame[2]);
+        const Frame f = d.frame();
+        glm::dvec3 tan = glm::dvec3(f.tangent) - n * glm::dot(n, glm::dvec3(f.tangent));
+        if (!(glm::length(tan) > 1e-6)) return; // the surface turned edge-on to the decal: leave it
+        tan = glm::normalize(tan);
+        const glm::dvec3 bit = glm::cross(n, tan);
+        d.center = glm::vec3(frame[3]);
+        d.packedFrame = packFrame(tan, bit, n, d.mirrored());
+        if (t.projection == Projection::Shot) d.slant = slantOf(tan, bit, n, -(inv * shot));
+        const double worldSize =
+            std::max(double(d.size.x) * glm::length(m * tan), double(d.size.y) * glm::length(m * bit));
+        const double halfDepth = std::max(double(t.halfDepth), double(settings.depthMargin) * worldSize);
+        d.halfDepth = float(halfDepth * glm::length(glm::transpose(inv) * n));
     }
 
     // world.intersectBatch(rays), traced in slices by up to settings.batchThreads threads (each

@@ -2,19 +2,24 @@
 
 namespace spatter {
 
-void SkinAnchors::bind(uint32_t slot, const Decal& decal, uint32_t primitive, const CollisionWorld& world) {
+std::optional<SkinAnchors::Location> SkinAnchors::locate(const Decal& decal, uint32_t primitive,
+                                                         const CollisionWorld& world) {
     const std::optional<SurfaceAnchor> surface =
         world.anchorAt(decal.object, primitive, glm::dvec3(decal.center));
-    if (!surface) return;
+    if (!surface) return std::nullopt;
     const std::optional<glm::dmat4> frame = world.anchorFrame(decal.object, *surface);
-    if (!frame) return;
+    if (!frame) return std::nullopt;
+    return Location{*surface, *frame};
+}
+
+void SkinAnchors::add(uint32_t slot, const Decal& decal, const Location& location) {
     // The frame is orthonormal: its inverse rotation is its transpose.
-    const glm::dmat3 toLocal = glm::transpose(glm::dmat3(*frame));
+    const glm::dmat3 toLocal = glm::transpose(glm::dmat3(location.frame));
     const Frame f = decal.frame();
     Anchor a;
     a.object = decal.object;
-    a.surface = *surface;
-    a.center = toLocal * (glm::dvec3(decal.center) - glm::dvec3((*frame)[3]));
+    a.surface = location.surface;
+    a.center = toLocal * (glm::dvec3(decal.center) - glm::dvec3(location.frame[3]));
     a.tangent = toLocal * glm::dvec3(f.tangent);
     a.normal = toLocal * glm::dvec3(f.normal);
     anchors_[slot] = a;

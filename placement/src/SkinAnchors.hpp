@@ -18,9 +18,17 @@ namespace spatter {
 
 class SkinAnchors {
 public:
-    // Anchors the decal of handle slot `slot`, just placed as `decal` by a hit on collision triangle
-    // `primitive` of its object; does nothing when the object does not deform.
-    void bind(uint32_t slot, const Decal& decal, uint32_t primitive, const CollisionWorld& world);
+    // Where on the drawn surface a decal lies: the anchor and its frame at the current pose.
+    struct Location {
+        SurfaceAnchor surface;
+        glm::dmat4 frame{1.0}; // CollisionWorld::anchorFrame
+    };
+    // The location of `decal`, just placed by a hit on collision triangle `primitive` of its object;
+    // empty when the object does not deform.
+    static std::optional<Location> locate(const Decal& decal, uint32_t primitive,
+                                          const CollisionWorld& world);
+    // Anchors the decal of handle slot `slot`, `decal`, at `location`.
+    void add(uint32_t slot, const Decal& decal, const Location& location);
     void erase(uint32_t slot) {
         if (!anchors_.empty()) anchors_.erase(slot);
     }
