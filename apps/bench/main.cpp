@@ -8,6 +8,7 @@
 #include "PoseBench.hpp"
 #include "ProxyBench.hpp"
 #include "RenderBench.hpp"
+#include "SkinnedBench.hpp"
 #include "SkipBench.hpp"
 #include "StressReport.hpp"
 #include "Tradeoff.hpp"
@@ -47,6 +48,9 @@ const Command kCommands[] = {
      spatter::bench::runPoseCommand},
     {"load", "loading a Draco-compressed glTF against its uncompressed twin: the time ratio (--json FILE)",
      spatter::bench::runLoadCommand},
+    {"skinned",
+     "decals on skinned objects: pose update, spawn against static, drift over a cycle (--json FILE)",
+     spatter::bench::runSkinnedCommand},
 };
 
 void usage(std::FILE* out) {

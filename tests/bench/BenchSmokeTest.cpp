@@ -170,6 +170,37 @@ TEST(BenchSmoke, PoseQuickTimesCesiumMansPosePerFrame) {
         EXPECT_GT(row["us_per_frame"].get<double>(), 0.0) << row.dump();
 }
 
+TEST(BenchSmoke, SkinnedQuickMeasuresEveryModelInOneRun) {
+    SPATTER_REQUIRE_SHARED(cesium, "gltf/CesiumMan/CesiumMan.glb");
+    SPATTER_REQUIRE_SHARED(rigged, "gltf/RiggedSimple/RiggedSimple.glb");
+    const std::string dir = test::scratchDir("bench-skinned");
+    ASSERT_EQ(runBench("skinned --quick --json " + dir + "/s.json", dir + "/log"), 0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/s.json");
+    ASSERT_TRUE(j.is_object()) << readAll(dir + "/s.json");
+    const size_t models = 3;
+    ASSERT_EQ(j["models"].size(), models) << j.dump();
+    // Per model: two collision meshes posed, one spawn comparison, three drift methods, two bounds.
+    ASSERT_EQ(j["pose_update"].size(), 2 * models);
+    ASSERT_EQ(j["spawn"].size(), models);
+    ASSERT_EQ(j["drift"].size(), 3 * models);
+    ASSERT_EQ(j["pose_bounds"].size(), 2 * models);
+    for (const auto& row : j["pose_update"]) {
+        EXPECT_GT(row["triangles"].get<size_t>(), 0u) << row.dump();
+        EXPECT_GT(row["ms_per_call"].get<double>(), 0.0) << row.dump();
+    }
+    for (const auto& row : j["spawn"]) {
+        EXPECT_GT(row["placed_skinned"].get<size_t>(), 0u) << row.dump();
+        EXPECT_GT(row["ratio"].get<double>(), 0.0) << row.dump();
+    }
+    for (const auto& row : j["drift"]) {
+        EXPECT_GT(row["samples"].get<size_t>(), 0u) << row.dump();
+        EXPECT_GE(row["max"].get<double>(), row["median"].get<double>()) << row.dump();
+    }
+    for (const auto& row : j["pose_bounds"])
+        EXPECT_GE(row["bound"].get<double>(), row["sampled_max"].get<double>()) << row.dump();
+}
+
 TEST(BenchSmoke, RenderQuickTimesTheDecalPass) {
     if (!noGl().empty()) {
         if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();

@@ -1,0 +1,744 @@
+#include "SkinnedBench.hpp"
+
+#include "BenchSupport.hpp"
+
+#include "spatter/core/DeformingProxy.hpp"
+#include "spatter/core/MeshDistance.hpp"
+#include "spatter/core/SceneEvaluator.hpp"
+#include "spatter/core/SceneLoader.hpp"
+#include "spatter/core/SkinnedArm.hpp"
+#include "spatter/placement/CollisionWorld.hpp"
+#include "spatter/placement/DecalSystem.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace spatter::bench {
+
+namespace {
+
+const char* kCommand = "skinned";
+const char* kArm = "builtin:skinned-arm";
+const std::vector<std::string> kModels = {kArm, "gltf/CesiumMan/CesiumMan.glb",
+                                          "gltf/RiggedSimple/RiggedSimple.glb"};
+
+constexpr double kPoseTargetMs = 0.2;
+constexpr double kSpawnTargetRatio = 2.0;
+constexpr double kDriftTarget = 0.02;       // of the decal's size
+constexpr double kDecalSizeFraction = 0.05; // decals a twentieth of the model's diagonal
+constexpr double kSpawnPhase = 0.3;         // the pose of the spawn rows, a fraction of the cycle
+constexpr float kProxyTolerance = 0.005f;   // relative to the render mesh's diagonal
+
+const char* kUsage =
+    R"(usage: spatter-bench skinned [--frames N] [--repeat R] [--samples S] [--quick] [--json FILE]
+
+Decals on skinned objects, in one run, for builtin:skinned-arm (50 rings of 50 vertices: 5,000
+triangles), CesiumMan and RiggedSimple (the shared data). Times are thread CPU time on one core
+(every Embree device made with threads=1, so that its refits run on the timed thread), the median of
+R runs. Each model's skinned object is posed by its animation 0, looped over its duration.
+
+Pose update: CollisionWorld::setPose per call (skinning the collision mesh in double, then the
+Embree refit), cycling through N poses of the cycle (the poses are evaluated beforehand), with
+  render mesh       the render mesh as the collision mesh
+  deforming proxy   buildDeformingProxy at 0.5% of the diagonal (its deformation transferred from
+                    the render mesh)
+  Target: at most 0.2 ms a call for a collision mesh of 5,000 triangles.
+
+Spawn: DecalSystem::spawn per call on the skinned object posed at 30% of its cycle (render mesh as
+collision mesh; each hit also anchored to the render surface) against spawn on the same posed mesh
+built as a static object, the same rays (scattered around the posed mesh, 90% aimed at its surface),
+each run into a fresh system with room for every decal. Target: skinned at most 2x static.
+
+Drift: decals (5% of the diagonal) shot at several times of the cycle, then the object posed at N
+frames of the whole cycle. For each decal and frame, the distance along the surface (in the plane of
+the render triangle under it) between the decal's centre and the render-surface point it was placed
+on (the nearest render point to its centre at its spawn time, posed with the render mesh), as a
+fraction of the decal's size; median and max over decals and frames (whole max: the full distance,
+off the surface included):
+  skin anchors, render mesh       DecalSystem::setPose moves the decals; render mesh as collision
+  skin anchors, deforming proxy   the same over the 0.5% deforming proxy
+  nearest joint                   a decal attached as engines attach them: its spawn-time centre
+                                  carried by the joint of largest weight at the nearest render
+                                  vertex, centre_t = J_t * inverse(J_t0) * centre_t0
+  Target: within 2% of the decal's size.
+
+Pose bounds: the deforming proxy's bound over S sampled poses of each animation (PoseBound: bound,
+the largest sampled bound, the motion allowance between samples), against the proxy simplified at
+rest, absolute and as a fraction of the render mesh's diagonal.
+
+--frames N   poses of the cycle (default 60)      --repeat R  runs per timed row (default 7)
+--samples S  poses a proxy bound is certified at (default 128)
+--quick      6 frames, 3 runs, 8 samples, fewer calls and shots (smoke test)
+--json FILE  {"targets", "models", "pose_update", "spawn", "drift", "pose_bounds"}: arrays of rows,
+             "models": model, render_triangles, joints, duration_s, decal_size, proxy_seconds;
+             "pose_update": model, collision, triangles, ms_per_call, within_target;
+             "spawn": model, rays, placed_skinned, placed_static, skinned_ns, static_ns, ratio,
+             within_target; "drift": model, method, decals, samples, median, max, whole_max,
+             within_target (fractions of the decal's size); "pose_bounds": model, proxy, triangles,
+             bound, sampled_max, motion, poses, bound_fraction
+)";
+
+struct Sizes {
+    size_t runs = 7;
+    size_t frames = 60;      // poses of the cycle
+    size_t poseCalls = 1000; // setPose calls a run
+    size_t spawnRays = 2000; // spawns a run
+    size_t spawnTimes = 8;   // when the drift's decals are shot
+    size_t raysPerTime = 48; // shots each time
+    int samples = 128;       // poses of a proxy bound
+};
+
+Sizes quickSizes() {
+    Sizes s;
+    s.runs = 3;
+    s.frames = 6;
+    s.poseCalls = 30;
+    s.spawnRays = 200;
+    s.spawnTimes = 2;
+    s.raysPerTime = 12;
+    s.samples = 8;
+    return s;
+}
+
+// ---- Models and their poses ------------------------------------------------------------------
+
+struct Model {
+    std::string name;
+    Scene scene;
+    uint32_t object = 0;    // the first skinned receiver: the object every row measures
+    double duration = 0.0;  // of animation 0, seconds
+    double decalSize = 0.0; // world units
+};
+
+// One pose of the model's object as a host hands it to setPose.
+struct Pose {
+    glm::dmat4 transform{1.0};
+    std::vector<glm::dmat4> joints;
+    std::vector<double> weights;
+};
+
+Pose poseAt(const Model& m, SceneEvaluator& evaluator, double t) {
+    evaluator.evaluate(0, t);
+    Pose p{evaluator.objectTransform(m.object), {}, evaluator.morphWeights(m.object)};
+    p.joints = evaluator.jointMatrices(size_t(m.scene.objects[m.object].skin));
+    return p;
+}
+
+double cycleTime(const Model& m, double phase) {
+    return m.duration * phase;
+}
+
+// The render mesh's vertices at time t, in world space.
+std::vector<glm::dvec3> worldPositionsAt(const Model& m, SceneEvaluator& evaluator, double t) {
+    evaluator.evaluate(0, t);
+    const glm::dmat4& toWorld = evaluator.objectTransform(m.object);
+    std::vector<glm::dvec3> p = posedPositions(m.scene, m.object, evaluator);
+    for (glm::dvec3& v : p)
+        v = glm::dvec3(toWorld * glm::dvec4(v, 1.0));
+    return p;
+}
+
+Mesh meshAt(const Model& m, const std::vector<glm::dvec3>& positions) {
+    Mesh mesh = m.scene.objects[m.object].mesh;
+    for (size_t v = 0; v < positions.size(); ++v)
+        mesh.positions[v] = glm::vec3(positions[v]);
+    return mesh;
+}
+
+SkinnedArmSettings armSettings() {
+    SkinnedArmSettings s;
+    s.rings = 50; // 49 bands of 50 quads and the two end fans: 5,000 triangles
+    s.segments = 50;
+    return s;
+}
+
+Result<Scene> loadModelScene(const std::string& spec) {
+    if (spec == kArm) return makeSkinnedArm(armSettings());
+    const std::string path = resolveInput(spec);
+    if (path.empty())
+        return fail("'" + spec + "' not found (nor in the shared data '" + sharedDataDir() + "')");
+    return loadScene(path);
+}
+
+Result<Model> loadModel(const std::string& spec) {
+    Result<Scene> scene = loadModelScene(spec);
+    if (!scene) return fail(scene.error());
+    Model m{spec, std::move(scene).value()};
+    const auto& animations = m.scene.animation.animations;
+    if (animations.empty() || !(animations[0].duration > 0.0)) return fail(spec + ": no animation to loop");
+    m.duration = animations[0].duration;
+    const auto& objects = m.scene.objects;
+    const auto skinned = std::find_if(objects.begin(), objects.end(), [](const SceneObject& o) {
+        return o.skin != -1 && o.dynamic && o.receivesDecals;
+    });
+    if (skinned == objects.end()) return fail(spec + ": no skinned object receives decals");
+    m.object = uint32_t(skinned - objects.begin());
+    SceneEvaluator evaluator(m.scene);
+    m.decalSize = kDecalSizeFraction * referencedDiagonal(meshAt(m, worldPositionsAt(m, evaluator, 0.0)));
+    return m;
+}
+
+// ---- Worlds and decal systems ----------------------------------------------------------------
+
+// Embree commits and refits on the calling thread alone, so that the thread's CPU time is all the
+// work of a call.
+WorldSettings oneThread() {
+    WorldSettings s;
+    s.useColliders = false;
+    s.deviceConfig = "threads=1";
+    return s;
+}
+
+// The model's world: the render mesh as the skinned object's collision mesh, or `proxy`.
+Result<CollisionWorld> buildWorld(const Model& m, const std::optional<Proxy>& proxy) {
+    std::vector<std::optional<Proxy>> proxies;
+    if (proxy) {
+        proxies.resize(m.scene.objects.size());
+        proxies[m.object] = proxy;
+    }
+    return CollisionWorld::build(m.scene, proxies, oneThread());
+}
+
+// A system over `world` with one decal type (index 0) of `size`, and room for `decals` decals
+// everywhere, so that no limit evicts or rejects.
+Result<DecalSystem> makeSystem(Result<CollisionWorld> world, double size, size_t decals) {
+    if (!world) return fail(world.error());
+    DecalSettings settings;
+    settings.maxPerCell = settings.budget = settings.maxPerObject = uint32_t(decals);
+    Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), settings);
+    if (!system) return system;
+    DecalType type;
+    type.name = "hole";
+    type.size = glm::vec2(float(size));
+    if (Result<uint16_t> index = system->registerType(type); !index) return fail(index.error());
+    return system;
+}
+
+Status setPose(DecalSystem& system, const Model& m, const Pose& pose) {
+    Result<TransformUpdate> u = system.setPose(m.object, pose.transform, pose.joints, pose.weights);
+    if (!u) return fail(m.name + ": " + u.error());
+    return {};
+}
+
+// ---- Pose update -----------------------------------------------------------------------------
+
+struct PoseRow {
+    std::string model, collision;
+    size_t triangles = 0;
+    double seconds = 0.0; // per setPose call
+};
+
+// Median over the runs of the thread CPU time per setPose call, cycling through `poses`.
+Result<double> poseSeconds(CollisionWorld& world, uint32_t object, const std::vector<Pose>& poses,
+                           const Sizes& sizes) {
+    std::vector<double> times;
+    for (size_t r = 0; r < sizes.runs; ++r) {
+        const double t0 = threadCpuNow();
+        for (size_t i = 0; i < sizes.poseCalls; ++i) {
+            const Pose& p = poses[i % poses.size()];
+            if (Result<TransformUpdate> u = world.setPose(object, p.transform, p.joints, p.weights); !u)
+                return fail(u.error());
+        }
+        times.push_back((threadCpuNow() - t0) / double(sizes.poseCalls));
+    }
+    return median(times);
+}
+
+Result<PoseRow> measurePose(const Model& m, const std::optional<Proxy>& proxy, const Sizes& sizes) {
+    SceneEvaluator evaluator(m.scene);
+    std::vector<Pose> poses;
+    for (size_t f = 0; f < sizes.frames; ++f)
+        poses.push_back(poseAt(m, evaluator, cycleTime(m, double(f) / double(sizes.frames))));
+    Result<CollisionWorld> world = buildWorld(m, proxy);
+    if (!world) return fail(m.name + ": " + world.error());
+    Result<double> seconds = poseSeconds(world.value(), m.object, poses, sizes);
+    if (!seconds) return fail(m.name + ": " + seconds.error());
+    return PoseRow{m.name, proxy ? "deforming proxy 0.5%" : "render mesh", world->object(m.object)->triangles,
+                   seconds.value()};
+}
+
+// ---- Spawn cost ------------------------------------------------------------------------------
+
+struct SpawnTiming {
+    double seconds = 0.0; // per spawn
+    size_t placed = 0;    // in one run
+};
+
+// Median over the runs of the thread CPU time per spawn of `rays`, each run into a fresh system
+// from `make`, so that every run places into the same empty system.
+Result<SpawnTiming> spawnSeconds(const std::function<Result<DecalSystem>()>& make,
+                                 const std::vector<Ray>& rays, size_t runs) {
+    std::vector<double> times;
+    size_t placed = 0;
+    for (size_t r = 0; r < runs; ++r) {
+        Result<DecalSystem> system = make();
+        if (!system) return fail(system.error());
+        const double t0 = threadCpuNow();
+        for (const Ray& ray : rays)
+            system->spawn(ray, 0);
+        times.push_back((threadCpuNow() - t0) / double(rays.size()));
+        placed = system->stats().placed;
+    }
+    return SpawnTiming{median(times), placed};
+}
+
+struct SpawnRow {
+    std::string model;
+    size_t rays = 0;
+    SpawnTiming skinned, statik;
+    double ratio() const { return skinned.seconds / statik.seconds; }
+};
+
+Result<SpawnRow> measureSpawn(const Model& m, const Sizes& sizes) {
+    SceneEvaluator evaluator(m.scene);
+    const double t = cycleTime(m, kSpawnPhase);
+    const Pose pose = poseAt(m, evaluator, t);
+    const Mesh posed = meshAt(m, worldPositionsAt(m, evaluator, t));
+    const std::vector<Ray> rays = scatteredRays(posed, sizes.spawnRays, 7);
+    Result<SpawnTiming> skinned = spawnSeconds(
+        [&]() -> Result<DecalSystem> {
+            Result<DecalSystem> s = makeSystem(buildWorld(m, std::nullopt), m.decalSize, rays.size());
+            if (!s) return s;
+            if (Status p = setPose(s.value(), m, pose); !p) return fail(p.error());
+            return s;
+        },
+        rays, sizes.runs);
+    if (!skinned) return fail(m.name + ": " + skinned.error());
+    Scene twin = singleObjectScene(posed, m.name + " posed, static");
+    twin.materials = m.scene.materials; // the submeshes name them
+    twin.images = m.scene.images;
+    Result<SpawnTiming> statik = spawnSeconds(
+        [&] { return makeSystem(CollisionWorld::build(twin, {}, oneThread()), m.decalSize, rays.size()); },
+        rays, sizes.runs);
+    if (!statik) return fail(m.name + ": " + statik.error());
+    return SpawnRow{m.name, rays.size(), skinned.value(), statik.value()};
+}
+
+// ---- Drift -----------------------------------------------------------------------------------
+
+const uint32_t* cornersOf(const Mesh& mesh, const SurfaceAnchor& a) {
+    return &mesh.indices[3 * size_t(a.triangle)];
+}
+
+glm::dvec3 pointOf(const Mesh& mesh, const std::vector<glm::dvec3>& p, const SurfaceAnchor& a) {
+    const uint32_t* c = cornersOf(mesh, a);
+    return a.bary.x * p[c[0]] + a.bary.y * p[c[1]] + a.bary.z * p[c[2]];
+}
+
+// The part of `centre`'s offset from anchor `a` that lies in the plane of a's triangle (the whole
+// offset when the triangle has collapsed): how far a decal has slid along the surface.
+double alongSurface(const Mesh& mesh, const std::vector<glm::dvec3>& p, const SurfaceAnchor& a,
+                    const glm::dvec3& centre) {
+    const uint32_t* c = cornersOf(mesh, a);
+    const glm::dvec3 off = centre - pointOf(mesh, p, a);
+    const glm::dvec3 n = glm::cross(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]]);
+    const double n2 = glm::dot(n, n);
+    return n2 > 0.0 ? glm::length(off - n * (glm::dot(n, off) / n2)) : glm::length(off);
+}
+
+// The nearest point of the render surface to `centre`, as triangle and barycentric coordinates.
+SurfaceAnchor nearestPoint(const ClosestPointQuery& query, const Mesh& mesh, const std::vector<glm::dvec3>& p,
+                           const glm::dvec3& centre) {
+    const std::optional<ClosestPoint> c = query.closest(centre);
+    if (!c) return {};
+    SurfaceAnchor a{c->triangle, {}};
+    const uint32_t* k = cornersOf(mesh, a);
+    a.bary = barycentric(c->point, p[k[0]], p[k[1]], p[k[2]]);
+    return a;
+}
+
+// The joint of largest weight at the render vertex nearest to `centre` (ties: the first listed).
+uint16_t carryingJoint(const SkinWeights& skin, const std::vector<glm::dvec3>& p, const glm::dvec3& centre) {
+    size_t nearest = 0;
+    for (size_t v = 1; v < p.size(); ++v)
+        if (glm::length(p[v] - centre) < glm::length(p[nearest] - centre)) nearest = v;
+    const size_t stride = size_t(skin.influences), first = nearest * stride;
+    size_t best = first;
+    for (size_t k = first + 1; k < first + stride; ++k)
+        if (skin.weights[k] > skin.weights[best]) best = k;
+    return skin.joints[best];
+}
+
+// A decal the library moves, and the render-surface point it was placed on.
+struct Anchored {
+    DecalHandle handle;
+    SurfaceAnchor point;
+};
+
+// A decal attached to a joint: its spawn-time world centre taken into the joint's bind space.
+struct JointAttached {
+    SurfaceAnchor point;
+    uint16_t joint = 0;
+    glm::dvec3 bindCentre{0.0}; // inverse(J_t0) * centre_t0
+};
+
+// Fractions of the decal size, over decals and frames.
+struct DriftSamples {
+    std::string method;
+    std::vector<double> along;
+    double wholeMax = 0.0;
+    size_t decals = 0;
+};
+
+// The world at one time of the cycle, as the drift rows read it.
+struct Moment {
+    Pose pose;
+    std::vector<glm::dvec3> positions; // render vertices, world space
+    Mesh mesh;                         // with them
+};
+
+Moment momentAt(const Model& m, double t) {
+    SceneEvaluator evaluator(m.scene);
+    Moment at{poseAt(m, evaluator, t), worldPositionsAt(m, evaluator, t), {}};
+    at.mesh = meshAt(m, at.positions);
+    return at;
+}
+
+class DriftRun {
+public:
+    DriftRun(const Model& m, DecalSystem onRender, DecalSystem onProxy)
+        : m_(m), systems_{std::move(onRender), std::move(onProxy)} {}
+
+    // Poses both systems at `t` and shoots `rays` rays at the posed object into both.
+    Status shoot(double t, size_t rays, uint64_t seed) {
+        const Moment at = momentAt(m_, t);
+        if (Status s = poseBoth(at.pose); !s) return s;
+        Result<ClosestPointQuery> query = ClosestPointQuery::create(at.mesh);
+        if (!query) return fail(query.error());
+        for (const Ray& ray : scatteredRays(at.mesh, rays, seed))
+            for (size_t s = 0; s < 2; ++s)
+                if (std::optional<Anchored> a = place(systems_[s], ray, query.value(), at)) {
+                    anchored_[s].push_back(*a);
+                    if (s == 0) attachToJoint(*a, at);
+                }
+        return {};
+    }
+
+    // Poses both systems at `t` and adds every decal's drift there.
+    Status measure(double t) {
+        const Moment at = momentAt(m_, t);
+        if (Status s = poseBoth(at.pose); !s) return s;
+        for (size_t s = 0; s < 2; ++s)
+            for (const Anchored& a : anchored_[s])
+                add(samples_[s], at, a.point, systems_[s].worldBox(a.handle)->center);
+        for (const JointAttached& j : joints_)
+            add(samples_[2], at, j.point,
+                glm::dvec3(at.pose.joints[j.joint] * glm::dvec4(j.bindCentre, 1.0)));
+        return {};
+    }
+
+    std::vector<DriftSamples> samples() {
+        const char* methods[3] = {"skin anchors, render mesh", "skin anchors, deforming proxy",
+                                  "nearest joint"};
+        const size_t decals[3] = {anchored_[0].size(), anchored_[1].size(), joints_.size()};
+        for (size_t s = 0; s < 3; ++s) {
+            samples_[s].method = methods[s];
+            samples_[s].decals = decals[s];
+        }
+        return std::vector<DriftSamples>(samples_, samples_ + 3);
+    }
+
+private:
+    Status poseBoth(const Pose& pose) {
+        for (DecalSystem& system : systems_)
+            if (Status s = setPose(system, m_, pose); !s) return s;
+        return {};
+    }
+
+    std::optional<Anchored> place(DecalSystem& system, const Ray& ray, const ClosestPointQuery& query,
+                                  const Moment& at) const {
+        const SpawnResult r = system.spawn(ray, 0);
+        if (!r.placed() || system.get(r.handle)->object != m_.object) return std::nullopt;
+        const glm::dvec3 centre = system.worldBox(r.handle)->center;
+        return Anchored{r.handle, nearestPoint(query, at.mesh, at.positions, centre)};
+    }
+
+    void attachToJoint(const Anchored& a, const Moment& at) {
+        const glm::dvec3 centre = systems_[0].worldBox(a.handle)->center;
+        const uint16_t joint = carryingJoint(m_.scene.objects[m_.object].skinWeights, at.positions, centre);
+        const glm::dvec3 bind(glm::inverse(at.pose.joints[joint]) * glm::dvec4(centre, 1.0));
+        joints_.push_back({a.point, joint, bind});
+    }
+
+    void add(DriftSamples& to, const Moment& at, const SurfaceAnchor& point, const glm::dvec3& centre) const {
+        to.along.push_back(alongSurface(at.mesh, at.positions, point, centre) / m_.decalSize);
+        to.wholeMax =
+            std::max(to.wholeMax, glm::length(centre - pointOf(at.mesh, at.positions, point)) / m_.decalSize);
+    }
+
+    const Model& m_;
+    DecalSystem systems_[2]; // render mesh, deforming proxy
+    std::vector<Anchored> anchored_[2];
+    std::vector<JointAttached> joints_; // the render-mesh system's decals, attached to joints
+    DriftSamples samples_[3];
+};
+
+Result<std::vector<DriftSamples>> measureDrift(const Model& m, const Proxy& proxy, const Sizes& sizes) {
+    const size_t room = sizes.spawnTimes * sizes.raysPerTime;
+    Result<DecalSystem> onRender = makeSystem(buildWorld(m, std::nullopt), m.decalSize, room);
+    Result<DecalSystem> onProxy = makeSystem(buildWorld(m, proxy), m.decalSize, room);
+    if (!onRender || !onProxy) return fail(m.name + ": " + (onRender ? onProxy.error() : onRender.error()));
+    DriftRun run(m, std::move(onRender).value(), std::move(onProxy).value());
+    // Spawn times fall between the frames, so that no frame is a decal's own spawn pose.
+    for (size_t k = 0; k < sizes.spawnTimes; ++k)
+        if (Status s = run.shoot(cycleTime(m, (double(k) + 0.5) / double(sizes.spawnTimes)),
+                                 sizes.raysPerTime, 100 + k);
+            !s)
+            return fail(s.error());
+    for (size_t f = 0; f < sizes.frames; ++f)
+        if (Status s = run.measure(cycleTime(m, double(f) / double(sizes.frames))); !s)
+            return fail(s.error());
+    return run.samples();
+}
+
+// ---- Output ----------------------------------------------------------------------------------
+
+std::string verdict(bool met) {
+    return met ? "yes" : "no";
+}
+
+// Three significant digits: the skin anchors' drift is a rounding error, millionths of a size.
+std::string percent(double fraction) {
+    return fmt(100.0 * fraction, 3) + "%";
+}
+
+struct ModelReport {
+    const Model* model = nullptr;
+    DeformingProxy proxy;
+    double proxySeconds = 0.0; // wall time of buildDeformingProxy
+    std::vector<PoseRow> pose;
+    SpawnRow spawn;
+    std::vector<DriftSamples> drift;
+};
+
+Json modelJson(const ModelReport& r) {
+    const SceneObject& o = r.model->scene.objects[r.model->object];
+    Json j;
+    j["model"] = r.model->name;
+    j["render_triangles"] = o.mesh.triangleCount();
+    j["joints"] = r.model->scene.animation.skins[size_t(o.skin)].joints.size();
+    j["duration_s"] = number(r.model->duration);
+    j["decal_size"] = number(r.model->decalSize);
+    j["proxy_seconds"] = number(r.proxySeconds);
+    return j;
+}
+
+Json poseSection(const std::vector<ModelReport>& reports) {
+    Json rows = Json::array();
+    std::vector<std::vector<std::string>> table;
+    for (const ModelReport& r : reports)
+        for (const PoseRow& p : r.pose) {
+            const bool met = p.seconds * 1e3 <= kPoseTargetMs;
+            table.push_back(
+                {p.model, p.collision, std::to_string(p.triangles), fixed(p.seconds * 1e3, 4), verdict(met)});
+            rows.push_back({{"model", p.model},
+                            {"collision", p.collision},
+                            {"triangles", p.triangles},
+                            {"ms_per_call", number(p.seconds * 1e3)},
+                            {"within_target", met}});
+        }
+    std::printf("pose update: CollisionWorld::setPose per call\n");
+    printTable({"model", "collision", "triangles", "ms per call", "within 0.2 ms"}, table);
+    return rows;
+}
+
+Json spawnSection(const std::vector<ModelReport>& reports) {
+    Json rows = Json::array();
+    std::vector<std::vector<std::string>> table;
+    for (const ModelReport& r : reports) {
+        const SpawnRow& s = r.spawn;
+        const bool met = s.ratio() <= kSpawnTargetRatio;
+        table.push_back({s.model, std::to_string(s.rays), std::to_string(s.skinned.placed),
+                         fixed(s.skinned.seconds * 1e9, 0), fixed(s.statik.seconds * 1e9, 0),
+                         fixed(s.ratio(), 2), verdict(met)});
+        rows.push_back({{"model", s.model},
+                        {"rays", s.rays},
+                        {"placed_skinned", s.skinned.placed},
+                        {"placed_static", s.statik.placed},
+                        {"skinned_ns", number(s.skinned.seconds * 1e9)},
+                        {"static_ns", number(s.statik.seconds * 1e9)},
+                        {"ratio", number(s.ratio())},
+                        {"within_target", met}});
+    }
+    std::printf("\nspawn: on the posed skinned object against the same posed mesh built static\n");
+    printTable({"model", "rays", "placed", "skinned ns", "static ns", "ratio", "within 2x"}, table);
+    return rows;
+}
+
+Json driftSection(const std::vector<ModelReport>& reports) {
+    Json rows = Json::array();
+    std::vector<std::vector<std::string>> table;
+    for (const ModelReport& r : reports)
+        for (const DriftSamples& d : r.drift) {
+            const double med = median(d.along), max = percentile(d.along, 1.0);
+            const bool met = max <= kDriftTarget;
+            table.push_back({r.model->name, d.method, std::to_string(d.decals),
+                             std::to_string(d.along.size()), percent(med), percent(max), percent(d.wholeMax),
+                             verdict(met)});
+            rows.push_back({{"model", r.model->name},
+                            {"method", d.method},
+                            {"decals", d.decals},
+                            {"samples", d.along.size()},
+                            {"median", number(med)},
+                            {"max", number(max)},
+                            {"whole_max", number(d.wholeMax)},
+                            {"within_target", met}});
+        }
+    std::printf("\ndrift along the surface from the point placed on, of the decal's size\n");
+    printTable({"model", "method", "decals", "samples", "median", "max", "whole max", "max within 2%"},
+               table);
+    return rows;
+}
+
+// `triangles` null: not known (the rest proxy when the posed one was kept).
+Json boundRow(const ModelReport& r, const char* proxy, const PoseBound& b, const Json& triangles) {
+    const double diagonal = referencedDiagonal(r.model->scene.objects[r.model->object].mesh);
+    return {{"model", r.model->name},
+            {"proxy", proxy},
+            {"triangles", triangles},
+            {"bound", number(b.bound)},
+            {"sampled_max", number(b.sampledMax)},
+            {"motion", number(b.motion)},
+            {"poses", b.poses},
+            {"bound_fraction", number(b.bound / diagonal)}};
+}
+
+Json boundSection(const std::vector<ModelReport>& reports) {
+    Json rows = Json::array();
+    for (const ModelReport& r : reports) {
+        const DeformingProxy& p = r.proxy;
+        const Json kept = p.proxy.mesh.triangleCount();
+        rows.push_back(boundRow(r, "deforming", p.poses, kept));
+        rows.push_back(boundRow(r, "rest", p.restPoses, p.simplifiedPosed ? Json() : kept));
+    }
+    std::vector<std::vector<std::string>> table;
+    for (const Json& row : rows)
+        table.push_back({row["model"].get<std::string>(), row["proxy"].get<std::string>(),
+                         row["triangles"].is_null() ? "-" : std::to_string(row["triangles"].get<size_t>()),
+                         fmt(row["bound"].get<double>(), 4), fmt(row["sampled_max"].get<double>(), 4),
+                         fmt(row["motion"].get<double>(), 4), percent(row["bound_fraction"].get<double>())});
+    std::printf("\npose bounds over the sampled poses, object units (triangles -: not kept)\n");
+    printTable({"model", "proxy", "triangles", "bound", "sampled max", "motion", "of diagonal"}, table);
+    return rows;
+}
+
+// ---- The command -----------------------------------------------------------------------------
+
+Result<ModelReport> measureModel(const Model& m, const Sizes& sizes) {
+    ModelReport r;
+    r.model = &m;
+    ProxySettings settings;
+    settings.tolerance = kProxyTolerance;
+    settings.toleranceRelative = true;
+    const double t0 = now();
+    Result<DeformingProxy> proxy = buildDeformingProxy(m.scene, m.object, settings, sizes.samples);
+    if (!proxy) return fail(m.name + ": " + proxy.error());
+    r.proxySeconds = now() - t0;
+    r.proxy = std::move(proxy).value();
+    for (const std::optional<Proxy>& collision :
+         {std::optional<Proxy>(), std::optional<Proxy>(r.proxy.proxy)}) {
+        Result<PoseRow> row = measurePose(m, collision, sizes);
+        if (!row) return fail(row.error());
+        r.pose.push_back(row.value());
+    }
+    Result<SpawnRow> spawn = measureSpawn(m, sizes);
+    if (!spawn) return fail(spawn.error());
+    r.spawn = spawn.value();
+    Result<std::vector<DriftSamples>> drift = measureDrift(m, r.proxy.proxy, sizes);
+    if (!drift) return fail(drift.error());
+    r.drift = std::move(drift).value();
+    return r;
+}
+
+Result<Sizes> parseSizes(const Args& args) {
+    const bool quick = args.has("--quick");
+    Sizes s = quick ? quickSizes() : Sizes{};
+    Result<uint64_t> frames = parseCount(args.value("--frames", std::to_string(s.frames)), "--frames");
+    if (!frames) return fail(frames.error());
+    Result<uint64_t> runs = parseCount(args.value("--repeat", std::to_string(s.runs)), "--repeat");
+    if (!runs) return fail(runs.error());
+    Result<uint64_t> samples = parseCount(args.value("--samples", std::to_string(s.samples)), "--samples");
+    if (!samples) return fail(samples.error());
+    if (frames.value() == 0 || runs.value() == 0 || samples.value() == 0 || samples.value() > 100000)
+        return fail("--frames and --repeat must be positive, --samples in [1, 100000]");
+    s.frames = frames.value();
+    s.runs = runs.value();
+    s.samples = int(samples.value());
+    return s;
+}
+
+Json report(const std::vector<ModelReport>& reports, const Sizes& sizes, const MachineInfo& machine) {
+    Json j;
+    j["command"] = kCommand;
+    j["machine"] = toJson(machine);
+    j["clock"] = "thread CPU time";
+    j["embree_threads"] = 1;
+    j["runs"] = sizes.runs;
+    j["frames"] = sizes.frames;
+    j["pose_calls"] = sizes.poseCalls;
+    j["spawn_rays"] = sizes.spawnRays;
+    j["spawn_phase"] = kSpawnPhase;
+    j["spawn_times"] = sizes.spawnTimes;
+    j["rays_per_time"] = sizes.raysPerTime;
+    j["pose_samples"] = sizes.samples;
+    j["decal_size_fraction"] = kDecalSizeFraction;
+    j["proxy_tolerance"] = kProxyTolerance;
+    j["targets"] = {{"pose_update_ms", kPoseTargetMs},
+                    {"spawn_ratio", kSpawnTargetRatio},
+                    {"drift_fraction", kDriftTarget}};
+    Json models = Json::array();
+    for (const ModelReport& r : reports)
+        models.push_back(modelJson(r));
+    j["models"] = models;
+    j["pose_update"] = poseSection(reports);
+    j["spawn"] = spawnSection(reports);
+    j["drift"] = driftSection(reports);
+    j["pose_bounds"] = boundSection(reports);
+    return j;
+}
+
+} // namespace
+
+int runSkinnedCommand(int argc, char** argv) {
+    int exitCode = 0;
+    const std::optional<Args> parsed = commandArgs(
+        argc, argv, kCommand, kUsage, {"--frames", "--repeat", "--samples", "--json"}, {"--quick"}, exitCode);
+    if (!parsed) return exitCode;
+    const Args& args = *parsed;
+    if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
+    const Result<Sizes> sizes = parseSizes(args);
+    if (!sizes) return usageError(kCommand, sizes.error());
+    const MachineInfo machine = machineInfo();
+    std::printf("spatter-bench skinned: %zu frames, %zu runs a row, %d poses a bound\nmachine: %s\n\n",
+                sizes->frames, sizes->runs, sizes->samples, describe(machine).c_str());
+    std::vector<Model> models;
+    for (const std::string& spec : kModels) {
+        Result<Model> m = loadModel(spec);
+        if (!m) {
+            std::fprintf(stderr, "spatter-bench skinned: %s\n", m.error().c_str());
+            return 1;
+        }
+        models.push_back(std::move(m).value());
+    }
+    std::vector<ModelReport> reports;
+    for (const Model& m : models) {
+        Result<ModelReport> r = measureModel(m, sizes.value());
+        if (!r) {
+            std::fprintf(stderr, "spatter-bench skinned: %s\n", r.error().c_str());
+            return 1;
+        }
+        reports.push_back(std::move(r).value());
+    }
+    const Json j = report(reports, sizes.value(), machine);
+    if (args.has("--json"))
+        if (Status s = writeJson(j, args.value("--json")); !s) {
+            std::fprintf(stderr, "spatter-bench skinned: %s\n", s.error().c_str());
+            return 1;
+        }
+    return 0;
+}
+
+} // namespace spatter::bench
