@@ -18,7 +18,7 @@ it runs a scripted, seeded session and writes DIR/gallery.png and DIR/gallery.js
 options:
   --scene FILE        glTF/GLB (its dynamic nodes are the targets, sliding on rails; in a scene with
                       an animation its nodes follow the first animation instead) or builtin:gallery
-                      (default)
+                      (default; with a skinned dummy whose arms swing, generated like the rest)
   --headless          run the scripted session even when a display is present
   --out DIR           output folder of the headless run (default gallery-out)
   --shots N           shots of the headless run (default 160)

@@ -2,6 +2,7 @@
 
 #include "spatter/core/DeformingProxy.hpp"
 #include "spatter/core/SceneLoader.hpp"
+#include "spatter/core/SkinnedDummy.hpp"
 
 #include <atomic>
 #include <chrono>
@@ -97,6 +98,8 @@ Result<GallerySim> GallerySim::create(const GalleryOptions& options) {
     sim.options_ = options;
     if (sim.options_.cacheDir.empty()) sim.options_.cacheDir = defaultCacheDir();
     sim.scene_ = std::make_unique<Scene>(std::move(scene).value());
+    if (sim.scene_->source == "builtin:gallery") // in front of the arch, left of the way in
+        addSkinnedDummy(*sim.scene_, glm::translate(glm::dmat4(1.0), glm::dvec3(-2.2, 0.0, 0.8)));
     for (const std::string& w : sim.scene_->warnings)
         std::fprintf(stderr, "spatter-gallery: warning: %s\n", w.c_str());
     if (!sim.scene_->animation.animations.empty()) {
@@ -281,6 +284,7 @@ SpawnResult GallerySim::shoot(const Ray& ray, ShotKind kind) {
     if (result.placed()) {
         const Decal* decal = system_->get(result.handle);
         if (decal && scene_->objects[decal->object].dynamic) ++counters_.onMovingTargets;
+        if (decal && deforms(scene_->objects[decal->object])) ++counters_.onSkinnedTargets;
     }
     return result;
 }

@@ -39,6 +39,7 @@ struct Rail {
 struct ShotCounters {
     uint64_t shots = 0;
     uint64_t onMovingTargets = 0;  // decals placed on dynamic objects
+    uint64_t onSkinnedTargets = 0; // of those, on skinned or morphed ones (which follow the skin)
     double placementSeconds = 0.0; // spent in spawn calls
 };
 

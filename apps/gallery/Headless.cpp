@@ -2,6 +2,8 @@
 
 #include "GallerySim.hpp"
 #include "GalleryView.hpp"
+#include "SkinTracking.hpp"
+#include "Tracking.hpp"
 
 #include "spatter/render/GlContext.hpp"
 
@@ -64,34 +66,6 @@ private:
     int burst_ = 0;
     glm::dvec2 burstAim_{0.0};
 };
-
-// Centre of the white pixels of a coverage image, or nothing when none is white.
-std::optional<glm::dvec2> coverageCentroid(const Image& image) {
-    glm::dvec2 sum(0.0);
-    size_t count = 0;
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x)
-            if (image.rgba[(size_t(y) * image.width + x) * 4] > 127) {
-                sum += glm::dvec2(x + 0.5, y + 0.5);
-                ++count;
-            }
-    if (count == 0) return std::nullopt;
-    return sum / double(count);
-}
-
-// Pixel position (x right, y down) of a world point seen by `camera`.
-glm::dvec2 project(const Camera& camera, int width, int height, const glm::dvec3& world) {
-    const glm::dvec4 clip = projection(camera, double(width) / height) * viewRotation(camera) *
-                            glm::dvec4(world - camera.eye, 1.0);
-    const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
-    return {(ndc.x * 0.5 + 0.5) * width, (0.5 - ndc.y * 0.5) * height};
-}
-
-const Decal* findDecal(const DecalSystem& system, uint32_t id) {
-    for (const Decal& d : system.decals())
-        if (d.id == id) return &d;
-    return nullptr;
-}
 
 // Follows a decal on a target riding its rail (the smallest fully visible one, which its target does
 // not clip, so that the centre of its pixels moves like its centre; the newest among equals) across
@@ -234,6 +208,7 @@ int runHeadless(const GalleryOptions& options) {
     }
 
     Result<nlohmann::ordered_json> tracked = trackTargetDecal(sim.value(), renderer.value(), camera);
+    Result<nlohmann::ordered_json> skinned = trackSkinnedDecal(sim.value(), renderer.value(), camera);
     if (Status s = renderFrame(); !s) {
         std::cerr << "spatter-gallery: " << s.error() << "\n";
         return 1;
@@ -264,6 +239,7 @@ int runHeadless(const GalleryOptions& options) {
     out["rejected"] = st.rejectedTotal();
     out["evicted"] = st.evicted;
     out["on_moving_targets"] = sim->counters().onMovingTargets;
+    out["on_skinned_targets"] = sim->counters().onSkinnedTargets;
     out["alive"] = st.alive;
     out["frames"] = frames;
     out["placement_us_per_shot"] =
@@ -280,6 +256,7 @@ int runHeadless(const GalleryOptions& options) {
     out["tolerance_percent"] = sim->tolerancePercent();
     out["proxy_build_s"] = sim->proxySeconds();
     out["tracked_decal"] = tracked ? tracked.value() : nlohmann::ordered_json{{"error", tracked.error()}};
+    out["skinned_decal"] = skinned ? skinned.value() : nlohmann::ordered_json{{"error", skinned.error()}};
     out["size"] = {settings.width, settings.height};
     out["seed"] = options.seed;
     if (!loaded->is_null()) out["loaded"] = loaded.value();

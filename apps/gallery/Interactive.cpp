@@ -98,8 +98,9 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
     const DecalStats& st = sim.decals().stats();
     ImGui::Text("decals alive %zu   placed %llu   evicted %llu", st.alive, (unsigned long long)st.placed,
                 (unsigned long long)st.evicted);
-    ImGui::Text("shots %llu   on moving targets %llu", (unsigned long long)sim.counters().shots,
-                (unsigned long long)sim.counters().onMovingTargets);
+    ImGui::Text("shots %llu   on moving targets %llu (skinned %llu)",
+                (unsigned long long)sim.counters().shots, (unsigned long long)sim.counters().onMovingTargets,
+                (unsigned long long)sim.counters().onSkinnedTargets);
     const double avgUs =
         sim.counters().shots ? 1e6 * sim.counters().placementSeconds / double(sim.counters().shots) : 0.0;
     ImGui::Text("placement: last %.1f us, mean %.1f us per shot", hud.lastPlacementUs, avgUs);
