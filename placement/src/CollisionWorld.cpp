@@ -876,8 +876,12 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
             anyStatic = true;
         } else {
             od.scene = impl->newScene();
-            // Per-geometry build qualities (the refit of a posed mesh) apply in two-level scenes.
-            if (od.posable) rtcSetSceneBuildQuality(od.scene, RTC_BUILD_QUALITY_LOW);
+            // A posed mesh's hierarchy is refitted, not rebuilt: Embree refits a geometry of build
+            // quality REFIT in a two-level (LOW) scene flagged DYNAMIC, and rebuilds it otherwise.
+            if (od.posable) {
+                rtcSetSceneFlags(od.scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
+                rtcSetSceneBuildQuality(od.scene, RTC_BUILD_QUALITY_LOW);
+            }
             RTCGeometry g = impl->triangleGeometry(od, nullptr);
             rtcAttachGeometry(od.scene, g);
             rtcReleaseGeometry(g);
