@@ -4,6 +4,7 @@
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/SceneEvaluator.hpp"
 #include "spatter/core/SkinnedArm.hpp"
+#include "spatter/core/SkinnedDummy.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
 #include <gtest/gtest.h>
@@ -199,4 +200,43 @@ TEST(SkinnedDecals, RemovedDecalsNoLongerMoveAndBadPosesChangeNothing) {
     EXPECT_EQ(system.version(), version);
     for (size_t i = 0; i < before.size(); ++i)
         EXPECT_TRUE(sameDecal(before[i], system.decals()[i]));
+}
+
+TEST(SkinnedDecals, ADecalOnAnArmNeverReachesTheBodyBehindItAtAnyProjectionDepth) {
+    Scene scene;
+    scene.source = "test:dummy";
+    const uint32_t dummy = addSkinnedDummy(scene, glm::dmat4(1.0));
+    DecalSystem system = makeSystem(scene, roomy());
+    for (const float size : {0.05f, 0.2f}) {
+        DecalType deep = bulletHole();
+        deep.name = "deep_" + std::to_string(size);
+        deep.size = glm::vec2(size);
+        deep.halfDepth = 1.8f; // the dummy's height: a box this deep would paint the torso
+        const uint16_t type = addType(system, deep);
+        for (const double t : {0.0, 0.75, 2.25}) {
+            SceneEvaluator evaluator(scene);
+            evaluator.evaluate(0, t);
+            ASSERT_TRUE(
+                system.setPose(dummy, evaluator.objectTransform(dummy), evaluator.jointMatrices(0), {}).ok());
+            // From the dummy's left (+X) at its left arm, halfway down, the torso right behind it.
+            const SceneObject& o = scene.objects[dummy];
+            const std::vector<glm::dvec3> posed = posedPositions(scene, dummy, evaluator);
+            glm::dvec3 elbow(0.0); // the outermost point of the left arm about the elbow's height
+            for (size_t v = 0; v < posed.size(); ++v)
+                if (o.skinWeights.joints[2 * v] != 0 && std::abs(posed[v].y - 1.12) < 0.05 &&
+                    posed[v].x > elbow.x)
+                    elbow = posed[v];
+            const SpawnResult shot =
+                system.spawn(ray(elbow + glm::dvec3(3.0, 0.0, 0.0), {-1.0, 0.0, 0.0}), type);
+            ASSERT_TRUE(shot.placed()) << shot.reason;
+            const glm::mat4 toBox = glm::inverse(system.get(shot.handle)->boxToObject());
+            size_t bodyPoints = 0;
+            for (size_t v = 0; v < posed.size(); ++v) {
+                if (o.skinWeights.joints[2 * v] != 0 || o.skinWeights.weights[2 * v] < 1.0) continue; // arms
+                const glm::vec3 u(toBox * glm::vec4(glm::vec3(posed[v]), 1.0f));
+                bodyPoints += std::abs(u.x) <= 1.0f && std::abs(u.y) <= 1.0f && std::abs(u.z) <= 1.0f;
+            }
+            EXPECT_EQ(bodyPoints, 0u) << "size " << size << ", t " << t;
+        }
+    }
 }

@@ -199,11 +199,13 @@ public:
     // result says so; its decals stay.
     Result<TransformUpdate> setTransform(uint32_t object, const glm::dmat4& transform);
     // Poses a skinned or morphed dynamic object as it is drawn (CollisionWorld::setPose: later shots
-    // meet the posed surface). The decals that shots placed on a skinned object follow its skin: each
-    // keeps the skin binding of the point it was placed on and is moved, turned and bent with it (its
-    // centre and frame change in place, logged as Changed); decals placed by spawnAt or spawnAttached,
-    // and decals loaded from a save, ride the object's transform only. Fails, and changes nothing,
-    // as CollisionWorld::setPose does.
+    // meet the posed surface). A decal that a shot (spawn, spawnBatch) places on such an object is
+    // moved onto the drawn surface under the hit, with a half-depth of depthMargin times its size
+    // whatever its type asks (volumetric ones excepted), and keeps that point of the render surface
+    // (CollisionWorld::anchorAt): each setPose moves, turns and bends it with the surface (its centre
+    // and frame change in place, logged as Changed). Decals placed by spawnAt or spawnAttached, and
+    // decals loaded from a save, ride the object's transform only. Fails, and changes nothing, as
+    // CollisionWorld::setPose does.
     Result<TransformUpdate> setPose(uint32_t object, const glm::dmat4& transform,
                                     const std::vector<glm::dmat4>& joints,
                                     const std::vector<double>& morphWeights);
