@@ -77,16 +77,6 @@ static bool deforms(const SceneObject& o) {
     return o.dynamic && (o.skin >= 0 || !o.morphTargets.empty());
 }
 
-// The collision proxy of object `i`: one whose bound holds over the scene's animation for an object
-// that deforms, otherwise one certified at rest (against the object's authored collider, if any).
-static Result<Proxy> proxyOf(const Scene& scene, size_t i, const ProxySettings& settings) {
-    const SceneObject& o = scene.objects[i];
-    if (!deforms(o)) return buildProxy(o.mesh, settings, o.collider ? &*o.collider : nullptr);
-    Result<DeformingProxy> p = buildDeformingProxy(scene, i, settings, 64);
-    if (!p) return fail(p.error());
-    return std::move(p->proxy);
-}
-
 bool isBanner(const SceneObject& object) {
     return object.name.rfind("banner_", 0) == 0;
 }
@@ -173,7 +163,7 @@ Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<fl
         for (size_t i = next++; i < scene_->objects.size(); i = next++) {
             const SceneObject& o = scene_->objects[i];
             if (!o.receivesDecals) continue;
-            Result<Proxy> proxy = proxyOf(*scene_, i, settings);
+            Result<Proxy> proxy = buildObjectProxy(*scene_, i, settings);
             const size_t finished = ++done;
             const size_t triangles = doneTriangles += o.mesh.triangleCount();
             const double fraction = double(triangles) / double(std::max<size_t>(totalTriangles, 1));

@@ -2,12 +2,17 @@
 // per ray (JSON Lines), in input order.
 
 #include "spatter/core/DecalType.hpp"
+#include "spatter/core/DeformingProxy.hpp"
+#include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/core/SceneEvaluator.hpp"
 #include "spatter/core/SceneLoader.hpp"
+#include "spatter/core/VertexDeformation.hpp"
 #include "spatter/placement/DecalPersistence.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/placement/RayParser.hpp"
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -17,6 +22,8 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -26,8 +33,8 @@
 namespace {
 
 const char* kUsage = R"(usage: spatter-place SCENE [--rays FILE|-] [--seed N] [--size W[,H]] [--max-angle DEG]
-                     [--proxy render|auto|TOL] [--cache DIR] [--translate X,Y,Z] [--out FILE]
-                     [--save FILE] [--summary]
+                     [--proxy render|auto|TOL] [--cache DIR] [--translate X,Y,Z] [--time T]
+                     [--out FILE] [--save FILE] [--summary]
 
 Casts rays at SCENE (builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file) through the
 decal system and prints one JSON object per input ray, in input order (JSON Lines), on stdout or
@@ -41,6 +48,10 @@ Records:
   {"ray":0,"status":"placed","reason":"","object":"name","object_id":0,"decal_id":123,
    "position":[x,y,z],"normal":[x,y,z],"tangent":[x,y,z],"bitangent":[x,y,z],"size":[w,h],
    "half_depth":d,"projection":[x,y,z],"max_angle_deg":a,"proxy_error_bound":h}
+  with --time, a decal on a skinned or morphed object also carries "time":T and
+   "anchor":{"triangle":i,"bary":[b0,b1,b2]}: the triangle of the object's render mesh it lies on and
+   the point's barycentric coordinates there, with which spatter-render --time draws it at another
+   pose
   {"ray":1,"status":"missed","reason":"..."}
   {"ray":2,"status":"rejected","reason":"..."}
 status is placed, missed (the ray hits no decal receiver) or rejected (a line that cannot be
@@ -73,6 +84,10 @@ Options:
                     nothing is cached
   --translate X,Y,Z move the whole scene by this offset before building the collision world (the
                     rays are given in the moved world)
+  --time T          trace the scene posed at T seconds of its first animation: animated objects at
+                    their transforms then, skinned and morphed ones deformed (their proxies hold
+                    their bound over the animation); rays are given in the posed world. A scene
+                    without animations stays in its rest pose, with a warning
   --out FILE        write the records to FILE instead of stdout
   --save FILE       write the decal system's final state to FILE (spatter/placement/
                     DecalPersistence.hpp): loadDecals gives it back to a decal system of the same
@@ -128,6 +143,74 @@ int usageError(const std::string& message) {
     return 2;
 }
 
+bool deforms(const spatter::SceneObject& o) {
+    return o.dynamic && (o.skin >= 0 || !o.morphTargets.empty());
+}
+
+// Poses the animated receivers of `system` at time t of the scene's first animation (deforming ones
+// with setPose, the others with setTransform), in the world moved by `offset`.
+void poseScene(spatter::DecalSystem& system, const spatter::Scene& scene, double t,
+               const glm::dvec3& offset) {
+    spatter::SceneEvaluator evaluator(scene);
+    evaluator.evaluate(0, t);
+    const glm::dmat4 move = glm::translate(glm::dmat4(1.0), offset);
+    for (uint32_t i = 0; i < scene.objects.size(); ++i) {
+        const spatter::SceneObject& o = scene.objects[i];
+        if (o.node < 0 || !o.dynamic || !system.world().object(i)->inWorld) continue;
+        const glm::dmat4 transform = move * evaluator.objectTransform(i);
+        if (!deforms(o)) {
+            system.setTransform(i, transform);
+            continue;
+        }
+        std::vector<glm::dmat4> joints;
+        if (o.skin >= 0)
+            for (const glm::dmat4& j : evaluator.jointMatrices(size_t(o.skin)))
+                joints.push_back(move * j);
+        if (spatter::Result<spatter::TransformUpdate> r =
+                system.setPose(i, transform, joints, evaluator.morphWeights(i));
+            !r)
+            std::cerr << "spatter-place: warning: " << r.error() << "\n";
+    }
+}
+
+// The render triangle a decal on a deforming object lies on at time t, and its barycentric
+// coordinates there, as spatter-render --time reads them ("anchor").
+class Anchors {
+public:
+    Anchors(const spatter::Scene& scene, double t) : scene_(scene), evaluator_(scene) {
+        evaluator_.evaluate(0, t);
+    }
+
+    nlohmann::ordered_json of(const spatter::Decal& d) {
+        auto it = posed_.find(d.object);
+        if (it == posed_.end()) it = posed_.emplace(d.object, posedMesh(d.object)).first;
+        const auto& [mesh, query] = it->second;
+        const std::optional<spatter::ClosestPoint> c = query->closest(glm::dvec3(d.center));
+        if (!c) return nullptr;
+        const uint32_t* k = &mesh.indices[3 * size_t(c->triangle)];
+        const glm::dvec3 b =
+            spatter::barycentric(c->point, glm::dvec3(mesh.positions[k[0]]), glm::dvec3(mesh.positions[k[1]]),
+                                 glm::dvec3(mesh.positions[k[2]]));
+        return {{"triangle", c->triangle}, {"bary", {b.x, b.y, b.z}}};
+    }
+
+private:
+    using Posed = std::pair<spatter::Mesh, std::shared_ptr<spatter::ClosestPointQuery>>;
+    Posed posedMesh(uint32_t object) {
+        spatter::Mesh m = scene_.objects[object].mesh;
+        const std::vector<glm::dvec3> p = spatter::posedPositions(scene_, object, evaluator_);
+        for (size_t v = 0; v < p.size(); ++v)
+            m.positions[v] = glm::vec3(p[v]);
+        auto query =
+            std::make_shared<spatter::ClosestPointQuery>(spatter::ClosestPointQuery::create(m).value());
+        return {std::move(m), std::move(query)};
+    }
+
+    const spatter::Scene& scene_;
+    spatter::SceneEvaluator evaluator_;
+    std::map<uint32_t, Posed> posed_;
+};
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -139,6 +222,7 @@ int main(int argc, char** argv) {
     std::optional<glm::dvec2> decalSize; // default: decalSizeForScene
     float maxAngle = 80.0f;
     glm::dvec3 translate(0.0);
+    std::optional<double> time;
     bool summary = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -187,6 +271,11 @@ int main(int argc, char** argv) {
                 !parseDouble(parts[1], translate.y) || !parseDouble(parts[2], translate.z) ||
                 !std::isfinite(translate.x) || !std::isfinite(translate.y) || !std::isfinite(translate.z))
                 return usageError("--translate needs three finite numbers X,Y,Z");
+        } else if (a == "--time") {
+            double t = 0.0;
+            if (!value(v) || !parseDouble(v, t) || !std::isfinite(t))
+                return usageError("--time needs a finite number of seconds");
+            time = t;
         } else if (!a.empty() && a[0] == '-' && a != "-") {
             return usageError("unknown option " + a);
         } else if (scenePath.empty()) {
@@ -242,7 +331,7 @@ int main(int argc, char** argv) {
                     return true;
                 };
             spatter::Result<spatter::Proxy> proxy =
-                spatter::buildProxy(o.mesh, proxySettings, o.collider ? &*o.collider : nullptr, progress);
+                spatter::buildObjectProxy(scene.value(), i, proxySettings, progress);
             if (!proxy) {
                 if (terminal) std::fputs("\r\033[K", stderr);
                 std::cerr << "spatter-place: proxy of object '" << o.name << "': " << proxy.error() << "\n";
@@ -277,6 +366,16 @@ int main(int argc, char** argv) {
         std::cerr << "spatter-place: " << system.error() << "\n";
         return 1;
     }
+    if (time) {
+        if (scene->animation.animations.empty())
+            std::cerr
+                << "spatter-place: warning: --time: the scene has no animation; traced in its rest pose\n";
+        else
+            poseScene(system.value(), scene.value(), *time, translate);
+    }
+    std::optional<Anchors> anchors;
+    if (time && !scene->animation.animations.empty()) anchors.emplace(scene.value(), *time);
+
     spatter::DecalType type;
     type.name = "spatter-place";
     type.size = decalSize ? glm::vec2(*decalSize)
@@ -346,6 +445,10 @@ int main(int argc, char** argv) {
                 rec["projection"] = vec3(w.projection);
                 rec["max_angle_deg"] = shortFloat(maxAngle);
                 rec["proxy_error_bound"] = system->world().worldErrorBound(d.object);
+                if (anchors && deforms(scene->objects[d.object])) {
+                    rec["time"] = *time;
+                    rec["anchor"] = anchors->of(d);
+                }
             } else if (res.status == spatter::SpawnStatus::Missed) {
                 missed++;
                 rec["status"] = "missed";

@@ -78,7 +78,9 @@ View:
                   the last its last. A scene without animations is drawn in its rest pose (skins
                   and morph weights as the file sets them) with a warning. Decals, rays and camera
                   are given in the posed world; rays are traced against the objects' rest meshes at
-                  their posed transforms, and decals on skinned or morphed objects follow the
+                  their posed transforms. A --decals record that spatter-place --time placed on a
+                  skinned or morphed object at another time ("time" and "anchor") is moved to this
+                  pose with the render triangle it lies on; other decals on such objects follow the
                   object's transform only, not the deformation.
 Output:
   --out FILE.png  the image (default render.png)
@@ -287,7 +289,9 @@ int main(int argc, char** argv) {
 
     spatter::Result<spatter::LoadedDecals> loaded = spatter::LoadedDecals{};
     if (!decalsPath.empty())
-        loaded = spatter::loadPlacedRecords(decalsPath, scene.value(), type, look.value());
+        loaded = spatter::loadPlacedRecords(decalsPath, scene.value(), type, look.value(),
+                                            time ? std::optional<spatter::DrawPose>({*time, translate})
+                                                 : std::nullopt);
     if (!raysPath.empty()) loaded = spatter::placeRays(raysPath, scene.value(), type, look.value(), seed);
     if (!loaded) return failure(loaded.error());
     for (const std::string& warning : loaded->warnings)

@@ -84,6 +84,16 @@ glm::dvec3 barycentric(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec
     return {1.0 - v - w, v, w};
 }
 
+std::optional<glm::dmat4> triangleFrame(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2,
+                                        const glm::dvec3& bary) {
+    const glm::dvec3 t = glm::normalize(p1 - p0);
+    const glm::dvec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+    if (!std::isfinite(t.x + t.y + t.z + n.x + n.y + n.z)) return std::nullopt;
+    const glm::dvec3 at = bary.x * p0 + bary.y * p1 + bary.z * p2;
+    return glm::dmat4(glm::dvec4(t, 0.0), glm::dvec4(glm::cross(n, t), 0.0), glm::dvec4(n, 0.0),
+                      glm::dvec4(at, 1.0));
+}
+
 VertexDeformation deformationOf(const SceneObject& object) {
     VertexDeformation d;
     d.skin = object.skinWeights;

@@ -1,5 +1,7 @@
 #include "spatter/placement/DecalRecords.hpp"
 
+#include "RecordPose.hpp"
+
 #include "spatter/placement/DecalLooks.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/placement/RayParser.hpp"
@@ -26,6 +28,8 @@ struct PlacedRecord {
     double maxAngleDeg = 80.0;
     uint8_t objectId = 0;
     std::optional<uint32_t> decalId;
+    std::optional<double> time;          // when it was placed (spatter-place --time)
+    std::optional<SurfaceAnchor> anchor; // the render triangle it lies on, on a deforming object
 };
 
 // The value of `v` when it is a finite number.
@@ -75,6 +79,24 @@ Status readBox(const Json& rec, WorldDecalBox& box) {
 }
 
 // The record on `line`: nothing for a record that is not placed, an error for one that cannot be used.
+// The record's optional "time" and "anchor" ({"triangle": index, "bary": [b0, b1, b2]}).
+Status readPose(const Json& rec, PlacedRecord& r) {
+    if (rec.contains("time")) {
+        r.time = finite(rec["time"]);
+        if (!r.time) return fail("\"time\" must be a finite number of seconds");
+    }
+    if (!rec.contains("anchor")) return {};
+    const Json& a = rec["anchor"];
+    SurfaceAnchor anchor;
+    if (!a.is_object() || !a.contains("triangle") || !a["triangle"].is_number_unsigned() ||
+        a["triangle"].get<uint64_t>() > UINT32_MAX)
+        return fail("\"anchor\" needs \"triangle\": a triangle index of the object's render mesh");
+    anchor.triangle = a["triangle"].get<uint32_t>();
+    if (Status s = readVec3(a, "bary", anchor.bary); !s) return fail("\"anchor\": " + s.error());
+    r.anchor = anchor;
+    return {};
+}
+
 Result<std::optional<PlacedRecord>> parseRecord(const std::string& line) {
     const Json rec = Json::parse(line, nullptr, false);
     if (rec.is_discarded() || !rec.is_object()) return fail("not a JSON object");
@@ -92,6 +114,7 @@ Result<std::optional<PlacedRecord>> parseRecord(const std::string& line) {
     }
     if (rec.contains("decal_id") && rec["decal_id"].is_number_unsigned())
         r.decalId = rec["decal_id"].get<uint32_t>();
+    if (Status s = readPose(rec, r); !s) return fail(s.error());
     return std::optional<PlacedRecord>(std::move(r));
 }
 
@@ -185,13 +208,28 @@ Decal toObjectSpace(const SceneObject& object, uint32_t index, const WorldDecalB
     return d;
 }
 
+// The record's box at the pose `drawn`: moved from its time along its anchor when it has both and
+// the pose is another; as it is otherwise.
+Result<WorldDecalBox> boxAt(const PlacedRecord& r, uint32_t object, const std::optional<DrawPose>& drawn,
+                            std::optional<RecordPoses>& poses, const Scene& scene) {
+    if (!drawn || !r.time || !r.anchor || *r.time == drawn->time) return r.box;
+    if (!poses) poses.emplace(scene, drawn->offset);
+    const std::optional<glm::dmat4> from = poses->frameAt(object, *r.anchor, *r.time);
+    const std::optional<glm::dmat4> to = poses->frameAt(object, *r.anchor, drawn->time);
+    if (!from || !to)
+        return fail("\"anchor\" names triangle " + std::to_string(r.anchor->triangle) + " of '" + r.object +
+                    "', which it has not or which collapses at one of the two poses");
+    return moveBox(r.box, *from, *to);
+}
+
 Result<LoadedDecals> loadPlacedRecords(const std::string& path, const Scene& scene, const DecalType& base,
-                                       int look) {
+                                       int look, const std::optional<DrawPose>& drawn) {
     std::ifstream in(path);
     if (!in) return fail("cannot read " + path);
     LoadedDecals out;
     out.objectIds.assign(scene.objects.size(), 0);
     TypeTable types(base, look);
+    std::optional<RecordPoses> poses;
     size_t lineNumber = 0;
     for (std::string line; std::getline(in, line);) {
         ++lineNumber;
@@ -204,7 +242,9 @@ Result<LoadedDecals> loadPlacedRecords(const std::string& path, const Scene& sce
         const PlacedRecord& r = *rec.value();
         const int object = findObject(scene, r.object, r.box.center);
         if (object < 0) return fail(where + "the scene has no object named '" + r.object + "'");
-        Decal d = toObjectSpace(scene.objects[size_t(object)], uint32_t(object), r.box);
+        Result<WorldDecalBox> box = boxAt(r, uint32_t(object), drawn, poses, scene);
+        if (!box) return fail(where + box.error());
+        Decal d = toObjectSpace(scene.objects[size_t(object)], uint32_t(object), box.value());
         d.type = types.typeOf(r.maxAngleDeg, out.decals.size(), out.types);
         d.objectId = r.objectId;
         if (r.decalId) d.id = *r.decalId;

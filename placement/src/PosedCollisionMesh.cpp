@@ -89,12 +89,7 @@ std::optional<glm::dmat4> anchorFrame(const PosedCollisionMesh& mesh, const std:
                                       const SurfaceAnchor& anchor, const Pose& pose) {
     const std::array<glm::dvec3, 3> p =
         posedCorners(mesh, indices, anchor.triangle, pose.joints, pose.morphWeights, pose.toObject);
-    const glm::dvec3 t = glm::normalize(p[1] - p[0]);
-    const glm::dvec3 n = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
-    const glm::dvec3 b = glm::cross(n, t);
-    if (!std::isfinite(t.x + t.y + t.z + n.x + n.y + n.z)) return std::nullopt;
-    const glm::dvec3 at = anchor.bary.x * p[0] + anchor.bary.y * p[1] + anchor.bary.z * p[2];
-    return glm::dmat4(glm::dvec4(t, 0.0), glm::dvec4(b, 0.0), glm::dvec4(n, 0.0), glm::dvec4(at, 1.0));
+    return triangleFrame(p[0], p[1], p[2], anchor.bary);
 }
 
 } // namespace spatter

@@ -1,15 +1,19 @@
 #include "PlacementTestUtil.hpp"
+#include "TestData.hpp"
 
 #include "spatter/core/DeformingProxy.hpp"
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/SceneEvaluator.hpp"
 #include "spatter/core/SkinnedArm.hpp"
 #include "spatter/core/SkinnedDummy.hpp"
+#include "spatter/placement/DecalRecords.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 using namespace spatter;
 using namespace spatter::test;
@@ -239,4 +243,67 @@ TEST(SkinnedDecals, ADecalOnAnArmNeverReachesTheBodyBehindItAtAnyProjectionDepth
             EXPECT_EQ(bodyPoints, 0u) << "size " << size << ", t " << t;
         }
     }
+}
+
+TEST(SkinnedDecals, RecordsPlacedAtOneTimeAreLoadedOnTheSurfaceAtAnother) {
+    const Scene arm = makeSkinnedArm();
+    DecalSystem system = makeSystem(arm, roomy());
+    const uint16_t type = addType(system, bulletHole());
+    const double placedAt = 0.3, drawnAt = 1.0;
+    ASSERT_TRUE(poseAt(system, arm, placedAt).ok());
+    const Mesh at0 = drawnMesh(arm, placedAt), at1 = drawnMesh(arm, drawnAt);
+    // Records as spatter-place --time writes them: the world box, the time and the anchor.
+    const std::string path = test::scratchDir("skinned-records") + "/placed.jsonl";
+    std::ofstream file(path);
+    std::vector<SurfacePoint> placedOn;
+    for (const Ray& r : shotsAtForearm(at0)) {
+        const SpawnResult s = system.spawn(r, type);
+        if (!s.placed()) continue;
+        const Decal& d = *system.get(s.handle);
+        const WorldDecal w = system.worldBox(d);
+        const SurfacePoint p = nearestOn(at0, glm::dvec3(d.center));
+        placedOn.push_back(p);
+        const auto v = [](const glm::vec3& a) { return nlohmann::json{a.x, a.y, a.z}; };
+        file << nlohmann::json{{"status", "placed"},
+                               {"object", "arm"},
+                               {"position", {w.center.x, w.center.y, w.center.z}},
+                               {"normal", v(w.frame.normal)},
+                               {"tangent", v(w.frame.tangent)},
+                               {"bitangent", v(w.frame.bitangent)},
+                               {"size", {w.size.x, w.size.y}},
+                               {"half_depth", w.halfDepth},
+                               {"time", placedAt},
+                               {"anchor",
+                                {{"triangle", p.triangle}, {"bary", {p.bary.x, p.bary.y, p.bary.z}}}}}
+                    .dump()
+             << "\n";
+    }
+    file.close();
+    ASSERT_GT(placedOn.size(), 20u);
+    const auto largestDrift = [&](const LoadedDecals& loaded) {
+        double drift = 0.0;
+        for (size_t i = 0; i < loaded.decals.size(); ++i)
+            drift = std::max(drift, glm::length(glm::dvec3(loaded.decals[i].center) - placedOn[i].on(at1)));
+        return drift;
+    };
+    Result<LoadedDecals> moved =
+        loadPlacedRecords(path, arm, bulletHole(), 0, DrawPose{drawnAt, glm::dvec3(0.0)});
+    ASSERT_TRUE(moved.ok()) << moved.error();
+    ASSERT_EQ(moved->decals.size(), placedOn.size());
+    EXPECT_LT(largestDrift(moved.value()), 1e-5);
+    Result<LoadedDecals> asPlaced = loadPlacedRecords(path, arm, bulletHole(), 0);
+    ASSERT_TRUE(asPlaced.ok()) << asPlaced.error();
+    EXPECT_GT(largestDrift(asPlaced.value()), 0.1)
+        << "without the pose the records stay where they were placed";
+
+    std::ofstream bad(path);
+    bad << R"({"status":"placed","object":"arm","position":[0,0.5,0.1],"normal":[0,0,1],"tangent":[1,0,0],)"
+        << R"("bitangent":[0,1,0],"size":[0.05,0.05],"half_depth":0.01,"time":0.3,)"
+        << R"("anchor":{"triangle":999999,"bary":[1,0,0]}})"
+        << "\n";
+    bad.close();
+    Result<LoadedDecals> refused =
+        loadPlacedRecords(path, arm, bulletHole(), 0, DrawPose{drawnAt, glm::dvec3(0.0)});
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().find("triangle 999999"), std::string::npos) << refused.error();
 }

@@ -35,4 +35,10 @@ struct DeformingProxy {
 Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, const ProxySettings& settings,
                                            int samples = 128);
 
+// The proxy of `scene.objects[object]`: buildDeformingProxy for a dynamic object that is skinned or
+// morphed (its bound holds over the animation; `progress` is not called), otherwise buildProxy of its
+// render mesh against its authored collider, if it has one.
+Result<Proxy> buildObjectProxy(const Scene& scene, size_t object, const ProxySettings& settings,
+                               const ProgressCallback& progress = {});
+
 } // namespace spatter

@@ -10,6 +10,7 @@
 #include "spatter/core/Result.hpp"
 
 #include <glm/glm.hpp>
+#include <optional>
 #include <vector>
 
 namespace spatter {
@@ -27,6 +28,12 @@ struct VertexDeformation {
 // triangle, so that a point a rounding step outside still blends its corners with weights in [0, 1];
 // a degenerate triangle gives its first corner (1, 0, 0).
 glm::dvec3 barycentric(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+
+// The frame a point rides on a triangle (p0, p1, p2): columns the direction of its first edge, the
+// perpendicular in its plane and its normal, and, as translation, the point with barycentric
+// coordinates `bary`. Empty for a degenerate triangle.
+std::optional<glm::dmat4> triangleFrame(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2,
+                                        const glm::dvec3& bary);
 
 // The deformation of `object`'s render mesh (its skin weights and its morph targets' position deltas).
 VertexDeformation deformationOf(const SceneObject& object);

@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,13 @@ int findObject(const Scene& scene, const std::string& name, const glm::dvec3& po
 // ID, type and object ID are left 0 for the caller.
 Decal toObjectSpace(const SceneObject& object, uint32_t index, const WorldDecalBox& box);
 
+// The pose decals are drawn at: a time of the scene's first animation and the offset the scene was
+// moved by (Scene::translate), for records placed at another time.
+struct DrawPose {
+    double time = 0.0;
+    glm::dvec3 offset{0.0};
+};
+
 // Reads spatter-place's JSON Lines output: every record with "status": "placed" becomes a decal on
 // the object it names ("object", found by findObject), from its world-space "position", "tangent",
 // "bitangent", "normal", "size", "half_depth" and "projection" (optional: the normal when absent),
@@ -59,9 +67,14 @@ Decal toObjectSpace(const SceneObject& object, uint32_t index, const WorldDecalB
 // records and blank lines are skipped. Dynamic objects that no record names get the smallest object
 // ID no record uses, so that no decal shows on them. Fails on an unreadable file, a line that is not
 // a JSON object, a placed record with a missing or bad field, or an object the scene lacks; the
-// error starts with "path:line: " and names the field.
+// error starts with "path:line: " and names the field. With `drawn`, a record that carries the time
+// it was placed ("time") and the render triangle it lies on ("anchor": {"triangle", "bary"}, as
+// spatter-place --time writes them for skinned and morphed objects) is moved from that time's pose to
+// the drawn one with its triangle, so that it lies on the surface it was placed on (the triangle
+// posed by the scene's animation in the world moved by drawn->offset; the objects' transforms in
+// `scene` are those decals are drawn at, as for every record).
 Result<LoadedDecals> loadPlacedRecords(const std::string& path, const Scene& scene, const DecalType& base,
-                                       int look);
+                                       int look, const std::optional<DrawPose>& drawn = std::nullopt);
 
 // Reads a ray file (one ray per line, "ox oy oz dx dy dz", RayParser.hpp) and places the rays in
 // order through a DecalSystem on the scene's render meshes with `type`, `seed` and no area limits or
