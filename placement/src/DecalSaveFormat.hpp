@@ -22,14 +22,19 @@ constexpr uint32_t kByteOrderMark = 0x01020304;
 constexpr size_t kHeaderBytes = 32;
 constexpr size_t kChecksumAt = 24;
 constexpr size_t kSectionHeaderBytes = 12;
-constexpr const char* kSections[] = {"SETT", "CLCK", "STAT", "TYPE", "OBJS",
-                                     "SLOT", "DECL", "LIMS", "FADE", "CHNG"};
+constexpr const char* kSections[] = {"SETT", "CLCK", "STAT", "TYPE", "OBJS", "SLOT",
+                                     "DECL", "LIMS", "FADE", "CHNG", "SKIN"};
 constexpr uint32_t kSectionCount = sizeof(kSections) / sizeof(kSections[0]);
+// The sections a save of `version` has: versions 1 and 2 end with CHNG, later ones have SKIN too.
+constexpr uint32_t sectionsIn(uint32_t version) {
+    return version <= 2 ? kSectionCount - 1 : kSectionCount;
+}
 constexpr size_t kObjectMinBytes = 4 + 8 + 1 + 1 + 16 * 8;
 constexpr size_t kExceptionBytes = 4 + 3 * 8 + 4;
 constexpr size_t kFadingBytes = 4 + 8;
 constexpr size_t kChangeBytes = 4 + 4 + 1;       // version 1: index, from and kind of a change
 constexpr size_t kChangeColumnBytes = 1 + 1 + 1; // later versions: a change's least in the columns
+constexpr size_t kAnchorBytes = 4 + 4 + 12 * 8;  // slot, triangle, barycentric coordinates, frame
 constexpr uint8_t kDynamicFlag = 1, kInWorldFlag = 2;
 // Kinds of an optional column (writeSparse): every value the default, all values, or the others.
 enum : uint8_t { kAbsent = 0, kDense = 1, kSparse = 2 };

@@ -322,6 +322,38 @@ Status readChanges(ByteReader& r, DecalSystemState& st, uint32_t version) {
 
 // Every slot is used by one decal or free once; the fading slots and the counted ones are used,
 // the counted ones exactly those not fading, each once, in cells of their object's space.
+Status readAnchors(ByteReader& r, DecalSystemState& st, uint32_t /*version*/) {
+    uint32_t n = 0;
+    if (Status s = readCount(r, "SKIN", "anchored decals", kAnchorBytes, n); !s) return s;
+    st.anchors.resize(n);
+    for (SavedAnchor& a : st.anchors) {
+        r.u32(a.slot), r.u32(a.surface.triangle); // counted above
+        for (glm::dvec3* v : {&a.surface.bary, &a.center, &a.tangent, &a.normal})
+            for (int k = 0; k < 3; ++k) {
+                double x = 0.0;
+                r.f64(x);
+                if (!std::isfinite(x) || denormal(x) || std::abs(x) > 1e9)
+                    return corrupt("an anchored decal's coordinates are not normal numbers of sane size");
+                (*v)[k] = x;
+            }
+    }
+    return {};
+}
+
+// Anchors on used slots, each once, by ascending slot.
+Status checkAnchors(const DecalSystemState& st) {
+    std::vector<bool> used(st.generations.size(), false);
+    for (uint32_t slot : st.slotOf)
+        used[slot] = true;
+    for (size_t i = 0; i < st.anchors.size(); ++i) {
+        const uint32_t slot = st.anchors[i].slot;
+        if (slot >= used.size() || !used[slot] || (i > 0 && slot <= st.anchors[i - 1].slot))
+            return corrupt("anchored slot " + std::to_string(slot) +
+                           " is not a used slot in ascending order");
+    }
+    return {};
+}
+
 Status checkSlots(const DecalSystemState& st) {
     const size_t slots = st.generations.size();
     std::vector<uint8_t> use(slots, 0); // 1 used, 2 free, 3 fading, 4 counted
@@ -412,9 +444,10 @@ Status checkHeader(const uint8_t* data, size_t size) {
                            ? "truncated: " + std::to_string(size) + " of " + std::to_string(total) + " bytes"
                            : std::to_string(size - total) + " bytes past the end of the save");
     if (loadU32(data + kChecksumAt) != checksum(data, size)) return corrupt("checksum mismatch");
-    if (loadU32(data + 28) != kSectionCount)
-        return corrupt(std::to_string(loadU32(data + 28)) + " sections, a save has " +
-                       std::to_string(kSectionCount));
+    const uint32_t sections = sectionsIn(loadU32(data + 8));
+    if (loadU32(data + 28) != sections)
+        return corrupt(std::to_string(loadU32(data + 28)) + " sections, a save of this version has " +
+                       std::to_string(sections));
     return {};
 }
 
@@ -436,12 +469,12 @@ Status checkPreamble(const uint8_t* data) {
 Result<DecalSystemState> decode(const uint8_t* data, size_t size) {
     if (Status s = checkHeader(data, size); !s) return fail(s.error());
     using Reader = Status (*)(ByteReader&, DecalSystemState&, uint32_t version);
-    static const Reader kReaders[kSectionCount] = {readSettings, readClock,  readStats,  readTypes,
-                                                   readObjects,  readSlots,  readDecals, readLimits,
-                                                   readFading,   readChanges};
+    static const Reader kReaders[kSectionCount] = {readSettings, readClock,   readStats,  readTypes,
+                                                   readObjects,  readSlots,   readDecals, readLimits,
+                                                   readFading,   readChanges, readAnchors};
     ByteReader r(data + kHeaderBytes, size - kHeaderBytes);
     DecalSystemState st;
-    for (uint32_t k = 0; k < kSectionCount; ++k) {
+    for (uint32_t k = 0; k < sectionsIn(loadU32(data + 8)); ++k) {
         Result<ByteReader> section = openSection(r, kSections[k]);
         if (!section) return fail(section.error());
         if (Status s = kReaders[k](section.value(), st, loadU32(data + 8)); !s) return fail(s.error());
@@ -453,6 +486,7 @@ Result<DecalSystemState> decode(const uint8_t* data, size_t size) {
     if (Status s = checkSlots(st); !s) return fail(s.error());
     if (Status s = checkCells(st); !s) return fail(s.error());
     if (Status s = checkStats(st); !s) return fail(s.error());
+    if (Status s = checkAnchors(st); !s) return fail(s.error());
     return st;
 }
 

@@ -175,13 +175,24 @@ void writeChanges(ByteWriter& w, const DecalSystemState& st) {
         kinds[i] = uint8_t(log[i].kind);
 }
 
+void writeAnchors(ByteWriter& w, const DecalSystemState& st) {
+    w.u32(uint32_t(st.anchors.size()));
+    for (const SavedAnchor& a : st.anchors) {
+        w.u32(a.slot);
+        w.u32(a.surface.triangle);
+        for (const glm::dvec3* v : {&a.surface.bary, &a.center, &a.tangent, &a.normal})
+            for (int k = 0; k < 3; ++k)
+                w.f64((*v)[k]);
+    }
+}
+
 } // namespace
 
 std::vector<uint8_t> encode(const DecalSystemState& st) {
     using Writer = void (*)(ByteWriter&, const DecalSystemState&);
-    static const Writer kWriters[kSectionCount] = {writeSettings, writeClock,  writeStats,  writeTypes,
-                                                   writeObjects,  writeSlots,  writeDecals, writeLimits,
-                                                   writeFading,   writeChanges};
+    static const Writer kWriters[kSectionCount] = {writeSettings, writeClock,   writeStats,  writeTypes,
+                                                   writeObjects,  writeSlots,   writeDecals, writeLimits,
+                                                   writeFading,   writeChanges, writeAnchors};
     std::vector<uint8_t> out;
     out.reserve(kHeaderBytes + st.decals.size() * (kSavedDecalBytes + 16) + 4096);
     ByteWriter w(out);

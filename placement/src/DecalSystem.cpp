@@ -862,6 +862,7 @@ DecalSystemState DecalSystemAccess::capture(const DecalSystem& system) {
     }
     st.changeLogBase = s.changeLogBase;
     st.changeLog = s.changeLog;
+    st.anchors = s.anchors.saved();
     return st;
 }
 
@@ -898,7 +899,7 @@ void DecalSystemAccess::restoreDecals(DecalSystem::Impl& s, DecalSystemState& st
     for (uint32_t i = 0; i < s.slotOf.size(); ++i)
         s.slots[s.slotOf[i]].dense = i;
     s.freeSlots = std::move(st.freeSlots);
-    s.anchors.clear(); // a save keeps the decals where they were drawn, not their skin bindings
+    s.anchors.restore(st.anchors, [&s](uint32_t slot) { return s.decals[s.slots[slot].dense].object; });
     s.fadingSince = std::unordered_map<uint32_t, double>(st.fading.begin(), st.fading.end());
     s.timed = DenseIndexSet();
     for (uint32_t i = 0; i < s.decals.size(); ++i)

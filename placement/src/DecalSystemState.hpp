@@ -4,6 +4,7 @@
 // (DecalPersistence.hpp). capture() copies it; restore() replaces the system's state with it.
 
 #include "AreaLimits.hpp"
+#include "SkinAnchors.hpp"
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalChanges.hpp"
 #include "spatter/placement/DecalSystem.hpp"
@@ -50,6 +51,7 @@ struct DecalSystemState {
     std::vector<CellException> cellExceptions;       // by position
     uint64_t changeLogBase = 0;
     std::vector<DecalChange> changeLog;
+    std::vector<SavedAnchor> anchors; // decals on deforming objects' drawn surfaces, by ascending slot
 };
 
 // What a load does to the world and the decals beside the state (DecalSystemAccess::restore).

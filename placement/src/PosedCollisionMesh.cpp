@@ -87,6 +87,9 @@ SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const std::vector<uint32_
 
 std::optional<glm::dmat4> anchorFrame(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
                                       const SurfaceAnchor& anchor, const Pose& pose) {
+    // An anchor from a save may name any triangle.
+    const size_t triangles = (mesh.drawn ? mesh.drawn->rest.indices : indices).size() / 3;
+    if (size_t(anchor.triangle) >= triangles) return std::nullopt;
     const std::array<glm::dvec3, 3> p =
         posedCorners(mesh, indices, anchor.triangle, pose.joints, pose.morphWeights, pose.toObject);
     return triangleFrame(p[0], p[1], p[2], anchor.bary);

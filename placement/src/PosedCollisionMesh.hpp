@@ -68,7 +68,7 @@ SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const std::vector<uint32_
 
 // The frame of `anchor` at `pose`: columns the direction of its triangle's first edge, the in-plane
 // perpendicular, the triangle's normal and, as translation, the anchor's point, in object space.
-// Empty when the posed triangle has collapsed.
+// Empty for a triangle out of range or one that has collapsed at the pose.
 std::optional<glm::dmat4> anchorFrame(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
                                       const SurfaceAnchor& anchor, const Pose& pose);
 

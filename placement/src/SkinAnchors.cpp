@@ -1,5 +1,7 @@
 #include "SkinAnchors.hpp"
 
+#include <algorithm>
+
 namespace spatter {
 
 std::optional<SkinAnchors::Location> SkinAnchors::locate(const Decal& decal, uint32_t primitive,
@@ -23,6 +25,16 @@ void SkinAnchors::add(uint32_t slot, const Decal& decal, const Location& locatio
     a.tangent = toLocal * glm::dvec3(f.tangent);
     a.normal = toLocal * glm::dvec3(f.normal);
     anchors_[slot] = a;
+}
+
+std::vector<SavedAnchor> SkinAnchors::saved() const {
+    std::vector<SavedAnchor> out;
+    out.reserve(anchors_.size());
+    for (const auto& [slot, a] : anchors_)
+        out.push_back({slot, a.surface, a.center, a.tangent, a.normal});
+    std::sort(out.begin(), out.end(),
+              [](const SavedAnchor& a, const SavedAnchor& b) { return a.slot < b.slot; });
+    return out;
 }
 
 void SkinAnchors::place(const Anchor& anchor, const glm::dmat4& frame, Decal& decal) {

@@ -13,8 +13,16 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <unordered_map>
+#include <vector>
 
 namespace spatter {
+
+// An anchored decal as a save keeps it (its object is its decal's).
+struct SavedAnchor {
+    uint32_t slot = 0;
+    SurfaceAnchor surface;
+    glm::dvec3 center{0.0}, tangent{0.0}, normal{0.0}; // in the anchor's frame
+};
 
 class SkinAnchors {
 public:
@@ -32,8 +40,16 @@ public:
     void erase(uint32_t slot) {
         if (!anchors_.empty()) anchors_.erase(slot);
     }
-    void clear() { anchors_.clear(); }
     size_t size() const { return anchors_.size(); }
+
+    // Every anchor, by ascending slot (a save's order does not depend on the hash table's).
+    std::vector<SavedAnchor> saved() const;
+    // Replaces the anchors with `saved`, each on the object of the decal objectOf(slot) names.
+    template <class ObjectOf> void restore(const std::vector<SavedAnchor>& saved, ObjectOf objectOf) {
+        anchors_.clear();
+        for (const SavedAnchor& a : saved)
+            anchors_[a.slot] = Anchor{objectOf(a.slot), a.surface, a.center, a.tangent, a.normal};
+    }
 
     // Poses the decals anchored on `object` as the world's pose of it now stands: each one's centre
     // and frame in `decals` (at denseOf(slot)); changed(dense) is called for each.

@@ -4,6 +4,7 @@
 
 #include "spatter/placement/DecalPersistence.hpp"
 #include "PlacementTestUtil.hpp"
+#include "spatter/core/SkinnedArm.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -500,10 +501,20 @@ std::vector<uint8_t> changesVersion1(const std::vector<uint8_t>& b) {
     return out;
 }
 
+// `b` without its last section, SKIN, which saves before version 3 do not have.
+std::vector<uint8_t> withoutAnchors(const std::vector<uint8_t>& b) {
+    const size_t skin = sectionAt(b, "SKIN") - 12; // the section's tag and length
+    std::vector<uint8_t> out(b.begin(), b.begin() + std::ptrdiff_t(skin));
+    const uint64_t total = out.size();
+    std::memcpy(&out[16], &total, 8);
+    put32(out, 28, 10);
+    return out;
+}
+
 // `b` as version 1 wrote it (see declVersion1).
 std::vector<uint8_t> asVersion1(const std::vector<uint8_t>& b) {
     std::vector<uint8_t> out =
-        withSection(withSection(b, "DECL", declVersion1(b)), "CHNG", changesVersion1(b));
+        withSection(withSection(withoutAnchors(b), "DECL", declVersion1(b)), "CHNG", changesVersion1(b));
     put32(out, 8, 1);
     reseal(out);
     return out;
@@ -532,6 +543,61 @@ TEST(DecalPersistenceVersions, Version1SavesLoadWithTheirOpacities) {
     load(loaded, v1);
     EXPECT_TRUE(sameSystem(source, loaded));
     EXPECT_LT(float(loaded.decals()[0].opacity), 1.0f);
+}
+
+// A save of decals shot onto the skinned arm, which have anchors.
+std::vector<uint8_t> skinnedSave() {
+    const Scene arm = makeSkinnedArm();
+    DecalSettings roomy;
+    roomy.maxPerCell = 1024;
+    DecalSystem s = makeSystem(arm, roomy);
+    DecalType hole;
+    hole.name = "hole";
+    hole.size = glm::vec2(0.05f);
+    const uint16_t type = addType(s, hole);
+    for (int i = 0; i < 20; ++i)
+        s.spawn(ray({0.02 * i - 0.2, 0.1 + 0.04 * i, 2.0}, {0.0, 0.0, -1.0}), type);
+    EXPECT_GT(s.decals().size(), 5u);
+    return saveDecals(s);
+}
+
+// Anchors that name no decal's slot, or hold numbers that are not finite, are refused by name.
+TEST(DecalPersistenceAnchors, BadAnchorsAreRefused) {
+    const std::vector<uint8_t> good = skinnedSave();
+    const size_t skin = sectionAt(good, "SKIN");
+    const auto refusal = [](std::vector<uint8_t> b) {
+        reseal(b);
+        DecalSettings roomy;
+        roomy.maxPerCell = 1024;
+        DecalSystem s = makeSystem(makeSkinnedArm(), roomy);
+        DecalType hole;
+        hole.name = "hole";
+        addType(s, hole);
+        Result<DecalLoadReport> r = loadDecals(s, b.data(), b.size());
+        if (r.ok()) return std::string();
+        EXPECT_TRUE(s.decals().empty()) << "a refused load changes nothing";
+        return r.error();
+    };
+    std::vector<uint8_t> slot = good;
+    put32(slot, skin + 4, 1u << 30);
+    EXPECT_NE(refusal(slot).find("anchored slot"), std::string::npos) << refusal(slot);
+    std::vector<uint8_t> nan = good;
+    const double notANumber = std::nan("");
+    std::memcpy(&nan[skin + 4 + 8], &notANumber, 8);
+    EXPECT_NE(refusal(nan).find("anchored decal"), std::string::npos) << refusal(nan);
+    EXPECT_EQ(refusal(good), "");
+}
+
+// Saves of version 2 (no SKIN section) load into this build as they were.
+TEST(DecalPersistenceVersions, Version2SavesLoadWithoutAnchors) {
+    DecalSystem source = gameSystem(LimitPolicy::EvictOldest);
+    play(source, 0, 200);
+    std::vector<uint8_t> v2 = withoutAnchors(saved(source));
+    put32(v2, 8, 2);
+    reseal(v2);
+    DecalSystem loaded = gameSystem(LimitPolicy::EvictOldest);
+    load(loaded, v2);
+    EXPECT_TRUE(sameSystem(source, loaded));
 }
 
 TEST_F(DecalPersistence, NewerVersionIsRefusedNamingBothVersions) {

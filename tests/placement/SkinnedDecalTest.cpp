@@ -6,6 +6,7 @@
 #include "spatter/core/SceneEvaluator.hpp"
 #include "spatter/core/SkinnedArm.hpp"
 #include "spatter/core/SkinnedDummy.hpp"
+#include "spatter/placement/DecalPersistence.hpp"
 #include "spatter/placement/DecalRecords.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
@@ -306,4 +307,26 @@ TEST(SkinnedDecals, RecordsPlacedAtOneTimeAreLoadedOnTheSurfaceAtAnother) {
         loadPlacedRecords(path, arm, bulletHole(), 0, DrawPose{drawnAt, glm::dvec3(0.0)});
     ASSERT_FALSE(refused.ok());
     EXPECT_NE(refused.error().find("triangle 999999"), std::string::npos) << refused.error();
+}
+
+TEST(SkinnedDecals, SavedAndLoadedDecalsKeepFollowingTheSkin) {
+    const Scene arm = makeSkinnedArm();
+    DecalSystem source = makeSystem(arm, roomy());
+    const uint16_t type = addType(source, bulletHole());
+    ASSERT_TRUE(poseAt(source, arm, 0.3).ok());
+    for (const Ray& r : shotsAtForearm(drawnMesh(arm, 0.3)))
+        source.spawn(r, type);
+    ASSERT_GT(source.decals().size(), 20u);
+    const std::vector<uint8_t> bytes = saveDecals(source);
+
+    DecalSystem loaded = makeSystem(arm, roomy());
+    addType(loaded, bulletHole());
+    Result<DecalLoadReport> report = loadDecals(loaded, bytes.data(), bytes.size());
+    ASSERT_TRUE(report.ok()) << report.error();
+    for (double t : {0.3, 1.0, 1.7}) { // both posed alike: the same decals, bit for bit
+        ASSERT_TRUE(poseAt(source, arm, t).ok());
+        ASSERT_TRUE(poseAt(loaded, arm, t).ok());
+        EXPECT_TRUE(sameDecals(source.decals(), loaded.decals())) << "t " << t;
+    }
+    EXPECT_EQ(saveDecals(loaded), saveDecals(source));
 }

@@ -46,7 +46,7 @@
 namespace spatter {
 
 // The format version this build writes; it reads every version up to it.
-constexpr uint32_t kDecalSaveVersion = 2;
+constexpr uint32_t kDecalSaveVersion = 3;
 
 struct DecalLoadReport {
     size_t decals = 0;                       // live decals after the load

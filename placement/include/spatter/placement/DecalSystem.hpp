@@ -203,9 +203,9 @@ public:
     // moved onto the drawn surface under the hit, with a half-depth of depthMargin times its size
     // whatever its type asks (volumetric ones excepted), and keeps that point of the render surface
     // (CollisionWorld::anchorAt): each setPose moves, turns and bends it with the surface (its centre
-    // and frame change in place, logged as Changed). Decals placed by spawnAt or spawnAttached, and
-    // decals loaded from a save, ride the object's transform only. Fails, and changes nothing, as
-    // CollisionWorld::setPose does.
+    // and frame change in place, logged as Changed); a save keeps that point (DecalPersistence.hpp).
+    // Decals placed by spawnAt or spawnAttached ride the object's transform only. Fails, and changes
+    // nothing, as CollisionWorld::setPose does.
     Result<TransformUpdate> setPose(uint32_t object, const glm::dmat4& transform,
                                     const std::vector<glm::dmat4>& joints,
                                     const std::vector<double>& morphWeights);
