@@ -401,42 +401,17 @@ struct DecalSystem::Impl {
         return placed;
     }
 
-    // A decal just placed on a skinned or morphed object: moved onto the drawn surface and anchored
-    // there (SkinAnchors), so that it follows the pose. Its centre goes to the render surface point
-    // under the hit and its normal to that triangle's, so no proxy error is left for the box to hold.
-    // Its half-depth is depthMargin times its size (kMinSkinDepth at least), whatever its type asks:
-    // on a body a deeper box would reach the torso behind an arm. Volumetric decals keep the box
-    // their crater was clipped in.
+    // A decal just placed on a skinned or morphed object: moved onto the drawn surface
+    // (moveOntoDrawnSurface) and anchored there (SkinAnchors), so that it follows the pose. Volumetric
+    // decals keep the box their crater was clipped in.
     void settleOnDrawnSurface(uint32_t slot, uint32_t primitive, const glm::dvec3& shot) {
         Decal& d = decals.back();
         const std::optional<SkinAnchors::Location> at = SkinAnchors::locate(d, primitive, world);
         if (!at) return;
         const DecalType& t = types[d.type];
-        if (!t.volumetric) moveOntoSurface(d, at->frame, shot, t);
+        if (!t.volumetric)
+            moveOntoDrawnSurface(d, at->frame, shot, t, settings.depthMargin, object(d.object).transform);
         anchors.add(slot, d, *at);
-    }
-
-    static constexpr double kMinSkinDepth = 0.01; // of the size: a box that still holds the surface
-
-    void moveOntoSurface(Decal& d, const glm::dmat4& frame, const glm::dvec3& shot,
-                         const DecalType& t) const {
-        const glm::dmat3 m(object(d.object).transform);
-        const glm::dmat3 inv = glm::inverse(m);
-        const Frame f = d.frame();
-        // The render triangle's normal, unless the shot grazed a silhouette and met it from behind.
-        const glm::dvec3 n =
-            glm::dot(glm::dvec3(frame[2]), inv * shot) < 0.0 ? glm::dvec3(frame[2]) : glm::dvec3(f.normal);
-        glm::dvec3 tan = glm::dvec3(f.tangent) - n * glm::dot(n, glm::dvec3(f.tangent));
-        if (!(glm::length(tan) > 1e-6)) return; // the surface turned edge-on to the decal: leave it
-        tan = glm::normalize(tan);
-        const glm::dvec3 bit = glm::cross(n, tan);
-        d.center = glm::vec3(frame[3]);
-        d.packedFrame = packFrame(tan, bit, n, d.mirrored());
-        if (t.projection == Projection::Shot) d.slant = slantOf(tan, bit, n, -(inv * shot));
-        const double worldSize =
-            std::max(double(d.size.x) * glm::length(m * tan), double(d.size.y) * glm::length(m * bit));
-        const double halfDepth = std::max(double(settings.depthMargin), kMinSkinDepth) * worldSize;
-        d.halfDepth = float(halfDepth * glm::length(glm::transpose(inv) * n));
     }
 
     // world.intersectBatch(rays), traced in slices by up to settings.batchThreads threads (each

@@ -4,6 +4,27 @@
 
 namespace spatter {
 
+void moveOntoDrawnSurface(Decal& d, const glm::dmat4& frame, const glm::dvec3& shot, const DecalType& type,
+                          float depthMargin, const glm::dmat4& objectTransform) {
+    constexpr double kMinDepth = 0.01; // of the size: a box that still holds the surface under it
+    const glm::dmat3 m(objectTransform);
+    const glm::dmat3 inv = glm::inverse(m);
+    const Frame f = d.frame();
+    const glm::dvec3 n =
+        glm::dot(glm::dvec3(frame[2]), inv * shot) < 0.0 ? glm::dvec3(frame[2]) : glm::dvec3(f.normal);
+    glm::dvec3 tan = glm::dvec3(f.tangent) - n * glm::dot(n, glm::dvec3(f.tangent));
+    if (!(glm::length(tan) > 1e-6)) return; // the surface turned edge-on to the decal: leave it
+    tan = glm::normalize(tan);
+    const glm::dvec3 bit = glm::cross(n, tan);
+    d.center = glm::vec3(frame[3]);
+    d.packedFrame = packFrame(tan, bit, n, d.mirrored());
+    if (type.projection == Projection::Shot) d.slant = slantOf(tan, bit, n, -(inv * shot));
+    const double worldSize =
+        std::max(double(d.size.x) * glm::length(m * tan), double(d.size.y) * glm::length(m * bit));
+    const double halfDepth = std::max(double(depthMargin), kMinDepth) * worldSize;
+    d.halfDepth = float(halfDepth * glm::length(glm::transpose(inv) * n));
+}
+
 std::optional<SkinAnchors::Location> SkinAnchors::locate(const Decal& decal, uint32_t primitive,
                                                          const CollisionWorld& world) {
     const std::optional<SurfaceAnchor> surface =

@@ -8,6 +8,7 @@
 // deforming objects are kept here, so the other decals pay nothing for it.
 
 #include "spatter/core/Decal.hpp"
+#include "spatter/core/DecalType.hpp"
 #include "spatter/placement/CollisionWorld.hpp"
 
 #include <cstdint>
@@ -23,6 +24,15 @@ struct SavedAnchor {
     SurfaceAnchor surface;
     glm::dvec3 center{0.0}, tangent{0.0}, normal{0.0}; // in the anchor's frame
 };
+
+// Moves `decal`, just placed by a shot (`shot`: the ray's direction, world space) on an object of
+// transform `objectTransform`, onto the drawn surface at `frame` (SkinAnchors::Location::frame): its
+// centre onto the frame's point and its normal to the render triangle's (unless the shot grazed a
+// silhouette and met that triangle from behind), so that no proxy error is left for its box to hold.
+// Its half-depth becomes `depthMargin` times its size (1% at least), whatever its type asks: on a body
+// a deeper box would reach the torso behind an arm. A Shot projection is slanted along `shot` again.
+void moveOntoDrawnSurface(Decal& decal, const glm::dmat4& frame, const glm::dvec3& shot,
+                          const DecalType& type, float depthMargin, const glm::dmat4& objectTransform);
 
 class SkinAnchors {
 public:
