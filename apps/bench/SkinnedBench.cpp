@@ -1,6 +1,7 @@
 #include "SkinnedBench.hpp"
 
 #include "BenchSupport.hpp"
+#include "CoverageProbe.hpp"
 
 #include "spatter/core/DeformingProxy.hpp"
 #include "spatter/core/MeshDistance.hpp"
@@ -9,10 +10,13 @@
 #include "spatter/core/SkinnedArm.hpp"
 #include "spatter/placement/CollisionWorld.hpp"
 #include "spatter/placement/DecalSystem.hpp"
+#include "spatter/render/Camera.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,7 +37,8 @@ constexpr double kSpawnPhase = 0.3;         // the pose of the spawn rows, a fra
 constexpr float kProxyTolerance = 0.005f;   // relative to the render mesh's diagonal
 
 const char* kUsage =
-    R"(usage: spatter-bench skinned [--frames N] [--repeat R] [--samples S] [--quick] [--json FILE]
+    R"(usage: spatter-bench skinned [--frames N] [--repeat R] [--samples S] [--no-render] [--quick]
+                             [--json FILE]
 
 Decals on skinned objects, in one run, for builtin:skinned-arm (50 rings of 50 vertices: 5,000
 triangles), CesiumMan and RiggedSimple (the shared data). Times are thread CPU time on one core
@@ -69,26 +74,37 @@ Pose bounds: the deforming proxy's bound over S sampled poses of each animation 
 the largest sampled bound, the motion allowance between samples), against the proxy simplified at
 rest, absolute and as a fraction of the render mesh's diagonal.
 
+Accuracy: at 0, 25, 50 and 75% of the cycle, 200 shots from a camera framing the posed model (its
+bounding sphere fills the height of a 45-degree view), each aimed at an area-weighted random point of
+the posed render surface, placed afresh in two systems posed there (DecalSystem::setPose): through
+the 0.5% deforming proxy and on the render mesh. Both sets of decals (5% of the diagonal, no random
+rotation) are drawn by the renderer posed there (Renderer::setPose) in its coverage view at 640x480;
+the IoU of the two masks, and the minimum over models and times. Needs an OpenGL context (headless
+EGL); without one the rows are not measured. Target: IoU at least 0.97 at every time.
+
 --frames N   poses of the cycle (default 60)      --repeat R  runs per timed row (default 7)
 --samples S  poses a proxy bound is certified at (default 128)
---quick      6 frames, 3 runs, 8 samples, fewer calls and shots (smoke test)
---json FILE  {"targets", "models", "pose_update", "spawn", "drift", "pose_bounds"}: arrays of rows,
-             "models": model, render_triangles, joints, duration_s, decal_size, proxy_seconds;
-             "pose_update": model, collision, triangles, ms_per_call, within_target;
-             "spawn": model, rays, placed_skinned, placed_static, skinned_ns, static_ns, ratio,
-             within_target; "drift": model, method, decals, samples, median, max, whole_max,
+--no-render  no OpenGL context: accuracy not measured
+--quick      6 frames, 3 runs, 8 samples, fewer calls and shots (50 a time for accuracy; smoke test)
+--json FILE  "targets" and arrays of rows: "models": model, render_triangles, joints, duration_s,
+             decal_size, proxy_seconds; "pose_update": model, collision, triangles, ms_per_call,
+             within_target; "spawn": model, rays, placed_skinned, placed_static, skinned_ns, static_ns,
+             ratio, within_target; "drift": model, method, decals, samples, median, max, whole_max,
              within_target (fractions of the decal's size); "pose_bounds": model, proxy, triangles,
-             bound, sampled_max, motion, poses, bound_fraction
+             bound, sampled_max, motion, poses, bound_fraction; "accuracy": model, phase, time_s, rays,
+             placed_render, placed_proxy, covered_pixels, iou, within_target (null: not measured);
+             "accuracy_min_iou", "coverage" ("measured" or why not), "gl_renderer"
 )";
 
 struct Sizes {
     size_t runs = 7;
-    size_t frames = 60;      // poses of the cycle
-    size_t poseCalls = 1000; // setPose calls a run
-    size_t spawnRays = 2000; // spawns a run
-    size_t spawnTimes = 8;   // when the drift's decals are shot
-    size_t raysPerTime = 48; // shots each time
-    int samples = 128;       // poses of a proxy bound
+    size_t frames = 60;        // poses of the cycle
+    size_t poseCalls = 1000;   // setPose calls a run
+    size_t spawnRays = 2000;   // spawns a run
+    size_t spawnTimes = 8;     // when the drift's decals are shot
+    size_t raysPerTime = 48;   // shots each time
+    int samples = 128;         // poses of a proxy bound
+    size_t accuracyRays = 200; // shots each time of the accuracy rows
 };
 
 Sizes quickSizes() {
@@ -100,6 +116,7 @@ Sizes quickSizes() {
     s.spawnTimes = 2;
     s.raysPerTime = 12;
     s.samples = 8;
+    s.accuracyRays = 50;
     return s;
 }
 
@@ -110,6 +127,7 @@ struct Model {
     Scene scene;
     uint32_t object = 0;    // the first skinned receiver: the object every row measures
     double duration = 0.0;  // of animation 0, seconds
+    double diagonal = 0.0;  // of the render mesh posed at time 0, world units
     double decalSize = 0.0; // world units
 };
 
@@ -177,7 +195,8 @@ Result<Model> loadModel(const std::string& spec) {
     if (skinned == objects.end()) return fail(spec + ": no skinned object receives decals");
     m.object = uint32_t(skinned - objects.begin());
     SceneEvaluator evaluator(m.scene);
-    m.decalSize = kDecalSizeFraction * referencedDiagonal(meshAt(m, worldPositionsAt(m, evaluator, 0.0)));
+    m.diagonal = referencedDiagonal(meshAt(m, worldPositionsAt(m, evaluator, 0.0)));
+    m.decalSize = kDecalSizeFraction * m.diagonal;
     return m;
 }
 
@@ -494,6 +513,134 @@ Result<std::vector<DriftSamples>> measureDrift(const Model& m, const Proxy& prox
     return run.samples();
 }
 
+// ---- Accuracy --------------------------------------------------------------------------------
+
+constexpr double kAccuracyPhases[] = {0.0, 0.25, 0.5, 0.75}; // of the cycle
+constexpr double kIouTarget = 0.97;
+constexpr int kCoverageWidth = 640, kCoverageHeight = 480;
+
+struct AccuracyRow {
+    double phase = 0.0;
+    size_t rays = 0, placedRender = 0, placedProxy = 0;
+    size_t covered = 0;        // pixels the render mesh's decals cover
+    double iou = std::nan(""); // NaN: not measured
+};
+
+// A camera looking at the centre of the posed mesh from where its bounding sphere just fills the
+// height of the view: the whole model in view.
+Camera framing(const Mesh& posed) {
+    constexpr double kFovYDeg = 45.0;
+    const Bounds b = posed.bounds();
+    const double diagonal = double(b.diagonal());
+    Camera c;
+    c.target = glm::dvec3(b.center());
+    c.eye = c.target +
+            glm::normalize(glm::dvec3(0.6, 0.45, 1.0)) * (0.5 * diagonal / std::sin(kFovYDeg * kPi / 360.0));
+    c.fovYDeg = kFovYDeg;
+    c.nearPlane = 1e-3 * diagonal;
+    return c;
+}
+
+// Shots from the eye at `count` area-weighted random points of the posed surface: where the point is
+// hidden the shot lands on what hides it, as a player's would.
+std::vector<Ray> cameraShots(const Mesh& posed, const Camera& camera, size_t count, uint64_t seed) {
+    const SurfaceSampler surface(posed);
+    std::vector<Ray> shots;
+    Rng rng(seed);
+    for (size_t i = 0; i < count && !surface.empty(); ++i) {
+        const float u = rng.uniform(), v = rng.uniform(), w = rng.uniform();
+        Ray r;
+        r.origin = camera.eye;
+        r.direction = surface.sample(u, v, w) - camera.eye;
+        shots.push_back(r);
+    }
+    return shots;
+}
+
+struct Coverage {
+    std::vector<uint8_t> mask;
+    size_t placed = 0;
+};
+
+// The decals `shots` place on the model posed at `pose` through `proxy` (none: the render mesh),
+// drawn by `probe`, whose scene stands in the same pose.
+Result<Coverage> shotCoverage(const Model& m, const std::optional<Proxy>& proxy, const Pose& pose,
+                              const std::vector<Ray>& shots, CoverageProbe& probe, const Camera& camera) {
+    Result<CollisionWorld> world = buildWorld(m, proxy);
+    if (!world) return fail(world.error());
+    Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), unlimited(m.diagonal, 1));
+    if (!system) return fail(system.error());
+    if (Result<uint16_t> type = system->registerType(probe.type()); !type) return fail(type.error());
+    if (Status s = setPose(system.value(), m, pose); !s) return fail(s.error());
+    for (const Ray& ray : shots)
+        system->spawn(ray, 0);
+    std::vector<uint8_t> ids(m.scene.objects.size());
+    for (uint32_t o = 0; o < ids.size(); ++o)
+        ids[o] = system->objectId(o);
+    if (Status s = probe.renderer().setObjectIds(ids); !s) return fail(s.error());
+    Result<std::vector<uint8_t>> mask = probe.mask(camera, system->decals());
+    if (!mask) return fail(mask.error());
+    return Coverage{std::move(mask).value(), size_t(system->stats().placed)};
+}
+
+// The same shots at `phase` of the cycle through the proxy and on the render mesh, both drawn with
+// the scene posed there.
+Result<AccuracyRow> measureAccuracyAt(const Model& m, const Proxy& proxy, CoverageProbe& probe, double phase,
+                                      size_t rays) {
+    SceneEvaluator evaluator(m.scene);
+    const double t = cycleTime(m, phase);
+    const Mesh posed = meshAt(m, worldPositionsAt(m, evaluator, t));
+    const Pose pose = poseAt(m, evaluator, t); // leaves the evaluator at t, as the renderer takes it
+    if (Status s = probe.renderer().setPose(evaluator); !s) return fail(m.name + ": " + s.error());
+    const Camera camera = framing(posed);
+    const std::vector<Ray> shots = cameraShots(posed, camera, rays, 300 + uint64_t(phase * 100.0));
+    Result<Coverage> onRender = shotCoverage(m, std::nullopt, pose, shots, probe, camera);
+    if (!onRender) return fail(m.name + ": " + onRender.error());
+    Result<Coverage> onProxy = shotCoverage(m, proxy, pose, shots, probe, camera);
+    if (!onProxy) return fail(m.name + ": " + onProxy.error());
+    const std::vector<uint8_t>& reference = onRender->mask;
+    return AccuracyRow{phase,
+                       shots.size(),
+                       onRender->placed,
+                       onProxy->placed,
+                       size_t(std::count(reference.begin(), reference.end(), uint8_t(1))),
+                       iou(reference, onProxy->mask)};
+}
+
+// What the accuracy rows are drawn with: the OpenGL renderer, or why there is none.
+struct CoverageContext {
+    std::string glRenderer;
+    std::string unavailable; // empty: a context is sought for each model
+};
+
+// Every phase's row, drawn in a context of the model's own; rows not measured without one (the first
+// failure to make one, or --no-render, is kept in `gl` and no later model tries).
+Result<std::vector<AccuracyRow>> measureAccuracy(const Model& m, const Proxy& proxy, const Sizes& sizes,
+                                                 CoverageContext& gl) {
+    std::optional<CoverageProbe> probe;
+    if (gl.unavailable.empty()) {
+        Result<CoverageProbe> p =
+            CoverageProbe::create(m.scene, kCoverageWidth, kCoverageHeight, coverageType(m.decalSize));
+        if (p) {
+            probe.emplace(std::move(p).value());
+            gl.glRenderer = probe->glRenderer();
+        } else {
+            gl.unavailable = p.error();
+        }
+    }
+    std::vector<AccuracyRow> rows;
+    for (double phase : kAccuracyPhases) {
+        AccuracyRow row{phase, sizes.accuracyRays};
+        if (probe) {
+            Result<AccuracyRow> r = measureAccuracyAt(m, proxy, *probe, phase, sizes.accuracyRays);
+            if (!r) return fail(r.error());
+            row = r.value();
+        }
+        rows.push_back(row);
+    }
+    return rows;
+}
+
 // ---- Output ----------------------------------------------------------------------------------
 
 std::string verdict(bool met) {
@@ -512,6 +659,7 @@ struct ModelReport {
     std::vector<PoseRow> pose;
     SpawnRow spawn;
     std::vector<DriftSamples> drift;
+    std::vector<AccuracyRow> accuracy;
 };
 
 Json modelJson(const ModelReport& r) {
@@ -593,6 +741,51 @@ Json driftSection(const std::vector<ModelReport>& reports) {
     return rows;
 }
 
+// The smallest IoU measured; NaN when none was.
+double minimumIou(const std::vector<ModelReport>& reports) {
+    double least = std::nan("");
+    for (const ModelReport& r : reports)
+        for (const AccuracyRow& a : r.accuracy)
+            if (!std::isnan(a.iou) && !(a.iou >= least)) least = a.iou;
+    return least;
+}
+
+Json accuracySection(const std::vector<ModelReport>& reports, const CoverageContext& gl) {
+    Json rows = Json::array();
+    std::vector<std::vector<std::string>> table;
+    for (const ModelReport& r : reports)
+        for (const AccuracyRow& a : r.accuracy) {
+            const bool measured = !std::isnan(a.iou);
+            const Json met = measured ? Json(a.iou >= kIouTarget) : Json();
+            table.push_back({r.model->name, percent(a.phase), fixed(cycleTime(*r.model, a.phase), 3),
+                             std::to_string(a.rays), measured ? std::to_string(a.placedRender) : "-",
+                             measured ? std::to_string(a.placedProxy) : "-",
+                             measured ? std::to_string(a.covered) : "-", measured ? fixed(a.iou, 4) : "-",
+                             measured ? verdict(met.get<bool>()) : "-"});
+            rows.push_back({{"model", r.model->name},
+                            {"phase", a.phase},
+                            {"time_s", number(cycleTime(*r.model, a.phase))},
+                            {"rays", a.rays},
+                            {"placed_render", measured ? Json(a.placedRender) : Json()},
+                            {"placed_proxy", measured ? Json(a.placedProxy) : Json()},
+                            {"covered_pixels", measured ? Json(a.covered) : Json()},
+                            {"iou", number(a.iou)},
+                            {"within_target", met}});
+        }
+    std::printf("\naccuracy: coverage IoU of the shots through the 0.5%% deforming proxy against the render "
+                "mesh, posed\n");
+    printTable({"model", "of cycle", "time s", "rays", "placed render", "placed proxy", "covered px", "IoU",
+                "at least 0.97"},
+               table);
+    const double least = minimumIou(reports);
+    if (std::isnan(least))
+        std::printf("coverage IoU not measured: %s\n", gl.unavailable.c_str());
+    else
+        std::printf("minimum IoU %s: target at least 0.97 %s\n", fixed(least, 4).c_str(),
+                    least >= kIouTarget ? "met" : "missed");
+    return rows;
+}
+
 // `triangles` null: not known (the rest proxy when the posed one was kept).
 Json boundRow(const ModelReport& r, const char* proxy, const PoseBound& b, const Json& triangles) {
     const double diagonal = referencedDiagonal(r.model->scene.objects[r.model->object].mesh);
@@ -627,7 +820,7 @@ Json boundSection(const std::vector<ModelReport>& reports) {
 
 // ---- The command -----------------------------------------------------------------------------
 
-Result<ModelReport> measureModel(const Model& m, const Sizes& sizes) {
+Result<ModelReport> measureModel(const Model& m, const Sizes& sizes, CoverageContext& gl) {
     ModelReport r;
     r.model = &m;
     ProxySettings settings;
@@ -650,6 +843,9 @@ Result<ModelReport> measureModel(const Model& m, const Sizes& sizes) {
     Result<std::vector<DriftSamples>> drift = measureDrift(m, r.proxy.proxy, sizes);
     if (!drift) return fail(drift.error());
     r.drift = std::move(drift).value();
+    Result<std::vector<AccuracyRow>> accuracy = measureAccuracy(m, r.proxy.proxy, sizes, gl);
+    if (!accuracy) return fail(accuracy.error());
+    r.accuracy = std::move(accuracy).value();
     return r;
 }
 
@@ -670,7 +866,8 @@ Result<Sizes> parseSizes(const Args& args) {
     return s;
 }
 
-Json report(const std::vector<ModelReport>& reports, const Sizes& sizes, const MachineInfo& machine) {
+Json report(const std::vector<ModelReport>& reports, const Sizes& sizes, const MachineInfo& machine,
+            const CoverageContext& gl) {
     Json j;
     j["command"] = kCommand;
     j["machine"] = toJson(machine);
@@ -686,9 +883,14 @@ Json report(const std::vector<ModelReport>& reports, const Sizes& sizes, const M
     j["pose_samples"] = sizes.samples;
     j["decal_size_fraction"] = kDecalSizeFraction;
     j["proxy_tolerance"] = kProxyTolerance;
+    j["accuracy_rays"] = sizes.accuracyRays;
+    j["coverage_size"] = {kCoverageWidth, kCoverageHeight};
+    j["coverage"] = gl.unavailable.empty() ? "measured" : gl.unavailable;
+    j["gl_renderer"] = gl.glRenderer;
     j["targets"] = {{"pose_update_ms", kPoseTargetMs},
                     {"spawn_ratio", kSpawnTargetRatio},
-                    {"drift_fraction", kDriftTarget}};
+                    {"drift_fraction", kDriftTarget},
+                    {"coverage_iou", kIouTarget}};
     Json models = Json::array();
     for (const ModelReport& r : reports)
         models.push_back(modelJson(r));
@@ -697,6 +899,8 @@ Json report(const std::vector<ModelReport>& reports, const Sizes& sizes, const M
     j["spawn"] = spawnSection(reports);
     j["drift"] = driftSection(reports);
     j["pose_bounds"] = boundSection(reports);
+    j["accuracy"] = accuracySection(reports, gl);
+    j["accuracy_min_iou"] = number(minimumIou(reports));
     return j;
 }
 
@@ -704,8 +908,9 @@ Json report(const std::vector<ModelReport>& reports, const Sizes& sizes, const M
 
 int runSkinnedCommand(int argc, char** argv) {
     int exitCode = 0;
-    const std::optional<Args> parsed = commandArgs(
-        argc, argv, kCommand, kUsage, {"--frames", "--repeat", "--samples", "--json"}, {"--quick"}, exitCode);
+    const std::optional<Args> parsed =
+        commandArgs(argc, argv, kCommand, kUsage, {"--frames", "--repeat", "--samples", "--json"},
+                    {"--quick", "--no-render"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
     if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
@@ -723,16 +928,18 @@ int runSkinnedCommand(int argc, char** argv) {
         }
         models.push_back(std::move(m).value());
     }
+    CoverageContext gl;
+    if (args.has("--no-render")) gl.unavailable = "--no-render";
     std::vector<ModelReport> reports;
     for (const Model& m : models) {
-        Result<ModelReport> r = measureModel(m, sizes.value());
+        Result<ModelReport> r = measureModel(m, sizes.value(), gl);
         if (!r) {
             std::fprintf(stderr, "spatter-bench skinned: %s\n", r.error().c_str());
             return 1;
         }
         reports.push_back(std::move(r).value());
     }
-    const Json j = report(reports, sizes.value(), machine);
+    const Json j = report(reports, sizes.value(), machine, gl);
     if (args.has("--json"))
         if (Status s = writeJson(j, args.value("--json")); !s) {
             std::fprintf(stderr, "spatter-bench skinned: %s\n", s.error().c_str());

@@ -1,6 +1,7 @@
 #include "Tradeoff.hpp"
 
 #include "BenchSupport.hpp"
+#include "CoverageProbe.hpp"
 #include "ThreejsPeer.hpp"
 
 #include "spatter/core/MeshDistance.hpp"
@@ -9,15 +10,12 @@
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/render/Camera.hpp"
-#include "spatter/render/GlContext.hpp"
-#include "spatter/render/Renderer.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <limits>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -94,44 +92,21 @@ struct Row {
     size_t placed = 0;
 };
 
-// Decal settings under which nothing is evicted: placement is timed, not the limits.
-DecalSettings unlimited(double diagonal, uint64_t seed) {
-    DecalSettings s;
-    s.seed = seed;
-    s.cellSize = float(diagonal / 40.0);
-    s.maxPerCell = 1u << 30;
-    s.maxPerObject = 1u << 30;
-    s.budget = 1u << 30;
-    return s;
-}
-
-// Decal coverage of the render mesh seen from one camera, for decals placed through a collision mesh.
-class CoverageProbe {
-public:
-    // Decals aimed at `decals` points of the render surface seen from `camera` (random pixels), each
-    // shot from a random point 0.5 diagonals away within 60 degrees of the direction to the camera,
-    // whose ray reaches the point on the render mesh: so the decals are in view, and a proxy's offset
-    // along the ray shows on screen.
-    static Result<CoverageProbe> create(const Scene& scene, const CollisionWorld& renderWorld, int width,
-                                        int height, const Camera& camera, size_t decals, double diagonal,
-                                        uint64_t seed) {
-        Result<GlContext> gl = GlContext::createHeadless();
-        if (!gl) return fail(gl.error());
-        auto context = std::make_unique<GlContext>(std::move(gl).value());
-        RendererSettings rs;
-        rs.width = width;
-        rs.height = height;
-        Result<Renderer> renderer = Renderer::create(*context, rs);
-        if (!renderer) return fail(renderer.error());
-        if (Status s = renderer->setScene(scene); !s) return fail(s.error());
-        CoverageProbe p(std::move(context), std::move(renderer).value());
-        p.camera_ = camera;
-        p.type_.name = "coverage";
-        p.type_.size = glm::vec2(float(0.04 * diagonal));
-        p.type_.randomRotation = false; // a decal's frame depends on its ray only, not on earlier misses
-        p.renderer_.setDecalTypes({p.type_});
+// The coverage probe from one camera, with the shots whose decals it compares.
+struct ShotCoverage {
+    // Shots aimed at `decals` points of the render surface seen from `camera` (random pixels), each
+    // from a random point 0.5 diagonals away within 60 degrees of the direction to the camera, whose
+    // ray reaches the point on the render mesh: so the decals are in view, and a proxy's offset along
+    // the ray shows on screen.
+    static Result<ShotCoverage> create(const Scene& scene, const CollisionWorld& renderWorld, int width,
+                                       int height, const Camera& camera, size_t decals, double diagonal,
+                                       uint64_t seed) {
+        Result<CoverageProbe> probe =
+            CoverageProbe::create(scene, width, height, coverageType(0.04 * diagonal));
+        if (!probe) return fail(probe.error());
+        ShotCoverage c{std::move(probe).value(), camera, {}};
         Rng rng(seed);
-        for (size_t attempt = 0; attempt < 50 * decals && p.rays_.size() < decals; ++attempt) {
+        for (size_t attempt = 0; attempt < 50 * decals && c.shots.size() < decals; ++attempt) {
             Ray view;
             view.origin = camera.eye;
             view.direction = pixelDirection(camera, width, height, int(rng.below(uint32_t(width))),
@@ -144,14 +119,12 @@ public:
             shot.direction = seen->position - shot.origin;
             const std::optional<Hit> lands = renderWorld.intersect(shot);
             if (lands && glm::length(lands->position - seen->position) <= 1e-6 * diagonal)
-                p.rays_.push_back(shot);
+                c.shots.push_back(shot);
         }
-        return p;
+        return c;
     }
 
-    const std::string& glRenderer() const { return context_->info().renderer; }
-
-    // The coverage mask of the decals the rays place through `proxies` (empty: the render mesh),
+    // The coverage mask of the decals the shots place through `proxies` (empty: the render mesh),
     // projected along `projection`.
     Result<std::vector<uint8_t>> mask(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
                                       double diagonal, uint64_t seed, Projection projection) {
@@ -159,41 +132,20 @@ public:
         if (!world) return fail(world.error());
         Result<DecalSystem> sys = DecalSystem::create(std::move(world).value(), unlimited(diagonal, seed));
         if (!sys) return fail(sys.error());
-        DecalType t = type_;
+        DecalType t = probe.type();
         t.projection = projection;
         const uint16_t type = sys->registerType(t).value();
         std::vector<SpawnResult> results;
-        sys->spawnBatch(rays_, type, results);
-        renderer_.setDecals(sys->decals());
-        Result<FrameStats> stats = renderer_.render(camera_, View::Coverage);
-        if (!stats) return fail(stats.error());
-        Result<Image> image = renderer_.readback();
-        if (!image) return fail(image.error());
-        std::vector<uint8_t> m(size_t(image->width) * size_t(image->height));
-        for (size_t i = 0; i < m.size(); ++i)
-            m[i] = image->rgba[4 * i] > 127 ? 1 : 0;
-        return m;
+        sys->spawnBatch(shots, type, results);
+        return probe.mask(camera, sys->decals());
     }
 
-private:
-    CoverageProbe(std::unique_ptr<GlContext> context, Renderer renderer)
-        : context_(std::move(context)), renderer_(std::move(renderer)) {}
+    const std::string& glRenderer() const { return probe.glRenderer(); }
 
-    std::unique_ptr<GlContext> context_;
-    Renderer renderer_;
-    Camera camera_;
-    DecalType type_;
-    std::vector<Ray> rays_;
+    CoverageProbe probe;
+    Camera camera;
+    std::vector<Ray> shots;
 };
-
-double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
-    size_t both = 0, either = 0;
-    for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
-        both += a[i] & b[i];
-        either += a[i] | b[i];
-    }
-    return either ? double(both) / double(either) : 1.0;
-}
 
 struct Timing {
     double singleNs = std::nan(""), batchNs = std::nan("");
@@ -431,7 +383,7 @@ int runTradeoffCommand(int argc, char** argv) {
     const std::vector<std::optional<Hit>> renderHits = renderWorld->intersectBatch(rays);
 
     // Coverage, when an OpenGL context can be had.
-    std::optional<CoverageProbe> probe;
+    std::optional<ShotCoverage> probe;
     std::vector<uint8_t> referenceMask, referenceNormalMask; // render-placed, along the shot and the normal
     std::string glRenderer, noCoverage;
     if (!args.has("--no-render")) {
@@ -446,8 +398,8 @@ int runTradeoffCommand(int argc, char** argv) {
             if (!c) return usageError(kCommand, "--camera: " + c.error());
             camera = c.value();
         }
-        Result<CoverageProbe> p = CoverageProbe::create(scene, renderWorld.value(), width, height, camera,
-                                                        coverageDecals, diagonal, seed + 7);
+        Result<ShotCoverage> p = ShotCoverage::create(scene, renderWorld.value(), width, height, camera,
+                                                      coverageDecals, diagonal, seed + 7);
         if (p) {
             probe.emplace(std::move(p).value());
             Result<std::vector<uint8_t>> m = probe->mask(scene, {}, diagonal, seed, Projection::Shot);

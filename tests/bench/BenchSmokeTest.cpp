@@ -180,11 +180,13 @@ TEST(BenchSmoke, SkinnedQuickMeasuresEveryModelInOneRun) {
     ASSERT_TRUE(j.is_object()) << readAll(dir + "/s.json");
     const size_t models = 3;
     ASSERT_EQ(j["models"].size(), models) << j.dump();
-    // Per model: two collision meshes posed, one spawn comparison, three drift methods, two bounds.
+    // Per model: two collision meshes posed, one spawn comparison, three drift methods, two bounds,
+    // coverage at four times of the cycle.
     ASSERT_EQ(j["pose_update"].size(), 2 * models);
     ASSERT_EQ(j["spawn"].size(), models);
     ASSERT_EQ(j["drift"].size(), 3 * models);
     ASSERT_EQ(j["pose_bounds"].size(), 2 * models);
+    ASSERT_EQ(j["accuracy"].size(), 4 * models);
     for (const auto& row : j["pose_update"]) {
         EXPECT_GT(row["triangles"].get<size_t>(), 0u) << row.dump();
         EXPECT_GT(row["ms_per_call"].get<double>(), 0.0) << row.dump();
@@ -199,6 +201,16 @@ TEST(BenchSmoke, SkinnedQuickMeasuresEveryModelInOneRun) {
     }
     for (const auto& row : j["pose_bounds"])
         EXPECT_GE(row["bound"].get<double>(), row["sampled_max"].get<double>()) << row.dump();
+    // Without an OpenGL context the rows are there, not measured.
+    const bool measured = j["coverage"] == "measured";
+    EXPECT_EQ(measured, noGl().empty()) << j["coverage"].dump();
+    for (const auto& row : j["accuracy"]) {
+        ASSERT_EQ(row["iou"].is_number(), measured) << row.dump();
+        if (!measured) continue;
+        EXPECT_GT(row["placed_render"].get<size_t>(), 0u) << row.dump();
+        EXPECT_GT(row["iou"].get<double>(), 0.0) << row.dump();
+        EXPECT_LE(row["iou"].get<double>(), 1.0) << row.dump();
+    }
 }
 
 TEST(BenchSmoke, RenderQuickTimesTheDecalPass) {
