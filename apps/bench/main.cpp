@@ -1,6 +1,7 @@
 // spatter-bench COMMAND [ARGS...]: benchmarks and reports. Each command is one entry of kCommands;
 // adding one is adding its entry (and its file).
 
+#include "CharacterBench.hpp"
 #include "LoadBench.hpp"
 #include "Memory.hpp"
 #include "PersistenceBench.hpp"
@@ -51,6 +52,8 @@ const Command kCommands[] = {
     {"skinned",
      "decals on skinned objects: pose update, spawn against static, drift over a cycle (--json FILE)",
      spatter::bench::runSkinnedCommand},
+    {"characters", "the frame cost of decals on animated characters against none (GPU, --json FILE)",
+     spatter::bench::runCharactersCommand},
 };
 
 void usage(std::FILE* out) {

@@ -121,15 +121,15 @@ uint32_t addSkinnedDummy(Scene& scene, const glm::dmat4& transform, double perio
     const int skinIndex = int(a.skins.size());
     a.skins.push_back(skin);
 
-    Animation swing;
-    swing.name = "dummy_swing";
-    swing.channels = {turn(root + 1, {0.0, 1.0, 0.0}, {0.0, 20.0, 0.0, -20.0, 0.0}, period),
-                      turn(root + 2, {1.0, 0.0, 0.0}, {0.0, -40.0, 0.0, 40.0, 0.0}, period),
-                      turn(root + 3, {1.0, 0.0, 0.0}, {0.0, -60.0, 0.0, -60.0, 0.0}, period),
-                      turn(root + 4, {1.0, 0.0, 0.0}, {0.0, 40.0, 0.0, -40.0, 0.0}, period),
-                      turn(root + 5, {1.0, 0.0, 0.0}, {0.0, -60.0, 0.0, -60.0, 0.0}, period)};
-    swing.duration = period;
-    a.animations.push_back(swing);
+    if (a.animations.empty()) a.animations.push_back(Animation{"dummy_swing", {}, 0.0});
+    Animation& swing = a.animations[0];
+    swing.channels.insert(swing.channels.end(),
+                          {turn(root + 1, {0.0, 1.0, 0.0}, {0.0, 20.0, 0.0, -20.0, 0.0}, period),
+                           turn(root + 2, {1.0, 0.0, 0.0}, {0.0, -40.0, 0.0, 40.0, 0.0}, period),
+                           turn(root + 3, {1.0, 0.0, 0.0}, {0.0, -60.0, 0.0, -60.0, 0.0}, period),
+                           turn(root + 4, {1.0, 0.0, 0.0}, {0.0, 40.0, 0.0, -40.0, 0.0}, period),
+                           turn(root + 5, {1.0, 0.0, 0.0}, {0.0, -60.0, 0.0, -60.0, 0.0}, period)});
+    swing.duration = std::max(swing.duration, period);
 
     SceneObject dummy = makeSceneObject("dummy", Mesh(), transform, true);
     dummy.node = root;

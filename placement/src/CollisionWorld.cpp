@@ -1017,14 +1017,15 @@ Result<TransformUpdate> CollisionWorld::setPose(uint32_t object, const glm::dmat
 }
 
 std::optional<SurfaceAnchor> CollisionWorld::anchorAt(uint32_t object, uint32_t primitive,
-                                                      const glm::dvec3& localPosition) const {
+                                                      const glm::dvec3& localPosition,
+                                                      const glm::dvec3& localDirection) const {
     if (object >= impl_->objects.size()) return std::nullopt;
     const ObjectData& od = impl_->objects[object];
     if (!od.posable || !od.info.inWorld || size_t(primitive) >= od.indices.size() / 3) return std::nullopt;
     const uint32_t* c = &od.indices[3 * size_t(primitive)];
     const glm::dvec3 bary = barycentric(localPosition, glm::dvec3(od.positions[c[0]]),
                                         glm::dvec3(od.positions[c[1]]), glm::dvec3(od.positions[c[2]]));
-    return anchorOf(*od.posable, od.indices, primitive, bary, localPosition,
+    return anchorOf(*od.posable, od.indices, primitive, bary, localPosition, localDirection,
                     Pose{od.poseJoints, od.poseMorphs, glm::inverse(od.info.transform)});
 }
 

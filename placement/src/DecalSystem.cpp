@@ -406,7 +406,8 @@ struct DecalSystem::Impl {
     // decals keep the box their crater was clipped in.
     void settleOnDrawnSurface(uint32_t slot, uint32_t primitive, const glm::dvec3& shot) {
         Decal& d = decals.back();
-        const std::optional<SkinAnchors::Location> at = SkinAnchors::locate(d, primitive, world);
+        const glm::dvec3 local = glm::inverse(glm::dmat3(object(d.object).transform)) * shot;
+        const std::optional<SkinAnchors::Location> at = SkinAnchors::locate(d, primitive, local, world);
         if (!at) return;
         const DecalType& t = types[d.type];
         if (!t.volumetric)

@@ -66,11 +66,21 @@ std::array<glm::dvec3, 3> posedCorners(const PosedCollisionMesh& mesh, const std
     return p;
 }
 
+// Where the shot through `hit` along `direction` meets the plane of triangle `t`; `hit` itself for no
+// direction or a shot along the plane.
+glm::dvec3 alongShot(const glm::dvec3& hit, const glm::dvec3& direction, const std::array<glm::dvec3, 3>& t) {
+    const glm::dvec3 n = glm::cross(t[1] - t[0], t[2] - t[0]);
+    const double across = glm::dot(n, direction);
+    if (!(std::abs(across) > 1e-9 * glm::length(n) * glm::length(direction))) return hit;
+    const glm::dvec3 p = hit + direction * (glm::dot(n, t[0] - hit) / across);
+    return std::isfinite(p.x + p.y + p.z) ? p : hit;
+}
+
 } // namespace
 
 SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
                        uint32_t primitive, const glm::dvec3& bary, const glm::dvec3& localPosition,
-                       const Pose& pose) {
+                       const glm::dvec3& direction, const Pose& pose) {
     if (!mesh.drawn) return {primitive, bary};
     // The collision mesh is not the render mesh: the hit at rest, the nearest render point there,
     // then that point's barycentric coordinates refined at the pose (the foot of the hit on the
@@ -82,7 +92,8 @@ SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const std::vector<uint32_
     if (!near) return {primitive, bary};
     const std::array<glm::dvec3, 3> render =
         posedCorners(mesh, indices, near->triangle, pose.joints, pose.morphWeights, pose.toObject);
-    return {near->triangle, barycentric(localPosition, render[0], render[1], render[2])};
+    return {near->triangle,
+            barycentric(alongShot(localPosition, direction, render), render[0], render[1], render[2])};
 }
 
 std::optional<glm::dmat4> anchorFrame(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,

@@ -59,12 +59,13 @@ struct Pose {
     glm::dmat4 toObject;
 };
 
-// The point of the drawn surface under the point `localPosition` (object space) of collision triangle
-// `primitive` (`indices`: the collision mesh's), which has barycentric coordinates `bary` there, at
-// `pose`.
+// The point of the drawn surface that a shot along `direction` (object space; zero: none) meeting
+// collision triangle `primitive` (`indices`: the collision mesh's) at `localPosition` (object space,
+// barycentric coordinates `bary` there) stands for, at `pose`: the render triangle nearest the hit
+// at rest, and where the shot meets its plane at the pose (the foot of the hit without a shot).
 SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
                        uint32_t primitive, const glm::dvec3& bary, const glm::dvec3& localPosition,
-                       const Pose& pose);
+                       const glm::dvec3& direction, const Pose& pose);
 
 // The frame of `anchor` at `pose`: columns the direction of its triangle's first edge, the in-plane
 // perpendicular, the triangle's normal and, as translation, the anchor's point, in object space.

@@ -1,6 +1,9 @@
 #include "SkinAnchors.hpp"
 
+#include "spatter/core/Frame.hpp"
+
 #include <algorithm>
+#include <cmath>
 
 namespace spatter {
 
@@ -9,11 +12,26 @@ void moveOntoDrawnSurface(Decal& d, const glm::dmat4& frame, const glm::dvec3& s
     constexpr double kMinDepth = 0.01; // of the size: a box that still holds the surface under it
     const glm::dmat3 m(objectTransform);
     const glm::dmat3 inv = glm::inverse(m);
+    const glm::dmat3 normalMatrix = glm::transpose(inv);
     const Frame f = d.frame();
-    const glm::dvec3 n =
+    // The render triangle's normal, unless the shot grazed a silhouette and met it from behind.
+    const glm::dvec3 surfaceNormal =
         glm::dot(glm::dvec3(frame[2]), inv * shot) < 0.0 ? glm::dvec3(frame[2]) : glm::dvec3(f.normal);
-    glm::dvec3 tan = glm::dvec3(f.tangent) - n * glm::dot(n, glm::dvec3(f.tangent));
-    if (!(glm::length(tan) > 1e-6)) return; // the surface turned edge-on to the decal: leave it
+    // The frame rebuilt in world space as placement builds it, from that normal and the shot, turned
+    // about it as the decal was turned: projecting the proxy's tangent instead would swing it where
+    // the shot meets the surface nearly face-on.
+    const glm::vec3 proxyNormal(glm::normalize(normalMatrix * glm::dvec3(f.normal)));
+    const glm::vec3 tangent(glm::normalize(m * glm::dvec3(f.tangent)));
+    const Frame base = frameFromNormalAndHint(proxyNormal, glm::vec3(shot));
+    const float turn = std::atan2(glm::dot(tangent, base.bitangent), glm::dot(tangent, base.tangent));
+    const Frame w = rotateAboutNormal(
+        frameFromNormalAndHint(glm::vec3(glm::normalize(normalMatrix * surfaceNormal)), glm::vec3(shot)),
+        turn);
+    // To object space as placement does: normals by the transpose, tangents by the inverse.
+    const glm::dvec3 n = glm::normalize(glm::transpose(m) * glm::dvec3(w.normal));
+    glm::dvec3 tan = inv * glm::dvec3(w.tangent);
+    tan = tan - n * glm::dot(n, tan);
+    if (!(glm::length(tan) > 1e-6)) return; // no frame can be made of it: leave the decal as placed
     tan = glm::normalize(tan);
     const glm::dvec3 bit = glm::cross(n, tan);
     d.center = glm::vec3(frame[3]);
@@ -26,9 +44,10 @@ void moveOntoDrawnSurface(Decal& d, const glm::dmat4& frame, const glm::dvec3& s
 }
 
 std::optional<SkinAnchors::Location> SkinAnchors::locate(const Decal& decal, uint32_t primitive,
+                                                         const glm::dvec3& direction,
                                                          const CollisionWorld& world) {
     const std::optional<SurfaceAnchor> surface =
-        world.anchorAt(decal.object, primitive, glm::dvec3(decal.center));
+        world.anchorAt(decal.object, primitive, glm::dvec3(decal.center), direction);
     if (!surface) return std::nullopt;
     const std::optional<glm::dmat4> frame = world.anchorFrame(decal.object, *surface);
     if (!frame) return std::nullopt;

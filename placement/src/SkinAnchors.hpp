@@ -41,9 +41,9 @@ public:
         SurfaceAnchor surface;
         glm::dmat4 frame{1.0}; // CollisionWorld::anchorFrame
     };
-    // The location of `decal`, just placed by a hit on collision triangle `primitive` of its object;
-    // empty when the object does not deform.
-    static std::optional<Location> locate(const Decal& decal, uint32_t primitive,
+    // The location of `decal`, just placed by a shot along `direction` (object space) that hit
+    // collision triangle `primitive` of its object; empty when the object does not deform.
+    static std::optional<Location> locate(const Decal& decal, uint32_t primitive, const glm::dvec3& direction,
                                           const CollisionWorld& world);
     // Anchors the decal of handle slot `slot`, `decal`, at `location`.
     void add(uint32_t slot, const Decal& decal, const Location& location);

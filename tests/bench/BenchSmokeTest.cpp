@@ -231,6 +231,26 @@ TEST(BenchSmoke, RenderQuickTimesTheDecalPass) {
     }
 }
 
+TEST(BenchSmoke, CharactersQuickTimesTheFrameWithAndWithoutTheirDecals) {
+    if (!noGl().empty()) {
+        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
+        GTEST_SKIP() << "no headless OpenGL 4.5 context (" << noGl() << ")";
+    }
+    const std::string dir = test::scratchDir("bench-characters");
+    ASSERT_EQ(runBench("characters --quick --frames 3 --decals 20 --json " + dir + "/c.json", dir + "/log"),
+              0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/c.json");
+    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << readAll(dir + "/c.json");
+    ASSERT_EQ(j["rows"].size(), 1u);
+    const nlohmann::json& row = j["rows"][0];
+    EXPECT_EQ(row["characters"], 1);
+    EXPECT_EQ(row["decals"], 20) << "every decal asked for lands on the character";
+    for (const char* key :
+         {"setpose_ms", "update_ms", "render_ms", "decal_pass_ms", "frame_ms", "baseline_frame_ms"})
+        EXPECT_GE(row[key].get<double>(), 0.0) << key;
+}
+
 TEST(BenchSmoke, RenderPathsTimeEveryPathOfTheProjectorWithTheSameDecals) {
     if (!noGl().empty()) {
         if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();

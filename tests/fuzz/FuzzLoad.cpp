@@ -8,6 +8,8 @@
 // starts (./spatter fuzz points it at the corpus).
 
 #include "spatter/core/MeshBuilder.hpp"
+#include "spatter/core/SceneEvaluator.hpp"
+#include "spatter/core/SkinnedDummy.hpp"
 #include "spatter/placement/DecalPersistence.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
@@ -29,7 +31,10 @@ using namespace spatter;
     std::abort();
 }
 
-// A static floor and pillar, a dynamic crate and a dynamic ball.
+constexpr uint32_t kDummy = 4; // the skinned dummy's object index
+
+// A static floor and pillar, a dynamic crate and a dynamic ball, and the skinned dummy, whose decals
+// carry anchors (the save's SKIN section).
 Scene makeScene() {
     Scene s;
     s.source = "fuzz:load";
@@ -42,12 +47,21 @@ Scene makeScene() {
         makeSceneObject("crate", makeBox(glm::vec3(0.5f), 1), glm::translate(id, glm::dvec3(0, 1, 0)), true));
     s.objects.push_back(
         makeSceneObject("ball", makeSphere(0.5f, 6, 8), glm::translate(id, glm::dvec3(0, 1, 3)), true));
+    addSkinnedDummy(s, glm::translate(id, glm::dvec3(-4, 0, 0)));
     return s;
 }
 
 const Scene& scene() {
     static const Scene s = makeScene();
     return s;
+}
+
+// Poses the dummy at time t of its animation.
+void poseDummy(DecalSystem& s, double t) {
+    SceneEvaluator evaluator(scene());
+    evaluator.evaluate(0, t);
+    if (!s.setPose(kDummy, evaluator.objectTransform(kDummy), evaluator.jointMatrices(0), {}))
+        violated("the dummy cannot be posed");
 }
 
 DecalSystem freshSystem(const DecalSettings& settings = {}) {
@@ -74,6 +88,13 @@ std::vector<uint8_t> seedSave(LimitPolicy policy, int shots) {
     settings.maxPerCell = 3;
     settings.budget = 12;
     DecalSystem s = freshSystem(settings);
+    poseDummy(s, 0.5);
+    for (int i = 0; i < shots / 3; ++i) { // at the dummy's chest and arms
+        Ray r;
+        r.origin = glm::dvec3(-4.3 + 0.1 * i, 0.9 + 0.07 * i, 3.0);
+        r.direction = glm::dvec3(0.0, 0.0, -1.0);
+        s.spawn(r, uint16_t(i % 2));
+    }
     for (int i = 0; i < shots; ++i) {
         Ray r;
         r.origin = glm::dvec3(0.3 * (i % 7) - 1.0, 4.0, 0.25 * (i % 5) + 0.1 * i);
@@ -116,6 +137,7 @@ void checkLoaded(DecalSystem& s) {
     r.direction = glm::dvec3(0.0, -1.0, 0.0);
     for (uint16_t t = 0; t < 3; ++t)
         s.spawn(r, t);
+    poseDummy(s, 1.0); // the loaded anchors ride the skin
     if (!s.update(0.5)) violated("update fails after a load");
     (void)s.changesSince(0);
 }

@@ -155,12 +155,15 @@ public:
     Result<TransformUpdate> setPose(uint32_t object, const glm::dmat4& transform,
                                     const std::vector<glm::dmat4>& joints,
                                     const std::vector<double>& morphWeights);
-    // The point of a skinned or morphed object's drawn surface that a hit on its collision mesh lies
-    // on: the hit (triangle `primitive`, Hit::primitive, at `localPosition`, Hit::localPosition) taken
-    // back to the rest pose and to the nearest point of the render mesh there. Empty for an object
-    // that does not deform, is not in the world, or a primitive out of range.
+    // The point of a skinned or morphed object's drawn surface that a hit on its collision mesh
+    // stands for: the hit (triangle `primitive`, Hit::primitive, at `localPosition`,
+    // Hit::localPosition) taken back to the rest pose and to the render triangle nearest it there,
+    // then where the shot (`localDirection`, object space; zero for none) meets that triangle's plane
+    // at the current pose (without a shot, the foot of the hit on it). Empty for an object that does
+    // not deform, is not in the world, or a primitive out of range.
     std::optional<SurfaceAnchor> anchorAt(uint32_t object, uint32_t primitive,
-                                          const glm::dvec3& localPosition) const;
+                                          const glm::dvec3& localPosition,
+                                          const glm::dvec3& localDirection = glm::dvec3(0.0)) const;
     // The frame of `anchor` at the object's current pose, in its object space: columns the direction
     // of the anchor's render triangle's first edge, the perpendicular in its plane and its normal,
     // and, as translation, the anchor's point. What a decal on a deforming surface rides. Empty for
