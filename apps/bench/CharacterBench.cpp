@@ -88,19 +88,18 @@ void poseCharacters(DecalSystem& system, const Scene& scene, SceneEvaluator& eva
                        evaluator.jointMatrices(size_t(scene.objects[o].skin)), {});
 }
 
-// `perCharacter` bullet holes shot from the camera at each character's current bounds.
-void shootCharacters(DecalSystem& system, const Scene& scene, const Camera& camera, uint16_t type,
-                     size_t perCharacter) {
+// `perCharacter` bullet holes on each character, shot from just in front of it (so that no other
+// character takes them) at random points of its current bounds.
+void shootCharacters(DecalSystem& system, const Scene& scene, uint16_t type, size_t perCharacter) {
     Rng rng(7);
     for (uint32_t o = 1; o < scene.objects.size(); ++o) {
         const DBounds b = system.world().worldBounds(o);
         size_t placed = 0;
         for (size_t attempt = 0; placed < perCharacter && attempt < 20 * perCharacter; ++attempt) {
-            const glm::dvec3 aim =
-                b.min + glm::dvec3(rng.uniform(), rng.uniform(), rng.uniform()) * (b.max - b.min);
+            const glm::dvec3 aim = b.min + glm::dvec3(rng.uniform(), rng.uniform(), 0.5) * (b.max - b.min);
             Ray r;
-            r.origin = camera.eye;
-            r.direction = aim - camera.eye;
+            r.origin = glm::dvec3(aim.x, aim.y, b.max.z + 0.1);
+            r.direction = glm::dvec3(0.0, 0.0, -1.0);
             const SpawnResult s = system.spawn(r, type);
             placed += s.placed() && system.get(s.handle)->object == o;
         }
@@ -173,7 +172,7 @@ Result<Row> measure(GlContext& gl, const Options& o, size_t count) {
         if (Status s = renderer->setObjectIds(ids); !s) return fail(s.error());
         SceneEvaluator evaluator(scene);
         poseCharacters(system.value(), scene, evaluator, 0);
-        if (withDecals) shootCharacters(system.value(), scene, camera, type, o.decals);
+        if (withDecals) shootCharacters(system.value(), scene, type, o.decals);
         Result<Timings> t = play(renderer.value(), system.value(), scene, camera, o.frames);
         if (!t) return fail(t.error());
         if (!withDecals) {
