@@ -2,6 +2,7 @@
 // Scenes with known geometry and exact comparisons shared by the placement tests.
 
 #include "spatter/core/Decal.hpp"
+#include "spatter/core/DeformingProxy.hpp"
 #include "spatter/core/MeshBuilder.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/Random.hpp"
@@ -74,6 +75,15 @@ inline Scene rangeScene(int targets = 3) {
             makeSceneObject("target_" + std::to_string(i), makeBox(glm::vec3(0.5f), 1), t, true));
     }
     return s;
+}
+
+// The deforming proxy (buildDeformingProxy) of `scene`'s object 0 at `tolerance` of its diagonal,
+// its bound over the animation certified at `samples` poses.
+inline Result<DeformingProxy> deformingProxy(const Scene& scene, float tolerance, int samples) {
+    ProxySettings settings;
+    settings.tolerance = tolerance;
+    settings.toleranceRelative = true;
+    return buildDeformingProxy(scene, 0, settings, samples);
 }
 
 // A proxy as the proxy builder would hand it over: a mesh and its error bound h.

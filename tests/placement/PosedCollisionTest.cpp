@@ -170,10 +170,7 @@ TEST(PosedCollision, SetPoseRejectsWhatDoesNotFitAndChangesNothing) {
 
 TEST(PosedCollision, DeformingProxyHitsStayWithinItsBoundOfTheDrawnSurface) {
     const Scene arm = makeSkinnedArm();
-    ProxySettings settings;
-    settings.tolerance = 0.02f;
-    settings.toleranceRelative = true;
-    Result<DeformingProxy> proxy = buildDeformingProxy(arm, 0, settings, 32);
+    Result<DeformingProxy> proxy = deformingProxy(arm, 0.02f, 32);
     ASSERT_TRUE(proxy.ok()) << proxy.error();
     CollisionWorld world = buildWorld(arm, {std::optional<Proxy>(proxy->proxy)});
     EXPECT_EQ(world.object(0)->errorBound, proxy->proxy.errorBound);

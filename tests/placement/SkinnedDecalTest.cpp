@@ -142,10 +142,7 @@ TEST(SkinnedDecals, StayOnTheSkinPointTheyWerePlacedOn) {
 
 TEST(SkinnedDecals, StayOnTheSkinOverADeformingProxy) {
     const Scene arm = makeSkinnedArm();
-    ProxySettings settings;
-    settings.tolerance = 0.005f;
-    settings.toleranceRelative = true;
-    Result<DeformingProxy> proxy = buildDeformingProxy(arm, 0, settings, 16);
+    Result<DeformingProxy> proxy = deformingProxy(arm, 0.005f, 16);
     ASSERT_TRUE(proxy.ok()) << proxy.error();
     Result<CollisionWorld> world = CollisionWorld::build(arm, {std::optional<Proxy>(proxy->proxy)});
     ASSERT_TRUE(world.ok()) << world.error();
