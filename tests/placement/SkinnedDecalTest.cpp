@@ -327,3 +327,31 @@ TEST(SkinnedDecals, SavedAndLoadedDecalsKeepFollowingTheSkin) {
     }
     EXPECT_EQ(saveDecals(loaded), saveDecals(source));
 }
+
+TEST(SkinnedDecals, EvictedDecalsStopFollowingAndTheRestKeepTheirPoint) {
+    const Scene arm = makeSkinnedArm();
+    DecalSettings few = roomy();
+    few.maxPerObject = 8; // every shot past the eighth evicts the oldest
+    DecalSystem system = makeSystem(arm, few);
+    const uint16_t type = addType(system, bulletHole());
+    ASSERT_TRUE(poseAt(system, arm, 0.3).ok());
+    const Mesh at0 = drawnMesh(arm, 0.3);
+    std::vector<std::pair<DecalHandle, SurfacePoint>> shot;
+    for (const Ray& r : shotsAtForearm(at0))
+        if (const SpawnResult s = system.spawn(r, type); s.placed())
+            shot.emplace_back(s.handle, nearestOn(at0, glm::dvec3(system.get(s.handle)->center)));
+    ASSERT_GT(system.stats().evicted, 10u);
+    ASSERT_EQ(system.decals().size(), 8u);
+    const uint64_t version = system.version();
+    ASSERT_TRUE(poseAt(system, arm, 1.0).ok());
+    EXPECT_EQ(system.changesSince(version).changes.size(), 8u) << "only the live decals move";
+    const Mesh at1 = drawnMesh(arm, 1.0);
+    size_t live = 0;
+    for (const auto& [handle, point] : shot) {
+        const Decal* d = system.get(handle);
+        if (!d) continue;
+        ++live;
+        EXPECT_LT(glm::length(glm::dvec3(d->center) - point.on(at1)), 1e-5);
+    }
+    EXPECT_EQ(live, 8u);
+}
