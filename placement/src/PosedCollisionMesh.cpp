@@ -2,8 +2,28 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 namespace spatter {
+
+namespace {
+
+// The triangles around each vertex of `drawn.rest` (Drawn::ringStart, Drawn::ring).
+void linkRings(PosedCollisionMesh::Drawn& drawn) {
+    const std::vector<uint32_t>& indices = drawn.rest.indices;
+    drawn.ringStart.assign(drawn.rest.positions.size() + 1, 0);
+    for (uint32_t v : indices)
+        ++drawn.ringStart[v + 1];
+    for (size_t v = 1; v < drawn.ringStart.size(); ++v)
+        drawn.ringStart[v] += drawn.ringStart[v - 1];
+    drawn.ring.resize(indices.size());
+    std::vector<uint32_t> fill(drawn.ringStart.begin(), drawn.ringStart.end() - 1);
+    for (size_t i = 0; i < indices.size(); ++i)
+        drawn.ring[fill[indices[i]]++] = uint32_t(i / 3);
+}
+
+} // namespace
 
 Result<std::optional<PosedCollisionMesh>> posedCollisionMesh(const Scene& scene, size_t object,
                                                              const Mesh& collision) {
@@ -23,6 +43,7 @@ Result<std::optional<PosedCollisionMesh>> posedCollisionMesh(const Scene& scene,
     drawn.rest.positions = so.mesh.positions;
     drawn.rest.indices.assign(so.mesh.indices.begin(), so.mesh.indices.begin() + so.mesh.triangleCount() * 3);
     drawn.deformation = deformationOf(so);
+    linkRings(drawn);
     Result<ClosestPointQuery> query = ClosestPointQuery::create(drawn.rest);
     if (!query) return fail(query.error());
     drawn.query = std::make_shared<const ClosestPointQuery>(std::move(query).value());
@@ -76,6 +97,45 @@ glm::dvec3 alongShot(const glm::dvec3& hit, const glm::dvec3& direction, const s
     return std::isfinite(p.x + p.y + p.z) ? p : hit;
 }
 
+// Where the line through `hit` along `direction` meets triangle `t` (within rounding), as the line's
+// parameter and the point's barycentric coordinates; nothing when it misses or runs along it.
+std::optional<std::pair<double, glm::dvec3>> lineMeets(const glm::dvec3& hit, const glm::dvec3& direction,
+                                                       const std::array<glm::dvec3, 3>& t) {
+    const glm::dvec3 e1 = t[1] - t[0], e2 = t[2] - t[0], p = glm::cross(direction, e2);
+    const double det = glm::dot(e1, p);
+    if (!(std::abs(det) > 1e-12 * glm::length(e1) * glm::length(e2) * glm::length(direction)))
+        return std::nullopt;
+    const glm::dvec3 o = hit - t[0], q = glm::cross(o, e1);
+    const double u = glm::dot(o, p) / det, v = glm::dot(direction, q) / det;
+    constexpr double kSlack = 1e-9;
+    if (!(u >= -kSlack && v >= -kSlack && u + v <= 1.0 + kSlack)) return std::nullopt;
+    return std::make_pair(glm::dot(e2, q) / det, glm::dvec3(1.0 - u - v, u, v));
+}
+
+// The triangle around render triangle `near` (it and those sharing a corner with it) that the line
+// through `hit` along `direction` meets nearest `hit`, at `pose`.
+std::optional<SurfaceAnchor> shotOnRing(const PosedCollisionMesh& mesh, uint32_t near, const glm::dvec3& hit,
+                                        const glm::dvec3& direction, const Pose& pose) {
+    const PosedCollisionMesh::Drawn& drawn = *mesh.drawn;
+    std::optional<SurfaceAnchor> best;
+    double bestDistance = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+        const uint32_t v = drawn.rest.indices[3 * size_t(near) + size_t(k)];
+        for (uint32_t i = drawn.ringStart[v]; i < drawn.ringStart[v + 1]; ++i) {
+            const uint32_t triangle = drawn.ring[i];
+            const std::optional<std::pair<double, glm::dvec3>> meet =
+                lineMeets(hit, direction,
+                          posedCorners(mesh, drawn.rest.indices, triangle, pose.joints, pose.morphWeights,
+                                       pose.toObject));
+            if (meet && std::abs(meet->first) < bestDistance) {
+                bestDistance = std::abs(meet->first);
+                best = SurfaceAnchor{triangle, meet->second};
+            }
+        }
+    }
+    return best;
+}
+
 } // namespace
 
 SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
@@ -90,6 +150,10 @@ SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const std::vector<uint32_
                               bary.z * glm::dvec3(mesh.rest[c[2]]);
     const std::optional<ClosestPoint> near = mesh.drawn->query->closest(atRest);
     if (!near) return {primitive, bary};
+    if (direction != glm::dvec3(0.0))
+        if (std::optional<SurfaceAnchor> met =
+                shotOnRing(mesh, near->triangle, localPosition, direction, pose))
+            return *met;
     const std::array<glm::dvec3, 3> render =
         posedCorners(mesh, indices, near->triangle, pose.joints, pose.morphWeights, pose.toObject);
     return {near->triangle,

@@ -33,6 +33,8 @@ struct PosedCollisionMesh {
         Mesh rest;
         VertexDeformation deformation;
         std::shared_ptr<const ClosestPointQuery> query;
+        // The triangles around each vertex: ring[ringStart[v] .. ringStart[v + 1]).
+        std::vector<uint32_t> ringStart, ring;
     };
     std::optional<Drawn> drawn;
 };
@@ -61,8 +63,10 @@ struct Pose {
 
 // The point of the drawn surface that a shot along `direction` (object space; zero: none) meeting
 // collision triangle `primitive` (`indices`: the collision mesh's) at `localPosition` (object space,
-// barycentric coordinates `bary` there) stands for, at `pose`: the render triangle nearest the hit
-// at rest, and where the shot meets its plane at the pose (the foot of the hit without a shot).
+// barycentric coordinates `bary` there) stands for, at `pose`: where the shot's line meets, nearest
+// the hit, a render triangle around the one nearest the hit at rest (that triangle and those that
+// share a corner with it, posed); failing that, where it meets the nearest one's plane (the foot of
+// the hit without a shot).
 SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
                        uint32_t primitive, const glm::dvec3& bary, const glm::dvec3& localPosition,
                        const glm::dvec3& direction, const Pose& pose);
