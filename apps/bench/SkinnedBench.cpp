@@ -160,10 +160,7 @@ std::vector<glm::dvec3> worldPositionsAt(const Model& m, SceneEvaluator& evaluat
 }
 
 Mesh meshAt(const Model& m, const std::vector<glm::dvec3>& positions) {
-    Mesh mesh = m.scene.objects[m.object].mesh;
-    for (size_t v = 0; v < positions.size(); ++v)
-        mesh.positions[v] = glm::vec3(positions[v]);
-    return mesh;
+    return withPositions(m.scene.objects[m.object].mesh, positions);
 }
 
 SkinnedArmSettings armSettings() {

@@ -27,11 +27,8 @@ struct SurfacePoint {
 
 // The object's render mesh in the pose the sim holds, in its object space.
 Mesh posedMesh(const GallerySim& sim, uint32_t object) {
-    Mesh m = sim.scene().objects[object].mesh;
-    const std::vector<glm::dvec3> p = posedPositions(sim.scene(), object, *sim.evaluator());
-    for (size_t v = 0; v < p.size(); ++v)
-        m.positions[v] = glm::vec3(p[v]);
-    return m;
+    return withPositions(sim.scene().objects[object].mesh,
+                         posedPositions(sim.scene(), object, *sim.evaluator()));
 }
 
 Result<SurfacePoint> nearestPoint(const Mesh& mesh, const glm::dvec3& local) {

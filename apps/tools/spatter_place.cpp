@@ -197,10 +197,8 @@ public:
 private:
     using Posed = std::pair<spatter::Mesh, std::shared_ptr<spatter::ClosestPointQuery>>;
     Posed posedMesh(uint32_t object) {
-        spatter::Mesh m = scene_.objects[object].mesh;
-        const std::vector<glm::dvec3> p = spatter::posedPositions(scene_, object, evaluator_);
-        for (size_t v = 0; v < p.size(); ++v)
-            m.positions[v] = glm::vec3(p[v]);
+        spatter::Mesh m = spatter::withPositions(scene_.objects[object].mesh,
+                                                 spatter::posedPositions(scene_, object, evaluator_));
         auto query =
             std::make_shared<spatter::ClosestPointQuery>(spatter::ClosestPointQuery::create(m).value());
         return {std::move(m), std::move(query)};

@@ -58,10 +58,7 @@ Result<Proxy> simplifiedInPose(const Scene& scene, size_t object, int animation,
     const SceneObject& o = scene.objects[object];
     SceneEvaluator evaluator(scene);
     evaluator.evaluate(animation, t);
-    Mesh posed = o.mesh;
-    const std::vector<glm::dvec3> p = posedPositions(scene, object, evaluator);
-    for (size_t v = 0; v < p.size(); ++v)
-        posed.positions[v] = glm::vec3(p[v]);
+    Mesh posed = withPositions(o.mesh, posedPositions(scene, object, evaluator));
     computeNormals(posed);
     Result<Proxy> proxy = buildProxy(posed, settings);
     if (!proxy) return fail(proxy.error());

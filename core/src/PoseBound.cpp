@@ -16,15 +16,6 @@ struct Sample {
     double bound = 0.0;
 };
 
-Mesh withPositions(const Mesh& mesh, const std::vector<glm::dvec3>& positions) {
-    Mesh out;
-    out.indices = mesh.indices;
-    out.positions.resize(positions.size());
-    for (size_t v = 0; v < positions.size(); ++v)
-        out.positions[v] = glm::vec3(positions[v]);
-    return out;
-}
-
 double largestDisplacement(const std::vector<glm::dvec3>& a, const std::vector<glm::dvec3>& b) {
     double d = 0.0;
     for (size_t v = 0; v < a.size(); ++v)

@@ -94,6 +94,13 @@ std::optional<glm::dmat4> triangleFrame(const glm::dvec3& p0, const glm::dvec3& 
                       glm::dvec4(at, 1.0));
 }
 
+Mesh withPositions(const Mesh& mesh, const std::vector<glm::dvec3>& positions) {
+    Mesh out = mesh;
+    for (size_t v = 0; v < positions.size() && v < out.positions.size(); ++v)
+        out.positions[v] = glm::vec3(positions[v]);
+    return out;
+}
+
 VertexDeformation deformationOf(const SceneObject& object) {
     VertexDeformation d;
     d.skin = object.skinWeights;

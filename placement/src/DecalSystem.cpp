@@ -231,7 +231,7 @@ struct DecalSystem::Impl {
     void removeDense(uint32_t dense) {
         const uint32_t slot = slotOf[dense];
         if (!fadingSince.empty() && fadingSince.erase(slot) != 0) stats.fading--;
-        anchors.erase(slot);
+        anchors.erase(slot, decals[dense].object);
         limits.unlink(slot, decals[dense].object);
         slots[slot].dense = kNone;
         slots[slot].generation++;
@@ -406,6 +406,7 @@ struct DecalSystem::Impl {
     // decals keep the box their crater was clipped in.
     void settleOnDrawnSurface(uint32_t slot, uint32_t primitive, const glm::dvec3& shot) {
         Decal& d = decals.back();
+        if (!object(d.object).dynamic) return; // only dynamic objects deform: static ones pay nothing
         const glm::dvec3 local = glm::inverse(glm::dmat3(object(d.object).transform)) * shot;
         const std::optional<SkinAnchors::Location> at = SkinAnchors::locate(d, primitive, local, world);
         if (!at) return;

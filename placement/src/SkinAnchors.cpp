@@ -59,19 +59,18 @@ void SkinAnchors::add(uint32_t slot, const Decal& decal, const Location& locatio
     const glm::dmat3 toLocal = glm::transpose(glm::dmat3(location.frame));
     const Frame f = decal.frame();
     Anchor a;
-    a.object = decal.object;
     a.surface = location.surface;
     a.center = toLocal * (glm::dvec3(decal.center) - glm::dvec3(location.frame[3]));
     a.tangent = toLocal * glm::dvec3(f.tangent);
     a.normal = toLocal * glm::dvec3(f.normal);
-    anchors_[slot] = a;
+    byObject_[decal.object][slot] = a;
 }
 
 std::vector<SavedAnchor> SkinAnchors::saved() const {
     std::vector<SavedAnchor> out;
-    out.reserve(anchors_.size());
-    for (const auto& [slot, a] : anchors_)
-        out.push_back({slot, a.surface, a.center, a.tangent, a.normal});
+    for (const auto& [object, anchors] : byObject_)
+        for (const auto& [slot, a] : anchors)
+            out.push_back({slot, a.surface, a.center, a.tangent, a.normal});
     std::sort(out.begin(), out.end(),
               [](const SavedAnchor& a, const SavedAnchor& b) { return a.slot < b.slot; });
     return out;

@@ -47,18 +47,22 @@ public:
                                           const CollisionWorld& world);
     // Anchors the decal of handle slot `slot`, `decal`, at `location`.
     void add(uint32_t slot, const Decal& decal, const Location& location);
-    void erase(uint32_t slot) {
-        if (!anchors_.empty()) anchors_.erase(slot);
+    // Forgets the anchor of the decal of slot `slot` on `object`, if it has one.
+    void erase(uint32_t slot, uint32_t object) {
+        if (byObject_.empty()) return;
+        auto on = byObject_.find(object);
+        if (on == byObject_.end()) return;
+        on->second.erase(slot);
+        if (on->second.empty()) byObject_.erase(on);
     }
-    size_t size() const { return anchors_.size(); }
 
     // Every anchor, by ascending slot (a save's order does not depend on the hash table's).
     std::vector<SavedAnchor> saved() const;
     // Replaces the anchors with `saved`, each on the object of the decal objectOf(slot) names.
     template <class ObjectOf> void restore(const std::vector<SavedAnchor>& saved, ObjectOf objectOf) {
-        anchors_.clear();
+        byObject_.clear();
         for (const SavedAnchor& a : saved)
-            anchors_[a.slot] = Anchor{objectOf(a.slot), a.surface, a.center, a.tangent, a.normal};
+            byObject_[objectOf(a.slot)][a.slot] = Anchor{a.surface, a.center, a.tangent, a.normal};
     }
 
     // Poses the decals anchored on `object` as the world's pose of it now stands: each one's centre
@@ -66,8 +70,9 @@ public:
     template <class DenseOf, class Changed>
     void repose(uint32_t object, const CollisionWorld& world, std::vector<Decal>& decals, DenseOf denseOf,
                 Changed changed) const {
-        for (const auto& [slot, anchor] : anchors_) {
-            if (anchor.object != object) continue;
+        const auto on = byObject_.find(object);
+        if (on == byObject_.end()) return;
+        for (const auto& [slot, anchor] : on->second) {
             const std::optional<glm::dmat4> frame = world.anchorFrame(object, anchor.surface);
             if (!frame) continue; // a collapsed triangle: the decal stays where it was
             const uint32_t dense = denseOf(slot);
@@ -78,14 +83,14 @@ public:
 
 private:
     struct Anchor {
-        uint32_t object = 0;
         SurfaceAnchor surface;
         glm::dvec3 center{0.0}, tangent{0.0}, normal{0.0}; // in the anchor's frame
     };
     // The decal's centre and frame from the anchor's, under the anchor's frame `frame`.
     static void place(const Anchor& anchor, const glm::dmat4& frame, Decal& decal);
 
-    std::unordered_map<uint32_t, Anchor> anchors_; // by handle slot
+    // By object, then by handle slot: a pose moves its object's decals without a look at the others.
+    std::unordered_map<uint32_t, std::unordered_map<uint32_t, Anchor>> byObject_;
 };
 
 } // namespace spatter

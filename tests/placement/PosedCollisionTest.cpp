@@ -37,11 +37,9 @@ Scene drawnPose(const Scene& arm, double t) {
     evaluator.evaluate(0, t);
     Scene posed;
     posed.source = "test:posed-arm";
-    Mesh mesh = arm.objects[0].mesh;
-    const std::vector<glm::dvec3> p = posedPositions(arm, 0, evaluator);
-    for (size_t v = 0; v < p.size(); ++v)
-        mesh.positions[v] = glm::vec3(p[v]);
-    posed.objects.push_back(makeSceneObject("arm", std::move(mesh), evaluator.objectTransform(0), true));
+    posed.objects.push_back(
+        makeSceneObject("arm", withPositions(arm.objects[0].mesh, posedPositions(arm, 0, evaluator)),
+                        evaluator.objectTransform(0), true));
     return armOverFloor(posed);
 }
 

@@ -27,11 +27,7 @@ constexpr float kDecalSize = 0.05f;
 Mesh drawnMesh(const Scene& arm, double t) {
     SceneEvaluator evaluator(arm);
     evaluator.evaluate(0, t);
-    Mesh m = arm.objects[0].mesh;
-    const std::vector<glm::dvec3> p = posedPositions(arm, 0, evaluator);
-    for (size_t v = 0; v < p.size(); ++v)
-        m.positions[v] = glm::vec3(p[v]);
-    return m;
+    return withPositions(arm.objects[0].mesh, posedPositions(arm, 0, evaluator));
 }
 
 Status poseAt(DecalSystem& system, const Scene& arm, double t) {

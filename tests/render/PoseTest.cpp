@@ -229,38 +229,37 @@ Scene load(const std::string& path) {
     return scene.ok() ? std::move(scene.value()) : Scene{};
 }
 
+// The shared model at `path`, posed at `fraction` of its first animation, drawn as the CPU poses it.
+void expectSharedModelMatchesCpu(const std::string& path, double fraction) {
+    const Scene scene = load(path);
+    ASSERT_FALSE(scene.animation.animations.empty());
+    expectGpuPoseMatchesCpu(scene, 0, fraction * scene.animation.animations[0].duration);
+}
+
 } // namespace
 
 TEST(Pose, SkinnedCesiumManMatchesCpuPose) {
     SPATTER_REQUIRE_GL(gl);
     SPATTER_REQUIRE_SHARED(path, "gltf/CesiumMan/CesiumMan.glb");
-    const Scene scene = load(path);
-    ASSERT_FALSE(scene.animation.animations.empty());
-    expectGpuPoseMatchesCpu(scene, 0, 0.37 * scene.animation.animations[0].duration);
+    expectSharedModelMatchesCpu(path, 0.37);
 }
 
 TEST(Pose, SkinnedRiggedSimpleMatchesCpuPose) {
     SPATTER_REQUIRE_GL(gl);
     SPATTER_REQUIRE_SHARED(path, "gltf/RiggedSimple/RiggedSimple.glb");
-    const Scene scene = load(path);
-    ASSERT_FALSE(scene.animation.animations.empty());
-    expectGpuPoseMatchesCpu(scene, 0, 0.6 * scene.animation.animations[0].duration);
+    expectSharedModelMatchesCpu(path, 0.6);
 }
 
 TEST(Pose, MorphedCubeMatchesCpuPose) {
     SPATTER_REQUIRE_GL(gl);
     SPATTER_REQUIRE_SHARED(path, "gltf/AnimatedMorphCube/AnimatedMorphCube.glb");
-    const Scene scene = load(path);
-    ASSERT_FALSE(scene.animation.animations.empty());
-    expectGpuPoseMatchesCpu(scene, 0, 0.3 * scene.animation.animations[0].duration);
+    expectSharedModelMatchesCpu(path, 0.3);
 }
 
 TEST(Pose, AnimatedNodesMatchCpuPose) {
     SPATTER_REQUIRE_GL(gl);
     SPATTER_REQUIRE_SHARED(path, "gltf/BoxAnimated/BoxAnimated.glb");
-    const Scene scene = load(path);
-    ASSERT_FALSE(scene.animation.animations.empty());
-    expectGpuPoseMatchesCpu(scene, 0, 0.45 * scene.animation.animations[0].duration);
+    expectSharedModelMatchesCpu(path, 0.45);
 }
 
 TEST(Pose, WrittenSkinAndMorphMatchCpuPose) {

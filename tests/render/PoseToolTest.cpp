@@ -53,12 +53,16 @@ size_t differingPixels(const Image& a, const Image& b) {
 
 } // namespace
 
+// Skips the calling test when the tools cannot get a headless GL context here (fails under CI=true).
+#define SPATTER_REQUIRE_TOOL_GL()                                                                            \
+    if (!noGl().empty()) {                                                                                   \
+        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();                 \
+        GTEST_SKIP() << "no headless OpenGL context (" << noGl() << ")";                                     \
+    }
+
 TEST(SpatterRenderTime, PosesTheSceneAtTheGivenTime) {
     SPATTER_REQUIRE_SHARED(path, "gltf/CesiumMan/CesiumMan.glb");
-    if (!noGl().empty()) {
-        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
-        GTEST_SKIP() << "no headless OpenGL context (" << noGl() << ")";
-    }
+    SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("render_time");
     const std::string common = path + " --size 128x96 --camera \"eye=0.4,1.2,3;target=0,0.8,0\" ";
     ASSERT_EQ(runTool(common + "--out " + dir + "/rest.png"), 0);
@@ -79,10 +83,7 @@ TEST(SpatterRenderTime, PosesTheSceneAtTheGivenTime) {
 // --translate moves the pose with the scene: the same view of the moved world gives the same image.
 TEST(SpatterRenderTime, PoseMovesWithTranslate) {
     SPATTER_REQUIRE_SHARED(path, "gltf/CesiumMan/CesiumMan.glb");
-    if (!noGl().empty()) {
-        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
-        GTEST_SKIP() << "no headless OpenGL context (" << noGl() << ")";
-    }
+    SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("render_time_translate");
     ASSERT_EQ(runTool(path + " --size 128x96 --time 0.7 --camera \"eye=0.4,1.2,3;target=0,0.8,0\" --out " +
                       dir + "/a.png"),
@@ -106,10 +107,7 @@ TEST(SpatterRenderTime, RefusesATimeThatIsNotANumber) {
 // time gives the same image and another time another pose.
 TEST(GalleryTime, PlaysTheSceneAnimationFromTheGivenTime) {
     SPATTER_REQUIRE_SHARED(path, "gltf/CesiumMan/CesiumMan.glb");
-    if (!noGl().empty()) {
-        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
-        GTEST_SKIP() << "no headless OpenGL context (" << noGl() << ")";
-    }
+    SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("gallery_time");
     const std::string common =
         "--headless --scene " + path + " --shots 8 --size 160x90 --cache " + dir + "/cache --time ";

@@ -7,6 +7,7 @@
 
 #include "spatter/core/SceneEvaluator.hpp"
 #include "spatter/core/SkinnedDummy.hpp"
+#include "spatter/core/VertexDeformation.hpp"
 #include "spatter/placement/CollisionWorld.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
@@ -23,13 +24,11 @@ constexpr int kSize = 192;
 
 // The dummy's render mesh posed at t, as a static object: what the renderer draws.
 Scene drawnDummy(const Scene& scene, const SceneEvaluator& evaluator) {
-    Mesh m = scene.objects[0].mesh;
-    const std::vector<glm::dvec3> p = posedPositions(scene, 0, evaluator);
-    for (size_t v = 0; v < p.size(); ++v)
-        m.positions[v] = glm::vec3(p[v]);
     Scene drawn;
     drawn.source = "test:drawn-dummy";
-    drawn.objects.push_back(makeSceneObject("dummy", std::move(m), evaluator.objectTransform(0)));
+    drawn.objects.push_back(
+        makeSceneObject("dummy", withPositions(scene.objects[0].mesh, posedPositions(scene, 0, evaluator)),
+                        evaluator.objectTransform(0)));
     return drawn;
 }
 

@@ -35,6 +35,10 @@ glm::dvec3 barycentric(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec
 std::optional<glm::dmat4> triangleFrame(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2,
                                         const glm::dvec3& bary);
 
+// `mesh` with its positions replaced by `positions` (one per vertex, rounded to float), everything
+// else kept: a posed copy of a mesh, as posePositions or posedPositions give its positions.
+Mesh withPositions(const Mesh& mesh, const std::vector<glm::dvec3>& positions);
+
 // The deformation of `object`'s render mesh (its skin weights and its morph targets' position deltas).
 VertexDeformation deformationOf(const SceneObject& object);
 
