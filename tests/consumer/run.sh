@@ -17,9 +17,9 @@ if [[ -n $examples ]]; then
   [[ -f $examples_dir/CMakeLists.txt ]] || { echo "the example hosts' sources are not installed" >&2; exit 1; }
 fi
 cmake -S "$here" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$work/prefix" \
-  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DSPATTER_EXAMPLES_DIR="$examples_dir" \
+  -DCMAKE_CXX_FLAGS_RELEASE="-O3 -DNDEBUG $flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DSPATTER_EXAMPLES_DIR="$examples_dir" \
   >"$work.configure.log" 2>&1 || { cat "$work.configure.log"; exit 1; }
-cmake --build "$work/build" >"$work.build.log" 2>&1 || { cat "$work.build.log"; exit 1; }
+cmake --build "$work/build" -j "$(nproc 2>/dev/null || echo 2)" >"$work.build.log" 2>&1 || { cat "$work.build.log"; exit 1; }
 status=0
 "$work/build/spatter-consumer" || status=$?
 if [[ $status -eq 77 && ${CI:-} == true ]]; then
