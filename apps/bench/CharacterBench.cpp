@@ -21,9 +21,9 @@ namespace spatter::bench {
 
 namespace {
 
-const char* kCommand = "characters";
+const char* kCharactersCommand = "characters";
 
-const char* kUsage =
+const char* kCharactersUsage =
     R"(usage: spatter-bench characters [--characters LIST] [--decals N] [--frames N] [--size WxH]
                                 [--quick] [--json FILE]
 
@@ -106,7 +106,7 @@ void shootCharacters(DecalSystem& system, const Scene& scene, uint16_t type, siz
     }
 }
 
-struct Row {
+struct CharactersRow {
     size_t characters = 0, decals = 0;
     double setPoseMs = 0, updateMs = 0, renderMs = 0, decalPassMs = 0, frameMs = 0;
     double baselineSetPoseMs = 0, baselineFrameMs = 0;
@@ -143,7 +143,7 @@ Result<Timings> play(Renderer& renderer, DecalSystem& system, const Scene& scene
     return t;
 }
 
-Result<Row> measure(GlContext& gl, const Options& o, size_t count) {
+Result<CharactersRow> measure(GlContext& gl, const Options& o, size_t count) {
     const Scene scene = charactersScene(count);
     RendererSettings settings;
     settings.width = o.width;
@@ -157,7 +157,7 @@ Result<Row> measure(GlContext& gl, const Options& o, size_t count) {
     hole.size = glm::vec2(0.06f);
     renderer->setDecalTypes({hole});
     const Camera camera = frontCamera(count);
-    Row row;
+    CharactersRow row;
     row.characters = count;
     for (const bool withDecals : {false, true}) {
         DecalSettings ds;
@@ -215,7 +215,7 @@ Result<Options> parseOptions(const Args& args) {
     return o;
 }
 
-Json toJson(const Row& r) {
+Json toJson(const CharactersRow& r) {
     return {{"characters", r.characters},
             {"decals", r.decals},
             {"setpose_ms", number(r.setPoseMs)},
@@ -232,11 +232,11 @@ Json toJson(const Row& r) {
 int runCharactersCommand(int argc, char** argv) {
     int exitCode = 0;
     const std::optional<Args> parsed =
-        commandArgs(argc, argv, kCommand, kUsage,
+        commandArgs(argc, argv, kCharactersCommand, kCharactersUsage,
                     {"--characters", "--decals", "--frames", "--size", "--json"}, {"--quick"}, exitCode);
     if (!parsed) return exitCode;
     Result<Options> options = parseOptions(*parsed);
-    if (!options) return usageError(kCommand, options.error());
+    if (!options) return usageError(kCharactersCommand, options.error());
     Result<GlContext> gl = GlContext::createHeadless();
     if (!gl) {
         std::fprintf(stderr, "spatter-bench characters: no OpenGL 4.5 context: %s\n", gl.error().c_str());
@@ -247,7 +247,7 @@ int runCharactersCommand(int argc, char** argv) {
     std::vector<std::vector<std::string>> table;
     Json rows = Json::array();
     for (double count : options->characters) {
-        Result<Row> r = measure(gl.value(), options.value(), size_t(count));
+        Result<CharactersRow> r = measure(gl.value(), options.value(), size_t(count));
         if (!r) {
             std::fprintf(stderr, "spatter-bench characters: %s\n", r.error().c_str());
             return 1;
@@ -261,7 +261,7 @@ int runCharactersCommand(int argc, char** argv) {
                 "decal pass ms", "frame ms", "(no decals)"},
                table);
     if (parsed->has("--json")) {
-        Json j{{"command", kCommand}, {"machine", toJson(machine)}, {"rows", rows}};
+        Json j{{"command", kCharactersCommand}, {"machine", toJson(machine)}, {"rows", rows}};
         if (Status s = writeJson(j, parsed->value("--json")); !s) {
             std::fprintf(stderr, "spatter-bench characters: %s\n", s.error().c_str());
             return 1;

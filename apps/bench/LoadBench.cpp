@@ -21,9 +21,9 @@ namespace spatter::bench {
 
 namespace {
 
-const char* kCommand = "load";
+const char* kLoadCommand = "load";
 
-const char* kUsage =
+const char* kLoadUsage =
     R"(usage: spatter-bench load [--grid N] [--repeat R] [--quick] [--json FILE]
 
 The cost of loading Draco-compressed glTF against its uncompressed twin, in the same run: every
@@ -250,19 +250,19 @@ size_t fileSize(const std::string& path) {
 
 int runLoadCommand(int argc, char** argv) {
     int exitCode = 0;
-    const std::optional<Args> parsed =
-        commandArgs(argc, argv, kCommand, kUsage, {"--grid", "--repeat", "--json"}, {"--quick"}, exitCode);
+    const std::optional<Args> parsed = commandArgs(argc, argv, kLoadCommand, kLoadUsage,
+                                                   {"--grid", "--repeat", "--json"}, {"--quick"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
-    if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
+    if (!args.positional.empty()) return usageError(kLoadCommand, "no positional arguments");
     const bool quick = args.has("--quick");
     Result<uint64_t> gridArg = parseCount(args.value("--grid", quick ? "128" : "512"), "--grid");
-    if (!gridArg) return usageError(kCommand, gridArg.error());
+    if (!gridArg) return usageError(kLoadCommand, gridArg.error());
     Result<uint64_t> repeat = parseCount(args.value("--repeat", quick ? "3" : "9"), "--repeat");
-    if (!repeat) return usageError(kCommand, repeat.error());
+    if (!repeat) return usageError(kLoadCommand, repeat.error());
     const size_t n = gridArg.value(), runs = repeat.value();
     if (n < 2 || n > 4096 || runs == 0)
-        return usageError(kCommand, "--grid must be from 2 to 4096 and --repeat positive");
+        return usageError(kLoadCommand, "--grid must be from 2 to 4096 and --repeat positive");
 
     const Grid grid = wavyGrid(n);
     const std::string dir = scratchDirectory("load");
@@ -344,7 +344,7 @@ int runLoadCommand(int argc, char** argv) {
     std::printf("\nDraco at level 6 within 3x: %s\n", targetRatio <= 3.0 ? "yes" : "no");
 
     Json j;
-    j["command"] = kCommand;
+    j["command"] = kLoadCommand;
     j["machine"] = toJson(machine);
     j["grid"] = n;
     j["vertices"] = n * n;

@@ -26,9 +26,10 @@ namespace spatter::bench {
 
 namespace {
 
-const char* kCommand = "memory";
+const char* kMemoryCommand = "memory";
 
-const char* kUsage = R"(usage: spatter-bench memory [MESH] [--decals N] [--no-gpu] [--quick] [--json FILE]
+const char* kMemoryUsage =
+    R"(usage: spatter-bench memory [MESH] [--decals N] [--no-gpu] [--quick] [--json FILE]
 
 Bytes per decal and per object, measured:
 
@@ -85,18 +86,18 @@ double mb(double bytes) {
 int runMemoryCommand(int argc, char** argv) {
     Result<Args> parsed =
         parseArgs(argc, argv, {"--decals", "--json"}, {"--no-gpu", "--quick", "--help", "-h"});
-    if (!parsed) return usageError(kCommand, parsed.error());
+    if (!parsed) return usageError(kMemoryCommand, parsed.error());
     const Args& args = parsed.value();
     if (args.has("--help") || args.has("-h")) {
-        std::cout << kUsage;
+        std::cout << kMemoryUsage;
         return 0;
     }
-    if (args.positional.size() > 1) return usageError(kCommand, "at most one MESH");
+    if (args.positional.size() > 1) return usageError(kMemoryCommand, "at most one MESH");
     const bool quick = args.has("--quick");
     Result<uint64_t> decalCount = parseCount(args.value("--decals", quick ? "20000" : "1000000"), "--decals");
-    if (!decalCount) return usageError(kCommand, decalCount.error());
+    if (!decalCount) return usageError(kMemoryCommand, decalCount.error());
     const size_t n = decalCount.value();
-    if (n == 0 || n > (1u << 30)) return usageError(kCommand, "--decals must be in [1, 2^30]");
+    if (n == 0 || n > (1u << 30)) return usageError(kMemoryCommand, "--decals must be in [1, 2^30]");
 
     const MachineInfo machine = machineInfo();
     std::printf("spatter-bench memory: %zu decals\nmachine: %s\n", n, describe(machine).c_str());

@@ -111,7 +111,7 @@ GLuint framebuffer(const std::vector<GLuint>& colours, GLuint depth) {
     return fbo;
 }
 
-struct Mesh {
+struct HostMesh {
     GLuint vao = 0, buffers[3] = {0, 0, 0};
     GLsizei indices = 0;
     glm::dmat4 transform{1.0};
@@ -164,7 +164,7 @@ struct PathHost::Impl {
     GLuint geometry = 0, forward = 0, plainForward = 0, lighting = 0, dbufferLighting = 0;
     GLuint depth = 0, albedo = 0, normal = 0, ids = 0, color = 0;
     GLuint gbufferFbo = 0, colorFbo = 0, emptyVao = 0;
-    std::vector<Mesh> meshes;
+    std::vector<HostMesh> meshes;
     PassTimer timer;
 
     ~Impl() {
@@ -179,7 +179,7 @@ struct PathHost::Impl {
     }
 
     void clearMeshes() {
-        for (Mesh& m : meshes) {
+        for (HostMesh& m : meshes) {
             glDeleteVertexArrays(1, &m.vao);
             glDeleteBuffers(3, m.buffers);
         }
@@ -217,7 +217,7 @@ struct PathHost::Impl {
         glClearBufferfv(GL_DEPTH, 0, std::array<GLfloat, 1>{1.0f}.data());
         glUseProgram(program);
         const glm::dmat4 viewProj = projection(camera) * viewRotation(camera);
-        for (const Mesh& m : meshes) {
+        for (const HostMesh& m : meshes) {
             glm::dmat4 rel = m.transform;
             rel[3] -= glm::dvec4(camera.eye, 0.0);
             const glm::mat4 mvp(viewProj * rel), model(rel);
@@ -318,7 +318,7 @@ void PathHost::setScene(const Scene& scene) {
     Impl& m = *impl_;
     m.clearMeshes();
     for (const SceneObject& o : scene.objects) {
-        Mesh g;
+        HostMesh g;
         glCreateVertexArrays(1, &g.vao);
         glCreateBuffers(3, g.buffers);
         glNamedBufferStorage(g.buffers[0], GLsizeiptr(o.mesh.positions.size() * sizeof(glm::vec3)),

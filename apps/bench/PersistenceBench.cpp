@@ -17,9 +17,9 @@ namespace spatter::bench {
 
 namespace {
 
-const char* kCommand = "persistence";
+const char* kPersistenceCommand = "persistence";
 
-const char* kUsage =
+const char* kPersistenceUsage =
     R"(usage: spatter-bench persistence [--decals N] [--repeat R] [--worst] [--quick] [--json FILE]
 
 Saving and loading a decal system (DecalPersistence.hpp), single-threaded, wall clock, the median
@@ -103,19 +103,20 @@ Status loaded(Result<DecalLoadReport> r) {
 
 int runPersistenceCommand(int argc, char** argv) {
     int exitCode = 0;
-    const std::optional<Args> parsed = commandArgs(
-        argc, argv, kCommand, kUsage, {"--decals", "--repeat", "--json"}, {"--quick", "--worst"}, exitCode);
+    const std::optional<Args> parsed =
+        commandArgs(argc, argv, kPersistenceCommand, kPersistenceUsage, {"--decals", "--repeat", "--json"},
+                    {"--quick", "--worst"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
-    if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
+    if (!args.positional.empty()) return usageError(kPersistenceCommand, "no positional arguments");
     const bool quick = args.has("--quick");
     Result<uint64_t> count = parseCount(args.value("--decals", quick ? "20000" : "1000000"), "--decals");
-    if (!count) return usageError(kCommand, count.error());
+    if (!count) return usageError(kPersistenceCommand, count.error());
     Result<uint64_t> repeat = parseCount(args.value("--repeat", quick ? "3" : "5"), "--repeat");
-    if (!repeat) return usageError(kCommand, repeat.error());
+    if (!repeat) return usageError(kPersistenceCommand, repeat.error());
     const size_t n = count.value(), runs = repeat.value();
-    if (n == 0 || n > (1u << 30)) return usageError(kCommand, "--decals must be in [1, 2^30]");
-    if (runs == 0) return usageError(kCommand, "--repeat must be positive");
+    if (n == 0 || n > (1u << 30)) return usageError(kPersistenceCommand, "--decals must be in [1, 2^30]");
+    if (runs == 0) return usageError(kPersistenceCommand, "--repeat must be positive");
 
     const MachineInfo machine = machineInfo();
     std::printf("spatter-bench persistence: %zu decals, %zu runs a row\nmachine: %s\n", n, runs,
@@ -165,7 +166,7 @@ int runPersistenceCommand(int argc, char** argv) {
         "(sizeof(Decal) %zu)\n\n",
         placed, clipped, fading, bytes.size(), perDecal, sizeof(Decal));
     Json j;
-    j["command"] = kCommand;
+    j["command"] = kPersistenceCommand;
     j["machine"] = toJson(machine);
     j["decals"] = placed;
     j["worst"] = worst;

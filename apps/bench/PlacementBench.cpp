@@ -22,9 +22,9 @@ namespace spatter::bench {
 
 namespace {
 
-const char* kCommand = "placement";
+const char* kPlacementCommand = "placement";
 
-const char* kUsage =
+const char* kPlacementUsage =
     R"(usage: spatter-bench placement [MESH] [--backend meshopt|openmesh|auto|render] [--tolerance T%]
                                [--rays N] [--batches N] [--batch-size N] [--cone DEG] [--burst-cone DEG]
                                [--min-time S]
@@ -111,13 +111,13 @@ int runPlacementCommand(int argc, char** argv) {
                                      "--cone", "--burst-cone", "--min-time", "--repetitions", "--seed",
                                      "--filter", "--embree-config", "--json"},
                                     {"--quick", "--help", "-h"});
-    if (!parsed) return usageError(kCommand, parsed.error());
+    if (!parsed) return usageError(kPlacementCommand, parsed.error());
     const Args& args = parsed.value();
     if (args.has("--help")) {
-        std::cout << kUsage;
+        std::cout << kPlacementUsage;
         return 0;
     }
-    if (args.positional.size() > 1) return usageError(kCommand, "at most one MESH");
+    if (args.positional.size() > 1) return usageError(kPlacementCommand, "at most one MESH");
     const bool quick = args.has("--quick");
 
     auto count = [&](const std::string& name, uint64_t fallback) -> Result<uint64_t> {
@@ -137,16 +137,16 @@ int runPlacementCommand(int argc, char** argv) {
     for (const std::string& e :
          {rayCount.error(), batchCount.error(), batchSize.error(), repetitions.error(), seed.error(),
           cone.error(), burstCone.error(), minTime.error(), tolerance.error()})
-        if (!e.empty()) return usageError(kCommand, e);
+        if (!e.empty()) return usageError(kPlacementCommand, e);
     if (rayCount.value() == 0 || batchCount.value() == 0 || batchSize.value() == 0 ||
         repetitions.value() == 0)
-        return usageError(kCommand, "counts must be positive");
+        return usageError(kPlacementCommand, "counts must be positive");
     if (!(cone.value() > 0.0 && cone.value() < 180.0) ||
         !(burstCone.value() > 0.0 && burstCone.value() < 180.0))
-        return usageError(kCommand, "--cone and --burst-cone must be in (0, 180)");
-    if (!(minTime.value() > 0.0)) return usageError(kCommand, "--min-time must be positive");
+        return usageError(kPlacementCommand, "--cone and --burst-cone must be in (0, 180)");
+    if (!(minTime.value() > 0.0)) return usageError(kPlacementCommand, "--min-time must be positive");
     if (!(tolerance.value() > 0.0 && tolerance.value() < 100.0))
-        return usageError(kCommand, "--tolerance must be in (0, 100)%");
+        return usageError(kPlacementCommand, "--tolerance must be in (0, 100)%");
     const std::string backendName = args.value("--backend", "meshopt");
     std::optional<ProxyBackend> backend;
     if (backendName == "meshopt")
@@ -156,7 +156,7 @@ int runPlacementCommand(int argc, char** argv) {
     else if (backendName == "auto")
         backend = ProxyBackend::Auto;
     else if (backendName != "render")
-        return usageError(kCommand, "--backend must be meshopt, openmesh, auto or render");
+        return usageError(kPlacementCommand, "--backend must be meshopt, openmesh, auto or render");
 
     // The mesh.
     InputMesh input;

@@ -14,9 +14,9 @@ namespace spatter::bench {
 
 namespace {
 
-const char* kCommand = "pose";
+const char* kPoseCommand = "pose";
 
-const char* kUsage =
+const char* kPoseUsage =
     R"(usage: spatter-bench pose [--scene SCENE] [--frames N] [--repeat R] [--quick] [--json FILE]
 
 The CPU cost of one frame of animation on one core (thread CPU time, the median of R runs of N
@@ -67,18 +67,19 @@ SceneCounts counts(const Scene& scene) {
 
 int runPoseCommand(int argc, char** argv) {
     int exitCode = 0;
-    const std::optional<Args> parsed = commandArgs(
-        argc, argv, kCommand, kUsage, {"--scene", "--frames", "--repeat", "--json"}, {"--quick"}, exitCode);
+    const std::optional<Args> parsed =
+        commandArgs(argc, argv, kPoseCommand, kPoseUsage, {"--scene", "--frames", "--repeat", "--json"},
+                    {"--quick"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
-    if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
+    if (!args.positional.empty()) return usageError(kPoseCommand, "no positional arguments");
     const bool quick = args.has("--quick");
     Result<uint64_t> frameCount = parseCount(args.value("--frames", quick ? "2000" : "20000"), "--frames");
-    if (!frameCount) return usageError(kCommand, frameCount.error());
+    if (!frameCount) return usageError(kPoseCommand, frameCount.error());
     Result<uint64_t> repeat = parseCount(args.value("--repeat", quick ? "3" : "5"), "--repeat");
-    if (!repeat) return usageError(kCommand, repeat.error());
+    if (!repeat) return usageError(kPoseCommand, repeat.error());
     const size_t frames = frameCount.value(), runs = repeat.value();
-    if (frames == 0 || runs == 0) return usageError(kCommand, "--frames and --repeat must be positive");
+    if (frames == 0 || runs == 0) return usageError(kPoseCommand, "--frames and --repeat must be positive");
     const std::string spec = args.value("--scene", "gltf/CesiumMan/CesiumMan.glb");
     const std::string path = resolveInput(spec);
     if (path.empty()) {
@@ -119,7 +120,7 @@ int runPoseCommand(int argc, char** argv) {
     if (!std::isfinite(sink)) std::printf("(posed positions are not finite)\n");
 
     Json j;
-    j["command"] = kCommand;
+    j["command"] = kPoseCommand;
     j["machine"] = toJson(machine);
     j["scene"] = spec;
     j["nodes"] = scene.animation.nodes.size();

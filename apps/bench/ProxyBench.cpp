@@ -21,9 +21,9 @@ namespace spatter::bench {
 
 namespace {
 
-const char* kCommand = "proxy";
+const char* kProxyCommand = "proxy";
 
-const char* kUsage =
+const char* kProxyUsage =
     R"(usage: spatter-bench proxy [--meshes LIST] [--tolerances LIST] [--samples N] [--no-gallery]
                            [--quick] [--json FILE]
 
@@ -209,7 +209,7 @@ Anchor findAnchor(const Mesh& welded, const DenseMeasure& dense, double toleranc
     return best;
 }
 
-struct Row {
+struct ProxyRow {
     std::string mesh;
     double tolerancePct = 0.0;
     size_t input = 0;
@@ -230,8 +230,8 @@ Result<Proxy> buildAt(const Mesh& mesh, double fraction) {
     return buildProxy(mesh, s);
 }
 
-Row measureCase(const Case& c, double tolerancePct, const DenseMeasure& dense, const Mesh& welded) {
-    Row row;
+ProxyRow measureCase(const Case& c, double tolerancePct, const DenseMeasure& dense, const Mesh& welded) {
+    ProxyRow row;
     row.mesh = c.name;
     row.tolerancePct = tolerancePct;
     row.input = c.mesh.triangleCount();
@@ -284,7 +284,7 @@ std::string yesNo(bool met) {
     return met ? "met" : "MISSED";
 }
 
-Json rowJson(const Row& r) {
+Json proxyRowJson(const ProxyRow& r) {
     return {{"mesh", r.mesh},
             {"tolerance_pct", r.tolerancePct},
             {"tolerance", number(r.tolerance)},
@@ -362,37 +362,37 @@ Json tenthPercent(const std::vector<Case>& cases, bool& met) {
 
 int runProxyCommand(int argc, char** argv) {
     int exitCode = 0;
-    const std::optional<Args> parsed =
-        commandArgs(argc, argv, kCommand, kUsage, {"--meshes", "--tolerances", "--samples", "--json"},
-                    {"--no-gallery", "--quick"}, exitCode);
+    const std::optional<Args> parsed = commandArgs(argc, argv, kProxyCommand, kProxyUsage,
+                                                   {"--meshes", "--tolerances", "--samples", "--json"},
+                                                   {"--no-gallery", "--quick"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
-    if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
+    if (!args.positional.empty()) return usageError(kProxyCommand, "no positional arguments");
     const bool quick = args.has("--quick");
     Result<uint64_t> samples = parseCount(args.value("--samples", quick ? "20000" : "100000"), "--samples");
-    if (!samples) return usageError(kCommand, samples.error());
+    if (!samples) return usageError(kProxyCommand, samples.error());
     Result<std::vector<double>> tolerances =
         parseNumberList(args.value("--tolerances", quick ? "0.5,2" : "0.2,0.5,1,2"), "--tolerances");
-    if (!tolerances) return usageError(kCommand, tolerances.error());
+    if (!tolerances) return usageError(kProxyCommand, tolerances.error());
     for (double t : tolerances.value())
-        if (!(t > 0.0 && t < 100.0)) return usageError(kCommand, "--tolerances: each in (0, 100)");
+        if (!(t > 0.0 && t < 100.0)) return usageError(kProxyCommand, "--tolerances: each in (0, 100)");
     const std::string defaultMeshes = quick ? "fandisk.obj,gallery"
                                             : "stanford-bunny.obj,fandisk.obj,rocker-arm.obj,"
                                               "gltf/DamagedHelmet/DamagedHelmet.glb,gallery,bunny-loop2";
     Result<std::vector<Case>> cases = loadCases(splitList(args.value("--meshes", defaultMeshes)), quick);
-    if (!cases) return usageError(kCommand, cases.error());
+    if (!cases) return usageError(kProxyCommand, cases.error());
 
     const MachineInfo machine = machineInfo();
     std::printf("spatter-bench proxy\nmachine: %s\n", describe(machine).c_str());
-    std::vector<Row> rows;
+    std::vector<ProxyRow> rows;
     std::vector<std::vector<std::string>> table;
     bool trianglesMet = true, timeMet = true, denseMet = true;
     for (const Case& c : cases.value()) {
         const DenseMeasure dense(c.mesh, samples.value());
-        if (!dense.ok()) return usageError(kCommand, c.name + ": the mesh cannot be measured");
+        if (!dense.ok()) return usageError(kProxyCommand, c.name + ": the mesh cannot be measured");
         const Mesh welded = weldedByPosition(c.mesh);
         for (double t : tolerances.value()) {
-            const Row r = measureCase(c, t, dense, welded);
+            const ProxyRow r = measureCase(c, t, dense, welded);
             rows.push_back(r);
             if (!r.error.empty()) {
                 table.push_back({r.mesh, fmt(t, 2), std::to_string(r.input), "error: " + r.error});
@@ -429,12 +429,12 @@ int runProxyCommand(int argc, char** argv) {
 
     if (args.has("--json")) {
         Json j;
-        j["command"] = kCommand;
+        j["command"] = kProxyCommand;
         j["machine"] = toJson(machine);
         j["samples"] = samples.value();
         j["rows"] = Json::array();
-        for (const Row& r : rows)
-            j["rows"].push_back(rowJson(r));
+        for (const ProxyRow& r : rows)
+            j["rows"].push_back(proxyRowJson(r));
         j["gallery_cold"] = gallery;
         j["tenth_percent"] = tenth;
         j["targets"] = {{"triangles_ratio_max", kTrianglesTarget},

@@ -23,9 +23,9 @@ namespace spatter::bench {
 
 namespace {
 
-const char* kCommand = "render";
+const char* kRenderCommand = "render";
 
-const char* kUsage =
+const char* kRenderUsage =
     R"(usage: spatter-bench render [--groups LIST] [--frames N] [--max-seconds S] [--quick] [--json FILE]
 
 GPU time of the decal pass (GL_TIME_ELAPSED, RendererSettings::waitForTimers; median of the frames)
@@ -158,7 +158,7 @@ std::vector<Config> configs(const std::vector<std::string>& groups, bool quick) 
     return out;
 }
 
-struct Row {
+struct RenderRow {
     Config config;
     int width = 0, height = 0;
     FrameTimes times; // for the projector's paths: decalsMs is the path's decal cost
@@ -184,9 +184,9 @@ public:
         : context_(std::move(context)), forwardTile_(forwardTile) {}
     const GlContext& context() const { return *context_; }
 
-    Result<Row> run(const Config& c, size_t frames, double maxSeconds) {
+    Result<RenderRow> run(const Config& c, size_t frames, double maxSeconds) {
         if (projectorPath(c)) return runPath(c, frames, maxSeconds);
-        Row row;
+        RenderRow row;
         row.config = c;
         if (!resolutionByName(c.resolution, row.width, row.height))
             return fail("unknown resolution " + c.resolution);
@@ -268,8 +268,8 @@ public:
 
 private:
     // A row of the projector in the bench's own host (PathHost), on the floor of the decal field.
-    Result<Row> runPath(const Config& c, size_t frames, double maxSeconds) {
-        Row row;
+    Result<RenderRow> runPath(const Config& c, size_t frames, double maxSeconds) {
+        RenderRow row;
         row.config = c;
         if (!resolutionByName(c.resolution, row.width, row.height))
             return fail("unknown resolution " + c.resolution);
@@ -353,7 +353,7 @@ std::string featureLabel(const Config& c) {
     return c.roof ? c.feature + "+roof" : c.feature;
 }
 
-Json rowJson(const Row& r) {
+Json renderRowJson(const RenderRow& r) {
     const Config& c = r.config;
     Json j;
     j["group"] = c.group;
@@ -395,7 +395,7 @@ Json rowJson(const Row& r) {
 
 // The decal pass's cost per covered pixel (each decal a square of decal_px on the floor) over the
 // lighting pass's per pixel of the same frame.
-double perCoveredPixelRatio(const Row& r) {
+double perCoveredPixelRatio(const RenderRow& r) {
     const double side = r.config.size * double(r.height);
     const double covered = double(r.config.visible) * side * side;
     const double pixels = double(r.width) * double(r.height);
@@ -404,8 +404,8 @@ double perCoveredPixelRatio(const Row& r) {
 
 // The targets of a world of persistent decals: few decals in view cost almost nothing, and a covered
 // pixel costs at most 1.5 times a lit one.
-void printScaleTargets(const std::vector<Row>& rows, Json& targets) {
-    for (const Row& r : rows) {
+void printScaleTargets(const std::vector<RenderRow>& rows, Json& targets) {
+    for (const RenderRow& r : rows) {
         if (!r.error.empty()) continue;
         if (r.config.group == "visible" && r.config.visible == 10 && r.config.resolution == "1080p") {
             targets["visible_10_ms"] = r.times.decalsMs;
@@ -426,10 +426,10 @@ void printScaleTargets(const std::vector<Row>& rows, Json& targets) {
 
 // The occlusion group: the decal pass with occlusion culling against without, with nothing hidden
 // (what the depth pyramid costs) and under the roof (what it saves).
-void printOcclusion(const std::vector<Row>& rows, Json& targets) {
+void printOcclusion(const std::vector<RenderRow>& rows, Json& targets) {
     for (bool roof : {false, true}) {
-        const Row *on = nullptr, *off = nullptr;
-        for (const Row& r : rows)
+        const RenderRow *on = nullptr, *off = nullptr;
+        for (const RenderRow& r : rows)
             if (r.error.empty() && r.config.group == "occlusion" && r.config.roof == roof)
                 (r.config.feature == "no-occlusion" ? off : on) = &r;
         if (!on || !off) continue;
@@ -443,9 +443,9 @@ void printOcclusion(const std::vector<Row>& rows, Json& targets) {
     }
 }
 
-const Row* findRow(const std::vector<Row>& rows, const std::string& resolution, size_t world,
-                   size_t visible) {
-    for (const Row& r : rows)
+const RenderRow* findRow(const std::vector<RenderRow>& rows, const std::string& resolution, size_t world,
+                         size_t visible) {
+    for (const RenderRow& r : rows)
         if (r.error.empty() && r.config.resolution == resolution && r.config.world == world &&
             r.config.visible == visible && r.config.size == 0.015 && r.config.feature == "default")
             return &r;
@@ -453,8 +453,8 @@ const Row* findRow(const std::vector<Row>& rows, const std::string& resolution, 
 }
 
 // The renderer's decal pass of the paths group at `visible` decals, or nothing.
-const Row* rendererRow(const std::vector<Row>& rows, size_t visible) {
-    for (const Row& r : rows)
+const RenderRow* rendererRow(const std::vector<RenderRow>& rows, size_t visible) {
+    for (const RenderRow& r : rows)
         if (r.error.empty() && r.config.group == "paths" && r.config.feature == "renderer" &&
             r.config.visible == visible)
             return &r;
@@ -463,12 +463,12 @@ const Row* rendererRow(const std::vector<Row>& rows, size_t visible) {
 
 // The paths group side by side, each path's decal cost against the renderer's decal pass, and the
 // target: the projector's G-buffer blend in a host within 10% of the renderer's pass.
-void printPaths(const std::vector<Row>& rows, Json& targets) {
+void printPaths(const std::vector<RenderRow>& rows, Json& targets) {
     std::vector<std::vector<std::string>> table;
-    for (const Row& r : rows) {
+    for (const RenderRow& r : rows) {
         const Config& c = r.config;
         if (c.group != "paths") continue;
-        const Row* renderer = rendererRow(rows, c.visible);
+        const RenderRow* renderer = rendererRow(rows, c.visible);
         if (!r.error.empty()) {
             table.push_back(
                 {c.resolution, std::to_string(c.visible), c.feature, "-", "-", "-", "-", r.error});
@@ -504,21 +504,21 @@ void printPaths(const std::vector<Row>& rows, Json& targets) {
 int runRenderCommand(int argc, char** argv) {
     int exitCode = 0;
     const std::optional<Args> parsed = commandArgs(
-        argc, argv, kCommand, kUsage, {"--groups", "--frames", "--max-seconds", "--json", "--forward-tile"},
-        {"--quick"}, exitCode);
+        argc, argv, kRenderCommand, kRenderUsage,
+        {"--groups", "--frames", "--max-seconds", "--json", "--forward-tile"}, {"--quick"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
-    if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
+    if (!args.positional.empty()) return usageError(kRenderCommand, "no positional arguments");
     const bool quick = args.has("--quick");
     Result<uint64_t> frames = parseCount(args.value("--frames", quick ? "2" : "7"), "--frames");
     Result<double> maxSeconds = parseNumber(args.value("--max-seconds", quick ? "3" : "20"), "--max-seconds");
-    if (!frames) return usageError(kCommand, frames.error());
-    if (!maxSeconds) return usageError(kCommand, maxSeconds.error());
+    if (!frames) return usageError(kRenderCommand, frames.error());
+    if (!maxSeconds) return usageError(kRenderCommand, maxSeconds.error());
     Result<uint64_t> forwardTile = parseCount(args.value("--forward-tile", "16"), "--forward-tile");
     if (!forwardTile || forwardTile.value() > 64)
-        return usageError(kCommand, "--forward-tile: 8, 16, 32 or 64");
+        return usageError(kRenderCommand, "--forward-tile: 8, 16, 32 or 64");
     if (frames.value() == 0 || !(maxSeconds.value() > 0.0))
-        return usageError(kCommand, "--frames and --max-seconds must be positive");
+        return usageError(kRenderCommand, "--frames and --max-seconds must be positive");
     std::vector<std::string> groups;
     if (args.has("--groups")) {
         std::string list = args.value("--groups") + ",";
@@ -526,7 +526,7 @@ int runRenderCommand(int argc, char** argv) {
             const std::string g = list.substr(a, b - a);
             if (g != "count" && g != "visible" && g != "coverage" && g != "resolution" && g != "features" &&
                 g != "paths" && g != "cpu" && g != "occlusion")
-                return usageError(kCommand, "unknown group '" + g + "'");
+                return usageError(kRenderCommand, "unknown group '" + g + "'");
             groups.push_back(g);
         }
     }
@@ -543,13 +543,13 @@ int runRenderCommand(int argc, char** argv) {
                 info.platform.c_str(), info.version.c_str(), describe(machine).c_str());
     std::fflush(stdout);
 
-    std::vector<Row> rows;
-    std::map<decltype(Config().key()), Row> done;
+    std::vector<RenderRow> rows;
+    std::map<decltype(Config().key()), RenderRow> done;
     // Frame time expected for a row, from the rows measured so far at its resolution: the slowest
     // decal-pass time per visible decal and per unit of decal area, plus the slowest other passes. A
     // row expected to take longer than --max-seconds per frame is skipped (software renderers).
     std::map<std::string, std::pair<double, double>> perArea; // resolution -> (ms per decal area, other ms)
-    auto learn = [&](const Row& r) {
+    auto learn = [&](const RenderRow& r) {
         if (!r.error.empty() || r.config.visible == 0) return;
         auto& k = perArea[r.config.resolution];
         const double area = double(r.config.visible) * r.config.size * r.config.size;
@@ -562,7 +562,7 @@ int runRenderCommand(int argc, char** argv) {
         return it->second.first * double(c.visible) * c.size * c.size + it->second.second;
     };
     for (const Config& c : configs(groups, quick)) {
-        Row row;
+        RenderRow row;
         auto it = done.find(c.key());
         if (it != done.end()) {
             row = it->second;
@@ -574,7 +574,7 @@ int runRenderCommand(int argc, char** argv) {
                         fmt(maxSeconds.value()) + ")";
             done[c.key()] = row;
         } else {
-            Result<Row> r = bench.run(c, frames.value(), maxSeconds.value());
+            Result<RenderRow> r = bench.run(c, frames.value(), maxSeconds.value());
             if (r) {
                 row = r.value();
             } else {
@@ -591,7 +591,7 @@ int runRenderCommand(int argc, char** argv) {
     }
 
     std::vector<std::vector<std::string>> table;
-    for (const Row& r : rows) {
+    for (const RenderRow& r : rows) {
         const Config& c = r.config;
         if (c.group == "paths") continue; // a table of their own
         if (!r.error.empty()) {
@@ -614,8 +614,8 @@ int runRenderCommand(int argc, char** argv) {
 
     Json targets;
     printPaths(rows, targets);
-    const Row* tenK = findRow(rows, "1080p", 10000, 10000);
-    const Row* million = findRow(rows, "1080p", 1000000, 10000);
+    const RenderRow* tenK = findRow(rows, "1080p", 10000, 10000);
+    const RenderRow* million = findRow(rows, "1080p", 1000000, 10000);
     if (tenK) {
         targets["visible_10k_1080p_ms"] = tenK->times.decalsMs;
         targets["visible_10k_1080p_met"] = tenK->times.decalsMs <= 0.5;
@@ -657,8 +657,8 @@ int runRenderCommand(int argc, char** argv) {
         j["frames"] = frames.value();
         j["max_seconds"] = maxSeconds.value();
         j["rows"] = Json::array();
-        for (const Row& r : rows)
-            j["rows"].push_back(rowJson(r));
+        for (const RenderRow& r : rows)
+            j["rows"].push_back(renderRowJson(r));
         j["targets"] = targets;
         if (Status s = writeJson(j, args.value("--json")); !s) {
             std::cerr << "spatter-bench render: " << s.error() << "\n";

@@ -24,7 +24,7 @@ namespace spatter::bench {
 
 namespace {
 
-const char* kCommand = "skinned";
+const char* kSkinnedCommand = "skinned";
 const char* kArm = "builtin:skinned-arm";
 const std::vector<std::string> kModels = {kArm, "gltf/CesiumMan/CesiumMan.glb",
                                           "gltf/RiggedSimple/RiggedSimple.glb"};
@@ -36,7 +36,7 @@ constexpr double kDecalSizeFraction = 0.05; // decals a twentieth of the model's
 constexpr double kSpawnPhase = 0.3;         // the pose of the spawn rows, a fraction of the cycle
 constexpr float kProxyTolerance = 0.005f;   // relative to the render mesh's diagonal
 
-const char* kUsage =
+const char* kSkinnedUsage =
     R"(usage: spatter-bench skinned [--frames N] [--repeat R] [--samples S] [--no-render] [--quick]
                              [--json FILE]
 
@@ -866,7 +866,7 @@ Result<Sizes> parseSizes(const Args& args) {
 Json report(const std::vector<ModelReport>& reports, const Sizes& sizes, const MachineInfo& machine,
             const CoverageContext& gl) {
     Json j;
-    j["command"] = kCommand;
+    j["command"] = kSkinnedCommand;
     j["machine"] = toJson(machine);
     j["clock"] = "thread CPU time";
     j["embree_threads"] = 1;
@@ -906,13 +906,13 @@ Json report(const std::vector<ModelReport>& reports, const Sizes& sizes, const M
 int runSkinnedCommand(int argc, char** argv) {
     int exitCode = 0;
     const std::optional<Args> parsed =
-        commandArgs(argc, argv, kCommand, kUsage, {"--frames", "--repeat", "--samples", "--json"},
-                    {"--quick", "--no-render"}, exitCode);
+        commandArgs(argc, argv, kSkinnedCommand, kSkinnedUsage,
+                    {"--frames", "--repeat", "--samples", "--json"}, {"--quick", "--no-render"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
-    if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
+    if (!args.positional.empty()) return usageError(kSkinnedCommand, "no positional arguments");
     const Result<Sizes> sizes = parseSizes(args);
-    if (!sizes) return usageError(kCommand, sizes.error());
+    if (!sizes) return usageError(kSkinnedCommand, sizes.error());
     const MachineInfo machine = machineInfo();
     std::printf("spatter-bench skinned: %zu frames, %zu runs a row, %d poses a bound\nmachine: %s\n\n",
                 sizes->frames, sizes->runs, sizes->samples, describe(machine).c_str());

@@ -23,9 +23,10 @@ namespace spatter::bench {
 
 namespace {
 
-const char* kCommand = "skip";
+const char* kSkipCommand = "skip";
 
-const char* kUsage = R"(usage: spatter-bench skip [--decals N] [--frames N] [--no-gpu] [--quick] [--json FILE]
+const char* kSkipUsage =
+    R"(usage: spatter-bench skip [--decals N] [--frames N] [--no-gpu] [--quick] [--json FILE]
 
 What each skip of the design saves, measured with the skip on and forced off in the same run:
 
@@ -304,17 +305,19 @@ void cpuSkips(bool quick, std::vector<Skip>& out) {
 
 int runSkipCommand(int argc, char** argv) {
     int exitCode = 0;
-    const std::optional<Args> parsed = commandArgs(
-        argc, argv, kCommand, kUsage, {"--decals", "--frames", "--json"}, {"--no-gpu", "--quick"}, exitCode);
+    const std::optional<Args> parsed =
+        commandArgs(argc, argv, kSkipCommand, kSkipUsage, {"--decals", "--frames", "--json"},
+                    {"--no-gpu", "--quick"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
-    if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
+    if (!args.positional.empty()) return usageError(kSkipCommand, "no positional arguments");
     const bool quick = args.has("--quick");
     Result<uint64_t> decals = parseCount(args.value("--decals", quick ? "1000" : "10000"), "--decals");
     Result<uint64_t> frames = parseCount(args.value("--frames", quick ? "2" : "7"), "--frames");
-    if (!decals) return usageError(kCommand, decals.error());
-    if (!frames) return usageError(kCommand, frames.error());
-    if (decals.value() == 0 || frames.value() == 0) return usageError(kCommand, "counts must be positive");
+    if (!decals) return usageError(kSkipCommand, decals.error());
+    if (!frames) return usageError(kSkipCommand, frames.error());
+    if (decals.value() == 0 || frames.value() == 0)
+        return usageError(kSkipCommand, "counts must be positive");
 
     const MachineInfo machine = machineInfo();
     std::printf("spatter-bench skip\nmachine: %s\n", describe(machine).c_str());

@@ -29,7 +29,8 @@ using stress::StressConfig;
 using stress::StressResult;
 using stress::StressRow;
 
-const char* kUsage = R"(usage: spatter-bench stress [--json FILE] [--quick] [--case NAME]... [--data DIR]
+const char* kStressUsage =
+    R"(usage: spatter-bench stress [--json FILE] [--quick] [--case NAME]... [--data DIR]
                             [--place-tool PATH] [--seed N] [--no-gpu]
 
 Runs the numerical stress cases at full size (the `stress` tests run the same code at CI size) and
@@ -78,7 +79,7 @@ const char* verdict(const StressRow& row) {
     return row.pass() ? "pass" : "FAIL";
 }
 
-nlohmann::ordered_json number(double v) {
+nlohmann::ordered_json orderedNumber(double v) {
     if (std::isfinite(v)) return v;
     return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
 }
@@ -107,8 +108,8 @@ nlohmann::ordered_json toJson(const StressResult& r) {
     for (const StressRow& row : r.rows) {
         nlohmann::ordered_json x;
         x["metric"] = row.metric;
-        x["worst"] = number(row.worst);
-        x["bound"] = number(row.bound);
+        x["worst"] = orderedNumber(row.worst);
+        x["bound"] = orderedNumber(row.bound);
         x["samples"] = row.samples;
         x["note"] = row.note;
         x["informational"] = row.informational;
@@ -142,7 +143,7 @@ int runStressCommand(int argc, char** argv) {
             return true;
         };
         if (a == "--help" || a == "-h") {
-            std::cout << kUsage;
+            std::cout << kStressUsage;
             for (const StressCase& c : stress::stressCases())
                 std::printf("  %-22s %s\n", c.name, c.summary);
             return 0;

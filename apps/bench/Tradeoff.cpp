@@ -24,9 +24,9 @@ namespace spatter::bench {
 
 namespace {
 
-const char* kCommand = "tradeoff";
+const char* kTradeoffCommand = "tradeoff";
 
-const char* kUsage =
+const char* kTradeoffUsage =
     R"(usage: spatter-bench tradeoff MESH|SCENE [--subdivide N] [--backends LIST] [--tolerances LIST]
                               [--rays N] [--batch-size N] [--passes N] [--cap-seconds S]
                               [--openmesh-max-triangles N] [--coverage-decals N] [--size WxH]
@@ -77,7 +77,7 @@ and rays) is run when node and npm are available and reported beside the rows.
 
 constexpr double kRadToDeg = 57.295779513082320876;
 
-struct Row {
+struct TradeoffRow {
     std::string backend;
     double toleranceRel = 0.0;
     std::string status = "ok"; // ok, capped, skipped, failed: ...
@@ -191,7 +191,7 @@ Result<Timing> timePlacement(const Scene& scene, const std::vector<std::optional
 // Hit agreement and distances of `proxyHits` against `renderHits` (same rays).
 void measureErrors(const std::vector<std::optional<Hit>>& proxyHits,
                    const std::vector<std::optional<Hit>>& renderHits, const std::vector<Ray>& rays,
-                   const ClosestPointQuery& render, double diagonal, Row& row) {
+                   const ClosestPointQuery& render, double diagonal, TradeoffRow& row) {
     std::vector<double> dist, offset, angle;
     size_t disagree = 0;
     for (size_t i = 0; i < rays.size(); ++i) {
@@ -215,7 +215,7 @@ void measureErrors(const std::vector<std::optional<Hit>>& proxyHits,
     row.disagree = rays.empty() ? 0.0 : double(disagree) / double(rays.size());
 }
 
-Json rowJson(const Row& r) {
+Json tradeoffRowJson(const TradeoffRow& r) {
     Json j;
     j["backend"] = r.backend;
     j["tolerance_rel"] = r.toleranceRel;
@@ -245,7 +245,7 @@ std::string pct(double rel, int digits = 3) {
     return std::isnan(rel) ? "-" : fmt(100.0 * rel, digits);
 }
 
-std::vector<std::string> tableRow(const Row& r) {
+std::vector<std::string> tableRow(const TradeoffRow& r) {
     const bool done = r.status == "ok";
     std::string h = pct(r.errorBoundRel);
     if (!r.toleranceMet) h += "!";
@@ -273,14 +273,14 @@ std::vector<std::string> tableRow(const Row& r) {
 int runTradeoffCommand(int argc, char** argv) {
     int exitCode = 0;
     const std::optional<Args> parsed =
-        commandArgs(argc, argv, kCommand, kUsage,
+        commandArgs(argc, argv, kTradeoffCommand, kTradeoffUsage,
                     {"--subdivide", "--backends", "--tolerances", "--rays", "--batch-size", "--passes",
                      "--cap-seconds", "--openmesh-max-triangles", "--coverage-decals", "--size", "--camera",
                      "--peer-seconds", "--seed", "--json"},
                     {"--no-render", "--no-peer", "--quick"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
-    if (args.positional.size() != 1) return usageError(kCommand, "one MESH|SCENE is needed");
+    if (args.positional.size() != 1) return usageError(kTradeoffCommand, "one MESH|SCENE is needed");
     const bool quick = args.has("--quick");
 
     std::vector<std::string> errors;
@@ -331,16 +331,17 @@ int runTradeoffCommand(int argc, char** argv) {
     int width = 640, height = 480;
     if (args.has("--size") && std::sscanf(args.value("--size").c_str(), "%dx%d", &width, &height) != 2)
         errors.push_back("--size must be WxH");
-    if (!errors.empty()) return usageError(kCommand, errors.front());
+    if (!errors.empty()) return usageError(kTradeoffCommand, errors.front());
     if (subdivide > 4)
-        return usageError(kCommand, "--subdivide at most 4 (each step makes 4 times the triangles)");
+        return usageError(kTradeoffCommand, "--subdivide at most 4 (each step makes 4 times the triangles)");
     if (rayCount == 0 || batchSize == 0 || passes == 0)
-        return usageError(kCommand, "counts must be positive");
+        return usageError(kTradeoffCommand, "counts must be positive");
     if (width < 16 || height < 16 || width > 8192 || height > 8192)
-        return usageError(kCommand, "--size must be between 16x16 and 8192x8192");
+        return usageError(kTradeoffCommand, "--size must be between 16x16 and 8192x8192");
     for (double t : tolerances)
-        if (!(t > 0.0 && t < 100.0)) return usageError(kCommand, "--tolerances must lie in (0, 100)%");
-    if (!(cap > 0.0) || !(peerSeconds > 0.0)) return usageError(kCommand, "times must be positive");
+        if (!(t > 0.0 && t < 100.0))
+            return usageError(kTradeoffCommand, "--tolerances must lie in (0, 100)%");
+    if (!(cap > 0.0) || !(peerSeconds > 0.0)) return usageError(kTradeoffCommand, "times must be positive");
 
     const MachineInfo machine = machineInfo();
     const double loadStart = now();
@@ -395,7 +396,7 @@ int runTradeoffCommand(int argc, char** argv) {
         camera.nearPlane = 1e-3 * diagonal;
         if (args.has("--camera")) {
             Result<Camera> c = parseCamera(args.value("--camera"));
-            if (!c) return usageError(kCommand, "--camera: " + c.error());
+            if (!c) return usageError(kTradeoffCommand, "--camera: " + c.error());
             camera = c.value();
         }
         Result<ShotCoverage> p = ShotCoverage::create(scene, renderWorld.value(), width, height, camera,
@@ -421,8 +422,8 @@ int runTradeoffCommand(int argc, char** argv) {
     if (!probe) std::printf("coverage IoU not measured: %s\n", noCoverage.c_str());
     std::fflush(stdout);
 
-    std::vector<Row> rows;
-    auto progress = [](const Row& r) {
+    std::vector<TradeoffRow> rows;
+    auto progress = [](const TradeoffRow& r) {
         std::fprintf(stderr, "  %s %s%%: %s\n", r.backend.c_str(), fmt(100.0 * r.toleranceRel, 3).c_str(),
                      r.status == "ok" ? (std::to_string(r.proxyTriangles) + " triangles, built in " +
                                          fixed(r.buildS, 2) + " s, spawn " + fixed(r.placementNs, 0) + " ns")
@@ -430,7 +431,7 @@ int runTradeoffCommand(int argc, char** argv) {
                                       : r.status.c_str());
     };
     {
-        Row r;
+        TradeoffRow r;
         r.backend = "render";
         r.proxyTriangles = input.mesh.triangleCount();
         r.buildS = 0.0;
@@ -451,7 +452,7 @@ int runTradeoffCommand(int argc, char** argv) {
     for (ProxyBackend backend : backends) {
         bool skipRest = false;
         for (double tol : tolerances) {
-            Row r;
+            TradeoffRow r;
             r.backend = proxyBackendName(backend);
             r.toleranceRel = tol / 100.0;
             if (skipRest) {
@@ -543,7 +544,7 @@ int runTradeoffCommand(int argc, char** argv) {
     }
 
     std::vector<std::vector<std::string>> table;
-    for (const Row& r : rows)
+    for (const TradeoffRow& r : rows)
         table.push_back(tableRow(r));
     for (const Json& p : peers) {
         auto get = [&](const char* key) {
@@ -575,8 +576,8 @@ int runTradeoffCommand(int argc, char** argv) {
         j["cap_seconds"] = cap;
         j["decal_size_rel"] = 0.02;
         j["rows"] = Json::array();
-        for (const Row& r : rows)
-            j["rows"].push_back(rowJson(r));
+        for (const TradeoffRow& r : rows)
+            j["rows"].push_back(tradeoffRowJson(r));
         j["peers"] = peers;
         if (Status s = writeJson(j, args.value("--json")); !s) {
             std::cerr << "spatter-bench tradeoff: " << s.error() << "\n";

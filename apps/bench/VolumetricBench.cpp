@@ -15,9 +15,9 @@ namespace spatter::bench {
 
 namespace {
 
-const char* kCommand = "volumetric";
+const char* kVolumetricCommand = "volumetric";
 
-const char* kUsage = R"(usage: spatter-bench volumetric [--frames N] [--quick] [--json FILE]
+const char* kVolumetricUsage = R"(usage: spatter-bench volumetric [--frames N] [--quick] [--json FILE]
 
 GPU time of volumetric decals (a stencil hole and a crater each, drawn instanced: two draws per
 crater variant and winding) against the same number of flat decals, on the render benchmarks' decal
@@ -30,7 +30,7 @@ all passes; "pass" is the decal pass (flat) or the volumetric pass (volumetric) 
             "volumetric_draws", "volumetric_pass_ms", "ratio"}], "empty_ms", ...}
 )";
 
-struct Row {
+struct VolumetricRow {
     size_t decals = 0;
     FrameTimes flat, volumetric;
 };
@@ -39,15 +39,15 @@ struct Row {
 
 int runVolumetricCommand(int argc, char** argv) {
     int exitCode = 0;
-    const std::optional<Args> parsed =
-        commandArgs(argc, argv, kCommand, kUsage, {"--frames", "--json"}, {"--quick"}, exitCode);
+    const std::optional<Args> parsed = commandArgs(argc, argv, kVolumetricCommand, kVolumetricUsage,
+                                                   {"--frames", "--json"}, {"--quick"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
-    if (!args.positional.empty()) return usageError(kCommand, "no positional arguments");
+    if (!args.positional.empty()) return usageError(kVolumetricCommand, "no positional arguments");
     const bool quick = args.has("--quick");
     Result<uint64_t> frames = parseCount(args.value("--frames", quick ? "3" : "15"), "--frames");
-    if (!frames) return usageError(kCommand, frames.error());
-    if (frames.value() == 0) return usageError(kCommand, "--frames must be positive");
+    if (!frames) return usageError(kVolumetricCommand, frames.error());
+    if (frames.value() == 0) return usageError(kVolumetricCommand, "--frames must be positive");
     const std::vector<size_t> counts =
         quick ? std::vector<size_t>{1, 256} : std::vector<size_t>{1, 64, 256, 1024, 4096};
 
@@ -90,7 +90,7 @@ int runVolumetricCommand(int argc, char** argv) {
         std::cerr << "spatter-bench volumetric: " << empty.error() << "\n";
         return 1;
     }
-    std::vector<Row> rows;
+    std::vector<VolumetricRow> rows;
     for (const size_t n : counts) {
         const Result<FrameTimes> f = time(decalField(view, n, n, 0.02, 0, 7));
         const Result<FrameTimes> v = time(decalField(view, n, n, 0.02, 1, 7));
@@ -102,7 +102,7 @@ int runVolumetricCommand(int argc, char** argv) {
     }
 
     std::vector<std::vector<std::string>> table;
-    for (const Row& row : rows)
+    for (const VolumetricRow& row : rows)
         table.push_back({std::to_string(row.decals), fmt(row.flat.totalMs, 3),
                          std::to_string(row.flat.last.drawCalls), fmt(row.flat.last.gpu.decalsMs, 3),
                          fmt(row.volumetric.totalMs, 3), std::to_string(row.volumetric.last.drawCalls),
@@ -115,12 +115,12 @@ int runVolumetricCommand(int argc, char** argv) {
 
     if (args.has("--json")) {
         Json j;
-        j["command"] = kCommand;
+        j["command"] = kVolumetricCommand;
         j["machine"] = toJson(machine);
         j["gl_renderer"] = gl->info().renderer;
         j["empty_ms"] = number(empty->totalMs);
         j["rows"] = Json::array();
-        for (const Row& row : rows)
+        for (const VolumetricRow& row : rows)
             j["rows"].push_back({{"decals", row.decals},
                                  {"flat_ms", number(row.flat.totalMs)},
                                  {"flat_draws", row.flat.last.drawCalls},

@@ -11,7 +11,7 @@ using namespace spatter;
 
 namespace {
 
-glm::vec3 randomUnit(Rng& rng) {
+glm::vec3 randomDirection(Rng& rng) {
     for (;;) {
         const glm::vec3 v(rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f));
         const float l = glm::length(v);
@@ -24,14 +24,14 @@ glm::vec3 randomUnit(Rng& rng) {
 TEST(CraterClip, PackedPlaneNeverKeepsAPointTheExactPlaneCutsAway) {
     Rng rng(7);
     for (int k = 0; k < 2000; ++k) {
-        const glm::vec3 n = randomUnit(rng);
+        const glm::vec3 n = randomDirection(rng);
         const float offset = rng.uniform(-1.5f, 1.5f);
         const glm::vec4 packed = unpackCraterClip(packCraterClip(n, offset));
         ASSERT_NEAR(glm::length(glm::vec3(packed)), 1.0f, 1e-5f);
         EXPECT_GT(glm::dot(glm::vec3(packed), n), 0.999f); // within about 2.5 degrees
         EXPECT_LE(offset - packed.w, 0.05f);               // and it keeps nearly as much
         for (int i = 0; i < 50; ++i) {
-            const glm::vec3 p = randomUnit(rng) * rng.uniform(0.0f, kCraterClipReach);
+            const glm::vec3 p = randomDirection(rng) * rng.uniform(0.0f, kCraterClipReach);
             if (glm::dot(glm::vec3(packed), p) <= packed.w) {
                 EXPECT_LE(glm::dot(n, p), offset + 1e-5f);
             }

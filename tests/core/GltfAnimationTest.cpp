@@ -6,6 +6,7 @@
 #include "spatter/core/SceneLoader.hpp"
 
 #include "AnimatedGltf.hpp"
+#include "GltfLoading.hpp"
 #include "GltfReference.hpp"
 #include "TestData.hpp"
 
@@ -18,19 +19,9 @@ using namespace spatter::test;
 
 namespace {
 
-std::string scratch() {
-    return scratchDir(std::string("anim-") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-}
-
-Scene loaded(const std::string& path) {
-    Result<Scene> scene = loadGltf(path);
-    EXPECT_TRUE(scene.ok()) << scene.error();
-    return scene.ok() ? std::move(scene.value()) : Scene{};
-}
-
 // Scene of `g` written as a .glb, and its path in `path`.
 Scene loadedGlb(const GltfBuilder& g, std::string& path) {
-    path = writeGlb(g, scratch(), "scene");
+    path = writeGlb(g, scratchForTest("anim-"), "scene");
     return loaded(path);
 }
 
@@ -67,7 +58,7 @@ const std::vector<double> kTimes = {-1.0, 0.0, 0.25, 0.5, 0.999, 1.0, 1.3, 1.75,
 TEST(GltfAnimation, AFileWithoutAnimationDataLoadsAsBefore) {
     GltfBuilder g = animatedQuad();
     g.doc.erase("animations");
-    Scene scene = loaded(g.writeGltf(scratch(), "still"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("anim-"), "still"));
     EXPECT_TRUE(scene.animation.empty());
     for (const SceneObject& o : scene.objects) {
         EXPECT_EQ(o.node, -1);
@@ -83,7 +74,7 @@ TEST(GltfAnimation, AnimatedNodeAndItsDescendantsBecomeDynamicByThemselves) {
     GltfBuilder g = animatedQuad();
     g.doc["animations"][0]["channels"][0]["target"]["node"] = 1; // animate "base", the quad's parent
     g.doc["nodes"][1]["translation"] = {0, 0, 0};
-    Scene scene = loaded(g.writeGltf(scratch(), "parent"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("anim-"), "parent"));
     ASSERT_EQ(scene.objects.size(), 2u);
     EXPECT_EQ(scene.objects[0].name, "quad");
     EXPECT_TRUE(scene.objects[0].dynamic);
@@ -94,7 +85,7 @@ TEST(GltfAnimation, AnimatedNodeAndItsDescendantsBecomeDynamicByThemselves) {
 }
 
 TEST(GltfAnimation, LinearTranslationIsExactAtKeysAndLinearBetween) {
-    Scene scene = loaded(animatedQuad().writeGltf(scratch(), "linear"));
+    Scene scene = loaded(animatedQuad().writeGltf(scratchForTest("anim-"), "linear"));
     SceneEvaluator evaluator(scene);
     EXPECT_EQ(quadTranslation(evaluator, 0.0), glm::dvec3(0, 0, 0));
     EXPECT_EQ(quadTranslation(evaluator, 1.0), glm::dvec3(1, 2, 3));
@@ -110,7 +101,7 @@ TEST(GltfAnimation, LinearTranslationIsExactAtKeysAndLinearBetween) {
 TEST(GltfAnimation, StepHoldsEachKeyUntilTheNext) {
     GltfBuilder g = animatedQuad();
     g.doc["animations"][0]["samplers"][0]["interpolation"] = "STEP";
-    Scene scene = loaded(g.writeGltf(scratch(), "step"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("anim-"), "step"));
     SceneEvaluator evaluator(scene);
     EXPECT_EQ(quadTranslation(evaluator, 0.5), glm::dvec3(0, 0, 0));
     EXPECT_EQ(quadTranslation(evaluator, 0.9999), glm::dvec3(0, 0, 0));
@@ -163,7 +154,7 @@ TEST(GltfAnimation, ScaleChannelsScaleTheNode) {
     GltfBuilder g = animatedQuad();
     g.doc.erase("animations");
     addChannel(g, 0, "scale", {0, 1}, {1, 1, 1, 3, 2, 1}, "VEC3");
-    Scene scene = loaded(g.writeGltf(scratch(), "scale"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("anim-"), "scale"));
     SceneEvaluator evaluator(scene);
     evaluator.evaluate(0, 0.5);
     EXPECT_EQ(evaluator.objectTransform(0)[0][0], 2.0);
@@ -171,7 +162,7 @@ TEST(GltfAnimation, ScaleChannelsScaleTheNode) {
 }
 
 TEST(GltfAnimation, EvaluatingTheSameTimeTwiceKeepsThePose) {
-    Scene scene = loaded(animatedQuad().writeGltf(scratch(), "cache"));
+    Scene scene = loaded(animatedQuad().writeGltf(scratchForTest("anim-"), "cache"));
     SceneEvaluator evaluator(scene);
     evaluator.evaluate(0, 1.5);
     const glm::dmat4 first = evaluator.objectTransform(0);

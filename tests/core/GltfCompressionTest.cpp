@@ -29,11 +29,6 @@ using json = nlohmann::json;
 
 namespace {
 
-std::string scratch() {
-    return scratchDir(std::string("gltf-compression-") +
-                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
-}
-
 // A wavy grid of n x n vertices over [0, 4] x [0, 4]: positions, unit normals, UVs and triangles.
 struct Plain {
     std::vector<glm::vec3> positions, normals;
@@ -254,7 +249,7 @@ template <class T> bool sameBits(const std::vector<T>& a, const std::vector<T>& 
 // The Draco file loads to the same bits as its decoded twin: positions, normals, UVs and triangles.
 void expectSameAsDecodedTwin(const std::vector<uint8_t>& bytes, const std::array<int, 3>& ids,
                              const Plain& plain, const std::string& name) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-compression-");
     Scene draco = loaded(dracoScene(plain, bytes, ids).writeGltf(dir, name));
     Scene twin = loaded(decodedTwin(bytes, ids).writeGltf(dir, name + "-twin"));
     ASSERT_EQ(draco.objects.size(), 1u);
@@ -270,7 +265,7 @@ void expectSameAsDecodedTwin(const std::vector<uint8_t>& bytes, const std::array
 
 TEST(GltfCompression, DracoGivesThePlainGeometryWithinTheQuantisationStep) {
     const Plain plain = wavyGrid();
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-compression-");
     const DracoBits bits;
     for (int speed : {0, 5, 10}) { // edgebreaker at 0 and 5, the sequential coder at 10
         SCOPED_TRACE(speed);
@@ -289,7 +284,7 @@ TEST(GltfCompression, DracoInAGlbWithIndicesOfSixteenBits) {
     std::array<int, 3> ids{};
     GltfBuilder g = dracoScene(plain, dracoEncode(plain, DracoBits{}, 5, ids), ids);
     g.doc["accessors"][3]["componentType"] = kUnsignedShort; // the declared type; decoded data is 32-bit
-    const std::string path = scratch() + "/draco.glb";
+    const std::string path = scratchForTest("gltf-compression-") + "/draco.glb";
     writeBytes(path, g.glbBytes());
     Scene scene = loaded(path);
     ASSERT_EQ(scene.objects.size(), 1u);
@@ -319,7 +314,8 @@ TEST(GltfCompression, DracoNormalisedIntegerUvsForAFloatAccessor) {
         const std::vector<uint8_t> bytes = dracoEncode(plain, DracoBits{}, speed, ids, true);
         const std::string name = "short-uvs" + std::to_string(speed);
         expectSameAsDecodedTwin(bytes, ids, plain, name);
-        Scene scene = loaded(dracoScene(plain, bytes, ids).writeGltf(scratch(), name + "-plain"));
+        Scene scene = loaded(
+            dracoScene(plain, bytes, ids).writeGltf(scratchForTest("gltf-compression-"), name + "-plain"));
         ASSERT_EQ(scene.objects.size(), 1u);
         expectSameGeometry(scene.objects[0].mesh, plain, 4.0f / (1 << 14), 4.0f / (1 << 10), 1.0f / 65535);
     }
@@ -327,7 +323,7 @@ TEST(GltfCompression, DracoNormalisedIntegerUvsForAFloatAccessor) {
 
 TEST(GltfCompression, RejectsTruncatedOrInconsistentDracoData) {
     const Plain plain = wavyGrid();
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-compression-");
     std::array<int, 3> ids{};
     const std::vector<uint8_t> bytes = dracoEncode(plain, DracoBits{}, 5, ids);
     for (size_t keep : {size_t(0), size_t(4), size_t(16), bytes.size() / 2, bytes.size() - 1}) {
@@ -444,7 +440,7 @@ json fallbackBuffer(size_t length) {
 
 TEST(GltfCompression, MeshoptGivesThePlainGeometryInGltfAndGlb) {
     const Plain plain = wavyGrid();
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-compression-");
     for (bool sequence : {false, true}) {
         SCOPED_TRACE(sequence ? "INDICES" : "TRIANGLES");
         size_t fallback = 0;
@@ -479,14 +475,14 @@ TEST(GltfCompression, MeshoptFallbackFileIsNeverRead) {
     const GltfBuilder g = meshoptScene(plain, false, fallback);
     json buffers = fallbackBuffer(fallback);
     buffers[0]["uri"] = "absent-fallback.bin";
-    Scene scene = loaded(writeWithBuffers(g, scratch(), "fallback-file", buffers));
+    Scene scene = loaded(writeWithBuffers(g, scratchForTest("gltf-compression-"), "fallback-file", buffers));
     ASSERT_EQ(scene.objects.size(), 1u);
     EXPECT_EQ(scene.objects[0].mesh.positions, plain.positions);
 }
 
 TEST(GltfCompression, RejectsTruncatedOrInconsistentMeshoptData) {
     const Plain plain = wavyGrid();
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-compression-");
     size_t fallback = 0;
     auto edited = [&](const std::string& name, auto edit) {
         GltfBuilder g = meshoptScene(plain, false, fallback);
@@ -521,6 +517,7 @@ TEST(GltfCompression, MeshoptViewLongerThanItsDecodedDataIsRefused) {
     size_t fallback = 0;
     GltfBuilder g = meshoptScene(plain, false, fallback);
     g.doc["bufferViews"][0]["byteLength"] = plain.positions.size() * 12 + 4;
-    EXPECT_THAT(rejection(writeWithBuffers(g, scratch(), "long", fallbackBuffer(fallback + 4))),
+    EXPECT_THAT(rejection(writeWithBuffers(g, scratchForTest("gltf-compression-"), "long",
+                                           fallbackBuffer(fallback + 4))),
                 HasSubstr("buffer view 0: it declares"));
 }

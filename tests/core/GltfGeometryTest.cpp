@@ -25,17 +25,10 @@ using ::testing::HasSubstr;
 
 namespace {
 
-std::string scratch() {
-    return scratchDir(std::string("gltf-geometry-") +
-                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
-}
-
-const std::vector<glm::vec3> kQuad = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-const std::vector<uint32_t> kQuadIndices = {0, 1, 2, 0, 2, 3};
 const std::vector<glm::vec2> kQuadUvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
 
 // One node "quad": float positions (accessor 0), 16-bit indices (accessor 1), float UVs (accessor 2).
-GltfBuilder quadScene() {
+GltfBuilder uvQuadScene() {
     GltfBuilder g;
     g.addAccessor(g.addView(kQuad), kFloat, kQuad.size(), "VEC3");
     const std::vector<uint16_t> indices(kQuadIndices.begin(), kQuadIndices.end());
@@ -75,7 +68,7 @@ void expectNear(const glm::vec3& a, const glm::vec3& b, float tol) {
 // --- sparse accessors and accessors without a buffer view ----------------------------------------
 
 TEST(GltfGeometry, SparsePositionsAndIndicesReplaceTheElementsTheyName) {
-    GltfBuilder g = quadScene();
+    GltfBuilder g = uvQuadScene();
     // The dense positions put vertex 2 at (5, 5, 5); the sparse part moves it back to (1, 1, 0).
     std::vector<glm::vec3> wrong = kQuad;
     wrong[2] = glm::vec3(5.0f);
@@ -85,38 +78,38 @@ TEST(GltfGeometry, SparsePositionsAndIndicesReplaceTheElementsTheyName) {
     const std::vector<uint16_t> indices = {0, 1, 3, 0, 2, 3};
     g.doc["accessors"][1]["bufferView"] = g.addView(indices);
     makeSparse(g, 1, {2}, bytesOf(std::vector<uint16_t>{2}));
-    Scene scene = loaded(g.writeGltf(scratch(), "sparse"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-geometry-"), "sparse"));
     ASSERT_EQ(scene.objects.size(), 1u);
     EXPECT_EQ(scene.objects[0].mesh.positions, kQuad);
     EXPECT_EQ(scene.objects[0].mesh.indices, kQuadIndices);
 }
 
 TEST(GltfGeometry, AccessorWithoutBufferViewIsZerosUnderItsSparseValues) {
-    GltfBuilder g = quadScene();
+    GltfBuilder g = uvQuadScene();
     g.doc["accessors"][0].erase("bufferView");
     g.doc["accessors"][0].erase("byteOffset");
     makeSparse(g, 0, {1, 2, 3}, bytesOf(std::vector<glm::vec3>{kQuad[1], kQuad[2], kQuad[3]}));
     // UVs without a buffer view and without a sparse part: all zero.
     g.doc["accessors"][2].erase("bufferView");
-    Scene scene = loaded(g.writeGltf(scratch(), "bufferless"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-geometry-"), "bufferless"));
     ASSERT_EQ(scene.objects.size(), 1u);
     EXPECT_EQ(scene.objects[0].mesh.positions, kQuad);
     EXPECT_EQ(scene.objects[0].mesh.uvs, std::vector<glm::vec2>(4, glm::vec2(0.0f)));
 }
 
 TEST(GltfGeometry, IndicesWithoutBufferViewComeFromTheirSparseValues) {
-    GltfBuilder g = quadScene();
+    GltfBuilder g = uvQuadScene();
     g.doc["accessors"][1].erase("bufferView");
     g.doc["accessors"][1].erase("byteOffset");
     // Index 0 of each triangle stays 0; the other five come from the sparse part.
     makeSparse(g, 1, {1, 2, 4, 5}, bytesOf(std::vector<uint16_t>{1, 2, 2, 3}));
-    Scene scene = loaded(g.writeGltf(scratch(), "sparse-indices"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-geometry-"), "sparse-indices"));
     ASSERT_EQ(scene.objects.size(), 1u);
     EXPECT_EQ(scene.objects[0].mesh.indices, kQuadIndices);
 }
 
 TEST(GltfGeometry, SparseValuesInNormalizedShortsUnderMeshQuantization) {
-    GltfBuilder g = quadScene();
+    GltfBuilder g = uvQuadScene();
     const std::vector<int16_t> zeros(16, 0);
     g.doc["accessors"][0] = {{"bufferView", g.addView(zeros.data(), 32, 8)},
                              {"componentType", 5122},
@@ -127,33 +120,33 @@ TEST(GltfGeometry, SparseValuesInNormalizedShortsUnderMeshQuantization) {
     makeSparse(g, 0, {1, 2, 3}, bytesOf(std::vector<int16_t>{32767, 0, 0, 32767, 32767, 0, 0, 32767, 0}));
     g.doc["extensionsUsed"] = {"KHR_mesh_quantization"};
     g.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
-    Scene scene = loaded(g.writeGltf(scratch(), "sparse-short"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-geometry-"), "sparse-short"));
     ASSERT_EQ(scene.objects.size(), 1u);
     EXPECT_EQ(scene.objects[0].mesh.positions, kQuad);
 }
 
 TEST(GltfGeometry, RejectsSparseIndicesOutOfRangeOrNotIncreasing) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-geometry-");
     {
-        GltfBuilder g = quadScene();
+        GltfBuilder g = uvQuadScene();
         makeSparse(g, 0, {9}, bytesOf(std::vector<glm::vec3>{glm::vec3(1.0f)}));
         EXPECT_THAT(
             rejection(g.writeGltf(dir, "past")),
             HasSubstr("accessor 0 (POSITION) has sparse index 9 (entry 0) that is past the elements"));
     }
     {
-        GltfBuilder g = quadScene();
+        GltfBuilder g = uvQuadScene();
         makeSparse(g, 1, {3, 3}, bytesOf(std::vector<uint16_t>{1, 2}));
         EXPECT_THAT(rejection(g.writeGltf(dir, "repeat")),
                     HasSubstr("accessor 1 (indices) has sparse index 3 (entry 1)"));
     }
     {
-        GltfBuilder g = quadScene();
+        GltfBuilder g = uvQuadScene();
         makeSparse(g, 0, {1}, std::vector<uint8_t>(4, 0)); // 4 bytes for a 12-byte value
         EXPECT_THAT(rejection(g.writeGltf(dir, "short")), HasSubstr("its sparse values read past the end"));
     }
     {
-        GltfBuilder g = quadScene();
+        GltfBuilder g = uvQuadScene();
         makeSparse(g, 0, {1}, bytesOf(std::vector<glm::vec3>{glm::vec3(1.0f)}));
         g.doc["accessors"][0]["sparse"]["count"] = 5;
         EXPECT_THAT(rejection(g.writeGltf(dir, "count")),
@@ -162,9 +155,9 @@ TEST(GltfGeometry, RejectsSparseIndicesOutOfRangeOrNotIncreasing) {
 }
 
 TEST(GltfGeometry, RejectsAccessorWithoutBufferViewBeyondTheLimit) {
-    GltfBuilder g = quadScene();
+    GltfBuilder g = uvQuadScene();
     g.doc["accessors"][0] = {{"componentType", kFloat}, {"count", (1 << 22) + 1}, {"type", "VEC3"}};
-    const std::string error = rejection(g.writeGltf(scratch(), "huge"));
+    const std::string error = rejection(g.writeGltf(scratchForTest("gltf-geometry-"), "huge"));
     EXPECT_THAT(error, HasSubstr("accessor 0 (POSITION) has 4194305 elements without a buffer view"));
     EXPECT_THAT(error, HasSubstr("limit"));
 }
@@ -180,10 +173,10 @@ TEST(GltfGeometry, EveryVertexComponentTypeMatchesTheFloatQuadWithinItsStep) {
     const Case cases[] = {
         {kByte, true, 127}, {kUnsignedByte, true, 255}, {5122, true, 32767}, {kUnsignedShort, true, 65535},
         {kByte, false, 1},  {kUnsignedByte, false, 1},  {5122, false, 1},    {kUnsignedShort, false, 1}};
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-geometry-");
     for (const Case& c : cases) {
         SCOPED_TRACE(std::to_string(c.type) + (c.normalized ? " normalized" : ""));
-        GltfBuilder g = quadScene();
+        GltfBuilder g = uvQuadScene();
         const size_t size = c.type == kByte || c.type == kUnsignedByte ? 1 : 2;
         const size_t stride = size == 1 ? 4 : 8; // vertex attributes are 4-byte aligned
         std::vector<uint8_t> packed(4 * stride, 0);
@@ -213,7 +206,7 @@ namespace {
 
 // The quad's node drawn three times: translated, rotated about z and scaled; the node itself at x = 10.
 GltfBuilder instancedQuad() {
-    GltfBuilder g = quadScene();
+    GltfBuilder g = uvQuadScene();
     const std::vector<glm::vec3> t = {{0, 0, 0}, {2, 0, 0}, {0, 3, 1}};
     const float h = std::sqrt(0.5f);
     const std::vector<glm::vec4> r = {{0, 0, 0, 1}, {0, 0, h, h}, {0, 0, 0, 1}}; // xyzw
@@ -233,7 +226,7 @@ GltfBuilder instancedQuad() {
 } // namespace
 
 TEST(GltfGeometry, EachInstanceBecomesAnObjectNamedAfterItsIndex) {
-    Scene scene = loaded(instancedQuad().writeGltf(scratch(), "instanced"));
+    Scene scene = loaded(instancedQuad().writeGltf(scratchForTest("gltf-geometry-"), "instanced"));
     ASSERT_EQ(scene.objects.size(), 3u);
     const glm::dmat4 node = glm::translate(glm::dmat4(1.0), glm::dvec3(10, 0, 0));
     const glm::dmat4 expected[3] = {
@@ -258,7 +251,7 @@ TEST(GltfGeometry, InstanceRotationsInNormalizedShorts) {
     const int ra = g.addAccessor(g.addView(r), 5122, 3, "VEC4");
     g.doc["accessors"][ra]["normalized"] = true;
     g.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["ROTATION"] = ra;
-    Scene scene = loaded(g.writeGltf(scratch(), "rotation16"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-geometry-"), "rotation16"));
     ASSERT_EQ(scene.objects.size(), 3u);
     const glm::dvec4 corner = scene.objects[1].transform * glm::dvec4(1, 0, 0, 1);
     EXPECT_NEAR(corner.x, 12.0, 1e-4); // (1, 0, 0) turned a quarter about z, then moved to x = 12
@@ -266,7 +259,7 @@ TEST(GltfGeometry, InstanceRotationsInNormalizedShorts) {
 }
 
 TEST(GltfGeometry, RejectsBadInstanceAccessors) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-geometry-");
     {
         GltfBuilder g = instancedQuad();
         g.doc["accessors"][5]["count"] = 2; // SCALE: 2 of 3
@@ -314,7 +307,7 @@ TEST(GltfGeometry, InstancesOfAnAnimatedNodeStayInTheRestPose) {
     nlohmann::json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}};
     g.push("animations",
            {{"samplers", nlohmann::json::array({sampler})}, {"channels", nlohmann::json::array({channel})}});
-    Scene scene = loaded(g.writeGltf(scratch(), "animated-instances"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-geometry-"), "animated-instances"));
     ASSERT_EQ(scene.objects.size(), 3u);
     for (const SceneObject& o : scene.objects) {
         EXPECT_EQ(o.node, -1);
@@ -338,7 +331,7 @@ std::vector<uint8_t> tinyPng(const std::string& dir) {
 }
 
 GltfBuilder texturedQuad(const std::string& dir, const nlohmann::json& baseColorTexture) {
-    GltfBuilder g = quadScene();
+    GltfBuilder g = uvQuadScene();
     g.doc["images"] = {{{"uri", "data:image/png;base64," + base64(tinyPng(dir))}}};
     g.doc["textures"] = {{{"source", 0}}};
     g.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", baseColorTexture}}}}};
@@ -349,7 +342,7 @@ GltfBuilder texturedQuad(const std::string& dir, const nlohmann::json& baseColor
 } // namespace
 
 TEST(GltfGeometry, TextureTransformIsAppliedToTheUvs) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-geometry-");
     const double rotation = 0.392699;
     GltfBuilder g =
         texturedQuad(dir, {{"index", 0},
@@ -373,7 +366,7 @@ TEST(GltfGeometry, TextureTransformIsAppliedToTheUvs) {
 }
 
 TEST(GltfGeometry, TextureTransformTurnsTheTangentsWithTheUvs) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-geometry-");
     // A quarter turn: u' = -v, v' = u, so the new u runs along -y; a mirror in u flips the handedness.
     struct Case {
         const char* name;
@@ -404,7 +397,7 @@ TEST(GltfGeometry, TextureTransformTurnsTheTangentsWithTheUvs) {
 }
 
 TEST(GltfGeometry, RejectsTextureTransformThatIsNotNumbers) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-geometry-");
     GltfBuilder g =
         texturedQuad(dir, {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"offset", {1}}}}}}});
     EXPECT_THAT(
@@ -413,7 +406,7 @@ TEST(GltfGeometry, RejectsTextureTransformThatIsNotNumbers) {
 }
 
 TEST(GltfGeometry, UnlitMaterialsAreFlagged) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-geometry-");
     GltfBuilder g = texturedQuad(dir, {{"index", 0}});
     g.doc["materials"][0]["extensions"] = {{"KHR_materials_unlit", nlohmann::json::object()}};
     g.doc["extensionsUsed"] = {"KHR_materials_unlit"};
@@ -424,7 +417,7 @@ TEST(GltfGeometry, UnlitMaterialsAreFlagged) {
 }
 
 TEST(GltfGeometry, ImageOnlyAnExtensionUsesFallsBackWithAWarning) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-geometry-");
     GltfBuilder g = texturedQuad(dir, {{"index", 0}});
     // Image 1 stands for a KTX2 file: bytes no decoder here reads.
     g.doc["images"].push_back(
@@ -445,8 +438,8 @@ TEST(GltfGeometry, ImageOnlyAnExtensionUsesFallsBackWithAWarning) {
 }
 
 TEST(GltfGeometry, BufferWithoutUriNamesItsProblem) {
-    GltfBuilder g = quadScene();
-    const std::string dir = scratch();
+    GltfBuilder g = uvQuadScene();
+    const std::string dir = scratchForTest("gltf-geometry-");
     const std::string path = g.writeGltf(dir, "nouri");
     nlohmann::json doc;
     std::ifstream(path) >> doc;

@@ -3,6 +3,7 @@
 #include "spatter/core/SceneLoader.hpp"
 
 #include "GltfBuilder.hpp"
+#include "GltfLoading.hpp"
 #include "TestData.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -30,16 +31,6 @@ std::vector<uint8_t> readBytes(const std::string& path) {
     return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-// A scratch directory named after the running test.
-std::string scratch() {
-    return test::scratchDir(std::string("gltf-") +
-                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-}
-
-// Unit quad in the XY plane, counter-clockwise seen from +Z.
-const std::vector<glm::vec3> kQuad = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-const std::vector<uint32_t> kQuadIndices = {0, 1, 2, 0, 2, 3};
-
 std::vector<uint8_t> packIndices(const std::vector<uint32_t>& indices, int componentType) {
     std::vector<uint8_t> out;
     const size_t size = componentType == kUnsignedByte ? 1 : componentType == kUnsignedShort ? 2 : 4;
@@ -62,23 +53,6 @@ GltfBuilder quadScene(int indexType = kUnsignedShort) {
     return g;
 }
 
-// The error of loading `path`, which must fail and name the file.
-std::string rejection(const std::string& path) {
-    Result<Scene> scene = loadGltf(path);
-    if (scene.ok()) {
-        ADD_FAILURE() << path << " loaded but should have been rejected";
-        return "";
-    }
-    EXPECT_THAT(scene.error(), HasSubstr(path));
-    return scene.error();
-}
-
-Scene loaded(const std::string& path) {
-    Result<Scene> scene = loadGltf(path);
-    EXPECT_TRUE(scene.ok()) << scene.error();
-    return scene.ok() ? std::move(scene.value()) : Scene{};
-}
-
 glm::dvec3 worldPoint(const SceneObject& o, size_t vertex) {
     return glm::dvec3(o.transform * glm::dvec4(glm::dvec3(o.mesh.positions[vertex]), 1.0));
 }
@@ -94,7 +68,7 @@ void expectNear(const glm::dvec3& a, const glm::dvec3& b, double tol) {
 // --- valid files ---------------------------------------------------------------------------------
 
 TEST(GltfLoader, LoadsIndexedQuad) {
-    const std::string path = quadScene().writeGltf(scratch(), "quad");
+    const std::string path = quadScene().writeGltf(scratchForTest("gltf-"), "quad");
     Scene scene = loaded(path);
     ASSERT_EQ(scene.objects.size(), 1u);
     const SceneObject& o = scene.objects[0];
@@ -113,7 +87,7 @@ TEST(GltfLoader, LoadsIndexedQuad) {
 }
 
 TEST(GltfLoader, ReadsEightSixteenAndThirtyTwoBitIndices) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     for (int type : {kUnsignedByte, kUnsignedShort, kUnsignedInt}) {
         SCOPED_TRACE(type);
         Scene scene = loaded(quadScene(type).writeGltf(dir, "quad" + std::to_string(type)));
@@ -125,7 +99,7 @@ TEST(GltfLoader, ReadsEightSixteenAndThirtyTwoBitIndices) {
 TEST(GltfLoader, RejectsSignedIndices) {
     GltfBuilder g = quadScene();
     g.doc["accessors"][1]["componentType"] = 5122;
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "signed")),
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "signed")),
                 HasSubstr("accessor 1 (indices) has component type"));
 }
 
@@ -135,7 +109,7 @@ TEST(GltfLoader, LoadsNonIndexedTriangles) {
     g.doc["accessors"][0] = {
         {"bufferView", g.addView(soup)}, {"componentType", kFloat}, {"count", 6}, {"type", "VEC3"}};
     g.doc["meshes"][0]["primitives"][0].erase("indices");
-    Scene scene = loaded(g.writeGltf(scratch(), "soup"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "soup"));
     ASSERT_EQ(scene.objects.size(), 1u);
     EXPECT_EQ(scene.objects[0].mesh.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
     EXPECT_EQ(scene.objects[0].mesh.positions, soup);
@@ -159,7 +133,7 @@ TEST(GltfLoader, ReadsInterleavedAttributesWithOffsets) {
     const int tangent = g.addAccessor(view, kFloat, 4, "VEC4", 48 + 32);
     g.doc["meshes"][0]["primitives"][0]["attributes"] = {
         {"POSITION", 0}, {"NORMAL", normal}, {"TEXCOORD_0", uv}, {"TANGENT", tangent}};
-    Scene scene = loaded(g.writeGltf(scratch(), "interleaved"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "interleaved"));
     ASSERT_EQ(scene.objects.size(), 1u);
     const Mesh& m = scene.objects[0].mesh;
     EXPECT_EQ(m.positions, kQuad);
@@ -178,7 +152,7 @@ TEST(GltfLoader, ReadsNormalizedIntegerUvs) {
     const int uv = g.addAccessor(g.addView(uvs), kUnsignedShort, 4, "VEC2");
     g.doc["accessors"][uv]["normalized"] = true;
     g.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = uv;
-    Scene scene = loaded(g.writeGltf(scratch(), "uv16"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "uv16"));
     ASSERT_EQ(scene.objects.size(), 1u);
     const std::vector<glm::vec2>& got = scene.objects[0].mesh.uvs;
     ASSERT_EQ(got.size(), 4u);
@@ -197,7 +171,7 @@ TEST(GltfLoader, ReadsNormalizedSignedBytePositionsUnderMeshQuantization) {
                              {"normalized", true}};
     g.doc["extensionsUsed"] = {"KHR_mesh_quantization"};
     g.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
-    Scene scene = loaded(g.writeGltf(scratch(), "quantized"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "quantized"));
     ASSERT_EQ(scene.objects.size(), 1u);
     const std::vector<glm::vec3>& p = scene.objects[0].mesh.positions;
     EXPECT_EQ(p[1], glm::vec3(1, 0, 0));
@@ -217,7 +191,7 @@ TEST(GltfLoader, MatrixAndTrsGiveTheSameTransform) {
     g.doc["nodes"][0]["scale"] = {s.x, s.y, s.z};
     g.push("nodes", {{"name", "byMatrix"}, {"mesh", 0}, {"matrix", matrix}});
     g.doc["scenes"][0]["nodes"] = {0, 1};
-    Scene scene = loaded(g.writeGltf(scratch(), "trs"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "trs"));
     ASSERT_EQ(scene.objects.size(), 2u);
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r) {
@@ -233,7 +207,7 @@ TEST(GltfLoader, ComposesNodeHierarchyInDoublePrecision) {
         {{"name", "root"}, {"translation", {1e7, 0, 0}}, {"scale", {2, 2, 2}}, {"children", {1}}},
         {{"name", "turn"}, {"rotation", {0, 0, std::sqrt(0.5), std::sqrt(0.5)}}, {"children", {2}}},
         {{"name", "leaf"}, {"translation", {0, 0, 1}}, {"mesh", 0}}};
-    Scene scene = loaded(g.writeGltf(scratch(), "hierarchy"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "hierarchy"));
     ASSERT_EQ(scene.objects.size(), 1u);
     EXPECT_EQ(scene.objects[0].name, "leaf");
     // Vertex (1, 1, 0): leaf (1, 1, 1), turned (-1, 1, 1), scaled (-2, 2, 2), moved (1e7 - 2, 2, 2).
@@ -246,7 +220,7 @@ TEST(GltfLoader, UsesTheDefaultSceneOrElseEveryRootNode) {
     g.push("nodes", {{"name", "other"}, {"mesh", 0}});
     g.doc["scenes"] = {{{"nodes", {0}}}, {{"nodes", {1}}}};
     g.doc["scene"] = 1;
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     Scene chosen = loaded(g.writeGltf(dir, "scene1"));
     ASSERT_EQ(chosen.objects.size(), 1u);
     EXPECT_EQ(chosen.objects[0].name, "other");
@@ -268,7 +242,7 @@ TEST(GltfLoader, NamesObjectsAfterNodeThenMeshThenIndex) {
     g.doc["meshes"][1].erase("name");
     g.push("nodes", {{"mesh", 1}});
     g.doc["scenes"][0]["nodes"] = {0, 1};
-    Scene scene = loaded(g.writeGltf(scratch(), "names"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "names"));
     ASSERT_EQ(scene.objects.size(), 2u);
     EXPECT_EQ(scene.objects[0].name, "quadMesh");
     EXPECT_EQ(scene.objects[1].name, "node1");
@@ -282,7 +256,7 @@ TEST(GltfLoader, ExtrasSetDynamicAndDecalFlagsAndDescendantsInheritThem) {
                       {{"name", "pane"}, {"mesh", 0}, {"children", {4}}},
                       {{"name", "sticker"}, {"mesh", 0}, {"extras", {{"decals", true}}}}};
     g.doc["scenes"][0]["nodes"] = {0, 2};
-    Scene scene = loaded(g.writeGltf(scratch(), "flags"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "flags"));
     ASSERT_EQ(scene.objects.size(), 5u);
     const std::vector<std::string> names = {"crate", "lid", "glass", "pane", "sticker"};
     const std::vector<bool> dynamic = {true, true, false, false, false};
@@ -298,7 +272,7 @@ TEST(GltfLoader, RejectsStaticChildOfDynamicNode) {
     GltfBuilder g = quadScene();
     g.doc["nodes"] = {{{"name", "door"}, {"mesh", 0}, {"extras", {{"dynamic", true}}}, {"children", {1}}},
                       {{"name", "handle"}, {"mesh", 0}, {"extras", {{"dynamic", false}}}}};
-    const std::string error = rejection(g.writeGltf(scratch(), "static-child"));
+    const std::string error = rejection(g.writeGltf(scratchForTest("gltf-"), "static-child"));
     EXPECT_THAT(error, HasSubstr("handle"));
     EXPECT_THAT(error, HasSubstr("dynamic"));
 }
@@ -306,7 +280,8 @@ TEST(GltfLoader, RejectsStaticChildOfDynamicNode) {
 TEST(GltfLoader, RejectsNonBooleanFlag) {
     GltfBuilder g = quadScene();
     g.doc["nodes"][0]["extras"] = {{"decals", "no"}};
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "flag")), HasSubstr("extras.decals is not a boolean"));
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "flag")),
+                HasSubstr("extras.decals is not a boolean"));
 }
 
 TEST(GltfLoader, CollidersJoinTheirDrawnAncestorAndAreNotDrawn) {
@@ -316,7 +291,7 @@ TEST(GltfLoader, CollidersJoinTheirDrawnAncestorAndAreNotDrawn) {
                       {{"name", "UCX_wall"}, {"mesh", 0}, {"translation", {0, 0, 1}}},
                       {{"name", "group"}, {"scale", {2, 2, 2}}, {"children", {3}}},
                       {{"name", "wall-col"}, {"mesh", 0}, {"translation", {0, 0, 1}}}};
-    Scene scene = loaded(g.writeGltf(scratch(), "collider"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "collider"));
     ASSERT_EQ(scene.objects.size(), 1u);
     const SceneObject& wall = scene.objects[0];
     EXPECT_EQ(wall.name, "wall");
@@ -337,13 +312,13 @@ TEST(GltfLoader, RejectsColliderWithoutDrawnAncestor) {
     GltfBuilder g = quadScene();
     g.push("nodes", {{"name", "UCX_floor"}, {"mesh", 0}});
     g.doc["scenes"][0]["nodes"] = {0, 1};
-    const std::string error = rejection(g.writeGltf(scratch(), "orphan"));
+    const std::string error = rejection(g.writeGltf(scratchForTest("gltf-"), "orphan"));
     EXPECT_THAT(error, HasSubstr("UCX_floor"));
     EXPECT_THAT(error, HasSubstr("no ancestor"));
 }
 
 TEST(GltfLoader, ComputesNormalsWhenAbsent) {
-    Scene scene = loaded(quadScene().writeGltf(scratch(), "nonormals"));
+    Scene scene = loaded(quadScene().writeGltf(scratchForTest("gltf-"), "nonormals"));
     ASSERT_EQ(scene.objects.size(), 1u);
     ASSERT_EQ(scene.objects[0].mesh.normals.size(), 4u);
     for (const glm::vec3& n : scene.objects[0].mesh.normals)
@@ -356,14 +331,14 @@ TEST(GltfLoader, RepairsNonFiniteAndZeroNormals) {
     const std::vector<glm::vec3> normals = {{0, 0, 1}, {nan, 0, 0}, {0, 0, 0}, {0, 0, 3}};
     g.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] =
         g.addAccessor(g.addView(normals), kFloat, 4, "VEC3");
-    Scene scene = loaded(g.writeGltf(scratch(), "badnormals"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "badnormals"));
     ASSERT_EQ(scene.objects.size(), 1u);
     for (const glm::vec3& n : scene.objects[0].mesh.normals)
         EXPECT_EQ(n, glm::vec3(0, 0, 1));
 }
 
 TEST(GltfLoader, ConvertsTriangleStripsAndFans) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     // Both orders cover the quad with two counter-clockwise triangles.
     for (auto [mode, order] : {std::pair<int, std::vector<uint32_t>>{5, {0, 1, 3, 2}}, {6, {0, 1, 2, 3}}}) {
         SCOPED_TRACE(mode);
@@ -390,14 +365,14 @@ TEST(GltfLoader, SkipsPointAndLinePrimitives) {
     g.push("meshes", {{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"mode", 3}}}}});
     g.push("nodes", {{"name", "wire"}, {"mesh", 1}});
     g.doc["scenes"][0]["nodes"] = {0, 1};
-    Scene scene = loaded(g.writeGltf(scratch(), "lines"));
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "lines"));
     ASSERT_EQ(scene.objects.size(), 1u); // the lines-only node draws nothing
     EXPECT_EQ(scene.objects[0].mesh.submeshes.size(), 1u);
     EXPECT_EQ(scene.objects[0].mesh.positions.size(), 4u);
 }
 
 TEST(GltfLoader, ReadsMaterialsAndTextures) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     Image pixels;
     pixels.width = 2;
     pixels.height = 1;
@@ -435,7 +410,7 @@ TEST(GltfLoader, ReadsMaterialsAndTextures) {
 }
 
 TEST(GltfLoader, LoadsGlbAndGltfWithExternalBuffer) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     GltfBuilder g = quadScene();
     const std::string glb = dir + "/quad.glb";
     writeBytes(glb, g.glbBytes());
@@ -451,23 +426,23 @@ TEST(GltfLoader, LoadsGlbAndGltfWithExternalBuffer) {
 TEST(GltfLoader, AcceptsOptionalExtensionsItDoesNotKnow) {
     GltfBuilder g = quadScene();
     g.doc["extensionsUsed"] = {"KHR_texture_transform"};
-    EXPECT_EQ(loaded(g.writeGltf(scratch(), "used")).objects.size(), 1u);
+    EXPECT_EQ(loaded(g.writeGltf(scratchForTest("gltf-"), "used")).objects.size(), 1u);
 }
 
 // --- malformed files -----------------------------------------------------------------------------
 
 TEST(GltfLoader, RejectsMissingFile) {
-    EXPECT_THAT(rejection(scratch() + "/absent.gltf"), HasSubstr("not found"));
+    EXPECT_THAT(rejection(scratchForTest("gltf-") + "/absent.gltf"), HasSubstr("not found"));
 }
 
 TEST(GltfLoader, RejectsMalformedJson) {
-    const std::string path = scratch() + "/broken.gltf";
+    const std::string path = scratchForTest("gltf-") + "/broken.gltf";
     std::ofstream(path) << R"({"asset": {"version": "2.0"}, "nodes": [)";
     EXPECT_THAT(rejection(path), HasSubstr("parse error"));
 }
 
 TEST(GltfLoader, RejectsMissingBufferFile) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     const std::string path = quadScene().writeGltf(dir, "nobin", false);
     std::filesystem::remove(dir + "/nobin.bin");
     const std::string error = rejection(path);
@@ -476,7 +451,7 @@ TEST(GltfLoader, RejectsMissingBufferFile) {
 }
 
 TEST(GltfLoader, RejectsBufferShorterThanDeclared) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     GltfBuilder g = quadScene();
     g.declaredBufferLength = g.bin.size() + 8;
     const std::string external = rejection(g.writeGltf(dir, "shortbin", false));
@@ -493,21 +468,21 @@ TEST(GltfLoader, RejectsBufferShorterThanDeclared) {
 TEST(GltfLoader, RejectsAccessorPastEndOfBufferView) {
     GltfBuilder g = quadScene();
     g.doc["accessors"][0]["count"] = 5;
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "accessor")),
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "accessor")),
                 HasSubstr("accessor 0 (POSITION) reads past the end of buffer view 0"));
 }
 
 TEST(GltfLoader, RejectsAccessorOffsetPastEndOfBufferView) {
     GltfBuilder g = quadScene();
     g.doc["accessors"][1]["byteOffset"] = 4;
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "offset")),
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "offset")),
                 HasSubstr("accessor 1 (indices) reads past the end of buffer view 1"));
 }
 
 TEST(GltfLoader, RejectsAbsurdAccessorCountWithoutOverflow) {
     GltfBuilder g = quadScene();
     g.doc["accessors"][0]["count"] = uint64_t(1) << 62;
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "absurd")),
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "absurd")),
                 HasSubstr("reads past the end of buffer view 0"));
 }
 
@@ -523,26 +498,28 @@ TEST(GltfLoader, RejectsAbsurdInstancedSceneSize) {
     g.push("nodes", {{"name", "crowd"}, {"children", children}});
     for (int i = 1; i <= 1025; ++i)
         g.push("nodes", {{"mesh", 0}});
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "crowd", false)), HasSubstr("more than the limit"));
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "crowd", false)),
+                HasSubstr("more than the limit"));
 }
 
 TEST(GltfLoader, RejectsBufferViewPastEndOfBuffer) {
     GltfBuilder g = quadScene();
     g.doc["bufferViews"][1]["byteLength"] = 64;
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "view")),
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "view")),
                 HasSubstr("buffer view 1 reads past the end of buffer 0"));
 }
 
 TEST(GltfLoader, RejectsStrideSmallerThanElement) {
     GltfBuilder g = quadScene();
     g.doc["bufferViews"][0]["byteStride"] = 8;
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "stride")), HasSubstr("smaller than one element"));
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "stride")),
+                HasSubstr("smaller than one element"));
 }
 
 TEST(GltfLoader, RejectsIndexPastVertexCount) {
     GltfBuilder g = quadScene();
     g.doc["accessors"][0]["count"] = 3; // index 3 now names a vertex that does not exist
-    const std::string error = rejection(g.writeGltf(scratch(), "index"));
+    const std::string error = rejection(g.writeGltf(scratchForTest("gltf-"), "index"));
     EXPECT_THAT(error, HasSubstr("index 3"));
     EXPECT_THAT(error, HasSubstr("vertex count 3"));
     EXPECT_THAT(error, HasSubstr("mesh 0 (quadMesh) primitive 0"));
@@ -551,11 +528,11 @@ TEST(GltfLoader, RejectsIndexPastVertexCount) {
 TEST(GltfLoader, RejectsTriangleListNotMultipleOfThree) {
     GltfBuilder g = quadScene();
     g.doc["accessors"][1]["count"] = 5;
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "five")), HasSubstr("not a multiple of 3"));
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "five")), HasSubstr("not a multiple of 3"));
 }
 
 TEST(GltfLoader, RejectsNonFinitePositions) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
         GltfBuilder g = quadScene();
         std::vector<glm::vec3> positions = kQuad;
@@ -572,7 +549,7 @@ TEST(GltfLoader, RejectsNonFiniteUvs) {
     const std::vector<glm::vec2> uvs = {{0, 0}, {1, 0}, {1, inf}, {0, 1}};
     g.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] =
         g.addAccessor(g.addView(uvs), kFloat, 4, "VEC2");
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "uvinf")),
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "uvinf")),
                 HasSubstr("(TEXCOORD_0) element 2 is not finite"));
 }
 
@@ -581,14 +558,14 @@ TEST(GltfLoader, RejectsAttributeCountDifferentFromPositions) {
     const std::vector<glm::vec3> normals(3, glm::vec3(0, 0, 1));
     g.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] =
         g.addAccessor(g.addView(normals), kFloat, 3, "VEC3");
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "normals3")),
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "normals3")),
                 HasSubstr("(NORMAL) has 3 elements, POSITION has 4"));
 }
 
 TEST(GltfLoader, RejectsWrongAccessorType) {
     GltfBuilder g = quadScene();
     g.doc["accessors"][0]["type"] = "VEC2";
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "vec2")),
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "vec2")),
                 HasSubstr("accessor 0 (POSITION) is VEC2, expected VEC3"));
 }
 
@@ -596,13 +573,13 @@ TEST(GltfLoader, RejectsUnsupportedRequiredExtension) {
     GltfBuilder g = quadScene();
     g.doc["extensionsUsed"] = {"KHR_texture_basisu"};
     g.doc["extensionsRequired"] = {"KHR_texture_basisu"};
-    const std::string error = rejection(g.writeGltf(scratch(), "basisu"));
+    const std::string error = rejection(g.writeGltf(scratchForTest("gltf-"), "basisu"));
     EXPECT_THAT(error, HasSubstr("extension KHR_texture_basisu"));
     EXPECT_THAT(error, HasSubstr("not supported"));
 }
 
 TEST(GltfLoader, RejectsTruncatedGlb) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     const std::vector<uint8_t> full = quadScene().glbBytes();
     // Header cut short, and a header declaring more bytes than the file has.
     writeBytes(dir + "/header.glb", std::vector<uint8_t>(full.begin(), full.begin() + 10));
@@ -625,7 +602,7 @@ TEST(GltfLoader, RejectsTruncatedGlb) {
 }
 
 TEST(GltfLoader, RejectsMalformedGlbHeader) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     std::vector<uint8_t> version = quadScene().glbBytes();
     version[4] = 1;
     writeBytes(dir + "/v1.glb", version);
@@ -639,23 +616,25 @@ TEST(GltfLoader, RejectsMalformedGlbHeader) {
 TEST(GltfLoader, RejectsInvalidMeshIndex) {
     GltfBuilder g = quadScene();
     g.doc["nodes"][0]["mesh"] = 7;
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "mesh7")), HasSubstr("node 0 (quad) refers to mesh 7"));
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "mesh7")),
+                HasSubstr("node 0 (quad) refers to mesh 7"));
 }
 
 TEST(GltfLoader, RejectsInvalidAttributeAccessorIndex) {
     GltfBuilder g = quadScene();
     g.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 9;
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "accessor9")), HasSubstr("POSITION refers to accessor 9"));
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "accessor9")),
+                HasSubstr("POSITION refers to accessor 9"));
 }
 
 TEST(GltfLoader, RejectsInvalidIndicesAccessor) {
     GltfBuilder g = quadScene();
     g.doc["meshes"][0]["primitives"][0]["indices"] = 9;
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "indices9")), HasSubstr("accessor"));
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "indices9")), HasSubstr("accessor"));
 }
 
 TEST(GltfLoader, RejectsInvalidChildAndSceneNodeIndices) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     GltfBuilder child = quadScene();
     child.doc["nodes"][0]["children"] = {4};
     EXPECT_THAT(rejection(child.writeGltf(dir, "child")), HasSubstr("node 0 (quad) has child 4"));
@@ -668,7 +647,7 @@ TEST(GltfLoader, RejectsInvalidChildAndSceneNodeIndices) {
 }
 
 TEST(GltfLoader, RejectsInvalidMaterialAndTextureIndices) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     GltfBuilder material = quadScene();
     material.doc["meshes"][0]["primitives"][0]["material"] = 2;
     EXPECT_THAT(rejection(material.writeGltf(dir, "material")), HasSubstr("refers to material 2"));
@@ -679,7 +658,7 @@ TEST(GltfLoader, RejectsInvalidMaterialAndTextureIndices) {
 }
 
 TEST(GltfLoader, RejectsNodeHierarchyCycles) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     GltfBuilder g = quadScene();
     g.push("nodes", {{"name", "a"}, {"children", {2}}});
     g.push("nodes", {{"name", "b"}, {"children", {1}}});
@@ -694,11 +673,12 @@ TEST(GltfLoader, RejectsNodeWithTwoParents) {
     g.push("nodes", {{"name", "left"}, {"children", {0}}});
     g.push("nodes", {{"name", "right"}, {"children", {0}}});
     g.doc["scenes"][0]["nodes"] = {1, 2};
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "twoparents")), HasSubstr("node 0 (quad) has two parents"));
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "twoparents")),
+                HasSubstr("node 0 (quad) has two parents"));
 }
 
 TEST(GltfLoader, RejectsMalformedTransforms) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     const std::vector<std::pair<json, std::string>> cases = {
         {{{"matrix", {1, 0, 0, 0, 1}}}, "matrix of 5 numbers"},
         {{{"translation", {1, 2}}}, "translation of 2 numbers"},
@@ -715,7 +695,7 @@ TEST(GltfLoader, RejectsComposedTransformThatOverflows) {
     GltfBuilder g = quadScene();
     g.doc["nodes"] = {{{"name", "huge"}, {"scale", {1e300, 1e300, 1e300}}, {"children", {1}}},
                       {{"name", "huger"}, {"scale", {1e300, 1e300, 1e300}}, {"mesh", 0}}};
-    const std::string error = rejection(g.writeGltf(scratch(), "overflow"));
+    const std::string error = rejection(g.writeGltf(scratchForTest("gltf-"), "overflow"));
     EXPECT_THAT(error, HasSubstr("huger"));
     EXPECT_THAT(error, HasSubstr("not finite"));
 }
@@ -724,14 +704,14 @@ TEST(GltfLoader, LoadsANodeScaledByZeroAndDropsItsColliderWhichHasNoSpaceToLiveI
     GltfBuilder g = quadScene();
     g.doc["nodes"] = {{{"name", "flat"}, {"mesh", 0}, {"scale", {1, 1, 0}}, {"children", {1}}},
                       {{"name", "UCX_flat"}, {"mesh", 0}}};
-    const Scene scene = loaded(g.writeGltf(scratch(), "singular"));
+    const Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "singular"));
     ASSERT_EQ(scene.objects.size(), 1u);
     EXPECT_EQ(scene.objects[0].name, "flat");
     EXPECT_FALSE(scene.objects[0].collider.has_value());
 }
 
 TEST(GltfLoader, RejectsSceneRootThatIsAChildOrListedTwice) {
-    const std::string dir = scratch();
+    const std::string dir = scratchForTest("gltf-");
     GltfBuilder child = quadScene();
     child.push("nodes", {{"name", "group"}, {"children", {0}}});
     child.doc["scenes"][0]["nodes"] = {1, 0};
@@ -745,7 +725,7 @@ TEST(GltfLoader, RejectsSceneRootThatIsAChildOrListedTwice) {
 TEST(GltfLoader, RejectsMissingImageFile) {
     GltfBuilder g = quadScene();
     g.doc["images"] = {{{"uri", "Textures/missing.png"}}};
-    const std::string error = rejection(g.writeGltf(scratch(), "noimage"));
+    const std::string error = rejection(g.writeGltf(scratchForTest("gltf-"), "noimage"));
     EXPECT_THAT(error, HasSubstr("image 0 (Textures/missing.png)"));
     EXPECT_THAT(error, HasSubstr("cannot be read"));
 }
@@ -753,7 +733,7 @@ TEST(GltfLoader, RejectsMissingImageFile) {
 TEST(GltfLoader, RejectsUndecodableImage) {
     GltfBuilder g = quadScene();
     g.doc["images"] = {{{"uri", "data:image/png;base64," + base64({1, 2, 3, 4, 5, 6, 7, 8})}}};
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "badpng")), HasSubstr("image 0"));
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "badpng")), HasSubstr("image 0"));
 }
 
 TEST(GltfLoader, RejectsImageBufferViewPastEndOfBuffer) {
@@ -762,12 +742,12 @@ TEST(GltfLoader, RejectsImageBufferViewPastEndOfBuffer) {
     const int view = g.addView(junk);
     g.doc["bufferViews"][view]["byteLength"] = 4096;
     g.doc["images"] = {{{"bufferView", view}, {"mimeType", "image/png"}}};
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "imageview")),
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "imageview")),
                 HasSubstr("reads past the end of its buffer"));
 }
 
 TEST(GltfLoader, RejectsSceneWithoutTriangles) {
     GltfBuilder g = quadScene();
     g.doc["meshes"][0]["primitives"][0]["mode"] = 0;
-    EXPECT_THAT(rejection(g.writeGltf(scratch(), "points")), HasSubstr("no triangle meshes"));
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "points")), HasSubstr("no triangle meshes"));
 }

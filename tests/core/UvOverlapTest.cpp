@@ -12,7 +12,7 @@ using namespace spatter;
 namespace {
 
 // Two triangles forming the unit square, sharing the diagonal.
-Mesh quad() {
+Mesh uvQuad() {
     Mesh m;
     m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
@@ -24,7 +24,7 @@ Mesh quad() {
 } // namespace
 
 TEST(UvOverlap, AcceptsTrianglesSharingAnEdge) {
-    Result<UvOverlapReport> r = findUvOverlaps(quad());
+    Result<UvOverlapReport> r = findUvOverlaps(uvQuad());
     ASSERT_TRUE(r) << r.error();
     EXPECT_EQ(r->triangles, 2u);
     EXPECT_EQ(r->overlappingPairs, 0u);
@@ -32,7 +32,7 @@ TEST(UvOverlap, AcceptsTrianglesSharingAnEdge) {
 }
 
 TEST(UvOverlap, ReportsTriangleFoldedOntoItsNeighbour) {
-    Mesh m = quad();
+    Mesh m = uvQuad();
     m.uvs[3] = {0.9f, 0.2f}; // the second triangle now lies over the first
     Result<UvOverlapReport> r = findUvOverlaps(m);
     ASSERT_TRUE(r) << r.error();
@@ -76,7 +76,7 @@ TEST(UvOverlap, ReportsLatheSeamColumn) {
 }
 
 TEST(UvOverlap, CountsDegenerateAndNonFiniteTriangles) {
-    Mesh m = quad();
+    Mesh m = uvQuad();
     m.uvs[2] = {1.0f, 0.0f}; // first triangle: two equal UVs
     Result<UvOverlapReport> r = findUvOverlaps(m);
     ASSERT_TRUE(r) << r.error();
@@ -88,10 +88,10 @@ TEST(UvOverlap, CountsDegenerateAndNonFiniteTriangles) {
 }
 
 TEST(UvOverlap, RejectsMeshWithoutUvsOrWithBadIndices) {
-    Mesh m = quad();
+    Mesh m = uvQuad();
     m.uvs.clear();
     EXPECT_FALSE(findUvOverlaps(m));
-    m = quad();
+    m = uvQuad();
     m.indices.push_back(99);
     m.indices.push_back(0);
     m.indices.push_back(1);

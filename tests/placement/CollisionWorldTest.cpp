@@ -17,13 +17,6 @@ using namespace spatter::test;
 
 namespace {
 
-CollisionWorld buildWorld(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies = {},
-                          const WorldSettings& settings = {}) {
-    Result<CollisionWorld> w = CollisionWorld::build(scene, proxies, settings);
-    EXPECT_TRUE(w.ok()) << w.error();
-    return std::move(w).value();
-}
-
 // A bumpy sphere and a box: curved and flat geometry, two objects, no symmetry to hide behind.
 Scene rawComparisonScene() {
     Scene s;

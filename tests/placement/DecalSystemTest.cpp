@@ -15,8 +15,6 @@ using namespace spatter::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // The decal's frame is orthonormal and right-handed, in object and in world space.
 void expectGoodFrames(const DecalSystem& s, const Decal& d) {
     EXPECT_LE(frameError(d.frame()), 1e-6f);

@@ -23,6 +23,15 @@
 
 namespace spatter::test {
 
+constexpr double kPi = 3.14159265358979323846;
+
+inline CollisionWorld buildWorld(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies = {},
+                                 const WorldSettings& settings = {}) {
+    Result<CollisionWorld> w = CollisionWorld::build(scene, proxies, settings);
+    EXPECT_TRUE(w.ok()) << w.error();
+    return std::move(w).value();
+}
+
 inline DecalSystem makeSystem(const Scene& scene, const DecalSettings& settings = {}) {
     Result<DecalSystem> s = DecalSystem::create(scene, settings);
     EXPECT_TRUE(s.ok()) << s.error();

@@ -16,12 +16,6 @@ using namespace spatter::test;
 
 namespace {
 
-CollisionWorld buildWorld(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies = {}) {
-    Result<CollisionWorld> w = CollisionWorld::build(scene, proxies);
-    EXPECT_TRUE(w.ok()) << w.error();
-    return std::move(w).value();
-}
-
 // The arm and a static floor below it. The floor fixes the origin of the world's float frame, so that
 // two worlds of it trace rays in the same frame whatever pose the arm was built in.
 Scene armOverFloor(Scene arm) {

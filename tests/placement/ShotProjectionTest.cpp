@@ -12,8 +12,6 @@ using namespace spatter::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // The reversed shot `degrees` from the +Y normal, turned about it by `azimuth` radians.
 glm::dvec3 shotFrom(double degrees, double azimuth) {
     const double a = degrees * kPi / 180.0;

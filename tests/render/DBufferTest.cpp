@@ -17,12 +17,10 @@
 #include <string>
 
 using namespace spatter;
+using namespace spatter::test;
 using ::testing::HasSubstr;
 
 namespace {
-
-constexpr int kWidth = test::HostedWall::kWidth;
-constexpr int kHeight = test::HostedWall::kHeight;
 
 // A host's full-screen pass applying the decal buffers to its G-buffer (albedo RGBA8, world normals
 // as n * 0.5 + 0.5, roughness in G), written to three new textures of the same layout.
@@ -68,7 +66,7 @@ GLuint compileStage(GLenum stage, const std::string& text) {
 GLuint newTexture(GLenum format) {
     GLuint t = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &t);
-    glTextureStorage2D(t, 1, format, kWidth, kHeight);
+    glTextureStorage2D(t, 1, format, kWallWidth, kWallHeight);
     return t;
 }
 
@@ -103,7 +101,7 @@ void applyDBuffer(const HostFrame& f, const ProjectorResources& r, const Applied
                               r.dbufferAlbedo, r.dbufferNormal,   r.dbufferMaterial};
     glBindTextures(0, 6, inputs);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, kWidth, kHeight);
+    glViewport(0, 0, kWallWidth, kWallHeight);
     glUseProgram(program);
     glBindVertexArray(vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);

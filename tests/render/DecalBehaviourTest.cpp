@@ -14,11 +14,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 using namespace spatter;
+using namespace spatter::test;
 
 namespace {
-
-constexpr int kW = 128;
-constexpr int kH = 96;
 
 SceneObject object(const std::string& name, const glm::vec3& halfExtents, const glm::dvec3& position,
                    bool dynamic = false) {

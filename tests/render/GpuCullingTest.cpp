@@ -19,11 +19,9 @@
 #include <limits>
 
 using namespace spatter;
+using namespace spatter::test;
 
 namespace {
-
-constexpr int kWidth = test::HostedWall::kWidth;
-constexpr int kHeight = test::HostedWall::kHeight;
 
 // `count` decals on the wall (object 0) scattered over an area wider than the view and the wall,
 // some deep enough to reach the camera, in three sizes.
@@ -63,7 +61,7 @@ Culled coverage(const std::vector<Decal>& decals, const glm::dvec3& offset, Came
     }
     camera.eye += offset;
     camera.target += offset;
-    Result<test::ForeignHost> host = test::ForeignHost::create(kWidth, kHeight);
+    Result<test::ForeignHost> host = test::ForeignHost::create(kWallWidth, kWallHeight);
     ProjectorSettings settings;
     settings.gpuCullingFrom = onGpu ? 0 : std::numeric_limits<size_t>::max();
     settings.waitForTimers = true; // this draw's counts
@@ -97,7 +95,7 @@ void expectSameAsCpu(const char* name, const std::vector<Decal>& decals, const g
     for (size_t i = 0; i < gpu.coverage.size() && i < cpu.coverage.size(); ++i)
         if (gpu.coverage[i] != cpu.coverage[i]) {
             if (++differing <= 8)
-                std::printf("  pixel (%zu, %zu): %s\n", i % kWidth, i / kWidth,
+                std::printf("  pixel (%zu, %zu): %s\n", i % kWallWidth, i / kWallWidth,
                             cpu.coverage[i] ? "CPU only" : "GPU only");
         }
     EXPECT_EQ(differing, 0u) << name << ": pixels whose coverage differs";

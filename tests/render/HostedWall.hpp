@@ -42,6 +42,7 @@ struct HostedWall {
     // nothing when the host or the projector cannot be made (a test failure is recorded).
     static std::optional<HostedWall> make();
 };
+constexpr int kWallWidth = HostedWall::kWidth, kWallHeight = HostedWall::kHeight;
 
 // Pixels whose RGBA differ.
 size_t differingPixels(const Image& a, const Image& b);

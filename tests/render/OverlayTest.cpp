@@ -16,11 +16,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 using namespace spatter;
+using namespace spatter::test;
 
 namespace {
-
-constexpr int kW = 128;
-constexpr int kH = 96;
 
 // A static wall whose front face is the plane z = 0, and a dynamic plate 0.4 in front of it.
 Scene wallAndTarget() {

@@ -25,11 +25,9 @@
 #include <limits>
 
 using namespace spatter;
+using namespace spatter::test;
 
 namespace {
-
-constexpr int kW = 128;
-constexpr int kH = 96;
 
 // Normals of object `object` at the evaluator's pose, in double, in the object's space at that pose:
 // morph target normal deltas added with the weights, then for a skinned object the normal mapped by

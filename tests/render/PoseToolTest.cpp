@@ -2,6 +2,7 @@
 // run as separate processes.
 
 #include "TestData.hpp"
+#include "ToolRun.hpp"
 
 #include "spatter/core/Image.hpp"
 #include "spatter/render/GlContext.hpp"
@@ -16,28 +17,9 @@
 #include <sys/wait.h>
 
 using namespace spatter;
+using namespace spatter::test;
 
 namespace {
-
-// Runs `exe` with `args`; returns its exit code (-1 when it did not exit normally).
-int run(const std::string& exe, const std::string& args) {
-    const std::string cmd = exe + " " + args + " >/dev/null 2>&1";
-    const int status = std::system(cmd.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-int runTool(const std::string& args) {
-    return run(SPATTER_RENDER_TOOL, args);
-}
-
-// Why the tool cannot render here (no headless GL context), or an empty string.
-std::string noGl() {
-    static const std::string why = [] {
-        Result<GlContext> gl = GlContext::createHeadless();
-        return gl.ok() ? std::string() : gl.error();
-    }();
-    return why;
-}
 
 // Pixels whose colours differ by more than 8 in some channel.
 size_t differingPixels(const Image& a, const Image& b) {
@@ -52,13 +34,6 @@ size_t differingPixels(const Image& a, const Image& b) {
 }
 
 } // namespace
-
-// Skips the calling test when the tools cannot get a headless GL context here (fails under CI=true).
-#define SPATTER_REQUIRE_TOOL_GL()                                                                            \
-    if (!noGl().empty()) {                                                                                   \
-        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();                 \
-        GTEST_SKIP() << "no headless OpenGL context (" << noGl() << ")";                                     \
-    }
 
 TEST(SpatterRenderTime, PosesTheSceneAtTheGivenTime) {
     SPATTER_REQUIRE_SHARED(path, "gltf/CesiumMan/CesiumMan.glb");
@@ -111,14 +86,14 @@ TEST(GalleryTime, PlaysTheSceneAnimationFromTheGivenTime) {
     const std::string dir = test::scratchDir("gallery_time");
     const std::string common =
         "--headless --scene " + path + " --shots 8 --size 160x90 --cache " + dir + "/cache --time ";
-    ASSERT_EQ(run(SPATTER_GALLERY_EXE, common + "0.5 --out " + dir + "/a"), 0);
-    ASSERT_EQ(run(SPATTER_GALLERY_EXE, common + "0.5 --out " + dir + "/b"), 0);
-    ASSERT_EQ(run(SPATTER_GALLERY_EXE, common + "1.3 --out " + dir + "/c"), 0);
+    ASSERT_EQ(runExe(SPATTER_GALLERY_EXE, common + "0.5 --out " + dir + "/a"), 0);
+    ASSERT_EQ(runExe(SPATTER_GALLERY_EXE, common + "0.5 --out " + dir + "/b"), 0);
+    ASSERT_EQ(runExe(SPATTER_GALLERY_EXE, common + "1.3 --out " + dir + "/c"), 0);
     Result<Image> a = loadImage(dir + "/a/gallery.png"), b = loadImage(dir + "/b/gallery.png"),
                   c = loadImage(dir + "/c/gallery.png");
     ASSERT_TRUE(a.ok() && b.ok() && c.ok());
     EXPECT_EQ(differingPixels(a.value(), b.value()), 0u);
     EXPECT_GT(differingPixels(a.value(), c.value()), 50u);
-    EXPECT_EQ(run(SPATTER_GALLERY_EXE, "--headless --time later"), 2);
+    EXPECT_EQ(runExe(SPATTER_GALLERY_EXE, "--headless --time later"), 2);
 }
 #endif

@@ -23,12 +23,10 @@
 #include <vector>
 
 using namespace spatter;
+using namespace spatter::test;
 using ::testing::HasSubstr;
 
 namespace {
-
-constexpr int kWidth = test::HostedWall::kWidth;
-constexpr int kHeight = test::HostedWall::kHeight;
 
 // Every piece of GL state the header lists, as numbers.
 std::vector<int64_t> glStateSnapshot() {
@@ -285,11 +283,11 @@ TEST(Projector, RejectsHostFramesThatDoNotFitNamingTheFieldAndDrawsNothing) {
         GLuint rgba8 = 0, narrow = 0, r32f = 0; // the frame's size in RGBA8 and R32F, half as wide
     } t;
     glCreateTextures(GL_TEXTURE_2D, 1, &t.rgba8);
-    glTextureStorage2D(t.rgba8, 1, GL_RGBA8, kWidth, kHeight);
+    glTextureStorage2D(t.rgba8, 1, GL_RGBA8, kWallWidth, kWallHeight);
     glCreateTextures(GL_TEXTURE_2D, 1, &t.narrow);
-    glTextureStorage2D(t.narrow, 1, GL_RGBA8, kWidth / 2, kHeight);
+    glTextureStorage2D(t.narrow, 1, GL_RGBA8, kWallWidth / 2, kWallHeight);
     glCreateTextures(GL_TEXTURE_2D, 1, &t.r32f);
-    glTextureStorage2D(t.r32f, 1, GL_R32F, kWidth, kHeight);
+    glTextureStorage2D(t.r32f, 1, GL_R32F, kWallWidth, kWallHeight);
     struct Case {
         const char* field;
         void (*change)(HostFrame&, const Textures&);
@@ -347,7 +345,7 @@ TEST(Projector, TheSameDecalsGiveTheSameAlbedoInEveryHost) {
     scene.materials = {grey};
     for (SceneObject& o : scene.objects)
         o.mesh.submeshes = {{0, uint32_t(o.mesh.indices.size()), 0}};
-    Result<Renderer> r = test::makeRenderer(kWidth, kHeight);
+    Result<Renderer> r = test::makeRenderer(kWallWidth, kWallHeight);
     ASSERT_TRUE(r.ok()) << r.error();
     ASSERT_TRUE(r->setScene(scene).ok());
     ASSERT_TRUE(r->setObjectIds(h->wall.ids).ok());

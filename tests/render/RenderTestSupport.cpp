@@ -78,7 +78,6 @@ std::vector<uint8_t> referenceCoverage(const Scene& scene, const CoverageInputs&
 
     const bool useIds = scene.dynamicObjectCount() > 0;
     const CameraBasis basis = cameraBasis(camera);
-    constexpr double kPi = 3.14159265358979323846;
 
     struct DecalRef {
         glm::dmat4 worldToBox;

@@ -20,6 +20,10 @@
 
 namespace spatter::test {
 
+// The image size of most renderer tests: small, for a software rasteriser.
+constexpr int kW = 128, kH = 96;
+constexpr double kPi = 3.14159265358979323846;
+
 // A camera at `eye` looking at `target`, up +Y, near plane 0.05, the default field of view.
 Camera lookAt(const glm::dvec3& eye, const glm::dvec3& target);
 

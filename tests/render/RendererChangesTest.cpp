@@ -20,12 +20,12 @@ using namespace spatter;
 
 namespace {
 
-constexpr int kW = 96;
-constexpr int kH = 72;
+constexpr int kChangesW = 96;
+constexpr int kChangesH = 72;
 
 // A floor of two objects: a projected slab at x < 0 and a texture-space sheet (a grid, UVs in [0, 1]
 // without overlap) at x > 0.
-Scene floorScene() {
+Scene slabAndSheetScene() {
     Scene s;
     Material grey;
     grey.name = "grey";
@@ -73,9 +73,9 @@ struct Pair {
 
 std::optional<Pair> makePair() {
     Pair p;
-    const Scene scene = floorScene();
+    const Scene scene = slabAndSheetScene();
     for (std::optional<Renderer>* r : {&p.changes, &p.whole}) {
-        Result<Renderer> made = test::makeRenderer(kW, kH);
+        Result<Renderer> made = test::makeRenderer(kChangesW, kChangesH);
         EXPECT_TRUE(made.ok()) << made.error();
         if (!made) return std::nullopt;
         r->emplace(std::move(made).value());
@@ -114,7 +114,7 @@ void play(Pair& p, Rng& rng, std::deque<DecalHandle>& handles) {
 }
 
 // "" when the images are equal, else how many pixels differ and where the first is.
-std::string differingPixels(const Image& a, const Image& b) {
+std::string imageDifference(const Image& a, const Image& b) {
     if (a.rgba.size() != b.rgba.size()) return "images of different sizes";
     size_t differ = 0, first = 0;
     for (size_t i = 0; i < a.rgba.size(); i += 4)
@@ -148,7 +148,7 @@ TEST(RendererChanges, UpdatesDrawWhatTheDecalsTakenWholeDrawWithCratersAndSplats
             FrameStats a, b;
             const Image ia = test::renderView(*p->changes, overhead(), View::Final, &a);
             const Image ib = test::renderView(*p->whole, overhead(), View::Final, &b);
-            ASSERT_EQ(differingPixels(ia, ib), "") << "seed " << seed << ", frame " << frame;
+            ASSERT_EQ(imageDifference(ia, ib), "") << "seed " << seed << ", frame " << frame;
             EXPECT_EQ(a.decals, b.decals) << frame;
             EXPECT_EQ(a.decalsVolumetric, b.decalsVolumetric) << frame;
             EXPECT_EQ(a.decalsTextureSpace, b.decalsTextureSpace) << frame;

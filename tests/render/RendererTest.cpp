@@ -14,11 +14,9 @@
 #include <set>
 
 using namespace spatter;
+using namespace spatter::test;
 
 namespace {
-
-constexpr int kW = 128;
-constexpr int kH = 96;
 
 SceneObject box(const std::string& name, glm::vec3 half, glm::dvec3 position, int material = -1,
                 bool dynamic = false) {

@@ -15,12 +15,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 using namespace spatter;
+using namespace spatter::test;
 
 namespace {
-
-constexpr int kW = 128;
-constexpr int kH = 96;
-constexpr double kPi = 3.14159265358979323846;
 
 // A slab 1 x 1 x 0.02 at the origin (front face +Z at z = 0.01) and a wall 3 x 3 x 0.1 behind it,
 // its front face at z = -0.25.

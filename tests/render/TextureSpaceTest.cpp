@@ -14,12 +14,9 @@
 #include <cmath>
 
 using namespace spatter;
+using namespace spatter::test;
 
 namespace {
-
-constexpr int kW = 128;
-constexpr int kH = 96;
-constexpr double kPi = 3.14159265358979323846;
 
 // A grid on y = 0 over x in [x0, x1], z in [-0.5, 0.5], with UVs mapped onto the rectangle
 // [u0, u1] x [0.25, 0.75].

@@ -2,6 +2,7 @@
 
 #include "GltfBuilder.hpp"
 #include "TestData.hpp"
+#include "ToolRun.hpp"
 
 #include "spatter/core/MeshBuilder.hpp"
 
@@ -21,15 +22,9 @@
 #include <sys/wait.h>
 
 using namespace spatter;
+using namespace spatter::test;
 
 namespace {
-
-// Runs the tool with `args`; returns its exit code (-1 when it did not exit normally).
-int runTool(const std::string& args) {
-    const std::string cmd = std::string(SPATTER_RENDER_TOOL) + " " + args + " >/dev/null 2>&1";
-    const int status = std::system(cmd.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 // A wall 8 x 4 in the plane z = 0 facing +Z, as an OBJ named wall (x in [-4, 4], y in [0, 4]).
 std::string writeWall(const std::string& dir) {
@@ -48,21 +43,6 @@ std::string record(double x, double y, double s, const std::string& object = "wa
       << R"(],"half_depth":0.2,"max_angle_deg":80,"proxy_error_bound":0})";
     return r.str();
 }
-
-// Why the tool cannot render here (no headless GL context), or an empty string.
-std::string noGl() {
-    static const std::string why = [] {
-        Result<GlContext> gl = GlContext::createHeadless();
-        return gl.ok() ? std::string() : gl.error();
-    }();
-    return why;
-}
-
-#define SPATTER_REQUIRE_TOOL_GL()                                                                            \
-    if (!noGl().empty()) {                                                                                   \
-        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();                 \
-        GTEST_SKIP() << "no headless OpenGL 4.5 context (" << noGl() << ")";                                 \
-    }
 
 bool white(const Image& im, int x, int y) {
     return im.rgba[(size_t(y) * size_t(im.width) + size_t(x)) * 4] > 127;

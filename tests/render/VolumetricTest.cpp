@@ -18,12 +18,12 @@ using spatter::test::renderView;
 
 namespace {
 
-constexpr int kW = 160;
-constexpr int kH = 120;
+constexpr int kCraterW = 160;
+constexpr int kCraterH = 120;
 constexpr float kRadius = 0.3f; // crater radius (half the decal size)
 
 // The wall's front face is the plane z = 0, around (0, 1.5).
-SceneObject box(const std::string& name, const glm::vec3& halfExtents, const glm::dvec3& position) {
+SceneObject boxObject(const std::string& name, const glm::vec3& halfExtents, const glm::dvec3& position) {
     SceneObject o;
     o.name = name;
     o.mesh = makeBox(halfExtents, 4);
@@ -36,14 +36,14 @@ Scene wallScene(bool redBehind) {
     s.materials.push_back({});
     s.materials[0].name = "grey";
     s.materials[0].baseColorFactor = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
-    s.objects.push_back(box("wall", {2.0f, 1.5f, 0.1f}, {0.0, 1.5, -0.1}));
+    s.objects.push_back(boxObject("wall", {2.0f, 1.5f, 0.1f}, {0.0, 1.5, -0.1}));
     s.objects[0].mesh.submeshes = {{0, uint32_t(s.objects[0].mesh.indices.size()), 0}};
     if (redBehind) {
         Material red;
         red.name = "red";
         red.baseColorFactor = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
         s.materials.push_back(red);
-        SceneObject back = box("red", {2.5f, 2.0f, 0.05f}, {0.0, 1.5, -0.35});
+        SceneObject back = boxObject("red", {2.5f, 2.0f, 0.05f}, {0.0, 1.5, -0.35});
         back.mesh.submeshes = {{0, uint32_t(back.mesh.indices.size()), 1}};
         s.objects.push_back(back);
     }
@@ -78,7 +78,7 @@ Camera frontCamera() {
 
 // Where the ray through pixel (i, j) (row 0 at the top) meets the plane z = 0.
 glm::dvec3 wallPoint(const Camera& cam, int i, int j) {
-    const glm::dvec3 dir = pixelDirection(cam, kW, kH, i, j);
+    const glm::dvec3 dir = pixelDirection(cam, kCraterW, kCraterH, i, j);
     return cam.eye + dir * (-cam.eye.z / dir.z);
 }
 
@@ -92,14 +92,14 @@ double nearestCentre(const glm::dvec3& p, const std::vector<glm::dvec2>& centres
 
 // Depth view value: brighter is nearer.
 int depthAt(const Image& im, int i, int j) {
-    return im.rgba[(size_t(j) * size_t(kW) + size_t(i)) * 4];
+    return im.rgba[(size_t(j) * size_t(kCraterW) + size_t(i)) * 4];
 }
 
 } // namespace
 
 TEST(VolumetricDecal, DepthLiesBehindTheWallInsideTheFootprintOnly) {
     SPATTER_REQUIRE_GL(gl);
-    Result<Renderer> r = test::makeRenderer(kW, kH);
+    Result<Renderer> r = test::makeRenderer(kCraterW, kCraterH);
     ASSERT_TRUE(r.ok()) << r.error();
     ASSERT_TRUE(r->setScene(wallScene(false)).ok());
     r->setDecalTypes(types());
@@ -113,8 +113,8 @@ TEST(VolumetricDecal, DepthLiesBehindTheWallInsideTheFootprintOnly) {
 
     size_t inside = 0, deeper = 0, outside = 0;
     const CraterShape shape;
-    for (int j = 0; j < kH; ++j)
-        for (int i = 0; i < kW; ++i) {
+    for (int j = 0; j < kCraterH; ++j)
+        for (int i = 0; i < kCraterW; ++i) {
             const double d = nearestCentre(wallPoint(cam, i, j), {{0.0, 1.5}});
             // Well inside the chipped rim: the crater; beyond the unit rim: the untouched wall.
             if (d < kRadius * (1.0 - shape.chip) * 0.8) {
@@ -134,7 +134,7 @@ TEST(VolumetricDecal, DepthLiesBehindTheWallInsideTheFootprintOnly) {
 
 TEST(VolumetricDecal, NothingBehindTheWallShowsThroughTheHole) {
     SPATTER_REQUIRE_GL(gl);
-    Result<Renderer> r = test::makeRenderer(kW, kH);
+    Result<Renderer> r = test::makeRenderer(kCraterW, kCraterH);
     ASSERT_TRUE(r.ok()) << r.error();
     ASSERT_TRUE(r->setScene(wallScene(true)).ok());
     r->setDecalTypes(types());
@@ -147,9 +147,9 @@ TEST(VolumetricDecal, NothingBehindTheWallShowsThroughTheHole) {
         const Image albedo = renderView(r.value(), cam, View::Albedo);
         const Image normal = renderView(r.value(), cam, View::Normal);
         size_t red = 0, tilted = 0;
-        for (size_t p = 0; p < size_t(kW * kH); ++p) {
+        for (size_t p = 0; p < size_t(kCraterW * kCraterH); ++p) {
             // Only around the craters: the red board shows below the wall's lower edge elsewhere.
-            const glm::dvec3 onWall = wallPoint(cam, int(p % size_t(kW)), int(p / size_t(kW)));
+            const glm::dvec3 onWall = wallPoint(cam, int(p % size_t(kCraterW)), int(p / size_t(kCraterW)));
             if (nearestCentre(onWall, {{0.0, 1.5}, {0.25, 1.55}, {-0.6, 1.2}}) > 1.5 * kRadius) continue;
             const uint8_t* a = &albedo.rgba[p * 4];
             if (a[0] > 150 && a[1] < 60 && a[2] < 60) ++red;
@@ -165,7 +165,7 @@ TEST(VolumetricDecal, NothingBehindTheWallShowsThroughTheHole) {
 
 TEST(VolumetricDecal, OverlappingCratersMakeOneHoleWithoutWallInside) {
     SPATTER_REQUIRE_GL(gl);
-    Result<Renderer> r = test::makeRenderer(kW, kH);
+    Result<Renderer> r = test::makeRenderer(kCraterW, kCraterH);
     ASSERT_TRUE(r.ok()) << r.error();
     ASSERT_TRUE(r->setScene(wallScene(false)).ok());
     r->setDecalTypes(types());
@@ -179,8 +179,8 @@ TEST(VolumetricDecal, OverlappingCratersMakeOneHoleWithoutWallInside) {
     // cup wall rises back to the surface inside the union of the holes.
     size_t overlap = 0, flush = 0;
     const CraterShape shape;
-    for (int j = 0; j < kH; ++j)
-        for (int i = 0; i < kW; ++i) {
+    for (int j = 0; j < kCraterH; ++j)
+        for (int i = 0; i < kCraterW; ++i) {
             const glm::dvec3 p = wallPoint(cam, i, j);
             const double inner = kRadius * (1.0 - shape.chip) * 0.8;
             if (glm::length(glm::dvec2(p) - centres[0]) < inner &&
@@ -195,12 +195,12 @@ TEST(VolumetricDecal, OverlappingCratersMakeOneHoleWithoutWallInside) {
 
 TEST(VolumetricDecal, IdClippingKeepsTheHoleOffAnotherObject) {
     SPATTER_REQUIRE_GL(gl);
-    Result<Renderer> r = test::makeRenderer(kW, kH);
+    Result<Renderer> r = test::makeRenderer(kCraterW, kCraterH);
     ASSERT_TRUE(r.ok()) << r.error();
     Scene s = wallScene(false);
     // A dynamic plate just in front of the wall (closer than the footprint tolerance) over the
     // crater's right half.
-    SceneObject plate = box("plate", {0.3f, 0.5f, 0.01f}, {0.3, 1.5, 0.02});
+    SceneObject plate = boxObject("plate", {0.3f, 0.5f, 0.01f}, {0.3, 1.5, 0.02});
     plate.dynamic = true;
     plate.mesh.submeshes = {{0, uint32_t(plate.mesh.indices.size()), 0}};
     s.objects.push_back(plate);
@@ -213,8 +213,8 @@ TEST(VolumetricDecal, IdClippingKeepsTheHoleOffAnotherObject) {
     r->setDecals({crater(0.0f, 1.5f)});
     const Image after = renderView(r.value(), cam, View::Depth);
     size_t onPlate = 0, holeLeft = 0;
-    for (int j = 0; j < kH; ++j)
-        for (int i = 0; i < kW; ++i) {
+    for (int j = 0; j < kCraterH; ++j)
+        for (int i = 0; i < kCraterW; ++i) {
             const glm::dvec3 p = wallPoint(cam, i, j);
             if (glm::length(glm::dvec2(p) - glm::dvec2(0.0, 1.5)) > kRadius * 0.6) continue;
             if (p.x > 0.05) {
@@ -230,7 +230,7 @@ TEST(VolumetricDecal, IdClippingKeepsTheHoleOffAnotherObject) {
 
 TEST(VolumetricDecal, InvalidDecalsAreCountedNotDrawn) {
     SPATTER_REQUIRE_GL(gl);
-    Result<Renderer> r = test::makeRenderer(kW, kH);
+    Result<Renderer> r = test::makeRenderer(kCraterW, kCraterH);
     ASSERT_TRUE(r.ok()) << r.error();
     ASSERT_TRUE(r->setScene(wallScene(false)).ok());
     r->setDecalTypes(types());
@@ -248,11 +248,11 @@ TEST(VolumetricDecal, InvalidDecalsAreCountedNotDrawn) {
 
 TEST(VolumetricDecal, CraterAtACornerLeavesTheAdjacentFloorAlone) {
     SPATTER_REQUIRE_GL(gl);
-    Result<Renderer> r = test::makeRenderer(kW, kH);
+    Result<Renderer> r = test::makeRenderer(kCraterW, kCraterH);
     ASSERT_TRUE(r.ok()) << r.error();
     Scene s = wallScene(false);
     // A floor whose top face y = 0 meets the wall's front face along the line y = 0, z = 0.
-    SceneObject floor = box("floor", {2.0f, 0.1f, 1.5f}, {0.0, -0.1, 1.5});
+    SceneObject floor = boxObject("floor", {2.0f, 0.1f, 1.5f}, {0.0, -0.1, 1.5});
     floor.mesh.submeshes = {{0, uint32_t(floor.mesh.indices.size()), 0}};
     s.objects.push_back(floor);
     ASSERT_TRUE(r->setScene(s).ok());
@@ -265,9 +265,9 @@ TEST(VolumetricDecal, CraterAtACornerLeavesTheAdjacentFloorAlone) {
     r->setDecals({crater(0.0f, 0.1f)});
     const Image after = renderView(r.value(), cam, View::Depth);
     size_t floorNear = 0, wallDeeper = 0;
-    for (int j = 0; j < kH; ++j)
-        for (int i = 0; i < kW; ++i) {
-            const glm::dvec3 dir = pixelDirection(cam, kW, kH, i, j);
+    for (int j = 0; j < kCraterH; ++j)
+        for (int i = 0; i < kCraterW; ++i) {
+            const glm::dvec3 dir = pixelDirection(cam, kCraterW, kCraterH, i, j);
             if (dir.y >= 0.0) continue;
             const glm::dvec3 onFloor = cam.eye + dir * (-cam.eye.y / dir.y);
             if (onFloor.z > 1e-3 && std::fabs(onFloor.x) < kRadius && onFloor.z < 0.5) {
@@ -293,7 +293,7 @@ struct PillarShots {
 PillarShots pillarShots() {
     PillarShots out;
     out.scene = wallScene(false);
-    out.scene.objects[0] = box("pillar", {0.3f, 1.5f, 0.3f}, {0.0, 1.5, 0.0});
+    out.scene.objects[0] = boxObject("pillar", {0.3f, 1.5f, 0.3f}, {0.0, 1.5, 0.0});
     out.scene.objects[0].mesh.submeshes = {{0, uint32_t(out.scene.objects[0].mesh.indices.size()), 0}};
     Result<DecalSystem> sys = DecalSystem::create(out.scene);
     EXPECT_TRUE(sys.ok()) << sys.error();
@@ -323,12 +323,12 @@ double pokeOut(Renderer& r, const Camera& cam, const std::vector<Decal>& decals,
     const glm::dvec3 forward = -cameraBasis(cam).back;
     double worst = 0.0;
     changed = 0;
-    for (int j = 0; j < kH; ++j)
-        for (int i = 0; i < kW; ++i) {
-            const size_t k = size_t(j) * kW + size_t(i);
+    for (int j = 0; j < kCraterH; ++j)
+        for (int i = 0; i < kCraterW; ++i) {
+            const size_t k = size_t(j) * kCraterW + size_t(i);
             if (after[k] == before[k] || after[k] <= 0.0f) continue;
             ++changed;
-            const glm::dvec3 dir = pixelDirection(cam, kW, kH, i, j);
+            const glm::dvec3 dir = pixelDirection(cam, kCraterW, kCraterH, i, j);
             const glm::dvec3 p = cam.eye + dir * (double(after[k]) / glm::dot(dir, forward));
             worst = std::max({worst, p.x - 0.3, p.z - 0.3, p.y - 3.0});
         }
@@ -339,7 +339,7 @@ double pokeOut(Renderer& r, const Camera& cam, const std::vector<Decal>& decals,
 
 TEST(VolumetricDecal, CraterAtAnEdgeOrCornerDoesNotPokeOutOfTheAdjacentFace) {
     SPATTER_REQUIRE_GL(gl);
-    Result<Renderer> r = test::makeRenderer(kW, kH);
+    Result<Renderer> r = test::makeRenderer(kCraterW, kCraterH);
     ASSERT_TRUE(r.ok()) << r.error();
     PillarShots shots = pillarShots();
     ASSERT_EQ(shots.decals.size(), 3u);
@@ -367,7 +367,7 @@ TEST(VolumetricDecal, CraterAtAnEdgeOrCornerDoesNotPokeOutOfTheAdjacentFace) {
 
 TEST(VolumetricDecal, CoverageViewShowsTheHolesAndNothingElse) {
     SPATTER_REQUIRE_GL(gl);
-    Result<Renderer> r = test::makeRenderer(kW, kH);
+    Result<Renderer> r = test::makeRenderer(kCraterW, kCraterH);
     ASSERT_TRUE(r.ok()) << r.error();
     ASSERT_TRUE(r->setScene(wallScene(false)).ok());
     r->setDecalTypes(types());
@@ -375,9 +375,9 @@ TEST(VolumetricDecal, CoverageViewShowsTheHolesAndNothingElse) {
     const Camera cam = frontCamera();
     const Image coverage = renderView(r.value(), cam, View::Coverage);
     size_t inside = 0, covered = 0;
-    for (int j = 0; j < kH; ++j)
-        for (int i = 0; i < kW; ++i) {
-            const bool white = coverage.rgba[(size_t(j) * kW + size_t(i)) * 4] > 128;
+    for (int j = 0; j < kCraterH; ++j)
+        for (int i = 0; i < kCraterW; ++i) {
+            const bool white = coverage.rgba[(size_t(j) * kCraterW + size_t(i)) * 4] > 128;
             const double d = nearestCentre(wallPoint(cam, i, j), {{0.0, 1.5}, {-0.6, 1.2}});
             if (white) {
                 ++covered;

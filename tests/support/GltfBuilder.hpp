@@ -15,6 +15,10 @@ namespace spatter::test {
 // glTF component types.
 constexpr int kByte = 5120, kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125, kFloat = 5126;
 
+// Unit quad in the XY plane, counter-clockwise seen from +Z.
+inline const std::vector<glm::vec3> kQuad = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+inline const std::vector<uint32_t> kQuadIndices = {0, 1, 2, 0, 2, 3};
+
 inline std::string base64(const std::vector<uint8_t>& bytes) {
     static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;

@@ -1,5 +1,7 @@
 #include "TestData.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <unistd.h>
@@ -30,6 +32,10 @@ std::string scratchDir(const std::string& name) {
     fs::remove_all(p, ec);
     fs::create_directories(p);
     return p.string();
+}
+
+std::string scratchForTest(const std::string& prefix) {
+    return scratchDir(prefix + ::testing::UnitTest::GetInstance()->current_test_info()->name());
 }
 
 } // namespace spatter::test

@@ -14,6 +14,8 @@ std::string sharedDataPath(const std::string& relative);
 
 // A fresh empty directory under the system temp dir for files a test writes (unique per process).
 std::string scratchDir(const std::string& name);
+// scratchDir of `prefix` followed by the running test's name.
+std::string scratchForTest(const std::string& prefix);
 
 // True under CI=true, where shared data must be present.
 bool runningInCi();
