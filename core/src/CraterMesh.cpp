@@ -1,4 +1,5 @@
 #include "spatter/core/CraterMesh.hpp"
+#include "Pi.hpp"
 
 #include "spatter/core/Random.hpp"
 
@@ -11,7 +12,6 @@ namespace spatter {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
 constexpr float kMaxTilt = 0.25f; // the bowl is up to this much deeper on one side
 
 // A smooth periodic profile in [0, 1] over `segments` samples: a few random harmonics, with a
@@ -20,17 +20,17 @@ std::vector<float> periodicNoise(Rng& rng, int segments, int harmonics, int notc
     std::vector<float> v(size_t(segments), 0.0f);
     for (int h = 1; h <= harmonics; ++h) {
         const float amp = rng.uniform(0.3f, 1.0f) / float(h);
-        const float phase = rng.uniform(0.0f, 2.0f * kPi);
+        const float phase = rng.uniform(0.0f, 2.0f * kPiF);
         for (int i = 0; i < segments; ++i)
-            v[size_t(i)] += amp * std::sin(float(h) * 2.0f * kPi * float(i) / float(segments) + phase);
+            v[size_t(i)] += amp * std::sin(float(h) * 2.0f * kPiF * float(i) / float(segments) + phase);
     }
     for (int k = 0; k < notches; ++k) {
-        const float at = rng.uniform(0.0f, 2.0f * kPi);
+        const float at = rng.uniform(0.0f, 2.0f * kPiF);
         const float width = rng.uniform(0.15f, 0.4f);
         const float amp = rng.uniform(1.0f, 2.0f);
         for (int i = 0; i < segments; ++i) {
-            float d = std::fabs(2.0f * kPi * float(i) / float(segments) - at);
-            d = std::min(d, 2.0f * kPi - d);
+            float d = std::fabs(2.0f * kPiF * float(i) / float(segments) - at);
+            d = std::min(d, 2.0f * kPiF - d);
             if (d < width) v[size_t(i)] += amp * (1.0f - d / width);
         }
     }
@@ -69,7 +69,7 @@ Result<Mesh> makeCraterMesh(uint32_t variant, const CraterShape& s) {
         const float radial = 1.0f - t;
         const std::vector<float> bumps = periodicNoise(rng, n, 4, 0);
         for (int i = 0; i < n; ++i) {
-            const float a = 2.0f * kPi * float(i) / float(n);
+            const float a = 2.0f * kPiF * float(i) / float(n);
             const float radius = (1.0f - s.chip * rim[size_t(i)]) * radial;
             const glm::vec2 xy(std::cos(a) * radius, std::sin(a) * radius);
             float z = 0.0f;

@@ -13,13 +13,13 @@ namespace {
 // a second on one core (boundOverPoses certifies each sample).
 constexpr int kObjectPoseSamples = 64;
 
-struct Candidate {
+struct PoseCandidate {
     Proxy proxy;
     VertexDeformation deformation;
     PoseBound poses;
 };
 
-Result<Candidate> judged(const Scene& scene, size_t object, Proxy proxy, int samples) {
+Result<PoseCandidate> judged(const Scene& scene, size_t object, Proxy proxy, int samples) {
     const SceneObject& o = scene.objects[object];
     Result<VertexDeformation> d = transferDeformation(o.mesh, deformationOf(o), proxy.mesh);
     if (!d) return fail(d.error());
@@ -28,7 +28,7 @@ Result<Candidate> judged(const Scene& scene, size_t object, Proxy proxy, int sam
         std::max(proxy.errorBound, 1e-9 * double(glm::length(o.mesh.bounds().max - o.mesh.bounds().min)));
     Result<PoseBound> b = boundOverPoses(scene, object, proxy.mesh, d.value(), samples, margin);
     if (!b) return fail(b.error());
-    return Candidate{std::move(proxy), std::move(d).value(), b.value()};
+    return PoseCandidate{std::move(proxy), std::move(d).value(), b.value()};
 }
 
 // `posed` (a mesh of the render mesh's pose `render`) brought back to the rest pose: each vertex to the
@@ -86,7 +86,7 @@ Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, co
         own.deformation = deformationOf(o);
         return own;
     }
-    Result<Candidate> best = judged(scene, object, std::move(rest).value(), samples);
+    Result<PoseCandidate> best = judged(scene, object, std::move(rest).value(), samples);
     if (!best) return fail(name + best.error());
     DeformingProxy out;
     out.restPoses = best->poses;
@@ -94,7 +94,7 @@ Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, co
         Result<Proxy> posed =
             simplifiedInPose(scene, object, best->poses.worstAnimation, best->poses.worstTime, settings);
         if (!posed) return fail(name + posed.error());
-        Result<Candidate> other = judged(scene, object, std::move(posed).value(), samples);
+        Result<PoseCandidate> other = judged(scene, object, std::move(posed).value(), samples);
         if (!other) return fail(name + other.error());
         if (other->poses.bound < best->poses.bound) {
             best = std::move(other);

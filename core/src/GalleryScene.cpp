@@ -1,4 +1,5 @@
 #include "spatter/core/GalleryScene.hpp"
+#include "Pi.hpp"
 
 #include "spatter/core/MeshBuilder.hpp"
 #include "spatter/core/Random.hpp"
@@ -12,8 +13,6 @@
 namespace spatter {
 
 namespace {
-
-constexpr float kPi = 3.14159265358979323846f;
 
 // Layout in metres (see GalleryScene.hpp).
 constexpr float kHalfWidth = 10.0f;
@@ -272,14 +271,14 @@ Mesh makePillar(const Resolution& res, uint32_t seed) {
     std::vector<glm::vec2> profile;
     profile.emplace_back(0.0f, kBottom);
     profile.emplace_back(kBaseR, kBottom);
-    appendArc(profile, {kBaseR - kRound, kBaseTop - kRound}, kRound, 0.0f, 0.5f * kPi, arcSteps);
+    appendArc(profile, {kBaseR - kRound, kBaseTop - kRound}, kRound, 0.0f, 0.5f * kPiF, arcSteps);
     // Concave fillet from the plinth's top into the shaft.
-    appendArc(profile, {kShaftR + kRound, kBaseTop + kRound}, kRound, 1.5f * kPi, kPi, arcSteps);
+    appendArc(profile, {kShaftR + kRound, kBaseTop + kRound}, kRound, 1.5f * kPiF, kPiF, arcSteps);
     for (float y : makeSamples(kBaseTop + kRound, kCapBottom - kRound, res.pillarStep))
         if (y > kBaseTop + kRound && y < kCapBottom - kRound) profile.emplace_back(kShaftR, y);
-    appendArc(profile, {kShaftR + kRound, kCapBottom - kRound}, kRound, kPi, 0.5f * kPi, arcSteps);
-    appendArc(profile, {kCapR - kRound, kCapBottom + kRound}, kRound, 1.5f * kPi, 2.0f * kPi, arcSteps);
-    appendArc(profile, {kCapR - kRound, kTop - kRound}, kRound, 0.0f, 0.5f * kPi, arcSteps);
+    appendArc(profile, {kShaftR + kRound, kCapBottom - kRound}, kRound, kPiF, 0.5f * kPiF, arcSteps);
+    appendArc(profile, {kCapR - kRound, kCapBottom + kRound}, kRound, 1.5f * kPiF, 2.0f * kPiF, arcSteps);
+    appendArc(profile, {kCapR - kRound, kTop - kRound}, kRound, 0.0f, 0.5f * kPiF, arcSteps);
     profile.emplace_back(0.0f, kTop);
     Mesh mesh = makeLathe(profile, res.pillarSegments);
 
@@ -358,18 +357,18 @@ Mesh makeCrate(float half, const Resolution& res, uint32_t seed) {
 struct ArchShape {
     float centerRadius = 2.3f, spring = 1.6f, bottom = -0.05f, halfWidth = 0.3f, halfDepth = 0.3f;
     float pier() const { return spring - bottom; }
-    float length() const { return 2.0f * pier() + kPi * centerRadius; }
+    float length() const { return 2.0f * pier() + kPiF * centerRadius; }
     // Path point and tangent at arc length s.
     void at(float s, glm::vec3& p, glm::vec3& t) const {
         if (s <= pier()) {
             p = {-centerRadius, bottom + s, 0.0f};
             t = {0.0f, 1.0f, 0.0f};
-        } else if (s <= pier() + kPi * centerRadius) {
-            const float a = kPi - (s - pier()) / centerRadius;
+        } else if (s <= pier() + kPiF * centerRadius) {
+            const float a = kPiF - (s - pier()) / centerRadius;
             p = {centerRadius * std::cos(a), spring + centerRadius * std::sin(a), 0.0f};
             t = {std::sin(a), -std::cos(a), 0.0f};
         } else {
-            p = {centerRadius, spring - (s - pier() - kPi * centerRadius), 0.0f};
+            p = {centerRadius, spring - (s - pier() - kPiF * centerRadius), 0.0f};
             t = {0.0f, -1.0f, 0.0f};
         }
     }
@@ -377,7 +376,7 @@ struct ArchShape {
     float arcLength(const glm::vec3& p) const {
         if (p.y <= spring) return p.x < 0.0f ? p.y - bottom : length() - (p.y - bottom);
         const float a = std::atan2(p.y - spring, p.x);
-        return pier() + (kPi - std::clamp(a, 0.0f, kPi)) * centerRadius;
+        return pier() + (kPiF - std::clamp(a, 0.0f, kPiF)) * centerRadius;
     }
 };
 
@@ -391,16 +390,16 @@ Mesh makeArch(const Resolution& res, uint32_t seed) {
     const glm::vec2 corners[4] = {
         {inner.x, inner.y}, {-inner.x, inner.y}, {-inner.x, -inner.y}, {inner.x, -inner.y}};
     for (int c = 0; c < 4; ++c) {
-        const float a0 = 0.5f * kPi * float(c);
+        const float a0 = 0.5f * kPiF * float(c);
         for (int k = 0; k <= res.archCornerSteps; ++k)
             loop.push_back(corners[c] +
                            kCorner *
-                               glm::vec2(std::cos(a0 + 0.5f * kPi * float(k) / float(res.archCornerSteps)),
-                                         std::sin(a0 + 0.5f * kPi * float(k) / float(res.archCornerSteps))));
+                               glm::vec2(std::cos(a0 + 0.5f * kPiF * float(k) / float(res.archCornerSteps)),
+                                         std::sin(a0 + 0.5f * kPiF * float(k) / float(res.archCornerSteps))));
         // Straight side to the next corner, subdivided.
         const glm::vec2 from = loop.back();
-        const glm::vec2 to =
-            corners[(c + 1) % 4] + kCorner * glm::vec2(std::cos(a0 + 0.5f * kPi), std::sin(a0 + 0.5f * kPi));
+        const glm::vec2 to = corners[(c + 1) % 4] +
+                             kCorner * glm::vec2(std::cos(a0 + 0.5f * kPiF), std::sin(a0 + 0.5f * kPiF));
         const int pieces =
             std::max(1, int(std::ceil(glm::length(to - from) / std::max(res.archStep, 0.15f))));
         for (int k = 1; k < pieces; ++k)
@@ -418,7 +417,7 @@ Mesh makeArch(const Resolution& res, uint32_t seed) {
     for (int k = 1; k <= 3; ++k)
         joints.push_back(shape.pier() * float(k) / 3.0f);
     for (int k = 1; k < 9; ++k)
-        joints.push_back(shape.pier() + kPi * shape.centerRadius * float(k) / 9.0f);
+        joints.push_back(shape.pier() + kPiF * shape.centerRadius * float(k) / 9.0f);
     for (int k = 3; k >= 1; --k)
         joints.push_back(shape.length() - shape.pier() * float(k) / 3.0f);
     std::vector<float> breaks;
@@ -487,8 +486,8 @@ Mesh makeTarget(const Resolution& res) {
     profile.emplace_back(0.0f, -kPlateHalfDepth);
     for (float r : makeSamples(0.0f, kPlateRadius - kRim, res.relief ? 0.1f : 0.2f))
         if (r > 0.0f && r < kPlateRadius - kRim) profile.emplace_back(r, -kPlateHalfDepth);
-    appendArc(profile, {kPlateRadius - kRim, -kPlateHalfDepth + kRim}, kRim, -0.5f * kPi, 0.0f, arcSteps);
-    appendArc(profile, {kPlateRadius - kRim, kPlateHalfDepth - kRim}, kRim, 0.0f, 0.5f * kPi, arcSteps);
+    appendArc(profile, {kPlateRadius - kRim, -kPlateHalfDepth + kRim}, kRim, -0.5f * kPiF, 0.0f, arcSteps);
+    appendArc(profile, {kPlateRadius - kRim, kPlateHalfDepth - kRim}, kRim, 0.0f, 0.5f * kPiF, arcSteps);
     std::vector<float> breaks;
     for (int b = 1; b < kBands; ++b) {
         if (res.relief)
@@ -509,7 +508,7 @@ Mesh makeTarget(const Resolution& res) {
 
     Mesh mesh;
     appendMesh(mesh, plate,
-               glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, kPlateY, 0.0f)), 0.5f * kPi,
+               glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, kPlateY, 0.0f)), 0.5f * kPiF,
                            glm::vec3(1, 0, 0)));
     const size_t plateTriangles = mesh.triangleCount();
     constexpr float kPostR = 0.025f, kPostZ = -kPlateHalfDepth - 0.015f, kBaseHalfY = 0.03f;
@@ -587,8 +586,8 @@ Scene makeGalleryScene(const GallerySettings& settings) {
     const WallSpec walls[3] = {
         {"wall_back", 2.0f * kHalfWidth, translation(0.0, wallY, kFloorBack + 0.5 * kWallThickness), BrickRed,
          0.75f, 0.25f},
-        {"wall_left", sideLength, placed(-sideX, wallY, sideZ, 0.5 * kPi), BrickGrey, 0.8f, 0.4f},
-        {"wall_right", sideLength, placed(sideX, wallY, sideZ, -0.5 * kPi), BrickGrey, 0.8f, 0.4f},
+        {"wall_left", sideLength, placed(-sideX, wallY, sideZ, 0.5 * kPiF), BrickGrey, 0.8f, 0.4f},
+        {"wall_right", sideLength, placed(sideX, wallY, sideZ, -0.5 * kPiF), BrickGrey, 0.8f, 0.4f},
     };
     for (const WallSpec& w : walls) {
         Mesh mesh = makeWall(w, res, rng.next());
@@ -598,7 +597,7 @@ Scene makeGalleryScene(const GallerySettings& settings) {
 
     const glm::vec2 pillarSpots[4] = {{-7.5f, -2.0f}, {7.5f, -2.0f}, {-7.5f, 3.5f}, {7.5f, 3.5f}};
     for (int i = 0; i < 4; ++i) {
-        const double yaw = kPi + rng.uniform(-0.3f, 0.3f);
+        const double yaw = kPiF + rng.uniform(-0.3f, 0.3f);
         Mesh mesh = makePillar(res, rng.next());
         setMaterial(mesh, Metal);
         scene.objects.push_back(makeSceneObject("pillar_" + std::to_string(i), std::move(mesh),

@@ -1,4 +1,5 @@
 #include "spatter/core/MeshBuilder.hpp"
+#include "Pi.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +7,6 @@
 
 namespace spatter {
 
-static constexpr float kPi = 3.14159265358979323846f;
 static constexpr float kMergeDistance = 1e-4f;
 
 static bool finitePositive(float v) {
@@ -79,7 +79,7 @@ static std::vector<float> boxAxisSamples(float h, float bevel, int steps, float 
     const std::vector<float> flat = makeSamples(-inner, inner, maxEdge, breaks);
     std::vector<float> side; // offsets beyond `inner`, increasing, last = bevel
     for (int k = 1; k <= steps; ++k)
-        side.push_back(k == steps ? bevel : bevel * std::tan(0.25f * kPi * float(k) / float(steps)));
+        side.push_back(k == steps ? bevel : bevel * std::tan(0.25f * kPiF * float(k) / float(steps)));
     std::vector<float> out;
     out.push_back(-h);
     for (int k = steps - 2; k >= 0; --k)
@@ -234,7 +234,7 @@ Mesh makeLathe(const std::vector<glm::vec2>& profile, int segments) {
             continue;
         }
         for (uint32_t k = 0; k < seg; ++k) {
-            const float t = 2.0f * kPi * float(k) / float(seg);
+            const float t = 2.0f * kPiF * float(k) / float(seg);
             mesh.positions.emplace_back(r * std::sin(t), y, r * std::cos(t));
             mesh.uvs.emplace_back(rMax * t, arc);
         }
@@ -266,7 +266,7 @@ Mesh makeSphere(float radius, int rings, int segments) {
             profile.emplace_back(0.0f, i == 0 ? -radius : radius);
             continue;
         }
-        const float phi = kPi * float(i) / float(n);
+        const float phi = kPiF * float(i) / float(n);
         profile.emplace_back(radius * std::sin(phi), -radius * std::cos(phi));
     }
     Mesh mesh = makeLathe(profile, segments);
@@ -285,11 +285,11 @@ Mesh makeCylinder(float radius, float height, int segments, float bevel) {
     if (b > 0.0f) {
         constexpr int kSteps = 4;
         for (int k = 0; k <= kSteps; ++k) { // bottom rim: from the cap round to the side
-            const float t = 0.5f * kPi * float(k) / float(kSteps);
+            const float t = 0.5f * kPiF * float(k) / float(kSteps);
             profile.emplace_back(radius - b + b * std::sin(t), b - b * std::cos(t));
         }
         for (int k = 0; k <= kSteps; ++k) { // top rim: from the side round to the cap
-            const float t = 0.5f * kPi * float(k) / float(kSteps);
+            const float t = 0.5f * kPiF * float(k) / float(kSteps);
             profile.emplace_back(radius - b + b * std::cos(t), height - b + b * std::sin(t));
         }
     } else {

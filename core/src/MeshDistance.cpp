@@ -155,13 +155,14 @@ size_t ClosestPointQuery::surfaceTriangleCount() const {
 namespace {
 
 // A piece of a triangle being cut: its corners and the distances measured at them.
-struct Piece {
+struct DistancePiece {
     glm::dvec3 p[3];
     double d[3];
 };
 
 // The four pieces of a triangle cut at its edge midpoints m[k] (on the edge from corner k to k + 1).
-void quarter(const Piece& t, const glm::dvec3 (&m)[3], const double (&dm)[3], Piece (&out)[4]) {
+void quarter(const DistancePiece& t, const glm::dvec3 (&m)[3], const double (&dm)[3],
+             DistancePiece (&out)[4]) {
     out[0] = {{t.p[0], m[0], m[2]}, {t.d[0], dm[0], dm[2]}};
     out[1] = {{m[0], t.p[1], m[1]}, {dm[0], t.d[1], dm[1]}};
     out[2] = {{m[2], m[1], t.p[2]}, {dm[2], dm[1], t.d[2]}};
@@ -233,7 +234,7 @@ Result<OneSidedDistance> measureOneSidedDistance(const Mesh& from, const Closest
         reporter(0.0));
     if (!ok) return fail("cancelled");
     auto piece = [&](size_t i) {
-        Piece t;
+        DistancePiece t;
         for (int k = 0; k < 3; ++k) {
             const uint32_t v = from.indices[3 * size_t(surface[i]) + size_t(k)];
             t.p[k] = glm::dvec3(from.positions[v]);
@@ -246,7 +247,7 @@ Result<OneSidedDistance> measureOneSidedDistance(const Mesh& from, const Closest
         surface.size(), 256, workers,
         [&](size_t begin, size_t end, unsigned w) {
             for (size_t i = begin; i < end; ++i) {
-                const Piece t = piece(i);
+                const DistancePiece t = piece(i);
                 for (int k = 0; k < 3; ++k) {
                     midpointDistance[i][size_t(k)] = distanceTo(0.5 * (t.p[k] + t.p[(k + 1) % 3]));
                     acc[w].measured = std::max(acc[w].measured, midpointDistance[i][size_t(k)]);
@@ -271,21 +272,21 @@ Result<OneSidedDistance> measureOneSidedDistance(const Mesh& from, const Closest
         ok = parallelChunks(
             surface.size(), 64, workers,
             [&](size_t begin, size_t end, unsigned w) {
-                std::vector<Piece> stack;
+                std::vector<DistancePiece> stack;
                 for (size_t i = begin; i < end && !overBudget.load(std::memory_order_relaxed); ++i) {
-                    const Piece t = piece(i);
+                    const DistancePiece t = piece(i);
                     glm::dvec3 m[3];
                     double dm[3];
                     for (int k = 0; k < 3; ++k) {
                         m[k] = 0.5 * (t.p[k] + t.p[(k + 1) % 3]);
                         dm[k] = midpointDistance[i][size_t(k)];
                     }
-                    Piece quarters[4];
+                    DistancePiece quarters[4];
                     quarter(t, m, dm, quarters);
                     stack.assign(quarters, quarters + 4);
                     size_t local = 0;
                     while (!stack.empty()) {
-                        const Piece q = stack.back();
+                        const DistancePiece q = stack.back();
                         stack.pop_back();
                         const double c = enclosingRadius(q.p[0], q.p[1], q.p[2]);
                         const double sum = largestOf(q.d) + c;
@@ -299,7 +300,7 @@ Result<OneSidedDistance> measureOneSidedDistance(const Mesh& from, const Closest
                         const double dmid = distanceTo(mid);
                         cut[w].measured = std::max(cut[w].measured, dmid);
                         ++local;
-                        Piece a = q, b = q;
+                        DistancePiece a = q, b = q;
                         a.p[k1] = mid;
                         a.d[k1] = dmid;
                         b.p[k] = mid;

@@ -1,4 +1,5 @@
 #include "spatter/core/ProxyBuilder.hpp"
+#include "Pi.hpp"
 
 #include "spatter/core/HausdorffBound.hpp"
 #include "spatter/core/ProxyCache.hpp"
@@ -97,7 +98,6 @@ constexpr float kNormalConeDegrees = 150.0f;
 constexpr double kZeroToleranceScale = 0.001;
 
 using Clock = std::chrono::steady_clock;
-constexpr double kPi = 3.14159265358979323846;
 
 Status checkMesh(const Mesh& mesh, const char* what) {
     const size_t n = mesh.positions.size();

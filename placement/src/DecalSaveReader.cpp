@@ -1,4 +1,5 @@
 #include "DecalSaveFormat.hpp"
+#include "NumberChecks.hpp"
 #include "SavedDecal.hpp"
 
 #include <algorithm>
@@ -10,10 +11,6 @@
 namespace spatter::save {
 
 namespace {
-
-bool denormal(double v) {
-    return v != 0.0 && std::fabs(v) < std::numeric_limits<double>::min();
-}
 
 // A section tag as it reads, bytes outside printable ASCII as \xNN.
 std::string tagText(const uint8_t* tag) {

@@ -1,4 +1,5 @@
 #include "spatter/placement/DecalSystem.hpp"
+#include "NumberChecks.hpp"
 
 #include "AreaLimits.hpp"
 #include "CappedGrowth.hpp"
@@ -23,18 +24,6 @@ namespace {
 
 constexpr uint32_t kNone = UINT32_MAX;
 constexpr double kPi = 3.14159265358979323846;
-
-bool finite3(const glm::dvec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-// A non-zero magnitude below the normal range: too small to divide by or normalise reliably.
-bool denormal(double v) {
-    return v != 0.0 && std::fabs(v) < std::numeric_limits<double>::min();
-}
-bool denormal(float v) {
-    return v != 0.0f && std::fabs(v) < std::numeric_limits<float>::min();
-}
 
 // Largest column length of the linear part: the largest scale factor of a TRS transform.
 double largestScale(const glm::dmat3& m) {

@@ -1,13 +1,10 @@
 #include "spatter/placement/Ray.hpp"
+#include "NumberChecks.hpp"
 
 #include <cfloat>
 #include <cmath>
 
 namespace spatter {
-
-static bool finite3(const glm::dvec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
 const char* rayProblem(const Ray& ray) {
     if (!finite3(ray.origin)) return "ray origin is not finite";

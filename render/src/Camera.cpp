@@ -16,7 +16,7 @@ bool finite(const glm::dvec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-std::string number(double v) {
+std::string exactNumber(double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.17g", v);
     return buf;
@@ -70,8 +70,8 @@ Result<Camera> parseCamera(const std::string& text) {
 }
 
 std::string formatCamera(const Camera& c) {
-    auto v = [](const glm::dvec3& p) { return number(p.x) + "," + number(p.y) + "," + number(p.z); };
-    return "eye=" + v(c.eye) + ";target=" + v(c.target) + ";up=" + v(c.up) + ";fov=" + number(c.fovYDeg);
+    auto v = [](const glm::dvec3& p) { return exactNumber(p.x) + "," + exactNumber(p.y) + "," + exactNumber(p.z); };
+    return "eye=" + v(c.eye) + ";target=" + v(c.target) + ";up=" + v(c.up) + ";fov=" + exactNumber(c.fovYDeg);
 }
 
 Status validateCamera(const Camera& c) {
@@ -80,10 +80,10 @@ Status validateCamera(const Camera& c) {
     // Below kMinFovDeg the float projection overflows; below kMinNearPlane reversed-Z depths of
     // ordinary distances become denormal floats and lose their precision.
     if (!std::isfinite(c.fovYDeg) || c.fovYDeg < kMinFovDeg || c.fovYDeg >= 180.0)
-        return fail("camera: fov " + number(c.fovYDeg) + " is outside [" + number(kMinFovDeg) +
+        return fail("camera: fov " + exactNumber(c.fovYDeg) + " is outside [" + exactNumber(kMinFovDeg) +
                     ", 180) degrees");
     if (!std::isfinite(c.nearPlane) || c.nearPlane < kMinNearPlane)
-        return fail("camera: near plane " + number(c.nearPlane) + " is below " + number(kMinNearPlane));
+        return fail("camera: near plane " + exactNumber(c.nearPlane) + " is below " + exactNumber(kMinNearPlane));
     if (!std::isfinite(c.farPlane) || (c.farPlane != 0.0 && c.farPlane <= c.nearPlane))
         return fail("camera: far plane must be 0 (infinite) or beyond the near plane");
     const glm::dvec3 dir = c.target - c.eye;

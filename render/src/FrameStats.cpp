@@ -24,7 +24,7 @@ std::string quoted(const std::string& s) {
     return out + "\"";
 }
 
-std::string number(double v) {
+std::string jsonNumber(double v) {
     if (!std::isfinite(v)) return "null";
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -62,12 +62,12 @@ std::string toJson(const FrameStats& s) {
     field("texture_space_bytes", std::to_string(s.textureSpaceBytes));
     field("draw_calls", std::to_string(s.drawCalls));
     field("triangles", std::to_string(s.triangles));
-    field("cpu_ms", number(s.cpuMs));
-    field("gpu_ms", "{\"geometry\":" + number(s.gpu.geometryMs) + ",\"decals\":" + number(s.gpu.decalsMs) +
-                        ",\"late\":" + number(s.gpu.lateMs) + ",\"lighting\":" + number(s.gpu.lightingMs) +
-                        ",\"overlay\":" + number(s.gpu.overlayMs) + ",\"splat\":" + number(s.gpu.splatMs) +
-                        ",\"volumetric\":" + number(s.gpu.volumetricMs) + ",\"total\":" +
-                        number(s.gpu.totalMs()) + ",\"frame\":" + std::to_string(s.gpu.frame) + "}");
+    field("cpu_ms", jsonNumber(s.cpuMs));
+    field("gpu_ms", "{\"geometry\":" + jsonNumber(s.gpu.geometryMs) + ",\"decals\":" + jsonNumber(s.gpu.decalsMs) +
+                        ",\"late\":" + jsonNumber(s.gpu.lateMs) + ",\"lighting\":" + jsonNumber(s.gpu.lightingMs) +
+                        ",\"overlay\":" + jsonNumber(s.gpu.overlayMs) + ",\"splat\":" + jsonNumber(s.gpu.splatMs) +
+                        ",\"volumetric\":" + jsonNumber(s.gpu.volumetricMs) + ",\"total\":" +
+                        jsonNumber(s.gpu.totalMs()) + ",\"frame\":" + std::to_string(s.gpu.frame) + "}");
     field("gl_renderer", quoted(s.glRenderer));
     field("gl_vendor", quoted(s.glVendor));
     field("gl_version", quoted(s.glVersion));
