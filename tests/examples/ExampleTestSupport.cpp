@@ -166,14 +166,6 @@ int runTool(const char* tool, const std::vector<std::string>& args) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-std::string noToolGl() {
-    static const std::string why = [] {
-        Result<GlContext> gl = GlContext::createHeadless();
-        return gl.ok() ? std::string() : gl.error();
-    }();
-    return why;
-}
-
 std::string exampleScratch() {
     static const std::string dir = scratchDir("examples");
     return dir;

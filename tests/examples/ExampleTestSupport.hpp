@@ -6,6 +6,7 @@
 
 #include "RenderTestSupport.hpp"
 #include "TestData.hpp"
+#include "ToolGl.hpp"
 
 #include "spatter/core/Image.hpp"
 #include "spatter/render/Camera.hpp"
@@ -27,9 +28,6 @@ struct ExampleHost {
 // Runs `tool` with `args`, its output discarded; returns its exit code (-1 when it did not exit
 // normally).
 int runTool(const char* tool, const std::vector<std::string>& args);
-
-// Why the tools cannot render here (no headless GL context), or an empty string.
-std::string noToolGl();
 
 // A scratch directory for the example tests' files.
 std::string exampleScratch();
@@ -61,11 +59,3 @@ struct AlbedoAgreement {
 AlbedoAgreement albedoAgainstSpatterRender(const ExampleHost& host);
 
 } // namespace spatter::test
-
-// Skips the test when no headless GL context can be made, except under CI=true, where that fails.
-#define SPATTER_REQUIRE_TOOL_GL()                                                                            \
-    if (!::spatter::test::noToolGl().empty()) {                                                              \
-        if (::spatter::test::runningInCi())                                                                  \
-            FAIL() << "CI=true but no headless GL context: " << ::spatter::test::noToolGl();                 \
-        GTEST_SKIP() << "no headless OpenGL 4.5 context (" << ::spatter::test::noToolGl() << ")";            \
-    }
