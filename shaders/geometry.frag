@@ -1,7 +1,8 @@
 // Geometry pass: fills the G-buffer. Surfaces are two-sided: a back face gets the reversed normal.
 // Objects with texture-space decals (info.z) lay their decal texture over the material: albedo is
 // premultiplied with coverage in alpha, the normal layer holds the decal's normal in the surface's
-// tangent frame (premultiplied by its own coverage), so both follow any deformation of the mesh.
+// tangent frame (premultiplied by its own coverage), so both follow any deformation of the mesh; the
+// coverage target gets 1 where that layer shows.
 #include "common.glsl"
 
 layout(location = 0) uniform uint u_object;
@@ -44,8 +45,10 @@ void main() {
         }
     }
 
+    float decalCoverage = 0.0;
     if (o.info.z != 0u) {
         vec4 layer = texture(s_decalLayerAlbedo, v_uv);
+        decalCoverage = layer.a > 0.0 ? 1.0 : 0.0;
         base.rgb = base.rgb * (1.0 - layer.a) + layer.rgb;
         vec4 ln = texture(s_decalLayerNormal, v_uv);
         if (ln.a > 1e-3) {
@@ -65,5 +68,5 @@ void main() {
     o_normal = vec4(encodeNormal(n), 0.0, 0.0);
     o_material = vec4(clamp(m.params.x, 0.02, 1.0), clamp(m.params.y, 0.0, 1.0), 0.0, 0.0);
     o_id = o.info.x;
-    o_coverage = vec4(0.0);
+    o_coverage = vec4(decalCoverage); // texture-space decals; the decal pass adds the projected ones
 }

@@ -93,12 +93,10 @@ Result<nlohmann::ordered_json> trackTargetDecal(GallerySim& sim, Renderer& rende
     auto sample = [&](const Decal& decal) -> Result<Sample> {
         for (const Rail& rail : sim.rails())
             renderer.setObjectTransform(rail.object, sim.transform(rail.object));
-        renderer.setDecals({decal});
-        if (Result<FrameStats> st = renderer.render(camera, View::Coverage); !st) return fail(st.error());
-        Result<Image> image = renderer.readback();
-        if (!image) return fail(image.error());
+        Result<std::optional<glm::dvec2>> imaged = decalCentroid(renderer, camera, decal);
+        if (!imaged) return fail(imaged.error());
         const glm::dvec3 world = sim.decals().worldBox(decal).center;
-        return Sample{world, project(camera, w, h, world), coverageCentroid(image.value())};
+        return Sample{world, project(camera, w, h, world), imaged.value()};
     };
     Result<Sample> a = sample(*followed);
     if (!a) return fail(a.error());

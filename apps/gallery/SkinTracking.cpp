@@ -82,13 +82,11 @@ Result<nlohmann::ordered_json> trackSkinnedDecal(GallerySim& sim, Renderer& rend
         const Decal* decal = findDecal(sim.decals(), id);
         if (!decal) return fail("the followed decal disappeared while its target moved");
         syncRenderer(renderer, sim);
-        renderer.setDecals({*decal});
-        if (Result<FrameStats> st = renderer.render(camera, View::Coverage); !st) return fail(st.error());
-        Result<Image> image = renderer.readback();
-        if (!image) return fail(image.error());
+        Result<std::optional<glm::dvec2>> centroid = decalCentroid(renderer, camera, *decal);
+        if (!centroid) return fail(centroid.error());
         const glm::dvec3 point = worldPoint(sim, object, placedOn.value());
         worldDrift = std::max(worldDrift, glm::length(sim.decals().worldBox(*decal).center - point));
-        const std::optional<glm::dvec2> imaged = coverageCentroid(image.value());
+        const std::optional<glm::dvec2> imaged = centroid.value();
         if (!imaged) continue; // turned away from the camera this frame
         const glm::dvec2 projected = project(camera, w, h, point);
         if (!firstImaged) {

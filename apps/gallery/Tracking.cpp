@@ -15,17 +15,34 @@ glm::dvec2 project(const Camera& camera, int width, int height, const glm::dvec3
     return {(ndc.x * 0.5 + 0.5) * width, (0.5 - ndc.y * 0.5) * height};
 }
 
-std::optional<glm::dvec2> coverageCentroid(const Image& image) {
+namespace {
+
+Result<Image> coverage(Renderer& renderer, const Camera& camera, const std::vector<Decal>& decals) {
+    renderer.setDecals(decals);
+    if (Result<FrameStats> st = renderer.render(camera, View::Coverage); !st) return fail(st.error());
+    return renderer.readback();
+}
+
+} // namespace
+
+Result<std::optional<glm::dvec2>> decalCentroid(Renderer& renderer, const Camera& camera,
+                                                const Decal& decal) {
+    Result<Image> without = coverage(renderer, camera, {});
+    if (!without) return fail(without.error());
+    Result<Image> with = coverage(renderer, camera, {decal});
+    if (!with) return fail(with.error());
     glm::dvec2 sum(0.0);
     size_t count = 0;
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x)
-            if (image.rgba[(size_t(y) * image.width + x) * 4] > 127) {
+    for (int y = 0; y < with->height; ++y)
+        for (int x = 0; x < with->width; ++x) {
+            const size_t i = (size_t(y) * size_t(with->width) + size_t(x)) * 4;
+            if (with->rgba[i] > 127 && without->rgba[i] <= 127) {
                 sum += glm::dvec2(x + 0.5, y + 0.5);
                 ++count;
             }
-    if (count == 0) return std::nullopt;
-    return sum / double(count);
+        }
+    if (count == 0) return std::optional<glm::dvec2>();
+    return std::optional<glm::dvec2>(sum / double(count));
 }
 
 } // namespace spatter::gallery

@@ -1,10 +1,11 @@
 #pragma once
 // What the headless run's trackers of decals share: a decal found by its ID, the pixel a world point
-// projects to, and the centre of the white pixels of a coverage image.
+// projects to, and the centre of the pixels a decal covers in the coverage view.
 
 #include "spatter/core/Image.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/render/Camera.hpp"
+#include "spatter/render/Renderer.hpp"
 
 #include <glm/glm.hpp>
 #include <optional>
@@ -17,7 +18,9 @@ const Decal* findDecal(const DecalSystem& system, uint32_t id);
 // Pixel position (x right, y down) of a world point seen by `camera` in a width x height image.
 glm::dvec2 project(const Camera& camera, int width, int height, const glm::dvec3& world);
 
-// Centre of the white pixels of a coverage image, or nothing when none is white.
-std::optional<glm::dvec2> coverageCentroid(const Image& image);
+// Centre of the pixels that `decal` alone adds to the renderer's coverage view from `camera`, or
+// nothing when it adds none. (Decals splatted earlier into texture-space objects show in that view
+// too: a frame without `decal` tells them apart.) Leaves the renderer drawing `decal` alone.
+Result<std::optional<glm::dvec2>> decalCentroid(Renderer& renderer, const Camera& camera, const Decal& decal);
 
 } // namespace spatter::gallery

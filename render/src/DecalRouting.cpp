@@ -6,8 +6,10 @@ namespace spatter::render_detail {
 
 namespace {
 
-// What identifies a decal for splatting: the same decal given again is not splatted twice.
-uint64_t decalKey(const Decal& d) {
+// What identifies a decal for splatting: the same decal given again is not splatted twice. On a
+// deforming object the decal system moves a decal with the pose (its skin anchor), so its centre and
+// frame are not part of what identifies it there.
+uint64_t decalKey(const Decal& d, bool deforming) {
     uint64_t h = 1469598103934665603ull;
     auto mix = [&h](const void* data, size_t n) {
         const unsigned char* p = static_cast<const unsigned char*>(data);
@@ -17,8 +19,12 @@ uint64_t decalKey(const Decal& d) {
     mix(&d.id, sizeof d.id);
     mix(&d.object, sizeof d.object);
     mix(&d.type, sizeof d.type);
-    mix(&d.center, sizeof d.center);
-    mix(&d.packedFrame, sizeof d.packedFrame);
+    if (deforming) {
+        mix(&d.spawnTime, sizeof d.spawnTime);
+    } else {
+        mix(&d.center, sizeof d.center);
+        mix(&d.packedFrame, sizeof d.packedFrame);
+    }
     mix(&d.size, sizeof d.size);
     mix(&d.halfDepth, sizeof d.halfDepth);
     return h;
@@ -26,7 +32,9 @@ uint64_t decalKey(const Decal& d) {
 
 } // namespace
 
-void DecalRouting::reset(size_t objectCount) {
+void DecalRouting::reset(const std::vector<uint8_t>& deforming) {
+    deforming_ = deforming;
+    const size_t objectCount = deforming.size();
     modes_.assign(objectCount, DecalMode::Projected);
     splatted_.assign(objectCount, {});
     pending_.clear();
@@ -76,7 +84,7 @@ uint8_t DecalRouting::kindOf(const Decal& d) const {
 
 void DecalRouting::splat(const Decal& d) {
     ++textureSpace_;
-    if (splatted_[d.object].insert(decalKey(d)).second) pending_.push_back(d);
+    if (splatted_[d.object].insert(decalKey(d, deforming_[d.object] != 0)).second) pending_.push_back(d);
 }
 
 void DecalRouting::setCraters(const std::vector<Decal>& decals, const std::vector<DecalType>& types,

@@ -3,9 +3,9 @@
 // the projector, decal by decal, kept up to date from the decal system's change list. Decals of a
 // volumetric type are craters (VolumetricDecals); the other decals on an object in texture-space mode
 // are splatted once into its texture (TextureSpaceDecals), recognised by a key so that a decal given
-// again is not splatted twice; the rest are the projector's (DecalProjector::setHostDrawn). While no
-// type is volumetric and no object texture-space it keeps nothing per decal; otherwise a byte, its
-// kind.
+// again is not splatted twice (on a skinned or morphed object a key that the pose does not move); the rest
+// are the projector's (DecalProjector::setHostDrawn). While no type is volumetric and no object texture-space
+// it keeps nothing per decal; otherwise a byte, its kind.
 
 #include "VolumetricDecals.hpp"
 
@@ -23,8 +23,9 @@ namespace spatter::render_detail {
 
 class DecalRouting {
 public:
-    // `objectCount` objects, all projected; no decal, nothing splatted.
-    void reset(size_t objectCount);
+    // One object per entry of `deforming` (1: skinned or morphed), all projected; no decal, nothing
+    // splatted.
+    void reset(const std::vector<uint8_t>& deforming);
     // The types (their volumetric flags) and an object's mode. Either takes the decals afresh at the
     // next take or replay; a mode change forgets what was splatted on that object.
     void setTypes(const std::vector<DecalType>& types);
@@ -67,6 +68,7 @@ private:
 
     std::vector<uint8_t> volumetricTypes_; // per type: 1 when volumetric
     std::vector<DecalMode> modes_;         // per object
+    std::vector<uint8_t> deforming_;       // per object: 1 when skinned or morphed
     std::vector<uint8_t> kinds_;           // per decal, while drawsSome()
     bool current_ = false;                 // the kinds follow the types and modes as they are
     size_t textureSpace_ = 0;

@@ -319,8 +319,9 @@ struct Renderer::Impl {
         }
     }
 
-    // Pass 1: clears the G-buffer and draws the decal receivers.
-    void geometryPass() {
+    // Pass 1: clears the G-buffer and draws the decal receivers (for the coverage view, with their
+    // texture-space decals' coverage).
+    void geometryPass(bool coverage) {
         baseState(gbuffer.framebuffer());
         const GLenum all[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
                                GLenum(gbuffer.hasIds() ? GL_COLOR_ATTACHMENT3 : GL_NONE),
@@ -337,7 +338,8 @@ struct Renderer::Impl {
         glClearBufferfi(GL_DEPTH_STENCIL, 0, 0.0f, 0); // reversed-Z: 0 is infinitely far
 
         const GLenum geometry[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                    GLenum(gbuffer.hasIds() ? GL_COLOR_ATTACHMENT3 : GL_NONE), GL_NONE};
+                                    GLenum(gbuffer.hasIds() ? GL_COLOR_ATTACHMENT3 : GL_NONE),
+                                    GLenum(coverage ? GL_COLOR_ATTACHMENT4 : GL_NONE)};
         glDrawBuffers(5, geometry);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);
@@ -488,8 +490,9 @@ struct Renderer::Impl {
     }
 
     // Splats the pending decals of texture-space objects into their textures, one instanced draw per
-    // object, then dilates each; returns the decals splatted.
-    Result<size_t> splatPending(size_t& invalid) {
+    // object, then dilates each; returns the decals splatted. Meshes are splatted in the pose of this
+    // frame (after uploadFrame): the pose the decal system placed the decals against.
+    Result<size_t> splatPending(const glm::dvec3& eye, size_t& invalid) {
         std::vector<Decal>& pendingSplats = routing.pendingSplats();
         if (pendingSplats.empty()) return size_t(0);
         splatBatch.setObjectCount(transforms.size());
@@ -518,11 +521,19 @@ struct Renderer::Impl {
         splatLists = createBuffer();
         glNamedBufferStorage(splatLists.get(), GLsizeiptr(lists.size() * sizeof(uint32_t)), lists.data(), 0);
         splatBatch.markUploaded();
-        Result<size_t> n =
-            textureSpace.splat(perObject, scene,
-                               {splatBuffer.get(), splatTypes.get(), splatLists.get(),
-                                projector->resources().albedoLayers, projector->resources().normalLayers},
-                               settings.fadeStart, drawCalls);
+        TextureSpaceDecals::SplatInputs in{splatBuffer.get(),
+                                           splatTypes.get(),
+                                           splatLists.get(),
+                                           projector->resources().albedoLayers,
+                                           projector->resources().normalLayers,
+                                           posed,
+                                           {}};
+        const glm::dmat4 toEye = glm::translate(glm::dmat4(1.0), -eye);
+        for (size_t o = 0; o < perObject.size(); ++o)
+            in.worldToObject.push_back(perObject[o].empty() ? glm::mat4(1.0f)
+                                                            : glm::mat4(glm::inverse(toEye * transforms[o])));
+        bindPoseBuffers();
+        Result<size_t> n = textureSpace.splat(perObject, scene, in, settings.fadeStart, drawCalls);
         splatBatch.setDecals({});
         return n;
     }
@@ -604,7 +615,10 @@ Status Renderer::setScene(const Scene& scene) {
     m.meshes.resize(n);
     m.names.resize(n);
     m.deformations.assign(n, Deformation{});
-    m.routing.reset(n);
+    std::vector<uint8_t> deforming(n);
+    for (size_t i = 0; i < n; ++i)
+        deforming[i] = scene.objects[i].skin >= 0 || !scene.objects[i].morphTargets.empty() ? 1 : 0;
+    m.routing.reset(deforming);
     m.textureSpace.reset(n);
     for (size_t i = 0; i < n; ++i) {
         const SceneObject& o = scene.objects[i];
@@ -838,10 +852,11 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
     }
 
     m.timers.beginFrame(m.frame);
+    m.uploadFrame(camera);
     if (!m.routing.pendingSplats().empty()) {
         m.timers.begin(GpuPass::Splat);
         size_t invalid = 0;
-        Result<size_t> splatted = m.splatPending(invalid);
+        Result<size_t> splatted = m.splatPending(camera.eye, invalid);
         m.timers.end();
         if (!splatted) {
             m.timers.endFrame(false);
@@ -853,10 +868,9 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
     stats.decalsTextureSpace = m.routing.textureSpaceCount();
     stats.textureSpaceObjects = m.textureSpace.objectCount();
     stats.textureSpaceBytes = m.textureSpace.bytes();
-    m.uploadFrame(camera);
 
     m.timers.begin(GpuPass::Geometry);
-    m.geometryPass();
+    m.geometryPass(coverage);
     m.timers.end();
     stats.decalsVolumetric = m.volumetric.size();
     stats.decalsInvalid += m.volumetric.invalidCount();

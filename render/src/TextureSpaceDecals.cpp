@@ -171,6 +171,10 @@ Result<size_t> TextureSpaceDecals::splat(const std::vector<std::vector<uint32_t>
         glUseProgram(splatProgram_.get());
         glUniform1ui(0, begin);
         glUniform1f(1, fadeStart);
+        glUniform1ui(2, GLuint(o));
+        glUniform1ui(3, in.posed ? 1u : 0u);
+        const glm::mat4 toObject = o < in.worldToObject.size() ? in.worldToObject[o] : glm::mat4(1.0f);
+        glUniformMatrix4fv(4, 1, GL_FALSE, &toObject[0][0]);
         drawMesh(scene.mesh(o), GLsizei(count));
         ++drawCalls;
         glDisable(GL_BLEND);

@@ -12,6 +12,8 @@
 
 #include "spatter/core/Result.hpp"
 
+#include <glm/glm.hpp>
+
 #include <cstddef>
 #include <map>
 #include <memory>
@@ -39,15 +41,20 @@ public:
     size_t bytes() const;
 
     // The GPU copies of a DecalBatch's records and types and of the index lists, bound to the decal,
-    // type and visible bindings, and the decal texture arrays.
+    // type and visible bindings, and the decal texture arrays. With `posed`, meshes are splatted in
+    // the pose of the pose buffers (skinned objects through worldToObject[o]: camera-relative world
+    // to object o's space), as the geometry pass draws them; otherwise at rest.
     struct SplatInputs {
         GLuint instances = 0, types = 0, lists = 0;
         GLuint decalAlbedo = 0, decalNormal = 0;
+        bool posed = false;
+        std::vector<glm::mat4> worldToObject;
     };
 
     // Splats the valid instances listed in `perObject[o]` into object o's textures (objects not
     // enabled are skipped), then dilates each object that got one. The caller binds the frame
-    // buffers. Returns the decals splatted; counts draws in `drawCalls`.
+    // buffers and, when posed, the pose buffers. Returns the decals splatted; counts draws in
+    // `drawCalls`.
     Result<size_t> splat(const std::vector<std::vector<uint32_t>>& perObject, const SceneGpu& scene,
                          const SplatInputs& in, float fadeStart, size_t& drawCalls);
 

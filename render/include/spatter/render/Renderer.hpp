@@ -183,8 +183,9 @@ public:
     // as last given to setDecalTypes, is volumetric are drawn as holes, not by the decal pass.
     // Every decal is taken whole (updateDecals takes only what changed). Decals on texture-space
     // objects are not drawn by the decal pass: each is splatted into its object's decal texture by the next
-    // render call after it first appears (recognised by its ID, object, type, frame and size), and stays
-    // there.
+    // render call after it first appears (recognised by its ID, object, type, frame and size; on a
+    // skinned or morphed object, whose decals the decal system moves with the pose, by its ID, object,
+    // type, size and spawn time), in the pose of that frame, and stays there.
     void setDecals(const std::vector<Decal>& decals);
     // The decals after `changes` (DecalSystem::changesSince): only the decals the changes name are
     // built and uploaded (DecalProjector::updateDecals), new decals on texture-space objects splatted.

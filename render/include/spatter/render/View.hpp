@@ -15,8 +15,8 @@ enum class View {
               // for the background
     Ids,      // 8-bit object decal IDs as colours (ID 0, static geometry, dark grey; background black)
     Coverage, // white where at least one decal writes the pixel (inside its box, ID matching,
-              // within its max angle, inside its wrapped footprint) or a volumetric decal's crater
-              // shows, black elsewhere
+              // within its max angle, inside its wrapped footprint), a volumetric decal's crater
+              // shows or a texture-space decal's layer shows, black elsewhere
 };
 
 // "final", "albedo", "normal", "depth", "ids", "coverage".
