@@ -2,12 +2,15 @@
 
 #include "BenchSupport.hpp"
 #include "CoverageProbe.hpp"
+#include "ImageDrift.hpp"
+#include "SkinPoints.hpp"
 
 #include "spatter/core/DeformingProxy.hpp"
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/SceneEvaluator.hpp"
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/core/SkinnedArm.hpp"
+#include "spatter/core/SkinnedDummy.hpp"
 #include "spatter/placement/CollisionWorld.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/render/Camera.hpp"
@@ -26,7 +29,8 @@ namespace {
 
 const char* kSkinnedCommand = "skinned";
 const char* kArm = "builtin:skinned-arm";
-const std::vector<std::string> kModels = {kArm, "gltf/CesiumMan/CesiumMan.glb",
+const char* kDummy = "gallery dummy";
+const std::vector<std::string> kModels = {kArm, kDummy, "gltf/CesiumMan/CesiumMan.glb",
                                           "gltf/RiggedSimple/RiggedSimple.glb"};
 
 constexpr double kPoseTargetMs = 0.2;
@@ -41,7 +45,7 @@ const char* kSkinnedUsage =
                              [--json FILE]
 
 Decals on skinned objects, in one run, for builtin:skinned-arm (50 rings of 50 vertices: 5,000
-triangles), CesiumMan and RiggedSimple (the shared data). Times are thread CPU time on one core
+triangles), the gallery's dummy (addSkinnedDummy), CesiumMan and RiggedSimple (the shared data). Times are thread CPU time on one core
 (every Embree device made with threads=1, so that its refits run on the timed thread), the median of
 R runs. Each model's skinned object is posed by its animation 0, looped over its duration.
 
@@ -82,10 +86,26 @@ rotation) are drawn by the renderer posed there (Renderer::setPose) in its cover
 the IoU of the two masks, and the minimum over models and times. Needs an OpenGL context (headless
 EGL); without one the rows are not measured. Target: IoU at least 0.97 at every time.
 
+Drift in the image: 8 decals shot from a camera framing the model at 30% of its cycle, each drawn
+alone at 16 poses of the cycle at 960x720, with a centre marker for texture (an opaque disc a fifth
+of the decal's width across); the drawn centre is the centroid of the pixels the marker changes,
+against the render-surface point the decal was placed on, posed and projected, as a fraction of the
+decal's size in pixels there (frames where the point is seen more than 60 degrees off or the marker
+shows less than 85% of a flat disc's pixels, hidden in part, are left out; "at spawn": what the
+measure reads at the spawn pose itself; decals whose marker does not show whole then are not
+followed), for
+  skin anchors, projected   DecalSystem::setPose moves the decal, the decal pass projects it
+  texture-space splat       splatted in the spawn pose into the object's 1024^2 decal texture
+                            (DecalMode::TextureSpace; only on UV layouts without overlaps), with
+                            the splat pass's GPU time per decal
+  nearest joint             the spawn-time box carried by the nearest joint, as above
+Needs an OpenGL context. Target: within 2% of the decal's size.
+
 --frames N   poses of the cycle (default 60)      --repeat R  runs per timed row (default 7)
 --samples S  poses a proxy bound is certified at (default 128)
 --no-render  no OpenGL context: accuracy not measured
---quick      6 frames, 3 runs, 8 samples, fewer calls and shots (50 a time for accuracy; smoke test)
+--quick      6 frames, 3 runs, 8 samples, fewer calls and shots (50 a time for accuracy; 2 decals at
+             3 poses at 480x360 in the image; smoke test)
 --json FILE  "targets" and arrays of rows: "models": model, render_triangles, joints, duration_s,
              decal_size, proxy_seconds; "pose_update": model, collision, triangles, ms_per_call,
              within_target; "spawn": model, rays, placed_skinned, placed_static, skinned_ns, static_ns,
@@ -93,7 +113,9 @@ EGL); without one the rows are not measured. Target: IoU at least 0.97 at every 
              within_target (fractions of the decal's size); "pose_bounds": model, proxy, triangles,
              bound, sampled_max, motion, poses, bound_fraction; "accuracy": model, phase, time_s, rays,
              placed_render, placed_proxy, covered_pixels, iou, within_target (null: not measured);
-             "accuracy_min_iou", "coverage" ("measured" or why not), "gl_renderer"
+             "accuracy_min_iou", "coverage" ("measured" or why not), "gl_renderer";
+             "image_drift": model, method, unavailable, decals, samples, at_spawn_max, median, max,
+             within_target, splat_ms
 )";
 
 struct Sizes {
@@ -105,6 +127,9 @@ struct Sizes {
     size_t raysPerTime = 48;   // shots each time
     int samples = 128;         // poses of a proxy bound
     size_t accuracyRays = 200; // shots each time of the accuracy rows
+    size_t imageDecals = 8;    // decals followed in the image
+    size_t imageFrames = 16;   // poses of the cycle they are drawn at
+    int imageWidth = 960, imageHeight = 720;
 };
 
 Sizes quickSizes() {
@@ -117,6 +142,10 @@ Sizes quickSizes() {
     s.raysPerTime = 12;
     s.samples = 8;
     s.accuracyRays = 50;
+    s.imageDecals = 2;
+    s.imageFrames = 3;
+    s.imageWidth = 480;
+    s.imageHeight = 360;
     return s;
 }
 
@@ -172,6 +201,12 @@ SkinnedArmSettings armSettings() {
 
 Result<Scene> loadModelScene(const std::string& spec) {
     if (spec == kArm) return makeSkinnedArm(armSettings());
+    if (spec == kDummy) {
+        Scene dummy;
+        dummy.source = kDummy;
+        addSkinnedDummy(dummy, glm::dmat4(1.0));
+        return dummy;
+    }
     const std::string path = resolveInput(spec);
     if (path.empty())
         return fail("'" + spec + "' not found (nor in the shared data '" + sharedDataDir() + "')");
@@ -335,15 +370,6 @@ Result<SpawnRow> measureSpawn(const Model& m, const Sizes& sizes) {
 
 // ---- Drift -----------------------------------------------------------------------------------
 
-const uint32_t* cornersOf(const Mesh& mesh, const SurfaceAnchor& a) {
-    return &mesh.indices[3 * size_t(a.triangle)];
-}
-
-glm::dvec3 pointOf(const Mesh& mesh, const std::vector<glm::dvec3>& p, const SurfaceAnchor& a) {
-    const uint32_t* c = cornersOf(mesh, a);
-    return a.bary.x * p[c[0]] + a.bary.y * p[c[1]] + a.bary.z * p[c[2]];
-}
-
 // The part of `centre`'s offset from anchor `a` that lies in the plane of a's triangle (the whole
 // offset when the triangle has collapsed): how far a decal has slid along the surface.
 double alongSurface(const Mesh& mesh, const std::vector<glm::dvec3>& p, const SurfaceAnchor& a,
@@ -353,29 +379,6 @@ double alongSurface(const Mesh& mesh, const std::vector<glm::dvec3>& p, const Su
     const glm::dvec3 n = glm::cross(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]]);
     const double n2 = glm::dot(n, n);
     return n2 > 0.0 ? glm::length(off - n * (glm::dot(n, off) / n2)) : glm::length(off);
-}
-
-// The nearest point of the render surface to `centre`, as triangle and barycentric coordinates.
-SurfaceAnchor nearestPoint(const ClosestPointQuery& query, const Mesh& mesh, const std::vector<glm::dvec3>& p,
-                           const glm::dvec3& centre) {
-    const std::optional<ClosestPoint> c = query.closest(centre);
-    if (!c) return {};
-    SurfaceAnchor a{c->triangle, {}};
-    const uint32_t* k = cornersOf(mesh, a);
-    a.bary = barycentric(c->point, p[k[0]], p[k[1]], p[k[2]]);
-    return a;
-}
-
-// The joint of largest weight at the render vertex nearest to `centre` (ties: the first listed).
-uint16_t carryingJoint(const SkinWeights& skin, const std::vector<glm::dvec3>& p, const glm::dvec3& centre) {
-    size_t nearest = 0;
-    for (size_t v = 1; v < p.size(); ++v)
-        if (glm::length(p[v] - centre) < glm::length(p[nearest] - centre)) nearest = v;
-    const size_t stride = size_t(skin.influences), first = nearest * stride;
-    size_t best = first;
-    for (size_t k = first + 1; k < first + stride; ++k)
-        if (skin.weights[k] > skin.weights[best]) best = k;
-    return skin.joints[best];
 }
 
 // A decal the library moves, and the render-surface point it was placed on.
@@ -638,6 +641,32 @@ Result<std::vector<AccuracyRow>> measureAccuracy(const Model& m, const Proxy& pr
     return rows;
 }
 
+// ---- Drift in the image ------------------------------------------------------------------------
+
+// Decals shot from a camera framing the model at the spawn phase, followed over the cycle in the image
+// (ImageDrift.hpp); no rows without an OpenGL context.
+Result<std::vector<ImageDriftRow>> measureImageDriftOf(const Model& m, const Sizes& sizes,
+                                                       const CoverageContext& gl) {
+    if (!gl.unavailable.empty()) return std::vector<ImageDriftRow>();
+    SceneEvaluator evaluator(m.scene);
+    ImageDriftInput in;
+    in.scene = &m.scene;
+    in.object = m.object;
+    in.spawnTime = cycleTime(m, kSpawnPhase);
+    for (size_t f = 0; f < sizes.imageFrames; ++f)
+        in.frameTimes.push_back(cycleTime(m, double(f) / double(sizes.imageFrames)));
+    in.decalSize = m.decalSize;
+    const Mesh posed = meshAt(m, worldPositionsAt(m, evaluator, in.spawnTime));
+    in.camera = framing(posed);
+    in.width = sizes.imageWidth;
+    in.height = sizes.imageHeight;
+    in.shots = cameraShots(posed, in.camera, 16 * sizes.imageDecals, 900);
+    in.decals = sizes.imageDecals;
+    Result<std::vector<ImageDriftRow>> rows = measureImageDrift(in);
+    if (!rows) return fail(m.name + ": " + rows.error());
+    return rows;
+}
+
 // ---- Output ----------------------------------------------------------------------------------
 
 std::string verdict(bool met) {
@@ -657,6 +686,7 @@ struct ModelReport {
     SpawnRow spawn;
     std::vector<DriftSamples> drift;
     std::vector<AccuracyRow> accuracy;
+    std::vector<ImageDriftRow> imageDrift;
 };
 
 Json modelJson(const ModelReport& r) {
@@ -735,6 +765,45 @@ Json driftSection(const std::vector<ModelReport>& reports) {
     std::printf("\ndrift along the surface from the point placed on, of the decal's size\n");
     printTable({"model", "method", "decals", "samples", "median", "max", "whole max", "max within 2%"},
                table);
+    return rows;
+}
+
+Json imageDriftSection(const std::vector<ModelReport>& reports, const CoverageContext& gl) {
+    Json rows = Json::array();
+    std::vector<std::vector<std::string>> table;
+    for (const ModelReport& r : reports)
+        for (const ImageDriftRow& d : r.imageDrift) {
+            const bool measured = d.unavailable.empty() && !d.drift.empty();
+            const double med = median(d.drift), max = percentile(d.drift, 1.0);
+            const Json met = measured ? Json(max <= kDriftTarget) : Json();
+            table.push_back({r.model->name, d.method, std::to_string(d.decals),
+                             std::to_string(d.drift.size()), measured ? percent(d.atSpawnMax) : "-",
+                             measured ? percent(med) : "-", measured ? percent(max) : "-",
+                             measured ? verdict(met.get<bool>()) : "-",
+                             std::isnan(d.splatMs) ? "-" : fixed(d.splatMs, 3)});
+            rows.push_back({{"model", r.model->name},
+                            {"method", d.method},
+                            {"unavailable", d.unavailable.empty() ? Json() : Json(d.unavailable)},
+                            {"decals", d.decals},
+                            {"samples", d.drift.size()},
+                            {"at_spawn_max", measured ? number(d.atSpawnMax) : Json()},
+                            {"median", measured ? number(med) : Json()},
+                            {"max", measured ? number(max) : Json()},
+                            {"within_target", met},
+                            {"splat_ms", number(d.splatMs)}});
+            if (!d.unavailable.empty())
+                std::printf("%s, %s: not measured: %s\n", r.model->name.c_str(), d.method.c_str(),
+                            d.unavailable.c_str());
+        }
+    std::printf("\ndrift in the image: the drawn centre (a centre marker's pixels) from the projected point "
+                "placed on, of the decal's size in pixels\n");
+    if (!gl.unavailable.empty()) {
+        std::printf("not measured: %s\n", gl.unavailable.c_str());
+        return rows;
+    }
+    printTable(
+        {"model", "method", "decals", "samples", "at spawn", "median", "max", "max within 2%", "splat ms"},
+        table);
     return rows;
 }
 
@@ -843,6 +912,9 @@ Result<ModelReport> measureModel(const Model& m, const Sizes& sizes, CoverageCon
     Result<std::vector<AccuracyRow>> accuracy = measureAccuracy(m, r.proxy.proxy, sizes, gl);
     if (!accuracy) return fail(accuracy.error());
     r.accuracy = std::move(accuracy).value();
+    Result<std::vector<ImageDriftRow>> image = measureImageDriftOf(m, sizes, gl);
+    if (!image) return fail(image.error());
+    r.imageDrift = std::move(image).value();
     return r;
 }
 
@@ -898,6 +970,8 @@ Json report(const std::vector<ModelReport>& reports, const Sizes& sizes, const M
     j["pose_bounds"] = boundSection(reports);
     j["accuracy"] = accuracySection(reports, gl);
     j["accuracy_min_iou"] = number(minimumIou(reports));
+    j["image_drift_size"] = {sizes.imageWidth, sizes.imageHeight};
+    j["image_drift"] = imageDriftSection(reports, gl);
     return j;
 }
 

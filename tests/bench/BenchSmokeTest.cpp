@@ -178,10 +178,10 @@ TEST(BenchSmoke, SkinnedQuickMeasuresEveryModelInOneRun) {
         << readAll(dir + "/log");
     const nlohmann::json j = readJson(dir + "/s.json");
     ASSERT_TRUE(j.is_object()) << readAll(dir + "/s.json");
-    const size_t models = 3;
+    const size_t models = 4;
     ASSERT_EQ(j["models"].size(), models) << j.dump();
     // Per model: two collision meshes posed, one spawn comparison, three drift methods, two bounds,
-    // coverage at four times of the cycle.
+    // coverage at four times of the cycle, three methods followed in the image.
     ASSERT_EQ(j["pose_update"].size(), 2 * models);
     ASSERT_EQ(j["spawn"].size(), models);
     ASSERT_EQ(j["drift"].size(), 3 * models);
@@ -210,6 +210,22 @@ TEST(BenchSmoke, SkinnedQuickMeasuresEveryModelInOneRun) {
         EXPECT_GT(row["placed_render"].get<size_t>(), 0u) << row.dump();
         EXPECT_GT(row["iou"].get<double>(), 0.0) << row.dump();
         EXPECT_LE(row["iou"].get<double>(), 1.0) << row.dump();
+    }
+    ASSERT_EQ(j["image_drift"].size(), measured ? 3 * models : 0u);
+    for (const auto& row : j["image_drift"]) {
+        // The splat needs a UV layout without overlaps: of these, CesiumMan's alone.
+        if (row["method"] == "texture-space splat" && row["model"] != "gltf/CesiumMan/CesiumMan.glb") {
+            EXPECT_TRUE(row["unavailable"].is_string()) << row.dump();
+            continue;
+        }
+        EXPECT_GT(row["decals"].get<size_t>(), 0u) << row.dump();
+        EXPECT_GT(row["samples"].get<size_t>(), 0u) << row.dump();
+        if (row["method"] == "skin anchors, projected") {
+            EXPECT_LT(row["max"].get<double>(), 0.05) << row.dump();
+        }
+        if (row["method"] == "texture-space splat") {
+            EXPECT_GT(row["splat_ms"].get<double>(), 0.0) << row.dump();
+        }
     }
 }
 
