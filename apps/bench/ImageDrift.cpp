@@ -2,6 +2,7 @@
 
 #include "BenchSupport.hpp"
 #include "CoverageProbe.hpp"
+#include "DecalMarker.hpp"
 #include "SkinPoints.hpp"
 
 #include "spatter/core/SceneEvaluator.hpp"
@@ -12,9 +13,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -23,69 +21,9 @@ namespace spatter::bench {
 
 namespace {
 
-constexpr int kMarkerTexels = 256;
-constexpr double kMarkerRadius = 0.1; // of the decal's width
-constexpr double kShownShare = 0.85;  // of a marker's area seen on a plane, for a frame to count
-constexpr double kLeastCosine = 0.5;  // between the surface and the view, for a frame to count
 constexpr int kSplatTexels = 1024;
 
-// A red disc at the centre of a clear square, its rim antialiased over a texel.
-Image markerTexture() {
-    Image im;
-    im.width = im.height = kMarkerTexels;
-    im.name = "centre marker";
-    im.rgba.assign(size_t(kMarkerTexels) * kMarkerTexels * 4, 0);
-    const double c = 0.5 * kMarkerTexels, r = kMarkerRadius * kMarkerTexels;
-    for (int y = 0; y < kMarkerTexels; ++y)
-        for (int x = 0; x < kMarkerTexels; ++x) {
-            const double d = std::hypot(x + 0.5 - c, y + 0.5 - c);
-            const double a = std::clamp(r - d + 0.5, 0.0, 1.0);
-            uint8_t* p = &im.rgba[(size_t(y) * kMarkerTexels + size_t(x)) * 4];
-            p[0] = 255;
-            p[3] = uint8_t(std::lround(255.0 * a));
-        }
-    return im;
-}
-
-// The marker's centroid in `with` against `without`, each pixel weighted by how much of the marker it
-// shows, and that weight in pixels.
-struct Marker {
-    glm::dvec2 centre{0.0};
-    double weight = 0.0;
-};
-
-double linear(uint8_t srgb) {
-    const double c = srgb / 255.0;
-    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
-// How much of the marker's red a pixel shows: the blend factor a of with = bare * (1 - a) + red * a,
-// in linear colour, fitted over the three channels; 0 where the surface is nearly red itself.
-double markerShare(const uint8_t* with, const uint8_t* bare) {
-    constexpr double kRed[3] = {1.0, 0.0, 0.0};
-    double num = 0.0, den = 0.0;
-    for (size_t c = 0; c < 3; ++c) {
-        const double b = linear(bare[c]), toRed = kRed[c] - b;
-        num += (linear(with[c]) - b) * toRed;
-        den += toRed * toRed;
-    }
-    return den > 0.05 ? std::clamp(num / den, 0.0, 1.0) : 0.0;
-}
-
-Marker markerIn(const Image& with, const Image& without) {
-    Marker m;
-    glm::dvec2 sum(0.0);
-    for (int y = 0; y < with.height; ++y)
-        for (int x = 0; x < with.width; ++x) {
-            const size_t i = (size_t(y) * size_t(with.width) + size_t(x)) * 4;
-            if (std::memcmp(&with.rgba[i], &without.rgba[i], 3) == 0) continue;
-            const double w = markerShare(&with.rgba[i], &without.rgba[i]);
-            sum += w * glm::dvec2(x + 0.5, y + 0.5);
-            m.weight += w;
-        }
-    if (m.weight > 0.0) m.centre = sum / m.weight;
-    return m;
-}
+using tracking::Marker;
 
 // A followed decal: its handle, the surface point it was placed on, its record at spawn and the
 // joint that carries it the engines' way.
@@ -113,7 +51,7 @@ public:
         Result<Renderer> renderer = Renderer::create(*context, rs);
         if (!renderer) return fail(renderer.error());
         if (Status s = renderer->setScene(*in.scene); !s) return fail(s.error());
-        Result<int> layer = renderer->addDecalTexture(markerTexture());
+        Result<int> layer = renderer->addDecalTexture(tracking::markerTexture());
         if (!layer) return fail(layer.error());
         DecalType type = coverageType(in.decalSize);
         type.name = "marker";
@@ -171,17 +109,12 @@ public:
         return std::abs(glm::dot(n, glm::normalize(toEye)));
     }
 
-    // The pixel of a world point, and the decal's size in pixels at its depth.
+    // The pixel of a world point, and the decal's size in pixels there.
     glm::dvec2 project(const glm::dvec3& world) const {
-        const glm::dvec4 clip = projection(in_.camera, double(in_.width) / in_.height) *
-                                viewRotation(in_.camera) * glm::dvec4(world - in_.camera.eye, 1.0);
-        const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
-        return {(ndc.x * 0.5 + 0.5) * in_.width, (0.5 - ndc.y * 0.5) * in_.height};
+        return tracking::pixelOf(in_.camera, in_.width, in_.height, world);
     }
     double sizePixels(const glm::dvec3& world) const {
-        const double depth =
-            glm::dot(world - in_.camera.eye, glm::normalize(in_.camera.target - in_.camera.eye));
-        return in_.decalSize * 0.5 * in_.height / (std::tan(glm::radians(in_.camera.fovYDeg) * 0.5) * depth);
+        return tracking::pixelsAcross(in_.camera, in_.height, in_.decalSize, world);
     }
 
     // The decal `f` as the nearest joint carries it to the current pose from its spawn pose.
@@ -245,7 +178,8 @@ public:
                        carryingJoint(in_.scene->objects[in_.object].skinWeights, p, centre)};
             Result<Image> with = rig_.draw({f.atSpawn});
             if (!with) return fail(with.error());
-            const std::optional<double> seen = drawnCentreDrift(f, markerIn(with.value(), spawnBare_));
+            const std::optional<double> seen =
+                drawnCentreDrift(f, tracking::findMarker(with.value(), spawnBare_));
             if (seen) followed_.push_back(f);
         }
         for (double t : in_.frameTimes) {
@@ -321,17 +255,16 @@ private:
         if (!decal) return fail(decal.error());
         Result<Image> with = rig_.draw({decal.value()});
         if (!with) return fail(with.error());
-        return drawnCentreDrift(f, markerIn(with.value(), bare));
+        return drawnCentreDrift(f, tracking::findMarker(with.value(), bare));
     }
 
-    // The distance from f's marker to its point in the current pose, or nothing where the point is seen
-    // nearly edge-on or the marker shows less than a disc of its size on a plane would (hidden in
-    // part, or clipped where the decal slid).
+    // The distance from f's marker to its point in the current pose, or nothing where the marker does
+    // not show whole (tracking::showsWhole: hidden in part, clipped where the decal slid, or the point
+    // seen nearly edge-on).
     std::optional<double> drawnCentreDrift(const Followed& f, const Marker& m) const {
         const glm::dvec3 point = pointOf(in_.scene->objects[in_.object].mesh, rig_.worldPositions(), f.point);
-        const double cosine = rig_.facing(f.point), size = rig_.sizePixels(point);
-        const double disc = kPi * std::pow(kMarkerRadius * size, 2.0) * cosine;
-        if (cosine < kLeastCosine || m.weight < kShownShare * disc) return std::nullopt;
+        const double size = rig_.sizePixels(point);
+        if (!tracking::showsWhole(m, rig_.facing(f.point), size)) return std::nullopt;
         return glm::length(m.centre - rig_.project(point)) / size;
     }
 

@@ -1,5 +1,6 @@
 #include "Headless.hpp"
 
+#include "DecalMarker.hpp"
 #include "GallerySim.hpp"
 #include "GalleryView.hpp"
 #include "SkinTracking.hpp"
@@ -96,7 +97,7 @@ Result<nlohmann::ordered_json> trackTargetDecal(GallerySim& sim, Renderer& rende
         Result<std::optional<glm::dvec2>> imaged = decalCentroid(renderer, camera, decal);
         if (!imaged) return fail(imaged.error());
         const glm::dvec3 world = sim.decals().worldBox(decal).center;
-        return Sample{world, project(camera, w, h, world), imaged.value()};
+        return Sample{world, tracking::pixelOf(camera, w, h, world), imaged.value()};
     };
     Result<Sample> a = sample(*followed);
     if (!a) return fail(a.error());

@@ -1,5 +1,6 @@
 #include "SkinTracking.hpp"
 
+#include "DecalMarker.hpp"
 #include "GalleryView.hpp"
 #include "Tracking.hpp"
 
@@ -62,6 +63,45 @@ const Decal* newestOnSkin(const GallerySim& sim) {
     return found;
 }
 
+// The albedo view of `decals` alone.
+Result<Image> albedoOf(Renderer& renderer, const Camera& camera, const std::vector<Decal>& decals) {
+    renderer.setDecals(decals);
+    if (Result<FrameStats> st = renderer.render(camera, View::Albedo); !st) return fail(st.error());
+    return renderer.readback();
+}
+
+// How squarely the surface at `p` of the posed mesh `m` faces the eye (either side).
+double facing(const Mesh& m, const glm::dmat4& toWorld, const SurfacePoint& p, const glm::dvec3& eye) {
+    const uint32_t* k = &m.indices[3 * size_t(p.triangle)];
+    glm::dvec3 c[3];
+    for (int i = 0; i < 3; ++i)
+        c[i] = glm::dvec3(toWorld * glm::dvec4(glm::dvec3(m.positions[k[i]]), 1.0));
+    const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+    const glm::dvec3 point = p.bary.x * c[0] + p.bary.y * c[1] + p.bary.z * c[2];
+    return std::abs(glm::dot(glm::normalize(n), glm::normalize(eye - point)));
+}
+
+// The followed decal drawn with the centre marker: the marker's type is appended to the renderer's
+// types for as long as the tracker runs.
+struct MarkedDecal {
+    Decal decal;
+    uint16_t type = 0;
+};
+
+Result<uint16_t> addMarkerType(Renderer& renderer, const std::vector<DecalType>& types, uint16_t of) {
+    Result<int> layer = renderer.addDecalTexture(tracking::markerTexture());
+    if (!layer) return fail(layer.error());
+    std::vector<DecalType> withMarker = types;
+    DecalType marker = types[of];
+    marker.name = "centre marker";
+    marker.texture = layer.value();
+    marker.tint = glm::vec4(1.0f);
+    marker.normalMap = false;
+    withMarker.push_back(marker);
+    renderer.setDecalTypes(withMarker);
+    return uint16_t(types.size());
+}
+
 } // namespace
 
 Result<nlohmann::ordered_json> trackSkinnedDecal(GallerySim& sim, Renderer& renderer, const Camera& camera) {
@@ -70,48 +110,55 @@ Result<nlohmann::ordered_json> trackSkinnedDecal(GallerySim& sim, Renderer& rend
     if (!followed) return fail("no decal landed on a skinned target to follow");
     const uint32_t id = followed->id, object = followed->object;
     const uint16_t type = followed->type;
-    const glm::vec2 size = sim.decals().worldBox(*followed).size;
+    const double size = double(std::max(followed->size.x, followed->size.y));
     Result<SurfacePoint> placedOn = nearestPoint(posedMesh(sim, object), glm::dvec3(followed->center));
     if (!placedOn) return fail(placedOn.error());
+    Result<uint16_t> marker = addMarkerType(renderer, sim.types(), type);
+    if (!marker) return fail(marker.error());
     const int w = renderer.settings().width, h = renderer.settings().height;
 
-    double worldDrift = 0.0, imageDrift = 0.0, moved = 0.0, sizePx = 0.0;
-    std::optional<glm::dvec2> firstImaged, firstProjected;
+    double worldDrift = 0.0, imageDrift = 0.0, imageDriftPx = 0.0, moved = 0.0, sizePx = 0.0;
+    int seen = 0;
+    std::optional<glm::dvec2> first;
     for (int frame = 0; frame <= kFrames; ++frame) {
         if (frame > 0) sim.advance(kFrameSeconds);
         const Decal* decal = findDecal(sim.decals(), id);
         if (!decal) return fail("the followed decal disappeared while its target moved");
         syncRenderer(renderer, sim);
-        Result<std::optional<glm::dvec2>> centroid = decalCentroid(renderer, camera, *decal);
-        if (!centroid) return fail(centroid.error());
+        Decal marked = *decal;
+        marked.type = marker.value();
+        Result<Image> bare = albedoOf(renderer, camera, {});
+        if (!bare) return fail(bare.error());
+        Result<Image> with = albedoOf(renderer, camera, {marked});
+        if (!with) return fail(with.error());
         const glm::dvec3 point = worldPoint(sim, object, placedOn.value());
         worldDrift = std::max(worldDrift, glm::length(sim.decals().worldBox(*decal).center - point));
-        const std::optional<glm::dvec2> imaged = centroid.value();
-        if (!imaged) continue; // turned away from the camera this frame
-        const glm::dvec2 projected = project(camera, w, h, point);
-        if (!firstImaged) {
-            firstImaged = imaged;
-            firstProjected = projected;
-            const WorldDecal box = sim.decals().worldBox(*decal);
-            sizePx = glm::length(
-                project(camera, w, h, point + double(box.size.x) * glm::dvec3(box.frame.tangent)) -
-                projected);
-            continue;
-        }
-        moved = std::max(moved, glm::length(*imaged - *firstImaged));
-        imageDrift =
-            std::max(imageDrift, glm::length((*imaged - *firstImaged) - (projected - *firstProjected)));
+        const tracking::Marker m = tracking::findMarker(with.value(), bare.value());
+        const double across = tracking::pixelsAcross(camera, h, size, point);
+        const double cosine =
+            facing(posedMesh(sim, object), sim.transform(object), placedOn.value(), camera.eye);
+        if (!tracking::showsWhole(m, cosine, across)) continue; // turned away or hidden this frame
+        ++seen;
+        if (!first) first = m.centre;
+        moved = std::max(moved, glm::length(m.centre - *first));
+        sizePx = std::max(sizePx, across);
+        const double off = glm::length(m.centre - tracking::pixelOf(camera, w, h, point));
+        imageDriftPx = std::max(imageDriftPx, off);
+        imageDrift = std::max(imageDrift, off / across);
     }
-    if (!firstImaged) return fail("the followed decal was never visible");
+    renderer.setDecalTypes(sim.types());
+    if (!first) return fail("the followed decal was never seen whole");
     nlohmann::ordered_json out;
     out["object"] = sim.scene().objects[object].name;
     out["decal_id"] = id;
     out["type"] = sim.types()[type].name;
     out["frames"] = kFrames;
+    out["frames_seen"] = seen;
     out["image_moved_px"] = moved;
-    out["image_drift_px"] = imageDrift;
+    out["image_drift_px"] = imageDriftPx;
+    out["image_drift_of_size"] = imageDrift;
     out["world_drift_m"] = worldDrift;
-    out["decal_size_m"] = double(std::max(size.x, size.y));
+    out["decal_size_m"] = size;
     out["decal_size_px"] = sizePx;
     return out;
 }

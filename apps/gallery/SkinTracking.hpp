@@ -2,9 +2,10 @@
 // The headless run's check that decals stay on a skinned target: a decal on the animated dummy (or on
 // any skinned or morphed target of the scene) is followed across a second of animation. Each frame
 // the point of the render surface it was placed on is posed on the CPU (posedPositions) and projected,
-// and the decal alone is drawn in the coverage view on the GPU-skinned mesh; the drift is how far the
-// centre of the decal's pixels moves unlike that point (motions compared, since the curved surface
-// may clip the decal), and how far its centre is from the point in the world.
+// and the decal alone is drawn on the GPU-skinned mesh with a centre marker for texture
+// (DecalMarker.hpp); the drift is how far the drawn centre lies from that point in the image (frames
+// where the marker does not show whole are left out), and how far the decal's centre is from it in the
+// world.
 
 #include "GallerySim.hpp"
 

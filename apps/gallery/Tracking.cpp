@@ -8,13 +8,6 @@ const Decal* findDecal(const DecalSystem& system, uint32_t id) {
     return nullptr;
 }
 
-glm::dvec2 project(const Camera& camera, int width, int height, const glm::dvec3& world) {
-    const glm::dvec4 clip = projection(camera, double(width) / height) * viewRotation(camera) *
-                            glm::dvec4(world - camera.eye, 1.0);
-    const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
-    return {(ndc.x * 0.5 + 0.5) * width, (0.5 - ndc.y * 0.5) * height};
-}
-
 namespace {
 
 Result<Image> coverage(Renderer& renderer, const Camera& camera, const std::vector<Decal>& decals) {

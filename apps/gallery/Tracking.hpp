@@ -1,6 +1,6 @@
 #pragma once
-// What the headless run's trackers of decals share: a decal found by its ID, the pixel a world point
-// projects to, and the centre of the pixels a decal covers in the coverage view.
+// What the headless run's trackers of decals share: a decal found by its ID, and the centre of the
+// pixels a decal covers in the coverage view. (DecalMarker.hpp finds where a decal's centre is drawn.)
 
 #include "spatter/core/Image.hpp"
 #include "spatter/placement/DecalSystem.hpp"
@@ -14,9 +14,6 @@ namespace spatter::gallery {
 
 // The live decal with ID `id`, or null.
 const Decal* findDecal(const DecalSystem& system, uint32_t id);
-
-// Pixel position (x right, y down) of a world point seen by `camera` in a width x height image.
-glm::dvec2 project(const Camera& camera, int width, int height, const glm::dvec3& world);
 
 // Centre of the pixels that `decal` alone adds to the renderer's coverage view from `camera`, or
 // nothing when it adds none. (Decals splatted earlier into texture-space objects show in that view

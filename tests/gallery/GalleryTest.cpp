@@ -98,8 +98,10 @@ TEST(Gallery, DecalsOnTheSkinnedDummyStayOnTheSurfaceTheyWerePlacedOn) {
     EXPECT_EQ(t["object"], "dummy");
     EXPECT_GT(t["image_moved_px"].get<double>(), 1.0) << "the dummy's arms and hips move it";
     EXPECT_LT(t["world_drift_m"].get<double>(), 0.02 * t["decal_size_m"].get<double>());
-    // In the image the centre of the decal's pixels also shifts as the curved surface clips it.
-    EXPECT_LT(t["image_drift_px"].get<double>(), 0.25 * t["decal_size_px"].get<double>());
+    // In the image its drawn centre (a marker of a fifth of its width, here under two pixels across)
+    // stays on the point; a decal carried by a joint strays by a good part of its size.
+    EXPECT_GT(t["frames_seen"].get<int>(), 0);
+    EXPECT_LT(t["image_drift_of_size"].get<double>(), 0.05);
 }
 
 TEST(Gallery, SameSeedGivesTheSameSession) {
