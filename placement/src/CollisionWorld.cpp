@@ -23,7 +23,7 @@ struct ObjectData {
     std::vector<uint32_t> indices;
     std::vector<glm::vec3> traced; // the vertices Embree sees: float frame (static) or object space
     double reach = 0.0;            // largest |ray origin| in the space of `traced` that the boxes allow
-    glm::dmat4 inverse{1.0};
+    glm::dmat4 inverse{1.0};       // of info.transform, kept with it
     std::optional<PosedCollisionMesh> posable; // dynamic skinned or morphed objects: what setPose poses
     std::vector<glm::dmat4> poseJoints;        // the joint matrices of the last setPose (empty: rest)
     std::vector<double> poseMorphs;            // the morph weights of the last setPose
@@ -599,8 +599,8 @@ struct CollisionWorld::Impl {
             if (od.info.untraced.empty())
                 od.info.untraced = tracePlacementProblem(od.info.transform, od.info.localBounds, origin);
             od.info.traced = od.info.untraced.empty();
-            if (!od.info.traced) continue;
             od.inverse = glm::inverse(od.info.transform);
+            if (!od.info.traced) continue;
             const DBounds wb = transformBounds(od.info.localBounds, od.info.transform);
             frame.extend(wb.min - origin);
             frame.extend(wb.max - origin);
@@ -969,7 +969,7 @@ Result<TransformUpdate> CollisionWorld::setTransform(uint32_t object, const glm:
     od.info.transform = transform;
     od.info.untraced = traceTransformProblem(transform, od.info.localBounds, impl_->origin);
     od.info.traced = od.info.untraced.empty();
-    if (od.info.traced) od.inverse = glm::inverse(transform);
+    od.inverse = glm::inverse(transform);
     if (od.geomId != kInvalidId && (od.info.traced || wasTraced)) {
         RTCGeometry inst = rtcGetGeometry(impl_->top, od.geomId);
         if (od.info.traced) {
@@ -1026,7 +1026,7 @@ std::optional<SurfaceAnchor> CollisionWorld::anchorAt(uint32_t object, uint32_t 
     const glm::dvec3 bary = barycentric(localPosition, glm::dvec3(od.positions[c[0]]),
                                         glm::dvec3(od.positions[c[1]]), glm::dvec3(od.positions[c[2]]));
     return anchorOf(*od.posable, od.indices, primitive, bary, localPosition, localDirection,
-                    Pose{od.poseJoints, od.poseMorphs, glm::inverse(od.info.transform)});
+                    Pose{od.poseJoints, od.poseMorphs, od.inverse});
 }
 
 std::optional<glm::dmat4> CollisionWorld::anchorFrame(uint32_t object, const SurfaceAnchor& anchor) const {
@@ -1034,7 +1034,7 @@ std::optional<glm::dmat4> CollisionWorld::anchorFrame(uint32_t object, const Sur
     const ObjectData& od = impl_->objects[object];
     if (!od.posable) return std::nullopt;
     return spatter::anchorFrame(*od.posable, od.indices, anchor,
-                                Pose{od.poseJoints, od.poseMorphs, glm::inverse(od.info.transform)});
+                                Pose{od.poseJoints, od.poseMorphs, od.inverse});
 }
 
 Status CollisionWorld::removeObject(uint32_t object) {
