@@ -21,28 +21,34 @@ namespace {
 
 constexpr int kSplatView = 160;
 
-// builtin:skinned-arm with its round bar (whose lathe UVs wrap) replaced by a sheet of the same
-// length in the XY plane, facing +Z, its UVs one chart over the unit square, skinned as the bar is.
-Scene skinnedSheet() {
+// builtin:skinned-arm with its round bar (whose lathe UVs wrap) replaced by sheets of the same
+// length in the XY plane at the depths `z`, facing +Z, each with its own UV chart side by side in the
+// unit square, skinned as the bar is.
+Scene skinnedSheets(const std::vector<float>& z) {
     Scene scene = makeSkinnedArm();
     std::vector<float> across, along;
     for (int i = 0; i <= 12; ++i)
         across.push_back(float(i) / 12.0f);
     for (int i = 0; i <= 40; ++i)
         along.push_back(float(i) / 40.0f);
-    glm::mat4 toArm(1.0f); // grid (x, 0, z) to (0.3 x - 0.15, 1 - z, 0)
-    toArm[0] = glm::vec4(0.3f, 0.0f, 0.0f, 0.0f);
-    toArm[1] = glm::vec4(0.0f, 0.0f, 1.0f, 0.0f);
-    toArm[2] = glm::vec4(0.0f, -1.0f, 0.0f, 0.0f);
-    toArm[3] = glm::vec4(-0.15f, 1.0f, 0.0f, 1.0f);
-    Mesh sheet;
-    appendMesh(sheet, makeGrid(across, along), toArm);
+    Mesh sheets;
+    for (size_t k = 0; k < z.size(); ++k) {
+        glm::mat4 toArm(1.0f); // grid (x, 0, y) to (0.3 x - 0.15, 1 - y, z[k])
+        toArm[0] = glm::vec4(0.3f, 0.0f, 0.0f, 0.0f);
+        toArm[1] = glm::vec4(0.0f, 0.0f, 1.0f, 0.0f);
+        toArm[2] = glm::vec4(0.0f, -1.0f, 0.0f, 0.0f);
+        toArm[3] = glm::vec4(-0.15f, 1.0f, z[k], 1.0f);
+        Mesh sheet = makeGrid(across, along);
+        for (glm::vec2& uv : sheet.uvs)
+            uv.x = (float(k) + uv.x) / float(z.size());
+        appendMesh(sheets, sheet, toArm);
+    }
     SceneObject& o = scene.objects[0];
-    SceneObject made = makeSceneObject("sheet", sheet, o.transform, true);
+    SceneObject made = makeSceneObject("sheets", sheets, o.transform, true);
     made.node = o.node;
     made.skin = o.skin;
     made.skinWeights.influences = 2;
-    for (const glm::vec3& p : sheet.positions) {
+    for (const glm::vec3& p : sheets.positions) {
         const double t = std::clamp((double(p.y) - 0.35) / 0.3, 0.0, 1.0), w = t * t * (3.0 - 2.0 * t);
         made.skinWeights.joints.insert(made.skinWeights.joints.end(), {0, 1});
         made.skinWeights.weights.insert(made.skinWeights.weights.end(), {1.0 - w, w});
@@ -51,8 +57,31 @@ Scene skinnedSheet() {
     return scene;
 }
 
+// An opaque square, so that a splat's coverage (where its texture shows) is the decal's footprint.
+Image opaqueSquare() {
+    Image opaque;
+    opaque.width = opaque.height = 16;
+    opaque.rgba.assign(16 * 16 * 4, 255);
+    return opaque;
+}
+
+// A renderer of `scene` drawing decals of `type` with opaque texture, object 0 in texture space.
+Result<Renderer> splatRenderer(const Scene& scene, DecalType& type, uint8_t objectId, bool textureSpace) {
+    Result<Renderer> r = makeRenderer(kSplatView, kSplatView);
+    if (!r) return r;
+    if (Status s = r->setScene(scene); !s) return fail(s.error());
+    Result<int> layer = r->addDecalTexture(opaqueSquare());
+    if (!layer) return fail(layer.error());
+    type.texture = layer.value();
+    r->setDecalTypes({type});
+    if (Status s = r->setObjectIds({objectId}); !s) return fail(s.error());
+    if (textureSpace)
+        if (Status s = r->setObjectDecalMode(0, DecalMode::TextureSpace, 512); !s) return fail(s.error());
+    return r;
+}
+
 struct ArmRig {
-    Scene scene = skinnedSheet();
+    Scene scene = skinnedSheets({0.0f});
     SceneEvaluator evaluator{scene};
     DecalType type;
 
@@ -80,24 +109,10 @@ TEST(SkinnedTextureSpace, SplatMadeInTheDrawnPoseRidesTheSkinToAnotherPose) {
     Result<DecalSystem> system = DecalSystem::create(rig.scene);
     ASSERT_TRUE(system.ok()) << system.error();
     const uint16_t type = system->registerType(rig.type).value();
-    Result<Renderer> projected = makeRenderer(kSplatView, kSplatView);
-    Result<Renderer> splatted = makeRenderer(kSplatView, kSplatView);
-    ASSERT_TRUE(projected.ok() && splatted.ok());
-    // An opaque square, so that the splat's coverage (where its texture shows) is the decal's
-    // footprint, as the projected decal's is.
-    Image opaque;
-    opaque.width = opaque.height = 16;
-    opaque.rgba.assign(16 * 16 * 4, 255);
-    for (Renderer* r : {&projected.value(), &splatted.value()}) {
-        ASSERT_TRUE(r->setScene(rig.scene).ok());
-        Result<int> layer = r->addDecalTexture(opaque);
-        ASSERT_TRUE(layer.ok()) << layer.error();
-        rig.type.texture = layer.value();
-        r->setDecalTypes({rig.type});
-        ASSERT_TRUE(r->setObjectIds({system->objectId(0)}).ok());
-    }
-    Status mode = splatted->setObjectDecalMode(0, DecalMode::TextureSpace, 512);
-    ASSERT_TRUE(mode.ok()) << mode.error();
+    Result<Renderer> projected = splatRenderer(rig.scene, rig.type, system->objectId(0), false);
+    Result<Renderer> splatted = splatRenderer(rig.scene, rig.type, system->objectId(0), true);
+    ASSERT_TRUE(projected.ok()) << projected.error();
+    ASSERT_TRUE(splatted.ok()) << splatted.error();
 
     // Bent at the elbow (a quarter of the cycle), shot at the forearm from the front.
     ASSERT_TRUE(rig.pose(0.5, system.value(), projected.value(), splatted.value()).ok());
@@ -136,4 +151,43 @@ TEST(SkinnedTextureSpace, SplatMadeInTheDrawnPoseRidesTheSkinToAnotherPose) {
     EXPECT_GT(countSet(projectedLater), 150u);
     EXPECT_LT(iou(projectedAtSpawn, projectedLater), 0.8) << "the pose did not move the decal in the image";
     EXPECT_GT(iou(projectedLater, splatLater), 0.9) << "the splat does not ride the skin";
+}
+
+TEST(SkinnedTextureSpace, ADeepSplatOnTheFrontSheetLeavesTheSheetBehindItClean) {
+    SPATTER_REQUIRE_GL(gl);
+    // Two sheets a quarter of a metre apart, posed as one skinned object: the back one stands for the
+    // torso behind an arm. The type's depth reaches far past it.
+    ArmRig rig;
+    rig.scene = skinnedSheets({0.0f, -0.25f});
+    rig.type.halfDepth = 2.0f;
+    Result<DecalSystem> system = DecalSystem::create(rig.scene);
+    ASSERT_TRUE(system.ok()) << system.error();
+    const uint16_t type = system->registerType(rig.type).value();
+    Result<Renderer> r = splatRenderer(rig.scene, rig.type, system->objectId(0), true);
+    ASSERT_TRUE(r.ok()) << r.error();
+    SceneEvaluator evaluator(rig.scene);
+    evaluator.evaluate(0, 0.5);
+    ASSERT_TRUE(system->setPose(0, evaluator.objectTransform(0), evaluator.jointMatrices(0), {}).ok());
+    ASSERT_TRUE(r->setPose(evaluator).ok());
+    const glm::dvec3 forearm(evaluator.jointMatrices(0)[1] * glm::dvec4(0.0, 0.75, 0.0, 1.0));
+    Ray shot;
+    shot.origin = forearm + glm::dvec3(0.0, 0.0, 2.0);
+    shot.direction = glm::dvec3(0.0, 0.0, -1.0);
+    const SpawnResult placed = system->spawn(shot, type);
+    ASSERT_TRUE(placed.placed()) << placed.reason;
+    const Camera front = lookAt(forearm + glm::dvec3(0.0, 0.0, 0.8), forearm);
+    const Camera back = lookAt(forearm - glm::dvec3(0.0, 0.0, 1.0), forearm); // sees the back sheet
+
+    r->setDecals({*system->get(placed.handle)});
+    EXPECT_GT(countSet(whiteMask(renderView(r.value(), front, View::Coverage))), 150u);
+    EXPECT_EQ(countSet(whiteMask(renderView(r.value(), back, View::Coverage))), 0u)
+        << "the splat on the front sheet reached the sheet behind it";
+
+    // The same decal attached by hand keeps the type's depth, and paints the back sheet.
+    const Decal skinned = *system->get(placed.handle);
+    const SpawnResult attached = system->spawnAttached(0, skinned.center, skinned.frame().normal, type);
+    ASSERT_TRUE(attached.placed()) << attached.reason;
+    ASSERT_TRUE(r->clearObjectDecals(0).ok());
+    r->setDecals({*system->get(attached.handle)});
+    EXPECT_GT(countSet(whiteMask(renderView(r.value(), back, View::Coverage))), 50u);
 }
