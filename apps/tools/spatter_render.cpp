@@ -61,13 +61,13 @@ View:
   --size WxH      image size (default 960x540)
   --view V        final (lit, default), albedo, normal, depth, ids, or coverage: white where at
                   least one decal writes the pixel (inside its box, object ID matching, within its
-                  max angle), black elsewhere
+                  max angle; a texture-space decal where its texture shows), black elsewhere
   --volumetric    the decals are volumetric bullet holes: a crater drawn behind a hole cut into
                   the surface (stencil), instead of a flat texture
   --texture-space OBJECT[:SIZE]
                   draw the decals of the named object in texture space (rendered once into its own
-                  SIZE x SIZE decal texture through its UVs, default 512) instead of projecting
-                  them; repeatable. The object's UVs must not overlap and must lie in [0, 1]: a
+                  SIZE x SIZE decal texture through its UVs, default 512, in the pose drawn)
+                  instead of projecting them; repeatable. The object's UVs must not overlap and must lie in [0, 1]: a
                   mesh that breaks this is reported (first overlapping triangles) and the tool
                   exits with 1.
   --translate X,Y,Z  move the scene by this offset first; decals, rays and camera are given in the
