@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <initializer_list>
 
 using namespace spatter;
 using namespace spatter::test;
@@ -81,23 +82,37 @@ Result<Renderer> splatRenderer(const Scene& scene, DecalType& type, uint8_t obje
 }
 
 struct ArmRig {
-    Scene scene = skinnedSheets({0.0f});
-    SceneEvaluator evaluator{scene};
+    Scene scene;
+    SceneEvaluator evaluator;
     DecalType type;
 
-    ArmRig() {
+    explicit ArmRig(const std::vector<float>& sheets) : scene(skinnedSheets(sheets)), evaluator(scene) {
         type.name = "mark";
         type.size = glm::vec2(0.12f);
         type.randomRotation = false;
         type.normalMap = false;
     }
 
-    Status pose(double t, DecalSystem& system, Renderer& a, Renderer& b) {
+    Status pose(double t, DecalSystem& system, std::initializer_list<Renderer*> renderers) {
         evaluator.evaluate(0, t);
         auto moved = system.setPose(0, evaluator.objectTransform(0), evaluator.jointMatrices(0), {});
         if (!moved) return fail(moved.error());
-        if (Status s = a.setPose(evaluator); !s) return s;
-        return b.setPose(evaluator);
+        for (Renderer* r : renderers)
+            if (Status s = r->setPose(evaluator); !s) return s;
+        return {};
+    }
+
+    // A point on the front sheet's forearm, as posed.
+    glm::dvec3 forearm() const {
+        return glm::dvec3(evaluator.jointMatrices(0)[1] * glm::dvec4(0.0, 0.75, 0.0, 1.0));
+    }
+
+    // A shot at the forearm from the front (+Z).
+    SpawnResult shootForearm(DecalSystem& system, uint16_t decalType) const {
+        Ray shot;
+        shot.origin = forearm() + glm::dvec3(0.0, 0.0, 2.0);
+        shot.direction = glm::dvec3(0.0, 0.0, -1.0);
+        return system.spawn(shot, decalType);
     }
 };
 
@@ -105,7 +120,7 @@ struct ArmRig {
 
 TEST(SkinnedTextureSpace, SplatMadeInTheDrawnPoseRidesTheSkinToAnotherPose) {
     SPATTER_REQUIRE_GL(gl);
-    ArmRig rig;
+    ArmRig rig({0.0f});
     Result<DecalSystem> system = DecalSystem::create(rig.scene);
     ASSERT_TRUE(system.ok()) << system.error();
     const uint16_t type = system->registerType(rig.type).value();
@@ -115,13 +130,10 @@ TEST(SkinnedTextureSpace, SplatMadeInTheDrawnPoseRidesTheSkinToAnotherPose) {
     ASSERT_TRUE(splatted.ok()) << splatted.error();
 
     // Bent at the elbow (a quarter of the cycle), shot at the forearm from the front.
-    ASSERT_TRUE(rig.pose(0.5, system.value(), projected.value(), splatted.value()).ok());
-    const glm::dvec3 forearm(rig.evaluator.jointMatrices(0)[1] * glm::dvec4(0.0, 0.75, 0.0, 1.0));
-    Ray shot;
-    shot.origin = forearm + glm::dvec3(0.0, 0.0, 2.0);
-    shot.direction = glm::dvec3(0.0, 0.0, -1.0);
-    const SpawnResult placed = system->spawn(shot, type);
+    ASSERT_TRUE(rig.pose(0.5, system.value(), {&projected.value(), &splatted.value()}).ok());
+    const SpawnResult placed = rig.shootForearm(system.value(), type);
     ASSERT_TRUE(placed.placed()) << placed.reason;
+    const glm::dvec3 forearm = rig.forearm();
     const Camera camera = lookAt(forearm + glm::dvec3(0.0, 0.0, 0.8), forearm);
 
     projected->setDecals({*system->get(placed.handle)});
@@ -137,7 +149,7 @@ TEST(SkinnedTextureSpace, SplatMadeInTheDrawnPoseRidesTheSkinToAnotherPose) {
 
     // Straighter again: the decal system moves the anchored decal with the skin; the splat is not
     // made again, and lies where the moved decal does.
-    ASSERT_TRUE(rig.pose(0.2, system.value(), projected.value(), splatted.value()).ok());
+    ASSERT_TRUE(rig.pose(0.2, system.value(), {&projected.value(), &splatted.value()}).ok());
     const Decal moved = *system->get(placed.handle);
     projected->setDecals({moved});
     splatted->setDecals({moved});
@@ -157,24 +169,17 @@ TEST(SkinnedTextureSpace, ADeepSplatOnTheFrontSheetLeavesTheSheetBehindItClean) 
     SPATTER_REQUIRE_GL(gl);
     // Two sheets a quarter of a metre apart, posed as one skinned object: the back one stands for the
     // torso behind an arm. The type's depth reaches far past it.
-    ArmRig rig;
-    rig.scene = skinnedSheets({0.0f, -0.25f});
+    ArmRig rig({0.0f, -0.25f});
     rig.type.halfDepth = 2.0f;
     Result<DecalSystem> system = DecalSystem::create(rig.scene);
     ASSERT_TRUE(system.ok()) << system.error();
     const uint16_t type = system->registerType(rig.type).value();
     Result<Renderer> r = splatRenderer(rig.scene, rig.type, system->objectId(0), true);
     ASSERT_TRUE(r.ok()) << r.error();
-    SceneEvaluator evaluator(rig.scene);
-    evaluator.evaluate(0, 0.5);
-    ASSERT_TRUE(system->setPose(0, evaluator.objectTransform(0), evaluator.jointMatrices(0), {}).ok());
-    ASSERT_TRUE(r->setPose(evaluator).ok());
-    const glm::dvec3 forearm(evaluator.jointMatrices(0)[1] * glm::dvec4(0.0, 0.75, 0.0, 1.0));
-    Ray shot;
-    shot.origin = forearm + glm::dvec3(0.0, 0.0, 2.0);
-    shot.direction = glm::dvec3(0.0, 0.0, -1.0);
-    const SpawnResult placed = system->spawn(shot, type);
+    ASSERT_TRUE(rig.pose(0.5, system.value(), {&r.value()}).ok());
+    const SpawnResult placed = rig.shootForearm(system.value(), type);
     ASSERT_TRUE(placed.placed()) << placed.reason;
+    const glm::dvec3 forearm = rig.forearm();
     const Camera front = lookAt(forearm + glm::dvec3(0.0, 0.0, 0.8), forearm);
     const Camera back = lookAt(forearm - glm::dvec3(0.0, 0.0, 1.0), forearm); // sees the back sheet
 
