@@ -81,13 +81,8 @@ double facing(const Mesh& m, const glm::dmat4& toWorld, const SurfacePoint& p, c
     return std::abs(glm::dot(glm::normalize(n), glm::normalize(eye - point)));
 }
 
-// The followed decal drawn with the centre marker: the marker's type is appended to the renderer's
-// types for as long as the tracker runs.
-struct MarkedDecal {
-    Decal decal;
-    uint16_t type = 0;
-};
-
+// The index of a copy of type `of` drawn with the centre marker, appended to the renderer's types (for
+// as long as the tracker runs).
 Result<uint16_t> addMarkerType(Renderer& renderer, const std::vector<DecalType>& types, uint16_t of) {
     Result<int> layer = renderer.addDecalTexture(tracking::markerTexture());
     if (!layer) return fail(layer.error());
@@ -110,7 +105,8 @@ Result<nlohmann::ordered_json> trackSkinnedDecal(GallerySim& sim, Renderer& rend
     if (!followed) return fail("no decal landed on a skinned target to follow");
     const uint32_t id = followed->id, object = followed->object;
     const uint16_t type = followed->type;
-    const double size = double(std::max(followed->size.x, followed->size.y));
+    const glm::vec2 worldSize = sim.decals().worldBox(*followed).size;
+    const double size = double(std::max(worldSize.x, worldSize.y));
     Result<SurfacePoint> placedOn = nearestPoint(posedMesh(sim, object), glm::dvec3(followed->center));
     if (!placedOn) return fail(placedOn.error());
     Result<uint16_t> marker = addMarkerType(renderer, sim.types(), type);
