@@ -45,9 +45,10 @@ const char* kSkinnedUsage =
                              [--json FILE]
 
 Decals on skinned objects, in one run, for builtin:skinned-arm (50 rings of 50 vertices: 5,000
-triangles), the gallery's dummy (addSkinnedDummy), CesiumMan and RiggedSimple (the shared data). Times are thread CPU time on one core
-(every Embree device made with threads=1, so that its refits run on the timed thread), the median of
-R runs. Each model's skinned object is posed by its animation 0, looped over its duration.
+triangles), the gallery's dummy (addSkinnedDummy), CesiumMan and RiggedSimple (the shared data).
+Times are thread CPU time on one core (every Embree device made with threads=1, so that its refits
+run on the timed thread), the median of R runs. Each model's skinned object is posed by its
+animation 0, looped over its duration.
 
 Pose update: CollisionWorld::setPose per call (skinning the collision mesh in double, then the
 Embree refit), cycling through N poses of the cycle (the poses are evaluated beforehand), with

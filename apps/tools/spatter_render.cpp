@@ -67,9 +67,9 @@ View:
   --texture-space OBJECT[:SIZE]
                   draw the decals of the named object in texture space (rendered once into its own
                   SIZE x SIZE decal texture through its UVs, default 512, in the pose drawn)
-                  instead of projecting them; repeatable. The object's UVs must not overlap and must lie in [0, 1]: a
-                  mesh that breaks this is reported (first overlapping triangles) and the tool
-                  exits with 1.
+                  instead of projecting them; repeatable. The object's UVs must not overlap and
+                  must lie in [0, 1]: a mesh that breaks this is reported (first overlapping
+                  triangles) and the tool exits with 1.
   --translate X,Y,Z  move the scene by this offset first; decals, rays and camera are given in the
                   moved world
   --time T        pose the scene at T seconds of its first animation (glTF animations: animated
