@@ -2,6 +2,7 @@
 
 #include "BenchSupport.hpp"
 #include "CoverageProbe.hpp"
+#include "IouBreakdown.hpp"
 #include "ThreejsPeer.hpp"
 
 #include "spatter/core/MeshDistance.hpp"
@@ -50,6 +51,9 @@ then one proxy per backend and tolerance. Columns:
             decals placed on the render mesh, same rays from the camera (needs an OpenGL context),
             projected along the shot (the default)
   IoU-n     the same, both projected along the normal
+  (--iou-breakdown: IoU again with fields of each proxy-placed decal taken from the decal the same
+  shot places on the render mesh: its centre, its frame, frame and slant, all three, all three and
+  the half-depth; what is lost with all of them is the shots one surface places and the other not)
   h         the proxy's certified error bound (% of the diagonal); '!' marks a missed tolerance
 
 The three.js peer (bench/peers/threejs: three-mesh-bvh raycast and DecalGeometry, on the same mesh
@@ -68,11 +72,13 @@ and rays) is run when node and npm are available and reported beside the rows.
 --size WxH         coverage image size (default 640x480)
 --camera SPEC      "eye=x,y,z;target=x,y,z[;up=..;fov=..]" (default: outside the bounds, looking in)
 --no-render        no OpenGL context: IoU not measured
+--iou-breakdown    where the IoU along the shot is lost (above; a table after the rows)
 --no-peer          do not run the three.js peer     --peer-seconds S  its DecalGeometry time cap (default 30)
 --quick            2000 rays, one pass, tolerances 0.5,2, 60 coverage decals, peer capped at 5 s
 --json FILE        {"rows": [{"backend", "tolerance_rel", "proxy_triangles", "build_s", "placement_ns",
                    "batch_ns", "dist_p50_rel", "dist_p99_rel", "dist_max_rel", "normal_deg_p99",
-                   "disagree_rate", "coverage_iou", "coverage_iou_normal", ...}], "peers": [...], ...}
+                   "disagree_rate", "coverage_iou", "coverage_iou_normal", "iou_breakdown": {"centre",
+                   "frame", "frame_slant", "centre_frame_slant", "all"}, ...}], "peers": [...], ...}
 )";
 
 constexpr double kRadToDeg = 57.295779513082320876;
@@ -87,6 +93,7 @@ struct TradeoffRow {
     double distP50 = std::nan(""), distP99 = std::nan(""), distMax = std::nan("");
     double offsetP99 = std::nan(""), normalP99 = std::nan(""), disagree = std::nan("");
     double iou = std::nan(""), iouNormal = std::nan(""), errorBoundRel = std::nan("");
+    std::optional<IouBreakdown> breakdown; // --iou-breakdown
     bool toleranceMet = true;
     uint32_t attempts = 0;
     size_t placed = 0;
@@ -138,6 +145,14 @@ struct ShotCoverage {
         std::vector<SpawnResult> results;
         sys->spawnBatch(shots, type, results);
         return probe.mask(camera, sys->decals());
+    }
+
+    // Where the IoU along the shot is lost (IouBreakdown.hpp), against `reference`.
+    Result<IouBreakdown> breakdown(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
+                                   double diagonal, uint64_t seed, const std::vector<uint8_t>& reference) {
+        DecalType t = probe.type();
+        t.projection = Projection::Shot;
+        return iouBreakdown(probe, camera, scene, proxies, shots, t, diagonal, seed, reference);
     }
 
     const std::string& glRenderer() const { return probe.glRenderer(); }
@@ -215,6 +230,21 @@ void measureErrors(const std::vector<std::optional<Hit>>& proxyHits,
     row.disagree = rays.empty() ? 0.0 : double(disagree) / double(rays.size());
 }
 
+// The --iou-breakdown table, when some row has one.
+void printBreakdowns(const std::vector<TradeoffRow>& rows) {
+    std::vector<std::vector<std::string>> table;
+    for (const TradeoffRow& r : rows)
+        if (r.breakdown)
+            table.push_back({r.backend, fmt(100.0 * r.toleranceRel, 3), fixed(r.iou, 4),
+                             fixed(r.breakdown->centre, 4), fixed(r.breakdown->frame, 4),
+                             fixed(r.breakdown->frameSlant, 4), fixed(r.breakdown->allButDepth, 4),
+                             fixed(r.breakdown->all, 4)});
+    if (table.empty()) return;
+    std::printf("\nIoU along the shot with the render-placed decal's fields taken\n");
+    printTable({"backend", "tol%", "IoU", "centre", "frame", "frame+slant", "centre+frame+slant", "+depth"},
+               table);
+}
+
 Json tradeoffRowJson(const TradeoffRow& r) {
     Json j;
     j["backend"] = r.backend;
@@ -230,6 +260,12 @@ Json tradeoffRowJson(const TradeoffRow& r) {
     j["disagree_rate"] = number(r.disagree);
     j["coverage_iou"] = number(r.iou);
     j["coverage_iou_normal"] = number(r.iouNormal);
+    if (r.breakdown)
+        j["iou_breakdown"] = {{"centre", number(r.breakdown->centre)},
+                              {"frame", number(r.breakdown->frame)},
+                              {"frame_slant", number(r.breakdown->frameSlant)},
+                              {"centre_frame_slant", number(r.breakdown->allButDepth)},
+                              {"all", number(r.breakdown->all)}};
     j["status"] = r.status;
     j["reload_s"] = number(r.reloadS);
     j["bvh_s"] = number(r.bvhS);
@@ -277,7 +313,7 @@ int runTradeoffCommand(int argc, char** argv) {
                     {"--subdivide", "--backends", "--tolerances", "--rays", "--batch-size", "--passes",
                      "--cap-seconds", "--openmesh-max-triangles", "--coverage-decals", "--size", "--camera",
                      "--peer-seconds", "--seed", "--json"},
-                    {"--no-render", "--no-peer", "--quick"}, exitCode);
+                    {"--no-render", "--no-peer", "--quick", "--iou-breakdown"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
     if (args.positional.size() != 1) return usageError(kTradeoffCommand, "one MESH|SCENE is needed");
@@ -506,6 +542,11 @@ int runTradeoffCommand(int argc, char** argv) {
                                 probe->mask(scene, proxies, diagonal, seed, Projection::Normal);
                             if (m) r.iou = iou(referenceMask, m.value());
                             if (n) r.iouNormal = iou(referenceNormalMask, n.value());
+                            if (args.has("--iou-breakdown")) {
+                                Result<IouBreakdown> b =
+                                    probe->breakdown(scene, proxies, diagonal, seed, referenceMask);
+                                if (b) r.breakdown = b.value();
+                            }
                         }
                     }
                 }
@@ -558,6 +599,7 @@ int runTradeoffCommand(int argc, char** argv) {
     printTable({"backend", "tol%", "tris", "build s", "reload s", "bvh s", "spawn ns", "batch ns", "d50%",
                 "d99%", "dmax%", "off99%", "n99 deg", "disagree%", "IoU", "IoU-n", "h%"},
                table);
+    printBreakdowns(rows);
 
     if (args.has("--json")) {
         Json j;

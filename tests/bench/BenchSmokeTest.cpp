@@ -107,6 +107,31 @@ TEST(BenchSmoke, TradeoffWritesOneRowPerBackendAndTolerance) {
     EXPECT_TRUE(coarse["coverage_iou"].is_null()); // --no-render
 }
 
+TEST(BenchSmoke, TradeoffBreaksTheIouDownByTheFieldsTakenFromTheRenderPlacedDecal) {
+    if (!noGl().empty()) GTEST_SKIP() << noGl();
+    const std::string dir = test::scratchDir("bench-iou-breakdown");
+    const std::string mesh = writeSphere(dir);
+    ASSERT_EQ(runBench("tradeoff " + mesh +
+                           " --backends meshopt --tolerances 1 --rays 300 --passes 1 --coverage-decals 40 "
+                           "--size 320x240 --no-peer --iou-breakdown --json " +
+                           dir + "/t.json",
+                       dir + "/log"),
+              0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/t.json");
+    ASSERT_EQ(j["rows"].size(), 2u) << readAll(dir + "/t.json");
+    const nlohmann::json& proxy = j["rows"][1];
+    ASSERT_TRUE(proxy.contains("iou_breakdown")) << proxy.dump();
+    const nlohmann::json& b = proxy["iou_breakdown"];
+    for (const char* key : {"centre", "frame", "frame_slant", "centre_frame_slant", "all"}) {
+        EXPECT_GT(b[key].get<double>(), 0.0) << key;
+        EXPECT_LE(b[key].get<double>(), 1.0) << key;
+    }
+    // Taking every field leaves only the shots one surface places and the other does not.
+    EXPECT_GE(b["all"].get<double>(), proxy["coverage_iou"].get<double>()) << proxy.dump();
+    EXPECT_GT(b["all"].get<double>(), 0.9) << proxy.dump();
+}
+
 TEST(BenchSmoke, ProxyComparesWithPlainMeshoptimizerInOneRun) {
     const std::string dir = test::scratchDir("bench-proxy");
     const std::string mesh = writeSphere(dir);

@@ -1,0 +1,80 @@
+#include "IouBreakdown.hpp"
+
+#include "spatter/placement/DecalSystem.hpp"
+
+namespace spatter::bench {
+
+namespace {
+
+// Which fields of the render-placed decal a variant takes.
+struct Taken {
+    bool centre = false, frame = false, slant = false, depth = false;
+};
+
+Result<DecalSystem> systemOver(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
+                               const DecalType& type, double diagonal, uint64_t seed) {
+    Result<CollisionWorld> world = CollisionWorld::build(scene, proxies);
+    if (!world) return fail(world.error());
+    Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), unlimited(diagonal, seed));
+    if (!system) return system;
+    if (Result<uint16_t> t = system->registerType(type); !t) return fail(t.error());
+    return system;
+}
+
+// Each shot's decal in both systems (nothing where a system places none).
+struct ShotDecals {
+    std::vector<std::optional<Decal>> proxy, render;
+};
+
+ShotDecals placeBoth(DecalSystem& proxy, DecalSystem& render, const std::vector<Ray>& shots) {
+    ShotDecals out;
+    for (const Ray& shot : shots) {
+        const SpawnResult p = proxy.spawn(shot, 0), r = render.spawn(shot, 0);
+        out.proxy.push_back(p.placed() ? std::optional<Decal>(*proxy.get(p.handle)) : std::nullopt);
+        out.render.push_back(r.placed() ? std::optional<Decal>(*render.get(r.handle)) : std::nullopt);
+    }
+    return out;
+}
+
+std::vector<Decal> variant(const ShotDecals& decals, const Taken& taken) {
+    std::vector<Decal> out;
+    for (size_t i = 0; i < decals.proxy.size(); ++i) {
+        if (!decals.proxy[i]) continue;
+        Decal d = *decals.proxy[i];
+        if (const std::optional<Decal>& r = decals.render[i]) {
+            if (taken.centre) d.center = r->center;
+            if (taken.frame) d.packedFrame = r->packedFrame;
+            if (taken.slant) d.slant = r->slant;
+            if (taken.depth) d.halfDepth = r->halfDepth;
+        }
+        out.push_back(d);
+    }
+    return out;
+}
+
+} // namespace
+
+Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, const Scene& scene,
+                                  const std::vector<std::optional<Proxy>>& proxies,
+                                  const std::vector<Ray>& shots, const DecalType& type, double diagonal,
+                                  uint64_t seed, const std::vector<uint8_t>& reference) {
+    Result<DecalSystem> proxy = systemOver(scene, proxies, type, diagonal, seed);
+    if (!proxy) return fail(proxy.error());
+    Result<DecalSystem> render = systemOver(scene, {}, type, diagonal, seed);
+    if (!render) return fail(render.error());
+    const ShotDecals decals = placeBoth(proxy.value(), render.value(), shots);
+    IouBreakdown b;
+    const std::pair<double*, Taken> variants[] = {{&b.centre, {true, false, false, false}},
+                                                  {&b.frame, {false, true, false, false}},
+                                                  {&b.frameSlant, {false, true, true, false}},
+                                                  {&b.allButDepth, {true, true, true, false}},
+                                                  {&b.all, {true, true, true, true}}};
+    for (const auto& [into, taken] : variants) {
+        Result<std::vector<uint8_t>> mask = probe.mask(camera, variant(decals, taken));
+        if (!mask) return fail(mask.error());
+        *into = iou(reference, mask.value());
+    }
+    return b;
+}
+
+} // namespace spatter::bench

@@ -1,0 +1,35 @@
+#pragma once
+// IouBreakdown: where the coverage IoU of proxy-placed against render-placed decals is lost. The same
+// shots are placed in a system over the proxies and in one over the render meshes; the proxy-placed
+// decals are drawn again with fields taken from the decal the same shot places on the render mesh
+// (where both place one): its centre; its frame; its frame and slant; centre, frame and slant; and
+// all of those with its half-depth. What is still lost with every field taken is the shots that one
+// system places and the other does not (grazing silhouettes, the angle limit met on one surface and
+// not on the other): no correction of a placed decal can win it back.
+
+#include "CoverageProbe.hpp"
+
+#include "spatter/core/DecalType.hpp"
+#include "spatter/core/Result.hpp"
+#include "spatter/core/Scene.hpp"
+#include "spatter/placement/CollisionWorld.hpp"
+#include "spatter/placement/Ray.hpp"
+#include "spatter/render/Camera.hpp"
+
+#include <optional>
+#include <vector>
+
+namespace spatter::bench {
+
+struct IouBreakdown {
+    double centre = 0.0, frame = 0.0, frameSlant = 0.0, allButDepth = 0.0, all = 0.0;
+};
+
+// The IoUs against `reference` (the render-placed decals' mask from `camera`) of the decals `shots`
+// place through `proxies` with decal type `type`, each variant drawn by `probe`.
+Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, const Scene& scene,
+                                  const std::vector<std::optional<Proxy>>& proxies,
+                                  const std::vector<Ray>& shots, const DecalType& type, double diagonal,
+                                  uint64_t seed, const std::vector<uint8_t>& reference);
+
+} // namespace spatter::bench
