@@ -1,7 +1,7 @@
 #include "TestData.hpp"
+#include "ToolGl.hpp"
 
 #include "spatter/core/MeshBuilder.hpp"
-#include "spatter/render/GlContext.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -43,14 +43,6 @@ std::string writeSphere(const std::string& dir) {
     for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
         f << "f " << m.indices[t] + 1 << " " << m.indices[t + 1] + 1 << " " << m.indices[t + 2] + 1 << "\n";
     return path;
-}
-
-std::string noGl() {
-    static const std::string why = [] {
-        Result<GlContext> gl = GlContext::createHeadless();
-        return gl.ok() ? std::string() : gl.error();
-    }();
-    return why;
 }
 
 } // namespace
@@ -108,7 +100,7 @@ TEST(BenchSmoke, TradeoffWritesOneRowPerBackendAndTolerance) {
 }
 
 TEST(BenchSmoke, TradeoffBreaksTheIouDownByTheFieldsTakenFromTheRenderPlacedDecal) {
-    if (!noGl().empty()) GTEST_SKIP() << noGl();
+    SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("bench-iou-breakdown");
     const std::string mesh = writeSphere(dir);
     ASSERT_EQ(runBench("tradeoff " + mesh +
@@ -228,7 +220,7 @@ TEST(BenchSmoke, SkinnedQuickMeasuresEveryModelInOneRun) {
         EXPECT_GE(row["bound"].get<double>(), row["sampled_max"].get<double>()) << row.dump();
     // Without an OpenGL context the rows are there, not measured.
     const bool measured = j["coverage"] == "measured";
-    EXPECT_EQ(measured, noGl().empty()) << j["coverage"].dump();
+    EXPECT_EQ(measured, test::noToolGl().empty()) << j["coverage"].dump();
     for (const auto& row : j["accuracy"]) {
         ASSERT_EQ(row["iou"].is_number(), measured) << row.dump();
         if (!measured) continue;
@@ -255,10 +247,7 @@ TEST(BenchSmoke, SkinnedQuickMeasuresEveryModelInOneRun) {
 }
 
 TEST(BenchSmoke, RenderQuickTimesTheDecalPass) {
-    if (!noGl().empty()) {
-        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
-        GTEST_SKIP() << "no headless OpenGL 4.5 context (" << noGl() << ")";
-    }
+    SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("bench-render");
     ASSERT_EQ(runBench("render --quick --groups count --frames 1 --json " + dir + "/r.json", dir + "/log"), 0)
         << readAll(dir + "/log");
@@ -273,10 +262,7 @@ TEST(BenchSmoke, RenderQuickTimesTheDecalPass) {
 }
 
 TEST(BenchSmoke, CharactersQuickTimesTheFrameWithAndWithoutTheirDecals) {
-    if (!noGl().empty()) {
-        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
-        GTEST_SKIP() << "no headless OpenGL 4.5 context (" << noGl() << ")";
-    }
+    SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("bench-characters");
     ASSERT_EQ(runBench("characters --quick --frames 3 --decals 20 --json " + dir + "/c.json", dir + "/log"),
               0)
@@ -293,10 +279,7 @@ TEST(BenchSmoke, CharactersQuickTimesTheFrameWithAndWithoutTheirDecals) {
 }
 
 TEST(BenchSmoke, RenderPathsTimeEveryPathOfTheProjectorWithTheSameDecals) {
-    if (!noGl().empty()) {
-        if (test::runningInCi()) FAIL() << "CI=true but no headless GL context: " << noGl();
-        GTEST_SKIP() << "no headless OpenGL 4.5 context (" << noGl() << ")";
-    }
+    SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("bench-paths");
     ASSERT_EQ(runBench("render --quick --groups paths --frames 1 --json " + dir + "/p.json", dir + "/log"), 0)
         << readAll(dir + "/log");
@@ -315,10 +298,7 @@ TEST(BenchSmoke, RenderPathsTimeEveryPathOfTheProjectorWithTheSameDecals) {
 }
 
 TEST(BenchSmoke, VolumetricQuickDrawsEveryCraterInAFewInstancedDraws) {
-    if (!noGl().empty()) {
-        if (test::runningInCi()) FAIL() << "CI=true but no headless OpenGL 4.5 context: " << noGl();
-        GTEST_SKIP() << "no headless OpenGL 4.5 context (" << noGl() << ")";
-    }
+    SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("bench-volumetric");
     ASSERT_EQ(runBench("volumetric --quick --frames 1 --json " + dir + "/v.json", dir + "/log"), 0)
         << readAll(dir + "/log");
