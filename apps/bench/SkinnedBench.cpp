@@ -7,6 +7,7 @@
 
 #include "spatter/core/DeformingProxy.hpp"
 #include "spatter/core/MeshDistance.hpp"
+#include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/SceneEvaluator.hpp"
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/core/SkinnedArm.hpp"
@@ -60,7 +61,9 @@ Embree refit), cycling through N poses of the cycle (the poses are evaluated bef
 Spawn: DecalSystem::spawn per call on the skinned object posed at 30% of its cycle (render mesh as
 collision mesh; each hit also anchored to the render surface) against spawn on the same posed mesh
 built as a static object, the same rays (scattered around the posed mesh, 90% aimed at its surface),
-each run into a fresh system with room for every decal. Target: skinned at most 2x static.
+each run into a fresh system with room for every decal; and the same through proxies: the skinned
+object through its 0.5% deforming proxy (each hit then also found on the render mesh and moved
+onto it), the static twin through a 0.5% proxy of its own. Target: skinned at most 2x static.
 
 Drift: decals (5% of the diagonal) shot at several times of the cycle, then the object posed at N
 frames of the whole cycle. For each decal and frame, the distance along the surface (in the plane of
@@ -110,7 +113,8 @@ Needs an OpenGL context. Target: within 2% of the decal's size.
 --json FILE  "targets" and arrays of rows: "models": model, render_triangles, joints, duration_s,
              decal_size, proxy_seconds; "pose_update": model, collision, triangles, ms_per_call,
              within_target; "spawn": model, rays, placed_skinned, placed_static, skinned_ns, static_ns,
-             ratio, within_target; "drift": model, method, decals, samples, median, max, whole_max,
+             ratio, within_target, proxy_skinned_ns, proxy_static_ns, proxy_ratio,
+             proxy_within_target; "drift": model, method, decals, samples, median, max, whole_max,
              within_target (fractions of the decal's size); "pose_bounds": model, proxy, triangles,
              bound, sampled_max, motion, poses, bound_fraction; "accuracy": model, phase, time_s, rays,
              placed_render, placed_proxy, covered_pixels, iou, within_target (null: not measured);
@@ -340,11 +344,44 @@ Result<SpawnTiming> spawnSeconds(const std::function<Result<DecalSystem>()>& mak
 struct SpawnRow {
     std::string model;
     size_t rays = 0;
-    SpawnTiming skinned, statik;
+    SpawnTiming skinned, statik;           // the render mesh as collision mesh
+    SpawnTiming skinnedProxy, staticProxy; // through 0.5% proxies
     double ratio() const { return skinned.seconds / statik.seconds; }
+    double proxyRatio() const { return skinnedProxy.seconds / staticProxy.seconds; }
 };
 
-Result<SpawnRow> measureSpawn(const Model& m, const Sizes& sizes) {
+// The same spawns through `proxy` (the skinned object's deforming proxy) against the static twin
+// through a proxy of its own at the same tolerance.
+Status measureProxySpawn(const Model& m, const Proxy& proxy, const Scene& twin, const Pose& pose,
+                         const std::vector<Ray>& rays, const Sizes& sizes, SpawnRow& row) {
+    Result<SpawnTiming> skinned = spawnSeconds(
+        [&]() -> Result<DecalSystem> {
+            Result<DecalSystem> s = makeSystem(buildWorld(m, proxy), m.decalSize, rays.size());
+            if (!s) return s;
+            if (Status p = setPose(s.value(), m, pose); !p) return fail(p.error());
+            return s;
+        },
+        rays, sizes.runs);
+    if (!skinned) return fail(m.name + ": " + skinned.error());
+    ProxySettings settings;
+    settings.tolerance = kProxyTolerance;
+    settings.toleranceRelative = true;
+    Result<Proxy> own = buildProxy(twin.objects[0].mesh, settings);
+    if (!own) return fail(m.name + ": " + own.error());
+    const std::vector<std::optional<Proxy>> twinProxies = {own.value()};
+    Result<SpawnTiming> statik = spawnSeconds(
+        [&] {
+            return makeSystem(CollisionWorld::build(twin, twinProxies, oneThread()), m.decalSize,
+                              rays.size());
+        },
+        rays, sizes.runs);
+    if (!statik) return fail(m.name + ": " + statik.error());
+    row.skinnedProxy = skinned.value();
+    row.staticProxy = statik.value();
+    return {};
+}
+
+Result<SpawnRow> measureSpawn(const Model& m, const Proxy& proxy, const Sizes& sizes) {
     SceneEvaluator evaluator(m.scene);
     const double t = cycleTime(m, kSpawnPhase);
     const Pose pose = poseAt(m, evaluator, t);
@@ -366,7 +403,9 @@ Result<SpawnRow> measureSpawn(const Model& m, const Sizes& sizes) {
         [&] { return makeSystem(CollisionWorld::build(twin, {}, oneThread()), m.decalSize, rays.size()); },
         rays, sizes.runs);
     if (!statik) return fail(m.name + ": " + statik.error());
-    return SpawnRow{m.name, rays.size(), skinned.value(), statik.value()};
+    SpawnRow row{m.name, rays.size(), skinned.value(), statik.value(), {}, {}};
+    if (Status s = measureProxySpawn(m, proxy, twin, pose, rays, sizes, row); !s) return fail(s.error());
+    return row;
 }
 
 // ---- Drift -----------------------------------------------------------------------------------
@@ -727,9 +766,11 @@ Json spawnSection(const std::vector<ModelReport>& reports) {
     for (const ModelReport& r : reports) {
         const SpawnRow& s = r.spawn;
         const bool met = s.ratio() <= kSpawnTargetRatio;
+        const bool proxyMet = s.proxyRatio() <= kSpawnTargetRatio;
         table.push_back({s.model, std::to_string(s.rays), std::to_string(s.skinned.placed),
                          fixed(s.skinned.seconds * 1e9, 0), fixed(s.statik.seconds * 1e9, 0),
-                         fixed(s.ratio(), 2), verdict(met)});
+                         fixed(s.ratio(), 2), verdict(met), fixed(s.skinnedProxy.seconds * 1e9, 0),
+                         fixed(s.staticProxy.seconds * 1e9, 0), fixed(s.proxyRatio(), 2), verdict(proxyMet)});
         rows.push_back({{"model", s.model},
                         {"rays", s.rays},
                         {"placed_skinned", s.skinned.placed},
@@ -737,10 +778,18 @@ Json spawnSection(const std::vector<ModelReport>& reports) {
                         {"skinned_ns", number(s.skinned.seconds * 1e9)},
                         {"static_ns", number(s.statik.seconds * 1e9)},
                         {"ratio", number(s.ratio())},
-                        {"within_target", met}});
+                        {"within_target", met},
+                        {"proxy_skinned_ns", number(s.skinnedProxy.seconds * 1e9)},
+                        {"proxy_static_ns", number(s.staticProxy.seconds * 1e9)},
+                        {"proxy_ratio", number(s.proxyRatio())},
+                        {"proxy_within_target", proxyMet}});
     }
-    std::printf("\nspawn: on the posed skinned object against the same posed mesh built static\n");
-    printTable({"model", "rays", "placed", "skinned ns", "static ns", "ratio", "within 2x"}, table);
+    std::printf(
+        "\nspawn: on the posed skinned object against the same posed mesh built static, with the render "
+        "mesh as collision mesh and through 0.5%% proxies\n");
+    printTable({"model", "rays", "placed", "skinned ns", "static ns", "ratio", "within 2x",
+                "proxy: skinned ns", "static ns", "ratio", "within 2x"},
+               table);
     return rows;
 }
 
@@ -904,7 +953,7 @@ Result<ModelReport> measureModel(const Model& m, const Sizes& sizes, CoverageCon
         if (!row) return fail(row.error());
         r.pose.push_back(row.value());
     }
-    Result<SpawnRow> spawn = measureSpawn(m, sizes);
+    Result<SpawnRow> spawn = measureSpawn(m, r.proxy.proxy, sizes);
     if (!spawn) return fail(spawn.error());
     r.spawn = spawn.value();
     Result<std::vector<DriftSamples>> drift = measureDrift(m, r.proxy.proxy, sizes);

@@ -1,5 +1,6 @@
 #include "PosedCollisionMesh.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -112,25 +113,45 @@ std::optional<std::pair<double, glm::dvec3>> lineMeets(const glm::dvec3& hit, co
     return std::make_pair(glm::dot(e2, q) / det, glm::dvec3(1.0 - u - v, u, v));
 }
 
+// The render triangles around triangle `near` of the drawn mesh: it and those sharing a corner with
+// it, each once.
+std::vector<uint32_t> ringAround(const PosedCollisionMesh::Drawn& drawn, uint32_t near) {
+    std::vector<uint32_t> triangles;
+    for (int k = 0; k < 3; ++k) {
+        const uint32_t v = drawn.rest.indices[3 * size_t(near) + size_t(k)];
+        for (uint32_t i = drawn.ringStart[v]; i < drawn.ringStart[v + 1]; ++i)
+            if (std::find(triangles.begin(), triangles.end(), drawn.ring[i]) == triangles.end())
+                triangles.push_back(drawn.ring[i]);
+    }
+    return triangles;
+}
+
 // The triangle around render triangle `near` (it and those sharing a corner with it) that the line
-// through `hit` along `direction` meets nearest `hit`, at `pose`.
+// through `hit` along `direction` meets nearest `hit`, at `pose`. Each vertex of the ring is posed
+// once, however many of its triangles share it.
 std::optional<SurfaceAnchor> shotOnRing(const PosedCollisionMesh& mesh, uint32_t near, const glm::dvec3& hit,
                                         const glm::dvec3& direction, const Pose& pose) {
     const PosedCollisionMesh::Drawn& drawn = *mesh.drawn;
+    std::vector<std::pair<uint32_t, glm::dvec3>> posed; // vertex, its position at the pose
+    auto at = [&](uint32_t v) {
+        for (const auto& [vertex, p] : posed)
+            if (vertex == v) return p;
+        const glm::dvec3 p = pose.joints.empty() && pose.morphWeights.empty()
+                                 ? glm::dvec3(drawn.rest.positions[v])
+                                 : posedVertex(drawn.rest.positions, drawn.deformation, v, pose.joints,
+                                               pose.morphWeights, pose.toObject);
+        posed.emplace_back(v, p);
+        return p;
+    };
     std::optional<SurfaceAnchor> best;
     double bestDistance = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 3; ++k) {
-        const uint32_t v = drawn.rest.indices[3 * size_t(near) + size_t(k)];
-        for (uint32_t i = drawn.ringStart[v]; i < drawn.ringStart[v + 1]; ++i) {
-            const uint32_t triangle = drawn.ring[i];
-            const std::optional<std::pair<double, glm::dvec3>> meet =
-                lineMeets(hit, direction,
-                          posedCorners(mesh, drawn.rest.indices, triangle, pose.joints, pose.morphWeights,
-                                       pose.toObject));
-            if (meet && std::abs(meet->first) < bestDistance) {
-                bestDistance = std::abs(meet->first);
-                best = SurfaceAnchor{triangle, meet->second};
-            }
+    for (const uint32_t triangle : ringAround(drawn, near)) {
+        const uint32_t* c = &drawn.rest.indices[3 * size_t(triangle)];
+        const std::optional<std::pair<double, glm::dvec3>> meet =
+            lineMeets(hit, direction, {at(c[0]), at(c[1]), at(c[2])});
+        if (meet && std::abs(meet->first) < bestDistance) {
+            bestDistance = std::abs(meet->first);
+            best = SurfaceAnchor{triangle, meet->second};
         }
     }
     return best;

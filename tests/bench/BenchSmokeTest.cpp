@@ -211,6 +211,7 @@ TEST(BenchSmoke, SkinnedQuickMeasuresEveryModelInOneRun) {
     for (const auto& row : j["spawn"]) {
         EXPECT_GT(row["placed_skinned"].get<size_t>(), 0u) << row.dump();
         EXPECT_GT(row["ratio"].get<double>(), 0.0) << row.dump();
+        EXPECT_GT(row["proxy_ratio"].get<double>(), 0.0) << row.dump();
     }
     for (const auto& row : j["drift"]) {
         EXPECT_GT(row["samples"].get<size_t>(), 0u) << row.dump();
