@@ -145,6 +145,29 @@ std::optional<ClosestPoint> ClosestPointQuery::closest(const glm::dvec3& p) cons
     return out;
 }
 
+std::optional<ClosestPointQuery::RayMeet>
+ClosestPointQuery::firstMeet(const glm::dvec3& origin, const glm::dvec3& direction, double reach) const {
+    if (!impl_->scene || !std::isfinite(reach) || !(reach > 0.0)) return std::nullopt;
+    for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(origin[k]) || !std::isfinite(direction[k])) return std::nullopt;
+    RTCRayHit rh{};
+    rh.ray.org_x = float(origin.x);
+    rh.ray.org_y = float(origin.y);
+    rh.ray.org_z = float(origin.z);
+    rh.ray.dir_x = float(direction.x);
+    rh.ray.dir_y = float(direction.y);
+    rh.ray.dir_z = float(direction.z);
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = float(reach);
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect1(impl_->scene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    return RayMeet{impl_->triangleIds[rh.hit.primID], double(rh.ray.tfar)};
+}
+
 size_t ClosestPointQuery::surfaceTriangleCount() const {
     return impl_->triangleIds.size();
 }

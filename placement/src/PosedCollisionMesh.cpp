@@ -157,28 +157,73 @@ std::optional<SurfaceAnchor> shotOnRing(const PosedCollisionMesh& mesh, uint32_t
     return best;
 }
 
+// `direction` taken from triangle `posed` to triangle `rest` by the affine map between them (their
+// edges, and their normals scaled to the edges' size), unit; nothing for a collapsed triangle.
+std::optional<glm::dvec3> restDirection(const std::array<glm::dvec3, 3>& rest,
+                                        const std::array<glm::dvec3, 3>& posed, const glm::dvec3& direction) {
+    auto frame = [](const std::array<glm::dvec3, 3>& t) {
+        const glm::dvec3 e1 = t[1] - t[0], e2 = t[2] - t[0], n = glm::cross(e1, e2);
+        const double size = std::sqrt(glm::length(n));
+        return glm::dmat3(e1, e2, size > 0.0 ? n / size : n);
+    };
+    const glm::dmat3 from = frame(posed);
+    if (!(std::abs(glm::determinant(from)) > 0.0)) return std::nullopt;
+    const glm::dvec3 d = frame(rest) * (glm::inverse(from) * direction);
+    const double length = glm::length(d);
+    if (!(length > 0.0) || !std::isfinite(length)) return std::nullopt;
+    return d / length;
+}
+
+// The render triangle the shot meets, found at rest (see anchorOf), and where the posed line meets it;
+// nothing when the line at rest meets none within the reach. Where the triangle found does not meet
+// the posed line, its ring is searched.
+std::optional<SurfaceAnchor> shotThroughRest(const PosedCollisionMesh& mesh,
+                                             const std::array<glm::dvec3, 3>& rest,
+                                             const std::array<glm::dvec3, 3>& posed, const glm::dvec3& atRest,
+                                             const CollisionHit& hit, const Pose& pose) {
+    const std::optional<glm::dvec3> along = restDirection(rest, posed, hit.direction);
+    if (!along) return std::nullopt;
+    std::optional<ClosestPointQuery::RayMeet> found;
+    for (const double sign : {1.0, -1.0}) {
+        const std::optional<ClosestPointQuery::RayMeet> m =
+            mesh.drawn->query->firstMeet(atRest, sign * *along, hit.reach);
+        if (m && (!found || m->t < found->t)) found = m;
+    }
+    if (!found) return std::nullopt;
+    const std::optional<std::pair<double, glm::dvec3>> meet = lineMeets(
+        hit.position, hit.direction,
+        posedCorners(mesh, hit.indices, found->triangle, pose.joints, pose.morphWeights, pose.toObject));
+    if (meet) return SurfaceAnchor{found->triangle, meet->second};
+    return shotOnRing(mesh, found->triangle, hit.position, hit.direction, pose);
+}
+
 } // namespace
 
-SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
-                       uint32_t primitive, const glm::dvec3& bary, const glm::dvec3& localPosition,
-                       const glm::dvec3& direction, const Pose& pose) {
-    if (!mesh.drawn) return {primitive, bary};
-    // The collision mesh is not the render mesh: the hit at rest, the nearest render point there,
-    // then that point's barycentric coordinates refined at the pose (the foot of the hit on the
-    // render triangle as it stands).
-    const uint32_t* c = &indices[3 * size_t(primitive)];
-    const glm::dvec3 atRest = bary.x * glm::dvec3(mesh.rest[c[0]]) + bary.y * glm::dvec3(mesh.rest[c[1]]) +
-                              bary.z * glm::dvec3(mesh.rest[c[2]]);
+SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const CollisionHit& hit, const Pose& pose) {
+    if (!mesh.drawn) return {hit.primitive, hit.bary};
+    // The collision mesh is not the render mesh: the hit at rest, the render triangle the shot meets
+    // there or the nearest render point, then that point's barycentric coordinates refined at the pose
+    // (the foot of the hit on the render triangle as it stands).
+    const uint32_t* c = &hit.indices[3 * size_t(hit.primitive)];
+    std::array<glm::dvec3, 3> rest, posed;
+    for (size_t k = 0; k < 3; ++k) {
+        rest[k] = glm::dvec3(mesh.rest[c[k]]);
+        posed[k] = glm::dvec3(hit.posed[c[k]]);
+    }
+    const glm::dvec3 atRest = hit.bary.x * rest[0] + hit.bary.y * rest[1] + hit.bary.z * rest[2];
+    if (hit.direction != glm::dvec3(0.0))
+        if (std::optional<SurfaceAnchor> met = shotThroughRest(mesh, rest, posed, atRest, hit, pose))
+            return *met;
     const std::optional<ClosestPoint> near = mesh.drawn->query->closest(atRest);
-    if (!near) return {primitive, bary};
-    if (direction != glm::dvec3(0.0))
+    if (!near) return {hit.primitive, hit.bary};
+    if (hit.direction != glm::dvec3(0.0))
         if (std::optional<SurfaceAnchor> met =
-                shotOnRing(mesh, near->triangle, localPosition, direction, pose))
+                shotOnRing(mesh, near->triangle, hit.position, hit.direction, pose))
             return *met;
     const std::array<glm::dvec3, 3> render =
-        posedCorners(mesh, indices, near->triangle, pose.joints, pose.morphWeights, pose.toObject);
+        posedCorners(mesh, hit.indices, near->triangle, pose.joints, pose.morphWeights, pose.toObject);
     return {near->triangle,
-            barycentric(alongShot(localPosition, direction, render), render[0], render[1], render[2])};
+            barycentric(alongShot(hit.position, hit.direction, render), render[0], render[1], render[2])};
 }
 
 std::optional<glm::dmat4> anchorFrame(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,

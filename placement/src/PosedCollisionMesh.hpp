@@ -61,15 +61,24 @@ struct Pose {
     glm::dmat4 toObject;
 };
 
-// The point of the drawn surface that a shot along `direction` (object space; zero: none) meeting
-// collision triangle `primitive` (`indices`: the collision mesh's) at `localPosition` (object space,
-// barycentric coordinates `bary` there) stands for, at `pose`: where the shot's line meets, nearest
-// the hit, a render triangle around the one nearest the hit at rest (that triangle and those that
-// share a corner with it, posed); failing that, where it meets the nearest one's plane (the foot of
-// the hit without a shot).
-SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
-                       uint32_t primitive, const glm::dvec3& bary, const glm::dvec3& localPosition,
-                       const glm::dvec3& direction, const Pose& pose);
+// A shot's hit on a posed collision mesh, in the object's space.
+struct CollisionHit {
+    const std::vector<glm::vec3>& posed;  // the collision mesh at the pose
+    const std::vector<uint32_t>& indices; // its triangles
+    uint32_t primitive = 0;               // the triangle hit
+    glm::dvec3 bary{0.0};                 // the hit's barycentric coordinates in it
+    glm::dvec3 position{0.0};             // the hit
+    glm::dvec3 direction{0.0};            // the shot (zero: none)
+    double reach = 0.0;                   // how far along the shot the drawn surface is sought
+};
+
+// The point of the drawn surface that `hit` stands for, at `pose`. With a shot: where its line meets
+// the render triangle found at rest along the line taken there through the hit triangle's own
+// deformation, within the reach (the triangle posed, and met by the line as it stands); else where it
+// meets, nearest the hit, a render triangle around the one nearest the hit at rest (that triangle and
+// those that share a corner with it, posed); failing both, where it meets the nearest one's plane
+// (the foot of the hit without a shot).
+SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const CollisionHit& hit, const Pose& pose);
 
 // The frame of `anchor` at `pose`: columns the direction of its triangle's first edge, the in-plane
 // perpendicular, the triangle's normal and, as translation, the anchor's point, in object space.

@@ -8,7 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <optional>
 
 using namespace spatter;
 using namespace spatter::test;
@@ -87,6 +89,33 @@ TEST(ClosestPointQuery, NonFiniteQueryPointAnswersNothing) {
     Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
     ASSERT_TRUE(q);
     EXPECT_FALSE(q->closest({std::numeric_limits<double>::infinity(), 0, 0}));
+}
+
+TEST(ClosestPointQuery, RayMeetsTheFirstTriangleWithinReachAndNamesItsMeshIndex) {
+    // A degenerate triangle first (left out of the surface), then two parallel triangles at z = 1, 3.
+    const Mesh m = triangleMesh({{0, 0, 0},
+                                 {1, 0, 0},
+                                 {2, 0, 0},
+                                 {-1, -1, 1},
+                                 {3, -1, 1},
+                                 {-1, 3, 1},
+                                 {-1, -1, 3},
+                                 {3, -1, 3},
+                                 {-1, 3, 3}},
+                                {0, 1, 2, 3, 4, 5, 6, 7, 8});
+    Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
+    ASSERT_TRUE(q) << q.error();
+    const std::optional<ClosestPointQuery::RayMeet> up = q->firstMeet({0.5, 0.5, 0.0}, {0, 0, 1}, 10.0);
+    ASSERT_TRUE(up);
+    EXPECT_EQ(up->triangle, 1u);
+    EXPECT_NEAR(up->t, 1.0, 1e-6);
+    const std::optional<ClosestPointQuery::RayMeet> down = q->firstMeet({0.5, 0.5, 4.0}, {0, 0, -1}, 10.0);
+    ASSERT_TRUE(down);
+    EXPECT_EQ(down->triangle, 2u);
+    EXPECT_FALSE(q->firstMeet({0.5, 0.5, 0.0}, {0, 0, 1}, 0.9));   // out of reach
+    EXPECT_FALSE(q->firstMeet({0.5, 0.5, 0.0}, {0, 0, -1}, 10.0)); // away from both
+    EXPECT_FALSE(q->firstMeet({std::nan(""), 0.5, 0.0}, {0, 0, 1}, 10.0));
+    EXPECT_FALSE(q->firstMeet({0.5, 0.5, 0.0}, {0, 0, 1}, std::numeric_limits<double>::infinity()));
 }
 
 TEST(MeshDistance, ParallelSquaresAreTheirOffsetApart) {

@@ -47,8 +47,8 @@ struct ClosestPoint {
     uint32_t triangle = 0; // index of the triangle holding `point` in the mesh (indices[3 * triangle])
 };
 
-// Nearest-point queries on one mesh's surface. Copies what it needs: the mesh may be destroyed after
-// create(). Move-only.
+// Nearest-point queries on one mesh's surface (and ray queries on the same structure). Copies what it needs:
+// the mesh may be destroyed after create(). Move-only.
 class ClosestPointQuery {
 public:
     // Builds the query structure. Fails on an index count that is not a multiple of 3, an index past
@@ -63,6 +63,16 @@ public:
     // The nearest surface point to `p`, exact up to double rounding. Empty when the mesh has no
     // surface or `p` is not finite.
     std::optional<ClosestPoint> closest(const glm::dvec3& p) const;
+
+    // Where the ray from `origin` along unit `direction` first meets the surface within `reach`
+    // (single precision): the triangle (an index of the mesh) and the distance. Empty when it meets
+    // none, or for a value that is not finite.
+    struct RayMeet {
+        uint32_t triangle = 0;
+        double t = 0.0;
+    };
+    std::optional<RayMeet> firstMeet(const glm::dvec3& origin, const glm::dvec3& direction,
+                                     double reach) const;
 
     // Number of triangles with non-zero area (the ones that make up the surface).
     size_t surfaceTriangleCount() const;

@@ -157,10 +157,11 @@ public:
                                     const std::vector<double>& morphWeights);
     // The point of a skinned or morphed object's drawn surface that a hit on its collision mesh
     // stands for: the hit (triangle `primitive`, Hit::primitive, at `localPosition`,
-    // Hit::localPosition) taken back to the rest pose and to the render triangle nearest it there,
-    // then where the shot (`localDirection`, object space; zero for none) meets that triangle's plane
-    // at the current pose (without a shot, the foot of the hit on it). Empty for an object that does
-    // not deform, is not in the world, or a primitive out of range.
+    // Hit::localPosition) and the shot (`localDirection`, object space; zero for none) taken back to
+    // the rest pose, to the render triangle the shot's line meets there nearest the hit (else the
+    // one nearest the hit, and those around it), then where the shot meets that triangle at the
+    // current pose (without a shot, the foot of the hit on it). Empty for an object that does not
+    // deform, is not in the world, or a primitive out of range.
     std::optional<SurfaceAnchor> anchorAt(uint32_t object, uint32_t primitive,
                                           const glm::dvec3& localPosition,
                                           const glm::dvec3& localDirection = glm::dvec3(0.0)) const;
