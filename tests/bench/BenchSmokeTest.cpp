@@ -45,6 +45,16 @@ std::string writeSphere(const std::string& dir) {
     return path;
 }
 
+// Runs spatter-bench tradeoff with `options` on a sphere written to a scratch folder named `name`;
+// its JSON, or null when it failed (the log is then reported).
+nlohmann::json tradeoffOnSphere(const std::string& name, const std::string& options) {
+    const std::string dir = test::scratchDir(name);
+    const int code =
+        runBench("tradeoff " + writeSphere(dir) + " " + options + " --json " + dir + "/t.json", dir + "/log");
+    EXPECT_EQ(code, 0) << readAll(dir + "/log");
+    return code == 0 ? readJson(dir + "/t.json") : nlohmann::json();
+}
+
 } // namespace
 
 TEST(BenchSmoke, PlacementQuickWritesTheContractKeys) {
@@ -68,18 +78,10 @@ TEST(BenchSmoke, PlacementQuickWritesTheContractKeys) {
 }
 
 TEST(BenchSmoke, TradeoffWritesOneRowPerBackendAndTolerance) {
-    const std::string dir = test::scratchDir("bench-tradeoff");
-    const std::string mesh = writeSphere(dir);
-    ASSERT_EQ(runBench("tradeoff " + mesh +
-                           " --subdivide 1 --backends meshopt --tolerances 1,5 --rays 300 --passes 1 "
-                           "--no-render --no-peer "
-                           "--json " +
-                           dir + "/t.json",
-                       dir + "/log"),
-              0)
-        << readAll(dir + "/log");
-    const nlohmann::json j = readJson(dir + "/t.json");
-    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << readAll(dir + "/t.json");
+    const nlohmann::json j =
+        tradeoffOnSphere("bench-tradeoff", "--subdivide 1 --backends meshopt --tolerances 1,5 --rays 300 "
+                                           "--passes 1 --no-render --no-peer");
+    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << j.dump();
     ASSERT_EQ(j["rows"].size(), 3u); // the render mesh, then meshopt at 1% and 5%
     EXPECT_EQ(j["rows"][0]["backend"], "render");
     EXPECT_EQ(j["rows"][0]["proxy_triangles"], 4 * 2048); // one Loop step
@@ -101,17 +103,11 @@ TEST(BenchSmoke, TradeoffWritesOneRowPerBackendAndTolerance) {
 
 TEST(BenchSmoke, TradeoffBreaksTheIouDownByTheFieldsTakenFromTheRenderPlacedDecal) {
     SPATTER_REQUIRE_TOOL_GL();
-    const std::string dir = test::scratchDir("bench-iou-breakdown");
-    const std::string mesh = writeSphere(dir);
-    ASSERT_EQ(runBench("tradeoff " + mesh +
-                           " --backends meshopt --tolerances 1 --rays 300 --passes 1 --coverage-decals 40 "
-                           "--size 320x240 --no-peer --iou-breakdown --json " +
-                           dir + "/t.json",
-                       dir + "/log"),
-              0)
-        << readAll(dir + "/log");
-    const nlohmann::json j = readJson(dir + "/t.json");
-    ASSERT_EQ(j["rows"].size(), 2u) << readAll(dir + "/t.json");
+    const nlohmann::json j = tradeoffOnSphere(
+        "bench-iou-breakdown", "--backends meshopt --tolerances 1 --rays 300 --passes 1 "
+                               "--coverage-decals 40 --size 320x240 --no-peer --iou-breakdown");
+    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << j.dump();
+    ASSERT_EQ(j["rows"].size(), 2u) << j.dump();
     const nlohmann::json& proxy = j["rows"][1];
     ASSERT_TRUE(proxy.contains("iou_breakdown")) << proxy.dump();
     const nlohmann::json& b = proxy["iou_breakdown"];
