@@ -47,8 +47,8 @@ struct ClosestPoint {
     uint32_t triangle = 0; // index of the triangle holding `point` in the mesh (indices[3 * triangle])
 };
 
-// Nearest-point queries on one mesh's surface (and ray queries on the same structure). Copies what it needs:
-// the mesh may be destroyed after create(). Move-only.
+// Nearest-point queries on one mesh's surface, and ray queries on the same structure. Copies what it
+// needs: the mesh may be destroyed after create(). Move-only.
 class ClosestPointQuery {
 public:
     // Builds the query structure. Fails on an index count that is not a multiple of 3, an index past
