@@ -1025,9 +1025,9 @@ std::optional<SurfaceAnchor> CollisionWorld::anchorAt(uint32_t object, uint32_t 
     const uint32_t* c = &od.indices[3 * size_t(primitive)];
     const glm::dvec3 bary = barycentric(localPosition, glm::dvec3(od.positions[c[0]]),
                                         glm::dvec3(od.positions[c[1]]), glm::dvec3(od.positions[c[2]]));
-    // The drawn surface lies within h of the proxy: along a shot up to 75 degrees off its normal,
-    // within 4h (and a hair more, for a proxy that is the drawn mesh itself).
-    const double reach = 4.0 * od.info.errorBound + 1e-6 * double(od.info.localBounds.diagonal());
+    // The drawn surface lies within h of the proxy: along a shot up to 82 degrees off its normal,
+    // within 8h (and a hair more, for a proxy that is the drawn mesh itself).
+    const double reach = 8.0 * od.info.errorBound + 1e-6 * double(od.info.localBounds.diagonal());
     const CollisionHit hit{od.positions, od.indices, primitive, bary, localPosition, localDirection, reach};
     return anchorOf(*od.posable, hit, Pose{od.poseJoints, od.poseMorphs, od.inverse});
 }
