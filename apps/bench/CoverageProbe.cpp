@@ -12,6 +12,15 @@ DecalSettings unlimited(double diagonal, uint64_t seed) {
     return s;
 }
 
+Result<DecalSystem> coverageSystem(Result<CollisionWorld> world, const DecalType& type, double diagonal,
+                                   uint64_t seed) {
+    if (!world) return fail(world.error());
+    Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), unlimited(diagonal, seed));
+    if (!system) return system;
+    if (Result<uint16_t> t = system->registerType(type); !t) return fail(t.error());
+    return system;
+}
+
 DecalType coverageType(double size) {
     DecalType t;
     t.name = "coverage";

@@ -23,6 +23,11 @@ namespace spatter::bench {
 // probe draws the decal of every shot it compares.
 DecalSettings unlimited(double diagonal, uint64_t seed);
 
+// A decal system over `world` (its error, if it failed) with unlimited(diagonal, seed) settings and
+// `type` as its type 0: what a probe's decals are placed by.
+Result<DecalSystem> coverageSystem(Result<CollisionWorld> world, const DecalType& type, double diagonal,
+                                   uint64_t seed);
+
 // A coverage type of `size`: no random rotation, so that a decal's frame depends on its ray only, not
 // on the shots before it that one surface caught and the other missed.
 DecalType coverageType(double size);

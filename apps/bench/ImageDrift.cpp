@@ -58,9 +58,9 @@ public:
         type.texture = layer.value();
         type.normalMap = false;
         renderer->setDecalTypes({type});
-        Result<DecalSystem> system = DecalSystem::create(*in.scene, unlimited(20.0 * in.decalSize, 5));
+        Result<DecalSystem> system =
+            coverageSystem(CollisionWorld::build(*in.scene), type, 20.0 * in.decalSize, 5);
         if (!system) return fail(system.error());
-        if (Result<uint16_t> t = system->registerType(type); !t) return fail(t.error());
         std::vector<uint8_t> ids(in.scene->objects.size());
         for (uint32_t o = 0; o < ids.size(); ++o)
             ids[o] = system->objectId(o);
@@ -82,11 +82,7 @@ public:
 
     // The albedo view with `decals`, and its FrameStats.
     Result<Image> draw(const std::vector<Decal>& decals, FrameStats* stats = nullptr) {
-        renderer_.setDecals(decals);
-        Result<FrameStats> st = renderer_.render(in_.camera, View::Albedo);
-        if (!st) return fail(st.error());
-        if (stats) *stats = st.value();
-        return renderer_.readback();
+        return tracking::drawAlone(renderer_, in_.camera, View::Albedo, decals, stats);
     }
 
     // The posed render surface in world space.
@@ -98,15 +94,17 @@ public:
         return p;
     }
 
-    // How squarely the posed surface at `a` faces the eye: the cosine between its normal (either side)
-    // and the view.
-    double facing(const SurfaceAnchor& a) const {
+    // The surface point `a` in the current pose, in the world, and how squarely it faces the eye.
+    struct SeenPoint {
+        glm::dvec3 world{0.0};
+        double cosine = 0.0;
+    };
+    SeenPoint seen(const SurfaceAnchor& a) const {
         const Mesh& mesh = in_.scene->objects[in_.object].mesh;
         const std::vector<glm::dvec3> p = worldPositions();
         const uint32_t* c = cornersOf(mesh, a);
-        const glm::dvec3 n = glm::normalize(glm::cross(p[c[1]] - p[c[0]], p[c[2]] - p[c[0]]));
-        const glm::dvec3 toEye = in_.camera.eye - pointOf(mesh, p, a);
-        return std::abs(glm::dot(n, glm::normalize(toEye)));
+        const glm::dvec3 world = pointOf(mesh, p, a);
+        return {world, tracking::facingCosine(p[c[0]], p[c[1]], p[c[2]], world, in_.camera.eye)};
     }
 
     // The pixel of a world point, and the decal's size in pixels there.
@@ -262,10 +260,10 @@ private:
     // not show whole (tracking::showsWhole: hidden in part, clipped where the decal slid, or the point
     // seen nearly edge-on).
     std::optional<double> drawnCentreDrift(const Followed& f, const Marker& m) const {
-        const glm::dvec3 point = pointOf(in_.scene->objects[in_.object].mesh, rig_.worldPositions(), f.point);
-        const double size = rig_.sizePixels(point);
-        if (!tracking::showsWhole(m, rig_.facing(f.point), size)) return std::nullopt;
-        return glm::length(m.centre - rig_.project(point)) / size;
+        const DriftRig::SeenPoint at = rig_.seen(f.point);
+        const double size = rig_.sizePixels(at.world);
+        if (!tracking::showsWhole(m, at.cosine, size)) return std::nullopt;
+        return glm::length(m.centre - rig_.project(at.world)) / size;
     }
 
     DriftRig& rig_;

@@ -11,16 +11,6 @@ struct Taken {
     bool centre = false, frame = false, slant = false, depth = false;
 };
 
-Result<DecalSystem> systemOver(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
-                               const DecalType& type, double diagonal, uint64_t seed) {
-    Result<CollisionWorld> world = CollisionWorld::build(scene, proxies);
-    if (!world) return fail(world.error());
-    Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), unlimited(diagonal, seed));
-    if (!system) return system;
-    if (Result<uint16_t> t = system->registerType(type); !t) return fail(t.error());
-    return system;
-}
-
 // Each shot's decal in both systems (nothing where a system places none).
 struct ShotDecals {
     std::vector<std::optional<Decal>> proxy, render;
@@ -58,9 +48,9 @@ Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, co
                                   const std::vector<std::optional<Proxy>>& proxies,
                                   const std::vector<Ray>& shots, const DecalType& type, double diagonal,
                                   uint64_t seed, const std::vector<uint8_t>& reference) {
-    Result<DecalSystem> proxy = systemOver(scene, proxies, type, diagonal, seed);
+    Result<DecalSystem> proxy = coverageSystem(CollisionWorld::build(scene, proxies), type, diagonal, seed);
     if (!proxy) return fail(proxy.error());
-    Result<DecalSystem> render = systemOver(scene, {}, type, diagonal, seed);
+    Result<DecalSystem> render = coverageSystem(CollisionWorld::build(scene), type, diagonal, seed);
     if (!render) return fail(render.error());
     const ShotDecals decals = placeBoth(proxy.value(), render.value(), shots);
     IouBreakdown b;

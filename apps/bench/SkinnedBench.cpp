@@ -606,11 +606,8 @@ struct Coverage {
 // drawn by `probe`, whose scene stands in the same pose.
 Result<Coverage> shotCoverage(const Model& m, const std::optional<Proxy>& proxy, const Pose& pose,
                               const std::vector<Ray>& shots, CoverageProbe& probe, const Camera& camera) {
-    Result<CollisionWorld> world = buildWorld(m, proxy);
-    if (!world) return fail(world.error());
-    Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), unlimited(m.diagonal, 1));
+    Result<DecalSystem> system = coverageSystem(buildWorld(m, proxy), probe.type(), m.diagonal, 1);
     if (!system) return fail(system.error());
-    if (Result<uint16_t> type = system->registerType(probe.type()); !type) return fail(type.error());
     if (Status s = setPose(system.value(), m, pose); !s) return fail(s.error());
     for (const Ray& ray : shots)
         system->spawn(ray, 0);

@@ -135,15 +135,12 @@ struct ShotCoverage {
     // projected along `projection`.
     Result<std::vector<uint8_t>> mask(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
                                       double diagonal, uint64_t seed, Projection projection) {
-        Result<CollisionWorld> world = CollisionWorld::build(scene, proxies);
-        if (!world) return fail(world.error());
-        Result<DecalSystem> sys = DecalSystem::create(std::move(world).value(), unlimited(diagonal, seed));
-        if (!sys) return fail(sys.error());
         DecalType t = probe.type();
         t.projection = projection;
-        const uint16_t type = sys->registerType(t).value();
+        Result<DecalSystem> sys = coverageSystem(CollisionWorld::build(scene, proxies), t, diagonal, seed);
+        if (!sys) return fail(sys.error());
         std::vector<SpawnResult> results;
-        sys->spawnBatch(shots, type, results);
+        sys->spawnBatch(shots, 0, results);
         return probe.mask(camera, sys->decals());
     }
 

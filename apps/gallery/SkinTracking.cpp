@@ -43,13 +43,20 @@ Result<SurfacePoint> nearestPoint(const Mesh& mesh, const glm::dvec3& local) {
                                     glm::dvec3(mesh.positions[k[1]]), glm::dvec3(mesh.positions[k[2]]))};
 }
 
-glm::dvec3 worldPoint(const GallerySim& sim, uint32_t object, const SurfacePoint& p) {
+// A surface point as the sim's pose puts it: in the world, and how squarely it faces `eye`.
+struct SeenPoint {
+    glm::dvec3 world{0.0};
+    double cosine = 0.0;
+};
+
+SeenPoint seenPoint(const GallerySim& sim, uint32_t object, const SurfacePoint& p, const glm::dvec3& eye) {
     const Mesh m = posedMesh(sim, object);
     const uint32_t* k = &m.indices[3 * size_t(p.triangle)];
-    const glm::dvec3 local = p.bary.x * glm::dvec3(m.positions[k[0]]) +
-                             p.bary.y * glm::dvec3(m.positions[k[1]]) +
-                             p.bary.z * glm::dvec3(m.positions[k[2]]);
-    return glm::dvec3(sim.transform(object) * glm::dvec4(local, 1.0));
+    glm::dvec3 c[3];
+    for (int i = 0; i < 3; ++i)
+        c[i] = glm::dvec3(sim.transform(object) * glm::dvec4(glm::dvec3(m.positions[k[i]]), 1.0));
+    const glm::dvec3 world = p.bary.x * c[0] + p.bary.y * c[1] + p.bary.z * c[2];
+    return {world, tracking::facingCosine(c[0], c[1], c[2], world, eye)};
 }
 
 // The newest fully opaque flat decal on a deforming target, or null. (A volumetric crater keeps the
@@ -61,24 +68,6 @@ const Decal* newestOnSkin(const GallerySim& sim) {
             (!found || d.spawnTime > found->spawnTime))
             found = &d;
     return found;
-}
-
-// The albedo view of `decals` alone.
-Result<Image> albedoOf(Renderer& renderer, const Camera& camera, const std::vector<Decal>& decals) {
-    renderer.setDecals(decals);
-    if (Result<FrameStats> st = renderer.render(camera, View::Albedo); !st) return fail(st.error());
-    return renderer.readback();
-}
-
-// How squarely the surface at `p` of the posed mesh `m` faces the eye (either side).
-double facing(const Mesh& m, const glm::dmat4& toWorld, const SurfacePoint& p, const glm::dvec3& eye) {
-    const uint32_t* k = &m.indices[3 * size_t(p.triangle)];
-    glm::dvec3 c[3];
-    for (int i = 0; i < 3; ++i)
-        c[i] = glm::dvec3(toWorld * glm::dvec4(glm::dvec3(m.positions[k[i]]), 1.0));
-    const glm::dvec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
-    const glm::dvec3 point = p.bary.x * c[0] + p.bary.y * c[1] + p.bary.z * c[2];
-    return std::abs(glm::dot(glm::normalize(n), glm::normalize(eye - point)));
 }
 
 // The index of a copy of type `of` drawn with the centre marker, appended to the renderer's types (for
@@ -114,7 +103,7 @@ Result<nlohmann::ordered_json> trackSkinnedDecal(GallerySim& sim, Renderer& rend
     const int w = renderer.settings().width, h = renderer.settings().height;
 
     double worldDrift = 0.0, imageDrift = 0.0, imageDriftPx = 0.0, moved = 0.0, sizePx = 0.0;
-    int seen = 0;
+    int framesSeen = 0;
     std::optional<glm::dvec2> first;
     for (int frame = 0; frame <= kFrames; ++frame) {
         if (frame > 0) sim.advance(kFrameSeconds);
@@ -123,18 +112,17 @@ Result<nlohmann::ordered_json> trackSkinnedDecal(GallerySim& sim, Renderer& rend
         syncRenderer(renderer, sim);
         Decal marked = *decal;
         marked.type = marker.value();
-        Result<Image> bare = albedoOf(renderer, camera, {});
+        Result<Image> bare = tracking::drawAlone(renderer, camera, View::Albedo, {});
         if (!bare) return fail(bare.error());
-        Result<Image> with = albedoOf(renderer, camera, {marked});
+        Result<Image> with = tracking::drawAlone(renderer, camera, View::Albedo, {marked});
         if (!with) return fail(with.error());
-        const glm::dvec3 point = worldPoint(sim, object, placedOn.value());
+        const SeenPoint at = seenPoint(sim, object, placedOn.value(), camera.eye);
+        const glm::dvec3& point = at.world;
         worldDrift = std::max(worldDrift, glm::length(sim.decals().worldBox(*decal).center - point));
         const tracking::Marker m = tracking::findMarker(with.value(), bare.value());
         const double across = tracking::pixelsAcross(camera, h, size, point);
-        const double cosine =
-            facing(posedMesh(sim, object), sim.transform(object), placedOn.value(), camera.eye);
-        if (!tracking::showsWhole(m, cosine, across)) continue; // turned away or hidden this frame
-        ++seen;
+        if (!tracking::showsWhole(m, at.cosine, across)) continue; // turned away or hidden this frame
+        ++framesSeen;
         if (!first) first = m.centre;
         moved = std::max(moved, glm::length(m.centre - *first));
         sizePx = std::max(sizePx, across);
@@ -149,7 +137,7 @@ Result<nlohmann::ordered_json> trackSkinnedDecal(GallerySim& sim, Renderer& rend
     out["decal_id"] = id;
     out["type"] = sim.types()[type].name;
     out["frames"] = kFrames;
-    out["frames_seen"] = seen;
+    out["frames_seen"] = framesSeen;
     out["image_moved_px"] = moved;
     out["image_drift_px"] = imageDriftPx;
     out["image_drift_of_size"] = imageDrift;

@@ -1,5 +1,7 @@
 #include "Tracking.hpp"
 
+#include "DecalMarker.hpp"
+
 namespace spatter::gallery {
 
 const Decal* findDecal(const DecalSystem& system, uint32_t id) {
@@ -8,21 +10,11 @@ const Decal* findDecal(const DecalSystem& system, uint32_t id) {
     return nullptr;
 }
 
-namespace {
-
-Result<Image> coverage(Renderer& renderer, const Camera& camera, const std::vector<Decal>& decals) {
-    renderer.setDecals(decals);
-    if (Result<FrameStats> st = renderer.render(camera, View::Coverage); !st) return fail(st.error());
-    return renderer.readback();
-}
-
-} // namespace
-
 Result<std::optional<glm::dvec2>> decalCentroid(Renderer& renderer, const Camera& camera,
                                                 const Decal& decal) {
-    Result<Image> without = coverage(renderer, camera, {});
+    Result<Image> without = tracking::drawAlone(renderer, camera, View::Coverage, {});
     if (!without) return fail(without.error());
-    Result<Image> with = coverage(renderer, camera, {decal});
+    Result<Image> with = tracking::drawAlone(renderer, camera, View::Coverage, {decal});
     if (!with) return fail(with.error());
     glm::dvec2 sum(0.0);
     size_t count = 0;

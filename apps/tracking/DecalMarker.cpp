@@ -70,6 +70,20 @@ bool showsWhole(const Marker& m, double cosine, double sizePixels) {
     return cosine >= kLeastCosine && m.weight > 0.0 && m.weight >= kShownShare * disc;
 }
 
+Result<Image> drawAlone(Renderer& renderer, const Camera& camera, View view, const std::vector<Decal>& decals,
+                        FrameStats* stats) {
+    renderer.setDecals(decals);
+    Result<FrameStats> st = renderer.render(camera, view);
+    if (!st) return fail(st.error());
+    if (stats) *stats = st.value();
+    return renderer.readback();
+}
+
+double facingCosine(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& p,
+                    const glm::dvec3& eye) {
+    return std::abs(glm::dot(glm::normalize(glm::cross(b - a, c - a)), glm::normalize(eye - p)));
+}
+
 glm::dvec2 pixelOf(const Camera& camera, int width, int height, const glm::dvec3& world) {
     const glm::dvec4 clip = projection(camera, double(width) / height) * viewRotation(camera) *
                             glm::dvec4(world - camera.eye, 1.0);

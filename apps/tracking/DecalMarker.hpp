@@ -8,6 +8,9 @@
 
 #include "spatter/core/Image.hpp"
 #include "spatter/render/Camera.hpp"
+#include "spatter/render/Renderer.hpp"
+
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -30,6 +33,16 @@ Marker findMarker(const Image& with, const Image& without);
 // under it faces the view at `cosine` (at least 0.5: nearly edge-on, an image cannot place a centre)
 // and the decal is `sizePixels` wide.
 bool showsWhole(const Marker& m, double cosine, double sizePixels);
+
+// The view `view` of `renderer` from `camera` with `decals` alone (its FrameStats into `stats`, when
+// given). Leaves the renderer drawing them.
+Result<Image> drawAlone(Renderer& renderer, const Camera& camera, View view, const std::vector<Decal>& decals,
+                        FrameStats* stats = nullptr);
+
+// How squarely the triangle (a, b, c) faces `eye` at its point `p`: the cosine between its normal
+// (either side) and the direction to the eye.
+double facingCosine(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& p,
+                    const glm::dvec3& eye);
 
 // Pixel position (x right, y down) of a world point seen by `camera` in a width x height image.
 glm::dvec2 pixelOf(const Camera& camera, int width, int height, const glm::dvec3& world);
