@@ -1016,9 +1016,9 @@ Result<TransformUpdate> CollisionWorld::setPose(uint32_t object, const glm::dmat
     return setTransform(object, transform);
 }
 
-std::optional<SurfaceAnchor> CollisionWorld::anchorAt(uint32_t object, uint32_t primitive,
-                                                      const glm::dvec3& localPosition,
-                                                      const glm::dvec3& localDirection) const {
+std::optional<SurfaceLocation> CollisionWorld::anchorAt(uint32_t object, uint32_t primitive,
+                                                        const glm::dvec3& localPosition,
+                                                        const glm::dvec3& localDirection) const {
     if (object >= impl_->objects.size()) return std::nullopt;
     const ObjectData& od = impl_->objects[object];
     if (!od.posable || !od.info.inWorld || size_t(primitive) >= od.indices.size() / 3) return std::nullopt;

@@ -287,9 +287,13 @@ struct DecalSystem::Impl {
     // (unit), its tangent from `worldHint`, which is the shot's direction when `shot` is set (and then
     // the projection axis of a type projected along the shot). Every check but the box and the limits
     // has passed. The random numbers are drawn first and given back (the generator restored) when a
-    // check fails.
+    // check fails. `onDrawnSurface`: `local` lies on the drawn surface, not on the collision mesh, so
+    // no proxy error is left for the box to hold: its half-depth is depthMargin times its size (1% at
+    // least), whatever its type asks, because on a body a deeper box would reach the torso behind an
+    // arm.
     SpawnResult place(uint32_t objectIndex, const glm::dvec3& local, const glm::dvec3& worldNormal,
-                      const glm::dvec3& worldHint, uint16_t typeIndex, bool shot = false) {
+                      const glm::dvec3& worldHint, uint16_t typeIndex, bool shot = false,
+                      bool onDrawnSurface = false) {
         const CollisionObject& o = object(objectIndex);
         const DecalType& t = types[typeIndex];
         const Rng unused = rng;
@@ -302,8 +306,11 @@ struct DecalSystem::Impl {
         const glm::vec2 size = t.size * scale;
         const glm::dmat3 m(o.transform);
         const double h = world.worldErrorBound(objectIndex);
-        const float halfDepth =
-            std::max(t.halfDepth, float(h + double(settings.depthMargin) * double(std::max(size.x, size.y))));
+        constexpr double kMinDrawnDepth = 0.01; // of the size: a box that still holds the surface under it
+        const double extent = double(std::max(size.x, size.y));
+        const float halfDepth = onDrawnSurface
+                                    ? float(std::max(double(settings.depthMargin), kMinDrawnDepth) * extent)
+                                    : std::max(t.halfDepth, float(h + double(settings.depthMargin) * extent));
 
         // To object space: normals by the transpose, tangents by the inverse.
         const glm::dmat3 inv = glm::inverse(m);
@@ -385,24 +392,34 @@ struct DecalSystem::Impl {
                                                          formatNumber(angle) +
                                                          " degrees from its normal (type '" + t.name +
                                                          "' allows " + formatNumber(t.maxAngleDeg) + ")");
-        SpawnResult placed = place(hit->object, hit->localPosition, hit->normal, dir, typeIndex, true);
-        if (placed.placed()) settleOnDrawnSurface(placed.handle.slot, hit->primitive, dir);
+        // On a skinned or morphed object the shot lands on the drawn surface and is anchored there
+        // (SkinAnchors), so that the decal follows the pose; volumetric decals keep the proxy's hit,
+        // where their crater is clipped.
+        const std::optional<SurfaceLocation> drawn = drawnSurfaceUnder(*hit, dir);
+        SpawnResult placed = drawn && !t.volumetric
+                                 ? place(hit->object, glm::dvec3(drawn->frame[3]),
+                                         drawnNormal(*hit, *drawn, dir), dir, typeIndex, true, true)
+                                 : place(hit->object, hit->localPosition, hit->normal, dir, typeIndex, true);
+        if (placed.placed() && drawn) anchors.add(placed.handle.slot, decals.back(), *drawn);
         return placed;
     }
 
-    // A decal just placed on a skinned or morphed object: moved onto the drawn surface
-    // (moveOntoDrawnSurface) and anchored there (SkinAnchors), so that it follows the pose. Volumetric
-    // decals keep the box their crater was clipped in.
-    void settleOnDrawnSurface(uint32_t slot, uint32_t primitive, const glm::dvec3& shot) {
-        Decal& d = decals.back();
-        if (!object(d.object).dynamic) return; // only dynamic objects deform: static ones pay nothing
-        const glm::dvec3 local = glm::inverse(glm::dmat3(object(d.object).transform)) * shot;
-        const std::optional<SkinAnchors::Location> at = SkinAnchors::locate(d, primitive, local, world);
-        if (!at) return;
-        const DecalType& t = types[d.type];
-        if (!t.volumetric)
-            moveOntoDrawnSurface(d, at->frame, shot, t, settings.depthMargin, object(d.object).transform);
-        anchors.add(slot, d, *at);
+    // Where the shot along `dir` (world space) that made `hit` meets the drawn surface of a skinned or
+    // morphed object (CollisionWorld::anchorAt); nothing on other objects, which pay no more for it.
+    std::optional<SurfaceLocation> drawnSurfaceUnder(const Hit& hit, const glm::dvec3& dir) const {
+        const CollisionObject& o = object(hit.object);
+        if (!o.dynamic) return std::nullopt; // only dynamic objects deform
+        const glm::dvec3 local = glm::inverse(glm::dmat3(o.transform)) * dir;
+        return world.anchorAt(hit.object, hit.primitive, hit.localPosition, local);
+    }
+
+    // The world normal a decal on the drawn surface at `drawn` faces: its render triangle's, unless the
+    // shot grazed a silhouette and met that triangle from behind (then the proxy's, `hit.normal`).
+    glm::dvec3 drawnNormal(const Hit& hit, const SurfaceLocation& drawn, const glm::dvec3& dir) const {
+        const glm::dmat3 normalMatrix =
+            glm::transpose(glm::inverse(glm::dmat3(object(hit.object).transform)));
+        const glm::dvec3 n = glm::normalize(normalMatrix * glm::dvec3(drawn.frame[2]));
+        return glm::dot(n, dir) < 0.0 ? n : hit.normal;
     }
 
     // world.intersectBatch(rays), traced in slices by up to settings.batchThreads threads (each

@@ -4,24 +4,42 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numeric>
+#include <tuple>
 #include <utility>
 
 namespace spatter {
 
 namespace {
 
-// The triangles around each vertex of `drawn.rest` (Drawn::ringStart, Drawn::ring).
+// Each vertex's first vertex at the same rest position (Drawn::weld).
+std::vector<uint32_t> weldedVertices(const std::vector<glm::vec3>& positions) {
+    std::vector<uint32_t> order(positions.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        const glm::vec3 &p = positions[a], &q = positions[b];
+        return std::tie(p.x, p.y, p.z, a) < std::tie(q.x, q.y, q.z, b);
+    });
+    std::vector<uint32_t> weld(positions.size());
+    for (size_t i = 0; i < order.size(); ++i)
+        weld[order[i]] =
+            i > 0 && positions[order[i]] == positions[order[i - 1]] ? weld[order[i - 1]] : order[i];
+    return weld;
+}
+
+// The welded vertices of `drawn.rest` and the triangles around each (Drawn::weld, ringStart, ring).
 void linkRings(PosedCollisionMesh::Drawn& drawn) {
     const std::vector<uint32_t>& indices = drawn.rest.indices;
+    drawn.weld = weldedVertices(drawn.rest.positions);
     drawn.ringStart.assign(drawn.rest.positions.size() + 1, 0);
     for (uint32_t v : indices)
-        ++drawn.ringStart[v + 1];
+        ++drawn.ringStart[drawn.weld[v] + 1];
     for (size_t v = 1; v < drawn.ringStart.size(); ++v)
         drawn.ringStart[v] += drawn.ringStart[v - 1];
     drawn.ring.resize(indices.size());
     std::vector<uint32_t> fill(drawn.ringStart.begin(), drawn.ringStart.end() - 1);
     for (size_t i = 0; i < indices.size(); ++i)
-        drawn.ring[fill[indices[i]]++] = uint32_t(i / 3);
+        drawn.ring[fill[drawn.weld[indices[i]]]++] = uint32_t(i / 3);
 }
 
 } // namespace
@@ -98,19 +116,41 @@ glm::dvec3 alongShot(const glm::dvec3& hit, const glm::dvec3& direction, const s
     return std::isfinite(p.x + p.y + p.z) ? p : hit;
 }
 
-// Where the line through `hit` along `direction` meets triangle `t` (within rounding), as the line's
-// parameter and the point's barycentric coordinates; nothing when it misses or runs along it.
-std::optional<std::pair<double, glm::dvec3>> lineMeets(const glm::dvec3& hit, const glm::dvec3& direction,
-                                                       const std::array<glm::dvec3, 3>& t) {
+// Where the line through `hit` along `direction` meets the plane of triangle `t`, as the line's
+// parameter and the point's barycentric coordinates, inside the triangle or not; nothing when it runs
+// along the plane.
+std::optional<std::pair<double, glm::dvec3>> lineOnPlane(const glm::dvec3& hit, const glm::dvec3& direction,
+                                                         const std::array<glm::dvec3, 3>& t) {
     const glm::dvec3 e1 = t[1] - t[0], e2 = t[2] - t[0], p = glm::cross(direction, e2);
     const double det = glm::dot(e1, p);
     if (!(std::abs(det) > 1e-12 * glm::length(e1) * glm::length(e2) * glm::length(direction)))
         return std::nullopt;
     const glm::dvec3 o = hit - t[0], q = glm::cross(o, e1);
     const double u = glm::dot(o, p) / det, v = glm::dot(direction, q) / det;
-    constexpr double kSlack = 1e-9;
-    if (!(u >= -kSlack && v >= -kSlack && u + v <= 1.0 + kSlack)) return std::nullopt;
     return std::make_pair(glm::dot(e2, q) / det, glm::dvec3(1.0 - u - v, u, v));
+}
+
+// Whether barycentric coordinates lie in their triangle (within rounding).
+bool within(const glm::dvec3& bary) {
+    constexpr double kSlack = 1e-9;
+    return bary.y >= -kSlack && bary.z >= -kSlack && bary.y + bary.z <= 1.0 + kSlack;
+}
+
+// Where the line through `hit` along `direction` meets triangle `t` (within rounding); nothing when it
+// misses or runs along it.
+std::optional<std::pair<double, glm::dvec3>> lineMeets(const glm::dvec3& hit, const glm::dvec3& direction,
+                                                       const std::array<glm::dvec3, 3>& t) {
+    std::optional<std::pair<double, glm::dvec3>> meet = lineOnPlane(hit, direction, t);
+    if (meet && !within(meet->second)) return std::nullopt;
+    return meet;
+}
+
+// Render vertex `v` at `pose` (its rest position before the first pose).
+glm::dvec3 posedRenderVertex(const PosedCollisionMesh::Drawn& drawn, uint32_t v, const Pose& pose) {
+    return pose.joints.empty() && pose.morphWeights.empty()
+               ? glm::dvec3(drawn.rest.positions[v])
+               : posedVertex(drawn.rest.positions, drawn.deformation, v, pose.joints, pose.morphWeights,
+                             pose.toObject);
 }
 
 // The render triangles around triangle `near` of the drawn mesh: it and those sharing a corner with
@@ -118,7 +158,7 @@ std::optional<std::pair<double, glm::dvec3>> lineMeets(const glm::dvec3& hit, co
 std::vector<uint32_t> ringAround(const PosedCollisionMesh::Drawn& drawn, uint32_t near) {
     std::vector<uint32_t> triangles;
     for (int k = 0; k < 3; ++k) {
-        const uint32_t v = drawn.rest.indices[3 * size_t(near) + size_t(k)];
+        const uint32_t v = drawn.weld[drawn.rest.indices[3 * size_t(near) + size_t(k)]];
         for (uint32_t i = drawn.ringStart[v]; i < drawn.ringStart[v + 1]; ++i)
             if (std::find(triangles.begin(), triangles.end(), drawn.ring[i]) == triangles.end())
                 triangles.push_back(drawn.ring[i]);
@@ -126,35 +166,89 @@ std::vector<uint32_t> ringAround(const PosedCollisionMesh::Drawn& drawn, uint32_
     return triangles;
 }
 
+// `anchor` with its frame on its triangle's posed `corners`; nothing when the triangle has collapsed.
+std::optional<SurfaceLocation> located(const SurfaceAnchor& anchor,
+                                       const std::array<glm::dvec3, 3>& corners) {
+    const std::optional<glm::dmat4> frame = triangleFrame(corners[0], corners[1], corners[2], anchor.bary);
+    if (!frame) return std::nullopt;
+    return SurfaceLocation{anchor, *frame};
+}
+
 // The triangle around render triangle `near` (it and those sharing a corner with it) that the line
 // through `hit` along `direction` meets nearest `hit`, at `pose`. Each vertex of the ring is posed
 // once, however many of its triangles share it.
-std::optional<SurfaceAnchor> shotOnRing(const PosedCollisionMesh& mesh, uint32_t near, const glm::dvec3& hit,
-                                        const glm::dvec3& direction, const Pose& pose) {
+std::optional<SurfaceLocation> shotOnRing(const PosedCollisionMesh& mesh, uint32_t near,
+                                          const glm::dvec3& hit, const glm::dvec3& direction,
+                                          const Pose& pose) {
     const PosedCollisionMesh::Drawn& drawn = *mesh.drawn;
     std::vector<std::pair<uint32_t, glm::dvec3>> posed; // vertex, its position at the pose
     auto at = [&](uint32_t v) {
         for (const auto& [vertex, p] : posed)
             if (vertex == v) return p;
-        const glm::dvec3 p = pose.joints.empty() && pose.morphWeights.empty()
-                                 ? glm::dvec3(drawn.rest.positions[v])
-                                 : posedVertex(drawn.rest.positions, drawn.deformation, v, pose.joints,
-                                               pose.morphWeights, pose.toObject);
+        const glm::dvec3 p = posedRenderVertex(drawn, v, pose);
         posed.emplace_back(v, p);
         return p;
     };
     std::optional<SurfaceAnchor> best;
+    std::array<glm::dvec3, 3> bestCorners;
     double bestDistance = std::numeric_limits<double>::infinity();
     for (const uint32_t triangle : ringAround(drawn, near)) {
         const uint32_t* c = &drawn.rest.indices[3 * size_t(triangle)];
-        const std::optional<std::pair<double, glm::dvec3>> meet =
-            lineMeets(hit, direction, {at(c[0]), at(c[1]), at(c[2])});
+        const std::array<glm::dvec3, 3> corners{at(c[0]), at(c[1]), at(c[2])};
+        const std::optional<std::pair<double, glm::dvec3>> meet = lineMeets(hit, direction, corners);
         if (meet && std::abs(meet->first) < bestDistance) {
             bestDistance = std::abs(meet->first);
             best = SurfaceAnchor{triangle, meet->second};
+            bestCorners = corners;
         }
     }
-    return best;
+    if (!best) return std::nullopt;
+    return located(*best, bestCorners);
+}
+
+// The render triangle across the edge of triangle `t` that is opposite its corner `k`: the other
+// triangle around both of the edge's vertices; nothing at a border.
+std::optional<uint32_t> across(const PosedCollisionMesh::Drawn& drawn, uint32_t t, int k) {
+    const std::vector<uint32_t>& w = drawn.weld;
+    const uint32_t* c = &drawn.rest.indices[3 * size_t(t)];
+    const uint32_t a = w[c[(k + 1) % 3]], b = w[c[(k + 2) % 3]];
+    for (uint32_t i = drawn.ringStart[a]; i < drawn.ringStart[a + 1]; ++i) {
+        const uint32_t other = drawn.ring[i];
+        const uint32_t* d = &drawn.rest.indices[3 * size_t(other)];
+        if (other != t && (w[d[0]] == b || w[d[1]] == b || w[d[2]] == b)) return other;
+    }
+    return std::nullopt;
+}
+
+// Where the posed line through `hit` along `direction` meets render triangle `t` (its posed
+// `corners`) or, where it passes beyond one of its edges, the triangle across that edge, a few
+// triangles on: a shot found at rest near an edge lands on the triangle the posed line crosses,
+// posing one vertex a step. Nothing when the walk reaches a border or runs out of steps.
+std::optional<SurfaceLocation> walkToShot(const PosedCollisionMesh& mesh, uint32_t t,
+                                          std::array<glm::dvec3, 3> corners, const glm::dvec3& hit,
+                                          const glm::dvec3& direction, const Pose& pose) {
+    constexpr int kSteps = 4; // triangles tested
+    const PosedCollisionMesh::Drawn& drawn = *mesh.drawn;
+    for (int step = 0; step < kSteps; ++step) {
+        const std::optional<std::pair<double, glm::dvec3>> meet = lineOnPlane(hit, direction, corners);
+        if (!meet) return std::nullopt;
+        const glm::dvec3& bary = meet->second;
+        if (within(bary)) return located(SurfaceAnchor{t, bary}, corners);
+        const int k = bary.x <= bary.y && bary.x <= bary.z ? 0 : bary.y <= bary.z ? 1 : 2;
+        const std::optional<uint32_t> next = across(drawn, t, k);
+        if (!next) return std::nullopt;
+        const std::vector<uint32_t>& w = drawn.weld;
+        const uint32_t* c = &drawn.rest.indices[3 * size_t(t)];
+        const uint32_t* d = &drawn.rest.indices[3 * size_t(*next)];
+        std::array<glm::dvec3, 3> nextCorners;
+        for (int j = 0; j < 3; ++j)
+            nextCorners[size_t(j)] = w[d[j]] == w[c[(k + 1) % 3]]   ? corners[size_t((k + 1) % 3)]
+                                     : w[d[j]] == w[c[(k + 2) % 3]] ? corners[size_t((k + 2) % 3)]
+                                                                    : posedRenderVertex(drawn, d[j], pose);
+        t = *next;
+        corners = nextCorners;
+    }
+    return std::nullopt;
 }
 
 // `direction` taken from triangle `posed` to triangle `rest` by the affine map between them (their
@@ -174,33 +268,51 @@ std::optional<glm::dvec3> restDirection(const std::array<glm::dvec3, 3>& rest,
     return d / length;
 }
 
-// The render triangle the shot meets, found at rest (see anchorOf), and where the posed line meets it;
-// nothing when the line at rest meets none within the reach. Where the triangle found does not meet
-// the posed line, its ring is searched.
-std::optional<SurfaceAnchor> shotThroughRest(const PosedCollisionMesh& mesh,
-                                             const std::array<glm::dvec3, 3>& rest,
-                                             const std::array<glm::dvec3, 3>& posed, const glm::dvec3& atRest,
-                                             const CollisionHit& hit, const Pose& pose) {
+// The nearer of the line's meets with the drawn surface at rest from `atRest` along `along` and
+// against it, within `reach`.
+std::optional<ClosestPointQuery::RayMeet>
+nearestMeet(const ClosestPointQuery& query, const glm::dvec3& atRest, const glm::dvec3& along, double reach) {
+    std::optional<ClosestPointQuery::RayMeet> found = query.firstMeet(atRest, along, reach);
+    const std::optional<ClosestPointQuery::RayMeet> back =
+        query.firstMeet(atRest, -along, found ? found->t : reach);
+    if (back && (!found || back->t < found->t)) found = back;
+    return found;
+}
+
+// The render triangle the shot meets, found at rest (see anchorOf), and where the posed line meets it
+// or the triangle it passes into (walkToShot); nothing when neither search at rest finds one. The
+// first search takes the drawn surface the shot's line meets first from the reach before the hit to
+// the reach beyond it, in front of the proxy or behind it. Where that is another layer of the body,
+// one the line crosses at rest but not at the pose, the second takes the meet nearest the hit.
+std::optional<SurfaceLocation> shotThroughRest(const PosedCollisionMesh& mesh,
+                                               const std::array<glm::dvec3, 3>& rest,
+                                               const std::array<glm::dvec3, 3>& posed,
+                                               const glm::dvec3& atRest, const CollisionHit& hit,
+                                               const Pose& pose) {
     const std::optional<glm::dvec3> along = restDirection(rest, posed, hit.direction);
     if (!along) return std::nullopt;
-    std::optional<ClosestPointQuery::RayMeet> found;
-    for (const double sign : {1.0, -1.0}) {
-        const std::optional<ClosestPointQuery::RayMeet> m =
-            mesh.drawn->query->firstMeet(atRest, sign * *along, hit.reach);
-        if (m && (!found || m->t < found->t)) found = m;
-    }
-    if (!found) return std::nullopt;
-    const std::optional<std::pair<double, glm::dvec3>> meet = lineMeets(
-        hit.position, hit.direction,
-        posedCorners(mesh, hit.indices, found->triangle, pose.joints, pose.morphWeights, pose.toObject));
-    if (meet) return SurfaceAnchor{found->triangle, meet->second};
-    return shotOnRing(mesh, found->triangle, hit.position, hit.direction, pose);
+    const ClosestPointQuery& query = *mesh.drawn->query;
+    auto walkFrom =
+        [&](const std::optional<ClosestPointQuery::RayMeet>& found) -> std::optional<SurfaceLocation> {
+        if (!found) return std::nullopt;
+        const std::array<glm::dvec3, 3> corners =
+            posedCorners(mesh, hit.indices, found->triangle, pose.joints, pose.morphWeights, pose.toObject);
+        return walkToShot(mesh, found->triangle, corners, hit.position, hit.direction, pose);
+    };
+    if (std::optional<SurfaceLocation> met =
+            walkFrom(query.firstMeet(atRest - hit.reach * *along, *along, 2.0 * hit.reach)))
+        return met;
+    return walkFrom(nearestMeet(query, atRest, *along, hit.reach));
 }
 
 } // namespace
 
-SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const CollisionHit& hit, const Pose& pose) {
-    if (!mesh.drawn) return {hit.primitive, hit.bary};
+std::optional<SurfaceLocation> anchorOf(const PosedCollisionMesh& mesh, const CollisionHit& hit,
+                                        const Pose& pose) {
+    if (!mesh.drawn)
+        return located(
+            SurfaceAnchor{hit.primitive, hit.bary},
+            posedCorners(mesh, hit.indices, hit.primitive, pose.joints, pose.morphWeights, pose.toObject));
     // The collision mesh is not the render mesh: the hit at rest, the render triangle the shot meets
     // there or the nearest render point, then that point's barycentric coordinates refined at the pose
     // (the foot of the hit on the render triangle as it stands).
@@ -212,18 +324,19 @@ SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const CollisionHit& hit, 
     }
     const glm::dvec3 atRest = hit.bary.x * rest[0] + hit.bary.y * rest[1] + hit.bary.z * rest[2];
     if (hit.direction != glm::dvec3(0.0))
-        if (std::optional<SurfaceAnchor> met = shotThroughRest(mesh, rest, posed, atRest, hit, pose))
-            return *met;
+        if (std::optional<SurfaceLocation> met = shotThroughRest(mesh, rest, posed, atRest, hit, pose))
+            return met;
     const std::optional<ClosestPoint> near = mesh.drawn->query->closest(atRest);
-    if (!near) return {hit.primitive, hit.bary};
+    if (!near) return std::nullopt;
     if (hit.direction != glm::dvec3(0.0))
-        if (std::optional<SurfaceAnchor> met =
+        if (std::optional<SurfaceLocation> met =
                 shotOnRing(mesh, near->triangle, hit.position, hit.direction, pose))
-            return *met;
+            return met;
     const std::array<glm::dvec3, 3> render =
         posedCorners(mesh, hit.indices, near->triangle, pose.joints, pose.morphWeights, pose.toObject);
-    return {near->triangle,
-            barycentric(alongShot(hit.position, hit.direction, render), render[0], render[1], render[2])};
+    return located({near->triangle, barycentric(alongShot(hit.position, hit.direction, render), render[0],
+                                                render[1], render[2])},
+                   render);
 }
 
 std::optional<glm::dmat4> anchorFrame(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,

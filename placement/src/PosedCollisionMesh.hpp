@@ -33,8 +33,10 @@ struct PosedCollisionMesh {
         Mesh rest;
         VertexDeformation deformation;
         std::shared_ptr<const ClosestPointQuery> query;
-        // The triangles around each vertex: ring[ringStart[v] .. ringStart[v + 1]).
-        std::vector<uint32_t> ringStart, ring;
+        // Each vertex's first vertex at the same rest position, so that a mesh split along its UV or
+        // normal seams is one surface to walk across; and the triangles around each such vertex w:
+        // ring[ringStart[w] .. ringStart[w + 1]).
+        std::vector<uint32_t> weld, ringStart, ring;
     };
     std::optional<Drawn> drawn;
 };
@@ -72,13 +74,17 @@ struct CollisionHit {
     double reach = 0.0;                   // how far along the shot the drawn surface is sought
 };
 
-// The point of the drawn surface that `hit` stands for, at `pose`. With a shot: where its line meets
-// the render triangle found at rest along the line taken there through the hit triangle's own
-// deformation, within the reach (the triangle posed, and met by the line as it stands); else where it
-// meets, nearest the hit, a render triangle around the one nearest the hit at rest (that triangle and
-// those that share a corner with it, posed); failing both, where it meets the nearest one's plane
-// (the foot of the hit without a shot).
-SurfaceAnchor anchorOf(const PosedCollisionMesh& mesh, const CollisionHit& hit, const Pose& pose);
+// The point of the drawn surface that `hit` stands for, at `pose`. With a shot: its line is taken
+// to rest through the hit triangle's own deformation, and the render triangle it meets there (first
+// from the reach before the hit to the reach beyond it; failing that, nearest the hit) is posed; the
+// anchor is where the posed line meets that triangle or the neighbour it passes into, a few
+// triangles on. Else where the line meets, nearest the hit, a render triangle around the one nearest
+// the hit at rest (that triangle and those that share a corner with it, posed); failing both, where
+// it meets the nearest one's plane (the foot of the hit without a shot). With the anchor's frame at
+// `pose` (anchorFrame), from the corners posed to find it. Empty when the render mesh has no surface,
+// the hit at rest is not finite, or the triangle found has collapsed at the pose.
+std::optional<SurfaceLocation> anchorOf(const PosedCollisionMesh& mesh, const CollisionHit& hit,
+                                        const Pose& pose);
 
 // The frame of `anchor` at `pose`: columns the direction of its triangle's first edge, the in-plane
 // perpendicular, the triangle's normal and, as translation, the anchor's point, in object space.

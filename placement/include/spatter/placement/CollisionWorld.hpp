@@ -98,6 +98,12 @@ struct SurfaceAnchor {
     glm::dvec3 bary{1.0, 0.0, 0.0};
 };
 
+// A surface anchor and its frame at the pose it was found at (CollisionWorld::anchorFrame).
+struct SurfaceLocation {
+    SurfaceAnchor surface;
+    glm::dmat4 frame{1.0};
+};
+
 // What setTransform did with a transform it accepted.
 struct TransformUpdate {
     bool traced = true;  // false: the transform breaks the rule of TraceTransform.hpp; shots pass
@@ -158,13 +164,15 @@ public:
     // The point of a skinned or morphed object's drawn surface that a hit on its collision mesh
     // stands for: the hit (triangle `primitive`, Hit::primitive, at `localPosition`,
     // Hit::localPosition) and the shot (`localDirection`, object space; zero for none) taken back to
-    // the rest pose, to the render triangle the shot's line meets there nearest the hit (else the
-    // one nearest the hit, and those around it), then where the shot meets that triangle at the
-    // current pose (without a shot, the foot of the hit on it). Empty for an object that does not
-    // deform, is not in the world, or a primitive out of range.
-    std::optional<SurfaceAnchor> anchorAt(uint32_t object, uint32_t primitive,
-                                          const glm::dvec3& localPosition,
-                                          const glm::dvec3& localDirection = glm::dvec3(0.0)) const;
+    // the rest pose, to the render triangle the shot's line meets there first, from a little before
+    // the hit to a little beyond it (else nearest the hit; else the one nearest the hit, and those
+    // around it), then where the shot meets that triangle, or the neighbour it passes into, at the
+    // current pose (without a shot, the foot of the hit on it); with its frame at the current pose
+    // (anchorFrame). Empty for an object that does not deform, is not in the world, a primitive out
+    // of range, or a render triangle that has collapsed at the pose.
+    std::optional<SurfaceLocation> anchorAt(uint32_t object, uint32_t primitive,
+                                            const glm::dvec3& localPosition,
+                                            const glm::dvec3& localDirection = glm::dvec3(0.0)) const;
     // The frame of `anchor` at the object's current pose, in its object space: columns the direction
     // of the anchor's render triangle's first edge, the perpendicular in its plane and its normal,
     // and, as translation, the anchor's point. What a decal on a deforming surface rides. Empty for
