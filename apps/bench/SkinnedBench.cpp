@@ -4,14 +4,12 @@
 #include "CoverageProbe.hpp"
 #include "ImageDrift.hpp"
 #include "SkinPoints.hpp"
+#include "SkinnedModels.hpp"
 
 #include "spatter/core/DeformingProxy.hpp"
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/SceneEvaluator.hpp"
-#include "spatter/core/SceneLoader.hpp"
-#include "spatter/core/SkinnedArm.hpp"
-#include "spatter/core/SkinnedDummy.hpp"
 #include "spatter/placement/CollisionWorld.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/render/Camera.hpp"
@@ -29,17 +27,14 @@ namespace spatter::bench {
 namespace {
 
 const char* kSkinnedCommand = "skinned";
-const char* kArm = "builtin:skinned-arm";
-const char* kDummy = "gallery dummy";
-const std::vector<std::string> kModels = {kArm, kDummy, "gltf/CesiumMan/CesiumMan.glb",
+const std::vector<std::string> kModels = {kSkinnedArmSpec, kSkinnedDummySpec, "gltf/CesiumMan/CesiumMan.glb",
                                           "gltf/RiggedSimple/RiggedSimple.glb"};
 
 constexpr double kPoseTargetMs = 0.2;
 constexpr double kSpawnTargetRatio = 2.0;
-constexpr double kDriftTarget = 0.02;       // of the decal's size
-constexpr double kDecalSizeFraction = 0.05; // decals a twentieth of the model's diagonal
-constexpr double kSpawnPhase = 0.3;         // the pose of the spawn rows, a fraction of the cycle
-constexpr float kProxyTolerance = 0.005f;   // relative to the render mesh's diagonal
+constexpr double kDriftTarget = 0.02;     // of the decal's size
+constexpr double kSpawnPhase = 0.3;       // the pose of the spawn rows, a fraction of the cycle
+constexpr float kProxyTolerance = 0.005f; // relative to the render mesh's diagonal
 
 const char* kSkinnedUsage =
     R"(usage: spatter-bench skinned [--frames N] [--repeat R] [--samples S] [--no-render] [--quick]
@@ -62,8 +57,8 @@ Spawn: DecalSystem::spawn per call on the skinned object posed at 30% of its cyc
 collision mesh; each hit also anchored to the render surface) against spawn on the same posed mesh
 built as a static object, the same rays (scattered around the posed mesh, 90% aimed at its surface),
 each run into a fresh system with room for every decal; and the same through proxies: the skinned
-object through its 0.5% deforming proxy (each hit then also found on the render mesh and moved
-onto it), the static twin through a 0.5% proxy of its own. Target: skinned at most 2x static.
+object through its 0.5% deforming proxy (each hit then also found on the render mesh and the
+decal placed there), the static twin through a 0.5% proxy of its own. Target: skinned at most 2x static.
 
 Drift: decals (5% of the diagonal) shot at several times of the cycle, then the object posed at N
 frames of the whole cycle. For each decal and frame, the distance along the surface (in the plane of
@@ -154,131 +149,6 @@ Sizes quickSizes() {
     return s;
 }
 
-// ---- Models and their poses ------------------------------------------------------------------
-
-struct Model {
-    std::string name;
-    Scene scene;
-    uint32_t object = 0;    // the first skinned receiver: the object every row measures
-    double duration = 0.0;  // of animation 0, seconds
-    double diagonal = 0.0;  // of the render mesh posed at time 0, world units
-    double decalSize = 0.0; // world units
-};
-
-// One pose of the model's object as a host hands it to setPose.
-struct Pose {
-    glm::dmat4 transform{1.0};
-    std::vector<glm::dmat4> joints;
-    std::vector<double> weights;
-};
-
-Pose poseAt(const Model& m, SceneEvaluator& evaluator, double t) {
-    evaluator.evaluate(0, t);
-    Pose p{evaluator.objectTransform(m.object), {}, evaluator.morphWeights(m.object)};
-    p.joints = evaluator.jointMatrices(size_t(m.scene.objects[m.object].skin));
-    return p;
-}
-
-double cycleTime(const Model& m, double phase) {
-    return m.duration * phase;
-}
-
-// The render mesh's vertices at time t, in world space.
-std::vector<glm::dvec3> worldPositionsAt(const Model& m, SceneEvaluator& evaluator, double t) {
-    evaluator.evaluate(0, t);
-    const glm::dmat4& toWorld = evaluator.objectTransform(m.object);
-    std::vector<glm::dvec3> p = posedPositions(m.scene, m.object, evaluator);
-    for (glm::dvec3& v : p)
-        v = glm::dvec3(toWorld * glm::dvec4(v, 1.0));
-    return p;
-}
-
-Mesh meshAt(const Model& m, const std::vector<glm::dvec3>& positions) {
-    return withPositions(m.scene.objects[m.object].mesh, positions);
-}
-
-SkinnedArmSettings armSettings() {
-    SkinnedArmSettings s;
-    s.rings = 50; // 49 bands of 50 quads and the two end fans: 5,000 triangles
-    s.segments = 50;
-    return s;
-}
-
-Result<Scene> loadModelScene(const std::string& spec) {
-    if (spec == kArm) return makeSkinnedArm(armSettings());
-    if (spec == kDummy) {
-        Scene dummy;
-        dummy.source = kDummy;
-        addSkinnedDummy(dummy, glm::dmat4(1.0));
-        return dummy;
-    }
-    const std::string path = resolveInput(spec);
-    if (path.empty())
-        return fail("'" + spec + "' not found (nor in the shared data '" + sharedDataDir() + "')");
-    return loadScene(path);
-}
-
-Result<Model> loadModel(const std::string& spec) {
-    Result<Scene> scene = loadModelScene(spec);
-    if (!scene) return fail(scene.error());
-    Model m{spec, std::move(scene).value()};
-    const auto& animations = m.scene.animation.animations;
-    if (animations.empty() || !(animations[0].duration > 0.0)) return fail(spec + ": no animation to loop");
-    m.duration = animations[0].duration;
-    const auto& objects = m.scene.objects;
-    const auto skinned = std::find_if(objects.begin(), objects.end(), [](const SceneObject& o) {
-        return o.skin != -1 && o.dynamic && o.receivesDecals;
-    });
-    if (skinned == objects.end()) return fail(spec + ": no skinned object receives decals");
-    m.object = uint32_t(skinned - objects.begin());
-    SceneEvaluator evaluator(m.scene);
-    m.diagonal = referencedDiagonal(meshAt(m, worldPositionsAt(m, evaluator, 0.0)));
-    m.decalSize = kDecalSizeFraction * m.diagonal;
-    return m;
-}
-
-// ---- Worlds and decal systems ----------------------------------------------------------------
-
-// Embree commits and refits on the calling thread alone, so that the thread's CPU time is all the
-// work of a call.
-WorldSettings oneThread() {
-    WorldSettings s;
-    s.useColliders = false;
-    s.deviceConfig = "threads=1";
-    return s;
-}
-
-// The model's world: the render mesh as the skinned object's collision mesh, or `proxy`.
-Result<CollisionWorld> buildWorld(const Model& m, const std::optional<Proxy>& proxy) {
-    std::vector<std::optional<Proxy>> proxies;
-    if (proxy) {
-        proxies.resize(m.scene.objects.size());
-        proxies[m.object] = proxy;
-    }
-    return CollisionWorld::build(m.scene, proxies, oneThread());
-}
-
-// A system over `world` with one decal type (index 0) of `size`, and room for `decals` decals
-// everywhere, so that no limit evicts or rejects.
-Result<DecalSystem> makeSystem(Result<CollisionWorld> world, double size, size_t decals) {
-    if (!world) return fail(world.error());
-    DecalSettings settings;
-    settings.maxPerCell = settings.budget = settings.maxPerObject = uint32_t(decals);
-    Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), settings);
-    if (!system) return system;
-    DecalType type;
-    type.name = "hole";
-    type.size = glm::vec2(float(size));
-    if (Result<uint16_t> index = system->registerType(type); !index) return fail(index.error());
-    return system;
-}
-
-Status setPose(DecalSystem& system, const Model& m, const Pose& pose) {
-    Result<TransformUpdate> u = system.setPose(m.object, pose.transform, pose.joints, pose.weights);
-    if (!u) return fail(m.name + ": " + u.error());
-    return {};
-}
-
 // ---- Pose update -----------------------------------------------------------------------------
 
 struct PoseRow {
@@ -288,13 +158,13 @@ struct PoseRow {
 };
 
 // Median over the runs of the thread CPU time per setPose call, cycling through `poses`.
-Result<double> poseSeconds(CollisionWorld& world, uint32_t object, const std::vector<Pose>& poses,
+Result<double> poseSeconds(CollisionWorld& world, uint32_t object, const std::vector<ModelPose>& poses,
                            const Sizes& sizes) {
     std::vector<double> times;
     for (size_t r = 0; r < sizes.runs; ++r) {
         const double t0 = threadCpuNow();
         for (size_t i = 0; i < sizes.poseCalls; ++i) {
-            const Pose& p = poses[i % poses.size()];
+            const ModelPose& p = poses[i % poses.size()];
             if (Result<TransformUpdate> u = world.setPose(object, p.transform, p.joints, p.weights); !u)
                 return fail(u.error());
         }
@@ -303,12 +173,12 @@ Result<double> poseSeconds(CollisionWorld& world, uint32_t object, const std::ve
     return median(times);
 }
 
-Result<PoseRow> measurePose(const Model& m, const std::optional<Proxy>& proxy, const Sizes& sizes) {
+Result<PoseRow> measurePose(const SkinnedModel& m, const std::optional<Proxy>& proxy, const Sizes& sizes) {
     SceneEvaluator evaluator(m.scene);
-    std::vector<Pose> poses;
+    std::vector<ModelPose> poses;
     for (size_t f = 0; f < sizes.frames; ++f)
-        poses.push_back(poseAt(m, evaluator, cycleTime(m, double(f) / double(sizes.frames))));
-    Result<CollisionWorld> world = buildWorld(m, proxy);
+        poses.push_back(modelPoseAt(m, evaluator, cycleTime(m, double(f) / double(sizes.frames))));
+    Result<CollisionWorld> world = skinnedWorld(m, proxy);
     if (!world) return fail(m.name + ": " + world.error());
     Result<double> seconds = poseSeconds(world.value(), m.object, poses, sizes);
     if (!seconds) return fail(m.name + ": " + seconds.error());
@@ -352,13 +222,13 @@ struct SpawnRow {
 
 // The same spawns through `proxy` (the skinned object's deforming proxy) against the static twin
 // through a proxy of its own at the same tolerance.
-Status measureProxySpawn(const Model& m, const Proxy& proxy, const Scene& twin, const Pose& pose,
+Status measureProxySpawn(const SkinnedModel& m, const Proxy& proxy, const Scene& twin, const ModelPose& pose,
                          const std::vector<Ray>& rays, const Sizes& sizes, SpawnRow& row) {
     Result<SpawnTiming> skinned = spawnSeconds(
         [&]() -> Result<DecalSystem> {
-            Result<DecalSystem> s = makeSystem(buildWorld(m, proxy), m.decalSize, rays.size());
+            Result<DecalSystem> s = holeSystem(skinnedWorld(m, proxy), m.decalSize, rays.size());
             if (!s) return s;
-            if (Status p = setPose(s.value(), m, pose); !p) return fail(p.error());
+            if (Status p = poseSystem(s.value(), m, pose); !p) return fail(p.error());
             return s;
         },
         rays, sizes.runs);
@@ -371,7 +241,7 @@ Status measureProxySpawn(const Model& m, const Proxy& proxy, const Scene& twin, 
     const std::vector<std::optional<Proxy>> twinProxies = {own.value()};
     Result<SpawnTiming> statik = spawnSeconds(
         [&] {
-            return makeSystem(CollisionWorld::build(twin, twinProxies, oneThread()), m.decalSize,
+            return holeSystem(CollisionWorld::build(twin, twinProxies, oneThreadWorld()), m.decalSize,
                               rays.size());
         },
         rays, sizes.runs);
@@ -381,17 +251,17 @@ Status measureProxySpawn(const Model& m, const Proxy& proxy, const Scene& twin, 
     return {};
 }
 
-Result<SpawnRow> measureSpawn(const Model& m, const Proxy& proxy, const Sizes& sizes) {
+Result<SpawnRow> measureSpawn(const SkinnedModel& m, const Proxy& proxy, const Sizes& sizes) {
     SceneEvaluator evaluator(m.scene);
     const double t = cycleTime(m, kSpawnPhase);
-    const Pose pose = poseAt(m, evaluator, t);
+    const ModelPose pose = modelPoseAt(m, evaluator, t);
     const Mesh posed = meshAt(m, worldPositionsAt(m, evaluator, t));
     const std::vector<Ray> rays = scatteredRays(posed, sizes.spawnRays, 7);
     Result<SpawnTiming> skinned = spawnSeconds(
         [&]() -> Result<DecalSystem> {
-            Result<DecalSystem> s = makeSystem(buildWorld(m, std::nullopt), m.decalSize, rays.size());
+            Result<DecalSystem> s = holeSystem(skinnedWorld(m, std::nullopt), m.decalSize, rays.size());
             if (!s) return s;
-            if (Status p = setPose(s.value(), m, pose); !p) return fail(p.error());
+            if (Status p = poseSystem(s.value(), m, pose); !p) return fail(p.error());
             return s;
         },
         rays, sizes.runs);
@@ -400,7 +270,9 @@ Result<SpawnRow> measureSpawn(const Model& m, const Proxy& proxy, const Sizes& s
     twin.materials = m.scene.materials; // the submeshes name them
     twin.images = m.scene.images;
     Result<SpawnTiming> statik = spawnSeconds(
-        [&] { return makeSystem(CollisionWorld::build(twin, {}, oneThread()), m.decalSize, rays.size()); },
+        [&] {
+            return holeSystem(CollisionWorld::build(twin, {}, oneThreadWorld()), m.decalSize, rays.size());
+        },
         rays, sizes.runs);
     if (!statik) return fail(m.name + ": " + statik.error());
     SpawnRow row{m.name, rays.size(), skinned.value(), statik.value(), {}, {}};
@@ -444,21 +316,21 @@ struct DriftSamples {
 
 // The world at one time of the cycle, as the drift rows read it.
 struct Moment {
-    Pose pose;
+    ModelPose pose;
     std::vector<glm::dvec3> positions; // render vertices, world space
     Mesh mesh;                         // with them
 };
 
-Moment momentAt(const Model& m, double t) {
+Moment momentAt(const SkinnedModel& m, double t) {
     SceneEvaluator evaluator(m.scene);
-    Moment at{poseAt(m, evaluator, t), worldPositionsAt(m, evaluator, t), {}};
+    Moment at{modelPoseAt(m, evaluator, t), worldPositionsAt(m, evaluator, t), {}};
     at.mesh = meshAt(m, at.positions);
     return at;
 }
 
 class DriftRun {
 public:
-    DriftRun(const Model& m, DecalSystem onRender, DecalSystem onProxy)
+    DriftRun(const SkinnedModel& m, DecalSystem onRender, DecalSystem onProxy)
         : m_(m), systems_{std::move(onRender), std::move(onProxy)} {}
 
     // Poses both systems at `t` and shoots `rays` rays at the posed object into both.
@@ -501,9 +373,9 @@ public:
     }
 
 private:
-    Status poseBoth(const Pose& pose) {
+    Status poseBoth(const ModelPose& pose) {
         for (DecalSystem& system : systems_)
-            if (Status s = setPose(system, m_, pose); !s) return s;
+            if (Status s = poseSystem(system, m_, pose); !s) return s;
         return {};
     }
 
@@ -528,17 +400,18 @@ private:
             std::max(to.wholeMax, glm::length(centre - pointOf(at.mesh, at.positions, point)) / m_.decalSize);
     }
 
-    const Model& m_;
+    const SkinnedModel& m_;
     DecalSystem systems_[2]; // render mesh, deforming proxy
     std::vector<Anchored> anchored_[2];
     std::vector<JointAttached> joints_; // the render-mesh system's decals, attached to joints
     DriftSamples samples_[3];
 };
 
-Result<std::vector<DriftSamples>> measureDrift(const Model& m, const Proxy& proxy, const Sizes& sizes) {
+Result<std::vector<DriftSamples>> measureDrift(const SkinnedModel& m, const Proxy& proxy,
+                                               const Sizes& sizes) {
     const size_t room = sizes.spawnTimes * sizes.raysPerTime;
-    Result<DecalSystem> onRender = makeSystem(buildWorld(m, std::nullopt), m.decalSize, room);
-    Result<DecalSystem> onProxy = makeSystem(buildWorld(m, proxy), m.decalSize, room);
+    Result<DecalSystem> onRender = holeSystem(skinnedWorld(m, std::nullopt), m.decalSize, room);
+    Result<DecalSystem> onProxy = holeSystem(skinnedWorld(m, proxy), m.decalSize, room);
     if (!onRender || !onProxy) return fail(m.name + ": " + (onRender ? onProxy.error() : onRender.error()));
     DriftRun run(m, std::move(onRender).value(), std::move(onProxy).value());
     // Spawn times fall between the frames, so that no frame is a decal's own spawn pose.
@@ -604,11 +477,11 @@ struct Coverage {
 
 // The decals `shots` place on the model posed at `pose` through `proxy` (none: the render mesh),
 // drawn by `probe`, whose scene stands in the same pose.
-Result<Coverage> shotCoverage(const Model& m, const std::optional<Proxy>& proxy, const Pose& pose,
+Result<Coverage> shotCoverage(const SkinnedModel& m, const std::optional<Proxy>& proxy, const ModelPose& pose,
                               const std::vector<Ray>& shots, CoverageProbe& probe, const Camera& camera) {
-    Result<DecalSystem> system = coverageSystem(buildWorld(m, proxy), probe.type(), m.diagonal, 1);
+    Result<DecalSystem> system = coverageSystem(skinnedWorld(m, proxy), probe.type(), m.diagonal, 1);
     if (!system) return fail(system.error());
-    if (Status s = setPose(system.value(), m, pose); !s) return fail(s.error());
+    if (Status s = poseSystem(system.value(), m, pose); !s) return fail(s.error());
     for (const Ray& ray : shots)
         system->spawn(ray, 0);
     std::vector<uint8_t> ids(m.scene.objects.size());
@@ -622,12 +495,13 @@ Result<Coverage> shotCoverage(const Model& m, const std::optional<Proxy>& proxy,
 
 // The same shots at `phase` of the cycle through the proxy and on the render mesh, both drawn with
 // the scene posed there.
-Result<AccuracyRow> measureAccuracyAt(const Model& m, const Proxy& proxy, CoverageProbe& probe, double phase,
-                                      size_t rays) {
+Result<AccuracyRow> measureAccuracyAt(const SkinnedModel& m, const Proxy& proxy, CoverageProbe& probe,
+                                      double phase, size_t rays) {
     SceneEvaluator evaluator(m.scene);
     const double t = cycleTime(m, phase);
     const Mesh posed = meshAt(m, worldPositionsAt(m, evaluator, t));
-    const Pose pose = poseAt(m, evaluator, t); // leaves the evaluator at t, as the renderer takes it
+    const ModelPose pose =
+        modelPoseAt(m, evaluator, t); // leaves the evaluator at t, as the renderer takes it
     if (Status s = probe.renderer().setPose(evaluator); !s) return fail(m.name + ": " + s.error());
     const Camera camera = framing(posed);
     const std::vector<Ray> shots = cameraShots(posed, camera, rays, 300 + uint64_t(phase * 100.0));
@@ -652,8 +526,8 @@ struct CoverageContext {
 
 // Every phase's row, drawn in a context of the model's own; rows not measured without one (the first
 // failure to make one, or --no-render, is kept in `gl` and no later model tries).
-Result<std::vector<AccuracyRow>> measureAccuracy(const Model& m, const Proxy& proxy, const Sizes& sizes,
-                                                 CoverageContext& gl) {
+Result<std::vector<AccuracyRow>> measureAccuracy(const SkinnedModel& m, const Proxy& proxy,
+                                                 const Sizes& sizes, CoverageContext& gl) {
     std::optional<CoverageProbe> probe;
     if (gl.unavailable.empty()) {
         Result<CoverageProbe> p =
@@ -682,7 +556,7 @@ Result<std::vector<AccuracyRow>> measureAccuracy(const Model& m, const Proxy& pr
 
 // Decals shot from a camera framing the model at the spawn phase, followed over the cycle in the image
 // (ImageDrift.hpp); no rows without an OpenGL context.
-Result<std::vector<ImageDriftRow>> measureImageDriftOf(const Model& m, const Sizes& sizes,
+Result<std::vector<ImageDriftRow>> measureImageDriftOf(const SkinnedModel& m, const Sizes& sizes,
                                                        const CoverageContext& gl) {
     if (!gl.unavailable.empty()) return std::vector<ImageDriftRow>();
     SceneEvaluator evaluator(m.scene);
@@ -716,7 +590,7 @@ std::string percent(double fraction) {
 }
 
 struct ModelReport {
-    const Model* model = nullptr;
+    const SkinnedModel* model = nullptr;
     DeformingProxy proxy;
     double proxySeconds = 0.0; // wall time of buildDeformingProxy
     std::vector<PoseRow> pose;
@@ -933,7 +807,7 @@ Json boundSection(const std::vector<ModelReport>& reports) {
 
 // ---- The command -----------------------------------------------------------------------------
 
-Result<ModelReport> measureModel(const Model& m, const Sizes& sizes, CoverageContext& gl) {
+Result<ModelReport> measureModel(const SkinnedModel& m, const Sizes& sizes, CoverageContext& gl) {
     ModelReport r;
     r.model = &m;
     ProxySettings settings;
@@ -997,7 +871,7 @@ Json report(const std::vector<ModelReport>& reports, const Sizes& sizes, const M
     j["spawn_times"] = sizes.spawnTimes;
     j["rays_per_time"] = sizes.raysPerTime;
     j["pose_samples"] = sizes.samples;
-    j["decal_size_fraction"] = kDecalSizeFraction;
+    j["decal_size_fraction"] = kSkinnedDecalSizeFraction;
     j["proxy_tolerance"] = kProxyTolerance;
     j["accuracy_rays"] = sizes.accuracyRays;
     j["coverage_size"] = {kCoverageWidth, kCoverageHeight};
@@ -1037,9 +911,9 @@ int runSkinnedCommand(int argc, char** argv) {
     const MachineInfo machine = machineInfo();
     std::printf("spatter-bench skinned: %zu frames, %zu runs a row, %d poses a bound\nmachine: %s\n\n",
                 sizes->frames, sizes->runs, sizes->samples, describe(machine).c_str());
-    std::vector<Model> models;
+    std::vector<SkinnedModel> models;
     for (const std::string& spec : kModels) {
-        Result<Model> m = loadModel(spec);
+        Result<SkinnedModel> m = loadSkinnedModel(spec);
         if (!m) {
             std::fprintf(stderr, "spatter-bench skinned: %s\n", m.error().c_str());
             return 1;
@@ -1049,7 +923,7 @@ int runSkinnedCommand(int argc, char** argv) {
     CoverageContext gl;
     if (args.has("--no-render")) gl.unavailable = "--no-render";
     std::vector<ModelReport> reports;
-    for (const Model& m : models) {
+    for (const SkinnedModel& m : models) {
         Result<ModelReport> r = measureModel(m, sizes.value(), gl);
         if (!r) {
             std::fprintf(stderr, "spatter-bench skinned: %s\n", r.error().c_str());
