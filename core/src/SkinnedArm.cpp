@@ -19,12 +19,6 @@ Mesh armMesh(const SkinnedArmSettings& s, int rings) {
     return makeLathe(profile, std::clamp(s.segments, 3, 1024));
 }
 
-// The elbow's share of a vertex at height y: 0 below the blend zone, 1 above it, smooth between.
-double elbowWeight(double y, double length) {
-    const double t = std::clamp((y - 0.35 * length) / (0.3 * length), 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
-
 AnimationChannel rotationChannel(int node, const glm::dvec3& axis, double degrees, double period) {
     AnimationChannel c;
     c.node = node;
@@ -40,6 +34,11 @@ AnimationChannel rotationChannel(int node, const glm::dvec3& axis, double degree
 }
 
 } // namespace
+
+double skinnedArmElbowWeight(double y, double length) {
+    const double t = std::clamp((y - 0.35 * length) / (0.3 * length), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
 
 Scene makeSkinnedArm(const SkinnedArmSettings& s) {
     Scene scene;
@@ -70,7 +69,7 @@ Scene makeSkinnedArm(const SkinnedArmSettings& s) {
     arm.skin = 0;
     arm.skinWeights.influences = 2;
     for (const glm::vec3& p : arm.mesh.positions) {
-        const double w = elbowWeight(p.y, s.length);
+        const double w = skinnedArmElbowWeight(p.y, s.length);
         arm.skinWeights.joints.insert(arm.skinWeights.joints.end(), {0, 1});
         arm.skinWeights.weights.insert(arm.skinWeights.weights.end(), {1.0 - w, w});
     }

@@ -12,7 +12,6 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <initializer_list>
 
 using namespace spatter;
@@ -50,7 +49,7 @@ Scene skinnedSheets(const std::vector<float>& z) {
     made.skin = o.skin;
     made.skinWeights.influences = 2;
     for (const glm::vec3& p : sheets.positions) {
-        const double t = std::clamp((double(p.y) - 0.35) / 0.3, 0.0, 1.0), w = t * t * (3.0 - 2.0 * t);
+        const double w = skinnedArmElbowWeight(double(p.y), double(SkinnedArmSettings{}.length));
         made.skinWeights.joints.insert(made.skinWeights.joints.end(), {0, 1});
         made.skinWeights.weights.insert(made.skinWeights.weights.end(), {1.0 - w, w});
     }

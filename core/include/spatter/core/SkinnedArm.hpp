@@ -25,4 +25,9 @@ struct SkinnedArmSettings {
 // per vertex); animation 0 is "swing". Passes validateScene.
 Scene makeSkinnedArm(const SkinnedArmSettings& settings = {});
 
+// The elbow's weight at height `y` of an arm of `length` (the shoulder has the rest): 0 below the
+// blend zone, 1 above it, smooth between. What makeSkinnedArm gives each vertex, for a mesh that is
+// to bend as the arm does.
+double skinnedArmElbowWeight(double y, double length);
+
 } // namespace spatter
