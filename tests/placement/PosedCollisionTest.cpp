@@ -173,3 +173,36 @@ TEST(PosedCollision, DeformingProxyHitsStayWithinItsBoundOfTheDrawnSurface) {
         EXPECT_LE(on.worst, proxy->proxy.errorBound) << "t " << t;
     }
 }
+
+TEST(PosedCollision, ShotsThroughADeformingProxyAnchorWhereTheyMeetTheDrawnSurface) {
+    // A shot anchors where its line meets the drawn surface first, as the render mesh posed and built
+    // static is hit by the same ray. The arm's lathe repeats the vertices of its UV seam, so shots near
+    // the seam test that the search walks across it. Every anchor lies within the search's reach of
+    // the proxy's hit (where a coarse proxy misses a thin part of the drawn surface the ray meets
+    // first, the proxy's hit and its anchor lie farther on).
+    const Scene arm = makeSkinnedArm();
+    Result<DeformingProxy> proxy = deformingProxy(arm, 0.02f, 32);
+    ASSERT_TRUE(proxy.ok()) << proxy.error();
+    CollisionWorld world = buildWorld(arm, {std::optional<Proxy>(proxy->proxy)});
+    for (double t : {0.4, 1.0}) {
+        ASSERT_TRUE(poseAt(world, arm, t).ok());
+        const Scene drawn = drawnPose(arm, t);
+        const CollisionWorld reference = buildWorld(drawn);
+        const glm::dmat4 toWorld = drawn.objects[0].transform, toObject = glm::inverse(toWorld);
+        size_t shots = 0, onTheDrawnHit = 0;
+        for (const Ray& r : raysAt(drawn)) {
+            const std::optional<Hit> hit = world.intersect(r), want = reference.intersect(r);
+            if (!hit || hit->object != 0 || !want || want->object != 0) continue;
+            const glm::dvec3 direction(toObject * glm::dvec4(r.direction, 0.0));
+            const std::optional<SurfaceLocation> at =
+                world.anchorAt(0, hit->primitive, hit->localPosition, direction);
+            ASSERT_TRUE(at.has_value()) << "t " << t;
+            const glm::dvec3 point(toWorld * glm::dvec4(glm::dvec3(at->frame[3]), 1.0));
+            EXPECT_LE(glm::length(point - hit->position), 8.0 * proxy->proxy.errorBound) << "t " << t;
+            ++shots;
+            onTheDrawnHit += glm::length(point - want->position) < 1e-5;
+        }
+        EXPECT_GT(shots, 40u) << "t " << t;
+        EXPECT_GE(double(onTheDrawnHit), 0.95 * double(shots)) << "t " << t;
+    }
+}
