@@ -1016,6 +1016,11 @@ Result<TransformUpdate> CollisionWorld::setPose(uint32_t object, const glm::dmat
     return setTransform(object, transform);
 }
 
+bool CollisionWorld::deforms(uint32_t object) const {
+    return object < impl_->objects.size() && impl_->objects[object].posable &&
+           impl_->objects[object].info.inWorld;
+}
+
 std::optional<SurfaceLocation> CollisionWorld::anchorAt(uint32_t object, uint32_t primitive,
                                                         const glm::dvec3& localPosition,
                                                         const glm::dvec3& localDirection) const {

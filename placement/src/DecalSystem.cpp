@@ -392,14 +392,22 @@ struct DecalSystem::Impl {
                                                          formatNumber(angle) +
                                                          " degrees from its normal (type '" + t.name +
                                                          "' allows " + formatNumber(t.maxAngleDeg) + ")");
-        // On a skinned or morphed object the shot lands on the drawn surface and is anchored there
-        // (SkinAnchors), so that the decal follows the pose; volumetric decals keep the proxy's hit,
-        // where their crater is clipped.
-        const std::optional<SurfaceLocation> drawn = drawnSurfaceUnder(*hit, dir);
-        SpawnResult placed = drawn && !t.volumetric
-                                 ? place(hit->object, glm::dvec3(drawn->frame[3]),
-                                         drawnNormal(*hit, *drawn, dir), dir, typeIndex, true, true)
-                                 : place(hit->object, hit->localPosition, hit->normal, dir, typeIndex, true);
+        return placeAtHit(*hit, dir, std::nullopt, dir, typeIndex, true);
+    }
+
+    // Places a decal of `typeIndex` at `hit`, made by a shot or probe along `dir` (world space, unit),
+    // facing `facing` (world space, unit) or, when it is empty, the surface hit. On a skinned or
+    // morphed object it lands on the drawn surface under the hit and is anchored there (SkinAnchors),
+    // so that it follows the pose, and faces the render triangle when `facing` is empty; volumetric
+    // decals keep the proxy's hit, where their crater is clipped. `hint` and `shot` as for place().
+    SpawnResult placeAtHit(const Hit& hit, const glm::dvec3& dir, const std::optional<glm::dvec3>& facing,
+                           const glm::dvec3& hint, uint16_t typeIndex, bool shot) {
+        const std::optional<SurfaceLocation> drawn = drawnSurfaceUnder(hit, dir);
+        SpawnResult placed =
+            drawn && !types[typeIndex].volumetric
+                ? place(hit.object, glm::dvec3(drawn->frame[3]),
+                        facing ? *facing : drawnNormal(hit, *drawn, dir), hint, typeIndex, shot, true)
+                : place(hit.object, hit.localPosition, facing ? *facing : hit.normal, hint, typeIndex, shot);
         if (placed.placed() && drawn) anchors.add(placed.handle.slot, decals.back(), *drawn);
         return placed;
     }
@@ -407,9 +415,8 @@ struct DecalSystem::Impl {
     // Where the shot along `dir` (world space) that made `hit` meets the drawn surface of a skinned or
     // morphed object (CollisionWorld::anchorAt); nothing on other objects, which pay no more for it.
     std::optional<SurfaceLocation> drawnSurfaceUnder(const Hit& hit, const glm::dvec3& dir) const {
-        const CollisionObject& o = object(hit.object);
-        if (!o.dynamic) return std::nullopt; // only dynamic objects deform
-        const glm::dvec3 local = glm::inverse(glm::dmat3(o.transform)) * dir;
+        if (!world.deforms(hit.object)) return std::nullopt;
+        const glm::dvec3 local = glm::inverse(glm::dmat3(object(hit.object).transform)) * dir;
         return world.anchorAt(hit.object, hit.primitive, hit.localPosition, local);
     }
 
@@ -420,6 +427,23 @@ struct DecalSystem::Impl {
             glm::transpose(glm::inverse(glm::dmat3(object(hit.object).transform)));
         const glm::dvec3 n = glm::normalize(normalMatrix * glm::dvec3(drawn.frame[2]));
         return glm::dot(n, dir) < 0.0 ? n : hit.normal;
+    }
+
+    // The hit on deforming object `objectIndex` of a probe from `local` (object space) plus the type's
+    // size along `facing` (world space, unit) to as far the other way; nothing for an object that does
+    // not deform, or when the probe meets another object first or nothing.
+    std::optional<Hit> probeOwnSurface(uint32_t objectIndex, const glm::dvec3& local,
+                                       const glm::dvec3& facing, const DecalType& t) const {
+        if (!world.deforms(objectIndex)) return std::nullopt;
+        const double r = double(std::max(t.size.x, t.size.y));
+        Ray probe;
+        probe.origin = glm::dvec3(object(objectIndex).transform * glm::dvec4(local, 1.0)) + facing * r;
+        probe.direction = -facing;
+        probe.tnear = 0.0;
+        probe.tfar = 2.0 * r;
+        std::optional<Hit> hit = world.intersect(probe);
+        if (!hit || hit->object != objectIndex) return std::nullopt;
+        return hit;
     }
 
     // world.intersectBatch(rays), traced in slices by up to settings.batchThreads threads (each
@@ -594,7 +618,7 @@ SpawnResult DecalSystem::spawnAt(const glm::dvec3& position, const glm::dvec3& n
                                                        formatNumber(angle) +
                                                        " degrees from the normal (type '" + t.name +
                                                        "' allows " + formatNumber(t.maxAngleDeg) + ")");
-    return s.place(hit->object, hit->localPosition, n, glm::dvec3(1.0, 0.0, 0.0), type);
+    return s.placeAtHit(*hit, probe.direction, n, glm::dvec3(1.0, 0.0, 0.0), type, false);
 }
 
 SpawnResult DecalSystem::spawnAttached(uint32_t objectIndex, const glm::vec3& localPosition,
@@ -628,7 +652,12 @@ SpawnResult DecalSystem::spawnAttached(uint32_t objectIndex, const glm::vec3& lo
     if (o->dynamic && !t.onDynamic)
         return s.reject(SpawnStatus::NotReceiver,
                         "decal type '" + t.name + "' may not land on dynamic object '" + o->name + "'");
-    return s.place(objectIndex, p, wn / std::sqrt(len2), m * glm::dvec3(1.0, 0.0, 0.0), type);
+    const glm::dvec3 facing = wn / std::sqrt(len2), hint = m * glm::dvec3(1.0, 0.0, 0.0);
+    // On a skinned or morphed object the decal lands on the drawn surface under the point, found by a
+    // probe along the normal as spawnAt finds it, and follows the pose from there.
+    if (const std::optional<Hit> hit = s.probeOwnSurface(objectIndex, p, facing, t); hit)
+        return s.placeAtHit(*hit, -facing, facing, hint, type, false);
+    return s.place(objectIndex, p, facing, hint, type);
 }
 
 void DecalSystem::spawnBatch(const std::vector<Ray>& rays, uint16_t type, std::vector<SpawnResult>& results) {

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 using namespace spatter;
@@ -99,18 +100,27 @@ struct Drift {
     double whole = 0.0; // the largest distance
 };
 
+// Spawns the decals of the arm drawn at t0: what `spawnAll` places.
+using Spawner = std::function<std::vector<SpawnResult>(DecalSystem&, const Mesh& drawn, uint16_t type)>;
+
+std::vector<SpawnResult> shootAtForearm(DecalSystem& system, const Mesh& drawn, uint16_t type) {
+    std::vector<SpawnResult> out;
+    for (const Ray& r : shotsAtForearm(drawn))
+        out.push_back(system.spawn(r, type));
+    return out;
+}
+
 // Spawns at time t0, poses at t1 and measures, over the decals, how far a decal's centre is from the
 // render surface point it was placed on (the nearest to its centre at t0), both at t1.
-Drift largestDrift(DecalSystem& system, const Scene& arm, double t0, double t1, size_t& decals) {
+Drift largestDrift(DecalSystem& system, const Scene& arm, double t0, double t1, size_t& decals,
+                   const Spawner& spawnAll = shootAtForearm) {
     const uint16_t type = addType(system, bulletHole());
     EXPECT_TRUE(poseAt(system, arm, t0).ok());
     const Mesh at0 = drawnMesh(arm, t0), at1 = drawnMesh(arm, t1);
     std::vector<std::pair<DecalHandle, SurfacePoint>> placed;
-    for (const Ray& r : shotsAtForearm(at0)) {
-        const SpawnResult s = system.spawn(r, type);
+    for (const SpawnResult& s : spawnAll(system, at0, type))
         if (s.placed())
             placed.emplace_back(s.handle, nearestOn(at0, glm::dvec3(system.get(s.handle)->center)));
-    }
     EXPECT_TRUE(poseAt(system, arm, t1).ok());
     Drift drift;
     for (const auto& [handle, point] : placed) {
@@ -154,6 +164,44 @@ TEST(SkinnedDecals, StayOnTheSkinOverADeformingProxy) {
     const float margin = system->settings().depthMargin;
     for (const Decal& d : system->decals())
         EXPECT_NEAR(d.halfDepth, margin * kDecalSize, 1e-6) << "h " << proxy->proxy.errorBound;
+}
+
+TEST(SkinnedDecals, DecalsOfSpawnAtAndSpawnAttachedStayOnTheSkinToo) {
+    // At the centroids of the forearm's triangles as drawn at t0, facing their normals (the arm's
+    // transform is the identity: object space is world space), through a deforming proxy.
+    const Scene arm = makeSkinnedArm();
+    Result<DeformingProxy> proxy = deformingProxy(arm, 0.005f, 16);
+    ASSERT_TRUE(proxy.ok()) << proxy.error();
+    const auto centroids = [](const Mesh& drawn) {
+        std::vector<std::pair<glm::dvec3, glm::dvec3>> points; // position, normal
+        for (size_t i = 0; i < drawn.triangleCount(); i += 7) {
+            const SurfacePoint c{uint32_t(i), glm::dvec3(1.0 / 3.0)};
+            points.emplace_back(c.on(drawn), c.normal(drawn));
+        }
+        return points;
+    };
+    const Spawner at = [&](DecalSystem& system, const Mesh& drawn, uint16_t type) {
+        std::vector<SpawnResult> out;
+        for (const auto& [p, n] : centroids(drawn))
+            out.push_back(system.spawnAt(p, n, type));
+        return out;
+    };
+    const Spawner attached = [&](DecalSystem& system, const Mesh& drawn, uint16_t type) {
+        std::vector<SpawnResult> out;
+        for (const auto& [p, n] : centroids(drawn))
+            out.push_back(system.spawnAttached(0, glm::vec3(p), glm::vec3(n), type));
+        return out;
+    };
+    for (const Spawner& spawnAll : {at, attached}) {
+        Result<CollisionWorld> world = CollisionWorld::build(arm, {std::optional<Proxy>(proxy->proxy)});
+        ASSERT_TRUE(world.ok()) << world.error();
+        Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), roomy());
+        ASSERT_TRUE(system.ok()) << system.error();
+        size_t decals = 0;
+        const Drift drift = largestDrift(system.value(), arm, 0.3, 1.0, decals, spawnAll);
+        EXPECT_GT(decals, 100u);
+        EXPECT_LT(drift.whole, 1e-5);
+    }
 }
 
 TEST(SkinnedDecals, PosingLogsEveryMovedDecalAsChanged) {

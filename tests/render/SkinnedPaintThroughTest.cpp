@@ -98,11 +98,10 @@ TEST(SkinnedPaintThrough, ADeepDecalOnTheArmCoversNoPixelOfTheBodyBehindIt) {
     shot.direction = glm::dvec3(-1.0, 0.0, 0.0);
     const SpawnResult placed = system->spawn(shot, type);
     ASSERT_TRUE(placed.placed()) << placed.reason;
-    // The same decal attached by hand, as an engine attaches one: its box keeps the type's depth.
+    // The same decal as an engine attaches one: its box keeps the type's depth.
     const Decal skinned = *system->get(placed.handle);
-    const SpawnResult attached = system->spawnAttached(0, skinned.center, skinned.frame().normal, type);
-    ASSERT_TRUE(attached.placed()) << attached.reason;
-    const Decal deepBox = *system->get(attached.handle);
+    Decal deepBox = skinned;
+    deepBox.halfDepth = deep.halfDepth;
 
     Result<Renderer> r = makeRenderer(kSize, kSize);
     ASSERT_TRUE(r.ok()) << r.error();

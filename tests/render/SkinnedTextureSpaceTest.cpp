@@ -187,11 +187,10 @@ TEST(SkinnedTextureSpace, ADeepSplatOnTheFrontSheetLeavesTheSheetBehindItClean) 
     EXPECT_EQ(countSet(whiteMask(renderView(r.value(), back, View::Coverage))), 0u)
         << "the splat on the front sheet reached the sheet behind it";
 
-    // The same decal attached by hand keeps the type's depth, and paints the back sheet.
-    const Decal skinned = *system->get(placed.handle);
-    const SpawnResult attached = system->spawnAttached(0, skinned.center, skinned.frame().normal, type);
-    ASSERT_TRUE(attached.placed()) << attached.reason;
+    // The same decal with the type's depth, as an engine attaches one, paints the back sheet.
+    Decal deepBox = *system->get(placed.handle);
+    deepBox.halfDepth = rig.type.halfDepth;
     ASSERT_TRUE(r->clearObjectDecals(0).ok());
-    r->setDecals({*system->get(attached.handle)});
+    r->setDecals({deepBox});
     EXPECT_GT(countSet(whiteMask(renderView(r.value(), back, View::Coverage))), 50u);
 }

@@ -161,6 +161,9 @@ public:
     Result<TransformUpdate> setPose(uint32_t object, const glm::dmat4& transform,
                                     const std::vector<glm::dmat4>& joints,
                                     const std::vector<double>& morphWeights);
+    // Whether `object` is in the world and deforms: skinned or morphed, its collision mesh posed by
+    // setPose and its decals anchored by anchorAt.
+    bool deforms(uint32_t object) const;
     // The point of a skinned or morphed object's drawn surface that a hit on its collision mesh
     // stands for: the hit (triangle `primitive`, Hit::primitive, at `localPosition`,
     // Hit::localPosition) and the shot (`localDirection`, object space; zero for none) taken back to

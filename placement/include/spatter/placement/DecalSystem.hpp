@@ -151,7 +151,8 @@ public:
     // components are all zero or denormal;
     // NotReceiver for an object not in the world, or dynamic with a type that has onDynamic == false.
     // The tangent starts along the object's X axis, so the result does not depend on where the
-    // object is at the time.
+    // object is at the time. On a skinned or morphed object the decal lands on the drawn surface under
+    // the point and follows the pose (setPose).
     SpawnResult spawnAttached(uint32_t object, const glm::vec3& localPosition, const glm::vec3& localNormal,
                               uint16_t type);
 
@@ -199,13 +200,16 @@ public:
     // result says so; its decals stay.
     Result<TransformUpdate> setTransform(uint32_t object, const glm::dmat4& transform);
     // Poses a skinned or morphed dynamic object as it is drawn (CollisionWorld::setPose: later shots
-    // meet the posed surface). A decal that a shot (spawn, spawnBatch) places on such an object is
-    // moved onto the drawn surface under the hit, with a half-depth of depthMargin times its size
-    // whatever its type asks (volumetric ones excepted), and keeps that point of the render surface
-    // (CollisionWorld::anchorAt): each setPose moves, turns and bends it with the surface (its centre
-    // and frame change in place, logged as Changed); a save keeps that point (DecalPersistence.hpp).
-    // Decals placed by spawnAt or spawnAttached ride the object's transform only. Fails, and changes
-    // nothing, as CollisionWorld::setPose does.
+    // meet the posed surface). A decal that a shot (spawn, spawnBatch) places on such an object lands
+    // on the drawn surface under the hit, with a half-depth of depthMargin times its size whatever
+    // its type asks (volumetric ones stay at the proxy's hit), and keeps that point of the render
+    // surface (CollisionWorld::anchorAt): each setPose moves, turns and bends it with the surface
+    // (its centre and frame change in place, logged as Changed); a save keeps that point
+    // (DecalPersistence.hpp). Decals placed by spawnAt land and stay the same way, under their probe;
+    // those of spawnAttached too, under a probe along their normal through the given point (the
+    // point as the object stands), unless that probe meets another object first or nothing: then
+    // they ride the object's transform only. Fails, and changes nothing, as CollisionWorld::setPose
+    // does.
     Result<TransformUpdate> setPose(uint32_t object, const glm::dmat4& transform,
                                     const std::vector<glm::dmat4>& joints,
                                     const std::vector<double>& morphWeights);
