@@ -1,11 +1,14 @@
 // libFuzzer target: the spawn API. Each input is decoded into decal settings and a program of calls
-// (registerType, spawn, spawnAt, spawnAttached, spawnBatch, setTransform, removeObject, update,
-// remove) whose numbers include NaN, infinities, denormals and extreme magnitudes. The program runs
-// twice on fresh systems over the same scene: as decoded (spawnBatch traced by up to 4 threads) and
-// with every spawnBatch replaced by spawns ray by ray. After every call the invariants the API
+// (registerType, spawn, spawnAt, spawnAttached, spawnBatch, setTransform, setPose, removeObject,
+// update, remove) whose numbers include NaN, infinities, denormals and extreme magnitudes. The
+// program runs twice on fresh systems over the same scene: as decoded (spawnBatch traced by up to 4
+// threads) and with every spawnBatch replaced by spawns ray by ray. After every call the invariants the API
 // documents are checked; at the end both runs must agree bit for bit.
 
+#include "spatter/core/DeformingProxy.hpp"
 #include "spatter/core/MeshBuilder.hpp"
+#include "spatter/core/SceneEvaluator.hpp"
+#include "spatter/core/SkinnedArm.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
 #include <fuzzer/FuzzedDataProvider.h>
@@ -28,17 +31,19 @@ using namespace spatter;
     std::abort();
 }
 
-// A floor, a static sphere, a dynamic crate, a dynamic non-receiver and a dynamic scaled sphere.
+// The skinned arm (object 0, posed by setPose through a deforming proxy, so that shots on it are
+// anchored to its drawn surface), a floor, a static sphere, a dynamic crate, a dynamic non-receiver
+// and a dynamic scaled sphere.
 Scene makeScene() {
-    Scene s;
+    Scene s = makeSkinnedArm();
     s.source = "fuzz:spawn";
     const glm::dmat4 id(1.0);
     s.objects.push_back(makeSceneObject("floor", makeBox(glm::vec3(10.0f, 0.1f, 10.0f), 2),
                                         glm::translate(id, glm::dvec3(0.0, -0.1, 0.0)), false));
     s.objects.push_back(
         makeSceneObject("pillar", makeSphere(1.0f, 8, 12), glm::translate(id, glm::dvec3(3, 1, 0)), false));
-    s.objects.push_back(
-        makeSceneObject("crate", makeBox(glm::vec3(0.5f), 1), glm::translate(id, glm::dvec3(0, 1, 0)), true));
+    s.objects.push_back(makeSceneObject("crate", makeBox(glm::vec3(0.5f), 1),
+                                        glm::translate(id, glm::dvec3(0, 1, -3)), true));
     s.objects.push_back(makeSceneObject("ghost", makeBox(glm::vec3(0.5f), 1),
                                         glm::translate(id, glm::dvec3(-3, 1, 0)), true));
     s.objects.back().receivesDecals = false;
@@ -51,6 +56,21 @@ Scene makeScene() {
 const Scene& scene() {
     static const Scene s = makeScene();
     return s;
+}
+
+// The collision meshes: the arm's deforming proxy at 2% of its diagonal, the others' render meshes.
+const std::vector<std::optional<Proxy>>& proxies() {
+    static const std::vector<std::optional<Proxy>> p = [] {
+        ProxySettings settings;
+        settings.tolerance = 0.02f;
+        settings.toleranceRelative = true;
+        Result<DeformingProxy> arm = buildDeformingProxy(scene(), 0, settings, 8);
+        if (!arm) violated("the arm's deforming proxy does not build", 0);
+        std::vector<std::optional<Proxy>> out(scene().objects.size());
+        out[0] = arm->proxy;
+        return out;
+    }();
+    return p;
 }
 
 double pickDouble(FuzzedDataProvider& in, double lo, double hi) {
@@ -95,16 +115,18 @@ glm::dvec3 pickVec(FuzzedDataProvider& in, double lo, double hi) {
 }
 
 // A ray; half of them aimed at a point near an object's place (`places`: where the program has
-// moved each object so far), exactly at it one time in four (a collapsed object is only a point, a
-// line or a plane there), from somewhere around the scene.
+// moved each object so far; the arm's middle), exactly at it one time in four (a collapsed object is only a
+// point, a line or a plane there), from somewhere around the scene.
 Ray pickRay(FuzzedDataProvider& in, const std::vector<glm::dvec3>& places) {
     Ray r;
     if (in.ConsumeBool()) {
-        glm::dvec3 target = places[in.ConsumeIntegralInRange<size_t>(0, places.size() - 1)];
+        const size_t k = in.ConsumeIntegralInRange<size_t>(0, places.size() - 1);
+        glm::dvec3 target = places[k];
+        const double spread = k == 0 ? 0.15 : 1.0; // the arm is a bar 0.2 across
         if (in.ConsumeIntegralInRange<int>(0, 3) != 0)
-            target += glm::dvec3(in.ConsumeFloatingPointInRange(-1.0, 1.0),
-                                 in.ConsumeFloatingPointInRange(-1.0, 1.0),
-                                 in.ConsumeFloatingPointInRange(-1.0, 1.0));
+            target += spread * glm::dvec3(in.ConsumeFloatingPointInRange(-1.0, 1.0),
+                                          in.ConsumeFloatingPointInRange(-1.0, 1.0),
+                                          in.ConsumeFloatingPointInRange(-1.0, 1.0));
         r.origin = pickVec(in, -15.0, 15.0);
         r.direction = (target - r.origin) * pickDouble(in, 0.5, 2.0);
     } else {
@@ -192,7 +214,18 @@ DecalType pickType(FuzzedDataProvider& in, size_t serial) {
 }
 
 struct Op {
-    enum Kind { Register, Spawn, SpawnAt, SpawnAttached, SpawnBatch, Move, RemoveObject, Update, Remove };
+    enum Kind {
+        Register,
+        Spawn,
+        SpawnAt,
+        SpawnAttached,
+        SpawnBatch,
+        Move,
+        RemoveObject,
+        Update,
+        Remove,
+        Pose
+    };
     Kind kind = Spawn;
     DecalType type;
     uint16_t typeIndex = 0;
@@ -202,9 +235,10 @@ struct Op {
     glm::vec3 localPosition{0.0f}, localNormal{0.0f};
     uint32_t object = 0;
     glm::dmat4 transform{1.0};
-    double dt = 0.0;
-    size_t handle = 0; // index into the handles placed so far (modulo their count)
-    DecalHandle raw;   // used when `useRaw`
+    double dt = 0.0;                // Update's step; Pose's time of the arm's animation
+    std::vector<glm::dmat4> joints; // Pose: joint matrices of its own when not empty
+    size_t handle = 0;              // index into the handles placed so far (modulo their count)
+    DecalHandle raw;                // used when `useRaw`
     bool useRaw = false;
 };
 
@@ -214,9 +248,10 @@ std::vector<Op> decode(FuzzedDataProvider& in) {
     std::vector<glm::dvec3> places;
     for (const SceneObject& o : scene().objects)
         places.push_back(glm::dvec3(o.transform[3]));
+    places[0] += glm::dvec3(0.0, 0.5, 0.0); // the arm's middle: it stands on its origin
     while (in.remaining_bytes() > 0 && ops.size() < 48) {
         Op op;
-        op.kind = Op::Kind(in.ConsumeIntegralInRange<int>(0, 8));
+        op.kind = Op::Kind(in.ConsumeIntegralInRange<int>(0, 9));
         op.typeIndex =
             uint16_t(in.ConsumeIntegralInRange<int>(0, 3) == 0 ? in.ConsumeIntegral<uint16_t>()
                                                                : in.ConsumeIntegralInRange<int>(0, 3));
@@ -251,6 +286,12 @@ std::vector<Op> decode(FuzzedDataProvider& in) {
             break;
         case Op::Update:
             op.dt = in.ConsumeBool() ? pickDouble(in, 0.0, 3.0) : in.ConsumeFloatingPointInRange(0.0, 0.5);
+            break;
+        case Op::Pose:
+            if (in.ConsumeIntegralInRange<int>(0, 3) != 0) op.object = 0; // mostly the arm
+            op.dt = pickDouble(in, -1.0, 3.0);
+            if (in.ConsumeIntegralInRange<int>(0, 3) == 0) op.joints = {pickTransform(in), pickTransform(in)};
+            op.transform = in.ConsumeBool() ? glm::dmat4(1.0) : pickTransform(in);
             break;
         case Op::Remove:
             op.useRaw = in.ConsumeIntegralInRange<int>(0, 3) == 0;
@@ -379,6 +420,10 @@ void trace(const Op& op, size_t i) {
     case Op::Update:
         d = "update " + text(glm::dvec3(op.dt));
         break;
+    case Op::Pose:
+        d = "setPose object " + std::to_string(op.object) + " time " + text(glm::dvec3(op.dt)) +
+            (op.joints.empty() ? " (the animation's joints)" : " (joints of its own)");
+        break;
     case Op::Remove:
         d = "remove " + (op.useRaw
                              ? "raw " + std::to_string(op.raw.slot) + "/" + std::to_string(op.raw.generation)
@@ -386,6 +431,13 @@ void trace(const Op& op, size_t i) {
         break;
     }
     std::fprintf(stderr, "call %zu: %s\n", i, d.c_str());
+}
+
+// The arm's joint matrices at time t of its animation (the time as the evaluator takes it).
+std::vector<glm::dmat4> armJoints(double t) {
+    SceneEvaluator evaluator(scene());
+    evaluator.evaluate(0, t);
+    return evaluator.jointMatrices(0);
 }
 
 void execute(Run& run, const std::vector<Op>& ops, bool batchesRayByRay) {
@@ -436,6 +488,9 @@ void execute(Run& run, const std::vector<Op>& ops, bool batchesRayByRay) {
             if (!st.ok() && s.time() != before) violated("a failed update changed the clock", i);
             break;
         }
+        case Op::Pose:
+            (void)s.setPose(op.object, op.transform, op.joints.empty() ? armJoints(op.dt) : op.joints, {});
+            break;
         case Op::Remove: {
             const DecalHandle h =
                 op.useRaw || run.handles.empty() ? op.raw : run.handles[op.handle % run.handles.size()];
@@ -486,8 +541,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
     DecalSettings serial = settings;
     serial.batchThreads = 1;
-    Result<CollisionWorld> worldA = CollisionWorld::build(scene());
-    Result<CollisionWorld> worldB = CollisionWorld::build(scene());
+    Result<CollisionWorld> worldA = CollisionWorld::build(scene(), proxies());
+    Result<CollisionWorld> worldB = CollisionWorld::build(scene(), proxies());
     if (!worldA || !worldB) violated("the scene does not build", 0);
     Result<DecalSystem> a = DecalSystem::create(std::move(worldA).value(), settings);
     Result<DecalSystem> b = DecalSystem::create(std::move(worldB).value(), serial);
