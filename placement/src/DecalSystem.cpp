@@ -429,13 +429,16 @@ struct DecalSystem::Impl {
         return glm::dot(n, dir) < 0.0 ? n : hit.normal;
     }
 
-    // The hit on deforming object `objectIndex` of a probe from `local` (object space) plus the type's
-    // size along `facing` (world space, unit) to as far the other way; nothing for an object that does
-    // not deform, or when the probe meets another object first or nothing.
+    // The hit on deforming object `objectIndex` of a probe through `local` (object space) along
+    // `facing` (world space, unit), from twice the object's error bound in front of it to as far
+    // behind (at least a hundredth of the type's size), so that another part of the object a little
+    // farther in front is not taken for it; nothing for an object that does not deform, or when the
+    // probe meets another object first or nothing.
     std::optional<Hit> probeOwnSurface(uint32_t objectIndex, const glm::dvec3& local,
                                        const glm::dvec3& facing, const DecalType& t) const {
         if (!world.deforms(objectIndex)) return std::nullopt;
-        const double r = double(std::max(t.size.x, t.size.y));
+        const double r =
+            std::max(2.0 * world.worldErrorBound(objectIndex), 0.01 * double(std::max(t.size.x, t.size.y)));
         Ray probe;
         probe.origin = glm::dvec3(object(objectIndex).transform * glm::dvec4(local, 1.0)) + facing * r;
         probe.direction = -facing;

@@ -188,8 +188,12 @@ TEST(SkinnedDecals, DecalsOfSpawnAtAndSpawnAttachedStayOnTheSkinToo) {
     };
     const Spawner attached = [&](DecalSystem& system, const Mesh& drawn, uint16_t type) {
         std::vector<SpawnResult> out;
-        for (const auto& [p, n] : centroids(drawn))
+        for (const auto& [p, n] : centroids(drawn)) {
             out.push_back(system.spawnAttached(0, glm::vec3(p), glm::vec3(n), type));
+            if (out.back().placed()) { // a point on the drawn surface stays where it was given
+                EXPECT_LT(glm::length(glm::dvec3(system.get(out.back().handle)->center) - p), 1e-5);
+            }
+        }
         return out;
     };
     for (const Spawner& spawnAll : {at, attached}) {
@@ -202,6 +206,38 @@ TEST(SkinnedDecals, DecalsOfSpawnAtAndSpawnAttachedStayOnTheSkinToo) {
         EXPECT_GT(decals, 100u);
         EXPECT_LT(drift.whole, 1e-5);
     }
+}
+
+TEST(SkinnedDecals, SpawnAttachedInsideABentElbowStaysOnTheGivenPoint) {
+    // At the elbow bent 90 degrees, points of the upper arm whose normal meets the forearm within the
+    // decal's size: a probe as long as spawnAt's lands on the forearm, 3 to 40 cm away. The render
+    // mesh is its own collision mesh (no error bound), so the probe reaches a hundredth of the size
+    // either side of the point: most decals stay on it, and those where the skin of the inner elbow
+    // folds over itself land on the fold within that reach.
+    const Scene arm = makeSkinnedArm();
+    DecalSystem system = makeSystem(arm, roomy());
+    DecalType wide = bulletHole();
+    wide.size = glm::vec2(0.4f);
+    const uint16_t type = addType(system, wide);
+    ASSERT_TRUE(poseAt(system, arm, 1.0).ok());
+    const Mesh drawn = drawnMesh(arm, 1.0);
+    size_t facingTheForearm = 0, onThePoint = 0;
+    for (uint32_t i = 0; i < drawn.triangleCount(); ++i) {
+        const SurfacePoint c{i, glm::dvec3(1.0 / 3.0)};
+        const glm::dvec3 p = c.on(drawn), n = c.normal(drawn);
+        Ray ahead = ray(p + n * 1e-4, n);
+        ahead.tfar = 0.4;
+        const std::optional<Hit> forearm = system.world().intersect(ahead);
+        if (!forearm || forearm->object != 0) continue;
+        ++facingTheForearm;
+        const SpawnResult placed = system.spawnAttached(0, glm::vec3(p), glm::vec3(n), type);
+        ASSERT_TRUE(placed.placed()) << placed.reason;
+        const double off = glm::length(glm::dvec3(system.get(placed.handle)->center) - p);
+        EXPECT_LE(off, 0.01 * 0.4 + 1e-6) << "triangle " << i;
+        onThePoint += off < 1e-5;
+    }
+    EXPECT_GT(facingTheForearm, 20u);
+    EXPECT_GE(4 * onThePoint, 3 * facingTheForearm);
 }
 
 TEST(SkinnedDecals, PosingLogsEveryMovedDecalAsChanged) {

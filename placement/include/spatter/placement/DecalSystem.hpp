@@ -206,10 +206,10 @@ public:
     // surface (CollisionWorld::anchorAt): each setPose moves, turns and bends it with the surface
     // (its centre and frame change in place, logged as Changed); a save keeps that point
     // (DecalPersistence.hpp). Decals placed by spawnAt land and stay the same way, under their probe;
-    // those of spawnAttached too, under a probe along their normal through the given point (the
-    // point as the object stands), unless that probe meets another object first or nothing: then
-    // they ride the object's transform only. Fails, and changes nothing, as CollisionWorld::setPose
-    // does.
+    // those of spawnAttached too, under a short probe along their normal through the given point (the
+    // point as the object stands; twice the object's error bound either side of it), unless that
+    // probe meets another object first or nothing: then they ride the object's transform only. Fails, and
+    // changes nothing, as CollisionWorld::setPose does.
     Result<TransformUpdate> setPose(uint32_t object, const glm::dmat4& transform,
                                     const std::vector<glm::dmat4>& joints,
                                     const std::vector<double>& morphWeights);
