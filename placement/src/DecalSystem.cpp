@@ -657,7 +657,7 @@ SpawnResult DecalSystem::spawnAttached(uint32_t objectIndex, const glm::vec3& lo
                         "decal type '" + t.name + "' may not land on dynamic object '" + o->name + "'");
     const glm::dvec3 facing = wn / std::sqrt(len2), hint = m * glm::dvec3(1.0, 0.0, 0.0);
     // On a skinned or morphed object the decal lands on the drawn surface under the point, found by a
-    // probe along the normal as spawnAt finds it, and follows the pose from there.
+    // short probe along the normal (probeOwnSurface), and follows the pose from there.
     if (const std::optional<Hit> hit = s.probeOwnSurface(objectIndex, p, facing, t); hit)
         return s.placeAtHit(*hit, -facing, facing, hint, type, false);
     return s.place(objectIndex, p, facing, hint, type);
