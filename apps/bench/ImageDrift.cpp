@@ -4,6 +4,7 @@
 #include "CoverageProbe.hpp"
 #include "DecalMarker.hpp"
 #include "SkinPoints.hpp"
+#include "SkinnedModels.hpp"
 
 #include "spatter/core/SceneEvaluator.hpp"
 #include "spatter/core/VertexDeformation.hpp"
@@ -51,12 +52,9 @@ public:
         Result<Renderer> renderer = Renderer::create(*context, rs);
         if (!renderer) return fail(renderer.error());
         if (Status s = renderer->setScene(*in.scene); !s) return fail(s.error());
-        Result<int> layer = renderer->addDecalTexture(tracking::markerTexture());
-        if (!layer) return fail(layer.error());
-        DecalType type = coverageType(in.decalSize);
-        type.name = "marker";
-        type.texture = layer.value();
-        type.normalMap = false;
+        Result<DecalType> marker = tracking::markerType(renderer.value(), coverageType(in.decalSize));
+        if (!marker) return fail(marker.error());
+        const DecalType& type = marker.value();
         renderer->setDecalTypes({type});
         Result<DecalSystem> system =
             coverageSystem(CollisionWorld::build(*in.scene), type, 20.0 * in.decalSize, 5);
@@ -77,6 +75,7 @@ public:
                                 evaluator_.morphWeights(o));
             !u)
             return fail(u.error());
+        positions_ = worldPositionsOf(*in_.scene, o, evaluator_);
         return renderer_.setPose(evaluator_);
     }
 
@@ -85,14 +84,8 @@ public:
         return tracking::drawAlone(renderer_, in_.camera, View::Albedo, decals, stats);
     }
 
-    // The posed render surface in world space.
-    std::vector<glm::dvec3> worldPositions() const {
-        std::vector<glm::dvec3> p = posedPositions(*in_.scene, in_.object, evaluator_);
-        const glm::dmat4& toWorld = evaluator_.objectTransform(in_.object);
-        for (glm::dvec3& v : p)
-            v = glm::dvec3(toWorld * glm::dvec4(v, 1.0));
-        return p;
-    }
+    // The render surface in world space at the last pose.
+    const std::vector<glm::dvec3>& worldPositions() const { return positions_; }
 
     // The surface point `a` in the current pose, in the world, and how squarely it faces the eye.
     struct SeenPoint {
@@ -101,7 +94,7 @@ public:
     };
     SeenPoint seen(const SurfaceAnchor& a) const {
         const Mesh& mesh = in_.scene->objects[in_.object].mesh;
-        const std::vector<glm::dvec3> p = worldPositions();
+        const std::vector<glm::dvec3>& p = worldPositions();
         const uint32_t* c = cornersOf(mesh, a);
         const glm::dvec3 world = pointOf(mesh, p, a);
         return {world, tracking::facingCosine(p[c[0]], p[c[1]], p[c[2]], world, in_.camera.eye)};
@@ -145,6 +138,7 @@ private:
     DecalSystem system_;
     SceneEvaluator evaluator_;
     size_t skin_;
+    std::vector<glm::dvec3> positions_; // the render surface in world space at the last pose
 };
 
 // One method's drift: `record(f, frame)` gives decal f's record at the posed frame (frame -1: the
@@ -161,7 +155,7 @@ public:
         spawnTransform_ = rig_.evaluator().objectTransform(in_.object);
         spawnJoints_ = rig_.evaluator().jointMatrices(rig_.skin());
         const Mesh& rest = in_.scene->objects[in_.object].mesh;
-        const std::vector<glm::dvec3> p = rig_.worldPositions();
+        const std::vector<glm::dvec3>& p = rig_.worldPositions();
         Result<ClosestPointQuery> query = ClosestPointQuery::create(withPositions(rest, p));
         if (!query) return fail(query.error());
         Result<Image> bare = rig_.draw({});

@@ -49,8 +49,13 @@ double cycleTime(const SkinnedModel& m, double phase) {
 
 std::vector<glm::dvec3> worldPositionsAt(const SkinnedModel& m, SceneEvaluator& evaluator, double t) {
     evaluator.evaluate(0, t);
-    const glm::dmat4& toWorld = evaluator.objectTransform(m.object);
-    std::vector<glm::dvec3> p = posedPositions(m.scene, m.object, evaluator);
+    return worldPositionsOf(m.scene, m.object, evaluator);
+}
+
+std::vector<glm::dvec3> worldPositionsOf(const Scene& scene, uint32_t object,
+                                         const SceneEvaluator& evaluator) {
+    const glm::dmat4& toWorld = evaluator.objectTransform(object);
+    std::vector<glm::dvec3> p = posedPositions(scene, object, evaluator);
     for (glm::dvec3& v : p)
         v = glm::dvec3(toWorld * glm::dvec4(v, 1.0));
     return p;

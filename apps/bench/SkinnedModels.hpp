@@ -50,6 +50,9 @@ ModelPose modelPoseAt(const SkinnedModel& m, SceneEvaluator& evaluator, double t
 double cycleTime(const SkinnedModel& m, double phase);
 // The render mesh's vertices at time t, in world space (leaves `evaluator` at t).
 std::vector<glm::dvec3> worldPositionsAt(const SkinnedModel& m, SceneEvaluator& evaluator, double t);
+// The render mesh of `scene.objects[object]` posed as `evaluator` stands, in world space.
+std::vector<glm::dvec3> worldPositionsOf(const Scene& scene, uint32_t object,
+                                         const SceneEvaluator& evaluator);
 // The object's render mesh with `positions`.
 Mesh meshAt(const SkinnedModel& m, const std::vector<glm::dvec3>& positions);
 

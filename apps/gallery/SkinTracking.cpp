@@ -73,15 +73,10 @@ const Decal* newestOnSkin(const GallerySim& sim) {
 // The index of a copy of type `of` drawn with the centre marker, appended to the renderer's types (for
 // as long as the tracker runs).
 Result<uint16_t> addMarkerType(Renderer& renderer, const std::vector<DecalType>& types, uint16_t of) {
-    Result<int> layer = renderer.addDecalTexture(tracking::markerTexture());
-    if (!layer) return fail(layer.error());
+    Result<DecalType> marker = tracking::markerType(renderer, types[of]);
+    if (!marker) return fail(marker.error());
     std::vector<DecalType> withMarker = types;
-    DecalType marker = types[of];
-    marker.name = "centre marker";
-    marker.texture = layer.value();
-    marker.tint = glm::vec4(1.0f);
-    marker.normalMap = false;
-    withMarker.push_back(marker);
+    withMarker.push_back(marker.value());
     renderer.setDecalTypes(withMarker);
     return uint16_t(types.size());
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <glm/gtc/constants.hpp>
 
 namespace spatter::tracking {
 
@@ -11,7 +12,6 @@ namespace {
 constexpr int kMarkerTexels = 256;
 constexpr double kShownShare = 0.85;
 constexpr double kLeastCosine = 0.5;
-constexpr double kPi = 3.14159265358979323846;
 
 double linear(uint8_t srgb) {
     const double c = srgb / 255.0;
@@ -49,6 +49,16 @@ Image markerTexture() {
     return im;
 }
 
+Result<DecalType> markerType(Renderer& renderer, DecalType base) {
+    Result<int> layer = renderer.addDecalTexture(markerTexture());
+    if (!layer) return fail(layer.error());
+    base.name = "centre marker";
+    base.texture = layer.value();
+    base.tint = glm::vec4(1.0f);
+    base.normalMap = false;
+    return base;
+}
+
 Marker findMarker(const Image& with, const Image& without) {
     Marker m;
     if (with.width != without.width || with.height != without.height) return m;
@@ -66,7 +76,7 @@ Marker findMarker(const Image& with, const Image& without) {
 }
 
 bool showsWhole(const Marker& m, double cosine, double sizePixels) {
-    const double disc = kPi * std::pow(kMarkerRadius * sizePixels, 2.0) * cosine;
+    const double disc = glm::pi<double>() * std::pow(kMarkerRadius * sizePixels, 2.0) * cosine;
     return cosine >= kLeastCosine && m.weight > 0.0 && m.weight >= kShownShare * disc;
 }
 

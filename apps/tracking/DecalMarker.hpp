@@ -21,6 +21,9 @@ constexpr double kMarkerRadius = 0.1; // of the decal's width
 // The marker texture (RGBA8, straight alpha), for Renderer::addDecalTexture.
 Image markerTexture();
 
+// `base` drawn with the marker: the marker texture added to `renderer`, untinted, no normal map.
+Result<DecalType> markerType(Renderer& renderer, DecalType base);
+
 struct Marker {
     glm::dvec2 centre{0.0}; // pixel position, x right, y down
     double weight = 0.0;    // pixels' worth of marker

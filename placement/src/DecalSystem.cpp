@@ -402,30 +402,26 @@ struct DecalSystem::Impl {
     // decals keep the proxy's hit, where their crater is clipped. `hint` and `shot` as for place().
     SpawnResult placeAtHit(const Hit& hit, const glm::dvec3& dir, const std::optional<glm::dvec3>& facing,
                            const glm::dvec3& hint, uint16_t typeIndex, bool shot) {
-        const std::optional<SurfaceLocation> drawn = drawnSurfaceUnder(hit, dir);
+        if (!world.deforms(hit.object)) // only skinned and morphed objects pay for the drawn surface
+            return place(hit.object, hit.localPosition, facing ? *facing : hit.normal, hint, typeIndex, shot);
+        const glm::dmat3 inv = glm::inverse(glm::dmat3(object(hit.object).transform));
+        const std::optional<SurfaceLocation> drawn =
+            world.anchorAt(hit.object, hit.primitive, hit.localPosition, inv * dir);
         SpawnResult placed =
             drawn && !types[typeIndex].volumetric
                 ? place(hit.object, glm::dvec3(drawn->frame[3]),
-                        facing ? *facing : drawnNormal(hit, *drawn, dir), hint, typeIndex, shot, true)
+                        facing ? *facing : drawnNormal(hit, *drawn, inv, dir), hint, typeIndex, shot, true)
                 : place(hit.object, hit.localPosition, facing ? *facing : hit.normal, hint, typeIndex, shot);
         if (placed.placed() && drawn) anchors.add(placed.handle.slot, decals.back(), *drawn);
         return placed;
     }
 
-    // Where the shot along `dir` (world space) that made `hit` meets the drawn surface of a skinned or
-    // morphed object (CollisionWorld::anchorAt); nothing on other objects, which pay no more for it.
-    std::optional<SurfaceLocation> drawnSurfaceUnder(const Hit& hit, const glm::dvec3& dir) const {
-        if (!world.deforms(hit.object)) return std::nullopt;
-        const glm::dvec3 local = glm::inverse(glm::dmat3(object(hit.object).transform)) * dir;
-        return world.anchorAt(hit.object, hit.primitive, hit.localPosition, local);
-    }
-
-    // The world normal a decal on the drawn surface at `drawn` faces: its render triangle's, unless the
-    // shot grazed a silhouette and met that triangle from behind (then the proxy's, `hit.normal`).
-    glm::dvec3 drawnNormal(const Hit& hit, const SurfaceLocation& drawn, const glm::dvec3& dir) const {
-        const glm::dmat3 normalMatrix =
-            glm::transpose(glm::inverse(glm::dmat3(object(hit.object).transform)));
-        const glm::dvec3 n = glm::normalize(normalMatrix * glm::dvec3(drawn.frame[2]));
+    // The world normal a decal on the drawn surface at `drawn` faces: its render triangle's (carried by
+    // the transpose of `inv`, the inverse of the object's linear part), unless the shot along `dir`
+    // grazed a silhouette and met that triangle from behind (then the proxy's, `hit.normal`).
+    static glm::dvec3 drawnNormal(const Hit& hit, const SurfaceLocation& drawn, const glm::dmat3& inv,
+                                  const glm::dvec3& dir) {
+        const glm::dvec3 n = glm::normalize(glm::transpose(inv) * glm::dvec3(drawn.frame[2]));
         return glm::dot(n, dir) < 0.0 ? n : hit.normal;
     }
 

@@ -91,19 +91,22 @@ Result<std::vector<glm::vec3>> poseCollisionMesh(const PosedCollisionMesh& mesh,
 
 namespace {
 
-// The corners of render triangle `triangle` at a pose (rest positions before the first pose).
+// Vertex `v` of `rest` deformed by `deformation` at `pose` (its rest position before the first pose).
+glm::dvec3 posedAt(const std::vector<glm::vec3>& rest, const VertexDeformation& deformation, uint32_t v,
+                   const Pose& pose) {
+    return pose.joints.empty() && pose.morphWeights.empty()
+               ? glm::dvec3(rest[v])
+               : posedVertex(rest, deformation, v, pose.joints, pose.morphWeights, pose.toObject);
+}
+
+// The corners of render triangle `triangle` at `pose`.
 std::array<glm::dvec3, 3> posedCorners(const PosedCollisionMesh& mesh, const std::vector<uint32_t>& indices,
-                                       uint32_t triangle, const std::vector<glm::dmat4>& joints,
-                                       const std::vector<double>& morphWeights, const glm::dmat4& toObject) {
+                                       uint32_t triangle, const Pose& pose) {
     const std::vector<glm::vec3>& rest = mesh.drawn ? mesh.drawn->rest.positions : mesh.rest;
     const VertexDeformation& deformation = mesh.drawn ? mesh.drawn->deformation : mesh.deformation;
     const uint32_t* c = &(mesh.drawn ? mesh.drawn->rest.indices : indices)[3 * size_t(triangle)];
-    std::array<glm::dvec3, 3> p;
-    for (size_t k = 0; k < 3; ++k)
-        p[k] = joints.empty() && morphWeights.empty()
-                   ? glm::dvec3(rest[c[k]])
-                   : posedVertex(rest, deformation, c[k], joints, morphWeights, toObject);
-    return p;
+    return {posedAt(rest, deformation, c[0], pose), posedAt(rest, deformation, c[1], pose),
+            posedAt(rest, deformation, c[2], pose)};
 }
 
 // Where the shot through `hit` along `direction` meets the plane of triangle `t`; `hit` itself for no
@@ -145,14 +148,6 @@ std::optional<std::pair<double, glm::dvec3>> lineMeets(const glm::dvec3& hit, co
     return meet;
 }
 
-// Render vertex `v` at `pose` (its rest position before the first pose).
-glm::dvec3 posedRenderVertex(const PosedCollisionMesh::Drawn& drawn, uint32_t v, const Pose& pose) {
-    return pose.joints.empty() && pose.morphWeights.empty()
-               ? glm::dvec3(drawn.rest.positions[v])
-               : posedVertex(drawn.rest.positions, drawn.deformation, v, pose.joints, pose.morphWeights,
-                             pose.toObject);
-}
-
 // The render triangles around triangle `near` of the drawn mesh: it and those sharing a corner with
 // it, each once.
 std::vector<uint32_t> ringAround(const PosedCollisionMesh::Drawn& drawn, uint32_t near) {
@@ -185,7 +180,7 @@ std::optional<SurfaceLocation> shotOnRing(const PosedCollisionMesh& mesh, uint32
     auto at = [&](uint32_t v) {
         for (const auto& [vertex, p] : posed)
             if (vertex == v) return p;
-        const glm::dvec3 p = posedRenderVertex(drawn, v, pose);
+        const glm::dvec3 p = posedAt(drawn.rest.positions, drawn.deformation, v, pose);
         posed.emplace_back(v, p);
         return p;
     };
@@ -242,9 +237,10 @@ std::optional<SurfaceLocation> walkToShot(const PosedCollisionMesh& mesh, uint32
         const uint32_t* d = &drawn.rest.indices[3 * size_t(*next)];
         std::array<glm::dvec3, 3> nextCorners;
         for (int j = 0; j < 3; ++j)
-            nextCorners[size_t(j)] = w[d[j]] == w[c[(k + 1) % 3]]   ? corners[size_t((k + 1) % 3)]
-                                     : w[d[j]] == w[c[(k + 2) % 3]] ? corners[size_t((k + 2) % 3)]
-                                                                    : posedRenderVertex(drawn, d[j], pose);
+            nextCorners[size_t(j)] = w[d[j]] == w[c[(k + 1) % 3]] ? corners[size_t((k + 1) % 3)]
+                                     : w[d[j]] == w[c[(k + 2) % 3]]
+                                         ? corners[size_t((k + 2) % 3)]
+                                         : posedAt(drawn.rest.positions, drawn.deformation, d[j], pose);
         t = *next;
         corners = nextCorners;
     }
@@ -295,8 +291,7 @@ std::optional<SurfaceLocation> shotThroughRest(const PosedCollisionMesh& mesh,
     auto walkFrom =
         [&](const std::optional<ClosestPointQuery::RayMeet>& found) -> std::optional<SurfaceLocation> {
         if (!found) return std::nullopt;
-        const std::array<glm::dvec3, 3> corners =
-            posedCorners(mesh, hit.indices, found->triangle, pose.joints, pose.morphWeights, pose.toObject);
+        const std::array<glm::dvec3, 3> corners = posedCorners(mesh, hit.indices, found->triangle, pose);
         return walkToShot(mesh, found->triangle, corners, hit.position, hit.direction, pose);
     };
     if (std::optional<SurfaceLocation> met =
@@ -310,9 +305,8 @@ std::optional<SurfaceLocation> shotThroughRest(const PosedCollisionMesh& mesh,
 std::optional<SurfaceLocation> anchorOf(const PosedCollisionMesh& mesh, const CollisionHit& hit,
                                         const Pose& pose) {
     if (!mesh.drawn)
-        return located(
-            SurfaceAnchor{hit.primitive, hit.bary},
-            posedCorners(mesh, hit.indices, hit.primitive, pose.joints, pose.morphWeights, pose.toObject));
+        return located(SurfaceAnchor{hit.primitive, hit.bary},
+                       posedCorners(mesh, hit.indices, hit.primitive, pose));
     // The collision mesh is not the render mesh: the hit at rest, the render triangle the shot meets
     // there or the nearest render point, then that point's barycentric coordinates refined at the pose
     // (the foot of the hit on the render triangle as it stands).
@@ -332,8 +326,7 @@ std::optional<SurfaceLocation> anchorOf(const PosedCollisionMesh& mesh, const Co
         if (std::optional<SurfaceLocation> met =
                 shotOnRing(mesh, near->triangle, hit.position, hit.direction, pose))
             return met;
-    const std::array<glm::dvec3, 3> render =
-        posedCorners(mesh, hit.indices, near->triangle, pose.joints, pose.morphWeights, pose.toObject);
+    const std::array<glm::dvec3, 3> render = posedCorners(mesh, hit.indices, near->triangle, pose);
     return located({near->triangle, barycentric(alongShot(hit.position, hit.direction, render), render[0],
                                                 render[1], render[2])},
                    render);
@@ -344,8 +337,7 @@ std::optional<glm::dmat4> anchorFrame(const PosedCollisionMesh& mesh, const std:
     // An anchor from a save may name any triangle.
     const size_t triangles = (mesh.drawn ? mesh.drawn->rest.indices : indices).size() / 3;
     if (size_t(anchor.triangle) >= triangles) return std::nullopt;
-    const std::array<glm::dvec3, 3> p =
-        posedCorners(mesh, indices, anchor.triangle, pose.joints, pose.morphWeights, pose.toObject);
+    const std::array<glm::dvec3, 3> p = posedCorners(mesh, indices, anchor.triangle, pose);
     return triangleFrame(p[0], p[1], p[2], anchor.bary);
 }
 
