@@ -146,12 +146,19 @@ Result<VertexDeformation> transferDeformation(const Mesh& source, const VertexDe
 
 glm::dvec3 skinVertex(const SkinWeights& skin, size_t vertex, const std::vector<glm::dmat4>& joints,
                       const glm::dvec3& p) {
+    // The blended matrix's top three rows only (its last row never reaches the position), summed and
+    // applied in the order glm's dmat4 arithmetic takes, so that the result is the same to the bit.
     const size_t stride = size_t(skin.influences);
-    glm::dmat4 skinning(0.0);
+    glm::dvec3 c0(0.0), c1(0.0), c2(0.0), c3(0.0);
     for (size_t k = 0; k < stride; ++k)
-        if (const double w = skin.weights[vertex * stride + k]; w > 0.0)
-            skinning += w * joints[skin.joints[vertex * stride + k]];
-    return glm::dvec3(skinning * glm::dvec4(p, 1.0));
+        if (const double w = skin.weights[vertex * stride + k]; w > 0.0) {
+            const glm::dmat4& j = joints[skin.joints[vertex * stride + k]];
+            c0 += w * glm::dvec3(j[0]);
+            c1 += w * glm::dvec3(j[1]);
+            c2 += w * glm::dvec3(j[2]);
+            c3 += w * glm::dvec3(j[3]);
+        }
+    return (c0 * p.x + c1 * p.y) + (c2 * p.z + c3);
 }
 
 glm::dvec3 posedVertex(const std::vector<glm::vec3>& rest, const VertexDeformation& deformation,

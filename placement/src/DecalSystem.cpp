@@ -290,10 +290,10 @@ struct DecalSystem::Impl {
     // check fails. `onDrawnSurface`: `local` lies on the drawn surface, not on the collision mesh, so
     // no proxy error is left for the box to hold: its half-depth is depthMargin times its size (1% at
     // least), whatever its type asks, because on a body a deeper box would reach the torso behind an
-    // arm.
+    // arm. A placed decal's frame in object space, as packed, goes to `objectFrame` if given.
     SpawnResult place(uint32_t objectIndex, const glm::dvec3& local, const glm::dvec3& worldNormal,
                       const glm::dvec3& worldHint, uint16_t typeIndex, bool shot = false,
-                      bool onDrawnSurface = false) {
+                      bool onDrawnSurface = false, glm::dmat3* objectFrame = nullptr) {
         const CollisionObject& o = object(objectIndex);
         const DecalType& t = types[typeIndex];
         const Rng unused = rng;
@@ -375,6 +375,7 @@ struct DecalSystem::Impl {
         SpawnResult r;
         r.status = SpawnStatus::Placed;
         r.handle = DecalHandle{slot, slots[slot].generation};
+        if (objectFrame) *objectFrame = glm::dmat3(tan, bit, n);
         return r;
     }
 
@@ -407,12 +408,14 @@ struct DecalSystem::Impl {
         const glm::dmat3 inv = glm::inverse(glm::dmat3(object(hit.object).transform));
         const std::optional<SurfaceLocation> drawn =
             world.anchorAt(hit.object, hit.primitive, hit.localPosition, inv * dir);
-        SpawnResult placed =
-            drawn && !types[typeIndex].volumetric
-                ? place(hit.object, glm::dvec3(drawn->frame[3]),
-                        facing ? *facing : drawnNormal(hit, *drawn, inv, dir), hint, typeIndex, shot, true)
-                : place(hit.object, hit.localPosition, facing ? *facing : hit.normal, hint, typeIndex, shot);
-        if (placed.placed() && drawn) anchors.add(placed.handle.slot, decals.back(), *drawn);
+        glm::dmat3 frame;
+        SpawnResult placed = drawn && !types[typeIndex].volumetric
+                                 ? place(hit.object, glm::dvec3(drawn->frame[3]),
+                                         facing ? *facing : drawnNormal(hit, *drawn, inv, dir), hint,
+                                         typeIndex, shot, true, &frame)
+                                 : place(hit.object, hit.localPosition, facing ? *facing : hit.normal, hint,
+                                         typeIndex, shot, false, &frame);
+        if (placed.placed() && drawn) anchors.add(placed.handle.slot, decals.back(), frame, *drawn);
         return placed;
     }
 

@@ -27,7 +27,22 @@ std::vector<uint32_t> weldedVertices(const std::vector<glm::vec3>& positions) {
     return weld;
 }
 
-// The welded vertices of `drawn.rest` and the triangles around each (Drawn::weld, ringStart, ring).
+// The render triangle across the edge of triangle `t` that is opposite its corner `k`: the other
+// triangle around both of the edge's vertices; nothing at a border.
+std::optional<uint32_t> acrossEdge(const PosedCollisionMesh::Drawn& drawn, uint32_t t, int k) {
+    const std::vector<uint32_t>& w = drawn.weld;
+    const uint32_t* c = &drawn.rest.indices[3 * size_t(t)];
+    const uint32_t a = w[c[(k + 1) % 3]], b = w[c[(k + 2) % 3]];
+    for (uint32_t i = drawn.ringStart[a]; i < drawn.ringStart[a + 1]; ++i) {
+        const uint32_t other = drawn.ring[i];
+        const uint32_t* d = &drawn.rest.indices[3 * size_t(other)];
+        if (other != t && (w[d[0]] == b || w[d[1]] == b || w[d[2]] == b)) return other;
+    }
+    return std::nullopt;
+}
+
+// The welded vertices of `drawn.rest`, the triangles around each and each triangle's neighbours
+// (Drawn::weld, ringStart, ring, neighbours).
 void linkRings(PosedCollisionMesh::Drawn& drawn) {
     const std::vector<uint32_t>& indices = drawn.rest.indices;
     drawn.weld = weldedVertices(drawn.rest.positions);
@@ -40,6 +55,11 @@ void linkRings(PosedCollisionMesh::Drawn& drawn) {
     std::vector<uint32_t> fill(drawn.ringStart.begin(), drawn.ringStart.end() - 1);
     for (size_t i = 0; i < indices.size(); ++i)
         drawn.ring[fill[drawn.weld[indices[i]]]++] = uint32_t(i / 3);
+    drawn.neighbours.resize(indices.size());
+    for (uint32_t t = 0; t < uint32_t(indices.size() / 3); ++t)
+        for (int k = 0; k < 3; ++k)
+            drawn.neighbours[3 * size_t(t) + size_t(k)] =
+                acrossEdge(drawn, t, k).value_or(PosedCollisionMesh::Drawn::kBorder);
 }
 
 } // namespace
@@ -201,20 +221,6 @@ std::optional<SurfaceLocation> shotOnRing(const PosedCollisionMesh& mesh, uint32
     return located(*best, bestCorners);
 }
 
-// The render triangle across the edge of triangle `t` that is opposite its corner `k`: the other
-// triangle around both of the edge's vertices; nothing at a border.
-std::optional<uint32_t> across(const PosedCollisionMesh::Drawn& drawn, uint32_t t, int k) {
-    const std::vector<uint32_t>& w = drawn.weld;
-    const uint32_t* c = &drawn.rest.indices[3 * size_t(t)];
-    const uint32_t a = w[c[(k + 1) % 3]], b = w[c[(k + 2) % 3]];
-    for (uint32_t i = drawn.ringStart[a]; i < drawn.ringStart[a + 1]; ++i) {
-        const uint32_t other = drawn.ring[i];
-        const uint32_t* d = &drawn.rest.indices[3 * size_t(other)];
-        if (other != t && (w[d[0]] == b || w[d[1]] == b || w[d[2]] == b)) return other;
-    }
-    return std::nullopt;
-}
-
 // Where the posed line through `hit` along `direction` meets render triangle `t` (its posed
 // `corners`) or, where it passes beyond one of its edges, the triangle across that edge, a few
 // triangles on: a shot found at rest near an edge lands on the triangle the posed line crosses,
@@ -230,18 +236,18 @@ std::optional<SurfaceLocation> walkToShot(const PosedCollisionMesh& mesh, uint32
         const glm::dvec3& bary = meet->second;
         if (within(bary)) return located(SurfaceAnchor{t, bary}, corners);
         const int k = bary.x <= bary.y && bary.x <= bary.z ? 0 : bary.y <= bary.z ? 1 : 2;
-        const std::optional<uint32_t> next = across(drawn, t, k);
-        if (!next) return std::nullopt;
+        const uint32_t next = drawn.neighbours[3 * size_t(t) + size_t(k)];
+        if (next == PosedCollisionMesh::Drawn::kBorder) return std::nullopt;
         const std::vector<uint32_t>& w = drawn.weld;
         const uint32_t* c = &drawn.rest.indices[3 * size_t(t)];
-        const uint32_t* d = &drawn.rest.indices[3 * size_t(*next)];
+        const uint32_t* d = &drawn.rest.indices[3 * size_t(next)];
         std::array<glm::dvec3, 3> nextCorners;
         for (int j = 0; j < 3; ++j)
             nextCorners[size_t(j)] = w[d[j]] == w[c[(k + 1) % 3]] ? corners[size_t((k + 1) % 3)]
                                      : w[d[j]] == w[c[(k + 2) % 3]]
                                          ? corners[size_t((k + 2) % 3)]
                                          : posedAt(drawn.rest.positions, drawn.deformation, d[j], pose);
-        t = *next;
+        t = next;
         corners = nextCorners;
     }
     return std::nullopt;

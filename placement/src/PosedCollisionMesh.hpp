@@ -37,6 +37,10 @@ struct PosedCollisionMesh {
         // normal seams is one surface to walk across; and the triangles around each such vertex w:
         // ring[ringStart[w] .. ringStart[w + 1]).
         std::vector<uint32_t> weld, ringStart, ring;
+        // For each triangle t and corner k, the triangle across the edge opposite that corner
+        // (neighbours[3 t + k]; kBorder when there is none), so that a walk steps without a search.
+        std::vector<uint32_t> neighbours;
+        static constexpr uint32_t kBorder = UINT32_MAX;
     };
     std::optional<Drawn> drawn;
 };

@@ -7,15 +7,15 @@
 
 namespace spatter {
 
-void SkinAnchors::add(uint32_t slot, const Decal& decal, const SurfaceLocation& location) {
+void SkinAnchors::add(uint32_t slot, const Decal& decal, const glm::dmat3& frame,
+                      const SurfaceLocation& location) {
     // The frame is orthonormal: its inverse rotation is its transpose.
     const glm::dmat3 toLocal = glm::transpose(glm::dmat3(location.frame));
-    const Frame f = decal.frame();
     Anchor a;
     a.surface = location.surface;
     a.center = toLocal * (glm::dvec3(decal.center) - glm::dvec3(location.frame[3]));
-    a.tangent = toLocal * glm::dvec3(f.tangent);
-    a.normal = toLocal * glm::dvec3(f.normal);
+    a.tangent = toLocal * frame[0];
+    a.normal = toLocal * frame[2];
     insert(decal.object, slot, a);
 }
 

@@ -26,9 +26,9 @@ struct SavedAnchor {
 
 class SkinAnchors {
 public:
-    // Anchors the decal of handle slot `slot`, `decal` (which has none yet), at `location`
-    // (CollisionWorld::anchorAt).
-    void add(uint32_t slot, const Decal& decal, const SurfaceLocation& location);
+    // Anchors the decal of handle slot `slot`, `decal` (which has none yet), whose frame in object
+    // space is `frame` (tangent, bitangent, normal), at `location` (CollisionWorld::anchorAt).
+    void add(uint32_t slot, const Decal& decal, const glm::dmat3& frame, const SurfaceLocation& location);
     // Forgets the anchor of the decal of slot `slot` on `object`, if it has one.
     void erase(uint32_t slot, uint32_t object);
 
