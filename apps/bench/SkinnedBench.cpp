@@ -20,6 +20,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace spatter::bench {
@@ -220,10 +221,14 @@ struct SpawnRow {
     double proxyRatio() const { return skinnedProxy.seconds / staticProxy.seconds; }
 };
 
-// The same spawns through `proxy` (the skinned object's deforming proxy) against the static twin
-// through a proxy of its own at the same tolerance.
-Status measureProxySpawn(const SkinnedModel& m, const Proxy& proxy, const Scene& twin, const ModelPose& pose,
-                         const std::vector<Ray>& rays, const Sizes& sizes, SpawnRow& row) {
+// The spawns of `rays` on the skinned object posed at `pose` (through `proxy`, or with its render
+// mesh as collision mesh) against the same on the static `twin` (through `twinProxy`, or its render
+// mesh): the pair of timings of one column of the spawn table.
+Result<std::pair<SpawnTiming, SpawnTiming>> spawnPair(const SkinnedModel& m,
+                                                      const std::optional<Proxy>& proxy, const Scene& twin,
+                                                      const std::optional<Proxy>& twinProxy,
+                                                      const ModelPose& pose, const std::vector<Ray>& rays,
+                                                      const Sizes& sizes) {
     Result<SpawnTiming> skinned = spawnSeconds(
         [&]() -> Result<DecalSystem> {
             Result<DecalSystem> s = holeSystem(skinnedWorld(m, proxy), m.decalSize, rays.size());
@@ -233,12 +238,7 @@ Status measureProxySpawn(const SkinnedModel& m, const Proxy& proxy, const Scene&
         },
         rays, sizes.runs);
     if (!skinned) return fail(m.name + ": " + skinned.error());
-    ProxySettings settings;
-    settings.tolerance = kProxyTolerance;
-    settings.toleranceRelative = true;
-    Result<Proxy> own = buildProxy(twin.objects[0].mesh, settings);
-    if (!own) return fail(m.name + ": " + own.error());
-    const std::vector<std::optional<Proxy>> twinProxies = {own.value()};
+    const std::vector<std::optional<Proxy>> twinProxies = {twinProxy};
     Result<SpawnTiming> statik = spawnSeconds(
         [&] {
             return holeSystem(CollisionWorld::build(twin, twinProxies, oneThreadWorld()), m.decalSize,
@@ -246,9 +246,7 @@ Status measureProxySpawn(const SkinnedModel& m, const Proxy& proxy, const Scene&
         },
         rays, sizes.runs);
     if (!statik) return fail(m.name + ": " + statik.error());
-    row.skinnedProxy = skinned.value();
-    row.staticProxy = statik.value();
-    return {};
+    return std::make_pair(skinned.value(), statik.value());
 }
 
 Result<SpawnRow> measureSpawn(const SkinnedModel& m, const Proxy& proxy, const Sizes& sizes) {
@@ -257,27 +255,21 @@ Result<SpawnRow> measureSpawn(const SkinnedModel& m, const Proxy& proxy, const S
     const ModelPose pose = modelPoseAt(m, evaluator, t);
     const Mesh posed = meshAt(m, worldPositionsAt(m, evaluator, t));
     const std::vector<Ray> rays = scatteredRays(posed, sizes.spawnRays, 7);
-    Result<SpawnTiming> skinned = spawnSeconds(
-        [&]() -> Result<DecalSystem> {
-            Result<DecalSystem> s = holeSystem(skinnedWorld(m, std::nullopt), m.decalSize, rays.size());
-            if (!s) return s;
-            if (Status p = poseSystem(s.value(), m, pose); !p) return fail(p.error());
-            return s;
-        },
-        rays, sizes.runs);
-    if (!skinned) return fail(m.name + ": " + skinned.error());
     Scene twin = singleObjectScene(posed, m.name + " posed, static");
     twin.materials = m.scene.materials; // the submeshes name them
     twin.images = m.scene.images;
-    Result<SpawnTiming> statik = spawnSeconds(
-        [&] {
-            return holeSystem(CollisionWorld::build(twin, {}, oneThreadWorld()), m.decalSize, rays.size());
-        },
-        rays, sizes.runs);
-    if (!statik) return fail(m.name + ": " + statik.error());
-    SpawnRow row{m.name, rays.size(), skinned.value(), statik.value(), {}, {}};
-    if (Status s = measureProxySpawn(m, proxy, twin, pose, rays, sizes, row); !s) return fail(s.error());
-    return row;
+    auto sameMesh = spawnPair(m, std::nullopt, twin, std::nullopt, pose, rays, sizes);
+    if (!sameMesh) return fail(sameMesh.error());
+    // Through proxies: the skinned object's deforming proxy against a proxy of the twin's own at the
+    // same tolerance.
+    ProxySettings settings;
+    settings.tolerance = kProxyTolerance;
+    settings.toleranceRelative = true;
+    Result<Proxy> own = buildProxy(twin.objects[0].mesh, settings);
+    if (!own) return fail(m.name + ": " + own.error());
+    auto proxies = spawnPair(m, proxy, twin, own.value(), pose, rays, sizes);
+    if (!proxies) return fail(proxies.error());
+    return SpawnRow{m.name, rays.size(), sameMesh->first, sameMesh->second, proxies->first, proxies->second};
 }
 
 // ---- Drift -----------------------------------------------------------------------------------

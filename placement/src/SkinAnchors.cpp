@@ -1,6 +1,6 @@
 #include "SkinAnchors.hpp"
 
-#include "spatter/core/Frame.hpp"
+#include "spatter/core/PackedFrame.hpp"
 
 #include <algorithm>
 #include <cmath>
