@@ -166,10 +166,7 @@ Result<CharactersRow> measure(GlContext& gl, const Options& o, size_t count) {
         Result<DecalSystem> system = DecalSystem::create(scene, ds);
         if (!system) return fail(system.error());
         const uint16_t type = system->registerType(hole).value();
-        std::vector<uint8_t> ids;
-        for (uint32_t i = 0; i < scene.objects.size(); ++i)
-            ids.push_back(system->objectId(i));
-        if (Status s = renderer->setObjectIds(ids); !s) return fail(s.error());
+        if (Status s = renderer->setObjectIds(system->objectIds()); !s) return fail(s.error());
         SceneEvaluator evaluator(scene);
         poseCharacters(system.value(), scene, evaluator, 0);
         if (withDecals) shootCharacters(system.value(), scene, type, o.decals);

@@ -59,10 +59,7 @@ public:
         Result<DecalSystem> system =
             coverageSystem(CollisionWorld::build(*in.scene), type, 20.0 * in.decalSize, 5);
         if (!system) return fail(system.error());
-        std::vector<uint8_t> ids(in.scene->objects.size());
-        for (uint32_t o = 0; o < ids.size(); ++o)
-            ids[o] = system->objectId(o);
-        if (Status s = renderer->setObjectIds(ids); !s) return fail(s.error());
+        if (Status s = renderer->setObjectIds(system->objectIds()); !s) return fail(s.error());
         return DriftRig(in, std::move(context), std::move(renderer).value(), std::move(system).value());
     }
 

@@ -476,10 +476,7 @@ Result<Coverage> shotCoverage(const SkinnedModel& m, const std::optional<Proxy>&
     if (Status s = poseSystem(system.value(), m, pose); !s) return fail(s.error());
     for (const Ray& ray : shots)
         system->spawn(ray, 0);
-    std::vector<uint8_t> ids(m.scene.objects.size());
-    for (uint32_t o = 0; o < ids.size(); ++o)
-        ids[o] = system->objectId(o);
-    if (Status s = probe.renderer().setObjectIds(ids); !s) return fail(s.error());
+    if (Status s = probe.renderer().setObjectIds(system->objectIds()); !s) return fail(s.error());
     Result<std::vector<uint8_t>> mask = probe.mask(camera, system->decals());
     if (!mask) return fail(mask.error());
     return Coverage{std::move(mask).value(), size_t(system->stats().placed)};

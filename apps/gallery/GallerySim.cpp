@@ -293,10 +293,7 @@ Result<DecalLoadReport> GallerySim::load(const std::string& path) {
 }
 
 std::vector<uint8_t> GallerySim::objectIds() const {
-    std::vector<uint8_t> ids(scene_->objects.size());
-    for (uint32_t i = 0; i < ids.size(); ++i)
-        ids[i] = system_->objectId(i);
-    return ids;
+    return system_->objectIds();
 }
 
 size_t GallerySim::proxyTriangles() const {

@@ -813,6 +813,13 @@ uint8_t DecalSystem::objectId(uint32_t object) const {
     return object < impl_->objectIds.size() ? impl_->objectIds[object] : 0;
 }
 
+std::vector<uint8_t> DecalSystem::objectIds() const {
+    std::vector<uint8_t> ids(impl_->world.objectCount());
+    for (uint32_t o = 0; o < ids.size(); ++o)
+        ids[o] = objectId(o);
+    return ids;
+}
+
 const DecalStats& DecalSystem::stats() const {
     return impl_->stats;
 }

@@ -72,9 +72,12 @@ TEST(PlacementOnGallery, ShotsFromTheCameraPlaceGoodDecals) {
     EXPECT_TRUE(sameDecals(single.decals(), batch.decals()));
     EXPECT_EQ(single.stats(), batch.stats());
 
-    // Targets (the dynamic objects) have non-zero IDs; static objects 0.
+    // Targets (the dynamic objects) have non-zero IDs; static objects 0; objectIds() lists them all.
+    const std::vector<uint8_t> ids = single.objectIds();
+    ASSERT_EQ(ids.size(), scene.objects.size());
     size_t dynamic = 0;
     for (uint32_t i = 0; i < scene.objects.size(); ++i) {
+        EXPECT_EQ(ids[i], single.objectId(i)) << scene.objects[i].name;
         if (scene.objects[i].dynamic) {
             ++dynamic;
             EXPECT_NE(single.objectId(i), 0) << scene.objects[i].name;

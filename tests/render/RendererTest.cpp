@@ -181,9 +181,7 @@ TEST(Renderer, CoverageHoldsFarFromTheOrigin) {
     for (int s = 0; s < 40; ++s)
         sys->spawn(Ray{cam.eye, pixelDirection(cam, kW, kH, (s * 37) % kW, (s * 53) % kH)}, type);
     ASSERT_GT(sys->decals().size(), 30u);
-    std::vector<uint8_t> ids;
-    for (uint32_t o = 0; o < base.objects.size(); ++o)
-        ids.push_back(sys->objectId(o));
+    const std::vector<uint8_t> ids = sys->objectIds();
 
     std::vector<uint8_t> reference;
     for (double offset : {0.0, 1e3, 1e4, 1e5}) {

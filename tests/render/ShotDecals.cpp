@@ -34,8 +34,7 @@ Placed shootFromCamera(const Scene& scene, const Camera& cam, const std::vector<
     }
     out.inputs.decals = sys->decals();
     out.inputs.types = types;
-    for (uint32_t o = 0; o < scene.objects.size(); ++o)
-        out.inputs.objectIds.push_back(sys->objectId(o));
+    out.inputs.objectIds = sys->objectIds();
     return out;
 }
 

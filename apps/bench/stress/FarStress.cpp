@@ -149,11 +149,7 @@ Result<std::vector<Placed>> placeThroughApi(Scene scene, const std::vector<Ray>&
         out.push_back(p);
     }
     if (decals) *decals = sys->decals();
-    if (ids) {
-        ids->clear();
-        for (uint32_t o = 0; o < scene.objects.size(); ++o)
-            ids->push_back(sys->objectId(o));
-    }
+    if (ids) *ids = sys->objectIds();
     return out;
 }
 

@@ -217,6 +217,9 @@ public:
     Status removeObject(uint32_t object);
     // The 8-bit object decal ID of an object (0 for static objects and indices out of range).
     uint8_t objectId(uint32_t object) const;
+    // The object decal IDs of every object of the world, by object index: what a renderer draws
+    // the object ID target with (Renderer::setObjectIds, DecalProjector::setObjects).
+    std::vector<uint8_t> objectIds() const;
 
     const DecalStats& stats() const;
     const DecalSettings& settings() const;
