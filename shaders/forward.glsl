@@ -85,6 +85,7 @@ bool spatterApplyDecal(SpatterForwardDecal d, vec3 box, vec3 position, vec3 dpdx
     return true;
 }
 
+#ifndef SPATTER_FORWARD_HELPERS_ONLY // the projector's compute resolve takes the helpers above alone
 // Applies the decals of the pixel at `fragCoord` (gl_FragCoord.xy) to `s` and returns how many changed
 // it (0: none; a coverage view shows > 0). `position`: the shaded point in camera-relative world space
 // (world position minus the eye given to bin()); `objectId`: the object's 8-bit decal ID (0 for static
@@ -107,3 +108,4 @@ int spatterApplyForwardDecals(vec2 fragCoord, vec3 position, uint objectId, inou
     if (changed > 0) s.normal = normalize(s.normal);
     return changed;
 }
+#endif

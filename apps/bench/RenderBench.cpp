@@ -64,6 +64,8 @@ renderer's decal pass.
 --frames N        timed frames per row after one warm-up frame (default 7)
 --max-seconds S   wall-time cap per row: fewer frames are timed when it is reached (default 20)
 --forward-tile N  the forward path's tile size in pixels (ProjectorSettings::forwardTileSize, default 16)
+--resolve MODE    how the G-buffer blend is drawn (ProjectorSettings::deferredResolve): auto (default:
+                  one compute pass on a GPU from 256 decals in view, boxes otherwise), boxes or compute
 --quick           720p and 1080p, at most 10,000 decals, 2 frames, 3 s per row (smoke test)
 --json FILE       {"rows": [{"group", "resolution", "world", "visible", "decal_px", "feature",
                   "decal_ms", "ns_per_visible_decal", "projector_ms", "host_pass_ms",
@@ -180,8 +182,8 @@ HostPath hostPath(const std::string& name) {
 // One renderer per normal frame, resized and given scenes as the rows need them.
 class Bench {
 public:
-    Bench(std::unique_ptr<GlContext> context, int forwardTile)
-        : context_(std::move(context)), forwardTile_(forwardTile) {}
+    Bench(std::unique_ptr<GlContext> context, int forwardTile, DeferredResolve resolve)
+        : context_(std::move(context)), forwardTile_(forwardTile), resolve_(resolve) {}
     const GlContext& context() const { return *context_; }
 
     Result<RenderRow> run(const Config& c, size_t frames, double maxSeconds) {
@@ -198,6 +200,7 @@ public:
             rs.height = row.height;
             rs.waitForTimers = f.wait;
             rs.occlusionCulling = f.occlusion;
+            rs.deferredResolve = resolve_;
             rs.normalFrame = f.depthFrame ? DecalNormalFrame::DepthDerivatives : DecalNormalFrame::DecalAxes;
             Result<Renderer> r = Renderer::create(*context_, rs);
             if (!r) return fail(r.error());
@@ -327,6 +330,7 @@ private:
         ProjectorSettings ps;
         ps.waitForTimers = true;
         ps.forwardTileSize = forwardTile_;
+        ps.deferredResolve = resolve_;
         Result<DecalProjector> p = DecalProjector::create(ps);
         if (!p) return fail(p.error());
         projector_.emplace(std::move(p).value());
@@ -338,6 +342,7 @@ private:
 
     std::unique_ptr<GlContext> context_;
     int forwardTile_ = 16;
+    DeferredResolve resolve_ = DeferredResolve::Auto;
     std::optional<PathHost> pathHost_;
     glm::ivec2 pathSize_{0};
     std::optional<DecalProjector> projector_;
@@ -503,9 +508,10 @@ void printPaths(const std::vector<RenderRow>& rows, Json& targets) {
 
 int runRenderCommand(int argc, char** argv) {
     int exitCode = 0;
-    const std::optional<Args> parsed = commandArgs(
-        argc, argv, kRenderCommand, kRenderUsage,
-        {"--groups", "--frames", "--max-seconds", "--json", "--forward-tile"}, {"--quick"}, exitCode);
+    const std::optional<Args> parsed =
+        commandArgs(argc, argv, kRenderCommand, kRenderUsage,
+                    {"--groups", "--frames", "--max-seconds", "--json", "--forward-tile", "--resolve"},
+                    {"--quick"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
     if (!args.positional.empty()) return usageError(kRenderCommand, "no positional arguments");
@@ -517,6 +523,12 @@ int runRenderCommand(int argc, char** argv) {
     Result<uint64_t> forwardTile = parseCount(args.value("--forward-tile", "16"), "--forward-tile");
     if (!forwardTile || forwardTile.value() > 64)
         return usageError(kRenderCommand, "--forward-tile: 8, 16, 32 or 64");
+    const std::string resolveName = args.value("--resolve", "auto");
+    const DeferredResolve resolve = resolveName == "boxes"     ? DeferredResolve::Boxes
+                                    : resolveName == "compute" ? DeferredResolve::Compute
+                                                               : DeferredResolve::Auto;
+    if (resolveName != "auto" && resolveName != "boxes" && resolveName != "compute")
+        return usageError(kRenderCommand, "--resolve: auto, boxes or compute");
     if (frames.value() == 0 || !(maxSeconds.value() > 0.0))
         return usageError(kRenderCommand, "--frames and --max-seconds must be positive");
     std::vector<std::string> groups;
@@ -537,7 +549,7 @@ int runRenderCommand(int argc, char** argv) {
         std::cerr << "spatter-bench render: no OpenGL context: " << gl.error() << "\n";
         return 1;
     }
-    Bench bench(std::make_unique<GlContext>(std::move(gl).value()), int(forwardTile.value()));
+    Bench bench(std::make_unique<GlContext>(std::move(gl).value()), int(forwardTile.value()), resolve);
     const ContextInfo& info = bench.context().info();
     std::printf("spatter-bench render: %s (%s), %s\nmachine: %s\n", info.renderer.c_str(),
                 info.platform.c_str(), info.version.c_str(), describe(machine).c_str());

@@ -1,5 +1,6 @@
 #include "spatter/render/DecalProjector.hpp"
 
+#include "ComputeResolve.hpp"
 #include "DecalBatch.hpp"
 #include "DecalBuffers.hpp"
 #include "DecalTextureArray.hpp"
@@ -154,8 +155,10 @@ struct DecalProjector::Impl {
     ForwardBins forward;
     GpuCulling culling;
     DepthPyramid pyramid;
-    int drawsSinceProbe = 15;  // draws since occlusion culling last ran (the first draw tries it)
-    size_t gpuCullingFrom = 0; // settings.gpuCullingFrom, or its default for this context
+    ComputeResolve resolve;
+    bool computeOnAuto = false; // DeferredResolve::Auto resolves in compute: not a software rasteriser
+    int drawsSinceProbe = 15;   // draws since occlusion culling last ran (the first draw tries it)
+    size_t gpuCullingFrom = 0;  // settings.gpuCullingFrom, or its default for this context
     GpuTimers timers;
     uint64_t draws = 0;
 
@@ -424,6 +427,61 @@ struct DecalProjector::Impl {
         }
     }
 
+    // Whether draw() blends `o` into `f` by ComputeResolve rather than by boxes, with `inView` decals
+    // in view (culled on the GPU: the latest count it has given).
+    bool resolvesInCompute(const HostFrame& f, const ProjectorDraw& o, size_t inView) const {
+        const DeferredResolve mode = settings.deferredResolve;
+        if (mode == DeferredResolve::Boxes) return false;
+        if (mode == DeferredResolve::Auto &&
+            (!computeOnAuto || inView < ProjectorSettings::kComputeResolveFrom))
+            return false;
+        return f.depth.encoding == DepthEncoding::Window && ComputeResolve::supports(f, o);
+    }
+
+    // The G-buffer blend by one compute pass (ComputeResolve) over the visible decals binned into the
+    // tiles of `f`, with the variant `bits`' conventions and features.
+    Result<ProjectorStats> resolveInCompute(const HostFrame& f, const FrameCamera& camera, bool onGpu,
+                                            const DecalVisibility& vis, uint32_t bits, ProjectorStats stats) {
+        if (Status s = forward.prepare(); !s) return fail(s.error());
+        if (onGpu)
+            if (Status s = culling.prepare(); !s) return fail(s.error());
+        constexpr uint32_t kResolveBits = kVariantIds | kVariantNormalMap | kVariantClipMinusOne |
+                                          kVariantStandardZ | kVariantNormalWorldSigned |
+                                          kVariantNormalWorldUnorm | kVariantNormalViewUnorm;
+        const std::vector<std::string> defines = variantDefines(bits & kResolveBits);
+        stats.variant = join(defines) + (defines.empty() ? "" : " ") + "COMPUTE";
+        GlStateGuard guard;
+        beginPass(f, camera);
+        binVisible(forwardFrame(f), camera, onGpu, vis, stats);
+        bindInputs(f);
+        forward.bind(ForwardBindings{});
+        const Status resolved = resolve.run(f, defines);
+        ++stats.drawCalls;
+        endPass(onGpu, stats);
+        if (!resolved) return fail(resolved.error());
+        return stats;
+    }
+
+    // The start of a draw's or a bin's GPU work: its timer, and the frame's block and objects sent.
+    void beginPass(const HostFrame& f, const FrameCamera& camera) {
+        timers.beginFrame(draws);
+        timers.begin(GpuPass::Decals);
+        buffers.uploadFrame(f, camera.view, camera.viewProj, settings.fadeStart, transforms, ids, batch);
+    }
+
+    // The end of it: the GPU time (and, with waitForTimers, this draw's counts when `gpuCounts`: it
+    // culled on the GPU) in `stats`.
+    void endPass(bool gpuCounts, ProjectorStats& stats) {
+        timers.end();
+        // This draw's counts once the pass is queued: waiting between the culling and the boxes would
+        // leave the GPU idle inside the pass.
+        if (gpuCounts && settings.waitForTimers) takeGpuCounts(true, stats);
+        const GpuPassTimes times = timers.endFrame(settings.waitForTimers);
+        stats.gpuMs = times.decalsMs;
+        stats.gpuFrame = times.frame;
+        ++draws;
+    }
+
     // The pass itself: one instanced draw of the boxes (BoxDraws). Returns the draws made.
     size_t drawBoxes(const HostFrame& f, const BoxDraws& boxes, GLuint prog, bool depthTest) {
         GlStateGuard::neutralise();
@@ -467,6 +525,7 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
     GlStateGuard guard;
     auto impl = std::make_unique<Impl>();
     impl->settings = settings;
+    impl->computeOnAuto = !softwareRasteriser();
     impl->gpuCullingFrom =
         settings.gpuCullingFrom.value_or(softwareRasteriser() ? ProjectorSettings::kGpuCullingFromSoftware
                                                               : ProjectorSettings::kGpuCullingFrom);
@@ -575,16 +634,9 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
     stats.variant = "FORWARD";
 
     GlStateGuard guard;
-    m.timers.beginFrame(m.draws);
-    m.timers.begin(GpuPass::Decals);
-    m.buffers.uploadFrame(host, camera.view, camera.viewProj, m.settings.fadeStart, m.transforms, m.ids,
-                          m.batch);
+    m.beginPass(host, camera);
     m.binVisible(frame, camera, onGpu, vis, stats);
-    m.timers.end();
-    const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
-    stats.gpuMs = times.decalsMs;
-    stats.gpuFrame = times.frame;
-    ++m.draws;
+    m.endPass(false, stats);
     return stats;
 }
 
@@ -614,6 +666,9 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     if (fillsDBuffer(options)) m.dbuffer.prepare(frame.depth.texture); // cleared, even when nothing is drawn
     if (stats.skipped) return stats;
     const uint32_t bits = m.variantBits(frame, options, vis.flags);
+    const size_t inView = onGpu ? m.culling.visibleCount(false) : vis.visible.size();
+    if (m.resolvesInCompute(frame, options, inView))
+        return m.resolveInCompute(frame, camera, onGpu, vis, bits, stats);
     Passes passes;
     Result<GLuint> program = m.program(bits);
     if (!program) return fail(program.error());
@@ -637,19 +692,9 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
         if (Status s = m.pyramid.prepare(frame); !s) return fail(s.error());
 
     GlStateGuard guard;
-    m.timers.beginFrame(m.draws);
-    m.timers.begin(GpuPass::Decals);
-    m.buffers.uploadFrame(frame, camera.view, camera.viewProj, m.settings.fadeStart, m.transforms, m.ids,
-                          m.batch);
+    m.beginPass(frame, camera);
     m.drawDecals(frame, options, camera, onGpu, vis, passes, stats);
-    m.timers.end();
-    // This draw's counts once the pass is queued: waiting between the culling and the boxes would
-    // leave the GPU idle inside the pass.
-    if (onGpu && m.settings.waitForTimers) m.takeGpuCounts(true, stats);
-    const GpuPassTimes times = m.timers.endFrame(m.settings.waitForTimers);
-    stats.gpuMs = times.decalsMs;
-    stats.gpuFrame = times.frame;
-    ++m.draws;
+    m.endPass(onGpu, stats);
     return stats;
 }
 

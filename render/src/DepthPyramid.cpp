@@ -1,7 +1,6 @@
 #include "DepthPyramid.hpp"
 
-#include "ProjectorShaders.hpp"
-#include "ShaderProgram.hpp"
+#include "ProjectorVariants.hpp"
 
 #include <algorithm>
 
@@ -44,9 +43,8 @@ Status DepthPyramid::prepare(const HostFrame& f) {
     const int c = convention(f);
     if (programs_[c]) return {};
     const char* defines[3] = {"STANDARD_Z", "REVERSED_Z", "DEPTH_LINEAR"};
-    Result<GlProgram> p = buildProgram(shaderLibrary(kProjectorShaders),
-                                       {{GL_COMPUTE_SHADER, "depth_pyramid.comp"}}, {defines[c]});
-    if (!p) return fail("projector: " + p.error());
+    Result<GlProgram> p = projectorComputeProgram("depth_pyramid.comp", {defines[c]});
+    if (!p) return fail(p.error());
     programs_[c] = std::move(p.value());
     return {};
 }

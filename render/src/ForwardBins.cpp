@@ -1,7 +1,6 @@
 #include "ForwardBins.hpp"
 
-#include "ProjectorShaders.hpp"
-#include "ShaderProgram.hpp"
+#include "ProjectorVariants.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,13 +17,6 @@ GLuint groups(uint32_t n) {
     return GLuint((n + kGroup - 1) / kGroup);
 }
 
-Result<GlProgram> computeProgram(const char* file, std::vector<std::string> defines = {}) {
-    Result<GlProgram> p =
-        buildProgram(shaderLibrary(kProjectorShaders), {{GL_COMPUTE_SHADER, file}}, std::move(defines));
-    if (!p) return fail("projector: " + p.error());
-    return p;
-}
-
 // The tile holding window position `ndc` of a viewport `size` pixels wide, widened by a pixel for
 // the float rounding of the GPU's box test, clamped to the grid.
 int tileOf(double ndc, int size, int tileSize, int tiles, double widen) {
@@ -36,17 +28,17 @@ int tileOf(double ndc, int size, int tileSize, int tiles, double widen) {
 
 Status ForwardBins::prepare() {
     if (sort_) return {};
-    Result<GlProgram> prepare = computeProgram("forward_prepare.comp");
+    Result<GlProgram> prepare = projectorComputeProgram("forward_prepare.comp");
     if (!prepare) return fail(prepare.error());
-    Result<GlProgram> scan = computeProgram("forward_scan.comp");
+    Result<GlProgram> scan = projectorComputeProgram("forward_scan.comp");
     if (!scan) return fail(scan.error());
-    Result<GlProgram> fill = computeProgram("forward_fill.comp");
+    Result<GlProgram> fill = projectorComputeProgram("forward_fill.comp");
     if (!fill) return fail(fill.error());
-    Result<GlProgram> sort = computeProgram("forward_sort.comp");
+    Result<GlProgram> sort = projectorComputeProgram("forward_sort.comp");
     if (!sort) return fail(sort.error());
-    Result<GlProgram> prepareCulled = computeProgram("forward_prepare.comp", {"FORWARD_CULLED"});
+    Result<GlProgram> prepareCulled = projectorComputeProgram("forward_prepare.comp", {"FORWARD_CULLED"});
     if (!prepareCulled) return fail(prepareCulled.error());
-    Result<GlProgram> sortCulled = computeProgram("forward_sort.comp", {"FORWARD_CULLED"});
+    Result<GlProgram> sortCulled = projectorComputeProgram("forward_sort.comp", {"FORWARD_CULLED"});
     if (!sortCulled) return fail(sortCulled.error());
     prepareCulled_ = std::move(prepareCulled.value());
     sortCulled_ = std::move(sortCulled.value());

@@ -17,7 +17,7 @@ public:
     static constexpr int kDrawBuffers = 4;
     static constexpr int kUniformBindings = 2;
     static constexpr int kStorageBindings = 9;
-    static constexpr int kImageUnits = 2;
+    static constexpr int kImageUnits = 3;
 
     GlStateGuard();
     ~GlStateGuard();

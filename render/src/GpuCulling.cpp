@@ -1,7 +1,6 @@
 #include "GpuCulling.hpp"
 
-#include "ProjectorShaders.hpp"
-#include "ShaderProgram.hpp"
+#include "ProjectorVariants.hpp"
 
 #include <algorithm>
 
@@ -9,7 +8,7 @@ namespace spatter::render_detail {
 
 namespace {
 
-constexpr uint32_t kGroup = 256; // local size of the classify and scatter passes
+constexpr uint32_t kCullGroup = 256; // local size of the classify and scatter passes
 
 // Binding points of the culling passes (shaders/cull*.comp).
 constexpr GLuint kClassesBinding = 0, kGroupsBinding = 2, kDrawsBinding = 5, kOrderBinding = 6,
@@ -20,12 +19,6 @@ constexpr size_t kCountOffset = sizeof(uint32_t); // DrawElementsIndirectCommand
 constexpr size_t kCountersOffset = 5 * sizeof(uint32_t);
 constexpr size_t kCounters = 3;
 
-Result<GlProgram> computeProgram(const char* file) {
-    Result<GlProgram> p = buildProgram(shaderLibrary(kProjectorShaders), {{GL_COMPUTE_SHADER, file}}, {});
-    if (!p) return fail("projector: " + p.error());
-    return p;
-}
-
 } // namespace
 
 GpuCulling::~GpuCulling() {
@@ -34,11 +27,11 @@ GpuCulling::~GpuCulling() {
 
 Status GpuCulling::prepare() {
     if (scatter_) return {};
-    Result<GlProgram> classify = computeProgram("cull.comp");
+    Result<GlProgram> classify = projectorComputeProgram("cull.comp");
     if (!classify) return fail(classify.error());
-    Result<GlProgram> scan = computeProgram("cull_scan.comp");
+    Result<GlProgram> scan = projectorComputeProgram("cull_scan.comp");
     if (!scan) return fail(scan.error());
-    Result<GlProgram> scatter = computeProgram("cull_scatter.comp");
+    Result<GlProgram> scatter = projectorComputeProgram("cull_scatter.comp");
     if (!scatter) return fail(scatter.error());
     classify_ = std::move(classify.value());
     scan_ = std::move(scan.value());
@@ -74,8 +67,8 @@ size_t GpuCulling::updateDrawOrder(const std::vector<uint32_t>& entries,
 void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, const Occlusion& occlusion,
                      GlBuffer& visible, size_t& visibleCapacity) {
     const uint32_t count = entries_;
-    const uint32_t groups = std::max<uint32_t>(1, (count + kGroup - 1) / kGroup);
-    reserveBuffer(classes_, classesCapacity_, size_t(groups) * kGroup / 8, 4096); // a bit per entry
+    const uint32_t groups = std::max<uint32_t>(1, (count + kCullGroup - 1) / kCullGroup);
+    reserveBuffer(classes_, classesCapacity_, size_t(groups) * kCullGroup / 8, 4096); // a bit per entry
     reserveBuffer(groups_, groupsCapacity_, size_t(groups) * sizeof(uint32_t), 4096);
     reserveBuffer(order_, orderCapacity_, sizeof(uint32_t), 4096); // bound even when empty
     if (reserveBuffer(visible, visibleCapacity, decals * sizeof(uint32_t), 4096)) {

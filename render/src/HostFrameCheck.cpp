@@ -216,6 +216,20 @@ HostFrame cameraFrame(const ForwardFrame& f) {
     return h;
 }
 
+ForwardFrame forwardFrame(const HostFrame& h) {
+    ForwardFrame f;
+    f.x = h.x;
+    f.y = h.y;
+    f.width = h.width;
+    f.height = h.height;
+    f.view = h.view;
+    f.projection = h.projection;
+    f.eye = h.eye;
+    f.clip = h.depth.clip;
+    f.reversedZ = h.depth.reversedZ;
+    return f;
+}
+
 std::string forwardFrameProblem(const ForwardFrame& f) {
     if (f.width <= 0 || f.height <= 0 || f.x < 0 || f.y < 0 || f.width > kMaxForwardSize ||
         f.height > kMaxForwardSize)

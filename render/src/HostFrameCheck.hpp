@@ -34,6 +34,8 @@ constexpr int kMaxForwardSize = 16384;
 
 // The forward frame's viewport and camera as a HostFrame without textures (window depth).
 HostFrame cameraFrame(const ForwardFrame& frame);
+// The host frame's viewport and camera as a ForwardFrame (its window depth's clip range and Z order).
+ForwardFrame forwardFrame(const HostFrame& frame);
 
 // Empty when `frame` fits; otherwise an error naming the field.
 std::string forwardFrameProblem(const ForwardFrame& frame);

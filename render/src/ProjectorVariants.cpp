@@ -1,5 +1,8 @@
 #include "ProjectorVariants.hpp"
 
+#include "ProjectorShaders.hpp"
+#include "ShaderProgram.hpp"
+
 namespace spatter::render_detail {
 
 namespace {
@@ -47,6 +50,13 @@ uint32_t conventionBits(const HostFrame& f) {
         break;
     }
     return bits;
+}
+
+Result<GlProgram> projectorComputeProgram(const std::string& file, const std::vector<std::string>& defines) {
+    Result<GlProgram> p =
+        buildProgram(shaderLibrary(kProjectorShaders), {{GL_COMPUTE_SHADER, file.c_str()}}, defines);
+    if (!p) return fail("projector: " + p.error());
+    return p;
 }
 
 } // namespace spatter::render_detail

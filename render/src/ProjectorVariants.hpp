@@ -3,6 +3,9 @@
 // convention, each becoming a "#define NAME 1" of decal.vert and decal.frag (shaders/decal.frag and
 // projector.glsl list what each does).
 
+#include "GlObjects.hpp"
+
+#include "spatter/core/Result.hpp"
 #include "spatter/render/DecalProjector.hpp"
 
 #include <cstdint>
@@ -35,5 +38,9 @@ std::vector<std::string> variantDefines(uint32_t bits);
 
 // The bits of the host's conventions in `frame`: depth encoding, clip range, Z direction, normals.
 uint32_t conventionBits(const HostFrame& frame);
+
+// The compute program of the projector's shader `file` with `defines`; the error names the projector.
+Result<GlProgram> projectorComputeProgram(const std::string& file,
+                                          const std::vector<std::string>& defines = {});
 
 } // namespace spatter::render_detail

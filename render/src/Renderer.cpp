@@ -577,6 +577,7 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
     projector.waitForTimers = settings.waitForTimers;
     projector.gpuCullingFrom = settings.gpuCullingFrom;
     projector.occlusionCulling = settings.occlusionCulling;
+    projector.deferredResolve = settings.deferredResolve;
     Result<DecalProjector> p = DecalProjector::create(projector);
     if (!p) return fail("renderer: " + p.error());
     impl->projector.emplace(std::move(p).value());

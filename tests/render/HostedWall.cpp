@@ -45,9 +45,9 @@ Decal WallScene::decalAt(uint32_t object, const glm::vec3& center) {
     return d;
 }
 
-std::optional<HostedWall> HostedWall::make() {
+std::optional<HostedWall> HostedWall::make(const ProjectorSettings& settings) {
     Result<ForeignHost> host = ForeignHost::create(kWidth, kHeight);
-    Result<DecalProjector> projector = DecalProjector::create();
+    Result<DecalProjector> projector = DecalProjector::create(settings);
     EXPECT_TRUE(host.ok()) << host.error();
     EXPECT_TRUE(projector.ok()) << projector.error();
     if (!host || !projector) return std::nullopt;

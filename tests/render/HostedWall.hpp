@@ -38,9 +38,10 @@ struct HostedWall {
     ForeignHost host;
     DecalProjector projector;
 
-    // The host has drawn the wall scene and the projector holds its objects, types and decals;
-    // nothing when the host or the projector cannot be made (a test failure is recorded).
-    static std::optional<HostedWall> make();
+    // The host has drawn the wall scene and the projector (made with `settings`) holds its objects,
+    // types and decals; nothing when the host or the projector cannot be made (a test failure is
+    // recorded).
+    static std::optional<HostedWall> make(const ProjectorSettings& settings = {});
 };
 constexpr int kWallWidth = HostedWall::kWidth, kWallHeight = HostedWall::kHeight;
 

@@ -66,7 +66,7 @@ std::vector<int64_t> glStateSnapshot() {
     for (GLenum name : {GL_UNIFORM_BUFFER_BINDING, GL_SHADER_STORAGE_BUFFER_BINDING, GL_ARRAY_BUFFER_BINDING,
                         GL_PIXEL_UNPACK_BUFFER_BINDING, GL_DRAW_INDIRECT_BUFFER_BINDING})
         get(name);
-    for (GLuint i = 0; i < 2; ++i)
+    for (GLuint i = 0; i < 3; ++i)
         for (GLenum name : {GL_IMAGE_BINDING_NAME, GL_IMAGE_BINDING_LEVEL, GL_IMAGE_BINDING_LAYERED,
                             GL_IMAGE_BINDING_LAYER, GL_IMAGE_BINDING_ACCESS, GL_IMAGE_BINDING_FORMAT})
             getIndexed(name, i);
@@ -145,6 +145,7 @@ struct HostState {
         glDisable(GL_CLIP_DISTANCE0);
         glDisable(GL_CLIP_DISTANCE7);
         glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
+        glBindImageTexture(2, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
         glDeleteFramebuffers(1, &fbo);
         glDeleteProgram(program);
         glDeleteVertexArrays(1, &vao);
@@ -160,6 +161,7 @@ struct HostState {
         glBindVertexArray(vao);
         glViewport(3, 5, 17, 11);
         glBindImageTexture(1, textures[1], 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+        glBindImageTexture(2, textures[0], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
         for (GLuint unit = 0; unit < 8; ++unit) {
             glActiveTexture(GL_TEXTURE0 + unit);
             glBindTexture(GL_TEXTURE_2D, textures[unit % 2]);
@@ -242,6 +244,17 @@ TEST(Projector, LeavesEveryListedGlStateAsItFoundIt) {
     bad.projection = glm::dmat4(0.0);
     EXPECT_FALSE(h->projector.draw(bad).ok());
     EXPECT_EQ(glStateSnapshot(), before) << "after a failed draw";
+    ProjectorSettings compute;
+    compute.deferredResolve = DeferredResolve::Compute;
+    Result<DecalProjector> resolver = DecalProjector::create(compute);
+    ASSERT_TRUE(resolver.ok()) << resolver.error();
+    ASSERT_TRUE(resolver->setObjects(h->wall.transforms, h->wall.ids).ok());
+    resolver->setDecalTypes(h->wall.types);
+    resolver->setDecals(h->wall.decals);
+    Result<ProjectorStats> resolved = resolver->draw(h->host.frame(h->wall.camera, true));
+    ASSERT_TRUE(resolved.ok()) << resolved.error();
+    EXPECT_NE(resolved->variant.find("COMPUTE"), std::string::npos) << resolved->variant;
+    EXPECT_EQ(glStateSnapshot(), before) << "after a draw resolved in one compute pass";
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 

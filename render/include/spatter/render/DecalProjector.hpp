@@ -45,7 +45,7 @@
 // state exactly as it found it, as Dear ImGui's OpenGL 3 backend does: it saves and restores the
 // bound draw and read framebuffers, viewport, program, vertex array, active texture unit and the
 // 2D and 2D-array textures and samplers of units 0-7, the uniform buffer bindings 0-1 and shader
-// storage bindings 0-8 (with their ranges), image units 0-1 and the generic uniform, shader storage, array,
+// storage bindings 0-8 (with their ranges), image units 0-2 and the generic uniform, shader storage, array,
 // pixel unpack and draw indirect buffer bindings, blending (enable per draw buffer 0-3, equations,
 // functions), colour masks of draw buffers 0-3, depth test, function and mask, stencil test, scissor test,
 // face culling and cull mode, front face, clip control, GL_FRAMEBUFFER_SRGB, the unpack alignment, and
@@ -153,6 +153,22 @@ struct HostFrame {
     uint32_t objectIdTexture = 0;
 };
 
+// How draw() blends the decals into the host's G-buffer.
+enum class DeferredResolve {
+    Auto,    // Compute on a GPU from kComputeResolveFrom decals in view (culled on the GPU: in an earlier
+             // draw's view), Boxes for fewer and on a software rasteriser (llvmpipe): each where it
+             // costs less (the compute pass's binning is a fixed cost that a few boxes undercut)
+    Boxes,   // a box per visible decal, drawn over the G-buffer (the rasteriser hands each box its pixels)
+    Compute, // one compute pass over the screen tiles of the forward path's binning: each pixel with
+             // decals in its tile reads the host's targets once, applies its decals in drawing order
+             // with the boxes' tests and blending and writes once. It needs window depth, normals and
+             // targets it can load and store (albedo RGBA8 or SRGB8_ALPHA8 of immutable storage,
+             // normals RG16F, RGBA16F, RGB10_A2 or RGBA8, roughness R8, RG8 or RGBA8 in R, G or B, or
+             // in the albedo's alpha); other frames, coverage mode, angleReject off and the DBuffer
+             // path use boxes. Culled on the GPU, a tile takes at most forwardTileCapacity decals, as
+             // bin()'s do
+};
+
 struct ProjectorSettings {
     // Largest angle between a pixel's normal and the decal axis that a wrap-around type accepts: a
     // type's maxAngleDeg (at most 90, a placement limit) would cut the decal at every corner it is
@@ -178,6 +194,7 @@ struct ProjectorSettings {
     std::optional<size_t> gpuCullingFrom;
     static constexpr size_t kGpuCullingFrom = 65536;
     static constexpr size_t kGpuCullingFromSoftware = 262144;
+    static constexpr size_t kComputeResolveFrom = 256; // DeferredResolve::Auto
     // draw() culling on the GPU also culls the boxes hidden behind the host's depth where that pays: a
     // depth pyramid of the frame (half its size, farthest depth per texel) is built, and a box whose
     // nearest point lies beyond every texel under its screen rectangle is not drawn (it could not
@@ -185,6 +202,7 @@ struct ProjectorSettings {
     // in 20 of those in the frustum, and otherwise once every 16 draws and on the first draw after
     // setDecals. bin() has no depth to test.
     bool occlusionCulling = true;
+    DeferredResolve deferredResolve = DeferredResolve::Auto;
     bool waitForTimers = false; // draw() waits for its GPU time (tools, benchmarks); otherwise the
                                 // time reported is that of an earlier frame, read without stalling
 };

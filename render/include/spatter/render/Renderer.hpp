@@ -109,6 +109,7 @@ struct RendererSettings {
     std::optional<size_t> gpuCullingFrom; // decals from which the projector culls on the GPU
                                           // (ProjectorSettings::gpuCullingFrom)
     bool occlusionCulling = true;         // ProjectorSettings::occlusionCulling
+    DeferredResolve deferredResolve = DeferredResolve::Auto; // ProjectorSettings::deferredResolve
     LightSettings light;
 };
 

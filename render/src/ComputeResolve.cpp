@@ -1,0 +1,113 @@
+#include "ComputeResolve.hpp"
+
+#include "ProjectorVariants.hpp"
+
+namespace spatter::render_detail {
+
+namespace {
+
+constexpr GLuint kGroupSize = 8; // decal_resolve.comp's local size, each way
+
+GLint internalFormat(GLuint texture) {
+    GLint format = 0;
+    glGetTextureLevelParameteriv(texture, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    return format;
+}
+
+bool immutable(GLuint texture) {
+    GLint value = GL_FALSE;
+    glGetTextureParameteriv(texture, GL_TEXTURE_IMMUTABLE_FORMAT, &value);
+    return value == GL_TRUE;
+}
+
+// The shader's name for the format of a normal or roughness target; empty for one it does not take.
+std::string normalFormat(GLint format) {
+    switch (format) {
+    case GL_RG16F:
+        return "NORMALS_RG16F";
+    case GL_RGBA16F:
+        return "NORMALS_RGBA16F";
+    case GL_RGB10_A2:
+        return "NORMALS_RGB10A2";
+    case GL_RGBA8:
+        return "NORMALS_RGBA8";
+    default:
+        return "";
+    }
+}
+
+std::string roughnessFormat(GLint format) {
+    switch (format) {
+    case GL_R8:
+        return "ROUGHNESS_R8";
+    case GL_RG8:
+        return "ROUGHNESS_RG8";
+    case GL_RGBA8:
+        return "ROUGHNESS_RGBA8";
+    default:
+        return "";
+    }
+}
+
+} // namespace
+
+bool ComputeResolve::supports(const HostFrame& f, const ProjectorDraw& o) {
+    if (o.path != ProjectorPath::GBufferBlend || o.coverageTexture != 0 || !o.angleReject) return false;
+    if (f.normals.texture == 0 || normalFormat(internalFormat(f.normals.texture)).empty()) return false;
+    const GLint albedo = internalFormat(f.albedoTexture);
+    if (albedo != GL_RGBA8 && !(albedo == GL_SRGB8_ALPHA8 && immutable(f.albedoTexture))) return false;
+    if (f.roughness.texture == 0) return true;
+    if (f.roughness.texture == f.albedoTexture) return f.roughness.channel == 3; // in the albedo's alpha
+    return f.roughness.channel < 3 && !roughnessFormat(internalFormat(f.roughness.texture)).empty();
+}
+
+Result<GLuint> ComputeResolve::program(const std::vector<std::string>& defines) {
+    const auto found = programs_.find(defines);
+    if (found != programs_.end()) return found->second.get();
+    Result<GlProgram> p = projectorComputeProgram("decal_resolve.comp", defines);
+    if (!p) return fail(p.error());
+    return programs_.emplace(defines, std::move(p.value())).first->second.get();
+}
+
+Status ComputeResolve::run(const HostFrame& f, const std::vector<std::string>& variant) {
+    const GLint albedoFormat = internalFormat(f.albedoTexture);
+    std::vector<std::string> defines = variant;
+    defines.push_back(normalFormat(internalFormat(f.normals.texture)));
+    if (albedoFormat == GL_SRGB8_ALPHA8) defines.push_back("ALBEDO_SRGB");
+    const bool inAlbedo = f.roughness.texture != 0 && f.roughness.texture == f.albedoTexture;
+    if (inAlbedo)
+        defines.push_back("ROUGHNESS_ALBEDO_ALPHA");
+    else if (f.roughness.texture != 0)
+        defines.push_back(roughnessFormat(internalFormat(f.roughness.texture)));
+    Result<GLuint> p = program(defines);
+    if (!p) return fail(p.error());
+
+    // An sRGB target is loaded and stored through an RGBA8 view of it (sRGB formats are no image formats).
+    GlTexture view;
+    GLuint albedo = f.albedoTexture;
+    if (albedoFormat == GL_SRGB8_ALPHA8) {
+        GLuint name = 0;
+        glGenTextures(1, &name);
+        glTextureView(name, GL_TEXTURE_2D, f.albedoTexture, GL_RGBA8, 0, 1, 0, 1);
+        view = GlTexture(name);
+        albedo = name;
+    }
+    const bool roughness = f.roughness.texture != 0 && !inAlbedo;
+    glBindImageTexture(0, albedo, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
+    glBindImageTexture(1, f.normals.texture, 0, GL_FALSE, 0, GL_READ_WRITE,
+                       GLenum(internalFormat(f.normals.texture)));
+    if (roughness)
+        glBindImageTexture(2, f.roughness.texture, 0, GL_FALSE, 0, GL_READ_WRITE,
+                           GLenum(internalFormat(f.roughness.texture)));
+    glUseProgram(p.value());
+    glUniform4i(0, f.x, f.y, f.width, f.height);
+    glUniform1i(1, roughness ? f.roughness.channel : -1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    glDispatchCompute((GLuint(f.width) + kGroupSize - 1) / kGroupSize,
+                      (GLuint(f.height) + kGroupSize - 1) / kGroupSize, 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                    GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT);
+    return {};
+}
+
+} // namespace spatter::render_detail

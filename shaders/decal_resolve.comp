@@ -1,0 +1,171 @@
+// Compute resolve of the G-buffer blend (ProjectorSettings::deferredResolve): the visible decals are
+// binned into screen tiles by the forward path's binning, then one invocation a pixel applies the
+// decals of its tile in drawing order with decal.frag's tests and blending, reading each of the host's
+// targets once and writing it once (imageLoad, imageStore). Only its own invocation touches a pixel,
+// so every decal tests the surface as it was before the pass, as the boxes do through the normal copy.
+// Texture derivatives come from the positions of the neighbouring pixels. Albedo is blended in linear
+// space (through an RGBA8 view of an sRGB target: ALBEDO_SRGB); normals in the host's encoding, as the
+// blend state blends them; roughness in its channel (u_roughnessChannel, -1: none) of its own target
+// or, with ROUGHNESS_ALBEDO_ALPHA, in the albedo's alpha. Target formats: NORMALS_RG16F,
+// NORMALS_RGBA16F, NORMALS_RGB10A2, else RGBA8; ROUGHNESS_R8, ROUGHNESS_RG8, else RGBA8.
+#define SPATTER_FORWARD_HELPERS_ONLY // spatterApplyForwardDecals takes derivatives, which compute lacks
+#define SPATTER_DECAL_ALBEDO_UNIT 3
+#define SPATTER_DECAL_NORMAL_UNIT 4
+#include "projector.glsl"
+#include "forward.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(binding = 0) uniform sampler2D s_depth;
+layout(binding = 2) uniform usampler2D s_ids;
+
+layout(binding = 0, rgba8) uniform restrict image2D i_albedo;
+#if defined(NORMALS_RG16F)
+layout(binding = 1, rg16f) uniform restrict image2D i_normal;
+#elif defined(NORMALS_RGBA16F)
+layout(binding = 1, rgba16f) uniform restrict image2D i_normal;
+#elif defined(NORMALS_RGB10A2)
+layout(binding = 1, rgb10_a2) uniform restrict image2D i_normal;
+#else
+layout(binding = 1, rgba8) uniform restrict image2D i_normal;
+#endif
+#if defined(ROUGHNESS_R8)
+layout(binding = 2, r8) uniform restrict image2D i_roughness;
+#elif defined(ROUGHNESS_RG8)
+layout(binding = 2, rg8) uniform restrict image2D i_roughness;
+#else
+layout(binding = 2, rgba8) uniform restrict image2D i_roughness;
+#endif
+
+layout(location = 0) uniform ivec4 u_region;        // the host's viewport: x, y, width, height (pixels)
+layout(location = 1) uniform int u_roughnessChannel; // 0..2, or -1: roughness is not written
+
+vec3 toLinear(vec3 c) {
+#ifdef ALBEDO_SRGB
+    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
+#else
+    return c;
+#endif
+}
+
+vec3 fromLinear(vec3 c) {
+#ifdef ALBEDO_SRGB
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+#else
+    return c;
+#endif
+}
+
+// The change of the surface position from `pixel` (at `p`) to its neighbour `step` away or, where
+// that one is nearer in space, to the one on the other side (the smaller step stays on the surface at
+// a silhouette); zero where neither lies on a surface inside the viewport.
+vec3 positionStep(ivec2 pixel, vec3 p, ivec2 step) {
+    vec3 best = vec3(0.0);
+    bool found = false;
+    for (int side = 1; side >= -1; side -= 2) {
+        ivec2 q = pixel + side * step;
+        if (any(lessThan(q, u_region.xy)) || any(greaterThanEqual(q, u_region.xy + u_region.zw))) continue;
+        float depth = texelFetch(s_depth, q, 0).r;
+        if (isBackground(depth)) continue;
+        vec3 d = float(side) * (hostPosition(vec2(q) + 0.5, depth) - p);
+        if (!found || dot(d, d) < dot(best, best)) best = d;
+        found = true;
+    }
+    return best;
+}
+
+// What the pixel's decals make of its targets, decal after decal as the blend state would.
+struct Targets {
+    vec3 albedo;    // linear
+    vec4 normal;    // in the host's encoding
+    float roughness;
+};
+
+void blendDecal(SpatterForwardDecal d, vec3 box, vec3 p, vec3 dpdx, vec3 dpdy, vec3 n, uint id,
+                inout Targets t) {
+    uint flags = d.info.z;
+    vec2 uv = box.xy;
+    if ((flags & SPATTER_DECAL_WRAP) != 0u) { // Krassnigg's Listing 20.4 in metric decal space
+        vec3 halfSize = vec3(d.tangent.w, d.bitangent.w, d.normal.w);
+        vec3 q = box * halfSize;
+        uv = (q.xy - q.z * vec2(dot(n, d.tangent.xyz), dot(n, d.bitangent.xyz))) / halfSize.xy;
+    }
+    bool keep = all(lessThanEqual(abs(uv), vec2(1.0)));
+#ifdef IDS
+    keep = keep && id == d.info.x;
+#endif
+#ifndef NO_ANGLE
+    keep = keep && dot(n, d.normal.xyz) >= d.params.x;
+#endif
+    if (!keep) return;
+    float f = clamp((1.0 - abs(box.z)) / max(1.0 - u_params.x, 1e-4), 0.0, 1.0);
+    float fade = 1.0;
+    if ((flags & SPATTER_DECAL_FADE_LINEAR) != 0u) fade = f;
+    else if ((flags & SPATTER_DECAL_FADE_SMOOTH) != 0u) fade = f * f * (3.0 - 2.0 * f);
+    vec2 tcdx = 0.5 * vec2(dot(d.worldToBox[0].xyz, dpdx), dot(d.worldToBox[1].xyz, dpdx));
+    vec2 tcdy = 0.5 * vec2(dot(d.worldToBox[0].xyz, dpdy), dot(d.worldToBox[1].xyz, dpdy));
+    vec3 layer = vec3(uv * 0.5 + 0.5, float(d.info.y));
+    vec4 tex = textureGrad(spatterDecalAlbedo, layer, tcdx, tcdy);
+    float alpha = clamp(tex.a * d.tint.a * fade, 0.0, 1.0);
+    t.albedo = mix(t.albedo, tex.rgb * d.tint.rgb, alpha);
+#ifdef NORMAL_MAP
+    if ((flags & SPATTER_DECAL_NORMAL_MAP) != 0u) {
+        vec3 detail = normalize(textureGrad(spatterDecalNormal, layer, tcdx, tcdy).xyz * 2.0 - 1.0);
+        vec4 mapped = encodeHostNormal(spatterDecalNormalMap(d, detail, p, dpdx, dpdy, n));
+#if defined(NORMAL_WORLD_SIGNED) || defined(NORMAL_WORLD_UNORM) || defined(NORMAL_VIEW_UNORM)
+        t.normal.xyz = mix(t.normal.xyz, mapped.xyz, alpha);
+#else
+        t.normal.xy = mix(t.normal.xy, mapped.xy, alpha); // octahedral: the third channel is kept
+#endif
+    }
+#endif
+    if ((flags & SPATTER_DECAL_ROUGHNESS) != 0u) t.roughness = mix(t.roughness, d.params.y, alpha);
+}
+
+void main() {
+    ivec2 pixel = u_region.xy + ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, u_region.xy + u_region.zw))) return;
+    ivec2 tile = (pixel - spatterTileGrid.xy) / spatterTileInfo.x;
+    uvec2 run = spatterTiles[tile.y * spatterTileGrid.z + tile.x];
+    if (run.y == 0u) return;
+    float depth = texelFetch(s_depth, pixel, 0).r;
+    if (isBackground(depth)) return;
+    vec3 p = hostPosition(vec2(pixel) + 0.5, depth);
+    vec3 dpdx = positionStep(pixel, p, ivec2(1, 0)), dpdy = positionStep(pixel, p, ivec2(0, 1));
+    vec4 albedo = imageLoad(i_albedo, pixel);
+    Targets t;
+    t.albedo = toLinear(albedo.rgb);
+    t.normal = imageLoad(i_normal, pixel);
+#ifdef ROUGHNESS_ALBEDO_ALPHA
+    t.roughness = albedo.a;
+#else
+    vec4 material = u_roughnessChannel >= 0 ? imageLoad(i_roughness, pixel) : vec4(0.0);
+    t.roughness = u_roughnessChannel >= 0 ? material[u_roughnessChannel] : 0.0;
+#endif
+    vec3 n = decodeHostNormal(t.normal);
+    uint id = 0u;
+#ifdef IDS
+    id = texelFetch(s_ids, pixel, 0).r;
+#endif
+    bool changed = false;
+    for (uint k = 0u; k < run.y; ++k) {
+        uint index = spatterTileItems[run.x + k];
+        vec3 box = spatterBoxPosition(index, p);
+        if (!all(lessThanEqual(abs(box), vec3(1.0)))) continue;
+        blendDecal(spatterForwardDecals[index], box, p, dpdx, dpdy, n, id, t);
+        changed = true;
+    }
+    if (!changed) return;
+#ifdef ROUGHNESS_ALBEDO_ALPHA
+    imageStore(i_albedo, pixel, vec4(fromLinear(t.albedo), t.roughness));
+#else
+    imageStore(i_albedo, pixel, vec4(fromLinear(t.albedo), albedo.a));
+    if (u_roughnessChannel >= 0) {
+        material[u_roughnessChannel] = t.roughness;
+        imageStore(i_roughness, pixel, material);
+    }
+#endif
+#ifdef NORMAL_MAP
+    imageStore(i_normal, pixel, t.normal);
+#endif
+}

@@ -1,0 +1,148 @@
+// The G-buffer blend resolved by one compute pass over the forward path's tiles
+// (DeferredResolve::Compute) against the boxes (DeferredResolve::Boxes): the same decals give the
+// same albedo and normals, and frames the compute pass does not take go to the boxes.
+
+#include "HostedWall.hpp"
+#include "RenderTestSupport.hpp"
+#include "ShotDecals.hpp"
+
+#include "spatter/core/GalleryScene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+
+using namespace spatter;
+
+namespace {
+
+constexpr int kResolveWidth = 160;
+constexpr int kResolveHeight = 120;
+
+struct Rendered {
+    Image albedo, normal, coverage;
+    std::string variant, coverageVariant;
+};
+
+// The gallery with decals of three types shot from `cam` (hole and scorch with normal maps, blood
+// wrapping round corners), drawn with `resolve`.
+Rendered renderGallery(DeferredResolve resolve) {
+    GallerySettings gs;
+    gs.detail = 1;
+    const Scene scene = makeGalleryScene(gs);
+    Camera cam;
+    cam.eye = {1.5, 2.2, 4.5};
+    cam.target = {-0.5, 1.0, -3.0};
+    const std::vector<DecalType> types = {
+        test::makeType("hole", {0.45f, 0.45f}, DecalTexture::BulletHole),
+        test::makeType("blood", {0.9f, 0.7f}, DecalTexture::Blood, true),
+        test::makeType("scorch", {1.2f, 1.2f}, DecalTexture::Scorch, false, 0.8f)};
+    const test::Placed placed = test::shootFromCamera(scene, cam, types, 60, 7);
+    EXPECT_GT(placed.placed, 40u);
+    RendererSettings settings;
+    settings.deferredResolve = resolve;
+    Result<Renderer> r = test::makeRenderer(kResolveWidth, kResolveHeight, settings);
+    EXPECT_TRUE(r.ok()) << r.error();
+    if (!r) return {};
+    EXPECT_TRUE(r->setScene(scene).ok());
+    EXPECT_TRUE(r->setObjectIds(placed.inputs.objectIds).ok());
+    r->setDecalTypes(placed.inputs.types);
+    r->setDecals(placed.inputs.decals);
+    Rendered out;
+    FrameStats st;
+    out.albedo = test::renderView(r.value(), cam, View::Albedo, &st);
+    out.variant = st.decalVariant;
+    out.normal = test::renderView(r.value(), cam, View::Normal);
+    out.coverage = test::renderView(r.value(), cam, View::Coverage, &st);
+    out.coverageVariant = st.decalVariant;
+    return out;
+}
+
+// The largest difference of the first `channels` channels between `a` and `b`, and how many pixels
+// differ by more than `tolerance` in one of them.
+std::pair<int, size_t> difference(const Image& a, const Image& b, int tolerance, size_t channels = 3) {
+    int largest = 0;
+    size_t over = 0;
+    for (size_t p = 0; p + 3 < a.rgba.size() && p + 3 < b.rgba.size(); p += 4) {
+        int worst = 0;
+        for (size_t c = 0; c < channels; ++c)
+            worst = std::max(worst, std::abs(int(a.rgba[p + c]) - int(b.rgba[p + c])));
+        largest = std::max(largest, worst);
+        over += worst > tolerance;
+    }
+    return {largest, over};
+}
+
+} // namespace
+
+TEST(ComputeResolve, BlendsTheGBufferAsTheBoxesDo) {
+    SPATTER_REQUIRE_GL(gl);
+    const Rendered boxes = renderGallery(DeferredResolve::Boxes);
+    const Rendered compute = renderGallery(DeferredResolve::Compute);
+    ASSERT_EQ(boxes.albedo.rgba.size(), compute.albedo.rgba.size());
+    EXPECT_EQ(boxes.variant.find("COMPUTE"), std::string::npos) << boxes.variant;
+    EXPECT_NE(compute.variant.find("COMPUTE"), std::string::npos) << compute.variant;
+    test::dumpImage("compute-resolve-albedo-boxes", boxes.albedo);
+    test::dumpImage("compute-resolve-albedo-compute", compute.albedo);
+    // Blending in float where the boxes round to the target after each decal moves a channel by a
+    // step or two; texture derivatives from the neighbouring pixels where the boxes take them across
+    // their pixel quad pick another mip level on a silhouette (the arch's top edge here), so a few
+    // pixels there differ more.
+    const size_t pixels = boxes.albedo.rgba.size() / 4;
+    const auto [albedoLargest, albedoOver] = difference(boxes.albedo, compute.albedo, 4);
+    const auto [normalLargest, normalOver] = difference(boxes.normal, compute.normal, 4);
+    EXPECT_LT(albedoOver, pixels / 100) << "largest difference " << albedoLargest;
+    EXPECT_LT(normalOver, pixels / 100) << "largest difference " << normalLargest;
+    // The decals changed the frame: the comparison is not of two undecorated walls.
+    const size_t covered = test::countSet(test::whiteMask(compute.coverage));
+    EXPECT_GT(covered, pixels / 20);
+}
+
+TEST(ComputeResolve, CoverageModeDrawsTheBoxes) {
+    SPATTER_REQUIRE_GL(gl);
+    const Rendered boxes = renderGallery(DeferredResolve::Boxes);
+    const Rendered compute = renderGallery(DeferredResolve::Compute);
+    EXPECT_EQ(compute.coverageVariant.find("COMPUTE"), std::string::npos) << compute.coverageVariant;
+    EXPECT_EQ(boxes.coverage.rgba, compute.coverage.rgba);
+}
+
+// In a foreign host's frame (standard Z, RGBA8 albedo, RGB10_A2 world normals, object IDs), with
+// roughness in the G channel of its own target or in the albedo's alpha: the crate's deep decal stays
+// off the wall behind it, and the targets are the boxes' within a few steps.
+TEST(ComputeResolve, BlendsAHostsFrameAsTheBoxesDo) {
+    SPATTER_REQUIRE_GL(gl);
+    for (const bool alphaRoughness : {false, true}) {
+        std::vector<Image> albedo, normal, material;
+        std::vector<std::string> variants;
+        for (const DeferredResolve resolve : {DeferredResolve::Boxes, DeferredResolve::Compute}) {
+            ProjectorSettings settings;
+            settings.deferredResolve = resolve;
+            std::optional<test::HostedWall> h = test::HostedWall::make(settings);
+            ASSERT_TRUE(h);
+            std::vector<Decal> decals = h->wall.decals;
+            for (int i = 0; i < 30; ++i) {
+                Decal d = test::WallScene::decalAt(0, {-0.9f + 0.06f * float(i), 0.1f * float(i % 4), 0.05f});
+                d.size = glm::vec2(0.25f);
+                decals.push_back(d);
+            }
+            h->projector.setDecals(decals);
+            HostFrame f = h->host.frame(h->wall.camera, true);
+            if (alphaRoughness) f.roughness = {f.albedoTexture, 3};
+            Result<ProjectorStats> st = h->projector.draw(f);
+            ASSERT_TRUE(st.ok()) << st.error();
+            variants.push_back(st->variant);
+            albedo.push_back(h->host.read(f.albedoTexture));
+            normal.push_back(h->host.read(f.normals.texture));
+            material.push_back(h->host.read(f.roughness.texture));
+        }
+        EXPECT_EQ(variants[0].find("COMPUTE"), std::string::npos) << variants[0];
+        EXPECT_NE(variants[1].find("COMPUTE"), std::string::npos) << variants[1];
+        const size_t pixels = albedo[0].rgba.size() / 4;
+        for (const auto* targets : {&albedo, &normal, &material}) {
+            const auto [largest, over] = difference((*targets)[0], (*targets)[1], 4, 4);
+            EXPECT_LT(over, pixels / 100)
+                << "largest difference " << largest << (alphaRoughness ? " (alpha)" : "");
+        }
+    }
+}
