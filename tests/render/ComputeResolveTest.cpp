@@ -6,8 +6,6 @@
 #include "RenderTestSupport.hpp"
 #include "ShotDecals.hpp"
 
-#include "spatter/core/GalleryScene.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,36 +23,25 @@ struct Rendered {
     std::string variant, coverageVariant;
 };
 
-// The gallery with decals of three types shot from `cam` (hole and scorch with normal maps, blood
-// wrapping round corners), drawn with `resolve`.
+// The gallery's shots (test::galleryShots) drawn with `resolve`.
 Rendered renderGallery(DeferredResolve resolve) {
-    GallerySettings gs;
-    gs.detail = 1;
-    const Scene scene = makeGalleryScene(gs);
-    Camera cam;
-    cam.eye = {1.5, 2.2, 4.5};
-    cam.target = {-0.5, 1.0, -3.0};
-    const std::vector<DecalType> types = {
-        test::makeType("hole", {0.45f, 0.45f}, DecalTexture::BulletHole),
-        test::makeType("blood", {0.9f, 0.7f}, DecalTexture::Blood, true),
-        test::makeType("scorch", {1.2f, 1.2f}, DecalTexture::Scorch, false, 0.8f)};
-    const test::Placed placed = test::shootFromCamera(scene, cam, types, 60, 7);
-    EXPECT_GT(placed.placed, 40u);
+    const test::GalleryShots g = test::galleryShots();
+    EXPECT_GT(g.placed.placed, 40u);
     RendererSettings settings;
     settings.deferredResolve = resolve;
     Result<Renderer> r = test::makeRenderer(kResolveWidth, kResolveHeight, settings);
     EXPECT_TRUE(r.ok()) << r.error();
     if (!r) return {};
-    EXPECT_TRUE(r->setScene(scene).ok());
-    EXPECT_TRUE(r->setObjectIds(placed.inputs.objectIds).ok());
-    r->setDecalTypes(placed.inputs.types);
-    r->setDecals(placed.inputs.decals);
+    EXPECT_TRUE(r->setScene(g.scene).ok());
+    EXPECT_TRUE(r->setObjectIds(g.placed.inputs.objectIds).ok());
+    r->setDecalTypes(g.placed.inputs.types);
+    r->setDecals(g.placed.inputs.decals);
     Rendered out;
     FrameStats st;
-    out.albedo = test::renderView(r.value(), cam, View::Albedo, &st);
+    out.albedo = test::renderView(r.value(), g.camera, View::Albedo, &st);
     out.variant = st.decalVariant;
-    out.normal = test::renderView(r.value(), cam, View::Normal);
-    out.coverage = test::renderView(r.value(), cam, View::Coverage, &st);
+    out.normal = test::renderView(r.value(), g.camera, View::Normal);
+    out.coverage = test::renderView(r.value(), g.camera, View::Coverage, &st);
     out.coverageVariant = st.decalVariant;
     return out;
 }

@@ -116,19 +116,9 @@ Camera cameraFor(const Scene& scene, const glm::dvec3& direction) {
 
 TEST(Coverage, MatchesCpuReferenceOnTheGallery) {
     SPATTER_REQUIRE_GL(gl);
-    GallerySettings gs;
-    gs.detail = 1;
-    const Scene scene = makeGalleryScene(gs);
-    Camera cam;
-    cam.eye = {1.5, 2.2, 4.5};
-    cam.target = {-0.5, 1.0, -3.0};
-    const std::vector<DecalType> types = {
-        test::makeType("hole", {0.45f, 0.45f}, DecalTexture::BulletHole),
-        test::makeType("blood", {0.9f, 0.7f}, DecalTexture::Blood, true),
-        test::makeType("scorch", {1.2f, 1.2f}, DecalTexture::Scorch, false, 0.8f)};
-    const test::Placed placed = test::shootFromCamera(scene, cam, types, 60, 7);
-    ASSERT_GT(placed.placed, 40u);
-    expectCoverageMatches("gallery", scene, placed, cam, 0.97);
+    const test::GalleryShots g = test::galleryShots();
+    ASSERT_GT(g.placed.placed, 40u);
+    expectCoverageMatches("gallery", g.scene, g.placed, g.camera, 0.97);
 }
 
 TEST(Coverage, MatchesCpuReferenceOnSharedMeshes) {

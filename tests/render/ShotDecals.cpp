@@ -1,5 +1,6 @@
 #include "ShotDecals.hpp"
 
+#include "spatter/core/GalleryScene.hpp"
 #include "spatter/core/Random.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
@@ -46,6 +47,21 @@ DecalType makeType(const char* name, glm::vec2 size, DecalTexture tex, bool wrap
     t.texture = int(tex);
     t.wrapAround = wrap;
     return t;
+}
+
+GalleryShots galleryShots() {
+    GallerySettings gs;
+    gs.detail = 1;
+    GalleryShots g;
+    g.scene = makeGalleryScene(gs);
+    g.camera.eye = {1.5, 2.2, 4.5};
+    g.camera.target = {-0.5, 1.0, -3.0};
+    const std::vector<DecalType> types = {
+        makeType("hole", {0.45f, 0.45f}, DecalTexture::BulletHole),
+        makeType("blood", {0.9f, 0.7f}, DecalTexture::Blood, true),
+        makeType("scorch", {1.2f, 1.2f}, DecalTexture::Scorch, false, 0.8f)};
+    g.placed = shootFromCamera(g.scene, g.camera, types, 60, 7);
+    return g;
 }
 
 } // namespace spatter::test

@@ -26,4 +26,13 @@ Placed shootFromCamera(const Scene& scene, const Camera& cam, const std::vector<
 DecalType makeType(const char* name, glm::vec2 size, DecalTexture tex, bool wrap = false,
                    float halfDepth = 0.0f);
 
+// The gallery (detail 1) from a camera over the floor towards the far wall, with 60 shots cycling
+// through a bullet hole, a blood splat that wraps round corners and a deep scorch mark.
+struct GalleryShots {
+    Scene scene;
+    Camera camera;
+    Placed placed;
+};
+GalleryShots galleryShots();
+
 } // namespace spatter::test
