@@ -40,7 +40,8 @@ layout(std430, binding = SPATTER_FORWARD_DECALS_BINDING) SPATTER_FORWARD_ACCESS 
 layout(std430, binding = SPATTER_FORWARD_TILES_BINDING) SPATTER_FORWARD_ACCESS buffer SpatterForwardTiles {
     ivec4 spatterTileGrid;     // x, y: the viewport's lower left corner (pixels); z: tiles per row; w: rows
     ivec4 spatterTileInfo;     // x: tile size (pixels); y: 1 when normal maps take their frame from
-                               // the surface's position derivatives (DecalNormalFrame::DepthDerivatives)
+                               // the surface's position derivatives (DecalNormalFrame::DepthDerivatives);
+                               // z: 1 when the binning culled on the GPU left decals out
     vec4 spatterForwardParams; // x: fade start (fraction of the half-depth)
     uvec2 spatterTiles[];
 };

@@ -52,6 +52,7 @@ layout(std430, binding = 0) readonly buffer TileRects {
 void main() {
     uint i = gl_GlobalInvocationID.x;
 #ifdef FORWARD_CULLED
+    if (i == 0u && visibleCount > u_count) spatterTileInfo.z = 1; // decals past the buffers are left out
     if (i >= min(visibleCount, u_count)) return;
 #else
     if (i >= u_count) return;

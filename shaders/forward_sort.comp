@@ -21,6 +21,7 @@ void main() {
 #ifdef FORWARD_CULLED
     uvec2 run = uvec2(t * u_tileCapacity, min(tileCounts[t], u_tileCapacity));
     spatterTiles[t] = run;
+    if (tileCounts[t] > u_tileCapacity) spatterTileInfo.z = 1; // the decals past the run are left out
 #else
     uvec2 run = spatterTiles[t];
 #endif

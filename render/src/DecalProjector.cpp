@@ -157,6 +157,7 @@ struct DecalProjector::Impl {
     DepthPyramid pyramid;
     ComputeResolve resolve;
     bool computeOnAuto = false; // DeferredResolve::Auto resolves in compute: not a software rasteriser
+    int boxesSinceLeftOut = 0;  // draws Auto drew as boxes since a binning left decals out
     int drawsSinceProbe = 15;   // draws since occlusion culling last ran (the first draw tries it)
     size_t gpuCullingFrom = 0;  // settings.gpuCullingFrom, or its default for this context
     GpuTimers timers;
@@ -428,13 +429,19 @@ struct DecalProjector::Impl {
     }
 
     // Whether draw() blends `o` into `f` by ComputeResolve rather than by boxes, with `inView` decals
-    // in view (culled on the GPU: the latest count it has given).
-    bool resolvesInCompute(const HostFrame& f, const ProjectorDraw& o, size_t inView) const {
+    // in view (culled on the GPU: the latest count it has given). Auto draws boxes for 16 draws after
+    // a binning that left decals out, then tries the tiles again.
+    bool resolvesInCompute(const HostFrame& f, const ProjectorDraw& o, size_t inView) {
         const DeferredResolve mode = settings.deferredResolve;
         if (mode == DeferredResolve::Boxes) return false;
-        if (mode == DeferredResolve::Auto &&
-            (!computeOnAuto || inView < ProjectorSettings::kComputeResolveFrom))
-            return false;
+        if (mode == DeferredResolve::Auto) {
+            if (!computeOnAuto || inView < ProjectorSettings::kComputeResolveFrom) return false;
+            if (forward.leftOut(false) && boxesSinceLeftOut < 16) {
+                ++boxesSinceLeftOut;
+                return false;
+            }
+            boxesSinceLeftOut = 0;
+        }
         return f.depth.encoding == DepthEncoding::Window && ComputeResolve::supports(f, o);
     }
 
@@ -476,6 +483,7 @@ struct DecalProjector::Impl {
         // This draw's counts once the pass is queued: waiting between the culling and the boxes would
         // leave the GPU idle inside the pass.
         if (gpuCounts && settings.waitForTimers) takeGpuCounts(true, stats);
+        stats.tilesLeftOut = forward.leftOut(settings.waitForTimers);
         const GpuPassTimes times = timers.endFrame(settings.waitForTimers);
         stats.gpuMs = times.decalsMs;
         stats.gpuFrame = times.frame;

@@ -21,6 +21,10 @@ namespace spatter::render_detail {
 
 class ForwardBins {
 public:
+    ForwardBins() = default;
+    ForwardBins(const ForwardBins&) = delete;
+    ForwardBins& operator=(const ForwardBins&) = delete;
+    ~ForwardBins();
     // Builds the compute programs on first use.
     Status prepare();
     // Bins the visible decals of `vis` (in draw order, as the visible list holds them) into the tiles
@@ -34,6 +38,9 @@ public:
     size_t binCulled(const ForwardFrame& frame, int tileSize, ForwardGridGpu head, GLuint draws,
                      size_t capacity, uint32_t tileCapacity);
     void bind(const ForwardBindings& b) const;
+    // Whether the latest binCulled the GPU has finished (this one's when `wait`) left decals out: a tile
+    // past its capacity, or more visible decals than the buffers held.
+    bool leftOut(bool wait);
 
     GLuint decals() const { return decals_.get(); }
     GLuint tiles() const { return tiles_.get(); }
@@ -57,6 +64,9 @@ private:
     size_t decalsCapacity_ = 0, tilesCapacity_ = 0, itemsCapacity_ = 0, rectsCapacity_ = 0,
            countsCapacity_ = 0;
     std::vector<glm::uvec2> rectsCpu_;
+    GlBuffer leftOutReadback_; // spatterTileInfo.z of the latest binCulled, copied after it
+    GLsync leftOutFence_ = nullptr;
+    bool latestLeftOut_ = false;
 };
 
 } // namespace spatter::render_detail

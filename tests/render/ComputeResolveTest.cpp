@@ -133,3 +133,27 @@ TEST(ComputeResolve, BlendsAHostsFrameAsTheBoxesDo) {
         }
     }
 }
+
+// Culled on the GPU, a tile holds at most forwardTileCapacity decals: 40 decals over one spot, with a
+// capacity of 16, are reported as left out (ProjectorStats::tilesLeftOut); 8 are not.
+TEST(ComputeResolve, ReportsDecalsLeftOutOfAFullTile) {
+    SPATTER_REQUIRE_GL(gl);
+    for (const int count : {8, 40}) {
+        ProjectorSettings settings;
+        settings.deferredResolve = DeferredResolve::Compute;
+        settings.gpuCullingFrom = 0;
+        settings.forwardTileCapacity = 16;
+        settings.waitForTimers = true;
+        std::optional<test::HostedWall> h = test::HostedWall::make(settings);
+        ASSERT_TRUE(h);
+        std::vector<Decal> decals;
+        for (int i = 0; i < count; ++i)
+            decals.push_back(test::WallScene::decalAt(0, {0.01f * float(i), 0.0f, 0.05f}));
+        h->projector.setDecals(decals);
+        Result<ProjectorStats> st = h->projector.draw(h->host.frame(h->wall.camera, true));
+        ASSERT_TRUE(st.ok()) << st.error();
+        EXPECT_TRUE(st->gpuCulled);
+        EXPECT_NE(st->variant.find("COMPUTE"), std::string::npos) << st->variant;
+        EXPECT_EQ(st->tilesLeftOut, count > 16) << count << " decals";
+    }
+}

@@ -166,7 +166,8 @@ enum class DeferredResolve {
              // normals RG16F, RGBA16F, RGB10_A2 or RGBA8, roughness R8, RG8 or RGBA8 in R, G or B, or
              // in the albedo's alpha); other frames, coverage mode, angleReject off and the DBuffer
              // path use boxes. Culled on the GPU, a tile takes at most forwardTileCapacity decals, as
-             // bin()'s do
+             // bin()'s do; decals left out are reported (ProjectorStats::tilesLeftOut), and Auto then
+             // draws boxes for 16 draws
 };
 
 struct ProjectorSettings {
@@ -267,9 +268,14 @@ struct ProjectorStats {
     // boxes) or "boxes" (a draw of the boxes); otherwise "viewport".
     std::string normalCopy;
     bool gpuCulled = false; // the visible list was built on the GPU (ProjectorSettings::gpuCullingFrom)
-    std::string variant;    // shader features used, e.g. "IDS WRAP NORMAL_MAP FADE"
-    double gpuMs = 0.0;     // GPU time of the pass, of frame `gpuFrame` (see waitForTimers)
-    int64_t gpuFrame = -1;  // the draw call count (0 for the first) the time belongs to; -1: none yet
+    // The latest binning culled on the GPU that the GPU has finished (this one's with waitForTimers), of
+    // bin() or of the compute resolve, left decals out of screen tiles: a tile past forwardTileCapacity,
+    // or more decals in view than twice an earlier count. DeferredResolve::Auto then draws boxes for a
+    // while.
+    bool tilesLeftOut = false;
+    std::string variant;   // shader features used, e.g. "IDS WRAP NORMAL_MAP FADE"
+    double gpuMs = 0.0;    // GPU time of the pass, of frame `gpuFrame` (see waitForTimers)
+    int64_t gpuFrame = -1; // the draw call count (0 for the first) the time belongs to; -1: none yet
 };
 
 // GL objects of the projector that a host may read: the decal texture arrays, and the instance data
