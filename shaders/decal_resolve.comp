@@ -81,37 +81,19 @@ struct Targets {
     float roughness;
 };
 
-void blendDecal(SpatterForwardDecal d, vec3 box, vec3 p, vec3 dpdx, vec3 dpdy, vec3 n, uint id,
-                inout Targets t) {
-    uint flags = d.info.z;
-    vec2 uv = box.xy;
-    if ((flags & SPATTER_DECAL_WRAP) != 0u) { // Krassnigg's Listing 20.4 in metric decal space
-        vec3 halfSize = vec3(d.tangent.w, d.bitangent.w, d.normal.w);
-        vec3 q = box * halfSize;
-        uv = (q.xy - q.z * vec2(dot(n, d.tangent.xyz), dot(n, d.bitangent.xyz))) / halfSize.xy;
-    }
-    bool keep = all(lessThanEqual(abs(uv), vec2(1.0)));
-#ifdef IDS
-    keep = keep && id == d.info.x;
+// Blends decal `d` into `t` when spatterDecalLook keeps the point (IDS: clipped by the pixel's
+// object ID `id`); returns whether it did.
+bool blendDecal(SpatterForwardDecal d, vec3 box, vec3 p, vec3 dpdx, vec3 dpdy, vec3 n, uint id, inout Targets t) {
+#ifndef IDS
+    id = d.info.x; // no ID clipping
 #endif
-#ifndef NO_ANGLE
-    keep = keep && dot(n, d.normal.xyz) >= d.params.x;
-#endif
-    if (!keep) return;
-    float f = clamp((1.0 - abs(box.z)) / max(1.0 - u_params.x, 1e-4), 0.0, 1.0);
-    float fade = 1.0;
-    if ((flags & SPATTER_DECAL_FADE_LINEAR) != 0u) fade = f;
-    else if ((flags & SPATTER_DECAL_FADE_SMOOTH) != 0u) fade = f * f * (3.0 - 2.0 * f);
-    vec2 tcdx = 0.5 * vec2(dot(d.worldToBox[0].xyz, dpdx), dot(d.worldToBox[1].xyz, dpdx));
-    vec2 tcdy = 0.5 * vec2(dot(d.worldToBox[0].xyz, dpdy), dot(d.worldToBox[1].xyz, dpdy));
-    vec3 layer = vec3(uv * 0.5 + 0.5, float(d.info.y));
-    vec4 tex = textureGrad(spatterDecalAlbedo, layer, tcdx, tcdy);
-    float alpha = clamp(tex.a * d.tint.a * fade, 0.0, 1.0);
-    t.albedo = mix(t.albedo, tex.rgb * d.tint.rgb, alpha);
+    SpatterDecalLook look;
+    if (!spatterDecalLook(d, box, dpdx, dpdy, id, n, look)) return false;
+    float alpha = look.colour.a;
+    t.albedo = mix(t.albedo, look.colour.rgb, alpha);
 #ifdef NORMAL_MAP
-    if ((flags & SPATTER_DECAL_NORMAL_MAP) != 0u) {
-        vec3 detail = normalize(textureGrad(spatterDecalNormal, layer, tcdx, tcdy).xyz * 2.0 - 1.0);
-        vec4 mapped = encodeHostNormal(spatterDecalNormalMap(d, detail, p, dpdx, dpdy, n));
+    if ((d.info.z & SPATTER_DECAL_NORMAL_MAP) != 0u) {
+        vec4 mapped = encodeHostNormal(spatterDecalNormalMap(d, spatterDecalDetail(look), p, dpdx, dpdy, n));
 #if defined(NORMAL_WORLD_SIGNED) || defined(NORMAL_WORLD_UNORM) || defined(NORMAL_VIEW_UNORM)
         t.normal.xyz = mix(t.normal.xyz, mapped.xyz, alpha);
 #else
@@ -119,7 +101,8 @@ void blendDecal(SpatterForwardDecal d, vec3 box, vec3 p, vec3 dpdx, vec3 dpdy, v
 #endif
     }
 #endif
-    if ((flags & SPATTER_DECAL_ROUGHNESS) != 0u) t.roughness = mix(t.roughness, d.params.y, alpha);
+    if ((d.info.z & SPATTER_DECAL_ROUGHNESS) != 0u) t.roughness = mix(t.roughness, d.params.y, alpha);
+    return true;
 }
 
 void main() {
@@ -152,8 +135,7 @@ void main() {
         uint index = spatterTileItems[run.x + k];
         vec3 box = spatterBoxPosition(index, p);
         if (!all(lessThanEqual(abs(box), vec3(1.0)))) continue;
-        blendDecal(spatterForwardDecals[index], box, p, dpdx, dpdy, n, id, t);
-        changed = true;
+        changed = blendDecal(spatterForwardDecals[index], box, p, dpdx, dpdy, n, id, t) || changed;
     }
     if (!changed) return;
 #ifdef ROUGHNESS_ALBEDO_ALPHA

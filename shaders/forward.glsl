@@ -51,11 +51,18 @@ vec3 spatterBoxPosition(uint index, vec3 position) {
                 dot(spatterForwardDecals[index].worldToBox[2], ph));
 }
 
-// Applies decal `d` to `s` at `box` (the shaded point in its unit box) when the point belongs to the
-// object with decal ID `objectId`, its surface normal `n` faces the decal within its angle and, for
-// wrap-around types, its wrapped footprint lies inside the decal's rectangle; returns whether it did.
-bool spatterApplyDecal(SpatterForwardDecal d, vec3 box, vec3 position, vec3 dpdx, vec3 dpdy, uint objectId, vec3 n,
-                       inout SpatterSurface s) {
+// What decal `d` gives the point at `box` (the shaded point in its unit box; `n` its surface normal,
+// `dpdx`, `dpdy` its position's screen derivatives) when the point belongs to the object with decal ID
+// `objectId`, faces the decal within its angle and, for wrap-around types, its wrapped footprint lies
+// inside the decal's rectangle: its colour and alpha, and where its textures are read; false otherwise.
+struct SpatterDecalLook {
+    vec4 colour; // rgb: texture x tint; a: texture alpha x tint alpha x depth fade, in [0, 1]
+    vec3 layer;  // texture coordinates and array layer
+    vec2 tcdx, tcdy;
+};
+
+bool spatterDecalLook(SpatterForwardDecal d, vec3 box, vec3 dpdx, vec3 dpdy, uint objectId, vec3 n,
+                      out SpatterDecalLook look) {
     uint flags = d.info.z;
     vec2 uv = box.xy;
     if ((flags & SPATTER_DECAL_WRAP) != 0u) { // Krassnigg's Listing 20.4 in metric decal space
@@ -71,17 +78,29 @@ bool spatterApplyDecal(SpatterForwardDecal d, vec3 box, vec3 position, vec3 dpdx
     if ((flags & SPATTER_DECAL_FADE_LINEAR) != 0u) fade = f;
     else if ((flags & SPATTER_DECAL_FADE_SMOOTH) != 0u) fade = f * f * (3.0 - 2.0 * f);
     // Texture coordinate derivatives from the position's: this runs in non-uniform control flow.
-    vec2 tcdx = 0.5 * vec2(dot(d.worldToBox[0].xyz, dpdx), dot(d.worldToBox[1].xyz, dpdx));
-    vec2 tcdy = 0.5 * vec2(dot(d.worldToBox[0].xyz, dpdy), dot(d.worldToBox[1].xyz, dpdy));
-    vec3 layer = vec3(uv * 0.5 + 0.5, float(d.info.y));
-    vec4 tex = textureGrad(spatterDecalAlbedo, layer, tcdx, tcdy);
-    float alpha = clamp(tex.a * d.tint.a * fade, 0.0, 1.0);
-    s.albedo = mix(s.albedo, tex.rgb * d.tint.rgb, alpha);
-    if ((flags & SPATTER_DECAL_NORMAL_MAP) != 0u) {
-        vec3 detail = normalize(textureGrad(spatterDecalNormal, layer, tcdx, tcdy).xyz * 2.0 - 1.0);
-        s.normal = mix(s.normal, spatterDecalNormalMap(d, detail, position, dpdx, dpdy, n), alpha);
-    }
-    if ((flags & SPATTER_DECAL_ROUGHNESS) != 0u) s.roughness = mix(s.roughness, d.params.y, alpha);
+    look.tcdx = 0.5 * vec2(dot(d.worldToBox[0].xyz, dpdx), dot(d.worldToBox[1].xyz, dpdx));
+    look.tcdy = 0.5 * vec2(dot(d.worldToBox[0].xyz, dpdy), dot(d.worldToBox[1].xyz, dpdy));
+    look.layer = vec3(uv * 0.5 + 0.5, float(d.info.y));
+    vec4 tex = textureGrad(spatterDecalAlbedo, look.layer, look.tcdx, look.tcdy);
+    look.colour = vec4(tex.rgb * d.tint.rgb, clamp(tex.a * d.tint.a * fade, 0.0, 1.0));
+    return true;
+}
+
+// The normal map of the decal whose look is `look`, as a tangent-space unit vector.
+vec3 spatterDecalDetail(SpatterDecalLook look) {
+    return normalize(textureGrad(spatterDecalNormal, look.layer, look.tcdx, look.tcdy).xyz * 2.0 - 1.0);
+}
+
+// Applies decal `d` to `s` at `box` when spatterDecalLook keeps the point; returns whether it did.
+bool spatterApplyDecal(SpatterForwardDecal d, vec3 box, vec3 position, vec3 dpdx, vec3 dpdy, uint objectId, vec3 n,
+                       inout SpatterSurface s) {
+    SpatterDecalLook look;
+    if (!spatterDecalLook(d, box, dpdx, dpdy, objectId, n, look)) return false;
+    float alpha = look.colour.a;
+    s.albedo = mix(s.albedo, look.colour.rgb, alpha);
+    if ((d.info.z & SPATTER_DECAL_NORMAL_MAP) != 0u)
+        s.normal = mix(s.normal, spatterDecalNormalMap(d, spatterDecalDetail(look), position, dpdx, dpdy, n), alpha);
+    if ((d.info.z & SPATTER_DECAL_ROUGHNESS) != 0u) s.roughness = mix(s.roughness, d.params.y, alpha);
     return true;
 }
 

@@ -51,14 +51,32 @@ std::string roughnessFormat(GLint format) {
 
 } // namespace
 
-bool ComputeResolve::supports(const HostFrame& f, const ProjectorDraw& o) {
-    if (o.path != ProjectorPath::GBufferBlend || o.coverageTexture != 0 || !o.angleReject) return false;
-    if (f.normals.texture == 0 || normalFormat(internalFormat(f.normals.texture)).empty()) return false;
+std::optional<ComputeResolve::Targets> ComputeResolve::targets(const HostFrame& f, const ProjectorDraw& o) {
+    if (o.path != ProjectorPath::GBufferBlend || o.coverageTexture != 0 || !o.angleReject)
+        return std::nullopt;
+    if (f.depth.encoding != DepthEncoding::Window || f.normals.texture == 0) return std::nullopt;
+    Targets t;
+    t.normalFormat = GLenum(internalFormat(f.normals.texture));
+    const std::string normals = normalFormat(GLint(t.normalFormat));
+    if (normals.empty()) return std::nullopt;
+    t.defines.push_back(normals);
     const GLint albedo = internalFormat(f.albedoTexture);
-    if (albedo != GL_RGBA8 && !(albedo == GL_SRGB8_ALPHA8 && immutable(f.albedoTexture))) return false;
-    if (f.roughness.texture == 0) return true;
-    if (f.roughness.texture == f.albedoTexture) return f.roughness.channel == 3; // in the albedo's alpha
-    return f.roughness.channel < 3 && !roughnessFormat(internalFormat(f.roughness.texture)).empty();
+    t.srgbAlbedo = albedo == GL_SRGB8_ALPHA8 && immutable(f.albedoTexture);
+    if (t.srgbAlbedo)
+        t.defines.push_back("ALBEDO_SRGB");
+    else if (albedo != GL_RGBA8)
+        return std::nullopt;
+    if (f.roughness.texture == 0) return t;
+    if (f.roughness.texture == f.albedoTexture) { // in the albedo's alpha
+        if (f.roughness.channel != 3) return std::nullopt;
+        t.defines.push_back("ROUGHNESS_ALBEDO_ALPHA");
+        return t;
+    }
+    t.roughnessFormat = GLenum(internalFormat(f.roughness.texture));
+    const std::string roughness = roughnessFormat(GLint(t.roughnessFormat));
+    if (f.roughness.channel >= 3 || roughness.empty()) return std::nullopt;
+    t.defines.push_back(roughness);
+    return t;
 }
 
 Result<GLuint> ComputeResolve::program(const std::vector<std::string>& defines) {
@@ -69,36 +87,27 @@ Result<GLuint> ComputeResolve::program(const std::vector<std::string>& defines) 
     return programs_.emplace(defines, std::move(p.value())).first->second.get();
 }
 
-Status ComputeResolve::run(const HostFrame& f, const std::vector<std::string>& variant) {
-    const GLint albedoFormat = internalFormat(f.albedoTexture);
+Status ComputeResolve::run(const HostFrame& f, const Targets& t, const std::vector<std::string>& variant) {
     std::vector<std::string> defines = variant;
-    defines.push_back(normalFormat(internalFormat(f.normals.texture)));
-    if (albedoFormat == GL_SRGB8_ALPHA8) defines.push_back("ALBEDO_SRGB");
-    const bool inAlbedo = f.roughness.texture != 0 && f.roughness.texture == f.albedoTexture;
-    if (inAlbedo)
-        defines.push_back("ROUGHNESS_ALBEDO_ALPHA");
-    else if (f.roughness.texture != 0)
-        defines.push_back(roughnessFormat(internalFormat(f.roughness.texture)));
+    defines.insert(defines.end(), t.defines.begin(), t.defines.end());
     Result<GLuint> p = program(defines);
     if (!p) return fail(p.error());
 
     // An sRGB target is loaded and stored through an RGBA8 view of it (sRGB formats are no image formats).
     GlTexture view;
     GLuint albedo = f.albedoTexture;
-    if (albedoFormat == GL_SRGB8_ALPHA8) {
+    if (t.srgbAlbedo) {
         GLuint name = 0;
         glGenTextures(1, &name);
         glTextureView(name, GL_TEXTURE_2D, f.albedoTexture, GL_RGBA8, 0, 1, 0, 1);
         view = GlTexture(name);
         albedo = name;
     }
-    const bool roughness = f.roughness.texture != 0 && !inAlbedo;
+    const bool roughness = t.roughnessFormat != 0;
     glBindImageTexture(0, albedo, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
-    glBindImageTexture(1, f.normals.texture, 0, GL_FALSE, 0, GL_READ_WRITE,
-                       GLenum(internalFormat(f.normals.texture)));
+    glBindImageTexture(1, f.normals.texture, 0, GL_FALSE, 0, GL_READ_WRITE, t.normalFormat);
     if (roughness)
-        glBindImageTexture(2, f.roughness.texture, 0, GL_FALSE, 0, GL_READ_WRITE,
-                           GLenum(internalFormat(f.roughness.texture)));
+        glBindImageTexture(2, f.roughness.texture, 0, GL_FALSE, 0, GL_READ_WRITE, t.roughnessFormat);
     glUseProgram(p.value());
     glUniform4i(0, f.x, f.y, f.width, f.height);
     glUniform1i(1, roughness ? f.roughness.channel : -1);

@@ -428,27 +428,29 @@ struct DecalProjector::Impl {
         }
     }
 
-    // Whether draw() blends `o` into `f` by ComputeResolve rather than by boxes, with `inView` decals
-    // in view (culled on the GPU: the latest count it has given). Auto draws boxes for 16 draws after
-    // a binning that left decals out, then tries the tiles again.
-    bool resolvesInCompute(const HostFrame& f, const ProjectorDraw& o, size_t inView) {
+    // The host's targets when draw() blends `o` into `f` by ComputeResolve rather than by boxes, with
+    // `inView` decals in view (culled on the GPU: the latest count it has given); nothing for boxes.
+    // Auto draws boxes for 16 draws after a binning that left decals out, then tries the tiles again.
+    std::optional<ComputeResolve::Targets> computeTargets(const HostFrame& f, const ProjectorDraw& o,
+                                                          size_t inView) {
         const DeferredResolve mode = settings.deferredResolve;
-        if (mode == DeferredResolve::Boxes) return false;
+        if (mode == DeferredResolve::Boxes) return std::nullopt;
         if (mode == DeferredResolve::Auto) {
-            if (!computeOnAuto || inView < ProjectorSettings::kComputeResolveFrom) return false;
+            if (!computeOnAuto || inView < ProjectorSettings::kComputeResolveFrom) return std::nullopt;
             if (forward.leftOut(false) && boxesSinceLeftOut < 16) {
                 ++boxesSinceLeftOut;
-                return false;
+                return std::nullopt;
             }
             boxesSinceLeftOut = 0;
         }
-        return f.depth.encoding == DepthEncoding::Window && ComputeResolve::supports(f, o);
+        return ComputeResolve::targets(f, o);
     }
 
     // The G-buffer blend by one compute pass (ComputeResolve) over the visible decals binned into the
-    // tiles of `f`, with the variant `bits`' conventions and features.
-    Result<ProjectorStats> resolveInCompute(const HostFrame& f, const FrameCamera& camera, bool onGpu,
-                                            const DecalVisibility& vis, uint32_t bits, ProjectorStats stats) {
+    // tiles of `f`, whose targets are `targets`, with the variant `bits`' conventions and features.
+    Result<ProjectorStats> resolveInCompute(const HostFrame& f, const ComputeResolve::Targets& targets,
+                                            const FrameCamera& camera, bool onGpu, const DecalVisibility& vis,
+                                            uint32_t bits, ProjectorStats stats) {
         if (Status s = forward.prepare(); !s) return fail(s.error());
         if (onGpu)
             if (Status s = culling.prepare(); !s) return fail(s.error());
@@ -462,7 +464,7 @@ struct DecalProjector::Impl {
         binVisible(forwardFrame(f), camera, onGpu, vis, stats);
         bindInputs(f);
         forward.bind(ForwardBindings{});
-        const Status resolved = resolve.run(f, defines);
+        const Status resolved = resolve.run(f, targets, defines);
         ++stats.drawCalls;
         endPass(onGpu, stats);
         if (!resolved) return fail(resolved.error());
@@ -675,8 +677,8 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     if (stats.skipped) return stats;
     const uint32_t bits = m.variantBits(frame, options, vis.flags);
     const size_t inView = onGpu ? m.culling.visibleCount(false) : vis.visible.size();
-    if (m.resolvesInCompute(frame, options, inView))
-        return m.resolveInCompute(frame, camera, onGpu, vis, bits, stats);
+    if (const std::optional<ComputeResolve::Targets> targets = m.computeTargets(frame, options, inView))
+        return m.resolveInCompute(frame, *targets, camera, onGpu, vis, bits, stats);
     Passes passes;
     Result<GLuint> program = m.program(bits);
     if (!program) return fail(program.error());

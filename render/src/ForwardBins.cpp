@@ -76,10 +76,7 @@ glm::ivec2 ForwardBins::grid(const ForwardFrame& frame, int tileSize, ForwardGri
 
 size_t ForwardBins::bin(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize,
                         ForwardGridGpu head) {
-    // Sized on the CPU, the tiles hold every decal: nothing is left out from here on.
-    if (leftOutFence_) glDeleteSync(leftOutFence_);
-    leftOutFence_ = nullptr;
-    latestLeftOut_ = false;
+    leftOut_.reset(); // sized on the CPU, the tiles hold every decal: nothing is left out from here on
     const glm::ivec2 tiles = grid(frame, tileSize, head);
     const uint32_t tileCount = uint32_t(tiles.x) * uint32_t(tiles.y);
     const size_t items = tileRects(frame, vis, tileSize, tiles);
@@ -134,32 +131,13 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
     glUniform1ui(1, tileCapacity);
     glDispatchCompute(groups(tileCount), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    if (!leftOutReadback_) {
-        leftOutReadback_ = createBuffer();
-        glNamedBufferStorage(leftOutReadback_.get(), sizeof(int32_t), nullptr, GL_CLIENT_STORAGE_BIT);
-    }
-    glCopyNamedBufferSubData(tiles_.get(), leftOutReadback_.get(),
-                             GLintptr(offsetof(ForwardGridGpu, info) + 8), 0, sizeof(int32_t));
-    if (leftOutFence_) glDeleteSync(leftOutFence_);
-    leftOutFence_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    leftOut_.copy(tiles_.get(), offsetof(ForwardGridGpu, info) + 2 * sizeof(int32_t), 0, 1);
+    leftOut_.fence();
     return sizeof head;
 }
 
-ForwardBins::~ForwardBins() {
-    if (leftOutFence_) glDeleteSync(leftOutFence_);
-}
-
 bool ForwardBins::leftOut(bool wait) {
-    if (!leftOutFence_) return latestLeftOut_;
-    const GLenum state =
-        glClientWaitSync(leftOutFence_, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, wait ? ~GLuint64(0) : 0);
-    if (state != GL_ALREADY_SIGNALED && state != GL_CONDITION_SATISFIED) return latestLeftOut_;
-    int32_t flag = 0;
-    glGetNamedBufferSubData(leftOutReadback_.get(), 0, sizeof flag, &flag);
-    latestLeftOut_ = flag != 0;
-    glDeleteSync(leftOutFence_);
-    leftOutFence_ = nullptr;
-    return latestLeftOut_;
+    return leftOut_.latest(wait)[0] != 0;
 }
 
 void ForwardBins::dispatch(uint32_t visible, uint32_t tileCount) const {

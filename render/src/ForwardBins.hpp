@@ -8,6 +8,7 @@
 // length, filled as the rectangles are found.
 
 #include "DecalBatch.hpp"
+#include "FencedReadback.hpp"
 #include "GlObjects.hpp"
 #include "ProjectorLayouts.hpp"
 
@@ -21,10 +22,6 @@ namespace spatter::render_detail {
 
 class ForwardBins {
 public:
-    ForwardBins() = default;
-    ForwardBins(const ForwardBins&) = delete;
-    ForwardBins& operator=(const ForwardBins&) = delete;
-    ~ForwardBins();
     // Builds the compute programs on first use.
     Status prepare();
     // Bins the visible decals of `vis` (in draw order, as the visible list holds them) into the tiles
@@ -64,9 +61,7 @@ private:
     size_t decalsCapacity_ = 0, tilesCapacity_ = 0, itemsCapacity_ = 0, rectsCapacity_ = 0,
            countsCapacity_ = 0;
     std::vector<glm::uvec2> rectsCpu_;
-    GlBuffer leftOutReadback_; // spatterTileInfo.z of the latest binCulled, copied after it
-    GLsync leftOutFence_ = nullptr;
-    bool latestLeftOut_ = false;
+    FencedReadback leftOut_; // spatterTileInfo.z of the latest binCulled
 };
 
 } // namespace spatter::render_detail

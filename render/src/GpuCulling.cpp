@@ -21,10 +21,6 @@ constexpr size_t kCounters = 3;
 
 } // namespace
 
-GpuCulling::~GpuCulling() {
-    if (fence_) glDeleteSync(fence_);
-}
-
 Status GpuCulling::prepare() {
     if (scatter_) return {};
     Result<GlProgram> classify = projectorComputeProgram("cull.comp");
@@ -38,9 +34,6 @@ Status GpuCulling::prepare() {
     scatter_ = std::move(scatter.value());
     draws_ = createBuffer();
     glNamedBufferStorage(draws_.get(), GLsizeiptr(kDrawsBytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    readback_ = createBuffer();
-    glNamedBufferStorage(readback_.get(), GLsizeiptr((1 + kCounters) * sizeof(uint32_t)), nullptr,
-                         GL_CLIENT_STORAGE_BIT);
     return {};
 }
 
@@ -101,27 +94,13 @@ void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, const Occ
     glUniform1ui(0, count);
     glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    glCopyNamedBufferSubData(draws_.get(), readback_.get(), GLintptr(kCountOffset), 0, sizeof(uint32_t));
-    glCopyNamedBufferSubData(draws_.get(), readback_.get(), GLintptr(kCountersOffset), sizeof(uint32_t),
-                             kCounters * sizeof(uint32_t));
-    if (fence_) glDeleteSync(fence_);
-    fence_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    counts_.copy(draws_.get(), kCountOffset, 0, 1);
+    counts_.copy(draws_.get(), kCountersOffset, 1, kCounters);
+    counts_.fence();
 }
 
 uint32_t GpuCulling::visibleCount(bool wait) {
-    if (!fence_) return latest_;
-    const GLenum state =
-        glClientWaitSync(fence_, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, wait ? ~GLuint64(0) : 0);
-    if (state != GL_ALREADY_SIGNALED && state != GL_CONDITION_SATISFIED) return latest_;
-    uint32_t counts[1 + kCounters] = {};
-    glGetNamedBufferSubData(readback_.get(), 0, sizeof counts, counts);
-    latest_ = counts[0];
-    latestOccluded_ = counts[1];
-    latestInvalid_ = counts[2];
-    latestHostDrawn_ = counts[3];
-    glDeleteSync(fence_);
-    fence_ = nullptr;
-    return latest_;
+    return counts_.latest(wait)[0];
 }
 
 } // namespace spatter::render_detail

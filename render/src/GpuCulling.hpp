@@ -7,6 +7,7 @@
 // list in draw order, with the draw's instance count written into an indirect draw buffer. The boxes are then
 // drawn by their far faces (the GPU does not tell which may hold the eye).
 
+#include "FencedReadback.hpp"
 #include "GlObjects.hpp"
 
 #include "spatter/core/Result.hpp"
@@ -32,7 +33,6 @@ public:
     GpuCulling() = default;
     GpuCulling(const GpuCulling&) = delete;
     GpuCulling& operator=(const GpuCulling&) = delete;
-    ~GpuCulling();
 
     // Builds the compute programs on first use.
     Status prepare();
@@ -54,20 +54,19 @@ public:
     // In the run visibleCount last read: the boxes in the frustum the occlusion test culled, the
     // decals that cannot be drawn (their box, type or object) and those the host draws itself
     // (DecalProjector::setHostDrawn).
-    uint32_t occludedCount() const { return latestOccluded_; }
-    uint32_t invalidCount() const { return latestInvalid_; }
-    uint32_t hostDrawnCount() const { return latestHostDrawn_; }
+    uint32_t occludedCount() const { return counts_.values()[1]; }
+    uint32_t invalidCount() const { return counts_.values()[2]; }
+    uint32_t hostDrawnCount() const { return counts_.values()[3]; }
 
     // Bytes of the GPU buffers it holds.
     size_t gpuBytes() const { return classesCapacity_ + groupsCapacity_ + orderCapacity_; }
 
 private:
     GlProgram classify_, scan_, scatter_;
-    GlBuffer classes_, groups_, draws_, readback_, order_;
+    GlBuffer classes_, groups_, draws_, order_;
     size_t classesCapacity_ = 0, groupsCapacity_ = 0, orderCapacity_ = 0;
-    uint32_t entries_ = 0;   // of the draw order
-    GLsync fence_ = nullptr; // signalled when the last run's count is in readback_
-    uint32_t latest_ = 0, latestOccluded_ = 0, latestInvalid_ = 0, latestHostDrawn_ = 0;
+    uint32_t entries_ = 0;     // of the draw order
+    FencedReadback counts_{4}; // the visible, occluded, invalid and host-drawn counts of a run
 };
 
 } // namespace spatter::render_detail

@@ -1,0 +1,40 @@
+#pragma once
+// FencedReadback: a few 32-bit values the GPU writes into buffers, copied into a buffer of its own
+// after the commands that write them and read on the CPU once the GPU has passed a fence, without a
+// stall unless asked: GpuCulling's counts, ForwardBins' decals-left-out flag.
+
+#include "GlObjects.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace spatter::render_detail {
+
+class FencedReadback {
+public:
+    // Room for `values` 32-bit values; the latest read starts as zeros.
+    explicit FencedReadback(size_t values = 1) : latest_(values, 0) {}
+    FencedReadback(const FencedReadback&) = delete;
+    FencedReadback& operator=(const FencedReadback&) = delete;
+    ~FencedReadback();
+
+    // Copies `count` values from `buffer` at byte `offset` to value `first` (after the commands queued
+    // so far).
+    void copy(GLuint buffer, size_t offset, size_t first, size_t count);
+    // Marks the copies queued since the last fence as one read.
+    void fence();
+    // Drops a read not taken yet, and its values: the latest read becomes zeros.
+    void reset();
+    // The values of the latest read the GPU has finished (this one's when `wait`).
+    const std::vector<uint32_t>& latest(bool wait);
+    // The values latest() last gave, without a new look at the fence.
+    const std::vector<uint32_t>& values() const { return latest_; }
+
+private:
+    GlBuffer buffer_;
+    GLsync fence_ = nullptr;
+    std::vector<uint32_t> latest_;
+};
+
+} // namespace spatter::render_detail
