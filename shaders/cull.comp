@@ -1,104 +1,47 @@
-// GPU culling, pass 1 of 3 (GpuCulling): one invocation per entry of the draw order marks its decal
-// visible (1) or culled (0) by the test DecalBatch::cull makes on the CPU, with margins that keep
-// float rounding from culling a box the CPU would keep, and, with a depth pyramid of the host's frame
-// (DepthPyramid), culls the boxes hidden behind the scene. Each work group counts its visible decals
-// for the scan.
+// GPU culling, pass 1 of 3 (GpuCulling): one invocation per place of the draw order. It counts the
+// decals the host draws itself and those that cannot be drawn, culls the boxes whose bounding sphere
+// lies outside the view's side planes (no frame to unpack, no corners: most of a large world), and
+// lists the other places as candidates for the exact test (cull_exact.comp), in the visible list's
+// buffer, which the last pass overwrites. It also clears its group's class bits and count for the
+// passes after it.
 #include "projector.glsl"
+#include "cull_layout.glsl"
 
 layout(local_size_x = 256) in;
-layout(location = 0) uniform uint u_count;  // decals
-layout(location = 1) uniform vec4 u_camera; // y: 1 reversed Z; z: 1 clip depth -1..1
-// x: the depth pyramid's levels (0: no occlusion test); y: 0 window depth standard Z, 1 reversed Z,
-// 2 view distance; z, w: its level 0's size.
-layout(location = 2) uniform ivec4 u_occlusion;
-layout(binding = 0) uniform sampler2D s_pyramid;
+layout(location = 0) uniform uint u_count; // places
 
 layout(std430, binding = 0) writeonly buffer Classes {
-    uint classBits[]; // bit k of word w: entry 32 w + k is visible
+    uint classBits[]; // bit k of word w: place 32 w + k is visible (set by cull_exact.comp)
 };
-layout(std430, binding = 2) writeonly buffer GroupCounts {
-    uint groupCounts[];
-};
-layout(std430, binding = 5) buffer Counters {
-    uint drawCommand[5]; // the indirect draw (cull_scan.comp)
-    uint occludedCount;  // boxes in the frustum that the occlusion test culled
-    uint invalidCount;   // decals that cannot be drawn: their box, type or object
-    uint hostDrawnCount; // decals of a type or on an object the host draws itself
-};
-layout(std430, binding = 6) readonly buffer DrawOrder {
-    uint drawOrder[];
+layout(std430, binding = 7) writeonly buffer Candidates {
+    uint candidates[];
 };
 
-shared uint sVisible;
-shared uint sBits[8];   // the work group's 256 classes
-shared uint sCounts[3]; // the work group's occluded, invalid and host-drawn decals
+shared uint sCandidates, sFirst;
+shared uint sCounts[2]; // the work group's invalid and host-drawn decals
 
-const uint kCulled = 0u, kVisible = 1u, kOccluded = 2u, kInvalid = 3u, kHostDrawn = 4u;
+const uint kCulled = 0u, kCandidate = 1u, kInvalid = 2u, kHostDrawn = 3u;
 
-// The box's eight corners in clip space.
-void boxCorners(DecalData d, ProjectorObject o, out vec4 corners[8]) {
-    for (int c = 0; c < 8; ++c) {
-        vec4 local = vec4((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0, 1.0);
-        vec3 p = vec3(dot(d.boxToObject[0], local), dot(d.boxToObject[1], local), dot(d.boxToObject[2], local));
-        corners[c] = u_viewProj * (o.model * vec4(p, 1.0));
+// Whether the sphere around record `r`'s box lies wholly outside one of the view's four side planes,
+// with a margin for rounding, so that the exact test would cull the box too. Corners lie at most
+// |(hx + hz |sx|, hy + hz |sy|, hz)| from the centre (half extents h, slant s: the depth axis is
+// normal + sx tangent + sy bitangent), times the model's largest scale.
+bool sphereOutside(DecalRecord r, ProjectorObject o) {
+    vec2 slant = abs(unpackHalf2x16(r.info.z));
+    float hz = r.centerDepth.w;
+    mat3 m = mat3(o.model);
+    float radius = length(vec3(r.halfSize + hz * slant, hz)) *
+                   max(length(m[0]), max(length(m[1]), length(m[2])));
+    vec4 c = vec4((o.model * vec4(r.centerDepth.xyz, 1.0)).xyz, 1.0);
+    vec4 w = vec4(u_viewProj[0][3], u_viewProj[1][3], u_viewProj[2][3], u_viewProj[3][3]);
+    for (int k = 0; k < 4; ++k) {
+        int row = k / 2;
+        vec4 axis = vec4(u_viewProj[0][row], u_viewProj[1][row], u_viewProj[2][row], u_viewProj[3][row]);
+        vec4 plane = (k & 1) == 0 ? w + axis : w - axis; // inside: dot(plane, c) >= 0
+        float slack = radius * length(plane.xyz) * 1.001 + 1e-5 * dot(abs(plane), abs(c));
+        if (dot(plane, c) < -slack) return true;
     }
-}
-
-// Whether the box, corner by corner in clip space, lies beyond one of the view's planes.
-bool outsideFrustum(vec4 corners[8]) {
-    int beyond[6] = int[6](0, 0, 0, 0, 0, 0);
-    bool reversed = u_camera.y != 0.0;
-    for (int c = 0; c < 8; ++c) {
-        vec4 clip = corners[c];
-        float w = clip.w, slack = 1e-4 * abs(w) + 1e-30;
-        float low = u_camera.z != 0.0 ? -w : 0.0;
-        beyond[0] += clip.x < -w - slack ? 1 : 0;
-        beyond[1] += clip.x > w + slack ? 1 : 0;
-        beyond[2] += clip.y < -w - slack ? 1 : 0;
-        beyond[3] += clip.y > w + slack ? 1 : 0;
-        beyond[4] += (reversed ? clip.z > w + slack : clip.z < low - slack) ? 1 : 0;
-        beyond[5] += (reversed ? clip.z < low - slack : clip.z > w + slack) ? 1 : 0;
-    }
-    for (int k = 0; k < 6; ++k)
-        if (beyond[k] == 8) return true;
     return false;
-}
-
-// How far the clip-space point lies, in the depth pyramid's farness (depth_pyramid.comp).
-float farness(vec4 clip) {
-    if (u_occlusion.y == 2) return clip.w;
-    float z = clip.z / clip.w;
-    if (u_camera.z != 0.0) z = z * 0.5 + 0.5;
-    return u_occlusion.y == 1 ? -z : z;
-}
-
-// Whether the box lies wholly beyond the scene: its nearest point farther than the farthest surface
-// of every pyramid texel under its screen rectangle (a box that reaches behind the eye is not tested).
-bool hidden(vec4 corners[8]) {
-    vec2 lo = vec2(1e30), hi = vec2(-1e30);
-    float near = 1e30;
-    for (int c = 0; c < 8; ++c) {
-        vec4 clip = corners[c];
-        if (!(clip.w > 1e-6)) return false;
-        vec2 ndc = clip.xy / clip.w;
-        lo = min(lo, ndc);
-        hi = max(hi, ndc);
-        near = min(near, farness(clip));
-    }
-    // Level-0 texels (two pixels a side) under the rectangle, a pixel wider for rounding.
-    vec2 pixels = 1.0 / u_viewport.zw;
-    vec2 a = clamp((lo * 0.5 + 0.5) * pixels - 1.0, vec2(0.0), pixels - 1.0);
-    vec2 b = clamp((hi * 0.5 + 0.5) * pixels + 1.0, vec2(0.0), pixels - 1.0);
-    ivec2 t0 = ivec2(a) / 2, t1 = ivec2(b) / 2;
-    int extent = max(t1.x - t0.x, t1.y - t0.y);
-    int level = min(extent == 0 ? 0 : findMSB(extent) + 1, u_occlusion.x - 1);
-    t0 >>= level;
-    t1 >>= level;
-    float far = -1e30;
-    for (int y = t0.y; y <= t1.y; ++y)
-        for (int x = t0.x; x <= t1.x; ++x)
-            far = max(far, texelFetch(s_pyramid, ivec2(x, y), level).r);
-    return near > far + 1e-5 * abs(far) + 1e-30;
 }
 
 uint classify(uint i) {
@@ -110,34 +53,32 @@ uint classify(uint i) {
         return kHostDrawn;
     if (!decalRecordValid(r) || !typeKnown || decalTypes[type].info.z == 0u || !objectKnown) return kInvalid;
     ProjectorObject o = objects[r.info.x];
-    if (o.info.z != 0u) return kCulled; // a collapsed object
-    vec4 corners[8];
-    boxCorners(unpackDecal(r), o, corners);
-    if (outsideFrustum(corners)) return kCulled;
-    if (u_occlusion.x > 0 && hidden(corners)) return kOccluded;
-    return kVisible;
+    if (o.info.z != 0u || sphereOutside(r, o)) return kCulled; // a collapsed object, or out of view
+    return kCandidate;
 }
 
 void main() {
-    if (gl_LocalInvocationIndex == 0u) sVisible = 0u;
-    if (gl_LocalInvocationIndex < 8u) sBits[gl_LocalInvocationIndex] = 0u;
-    if (gl_LocalInvocationIndex < 3u) sCounts[gl_LocalInvocationIndex] = 0u;
+    uint t = gl_LocalInvocationIndex, group = gl_WorkGroupID.x;
+    if (t == 0u) sCandidates = 0u;
+    if (t < 2u) sCounts[t] = 0u;
     barrier();
     uint place = gl_GlobalInvocationID.x;
-    uint entry = place < u_count ? drawOrder[place] : 0xffffffffu; // an empty entry of the order
+    uint entry = place < u_count ? drawOrder[place] : 0xffffffffu; // an empty place
     uint c = entry != 0xffffffffu ? classify(entry) : kCulled;
-    if (c == kVisible) {
-        atomicAdd(sVisible, 1u);
-        atomicOr(sBits[gl_LocalInvocationIndex / 32u], 1u << (gl_LocalInvocationIndex % 32u));
-    } else if (c >= kOccluded) {
-        atomicAdd(sCounts[c - kOccluded], 1u);
-    }
+    uint rank = 0u;
+    if (c == kCandidate) rank = atomicAdd(sCandidates, 1u);
+    else if (c != kCulled) atomicAdd(sCounts[c - kInvalid], 1u);
     barrier();
-    if (gl_LocalInvocationIndex == 0u) {
-        if (sCounts[0] != 0u) atomicAdd(occludedCount, sCounts[0]);
-        if (sCounts[1] != 0u) atomicAdd(invalidCount, sCounts[1]);
-        if (sCounts[2] != 0u) atomicAdd(hostDrawnCount, sCounts[2]);
+    if (t == 0u) {
+        if (sCandidates != 0u) {
+            sFirst = atomicAdd(candidateCount, sCandidates);
+            atomicMax(exact.x, (sFirst + sCandidates + kCandidateGroup - 1u) / kCandidateGroup);
+        }
+        if (sCounts[0] != 0u) atomicAdd(invalidCount, sCounts[0]);
+        if (sCounts[1] != 0u) atomicAdd(hostDrawnCount, sCounts[1]);
+        groupData[group] = 0u;
     }
-    if (gl_LocalInvocationIndex < 8u) classBits[gl_WorkGroupID.x * 8u + gl_LocalInvocationIndex] = sBits[gl_LocalInvocationIndex];
-    if (gl_LocalInvocationIndex == 0u) groupCounts[gl_WorkGroupID.x] = sVisible;
+    if (t < kGroupPlaces / 32u) classBits[group * (kGroupPlaces / 32u) + t] = 0u;
+    barrier();
+    if (c == kCandidate) candidates[sFirst + rank] = place;
 }

@@ -1,33 +1,43 @@
-// GPU culling, pass 3 of 3: each work group writes its visible decals' indices into the visible list
-// in draw order.
-layout(local_size_x = 256) in;
-layout(location = 0) uniform uint u_count;
+// GPU culling, pass 3 of 3 (GpuCulling): one work group per group of the draw order with a visible
+// place (listed by cull_exact.comp), and at least one. It finds the group's first place in the visible list, the
+// visible places of the groups before it, and writes its visible decals' indices there in draw order,
+// each at that first place plus the visible places before it in the group (from the class bits). The
+// first work group also writes the counts the CPU reads back.
+#include "cull_layout.glsl"
+
+layout(local_size_x = 256) in; // kGroupPlaces
+layout(location = 0) uniform uint u_groups;
 
 layout(std430, binding = 0) readonly buffer Classes {
-    uint classBits[]; // bit k of word w: entry 32 w + k is visible
+    uint classBits[];
 };
-layout(std430, binding = 2) readonly buffer GroupFirsts {
-    uint groupFirsts[];
-};
-layout(std430, binding = 6) readonly buffer DrawOrder {
-    uint drawOrder[];
+layout(std430, binding = 1) writeonly buffer Readback {
+    uint readback[4]; // the visible, occluded, invalid and host-drawn counts (GpuCulling::counts_)
 };
 layout(std430, binding = 7) writeonly buffer VisibleOut {
     uint visibleOut[];
 };
 
-shared uint ranks[256];
+shared uint partial[256];
 
 void main() {
-    uint t = gl_LocalInvocationIndex, place = gl_GlobalInvocationID.x;
-    uint mine = place < u_count ? (classBits[place / 32u] >> (place % 32u)) & 1u : 0u;
-    ranks[t] = mine;
+    uint t = gl_LocalInvocationIndex;
+    if (gl_WorkGroupID.x == 0u && t == 0u)
+        readback = uint[4](draw.instanceCount, occludedCount, invalidCount, hostDrawnCount);
+    if (gl_WorkGroupID.x >= visibleGroupCount) return; // the one work group when none is visible
+    uint group = groupData[u_groups + gl_WorkGroupID.x];
+    uint sum = 0u;
+    for (uint g = t; g < group; g += 256u) sum += groupData[g];
+    partial[t] = sum;
     barrier();
-    for (uint offset = 1u; offset < 256u; offset <<= 1) {
-        uint v = t >= offset ? ranks[t - offset] : 0u;
-        barrier();
-        ranks[t] += v;
+    for (uint stride = 128u; stride > 0u; stride >>= 1) { // the sum of the groups before this one
+        if (t < stride) partial[t] += partial[t + stride];
         barrier();
     }
-    if (mine != 0u) visibleOut[groupFirsts[gl_WorkGroupID.x] + ranks[t] - 1u] = drawOrder[place];
+    uint place = group * kGroupPlaces + t, word = place / 32u, bit = place % 32u;
+    uint bits = classBits[word];
+    if ((bits & (1u << bit)) == 0u) return;
+    uint rank = uint(bitCount(bits & ((1u << bit) - 1u)));
+    for (uint w = group * (kGroupPlaces / 32u); w < word; ++w) rank += uint(bitCount(classBits[w]));
+    visibleOut[partial[0] + rank] = drawOrder[place];
 }

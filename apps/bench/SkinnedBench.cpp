@@ -38,8 +38,8 @@ constexpr double kSpawnPhase = 0.3;       // the pose of the spawn rows, a fract
 constexpr float kProxyTolerance = 0.005f; // relative to the render mesh's diagonal
 
 const char* kSkinnedUsage =
-    R"(usage: spatter-bench skinned [--frames N] [--repeat R] [--samples S] [--no-render] [--quick]
-                             [--json FILE]
+    R"(usage: spatter-bench skinned [--model SPEC] [--frames N] [--repeat R] [--samples S] [--no-render]
+                             [--quick] [--json FILE]
 
 Decals on skinned objects, in one run, for builtin:skinned-arm (50 rings of 50 vertices: 5,000
 triangles), the gallery's dummy (addSkinnedDummy), CesiumMan and RiggedSimple (the shared data).
@@ -101,6 +101,8 @@ followed), for
   nearest joint             the spawn-time box carried by the nearest joint, as above
 Needs an OpenGL context. Target: within 2% of the decal's size.
 
+--model SPEC one model instead of the four (builtin:skinned-arm, "gallery dummy" or a skinned
+             glTF file, of the shared data or not)
 --frames N   poses of the cycle (default 60)      --repeat R  runs per timed row (default 7)
 --samples S  poses a proxy bound is certified at (default 128)
 --no-render  no OpenGL context: accuracy not measured
@@ -889,9 +891,9 @@ Json report(const std::vector<ModelReport>& reports, const Sizes& sizes, const M
 
 int runSkinnedCommand(int argc, char** argv) {
     int exitCode = 0;
-    const std::optional<Args> parsed =
-        commandArgs(argc, argv, kSkinnedCommand, kSkinnedUsage,
-                    {"--frames", "--repeat", "--samples", "--json"}, {"--quick", "--no-render"}, exitCode);
+    const std::optional<Args> parsed = commandArgs(argc, argv, kSkinnedCommand, kSkinnedUsage,
+                                                   {"--model", "--frames", "--repeat", "--samples", "--json"},
+                                                   {"--quick", "--no-render"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
     if (!args.positional.empty()) return usageError(kSkinnedCommand, "no positional arguments");
@@ -901,7 +903,8 @@ int runSkinnedCommand(int argc, char** argv) {
     std::printf("spatter-bench skinned: %zu frames, %zu runs a row, %d poses a bound\nmachine: %s\n\n",
                 sizes->frames, sizes->runs, sizes->samples, describe(machine).c_str());
     std::vector<SkinnedModel> models;
-    for (const std::string& spec : kModels) {
+    const std::vector<std::string> specs = args.has("--model") ? std::vector{args.value("--model")} : kModels;
+    for (const std::string& spec : specs) {
         Result<SkinnedModel> m = loadSkinnedModel(spec);
         if (!m) {
             std::fprintf(stderr, "spatter-bench skinned: %s\n", m.error().c_str());

@@ -9,13 +9,17 @@ FencedReadback::~FencedReadback() {
 }
 
 void FencedReadback::copy(GLuint buffer, size_t offset, size_t first, size_t count) {
+    glCopyNamedBufferSubData(buffer, target(), GLintptr(offset), GLintptr(first * sizeof(uint32_t)),
+                             GLsizeiptr(count * sizeof(uint32_t)));
+}
+
+GLuint FencedReadback::target() {
     if (!buffer_) {
         buffer_ = createBuffer();
         glNamedBufferStorage(buffer_.get(), GLsizeiptr(latest_.size() * sizeof(uint32_t)), nullptr,
                              GL_CLIENT_STORAGE_BIT);
     }
-    glCopyNamedBufferSubData(buffer, buffer_.get(), GLintptr(offset), GLintptr(first * sizeof(uint32_t)),
-                             GLsizeiptr(count * sizeof(uint32_t)));
+    return buffer_.get();
 }
 
 void FencedReadback::fence() {

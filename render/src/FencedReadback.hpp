@@ -1,7 +1,7 @@
 #pragma once
 // FencedReadback: a few 32-bit values the GPU writes into buffers, copied into a buffer of its own
-// after the commands that write them and read on the CPU once the GPU has passed a fence, without a
-// stall unless asked: GpuCulling's counts, ForwardBins' decals-left-out flag.
+// (or written there by a shader) after the commands that write them and read on the CPU once the GPU has
+// passed a fence, without a stall unless asked: GpuCulling's counts, ForwardBins' decals-left-out flag.
 
 #include "GlObjects.hpp"
 
@@ -22,6 +22,9 @@ public:
     // Copies `count` values from `buffer` at byte `offset` to value `first` (after the commands queued
     // so far).
     void copy(GLuint buffer, size_t offset, size_t first, size_t count);
+    // The buffer the values are read from, for a shader to write them into (bound as a storage
+    // buffer) in place of copy().
+    GLuint target();
     // Marks the copies queued since the last fence as one read.
     void fence();
     // Drops a read not taken yet, and its values: the latest read becomes zeros.

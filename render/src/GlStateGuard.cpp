@@ -53,6 +53,7 @@ GlStateGuard::GlStateGuard() {
     glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &arrayBuffer_);
     glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpackBuffer_);
     glGetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &indirectBuffer_);
+    glGetIntegerv(GL_DISPATCH_INDIRECT_BUFFER_BINDING, &dispatchBuffer_);
     for (int i = 0; i < kDrawBuffers; ++i) {
         Blend& b = blend_[size_t(i)];
         const auto index = GLuint(i);
@@ -124,6 +125,7 @@ GlStateGuard::~GlStateGuard() {
     glBindBuffer(GL_ARRAY_BUFFER, alive(arrayBuffer_));
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, alive(unpackBuffer_));
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, alive(indirectBuffer_));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, alive(dispatchBuffer_));
     for (int i = 0; i < kDrawBuffers; ++i) {
         const Blend& b = blend_[size_t(i)];
         const auto index = GLuint(i);

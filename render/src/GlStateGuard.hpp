@@ -46,7 +46,8 @@ private:
     std::array<IndexedBuffer, kUniformBindings> uniform_{};
     std::array<IndexedBuffer, kStorageBindings> storage_{};
     std::array<ImageUnit, kImageUnits> image_{};
-    GLint uniformBuffer_ = 0, storageBuffer_ = 0, arrayBuffer_ = 0, unpackBuffer_ = 0, indirectBuffer_ = 0;
+    GLint uniformBuffer_ = 0, storageBuffer_ = 0, arrayBuffer_ = 0, unpackBuffer_ = 0, indirectBuffer_ = 0,
+          dispatchBuffer_ = 0;
     std::array<Blend, kDrawBuffers> blend_{};
     GLboolean depthTest_ = GL_FALSE, depthMask_ = GL_TRUE, stencilTest_ = GL_FALSE, scissorTest_ = GL_FALSE;
     GLboolean cullFace_ = GL_FALSE, framebufferSrgb_ = GL_FALSE, rasterizerDiscard_ = GL_FALSE;

@@ -3,21 +3,24 @@
 #include "ProjectorVariants.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace spatter::render_detail {
 
 namespace {
 
-constexpr uint32_t kCullGroup = 256; // local size of the classify and scatter passes
+constexpr uint32_t kGroupPlaces = 256; // places of a group: the local size of the first and last passes
 
 // Binding points of the culling passes (shaders/cull*.comp).
-constexpr GLuint kClassesBinding = 0, kGroupsBinding = 2, kDrawsBinding = 5, kOrderBinding = 6,
-                 kVisibleOutBinding = 7;
-// The indirect draw, then the occluded, invalid and host-drawn counts (Counters in cull.comp).
-constexpr size_t kDrawsBytes = 8 * sizeof(uint32_t);
-constexpr size_t kCountOffset = sizeof(uint32_t); // DrawElementsIndirectCommand::instanceCount
-constexpr size_t kCountersOffset = 5 * sizeof(uint32_t);
-constexpr size_t kCounters = 3;
+constexpr GLuint kClassesBinding = 0, kReadbackBinding = 1, kGroupsBinding = 2, kCountersBinding = 5,
+                 kOrderBinding = 6, kListBinding = 7;
+// Counters in shaders/cull_layout.glsl as a run starts: the indirect draw (the cube's 36 indices, no
+// instance yet), the occluded, invalid and host-drawn counts, the exact test's dispatch and its
+// candidates, the scatter's dispatch (one work group at least: it writes the read-back counts) and its
+// groups.
+constexpr std::array<uint32_t, 16> kCountersAtStart = {36, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0, 1, 1, 1, 0};
+constexpr GLintptr kExactDispatchOffset = 8 * sizeof(uint32_t);
+constexpr GLintptr kScatterDispatchOffset = 12 * sizeof(uint32_t);
 
 } // namespace
 
@@ -25,15 +28,16 @@ Status GpuCulling::prepare() {
     if (scatter_) return {};
     Result<GlProgram> classify = projectorComputeProgram("cull.comp");
     if (!classify) return fail(classify.error());
-    Result<GlProgram> scan = projectorComputeProgram("cull_scan.comp");
-    if (!scan) return fail(scan.error());
+    Result<GlProgram> exact = projectorComputeProgram("cull_exact.comp");
+    if (!exact) return fail(exact.error());
     Result<GlProgram> scatter = projectorComputeProgram("cull_scatter.comp");
     if (!scatter) return fail(scatter.error());
     classify_ = std::move(classify.value());
-    scan_ = std::move(scan.value());
+    exact_ = std::move(exact.value());
     scatter_ = std::move(scatter.value());
-    draws_ = createBuffer();
-    glNamedBufferStorage(draws_.get(), GLsizeiptr(kDrawsBytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    counters_ = createBuffer();
+    glNamedBufferStorage(counters_.get(), GLsizeiptr(sizeof kCountersAtStart), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
     return {};
 }
 
@@ -57,45 +61,52 @@ size_t GpuCulling::updateDrawOrder(const std::vector<uint32_t>& entries,
     return sent;
 }
 
-void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, const Occlusion& occlusion,
-                     GlBuffer& visible, size_t& visibleCapacity) {
-    const uint32_t count = entries_;
-    const uint32_t groups = std::max<uint32_t>(1, (count + kCullGroup - 1) / kCullGroup);
-    reserveBuffer(classes_, classesCapacity_, size_t(groups) * kCullGroup / 8, 4096); // a bit per entry
-    reserveBuffer(groups_, groupsCapacity_, size_t(groups) * sizeof(uint32_t), 4096);
+uint32_t GpuCulling::reserve(size_t decals, GlBuffer& visible, size_t& visibleCapacity) {
+    const uint32_t groups = std::max<uint32_t>(1, (entries_ + kGroupPlaces - 1) / kGroupPlaces);
+    reserveBuffer(classes_, classesCapacity_, size_t(groups) * kGroupPlaces / 8, 4096); // a bit a place
+    reserveBuffer(groups_, groupsCapacity_, 2 * size_t(groups) * sizeof(uint32_t), 4096);
     reserveBuffer(order_, orderCapacity_, sizeof(uint32_t), 4096); // bound even when empty
+    // The visible list, and the exact test's candidates before it.
     if (reserveBuffer(visible, visibleCapacity, decals * sizeof(uint32_t), 4096)) {
         const uint32_t zero = 0; // an earlier draw's count may reach past this run's list (overlays)
         glClearNamedBufferData(visible.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     }
+    return groups;
+}
+
+void GpuCulling::bind(const GlBuffer& visible) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClassesBinding, classes_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGroupsBinding, groups_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDrawsBinding, draws_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountersBinding, counters_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOrderBinding, order_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleOutBinding, visible.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kListBinding, visible.get());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, counters_.get());
+}
 
-    const uint32_t zero = 0;
-    glClearNamedBufferSubData(draws_.get(), GL_R32UI, GLintptr(kCountersOffset), kCounters * sizeof zero,
-                              GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, const Occlusion& occlusion,
+                     GlBuffer& visible, size_t& visibleCapacity) {
+    const uint32_t groups = reserve(decals, visible, visibleCapacity);
+    glNamedBufferSubData(counters_.get(), 0, GLsizeiptr(sizeof kCountersAtStart), kCountersAtStart.data());
+    bind(visible);
     glUseProgram(classify_.get());
-    glUniform1ui(0, count);
+    glUniform1ui(0, entries_);
+    glDispatchCompute(groups, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    glUseProgram(exact_.get());
+    glUniform1ui(0, groups);
     glUniform4f(1, 0.0f, reversedZ ? 1.0f : 0.0f, clipMinusOne ? 1.0f : 0.0f, 0.0f);
     glUniform4i(2, occlusion.texture ? occlusion.levels : 0, occlusion.convention, occlusion.size.x,
                 occlusion.size.y);
     glBindTextureUnit(0, occlusion.texture);
     glBindSampler(0, 0);
-    glDispatchCompute(groups, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(scan_.get());
-    glUniform1ui(0, groups);
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glDispatchComputeIndirect(kExactDispatchOffset);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    // The scatter writes the counts read back where the other passes read the projector's objects.
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kReadbackBinding, counts_.target());
     glUseProgram(scatter_.get());
-    glUniform1ui(0, count);
-    glDispatchCompute(groups, 1, 1);
+    glUniform1ui(0, groups);
+    glDispatchComputeIndirect(kScatterDispatchOffset);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    counts_.copy(draws_.get(), kCountOffset, 0, 1);
-    counts_.copy(draws_.get(), kCountersOffset, 1, kCounters);
     counts_.fence();
 }
 

@@ -2,10 +2,14 @@
 // GpuCulling: the visible list of a draw built on the GPU, for decal counts where culling every box
 // on the CPU each frame would cost more than the draw (ProjectorSettings::gpuCullingFrom). Three
 // compute passes over the projector's decal instances and objects (bound at their binding points,
-// objects relative to this frame's eye): mark each entry of the draw order (DrawOrder.hpp) visible or culled
-// as DecalBatch::cull does, scan the work groups' counts, and scatter the visible indices into the visible
-// list in draw order, with the draw's instance count written into an indirect draw buffer. The boxes are then
-// drawn by their far faces (the GPU does not tell which may hold the eye).
+// objects relative to this frame's eye), the last two dispatched indirectly at the size the one
+// before found: every place of the draw order (DrawOrder.hpp) through a bounding-sphere test that
+// needs no unpacked frame (cull.comp); the few left through the corner test DecalBatch::cull makes
+// and the occlusion test (cull_exact.comp); then, for each group of 256 places with a visible one,
+// its visible indices into the visible list in draw order (cull_scatter.comp). The draw's instance
+// count goes into an indirect draw buffer; the boxes are then drawn by their far faces (the GPU does
+// not tell which may hold the eye). A pass over every place is what a large world costs, so only the
+// first pass makes one, and it reads no more of a record than its box's centre, size and object.
 
 #include "FencedReadback.hpp"
 #include "GlObjects.hpp"
@@ -42,12 +46,13 @@ public:
                            const std::vector<std::pair<size_t, size_t>>& runs);
     // Culls the decals of the draw order against the frame block's camera, and against `occlusion`'s
     // pyramid when it has one. The visible list goes into `visible` (grown to hold `decals` indices;
-    // `visibleCapacity` in bytes).
+    // `visibleCapacity` in bytes). Binds its own buffers over shader storage bindings 0-2 and 5-7
+    // (the projector's objects at 1 among them) and the dispatch-indirect buffer.
     void run(size_t decals, bool reversedZ, bool clipMinusOne, const Occlusion& occlusion, GlBuffer& visible,
              size_t& visibleCapacity);
     // One DrawElementsIndirectCommand: the cube's 36 indices, the visible count as instances (followed by the
     // occluded, invalid and host-drawn counts).
-    GLuint draws() const { return draws_.get(); }
+    GLuint draws() const { return counters_.get(); }
     // The visible count of the last run when `wait` (waiting for the GPU), else that of the latest
     // run the GPU has finished (0 before the first).
     uint32_t visibleCount(bool wait);
@@ -62,8 +67,13 @@ public:
     size_t gpuBytes() const { return classesCapacity_ + groupsCapacity_ + orderCapacity_; }
 
 private:
-    GlProgram classify_, scan_, scatter_;
-    GlBuffer classes_, groups_, draws_, order_;
+    // Grows the buffers for this run and `visible` for `decals` indices; returns the groups of 256
+    // places of the draw order.
+    uint32_t reserve(size_t decals, GlBuffer& visible, size_t& visibleCapacity);
+    void bind(const GlBuffer& visible) const;
+
+    GlProgram classify_, exact_, scatter_;
+    GlBuffer classes_, groups_, counters_, order_;
     size_t classesCapacity_ = 0, groupsCapacity_ = 0, orderCapacity_ = 0;
     uint32_t entries_ = 0;     // of the draw order
     FencedReadback counts_{4}; // the visible, occluded, invalid and host-drawn counts of a run

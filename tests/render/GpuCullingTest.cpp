@@ -123,6 +123,14 @@ TEST(GpuCulling, MatchesTheCpuWithTheCameraInsideBoxesAndBoxesAcrossTheNearPlane
     expectSameAsCpu("grazing", decals, glm::dvec3(0.0), test::lookAt({-2.0, 1.0, 0.3}, {2.0, 1.0, 0.0}));
 }
 
+// Thousands of decals: the visible places lie in many groups of 256 of the draw order, among groups
+// with none, so that each group's first place in the visible list sums the groups before it.
+TEST(GpuCulling, MatchesTheCpuOverManyGroupsOfTheDrawOrder) {
+    SPATTER_REQUIRE_GL(gl);
+    const std::vector<Decal> decals = scatteredDecals(4000, 17);
+    expectSameAsCpu("many", decals, glm::dvec3(0.0), test::lookAt({0.0, 1.0, 2.0}, {0.5, 1.0, 0.0}));
+}
+
 TEST(GpuCulling, MatchesTheCpuFarFromTheOrigin) {
     SPATTER_REQUIRE_GL(gl);
     const std::vector<Decal> decals = scatteredDecals(300, 13);

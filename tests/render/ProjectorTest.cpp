@@ -64,7 +64,8 @@ std::vector<int64_t> glStateSnapshot() {
                             GL_SHADER_STORAGE_BUFFER_SIZE})
             getIndexed(name, i);
     for (GLenum name : {GL_UNIFORM_BUFFER_BINDING, GL_SHADER_STORAGE_BUFFER_BINDING, GL_ARRAY_BUFFER_BINDING,
-                        GL_PIXEL_UNPACK_BUFFER_BINDING, GL_DRAW_INDIRECT_BUFFER_BINDING})
+                        GL_PIXEL_UNPACK_BUFFER_BINDING, GL_DRAW_INDIRECT_BUFFER_BINDING,
+                        GL_DISPATCH_INDIRECT_BUFFER_BINDING})
         get(name);
     for (GLuint i = 0; i < 3; ++i)
         for (GLenum name : {GL_IMAGE_BINDING_NAME, GL_IMAGE_BINDING_LEVEL, GL_IMAGE_BINDING_LAYERED,
@@ -178,6 +179,7 @@ struct HostState {
         glBindBuffer(GL_ARRAY_BUFFER, buffers[1]);
         glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, buffers[2]);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, buffers[1]);
         for (GLuint i = 0; i < 4; ++i) {
             if (i % 2)
                 glEnablei(GL_BLEND, i);

@@ -1,0 +1,33 @@
+// The buffers the three GPU culling passes share (GpuCulling; cull.comp, cull_exact.comp,
+// cull_scatter.comp). A place is an entry of the draw order; a group, 256 consecutive places.
+
+layout(std430, binding = 2) coherent buffer GroupData {
+    // [0, groups): the visible places of each group; [groups, 2 groups): the groups that have one, in
+    // no particular order (cull_scatter.comp runs over these)
+    uint groupData[];
+};
+
+struct DispatchIndirect {
+    uint x, y, z;
+};
+struct DrawElementsIndirect {
+    uint count, instanceCount, firstIndex, baseVertex, baseInstance;
+};
+
+layout(std430, binding = 5) coherent buffer Counters {
+    DrawElementsIndirect draw; // the cube's 36 indices, the visible decals as instances
+    uint occludedCount;        // boxes in the frustum that the occlusion test culled
+    uint invalidCount;         // decals that cannot be drawn: their box, type or object
+    uint hostDrawnCount;       // decals of a type or on an object the host draws itself
+    DispatchIndirect exact;    // cull_exact.comp's work groups
+    uint candidateCount;       // places cull.comp left to cull_exact.comp
+    DispatchIndirect scatter;  // cull_scatter.comp's work groups: the groups with a visible place
+    uint visibleGroupCount;
+};
+
+layout(std430, binding = 6) readonly buffer DrawOrder {
+    uint drawOrder[]; // decal indices; 0xffffffff: an empty place
+};
+
+const uint kGroupPlaces = 256u;
+const uint kCandidateGroup = 64u; // cull_exact.comp's local size
