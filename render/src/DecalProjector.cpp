@@ -380,10 +380,14 @@ struct DecalProjector::Impl {
         if (onGpu) {
             stats.bytesUploaded +=
                 buffers.uploadRecords(batch, stats.instanceUploads) + buffers.uploadDrawOrder(batch, culling);
-            cullOnGpu(camera.cull, nullptr, settings.waitForTimers, stats);
-            // Room for twice the visible decals of the latest count the GPU has given (this one's with
-            // waitForTimers): a sudden jump past it leaves decals out for a frame.
-            const size_t capacity = std::min(batch.size(), std::max<size_t>(4096, 2 * stats.drawn));
+            cullOnGpu(camera.cull, nullptr, false, stats); // waitForTimers: read after the pass
+            // Before the GPU has given any count, waitForTimers waits for this one's here.
+            if (settings.waitForTimers && stats.drawn == 0) takeGpuCounts(true, stats);
+            // Room for twice the decals in the frustum of the latest count the GPU has given (the
+            // binning tests no occlusion, which a draw of boxes in between may have): a sudden jump
+            // past it leaves decals out for a frame.
+            const size_t inFrustum = stats.drawn + culling.occludedCount();
+            const size_t capacity = std::min(batch.size(), std::max<size_t>(4096, 2 * inFrustum));
             stats.bytesUploaded += forward.binCulled(frame, settings.forwardTileSize, head, culling.draws(),
                                                      capacity, uint32_t(settings.forwardTileCapacity));
             stats.drawCalls += 5;
@@ -646,7 +650,7 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
     GlStateGuard guard;
     m.beginPass(host, camera);
     m.binVisible(frame, camera, onGpu, vis, stats);
-    m.endPass(false, stats);
+    m.endPass(onGpu, stats);
     return stats;
 }
 
