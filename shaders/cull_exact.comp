@@ -23,6 +23,8 @@ layout(std430, binding = 7) readonly buffer Candidates {
 
 shared uint sVisible, sOccluded;
 
+const uint kCulled = 0u, kVisible = 1u, kOccluded = 2u;
+
 // The box's eight corners in clip space.
 void boxCorners(DecalData d, ProjectorObject o, out vec4 corners[8]) {
     for (int c = 0; c < 8; ++c) {
@@ -89,15 +91,16 @@ bool hidden(vec4 corners[8]) {
     return near > far + 1e-5 * abs(far) + 1e-30;
 }
 
-// Whether the candidate at `place` is drawn: 1 visible, 0 culled, 2 hidden behind the scene.
+// Whether the candidate at `place` is drawn (kVisible), out of view (kCulled) or hidden behind the scene
+// (kOccluded).
 uint test(uint place) {
     DecalRecord r = decalRecords[drawOrder[place]];
     ProjectorObject o = objects[r.info.x];
     vec4 corners[8];
     boxCorners(unpackDecal(r), o, corners);
-    if (outsideFrustum(corners)) return 0u;
-    if (u_occlusion.x > 0 && hidden(corners)) return 2u;
-    return 1u;
+    if (outsideFrustum(corners)) return kCulled;
+    if (u_occlusion.x > 0 && hidden(corners)) return kOccluded;
+    return kVisible;
 }
 
 void main() {
@@ -110,7 +113,7 @@ void main() {
     if (i < candidateCount) {
         uint place = candidates[i];
         uint c = test(place);
-        if (c == 1u) {
+        if (c == kVisible) {
             atomicAdd(sVisible, 1u);
             atomicOr(classBits[place / 32u], 1u << (place % 32u));
             uint group = place / kGroupPlaces;
@@ -119,7 +122,7 @@ void main() {
                 groupData[u_groups + k] = group;
                 atomicMax(scatter.x, k + 1u);
             }
-        } else if (c == 2u) {
+        } else if (c == kOccluded) {
             atomicAdd(sOccluded, 1u);
         }
     }
