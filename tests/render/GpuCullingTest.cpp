@@ -85,9 +85,9 @@ Culled coverage(const std::vector<Decal>& decals, const glm::dvec3& offset, Came
 }
 
 void expectSameAsCpu(const char* name, const std::vector<Decal>& decals, const glm::dvec3& offset,
-                     const Camera& camera) {
+                     const Camera& camera, bool occlusion) {
     const Culled cpu = coverage(decals, offset, camera, false);
-    const Culled gpu = coverage(decals, offset, camera, true);
+    const Culled gpu = coverage(decals, offset, camera, true, occlusion);
     std::printf("%s: %zu drawn (%zu inside), %zu culled; %zu covered pixels\n", name, cpu.stats.drawn,
                 cpu.stats.inside, cpu.stats.culled, test::countSet(cpu.coverage));
     EXPECT_GT(test::countSet(cpu.coverage), 0u) << name;
@@ -105,6 +105,15 @@ void expectSameAsCpu(const char* name, const std::vector<Decal>& decals, const g
     EXPECT_GE(gpu.stats.drawn, cpu.stats.drawn) << name;
     EXPECT_LE(gpu.stats.drawn, cpu.stats.drawn + 2) << name;
     EXPECT_EQ(gpu.stats.drawn + gpu.stats.culled, cpu.stats.drawn + cpu.stats.culled) << name;
+}
+
+// The same with the occlusion test on the GPU (the first draw tries it) and without it.
+void expectSameAsCpu(const char* name, const std::vector<Decal>& decals, const glm::dvec3& offset,
+                     const Camera& camera) {
+    for (const bool occlusion : {true, false}) {
+        SCOPED_TRACE(occlusion ? "with the occlusion test" : "without the occlusion test");
+        expectSameAsCpu(name, decals, offset, camera, occlusion);
+    }
 }
 
 } // namespace
