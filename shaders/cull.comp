@@ -2,7 +2,9 @@
 // decals the host draws itself and those that cannot be drawn, culls the boxes whose bounding sphere
 // lies outside the view's side planes (no frame to unpack, no corners: most of a large world), and
 // lists the other places as candidates for the exact test (cull_exact.comp), in the visible list's
-// buffer, which the last pass overwrites. It also clears its group's class bits and count for the
+// buffer, which the last pass overwrites. The exact test leaves each candidate's decal index in its
+// slot, so that past the visible count the buffer holds decal indices, as a reader with an earlier
+// count (the renderer's box overlay) expects. It also clears its group's class bits and count for the
 // passes after it.
 #include "projector.glsl"
 #include "cull_layout.glsl"

@@ -17,8 +17,8 @@ layout(binding = 0) uniform sampler2D s_pyramid;
 layout(std430, binding = 0) coherent buffer Classes {
     uint classBits[];
 };
-layout(std430, binding = 7) readonly buffer Candidates {
-    uint candidates[];
+layout(std430, binding = 7) buffer Candidates {
+    uint candidates[]; // places; each left holding its decal's index (cull.comp)
 };
 
 shared uint sVisible, sOccluded;
@@ -91,10 +91,10 @@ bool hidden(vec4 corners[8]) {
     return near > far + 1e-5 * abs(far) + 1e-30;
 }
 
-// Whether the candidate at `place` is drawn (kVisible), out of view (kCulled) or hidden behind the scene
+// Whether decal `entry` is drawn (kVisible), out of view (kCulled) or hidden behind the scene
 // (kOccluded).
-uint test(uint place) {
-    DecalRecord r = decalRecords[drawOrder[place]];
+uint test(uint entry) {
+    DecalRecord r = decalRecords[entry];
     ProjectorObject o = objects[r.info.x];
     vec4 corners[8];
     boxCorners(unpackDecal(r), o, corners);
@@ -111,8 +111,9 @@ void main() {
     barrier();
     uint i = gl_GlobalInvocationID.x;
     if (i < candidateCount) {
-        uint place = candidates[i];
-        uint c = test(place);
+        uint place = candidates[i], entry = drawOrder[place];
+        candidates[i] = entry;
+        uint c = test(entry);
         if (c == kVisible) {
             atomicAdd(sVisible, 1u);
             atomicOr(classBits[place / 32u], 1u << (place % 32u));
