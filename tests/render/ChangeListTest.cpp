@@ -70,11 +70,9 @@ std::optional<StoreRun> makeRun(std::optional<size_t> gpuCullingFrom, const Deca
 // Draws the run's decals through `p` and reads the albedo back.
 Image drawThrough(StoreRun& r, DecalProjector& p, ProjectorStats* stats) {
     std::vector<glm::dmat4> transforms;
-    std::vector<uint8_t> ids;
-    for (uint32_t o = 0; o < r.sys->world().objectCount(); ++o) {
+    for (uint32_t o = 0; o < r.sys->world().objectCount(); ++o)
         transforms.push_back(r.sys->world().object(o)->transform);
-        ids.push_back(r.sys->objectId(o));
-    }
+    const std::vector<uint8_t> ids = r.sys->objectIds();
     r.h->host.draw(transforms, ids, r.h->wall.camera);
     EXPECT_TRUE(p.setObjects(transforms, ids).ok());
     const HostFrame f = r.h->host.frame(r.h->wall.camera, true);

@@ -125,7 +125,7 @@ StressResult runSoak(const StressConfig& cfg) {
         return r;
     }
     renderer->setDecalTypes(types);
-    renderer->setObjectIds({sys->objectId(0), sys->objectId(1)});
+    renderer->setObjectIds(sys->objectIds());
     Camera camera;
     camera.eye = {0.0, 30.0, 0.1};
     camera.target = {0.0, 0.0, 0.0};
