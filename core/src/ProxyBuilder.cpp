@@ -81,10 +81,16 @@ constexpr double kSharpenShare = 0.25, kSharpenRoom = 0.01;
 // one and them only when that one has more than this many times the triangles of the finest that
 // failed (less is all further runs could gain).
 constexpr double kRefineGain = 1.1;
-// Render meshes of more than kCoarseInputTriangles (welded) are simplified once at kCoarseInputFraction
-// of the tolerance, and the search's runs at or above that target start from the result.
-constexpr size_t kCoarseInputTriangles = 100'000;
-constexpr double kCoarseInputFraction = 0.05;
+// Pre-simplified inputs of the search (CoarseInput): a render mesh of more than `triangles` (welded) is
+// simplified once at `fraction` of the tolerance, from the previous level's result where there is one,
+// and the search's runs at or above that target start from the coarsest such result below them. Two
+// passes keep fewer triangles than one at the same measured distance, and a run costs in proportion to
+// its input (docs/PROXIES.md, "The search").
+struct CoarseLevel {
+    size_t triangles;
+    double fraction;
+};
+constexpr CoarseLevel kCoarseLevels[] = {{100'000, 0.05}, {10'000, 0.2}};
 // A proxy that misses the tolerance gets a sharp bound with this many times the certification margin:
 // its h only sizes decal boxes, and a tighter one costs many more queries.
 constexpr double kMissedMarginScale = 4.0;
@@ -660,15 +666,35 @@ private:
     std::optional<Result<HausdorffSurface>> result_;
 };
 
+// The render mesh simplified once at a fraction of the tolerance (kCoarseLevels).
+struct CoarseInput {
+    double target = 0.0; // absolute
+    Mesh mesh;
+};
+
+// The levels of kCoarseLevels that a mesh of `weldedTriangles` gets, by ascending target, each simplified
+// from the one before it (the first from `input`).
+std::vector<CoarseInput> coarseInputs(const Mesh& input, size_t weldedTriangles, double tolerance,
+                                      bool lockBorder) {
+    std::vector<CoarseInput> out;
+    for (const CoarseLevel& level : kCoarseLevels) {
+        if (weldedTriangles <= level.triangles) continue;
+        double ignored = 0.0;
+        const double target = level.fraction * tolerance;
+        Mesh mesh = simplifyMeshopt(out.empty() ? input : out.back().mesh, target, 0, lockBorder, ignored);
+        out.push_back({target, std::move(mesh)});
+    }
+    return out;
+}
+
 // Everything a search run needs besides its target.
 struct SearchContext {
     ProxyBackend backend;
     const Mesh& welded;
     const Mesh& meshoptInput;
-    // A large render mesh simplified once at coarseTarget: the runs at or above that target start
-    // from it (0 and empty when there is none).
-    const Mesh& coarseInput;
-    double coarseTarget;
+    // Pre-simplified inputs by ascending target (kCoarseLevels): a run starts from the last one whose
+    // target is at most its own, or from meshoptInput.
+    const std::vector<CoarseInput>& coarse;
     double tolerance;
     size_t surfaceTriangles;
     bool withinBudget;
@@ -680,9 +706,11 @@ struct SearchContext {
 };
 
 Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge) {
-    const bool coarse = k.coarseTarget > 0.0 && target >= k.coarseTarget;
-    Result<Candidate> c = simplifyOnce(k.backend, k.welded, coarse ? k.coarseInput : k.meshoptInput, target,
-                                       k.settings, k.progress.stage(0.0, 0.2), k.notes);
+    const Mesh* input = &k.meshoptInput;
+    for (const CoarseInput& level : k.coarse)
+        if (target >= level.target) input = &level.mesh;
+    Result<Candidate> c =
+        simplifyOnce(k.backend, k.welded, *input, target, k.settings, k.progress.stage(0.0, 0.2), k.notes);
     if (!c) return fail(c.error());
     Judged j;
     j.candidate = std::move(c).value();
@@ -928,19 +956,14 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
         meshoptInput = welded;
         if (s.keepSharpFeatures) splitCreases(meshoptInput, s.featureAngleDegrees);
     }
-    // A large mesh is first simplified far below the tolerance, and the search's runs start from that
-    // (a run costs in proportion to its input); the certificate still measures against the render mesh.
-    Mesh coarseInput;
-    double coarseTarget = 0.0;
-    if (backend == ProxyBackend::MeshOpt && s.maxTriangles == 0 &&
-        welded.triangleCount() > kCoarseInputTriangles) {
-        double ignored = 0.0;
-        coarseTarget = kCoarseInputFraction * tolerance;
-        coarseInput = simplifyMeshopt(meshoptInput, coarseTarget, 0, s.keepBoundaries, ignored);
-    }
-    const SearchContext context{backend,   welded,           meshoptInput, coarseInput,   coarseTarget,
-                                tolerance, surfaceTriangles, withinBudget, renderSurface, certifying,
-                                s,         searchProgress,   proxy.notes};
+    // The certificate still measures every candidate against the render mesh.
+    const std::vector<CoarseInput> coarse =
+        backend == ProxyBackend::MeshOpt && s.maxTriangles == 0
+            ? coarseInputs(meshoptInput, welded.triangleCount(), tolerance, s.keepBoundaries)
+            : std::vector<CoarseInput>();
+    const SearchContext context{backend,          welded,       meshoptInput,  coarse,     tolerance,
+                                surfaceTriangles, withinBudget, renderSurface, certifying, s,
+                                searchProgress,   proxy.notes};
     Result<SearchOutcome> outcome = searchBackend(context, s.maxAttempts);
     if (!outcome) return fail(outcome.error());
     proxy.attempts = outcome->runs;
