@@ -1,5 +1,6 @@
 #include "spatter/core/HausdorffBound.hpp"
 
+#include "PieceOverlay.hpp"
 #include "SurfaceGeometry.hpp"
 
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -24,6 +26,17 @@ constexpr uint32_t kHullTriangles = 16;
 constexpr size_t kStartSamples = 1024, kStartChunk = 64;
 // Subtrees handed out to the threads, per thread.
 constexpr size_t kSubtreesPerWorker = 32;
+// How far outside an edge of B the overlay bound cuts a piece, relative to the largest coordinates of
+// both meshes: above the rounding of a corner that lies on the edge (a proxy's vertex is often one of
+// the render mesh's), so that such a corner starts no sliver of a part.
+constexpr double kOverlayEps = 1e-12;
+// The overlay's cost model (measured on the shared meshes): about four of its steps per triangle of B
+// under a piece, and four steps cost about one exact distance query.
+constexpr double kStepsPerTriangle = 4.0, kStepsPerQuery = 4.0;
+// B's mean triangle area, as a fraction of the acceptance level squared, below which no piece is
+// laid over B: pieces are then bounded by Lipschitz long before they cover enough of B's triangles
+// for the overlay to pay, and B's edges need not be linked at all.
+constexpr double kOverlayArea = 0.05;
 
 struct Node {
     glm::dvec3 lo{0.0}, hi{0.0};
@@ -38,14 +51,28 @@ struct HausdorffSurface::Impl {
     std::vector<uint32_t> indices;                  // the mesh's, so that query results index them
     std::vector<std::array<uint32_t, 3>> triangles; // surface triangles' corners, in hierarchy order
     std::vector<Node> nodes;                        // nodes[0] is the root
+    std::vector<uint32_t> surface;                  // the surface triangles' indices in the mesh
     ClosestPointQuery query;
-    double scale = 0.0; // largest absolute coordinate of a surface vertex
+    double scale = 0.0;        // largest absolute coordinate of a surface vertex
+    double triangleArea = 0.0; // mean area of a surface triangle
 
     explicit Impl(ClosestPointQuery q) : query(std::move(q)) {}
 
     glm::dvec3 corner(uint32_t meshTriangle, int k) const {
         return positions[indices[3 * size_t(meshTriangle) + size_t(k)]];
     }
+
+    // The triangles across each edge (the side measured to, for the overlay bound), made at the first
+    // call: most bounds never lay a piece over this side.
+    const detail::EdgeNeighbours& neighbours() const {
+        std::call_once(neighboursMade_,
+                       [this] { neighbours_ = detail::edgeNeighbours(positions, indices, surface); });
+        return neighbours_;
+    }
+
+private:
+    mutable std::once_flag neighboursMade_;
+    mutable detail::EdgeNeighbours neighbours_;
 };
 
 namespace {
@@ -156,7 +183,8 @@ public:
           accept_(std::isfinite(s.tolerance)
                       ? std::max(0.0, (s.tolerance - detail::kRoundingAllowance * a.scale) /
                                           (1.0 + detail::kRoundingAllowance))
-                      : 0.0) {}
+                      : 0.0),
+          overlayEps_(kOverlayEps * (a.scale + b.scale)) {}
 
     // Measures the point p of A (raises the lower bound).
     void sample(const glm::dvec3& p) {
@@ -302,9 +330,21 @@ private:
         return bound;
     }
 
+    // Whether laying q over B (kStepsPerTriangle steps per triangle of B under it) likely costs less
+    // than cutting it until Lipschitz bounds it (about (radius / room)^2 pieces, a query each).
+    bool overlayPays(const Piece& q) const {
+        if (b_.triangleArea < kOverlayArea * level() * level()) return false;
+        const double room = level() - std::max({q.m[0].distance, q.m[1].distance, q.m[2].distance});
+        const double radius = detail::enclosingRadius(q.p[0], q.p[1], q.p[2]);
+        const double area = 0.5 * glm::length(glm::cross(q.p[1] - q.p[0], q.p[2] - q.p[0]));
+        const double steps = kStepsPerTriangle * area / std::max(b_.triangleArea, 1e-300) + 3.0;
+        return !(room > 0.0) || kStepsPerQuery * (radius / room) * (radius / room) >= steps;
+    }
+
     // The bound of a piece: Lipschitz from its corners; when that is above the level, convexity
     // against the corners' closest triangles of B one at a time, then two at a time across an edge
-    // they share. The smallest.
+    // they share, then laid over B's triangles from the first corner's (PieceOverlay.hpp). The
+    // smallest.
     double pieceBound(const Piece& q) const {
         const double lipschitz = std::max({q.m[0].distance, q.m[1].distance, q.m[2].distance}) +
                                  detail::enclosingRadius(q.p[0], q.p[1], q.p[2]);
@@ -314,6 +354,10 @@ private:
             for (int j = i + 1; j < 3 && best > level(); ++j)
                 if (q.m[i].triangle != q.m[j].triangle)
                     best = std::min(best, pairBound(q, q.m[i].triangle, q.m[j].triangle, best));
+        if (best > level() && overlayPays(q))
+            best = detail::overlayBound({q.p[0], q.p[1], q.p[2]},
+                                        {q.m[0].triangle, q.m[1].triangle, q.m[2].triangle},
+                                        {b_.positions, b_.indices, b_.neighbours()}, overlayEps_, best);
         return best;
     }
 
@@ -354,6 +398,7 @@ private:
     VertexCache& cache_;
     std::atomic<bool>& exceeded_;
     double accept_;
+    double overlayEps_;
     std::vector<Piece> pieces_;
 };
 
@@ -392,13 +437,21 @@ Result<HausdorffSurface> HausdorffSurface::create(const Mesh& mesh) {
     for (const glm::vec3& p : mesh.positions)
         impl->positions.emplace_back(p);
     impl->indices = mesh.indices;
-    for (uint32_t t : detail::surfaceTriangles(mesh)) {
+    const std::vector<uint32_t> surface = detail::surfaceTriangles(mesh);
+    for (uint32_t t : surface) {
         impl->triangles.push_back(
             {mesh.indices[3 * size_t(t)], mesh.indices[3 * size_t(t) + 1], mesh.indices[3 * size_t(t) + 2]});
         for (uint32_t v : impl->triangles.back())
             for (int k = 0; k < 3; ++k)
                 impl->scale = std::max(impl->scale, std::fabs(impl->positions[v][k]));
     }
+    impl->surface = surface;
+    for (const std::array<uint32_t, 3>& t : impl->triangles) {
+        const glm::dvec3 a = impl->positions[t[0]];
+        impl->triangleArea +=
+            0.5 * glm::length(glm::cross(impl->positions[t[1]] - a, impl->positions[t[2]] - a));
+    }
+    if (!impl->triangles.empty()) impl->triangleArea /= double(impl->triangles.size());
     buildHierarchy(*impl);
     return HausdorffSurface(std::move(impl));
 }

@@ -245,8 +245,8 @@ TEST(HausdorffBound, SampledLowerBoundStaysUnderTheCertifiedBound) {
 }
 
 // A coarse square over a fine grid in its plane: the distance is 0 everywhere, and pieces across the
-// grid's edges are bounded by the two triangles on either side instead of being cut down to the
-// tolerance along every edge (which takes about three times the queries here).
+// grid's edges are bounded (by the two triangles on either side, or laid over the grid) instead of
+// being cut down to the tolerance along every edge.
 TEST(HausdorffBound, PiecesAcrossCoplanarEdgesAreBoundedWithoutCutting) {
     Mesh grid; // 61 x 61 cells over [-0.01, 1.01]^2, not aligned with the square's halvings
     const uint32_t n = 61;
@@ -269,4 +269,87 @@ TEST(HausdorffBound, PiecesAcrossCoplanarEdgesAreBoundedWithoutCutting) {
     EXPECT_LT(h->lower, 1e-12);
     std::printf("[ coplanar  ] %zu queries\n", h->queries);
     EXPECT_LT(h->queries, 100000u);
+}
+
+namespace {
+
+// A grid of n x n cells over [x0, x0 + size]^2 at height z(x, y), two triangles a cell.
+template <class Height> Mesh grid(uint32_t n, float x0, float size, Height z) {
+    Mesh m;
+    for (uint32_t i = 0; i <= n; ++i)
+        for (uint32_t j = 0; j <= n; ++j) {
+            const float x = x0 + size * float(i) / float(n), y = x0 + size * float(j) / float(n);
+            m.positions.push_back({x, y, z(x, y)});
+        }
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t j = 0; j < n; ++j) {
+            const uint32_t v = i * (n + 1) + j;
+            m.indices.insert(m.indices.end(), {v, v + n + 1, v + n + 2, v, v + n + 2, v + 1});
+        }
+    return m;
+}
+
+// `m` with every triangle on vertices of its own (a seam along every edge, as a mesh split by UVs).
+Mesh unshared(const Mesh& m) {
+    Mesh out;
+    for (uint32_t i : m.indices) {
+        out.indices.push_back(uint32_t(out.positions.size()));
+        out.positions.push_back(m.positions[i]);
+    }
+    return out;
+}
+
+} // namespace
+
+// A coarse square a little above a fine grid: each of its two triangles lies over thousands of the
+// grid's, and is bounded by laying it over them (a part per grid triangle, each bounded at its
+// corners) instead of being cut into pieces the tolerance across, several thousand queries; with the
+// grid's vertices split along every edge too.
+TEST(HausdorffBound, PiecesOverAFineGridAreLaidOverItsTrianglesInsteadOfCut) {
+    const Mesh fine = grid(61, -0.01f, 1.02f, [](float, float) { return 0.0f; });
+    for (const Mesh& under : {fine, unshared(fine)}) {
+        const HausdorffSurface square = surface(::square(0.01f, 1.0f)), b = surface(under);
+        HausdorffSettings s;
+        s.margin = 1e-4;
+        s.tolerance = 0.02;
+        Result<HausdorffResult> h = boundOneSided(square, b, s);
+        ASSERT_TRUE(h) << h.error();
+        EXPECT_TRUE(h->within(0.02));
+        EXPECT_NEAR(h->lower, 0.01, 1e-6);
+        EXPECT_GE(h->upper, 0.01);
+        EXPECT_LE(h->upper, 0.01 + 1e-6);
+        std::printf("[ overlay   ] %zu queries\n", h->queries);
+        EXPECT_LT(h->queries, 100u);
+    }
+}
+
+// Where the grid under a coarse surface has a hole, folds back under itself or is split along every
+// edge, the bound is still never below the dense estimate, whether the overlay covers a piece or the
+// piece is cut instead.
+TEST(HausdorffBound, PiecesOverHolesFoldsAndSeamsStayAboveTheDenseEstimate) {
+    Rng rng(5);
+    Mesh bumpy = grid(40, 0.0f, 1.0f, [&](float x, float y) {
+        return 0.02f * std::sin(9.0f * x) * std::cos(7.0f * y) + 0.002f * float(rng.uniform());
+    });
+    Mesh holed; // a hole of four cells, and a fold: a strip of triangles turned over
+    holed.positions = bumpy.positions;
+    for (size_t t = 0; t < bumpy.triangleCount(); ++t) {
+        const size_t cell = t / 2, i = cell / 40, j = cell % 40;
+        if ((i == 20 || i == 21) && (j == 20 || j == 21)) continue;
+        const uint32_t* c = &bumpy.indices[3 * t];
+        if (i == 10) holed.indices.insert(holed.indices.end(), {c[0], c[2], c[1]});
+        else holed.indices.insert(holed.indices.end(), {c[0], c[1], c[2]});
+    }
+    Mesh coarse = grid(3, 0.05f, 0.9f, [](float x, float y) { return 0.015f * (x - y); });
+    for (const Mesh& under : {bumpy, holed, unshared(holed)}) {
+        const HausdorffSurface a = surface(coarse), b = surface(under);
+        HausdorffSettings s;
+        s.margin = 1e-4;
+        Result<HausdorffResult> h = boundOneSided(a, b, s);
+        ASSERT_TRUE(h) << h.error();
+        const double dense = denseOneSided(coarse, under, 50000, 9);
+        EXPECT_GE(h->upper, dense);
+        EXPECT_LE(h->upper, h->lower + s.margin + 1e-9);
+        EXPECT_LE(dense, h->lower + 1e-9);
+    }
 }

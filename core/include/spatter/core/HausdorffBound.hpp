@@ -23,9 +23,10 @@
 // most the acceptance level is done; otherwise its children are bounded in turn. At a leaf, each
 // triangle is bounded by Lipschitz and by convexity against the triangles of B closest to its three
 // corners, one at a time, or two sharing an edge at a time (the plane through the edge cuts the
-// triangle into two convex parts, each bounded against the triangle on its side); a triangle above
-// the level is cut by halving its longest edge (one new exact distance)
-// and the halves bounded again. The acceptance level is max(L + margin, tolerance), where L is the
+// triangle into two convex parts, each bounded against the triangle on its side), and, where cutting
+// it would likely cost more, by laying it over B's triangles along its normal (a convex part over
+// each, bounded against it by convexity; PieceOverlay.hpp in the sources); a triangle above the level
+// is cut by halving its longest edge (one new exact distance) and the halves bounded again. The acceptance level is max(L + margin, tolerance), where L is the
 // largest distance measured so far, so pieces are refined only where the distance may exceed what is
 // already known (plus the margin) and what is asked. The bound reported is the largest bound of an
 // accepted node or piece: every point of A lies in one of them, so it is >= h(A, B). A piece whose
