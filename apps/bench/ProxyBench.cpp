@@ -2,6 +2,7 @@
 
 #include "BenchSupport.hpp"
 
+#include "spatter/core/HausdorffBound.hpp"
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/SceneLoader.hpp"
@@ -32,8 +33,10 @@ tolerance (% of the mesh's bounding diagonal):
 
   anchor    the fewest triangles meshopt_simplify (LockBorder, on the mesh welded by position)
             reaches with a two-sided Hausdorff distance within the tolerance, measured by dense
-            sampling (every vertex and N area-weighted random points per direction); its target
-            error is found by bisection
+            sampling (every vertex and N area-weighted random points per direction) and, where
+            that comes within 80% of the tolerance, by the certifier's search for a point farther
+            than the tolerance (a distance attained, which the samples can miss inside a coarse
+            triangle); its target error is found by bisection
   mo s      wall time of one meshopt_simplify run at the anchor's target error (median of 3)
   proxy     triangles of buildProxy (default settings, the tolerance asked), its certified h and
             the dense estimate of its distance (% of the tolerance), whether h met the tolerance,
@@ -66,6 +69,9 @@ constexpr double kGalleryTargetSeconds = 1.5;
 // The anchor's bisection stops when its bracket of target errors is this narrow (ratio).
 constexpr double kAnchorPrecision = 1.02;
 constexpr int kAnchorMaxRuns = 24;
+// An anchor candidate whose dense estimate lies above this fraction of the tolerance is also searched
+// by the certifier (DenseMeasure::searched); farther below, the samples are taken as they are.
+constexpr double kAnchorSearchAbove = 0.8;
 
 struct Case {
     std::string name;
@@ -115,9 +121,22 @@ class DenseMeasure {
 public:
     DenseMeasure(const Mesh& render, size_t samples)
         : samples_(samples), renderPoints_(densePoints(render, samples, 11)),
-          renderQuery_(ClosestPointQuery::create(render)) {}
+          renderQuery_(ClosestPointQuery::create(render)), renderSurface_(HausdorffSurface::create(render)) {}
 
-    bool ok() const { return bool(renderQuery_); }
+    bool ok() const { return bool(renderQuery_) && bool(renderSurface_); }
+
+    // The largest distance found both ways by the certifier's search with a sharp margin, stopping at
+    // the first one above `tolerance`: a distance attained, like the dense samples, but found where a
+    // coarse triangle hides it from them (0 when the candidate cannot be measured).
+    double searched(const Mesh& proxy, double tolerance) const {
+        Result<HausdorffSurface> surface = HausdorffSurface::create(proxy);
+        if (!surface) return 0.0;
+        HausdorffSettings s;
+        s.margin = kSearchMargin * tolerance;
+        s.tolerance = tolerance;
+        Result<HausdorffPair> h = boundBothWays(surface.value(), renderSurface_.value(), s);
+        return h ? std::max(h->ab.lower, h->ba.lower) : 0.0;
+    }
 
     // The largest distance found both ways; above `stopAbove` as soon as one is (then not the largest).
     double twoSided(const Mesh& proxy, double stopAbove = std::numeric_limits<double>::infinity()) const {
@@ -135,9 +154,11 @@ public:
     }
 
 private:
+    static constexpr double kSearchMargin = 0.005;
     size_t samples_;
     std::vector<glm::dvec3> renderPoints_;
     Result<ClosestPointQuery> renderQuery_;
+    Result<HausdorffSurface> renderSurface_;
 };
 
 // The mesh welded by position: what a caller hands meshopt_simplify for a collision mesh.
@@ -176,12 +197,13 @@ MeshoptRun plainMeshopt(const Mesh& welded, double relativeTarget) {
 struct Anchor {
     size_t triangles = 0;
     double target = 0.0; // relative target error of the run that gave it
-    double dense = 0.0;  // its dense two-sided estimate
+    double dense =
+        0.0; // its largest distance measured: dense samples, and the certifier's search near the tolerance
     double seconds = 0.0;
 };
 
 // Bisection over meshoptimizer's target error for the fewest triangles within `tolerance` by the
-// dense estimate (the distance is not monotone in the target, so every run is a candidate).
+// distances measured (the distance is not monotone in the target, so every run is a candidate).
 Anchor findAnchor(const Mesh& welded, const DenseMeasure& dense, double tolerance) {
     const double scale =
         double(meshopt_simplifyScale(&welded.positions[0].x, welded.positions.size(), sizeof(glm::vec3)));
@@ -190,7 +212,9 @@ Anchor findAnchor(const Mesh& welded, const DenseMeasure& dense, double toleranc
     double lo = 0.0, hi = std::numeric_limits<double>::infinity(), target = tolerance / scale;
     for (int run = 0; run < kAnchorMaxRuns && !(lo > 0.0 && hi <= kAnchorPrecision * lo); ++run) {
         const MeshoptRun r = plainMeshopt(welded, target);
-        const double d = dense.twoSided(r.mesh, tolerance);
+        double d = dense.twoSided(r.mesh, tolerance);
+        if (d <= tolerance && d > kAnchorSearchAbove * tolerance)
+            d = std::max(d, dense.searched(r.mesh, tolerance));
         if (d <= tolerance) {
             if (r.mesh.triangleCount() < best.triangles) best = {r.mesh.triangleCount(), target, d, 0.0};
             lo = target;
