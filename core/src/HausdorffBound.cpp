@@ -332,10 +332,10 @@ private:
 
     // Whether laying q over B (kStepsPerTriangle steps per triangle of B under it) likely costs less
     // than cutting it until Lipschitz bounds it (about (radius / room)^2 pieces, a query each).
-    bool overlayPays(const Piece& q) const {
+    // `farthest`: the largest distance at q's corners; `radius`: q's enclosing radius.
+    bool overlayPays(const Piece& q, double farthest, double radius) const {
         if (b_.triangleArea < kOverlayArea * level() * level()) return false;
-        const double room = level() - std::max({q.m[0].distance, q.m[1].distance, q.m[2].distance});
-        const double radius = detail::enclosingRadius(q.p[0], q.p[1], q.p[2]);
+        const double room = level() - farthest;
         const double area = 0.5 * glm::length(glm::cross(q.p[1] - q.p[0], q.p[2] - q.p[0]));
         const double steps = kStepsPerTriangle * area / std::max(b_.triangleArea, 1e-300) + 3.0;
         return !(room > 0.0) || kStepsPerQuery * (radius / room) * (radius / room) >= steps;
@@ -346,15 +346,16 @@ private:
     // they share, then laid over B's triangles from the first corner's (PieceOverlay.hpp). The
     // smallest.
     double pieceBound(const Piece& q) const {
-        const double lipschitz = std::max({q.m[0].distance, q.m[1].distance, q.m[2].distance}) +
-                                 detail::enclosingRadius(q.p[0], q.p[1], q.p[2]);
+        const double farthest = std::max({q.m[0].distance, q.m[1].distance, q.m[2].distance});
+        const double radius = detail::enclosingRadius(q.p[0], q.p[1], q.p[2]);
+        const double lipschitz = farthest + radius;
         if (lipschitz <= level()) return lipschitz;
         double best = convexBound(q, lipschitz);
         for (int i = 0; i < 3 && best > level(); ++i)
             for (int j = i + 1; j < 3 && best > level(); ++j)
                 if (q.m[i].triangle != q.m[j].triangle)
                     best = std::min(best, pairBound(q, q.m[i].triangle, q.m[j].triangle, best));
-        if (best > level() && overlayPays(q))
+        if (best > level() && overlayPays(q, farthest, radius))
             best = detail::overlayBound({q.p[0], q.p[1], q.p[2]},
                                         {q.m[0].triangle, q.m[1].triangle, q.m[2].triangle},
                                         {b_.positions, b_.indices, b_.neighbours()}, overlayEps_, best);

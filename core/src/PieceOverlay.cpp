@@ -2,11 +2,11 @@
 
 #include "SurfaceGeometry.hpp"
 
+#include <meshoptimizer.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numeric>
-#include <utility>
 
 namespace spatter::detail {
 
@@ -79,43 +79,6 @@ bool sidePlane(const std::array<glm::dvec3, 3>& t, int k, const glm::dvec3& n, g
     return true;
 }
 
-// A hash of a position's bits (FNV-1a over the three doubles, +0 and -0 alike).
-uint64_t positionHash(const glm::dvec3& p) {
-    uint64_t h = 1469598103934665603ull;
-    for (int i = 0; i < 3; ++i) {
-        uint64_t bits = 0;
-        const double v = p[i] == 0.0 ? 0.0 : p[i];
-        std::memcpy(&bits, &v, sizeof bits);
-        h = (h ^ bits) * 1099511628211ull;
-    }
-    return h;
-}
-
-// Each vertex's first vertex at the same position: sorted by hash, then by position within a hash.
-std::vector<uint32_t> weldByPosition(const std::vector<glm::dvec3>& positions) {
-    std::vector<std::pair<uint64_t, uint32_t>> order(positions.size());
-    for (uint32_t v = 0; v < uint32_t(positions.size()); ++v)
-        order[v] = {positionHash(positions[v]), v};
-    std::sort(order.begin(), order.end());
-    std::vector<uint32_t> weld(positions.size());
-    for (size_t i = 0; i < order.size();) {
-        size_t j = i;
-        while (j < order.size() && order[j].first == order[i].first)
-            ++j;
-        for (size_t k = i; k < j; ++k) { // a hash shared by other positions is rare: compared pairwise
-            const uint32_t v = order[k].second;
-            weld[v] = v;
-            for (size_t m = i; m < k; ++m)
-                if (positions[order[m].second] == positions[v]) {
-                    weld[v] = weld[order[m].second];
-                    break;
-                }
-        }
-        i = j;
-    }
-    return weld;
-}
-
 // The corners of mesh triangle t.
 std::array<glm::dvec3, 3> cornersOf(const OverlayMesh& mesh, uint32_t t) {
     const uint32_t* c = &mesh.indices[3 * size_t(t)];
@@ -132,7 +95,10 @@ bool facesAlong(const std::array<glm::dvec3, 3>& t, const glm::dvec3& n) {
 
 EdgeNeighbours edgeNeighbours(const std::vector<glm::dvec3>& positions, const std::vector<uint32_t>& indices,
                               const std::vector<uint32_t>& triangles) {
-    const std::vector<uint32_t> weld = weldByPosition(positions);
+    // Each vertex's one index for its position (meshoptimizer's remap, as the proxy builder welds).
+    std::vector<uint32_t> weld(positions.size());
+    meshopt_generateVertexRemap(weld.data(), nullptr, positions.size(), positions.data(), positions.size(),
+                                sizeof(glm::dvec3));
     std::vector<uint32_t> welded(indices.size() - indices.size() % 3); // each triangle's welded corners
     for (size_t i = 0; i < welded.size(); ++i)
         welded[i] = weld[indices[i]];
