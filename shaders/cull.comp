@@ -24,16 +24,23 @@ shared uint sCounts[2]; // the work group's invalid and host-drawn decals
 
 const uint kCulled = 0u, kCandidate = 1u, kInvalid = 2u, kHostDrawn = 3u;
 
+// An upper bound of how far `m` stretches a vector: the root of the largest row sum of absolute
+// values of its columns' Gram matrix (Gershgorin), the longest column where they are orthogonal.
+float largestStretch(mat3 m) {
+    float largest = 0.0;
+    for (int i = 0; i < 3; ++i)
+        largest = max(largest, dot(m[i], m[i]) + abs(dot(m[i], m[(i + 1) % 3])) + abs(dot(m[i], m[(i + 2) % 3])));
+    return sqrt(largest);
+}
+
 // Whether the sphere around record `r`'s box lies wholly outside one of the view's four side planes,
 // with a margin for rounding, so that the exact test would cull the box too. Corners lie at most
 // |(hx + hz |sx|, hy + hz |sy|, hz)| from the centre (half extents h, slant s: the depth axis is
-// normal + sx tangent + sy bitangent), times the model's largest scale.
+// normal + sx tangent + sy bitangent), times the model's largest stretch.
 bool sphereOutside(DecalRecord r, ProjectorObject o) {
     vec2 slant = abs(unpackHalf2x16(r.info.z));
     float hz = r.centerDepth.w;
-    mat3 m = mat3(o.model);
-    float radius = length(vec3(r.halfSize + hz * slant, hz)) *
-                   max(length(m[0]), max(length(m[1]), length(m[2])));
+    float radius = length(vec3(r.halfSize + hz * slant, hz)) * largestStretch(mat3(o.model));
     vec4 c = vec4((o.model * vec4(r.centerDepth.xyz, 1.0)).xyz, 1.0);
     vec4 w = vec4(u_viewProj[0][3], u_viewProj[1][3], u_viewProj[2][3], u_viewProj[3][3]);
     for (int k = 0; k < 4; ++k) {

@@ -40,8 +40,9 @@ of them in view, each a square of a fraction of the screen height. Groups of row
                and smooth fade), wrap-around, depth-derivative normal frame, object IDs (a dynamic
                object in the scene), angle rejection off, projected along a shot 45 degrees from
                the floor's normal
-  cpu          1080p, 10,000 decals in view among 10,000 and among 1,000,000 in the world: the wall
-               time of render() when it does not wait for the GPU (a glFinish after each frame,
+  cpu          1080p, 10,000 decals in view among 10,000 and among 1,000,000 in the world, and 600
+               among 60,000 (fewer than ProjectorSettings::gpuCullingFrom: culled on the CPU): the
+               wall time of render() when it does not wait for the GPU (a glFinish after each frame,
                outside the time), with the GPU times of an earlier frame
   occlusion    1080p, 1,000,000 decals in the world, 10,000 in the view's frustum, with and without
                occlusion culling (RendererSettings::occlusionCulling), with nothing hiding them and
@@ -146,9 +147,11 @@ std::vector<Config> configs(const std::vector<std::string>& groups, bool quick) 
             if (!quick || std::string(f.name) == "minimal" || std::string(f.name) == "default")
                 out.push_back(
                     {"features", "1080p", quick ? 1000u : 10000u, quick ? 1000u : 10000u, 0.015, f.name});
-    if (want("cpu"))
+    if (want("cpu")) {
         for (size_t world : quick ? std::vector<size_t>{1000} : std::vector<size_t>{10000, 1000000})
             out.push_back({"cpu", "1080p", world, std::min<size_t>(world, 10000), 0.015, "no-wait"});
+        if (!quick) out.push_back({"cpu", "1080p", 60000, 600, 0.015, "no-wait"}); // culled on the CPU
+    }
     if (want("occlusion"))
         for (bool roof : {false, true})
             for (const char* f : {"default", "no-occlusion"})

@@ -1,6 +1,7 @@
 #include "DecalBatch.hpp"
 
 #include "SparseRuns.hpp"
+#include "SphereCull.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -183,9 +184,12 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
     const double radius = view.nearRadius * 1.01;
     // On an object with a singular transform (a scale of 0) the boxes collapse: nothing to draw.
     std::vector<uint8_t> collapsed(objectTransforms.size());
+    std::vector<SidePlanes> sides; // the view's side planes in each object's space
+    sides.reserve(objectTransforms.size());
     for (size_t o = 0; o < objectTransforms.size(); ++o) {
         const double det = glm::determinant(glm::dmat3(objectTransforms[o]));
         collapsed[o] = !(std::fabs(det) > 0.0) || !std::isfinite(det) ? 1 : 0;
+        sides.emplace_back(view.viewProj, view.eye, objectTransforms[o]);
     }
     for (const uint32_t i : order_.entries()) {
         if (i == DrawOrder::kEmpty) continue;
@@ -199,6 +203,12 @@ DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms
         }
         const uint32_t object = records_[i].info.x;
         if (object >= objectTransforms.size() || collapsed[object]) {
+            ++vis.culled;
+            continue;
+        }
+        // Most of a large world: a sphere around the box outside a side plane (SphereCull.hpp).
+        if (sides[object].outside(glm::dvec3(glm::vec3(records_[i].centerDepth)),
+                                  recordRadius(records_[i]))) {
             ++vis.culled;
             continue;
         }

@@ -1,8 +1,8 @@
 // Culling on the GPU (ProjectorSettings::gpuCullingFrom) is exact: the same decals give the same
 // coverage, bit for bit, and the same counts as culling on the CPU, with the camera inside boxes,
-// boxes across the frustum's edges and its near plane, and far from the world's origin. Its occlusion
-// test (ProjectorSettings::occlusionCulling) culls the boxes hidden behind the scene and changes no
-// pixel.
+// boxes across the frustum's edges and its near plane, on a sheared object, and far from the world's
+// origin. Its occlusion test (ProjectorSettings::occlusionCulling) culls the boxes hidden behind the
+// scene and changes no pixel.
 
 #include "ForeignHost.hpp"
 #include "HostedWall.hpp"
@@ -15,6 +15,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <limits>
 
@@ -49,12 +50,12 @@ struct Culled {
     ProjectorStats stats;
 };
 
-// The coverage of `decals` on the wall moved by `offset`, seen by `camera` (moved too), culled on
-// the CPU or on the GPU (with or without the occlusion test).
+// The coverage of `decals` on the wall shaped by `shape` and moved by `offset`, seen by `camera`
+// (moved too), culled on the CPU or on the GPU (with or without the occlusion test).
 Culled coverage(const std::vector<Decal>& decals, const glm::dvec3& offset, Camera camera, bool onGpu,
-                bool occlusion = true) {
+                bool occlusion = true, const glm::dmat4& shape = glm::dmat4(1.0)) {
     test::WallScene wall;
-    const glm::dmat4 move = glm::translate(glm::dmat4(1.0), offset);
+    const glm::dmat4 move = glm::translate(glm::dmat4(1.0), offset) * shape;
     for (size_t i = 0; i < wall.scene.objects.size(); ++i) {
         wall.scene.objects[i].transform = move * wall.scene.objects[i].transform;
         wall.transforms[i] = wall.scene.objects[i].transform;
@@ -85,9 +86,9 @@ Culled coverage(const std::vector<Decal>& decals, const glm::dvec3& offset, Came
 }
 
 void expectSameAsCpu(const char* name, const std::vector<Decal>& decals, const glm::dvec3& offset,
-                     const Camera& camera, bool occlusion) {
-    const Culled cpu = coverage(decals, offset, camera, false);
-    const Culled gpu = coverage(decals, offset, camera, true, occlusion);
+                     const Camera& camera, bool occlusion, const glm::dmat4& shape = glm::dmat4(1.0)) {
+    const Culled cpu = coverage(decals, offset, camera, false, true, shape);
+    const Culled gpu = coverage(decals, offset, camera, true, occlusion, shape);
     std::printf("%s: %zu drawn (%zu inside), %zu culled; %zu covered pixels\n", name, cpu.stats.drawn,
                 cpu.stats.inside, cpu.stats.culled, test::countSet(cpu.coverage));
     EXPECT_GT(test::countSet(cpu.coverage), 0u) << name;
@@ -138,6 +139,31 @@ TEST(GpuCulling, MatchesTheCpuOverManyGroupsOfTheDrawOrder) {
     SPATTER_REQUIRE_GL(gl);
     const std::vector<Decal> decals = scatteredDecals(4000, 17);
     expectSameAsCpu("many", decals, glm::dvec3(0.0), test::lookAt({0.0, 1.0, 2.0}, {0.5, 1.0, 0.0}));
+}
+
+// The wall sheared (x moves by y) stretches a box up to 1.618 times, more than its longest column
+// (1.414) says: both culling paths size their bounding spheres by a bound that holds for a shear.
+// Rows of decals, whose corners point the way the shear stretches most across the side planes of a
+// narrow view rolled to face that way, cross its left and right sides, so that some lie just
+// outside it.
+TEST(GpuCulling, MatchesTheCpuOnAShearedObject) {
+    SPATTER_REQUIRE_GL(gl);
+    const double roll = std::atan2(0.526, 0.851); // the direction the shear stretches most
+    const glm::dvec2 across(std::cos(roll), std::sin(roll));
+    std::vector<Decal> decals = scatteredDecals(300, 19);
+    for (int i = -750; i <= 750; ++i) {
+        const glm::dvec2 world = glm::dvec2(0.0, 0.5) + across * (0.004 * double(i));
+        Decal d = test::WallScene::decalAt(0, {float(world.x - world.y), float(world.y), 0.05f});
+        d.size = glm::vec2(0.1236f, 0.2f); // corners along (0.829, 1.341, 0.225) before the shear
+        d.halfDepth = 0.0168f;
+        decals.push_back(d);
+    }
+    glm::dmat4 shear(1.0);
+    shear[1][0] = 1.0;
+    Camera camera = test::lookAt({0.0, 0.5, 3.0}, {0.0, 0.5, 0.0});
+    camera.up = glm::dvec3(-across.y, across.x, 0.0);
+    camera.fovYDeg = 20.0;
+    expectSameAsCpu("sheared", decals, glm::dvec3(0.0), camera, true, shear);
 }
 
 TEST(GpuCulling, MatchesTheCpuFarFromTheOrigin) {

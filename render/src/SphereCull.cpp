@@ -1,0 +1,62 @@
+#include "SphereCull.hpp"
+
+#include "spatter/core/DecalProjection.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace spatter::render_detail {
+
+namespace {
+
+// Relative rounding allowed for on the way to a corner's clip coordinates (double throughout).
+constexpr double kRounding = 1e-9;
+
+} // namespace
+
+double largestStretch(const glm::dmat4& m) {
+    // Its square is the largest eigenvalue of the columns' Gram matrix, which Gershgorin's theorem
+    // bounds by the largest row sum of absolute values.
+    const glm::dvec3 c[3] = {glm::dvec3(m[0]), glm::dvec3(m[1]), glm::dvec3(m[2])};
+    double largest = 0.0;
+    for (int i = 0; i < 3; ++i)
+        largest = std::max(largest, glm::dot(c[i], c[i]) + std::abs(glm::dot(c[i], c[(i + 1) % 3])) +
+                                        std::abs(glm::dot(c[i], c[(i + 2) % 3])));
+    return std::sqrt(largest) * (1.0 + kRounding);
+}
+
+double recordRadius(const DecalRecordGpu& r) {
+    const double hz = r.centerDepth.w;
+    glm::dvec2 reach(r.halfSize.x, r.halfSize.y);
+    if (r.info.z != 0u) reach += hz * glm::abs(glm::dvec2(unpackSlant(r.info.z)));
+    return glm::length(glm::dvec3(reach, hz)) * (1.0 + kRounding);
+}
+
+SidePlanes::SidePlanes(const glm::dmat4& viewProj, const glm::dvec3& eye, const glm::dmat4& toWorld)
+    : stretch_(largestStretch(toWorld)), magnitude_(glm::length(glm::dvec3(toWorld[3])) + glm::length(eye)) {
+    const glm::dvec4 w(viewProj[0][3], viewProj[1][3], viewProj[2][3], viewProj[3][3]);
+    const glm::dmat3 linear(toWorld);
+    const glm::dvec3 offset = glm::dvec3(toWorld[3]) - eye;
+    for (int k = 0; k < 4; ++k) {
+        const int row = k / 2;
+        const glm::dvec4 axis(viewProj[0][row], viewProj[1][row], viewProj[2][row], viewProj[3][row]);
+        const glm::dvec4 world = (k & 1) == 0 ? w + axis : w - axis; // of a camera-relative point
+        // dot(world.xyz, toWorld * p - eye) + world.w, as a plane of p.
+        plane_[k] = glm::dvec4(glm::transpose(linear) * glm::dvec3(world),
+                               glm::dot(glm::dvec3(world), offset) + world.w);
+        length_[k] = glm::length(glm::dvec3(world));
+    }
+}
+
+bool SidePlanes::outside(const glm::dvec3& centre, double radius) const {
+    const double reach = radius * stretch_;
+    const double spread = stretch_ * (std::abs(centre.x) + std::abs(centre.y) + std::abs(centre.z));
+    for (int k = 0; k < 4; ++k) {
+        const double slack = reach * length_[k] +
+                             kRounding * (length_[k] * (spread + magnitude_ + reach) + std::abs(plane_[k].w));
+        if (glm::dot(glm::dvec3(plane_[k]), centre) + plane_[k].w < -slack) return true;
+    }
+    return false;
+}
+
+} // namespace spatter::render_detail
