@@ -1,7 +1,6 @@
 #include "DecalBatch.hpp"
 
 #include "SparseRuns.hpp"
-#include "SphereCull.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -176,88 +175,6 @@ size_t DecalBatch::cpuBytes() const {
 
 void DecalBatch::markUploaded() {
     std::vector<StagedRecords>().swap(staged_);
-}
-
-DecalVisibility DecalBatch::cull(const std::vector<glm::dmat4>& objectTransforms,
-                                 const CullView& view) const {
-    DecalVisibility vis;
-    const double radius = view.nearRadius * 1.01;
-    // On an object with a singular transform (a scale of 0) the boxes collapse: nothing to draw.
-    std::vector<uint8_t> collapsed(objectTransforms.size());
-    std::vector<SidePlanes> sides; // the view's side planes in each object's space
-    sides.reserve(objectTransforms.size());
-    for (size_t o = 0; o < objectTransforms.size(); ++o) {
-        const double det = glm::determinant(glm::dmat3(objectTransforms[o]));
-        collapsed[o] = !(std::fabs(det) > 0.0) || !std::isfinite(det) ? 1 : 0;
-        sides.emplace_back(view.viewProj, view.eye, objectTransforms[o]);
-    }
-    for (const uint32_t i : order_.entries()) {
-        if (i == DrawOrder::kEmpty) continue;
-        if (hostDrawn(records_[i])) { // the host's, valid or not
-            ++vis.hostDrawn;
-            continue;
-        }
-        if (!valid(i)) {
-            ++vis.invalid;
-            continue;
-        }
-        const uint32_t object = records_[i].info.x;
-        if (object >= objectTransforms.size() || collapsed[object]) {
-            ++vis.culled;
-            continue;
-        }
-        // Most of a large world: a sphere around the box outside a side plane (SphereCull.hpp).
-        if (sides[object].outside(glm::dvec3(glm::vec3(records_[i].centerDepth)),
-                                  recordRadius(records_[i]))) {
-            ++vis.culled;
-            continue;
-        }
-        const glm::dmat4 boxToWorld = objectTransforms[object] * recordBoxToObject(records_[i]);
-
-        // Frustum: the box is outside when all eight corners lie beyond one clip plane.
-        int outside[6] = {0, 0, 0, 0, 0, 0};
-        glm::dvec4 rect(1.0, 1.0, -1.0, -1.0);
-        bool behind = false;
-        for (int c = 0; c < 8; ++c) {
-            const glm::dvec4 corner((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0, 1.0);
-            const glm::dvec3 rel = glm::dvec3(boxToWorld * corner) - view.eye;
-            const glm::dvec4 clip = view.viewProj * glm::dvec4(rel, 1.0);
-            const double low = view.clipMinusOne ? -clip.w : 0.0; // the low end of clip depth
-            outside[0] += clip.x < -clip.w;
-            outside[1] += clip.x > clip.w;
-            outside[2] += clip.y < -clip.w;
-            outside[3] += clip.y > clip.w;
-            outside[4] += view.reversedZ ? clip.z > clip.w : clip.z < low; // in front of the near plane
-            outside[5] += view.reversedZ ? clip.z < low : clip.z > clip.w; // beyond the far plane
-            behind = behind || !(clip.w > 0.0);
-            rect = glm::dvec4(glm::min(glm::dvec2(rect), glm::dvec2(clip) / clip.w),
-                              glm::max(glm::dvec2(rect.z, rect.w), glm::dvec2(clip) / clip.w));
-        }
-        if (std::any_of(outside, outside + 6, [](int n) { return n == 8; })) {
-            ++vis.culled;
-            continue;
-        }
-
-        // Camera inside, conservatively: the eye's near-plane sphere against the box slabs. Row r of
-        // the inverse maps world offsets to box coordinate r, so the sphere reaches |u_r| <= 1 only
-        // if |u_r| <= 1 + radius * |row r|.
-        const glm::dmat4 worldToBox = glm::inverse(boxToWorld);
-        const glm::dvec3 u = glm::dvec3(worldToBox * glm::dvec4(view.eye, 1.0));
-        if (!std::isfinite(u.x + u.y + u.z)) continue; // the box collapsed in double after all
-        bool inside = true;
-        for (int r = 0; r < 3 && inside; ++r) {
-            const double rowLength =
-                glm::length(glm::dvec3(worldToBox[0][r], worldToBox[1][r], worldToBox[2][r]));
-            inside = std::fabs(u[r]) <= 1.0 + radius * rowLength;
-        }
-        vis.visible.push_back(i);
-        vis.inside += inside ? 1 : 0;
-        vis.flags |= flags(records_[i]);
-        if (view.rects)
-            vis.rects.push_back(behind || inside ? glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f)
-                                                 : glm::vec4(glm::clamp(rect, -1.0, 1.0)));
-    }
-    return vis;
 }
 
 } // namespace spatter::render_detail
