@@ -2,6 +2,7 @@
 
 #include "PosedCollisionMesh.hpp"
 
+#include "spatter/core/LinearStretch.hpp"
 #include "spatter/placement/TraceTransform.hpp"
 
 #include <embree3/rtcore.h>
@@ -1088,8 +1089,7 @@ DBounds CollisionWorld::worldBounds(uint32_t index) const {
 double CollisionWorld::worldErrorBound(uint32_t index) const {
     if (index >= impl_->objects.size()) return 0.0;
     const CollisionObject& o = impl_->objects[index].info;
-    const glm::dmat3 m(o.transform);
-    return o.errorBound * std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+    return o.errorBound * largestStretch(glm::dmat3(o.transform));
 }
 
 std::vector<std::string> CollisionWorld::warnings() const {

@@ -1,6 +1,7 @@
 #include "SphereCull.hpp"
 
 #include "spatter/core/DecalProjection.hpp"
+#include "spatter/core/LinearStretch.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,17 +15,6 @@ constexpr double kRounding = 1e-9;
 
 } // namespace
 
-double largestStretch(const glm::dmat4& m) {
-    // Its square is the largest eigenvalue of the columns' Gram matrix, which Gershgorin's theorem
-    // bounds by the largest row sum of absolute values.
-    const glm::dvec3 c[3] = {glm::dvec3(m[0]), glm::dvec3(m[1]), glm::dvec3(m[2])};
-    double largest = 0.0;
-    for (int i = 0; i < 3; ++i)
-        largest = std::max(largest, glm::dot(c[i], c[i]) + std::abs(glm::dot(c[i], c[(i + 1) % 3])) +
-                                        std::abs(glm::dot(c[i], c[(i + 2) % 3])));
-    return std::sqrt(largest) * (1.0 + kRounding);
-}
-
 double recordRadius(const DecalRecordGpu& r) {
     const double hz = r.centerDepth.w;
     glm::dvec2 reach(r.halfSize.x, r.halfSize.y);
@@ -33,7 +23,8 @@ double recordRadius(const DecalRecordGpu& r) {
 }
 
 SidePlanes::SidePlanes(const glm::dmat4& viewProj, const glm::dvec3& eye, const glm::dmat4& toWorld)
-    : stretch_(largestStretch(toWorld)), magnitude_(glm::length(glm::dvec3(toWorld[3])) + glm::length(eye)) {
+    : stretch_(largestStretch(glm::dmat3(toWorld)) * (1.0 + kRounding)),
+      magnitude_(glm::length(glm::dvec3(toWorld[3])) + glm::length(eye)) {
     const glm::dvec4 w(viewProj[0][3], viewProj[1][3], viewProj[2][3], viewProj[3][3]);
     const glm::dmat3 linear(toWorld);
     const glm::dvec3 offset = glm::dvec3(toWorld[3]) - eye;

@@ -13,11 +13,6 @@
 
 namespace spatter::render_detail {
 
-// An upper bound of how far the linear part of `m` stretches a vector (its spectral norm): the
-// longest column where the columns are orthogonal (rotations and scales), more where they are not.
-// The longest column alone would be too small for a shear.
-double largestStretch(const glm::dmat4& m);
-
 // The radius of a sphere around the centre of record `r`'s box that holds the box, in object space:
 // the corners lie within |(hx + hz |sx|, hy + hz |sy|, hz)| of it (half extents h, slant s: the
 // depth axis is normal + sx tangent + sy bitangent).
@@ -35,7 +30,7 @@ public:
 private:
     glm::dvec4 plane_[4];                    // object space; inside: dot(plane.xyz, centre) + plane.w >= 0
     double length_[4]{};                     // of the world plane's normal
-    double stretch_ = 0.0, magnitude_ = 0.0; // largestStretch; |translation| + |eye|
+    double stretch_ = 0.0, magnitude_ = 0.0; // largestStretch (LinearStretch.hpp); |translation| + |eye|
 };
 
 } // namespace spatter::render_detail

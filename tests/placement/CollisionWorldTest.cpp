@@ -531,6 +531,27 @@ TEST(CollisionWorld, ProxiesReplaceMeshesAndCarryTheirBound) {
     EXPECT_NEAR(glm::length(h->localPosition), 0.8, 0.02);
 }
 
+// Under a shear (x moves by y) a distance in the object grows up to 1.618 times, farther than the
+// longest column of the matrix (1.414) says: the bound in world units covers the stretch that power
+// iteration finds.
+TEST(CollisionWorld, WorldErrorBoundCoversTheStretchOfAShear) {
+    Scene s = rangeScene(1);
+    glm::dmat4 shear(1.0);
+    shear[1][0] = 1.0;
+    s.objects[2].transform = shear * s.objects[2].transform;
+    std::vector<std::optional<Proxy>> proxies(s.objects.size());
+    proxies[2] = makeProxy(makeSphere(0.8f, 8, 16), 0.125f);
+    const CollisionWorld w = buildWorld(s, proxies);
+    const glm::dmat3 m(s.objects[2].transform);
+    glm::dvec3 v(1.0, 0.3, 0.2);
+    for (int i = 0; i < 200; ++i)
+        v = glm::normalize(glm::transpose(m) * (m * v));
+    const double stretch = glm::length(m * v);
+    EXPECT_GT(stretch, 1.001 * std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])}));
+    EXPECT_GE(w.worldErrorBound(2), 0.125 * stretch);
+    EXPECT_LE(w.worldErrorBound(2), 0.125 * std::sqrt(3.0) * stretch);
+}
+
 TEST(CollisionWorld, RejectsBadProxiesAndScenes) {
     const Scene s = rangeScene(1);
     std::vector<std::optional<Proxy>> wrongCount(2);

@@ -192,9 +192,9 @@ public:
     // World-space bounds of the object's collision mesh under its current transform (of the render
     // mesh for objects not in the world); empty for an index out of range or an empty mesh.
     DBounds worldBounds(uint32_t index) const;
-    // The object's error bound in world units under its current transform: errorBound times the
-    // largest column length of the transform's linear part (its largest scale for TRS transforms).
-    // 0 for an index out of range.
+    // The object's error bound in world units under its current transform: errorBound times a bound
+    // of how far the transform's linear part stretches (LinearStretch.hpp: its largest scale for TRS
+    // transforms, more for a shear). 0 for an index out of range.
     double worldErrorBound(uint32_t index) const;
     // One line per object in the world that is not traced: "object 3 (crate): transform is singular
     // in single precision (condition number 4e+09, limit 65536); not traced".
