@@ -160,6 +160,9 @@ struct DecalProjector::Impl {
     int boxesSinceLeftOut = 0;  // draws Auto drew as boxes since a binning left decals out
     int drawsSinceProbe = 15;   // draws since occlusion culling last ran (the first draw tries it)
     size_t gpuCullingFrom = 0;  // settings.gpuCullingFrom, or its default for this context
+    size_t gpuCullingInViewFrom = std::numeric_limits<size_t>::max(); // or its setting
+    bool culledOnGpu = false; // the latest draw or bin culled on the GPU
+    size_t cpuInView = 0;     // decals in view at the latest culling on the CPU
     GpuTimers timers;
     uint64_t draws = 0;
 
@@ -300,16 +303,24 @@ struct DecalProjector::Impl {
         glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
     }
 
-    // Whether this frame's visible list is built on the GPU (gpuCullingFrom); from the first such frame
-    // on the CPU copy of the records is let go.
+    // Whether this frame's visible list is built on the GPU: from gpuCullingFrom decals on (from the
+    // first such frame on the CPU copy of the records is let go), and below that while many are in
+    // view (gpuCullingInViewFrom, by the latest count of either culling; back below half of it).
     bool cullsOnGpu() {
-        const bool onGpu = batch.size() > 0 && (batch.size() >= gpuCullingFrom || !batch.mirrored());
+        bool onGpu = batch.size() > 0 && (batch.size() >= gpuCullingFrom || !batch.mirrored());
         if (onGpu) batch.setMirrorLimit(gpuCullingFrom);
+        if (!onGpu && batch.size() > 0) {
+            const size_t inView =
+                culledOnGpu ? size_t(culling.visibleCount(false)) + culling.occludedCount() : cpuInView;
+            onGpu = culledOnGpu ? inView * 2 >= gpuCullingInViewFrom : inView >= gpuCullingInViewFrom;
+        }
+        culledOnGpu = onGpu;
         return onGpu;
     }
 
     DecalVisibility cullOnCpu(const CullView& cull) {
         DecalVisibility vis = batch.cull(transforms, cull);
+        cpuInView = vis.visible.size();
         buffers.orderLeftBehind();
         batch.takeOrderChanges();
         return vis;
@@ -543,6 +554,8 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
     impl->gpuCullingFrom =
         settings.gpuCullingFrom.value_or(softwareRasteriser() ? ProjectorSettings::kGpuCullingFromSoftware
                                                               : ProjectorSettings::kGpuCullingFrom);
+    impl->gpuCullingInViewFrom = settings.gpuCullingInViewFrom.value_or(
+        softwareRasteriser() ? std::numeric_limits<size_t>::max() : ProjectorSettings::kGpuCullingInViewFrom);
     if (Status s = impl->textures.create(settings.decalTextureSize); !s)
         return fail("projector: " + s.error());
     impl->batch.configure(settings.wrapMaxAngleDeg, impl->textures.layers());

@@ -576,6 +576,7 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
     projector.decalTextureSize = settings.decalTextureSize;
     projector.waitForTimers = settings.waitForTimers;
     projector.gpuCullingFrom = settings.gpuCullingFrom;
+    projector.gpuCullingInViewFrom = settings.gpuCullingInViewFrom;
     projector.occlusionCulling = settings.occlusionCulling;
     projector.deferredResolve = settings.deferredResolve;
     Result<DecalProjector> p = DecalProjector::create(projector);

@@ -174,6 +174,55 @@ TEST(GpuCulling, MatchesTheCpuFarFromTheOrigin) {
     expectSameAsCpu("far close", decals, far, test::lookAt({0.2, 1.0, 0.6}, {0.0, 1.0, 0.0}));
 }
 
+// Below gpuCullingFrom the projector culls on the GPU while many decals are in view
+// (gpuCullingInViewFrom, here 8): the first draw culls on the CPU and finds more than that in view,
+// the next takes the GPU and covers the same pixels; turned away from the wall, one more draw stays
+// on the GPU (its latest count was high), finds none, and the draw after it is back on the CPU.
+TEST(GpuCulling, TakesOverWhileManyDecalsAreInViewAndHandsBackWhenFew) {
+    SPATTER_REQUIRE_GL(gl);
+    test::WallScene wall;
+    Result<test::ForeignHost> host = test::ForeignHost::create(kWallWidth, kWallHeight);
+    ProjectorSettings settings;
+    settings.gpuCullingInViewFrom = 8;
+    settings.waitForTimers = true; // each draw's counts
+    Result<DecalProjector> projector = DecalProjector::create(settings);
+    ASSERT_TRUE(host.ok() && projector.ok());
+    host->setScene(wall.scene);
+    ASSERT_TRUE(projector->setObjects(wall.transforms, wall.ids).ok());
+    projector->setDecalTypes(wall.types);
+    projector->setDecals(scatteredDecals(300, 7));
+    auto drawWith = [&](const Camera& camera, ProjectorStats& stats) {
+        host->draw(wall.transforms, wall.ids, camera);
+        host->clearCoverage();
+        ProjectorDraw draw;
+        draw.coverageTexture = host->coverageTexture();
+        Result<ProjectorStats> st = projector->draw(host->frame(camera, true), draw);
+        EXPECT_TRUE(st.ok()) << st.error();
+        if (st) stats = st.value();
+        return test::whiteMask(host->read(host->coverageTexture()));
+    };
+    const Camera facing = test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0});
+    const Camera away = test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 8.0});
+    ProjectorStats stats;
+    const std::vector<uint8_t> onCpu = drawWith(facing, stats);
+    EXPECT_FALSE(stats.gpuCulled);
+    EXPECT_GE(stats.drawn, 8u);
+    const size_t inView = stats.drawn;
+    const std::vector<uint8_t> onGpu = drawWith(facing, stats);
+    EXPECT_TRUE(stats.gpuCulled);
+    EXPECT_EQ(stats.drawn, inView);
+    EXPECT_GT(test::countSet(onCpu), 0u);
+    EXPECT_EQ(onGpu, onCpu) << "the GPU's culling covers other pixels than the CPU's";
+    drawWith(away, stats);
+    EXPECT_TRUE(stats.gpuCulled);
+    EXPECT_EQ(stats.drawn, 0u);
+    drawWith(away, stats);
+    EXPECT_FALSE(stats.gpuCulled);
+    EXPECT_EQ(stats.drawn, 0u);
+    EXPECT_EQ(drawWith(facing, stats), onCpu); // from the CPU again
+    EXPECT_FALSE(stats.gpuCulled);
+}
+
 // Decals on the wall behind the crate, hidden from the camera, and decals beside it: the occlusion
 // test culls exactly the hidden ones, and the coverage stays the same bit for bit.
 TEST(GpuCulling, OcclusionCullsTheBoxesHiddenBehindTheSceneAndNoPixelChanges) {

@@ -108,7 +108,9 @@ struct RendererSettings {
     bool waitForTimers = false;           // render() waits for this frame's GPU times (tools, benchmarks)
     std::optional<size_t> gpuCullingFrom; // decals from which the projector culls on the GPU
                                           // (ProjectorSettings::gpuCullingFrom)
-    bool occlusionCulling = true;         // ProjectorSettings::occlusionCulling
+    std::optional<size_t> gpuCullingInViewFrom;              // decals in view from which it does below that
+                                                             // (ProjectorSettings::gpuCullingInViewFrom)
+    bool occlusionCulling = true;                            // ProjectorSettings::occlusionCulling
     DeferredResolve deferredResolve = DeferredResolve::Auto; // ProjectorSettings::deferredResolve
     LightSettings light;
 };
