@@ -17,12 +17,12 @@ namespace spatter::render_detail {
 namespace {
 
 // The view's six planes as functions of clip coordinates, each negative beyond its plane: the four
-// sides (x and y within [-w, w]), then the near and the far plane in the view's depth convention.
+// sides (clipSidePlanes), then the near and the far plane in the view's depth convention.
 std::array<glm::dvec4, 6> clipPlanes(const CullView& view) {
     const glm::dvec4 low = view.clipMinusOne ? glm::dvec4(0, 0, 1, 1) : glm::dvec4(0, 0, 1, 0); // z >= low
     const glm::dvec4 high(0, 0, -1, 1);                                                         // z <= w
-    return {glm::dvec4(1, 0, 0, 1),  glm::dvec4(-1, 0, 0, 1),     glm::dvec4(0, 1, 0, 1),
-            glm::dvec4(0, -1, 0, 1), view.reversedZ ? high : low, view.reversedZ ? low : high};
+    const std::array<glm::dvec4, 4> sides = clipSidePlanes();
+    return {sides[0], sides[1], sides[2], sides[3], view.reversedZ ? high : low, view.reversedZ ? low : high};
 }
 
 // A box in clip space: a corner is the centre's image plus or minus the images of its three axes.

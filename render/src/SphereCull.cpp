@@ -15,6 +15,10 @@ constexpr double kRounding = 1e-9;
 
 } // namespace
 
+std::array<glm::dvec4, 4> clipSidePlanes() {
+    return {glm::dvec4(1, 0, 0, 1), glm::dvec4(-1, 0, 0, 1), glm::dvec4(0, 1, 0, 1), glm::dvec4(0, -1, 0, 1)};
+}
+
 double recordRadius(const DecalRecordGpu& r) {
     const double hz = r.centerDepth.w;
     glm::dvec2 reach(r.halfSize.x, r.halfSize.y);
@@ -25,13 +29,11 @@ double recordRadius(const DecalRecordGpu& r) {
 SidePlanes::SidePlanes(const glm::dmat4& viewProj, const glm::dvec3& eye, const glm::dmat4& toWorld)
     : stretch_(largestStretch(glm::dmat3(toWorld)) * (1.0 + kRounding)),
       magnitude_(glm::length(glm::dvec3(toWorld[3])) + glm::length(eye)) {
-    const glm::dvec4 w(viewProj[0][3], viewProj[1][3], viewProj[2][3], viewProj[3][3]);
     const glm::dmat3 linear(toWorld);
     const glm::dvec3 offset = glm::dvec3(toWorld[3]) - eye;
-    for (int k = 0; k < 4; ++k) {
-        const int row = k / 2;
-        const glm::dvec4 axis(viewProj[0][row], viewProj[1][row], viewProj[2][row], viewProj[3][row]);
-        const glm::dvec4 world = (k & 1) == 0 ? w + axis : w - axis; // of a camera-relative point
+    const std::array<glm::dvec4, 4> clip = clipSidePlanes();
+    for (size_t k = 0; k < 4; ++k) {
+        const glm::dvec4 world = glm::transpose(viewProj) * clip[k]; // of a camera-relative point
         // dot(world.xyz, toWorld * p - eye) + world.w, as a plane of p.
         plane_[k] = glm::dvec4(glm::transpose(linear) * glm::dvec3(world),
                                glm::dot(glm::dvec3(world), offset) + world.w);

@@ -9,9 +9,15 @@
 
 #include "GpuLayouts.hpp"
 
+#include <array>
 #include <glm/glm.hpp>
 
 namespace spatter::render_detail {
+
+// The four side planes of every view as functions of clip coordinates, each negative beyond its
+// plane: x + w, w - x, y + w, w - y (x and y within [-w, w]). The corner test (DecalBatch::cull) adds
+// the near and the far plane of the view's depth convention.
+std::array<glm::dvec4, 4> clipSidePlanes();
 
 // The radius of a sphere around the centre of record `r`'s box that holds the box, in object space:
 // the corners lie within |(hx + hz |sx|, hy + hz |sy|, hz)| of it (half extents h, slant s: the
