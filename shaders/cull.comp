@@ -1,16 +1,19 @@
 // GPU culling, pass 1 of 3 (GpuCulling): one invocation per place of the draw order. It counts the
 // decals the host draws itself and those that cannot be drawn, culls the boxes whose bounding sphere
-// lies outside the view's side planes (no frame to unpack, no corners: most of a large world), and
-// lists the other places as candidates for the exact test (cull_exact.comp), in the visible list's
-// buffer, which the last pass overwrites. The exact test leaves each candidate's decal index in its
-// slot, so that past the visible count the buffer holds decal indices, as a reader with an earlier
-// count (the renderer's box overlay) expects. It also clears its group's class bits and count for the
-// passes after it.
+// lies outside the view's side planes (from each decal's 16-byte bounds alone: no body to read, no
+// frame to unpack, no corners: most of a large world), and lists the other places as candidates for
+// the exact test (cull_exact.comp), in the visible list's buffer, which the last pass overwrites. The
+// exact test leaves each candidate's decal index in its slot, so that past the visible count the
+// buffer holds decal indices, as a reader with an earlier count (the renderer's box overlay)
+// expects. It also clears its group's class bits and count for the passes after it.
 #include "projector.glsl"
 #include "cull_layout.glsl"
 
 layout(local_size_x = 256) in;
 layout(location = 0) uniform uint u_count; // places
+// 1 when a type is not drawn by the projector (the host draws it, or it cannot be drawn) or a decal
+// may name a type that does not exist: then the test reads each decal's type from its body.
+layout(location = 1) uniform uint u_checkTypes;
 
 layout(std430, binding = 0) writeonly buffer Classes {
     uint classBits[]; // bit k of word w: place 32 w + k is visible (set by cull_exact.comp)
@@ -33,15 +36,13 @@ float largestStretch(mat3 m) {
     return sqrt(largest);
 }
 
-// Whether the sphere around record `r`'s box lies wholly outside one of the view's four side planes,
-// with a margin for rounding, so that the exact test would cull the box too. Corners lie at most
-// |(hx + hz |sx|, hy + hz |sy|, hz)| from the centre (half extents h, slant s: the depth axis is
-// normal + sx tangent + sy bitangent), times the model's largest stretch.
-bool sphereOutside(DecalRecord r, ProjectorObject o) {
-    vec2 slant = abs(unpackHalf2x16(r.info.z));
-    float hz = r.centerDepth.w;
-    float radius = length(vec3(r.halfSize + hz * slant, hz)) * largestStretch(mat3(o.model));
-    vec4 c = vec4((o.model * vec4(r.centerDepth.xyz, 1.0)).xyz, 1.0);
+// Whether the sphere around decal `b`'s box lies wholly outside one of the view's four side planes,
+// with a margin for rounding, so that the exact test would cull the box too. The radius (what
+// DecalBounds holds, at least the distance from the centre to the corners, |(hx + hz |sx|, hy + hz
+// |sy|, hz)| for half extents h and slant s) is scaled by the model's largest stretch.
+bool sphereOutside(DecalBounds b, float radius, ProjectorObject o) {
+    radius *= largestStretch(mat3(o.model));
+    vec4 c = vec4((o.model * vec4(b.center, 1.0)).xyz, 1.0);
     vec4 w = vec4(u_viewProj[0][3], u_viewProj[1][3], u_viewProj[2][3], u_viewProj[3][3]);
     for (int k = 0; k < 4; ++k) {
         int row = k / 2;
@@ -54,15 +55,22 @@ bool sphereOutside(DecalRecord r, ProjectorObject o) {
 }
 
 uint classify(uint i) {
-    DecalRecord r = decalRecords[i];
-    uint type = decalTypeIndex(r);
-    bool typeKnown = type < uint(decalTypes.length()), objectKnown = float(r.info.x) < u_params.y;
+    DecalBounds b = decalBounds[i];
+    uint object = b.objectRadius & 0xffffu;
+    if (object == 0xffffu) object = decalBodies[i].object;
+    bool objectKnown = float(object) < u_params.y, hostType = false, typeDrawable = true;
+    if (u_checkTypes != 0u) { // otherwise every type is drawn by the projector and every decal has one
+        uint type = decalBodies[i].look & 0xffffu;
+        bool known = type < uint(decalTypes.length());
+        hostType = known && decalTypes[type].info.z == 2u;
+        typeDrawable = known && decalTypes[type].info.z != 0u;
+    }
     // The host's decals, valid or not (it counts its invalid ones), then those that cannot be drawn.
-    if ((typeKnown && decalTypes[type].info.z == 2u) || (objectKnown && objects[r.info.x].info.w != 0u))
-        return kHostDrawn;
-    if (!decalRecordValid(r) || !typeKnown || decalTypes[type].info.z == 0u || !objectKnown) return kInvalid;
-    ProjectorObject o = objects[r.info.x];
-    if (o.info.z != 0u || sphereOutside(r, o)) return kCulled; // a collapsed object, or out of view
+    if (hostType || (objectKnown && objects[object].info.w != 0u)) return kHostDrawn;
+    float radius = uintBitsToFloat(b.objectRadius & 0xffff0000u);
+    if (!(radius > 0.0) || !typeDrawable || !objectKnown) return kInvalid;
+    ProjectorObject o = objects[object];
+    if (o.info.z != 0u || sphereOutside(b, radius, o)) return kCulled; // a collapsed object, or out of view
     return kCandidate;
 }
 

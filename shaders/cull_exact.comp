@@ -94,7 +94,7 @@ bool hidden(vec4 corners[8]) {
 // Whether decal `entry` is drawn (kVisible), out of view (kCulled) or hidden behind the scene
 // (kOccluded).
 uint test(uint entry) {
-    DecalRecord r = decalRecords[entry];
+    DecalRecord r = decalRecord(entry);
     ProjectorObject o = objects[r.info.x];
     vec4 corners[8];
     boxCorners(unpackDecal(r), o, corners);

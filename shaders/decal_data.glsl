@@ -1,22 +1,56 @@
 // Decal instances as the projector stores them (DecalProjector::resources()), shared by the projector's
-// shaders and any host's debug drawing: the decal records (binding 3, 48 bytes each), the decal types
-// (binding 8), the visible list of the last draw (binding 4), the SPATTER_DECAL_* flags, and the
-// octahedral normal encoding. Mirrored on the C++ side by render/src/GpuLayouts.hpp (DecalRecordGpu,
-// DecalTypeGpu).
+// shaders and any host's debug drawing: the decals (bounds at binding 9 and bodies at binding 3, 48
+// bytes in all), the decal types (binding 8), the visible list of the last draw (binding 4), the
+// SPATTER_DECAL_* flags, and the octahedral normal encoding. Mirrored on the C++ side by
+// render/src/GpuLayouts.hpp (DecalBoundsGpu, DecalBodyGpu, DecalTypeGpu).
 
 #include "decal_flags.glsl"
 
-// One decal: its box and what is its own; the rest comes from its type.
-struct DecalRecord {
-    vec4 centerDepth; // xyz: the box's centre in object space; w: its half depth, 0 for a decal that
-                      // cannot be drawn
-    uvec2 frame;      // the packed frame (spatter/core/PackedFrame.hpp): x its low 32 bits, y its high ones
-    vec2 halfSize;    // half the width and height
-    uvec4 info;       // x: object index; y: type index (bits 0-15), object decal ID (16-23), opacity in
-                      // 1/255 (24-31); z: slant, the projection axis's slopes along the tangent and
-                      // bitangent as two halves (spatter/core/DecalProjection.hpp); w: 32-bit decal ID.
-                      // A left-handed frame: bit 62 of the packed frame
+// One decal is kept in two parts: its bounds (binding 9, 16 bytes), all the culling's pass over every
+// decal reads, and its body (binding 3, 32 bytes), the rest of its box and what is its own; the rest
+// of its look comes from its type.
+struct DecalBounds {
+    vec3 center;       // the box's centre in object space
+    uint objectRadius; // bits 16-31: the box's bounding radius in object space, the high half of a
+                       // float rounded up (0: a decal that cannot be drawn); bits 0-15: the object
+                       // index, 0xffff when it is 65,535 or more (the body's)
 };
+
+struct DecalBody {
+    uvec2 frame;     // the packed frame (spatter/core/PackedFrame.hpp): x its low 32 bits, y its high ones
+    vec2 halfSize;   // half the width and height
+    float halfDepth; // 0 for a decal that cannot be drawn
+    uint object;     // object index
+    uint look;       // type index (bits 0-15), object decal ID (16-23), opacity in 1/255 (24-31)
+    uint slant;      // the projection axis's slopes along the tangent and bitangent as two halves
+                     // (spatter/core/DecalProjection.hpp). A left-handed frame: bit 62 of the frame
+};
+
+layout(std430, binding = 9) readonly buffer DecalBoundsBuffer {
+    DecalBounds decalBounds[];
+};
+
+layout(std430, binding = 3) readonly buffer DecalBuffer {
+    DecalBody decalBodies[];
+};
+
+// One decal's two parts together.
+struct DecalRecord {
+    vec4 centerDepth; // xyz: the box's centre in object space; w: its half depth
+    uvec2 frame;
+    vec2 halfSize;
+    uvec3 info; // x: object index; y: type, object decal ID, opacity (DecalBody::look); z: slant
+};
+
+DecalRecord decalRecord(uint index) {
+    DecalBody b = decalBodies[index];
+    DecalRecord r;
+    r.centerDepth = vec4(decalBounds[index].center, b.halfDepth);
+    r.frame = b.frame;
+    r.halfSize = b.halfSize;
+    r.info = uvec3(b.object, b.look, b.slant);
+    return r;
+}
 
 // A decal type as the shaders use it.
 struct DecalTypeRecord {
@@ -24,10 +58,6 @@ struct DecalTypeRecord {
     uvec4 info;  // x: texture layer; y: SPATTER_DECAL_* flags; z: 1 when decals of the type can be drawn,
                  // 2 when the host draws them itself (DecalProjector::setHostDrawn), 0 otherwise
     vec4 params; // x: cosine of the largest accepted angle; y: roughness written
-};
-
-layout(std430, binding = 3) readonly buffer DecalBuffer {
-    DecalRecord decalRecords[];
 };
 
 layout(std430, binding = 8) readonly buffer DecalTypeBuffer {
@@ -112,7 +142,7 @@ DecalData unpackDecal(DecalRecord r) {
 }
 
 DecalData decalData(uint index) {
-    return unpackDecal(decalRecords[index]);
+    return unpackDecal(decalRecord(index));
 }
 
 // Octahedral normal encoding (Cigolle et al. 2014): unit vector <-> [-1, 1]^2.

@@ -13,7 +13,7 @@ void main() {
     // With culling on the GPU the count drawn may be an earlier frame's: an entry past this frame's
     // list may name a decal that is gone.
     uint index = visibleDecals[uint(gl_InstanceID)];
-    if (index >= uint(decalRecords.length())) {
+    if (index >= uint(decalBodies.length())) {
         gl_Position = vec4(0.0, 0.0, 2.0, 1.0); // outside the clip volume: nothing drawn
         v_color = vec3(0.0);
         return;

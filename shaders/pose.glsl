@@ -13,19 +13,19 @@ struct Influence {
     float weight;
 };
 
-layout(std430, binding = 9) readonly buffer PoseObjectBuffer {
+layout(std430, binding = 10) readonly buffer PoseObjectBuffer {
     PoseObject poseObjects[];
 };
-layout(std430, binding = 10) readonly buffer InfluenceBuffer {
+layout(std430, binding = 11) readonly buffer InfluenceBuffer {
     Influence influences[];
 };
-layout(std430, binding = 11) readonly buffer MorphDeltaBuffer {
+layout(std430, binding = 12) readonly buffer MorphDeltaBuffer {
     vec4 morphDeltas[];
 };
-layout(std430, binding = 12) readonly buffer JointBuffer {
+layout(std430, binding = 13) readonly buffer JointBuffer {
     mat4 joints[];
 };
-layout(std430, binding = 13) readonly buffer MorphWeightBuffer {
+layout(std430, binding = 14) readonly buffer MorphWeightBuffer {
     float morphWeights[];
 };
 

@@ -60,6 +60,7 @@ void DecalBatch::setDecals(const std::vector<Decal>& decals) {
     mirror_ = decals.size() < mirrorLimit_;
     records_ = mirror_ ? std::vector<DecalRecordGpu>(decals.size()) : std::vector<DecalRecordGpu>{};
     staged_.clear();
+    typeBound_ = 0;
     std::vector<uint32_t> all(decals.size());
     for (size_t i = 0; i < all.size(); ++i)
         all[i] = uint32_t(i);
@@ -115,6 +116,7 @@ void DecalBatch::stage(const std::vector<Decal>& decals, std::vector<uint32_t> s
         run.begin = begin;
         run.records.resize(end - begin);
         for (size_t i = begin; i < end; ++i) {
+            typeBound_ = std::max(typeBound_, size_t(decals[i].type) + 1);
             setValid(i, buildDecalRecord(decals[i], run.records[i - begin]));
             if (mirror_) records_[i] = run.records[i - begin];
         }
@@ -143,6 +145,12 @@ void DecalBatch::updateMirror(const std::vector<Decal>& decals) {
 
 size_t DecalBatch::invalidCount() const {
     return unsound_;
+}
+
+bool DecalBatch::typesPlain() const {
+    return typeBound_ <= typeRecords_.size() &&
+           std::all_of(typeRecords_.begin(), typeRecords_.end(),
+                       [](const DecalTypeGpu& t) { return t.info.z == 1u; });
 }
 
 uint32_t DecalBatch::flagsUnion() const {

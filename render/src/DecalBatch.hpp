@@ -76,6 +76,10 @@ public:
     // Decals whose box cannot be drawn (degenerate or not finite); with the CPU copy also those naming a
     // missing object or type.
     size_t invalidCount() const;
+    // Whether every type is drawn by the projector (none the host's, none that cannot be drawn) and
+    // every decal staged since setDecals names one of them: then a decal's type need not be read to
+    // know whether it is drawn.
+    bool typesPlain() const;
     // The DecalFlag bits of the valid decals (without the CPU copy: of every type that can be drawn).
     uint32_t flagsUnion() const;
     const DrawOrder& order() const { return order_; }
@@ -121,6 +125,7 @@ private:
     std::vector<DecalTypeGpu> typeRecords_;
     std::vector<uint8_t> hostTypes_, hostObjects_;
     std::vector<uint32_t> typeRank_;
+    size_t typeBound_ = 0; // above every type index staged since setDecals
     bool ranksChanged_ = false;
     DrawOrder order_;
     std::vector<bool> sound_; // per decal: its box can be drawn

@@ -362,8 +362,8 @@ struct DecalProjector::Impl {
         const Occlusion occlusion =
             host && occlusionPays() ? pyramid.build(*host, nearest.get()) : Occlusion{};
         buffers.bind();
-        culling.run(batch.size(), cull.reversedZ, cull.clipMinusOne, occlusion, buffers.visible(),
-                    buffers.visibleCapacity());
+        culling.run({batch.size(), cull.reversedZ, cull.clipMinusOne, !batch.typesPlain()}, occlusion,
+                    buffers.visible(), buffers.visibleCapacity());
         buffers.bind(); // the visible list may have grown
         takeGpuCounts(wait, stats);
         return {0, culling.draws()};
@@ -730,7 +730,8 @@ ProjectorResources DecalProjector::resources() const {
     ProjectorResources r;
     r.albedoLayers = m.textures.albedoTexture();
     r.normalLayers = m.textures.normalTexture();
-    r.decals = m.buffers.decals();
+    r.decals = m.buffers.records().bodies();
+    r.decalBounds = m.buffers.records().bounds();
     r.types = m.buffers.types();
     r.visible = m.buffers.visibleBuffer();
     r.objects = m.buffers.objects();

@@ -83,18 +83,19 @@ void GpuCulling::bind(const GlBuffer& visible) const {
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, counters_.get());
 }
 
-void GpuCulling::run(size_t decals, bool reversedZ, bool clipMinusOne, const Occlusion& occlusion,
-                     GlBuffer& visible, size_t& visibleCapacity) {
-    const uint32_t groups = reserve(decals, visible, visibleCapacity);
+void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& visible,
+                     size_t& visibleCapacity) {
+    const uint32_t groups = reserve(what.decals, visible, visibleCapacity);
     glNamedBufferSubData(counters_.get(), 0, GLsizeiptr(sizeof kCountersAtStart), kCountersAtStart.data());
     bind(visible);
     glUseProgram(classify_.get());
     glUniform1ui(0, entries_);
+    glUniform1ui(1, what.checkTypes ? 1u : 0u);
     glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     glUseProgram(exact_.get());
     glUniform1ui(0, groups);
-    glUniform4f(1, 0.0f, reversedZ ? 1.0f : 0.0f, clipMinusOne ? 1.0f : 0.0f, 0.0f);
+    glUniform4f(1, 0.0f, what.reversedZ ? 1.0f : 0.0f, what.clipMinusOne ? 1.0f : 0.0f, 0.0f);
     glUniform4i(2, occlusion.texture ? occlusion.levels : 0, occlusion.convention, occlusion.size.x,
                 occlusion.size.y);
     glBindTextureUnit(0, occlusion.texture);

@@ -32,6 +32,14 @@ struct Occlusion {
     glm::ivec2 size{0}; // of level 0
 };
 
+// What a run culls: the decals held, the view's clip depth conventions, and whether the first pass
+// reads each decal's type (DecalBatch::typesPlain() false).
+struct CullRun {
+    size_t decals = 0;
+    bool reversedZ = true, clipMinusOne = false;
+    bool checkTypes = true;
+};
+
 class GpuCulling {
 public:
     GpuCulling() = default;
@@ -44,12 +52,11 @@ public:
     // returns the bytes sent.
     size_t updateDrawOrder(const std::vector<uint32_t>& entries,
                            const std::vector<std::pair<size_t, size_t>>& runs);
-    // Culls the decals of the draw order against the frame block's camera, and against `occlusion`'s
-    // pyramid when it has one. The visible list goes into `visible` (grown to hold `decals` indices;
-    // `visibleCapacity` in bytes). Binds its own buffers over shader storage bindings 0-2 and 5-7
-    // (the projector's objects at 1 among them) and the dispatch-indirect buffer.
-    void run(size_t decals, bool reversedZ, bool clipMinusOne, const Occlusion& occlusion, GlBuffer& visible,
-             size_t& visibleCapacity);
+    // Culls the decals of the draw order (`what.decals` of them) against the frame block's camera, and
+    // against `occlusion`'s pyramid when it has one. The visible list goes into `visible` (grown to hold that
+    // many indices; `visibleCapacity` in bytes). Binds its own buffers over shader storage bindings 0-2 and
+    // 5-7 (the projector's objects at 1 among them) and the dispatch-indirect buffer.
+    void run(const CullRun& what, const Occlusion& occlusion, GlBuffer& visible, size_t& visibleCapacity);
     // One DrawElementsIndirectCommand: the cube's 36 indices, the visible count as instances (followed by the
     // occluded, invalid and host-drawn counts).
     GLuint draws() const { return counters_.get(); }

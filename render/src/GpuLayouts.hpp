@@ -15,6 +15,7 @@ enum Binding : uint32_t {
     kDecalBuffer = 3,
     kVisibleBuffer = 4,
     kDecalTypeBuffer = 8,
+    kDecalBoundsBuffer = 9,
 };
 
 // Decal flags (DecalTypeGpu::info.y; kDecalMirrored from DecalRecordGpu::frame), as SPATTER_DECAL_* in
@@ -62,18 +63,38 @@ struct alignas(16) MaterialGpu {
 };
 static_assert(sizeof(MaterialGpu) == 48, "MaterialGpu must match MaterialData (std430)");
 
-// std430, binding kDecalBuffer: one decal (DecalRecord in decal_data.glsl). Object-space data only,
-// so it changes only when the decal does; the camera-relative world-to-box transform is composed in
-// the shaders with the object's, and the rest of the decal's look comes from its type (DecalTypeGpu).
+// One decal as the CPU builds it (DecalRecord.hpp). Object-space data only, so it changes only when
+// the decal does; the camera-relative world-to-box transform is composed in the shaders with the
+// object's, and the rest of the decal's look comes from its type (DecalTypeGpu). The GPU keeps it in
+// two parts (DecalBoundsGpu, DecalBodyGpu: decal_data.glsl).
 struct alignas(16) DecalRecordGpu {
     glm::vec4 centerDepth; // xyz: the box's centre in object space; w: its half depth (0: not drawable)
     glm::uvec2 frame;      // Decal::packedFrame (PackedFrame.hpp): x its low 32 bits, y its high ones
     glm::vec2 halfSize;    // half the width and height
     glm::uvec4 info;       // x: object index; y: type (bits 0-15), object decal ID (16-23), opacity in
-                           // 1/255 (24-31); z: slant (DecalProjection.hpp); w: decal ID. Mirrored: bit
-                           // 62 of the frame
+                           // 1/255 (24-31); z: slant (DecalProjection.hpp); w: decal ID (CPU only).
+                           // Mirrored: bit 62 of the frame
 };
-static_assert(sizeof(DecalRecordGpu) == 48, "DecalRecordGpu must match DecalRecord (std430)");
+static_assert(sizeof(DecalRecordGpu) == 48, "DecalRecordGpu is three vec4s");
+
+// std430, binding kDecalBoundsBuffer: what the culling's pass over every decal reads (DecalBounds).
+struct alignas(16) DecalBoundsGpu {
+    glm::vec3 center;      // the box's centre in object space
+    uint32_t objectRadius; // bits 16-31: bounding radius (a float's high half, rounded up; 0: not
+                           // drawable); bits 0-15: object index, 0xffff from 65,535 on (the body's)
+};
+static_assert(sizeof(DecalBoundsGpu) == 16, "DecalBoundsGpu must match DecalBounds (std430)");
+
+// std430, binding kDecalBuffer: the rest of a decal (DecalBody).
+struct alignas(8) DecalBodyGpu {
+    glm::uvec2 frame;
+    glm::vec2 halfSize;
+    float halfDepth;
+    uint32_t object;
+    uint32_t look; // type (bits 0-15), object decal ID (16-23), opacity in 1/255 (24-31)
+    uint32_t slant;
+};
+static_assert(sizeof(DecalBodyGpu) == 32, "DecalBodyGpu must match DecalBody (std430)");
 
 // std430, binding kDecalTypeBuffer: one per decal type (DecalTypeRecord in decal_data.glsl).
 struct alignas(16) DecalTypeGpu {
@@ -86,11 +107,11 @@ static_assert(sizeof(DecalTypeGpu) == 48, "DecalTypeGpu must match DecalTypeReco
 
 // Binding points of the geometry pass's skinning and morphing buffers (shaders/pose.glsl).
 enum PoseBinding : uint32_t {
-    kPoseObjectBuffer = 9,  // PoseObjectGpu per object, uploaded with the scene
-    kInfluenceBuffer = 10,  // InfluenceGpu per vertex and influence, uploaded with the scene
-    kMorphDeltaBuffer = 11, // vec4 (position, normal, tangent delta) per target and vertex, with the scene
-    kJointBuffer = 12,      // mat4 per skin joint, camera-relative, every frame
-    kMorphWeightBuffer = 13 // float per object morph target, every frame
+    kPoseObjectBuffer = 10, // PoseObjectGpu per object, uploaded with the scene
+    kInfluenceBuffer = 11,  // InfluenceGpu per vertex and influence, uploaded with the scene
+    kMorphDeltaBuffer = 12, // vec4 (position, normal, tangent delta) per target and vertex, with the scene
+    kJointBuffer = 13,      // mat4 per skin joint, camera-relative, every frame
+    kMorphWeightBuffer = 14 // float per object morph target, every frame
 };
 
 // std430, binding kPoseObjectBuffer: where an object's skin and morph data start.

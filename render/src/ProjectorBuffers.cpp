@@ -59,13 +59,9 @@ size_t ProjectorBuffers::uploadRecords(DecalBatch& batch, size_t& uploads) {
     size_t bytes = uploadTypes(batch), end = batch.size();
     for (const StagedRecords& run : batch.staged())
         end = std::max(end, run.begin + run.records.size());
-    growBuffer(decals_, decalCapacity_, std::max<size_t>(1, end) * sizeof(DecalRecordGpu),
-               64 * sizeof(DecalRecordGpu), recordsOnGpu_ * sizeof(DecalRecordGpu));
+    records_.reserve(std::max<size_t>(1, end), recordsOnGpu_);
     for (const StagedRecords& run : batch.staged()) {
-        const size_t size = run.records.size() * sizeof(DecalRecordGpu);
-        glNamedBufferSubData(decals_.get(), GLintptr(run.begin * sizeof(DecalRecordGpu)), GLsizeiptr(size),
-                             run.records.data());
-        bytes += size;
+        bytes += records_.upload(run.begin, run.records);
         ++uploads;
     }
     recordsOnGpu_ = std::max(batch.size(), end);
@@ -89,7 +85,7 @@ size_t ProjectorBuffers::uploadDrawOrder(DecalBatch& batch, GpuCulling& culling)
 void ProjectorBuffers::bind() const {
     glBindBufferBase(GL_UNIFORM_BUFFER, kProjectorFrameBlock, frame_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorObjectBuffer, objects_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorDecalBuffer, decals_.get());
+    records_.bind();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kProjectorVisibleBuffer, visible_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalTypeBuffer, types_.get());
 }

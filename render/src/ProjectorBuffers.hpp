@@ -5,6 +5,7 @@
 // order's changed runs for the GPU culling.
 
 #include "DecalBatch.hpp"
+#include "DecalRecordBuffers.hpp"
 #include "GlObjects.hpp"
 #include "GpuCulling.hpp"
 
@@ -49,20 +50,21 @@ public:
     size_t visibleCount() const { return visibleCount_; }
     void setVisibleCount(size_t n) { visibleCount_ = n; }
     // For ProjectorResources.
-    GLuint decals() const { return decals_.get(); }
+    const DecalRecordBuffers& records() const { return records_; }
     GLuint types() const { return types_.get(); }
     GLuint visibleBuffer() const { return visible_.get(); }
     GLuint objects() const { return objects_.get(); }
     // Bytes of the buffers it holds.
-    size_t gpuBytes() const { return decalCapacity_ + visibleCapacity_ + objectCapacity_ + typeBytes_; }
+    size_t gpuBytes() const { return records_.bytes() + visibleCapacity_ + objectCapacity_ + typeBytes_; }
 
 private:
     size_t uploadTypes(const DecalBatch& batch);
 
-    GlBuffer frame_, objects_, decals_, visible_, types_;
+    GlBuffer frame_, objects_, visible_, types_;
+    DecalRecordBuffers records_;
     bool typesChanged_ = true;
-    size_t objectCapacity_ = 0, decalCapacity_ = 0, visibleCapacity_ = 0, visibleCount_ = 0, typeBytes_ = 0;
-    size_t recordsOnGpu_ = 0; // records the decal buffer holds (past the batch's size they are stale)
+    size_t objectCapacity_ = 0, visibleCapacity_ = 0, visibleCount_ = 0, typeBytes_ = 0;
+    size_t recordsOnGpu_ = 0; // records the decal buffers hold (past the batch's size they are stale)
     bool orderOnGpu_ = false; // the GPU culling's draw order is the batch's
 };
 

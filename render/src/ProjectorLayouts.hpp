@@ -1,7 +1,7 @@
 #pragma once
 // C++ mirrors of the projector's GLSL blocks in shaders/projector.glsl and forward_data.glsl (the
-// decal records are DecalRecordGpu, GpuLayouts.hpp). Field order, types and padding match the std140 / std430
-// rules; the static_asserts keep both sides in step.
+// decals are DecalBoundsGpu and DecalBodyGpu, GpuLayouts.hpp). Field order, types and padding match the
+// std140 / std430 rules; the static_asserts keep both sides in step.
 
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -12,7 +12,7 @@ namespace spatter::render_detail {
 enum ProjectorBinding : uint32_t {
     kProjectorFrameBlock = 0,   // uniform block ProjectorFrame
     kProjectorObjectBuffer = 1, // shader storage ProjectorObjects
-    kProjectorDecalBuffer = 3,  // shader storage DecalBuffer (decal_data.glsl)
+    // The decals' bodies and bounds: kDecalBuffer and kDecalBoundsBuffer (GpuLayouts.hpp).
     kProjectorVisibleBuffer = 4,
     kForwardRectBuffer = 0,  // shader storage TileRects of the binning passes (forward_*.comp)
     kForwardCountBuffer = 2, // shader storage TileCounts / TileCursors

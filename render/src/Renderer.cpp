@@ -1,6 +1,7 @@
 #include "spatter/render/Renderer.hpp"
 
 #include "DecalBatch.hpp"
+#include "DecalRecordBuffers.hpp"
 #include "DecalRouting.hpp"
 #include "GBuffer.hpp"
 #include "GlObjects.hpp"
@@ -156,7 +157,8 @@ struct Renderer::Impl {
     TextureSpaceDecals textureSpace;
     DecalBatch splatBatch;
     DecalRouting routing; // which decals the renderer draws itself: craters and splats
-    GlBuffer splatBuffer, splatTypes, splatLists;
+    DecalRecordBuffers splatRecords;
+    GlBuffer splatTypes, splatLists;
 
     // Tells the projector which decals are the renderer's.
     void updateHostDrawn() { projector->setHostDrawn(routing.hostTypes(), routing.hostObjects()); }
@@ -207,6 +209,7 @@ struct Renderer::Impl {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBuffer, objectBuffer.get());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBuffer, scene.materialBuffer());
         const ProjectorResources decals = projector->resources();
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBoundsBuffer, decals.decalBounds);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBuffer, decals.decals);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBuffer, decals.visible);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalTypeBuffer, decals.types);
@@ -511,9 +514,7 @@ struct Renderer::Impl {
         for (const auto& l : perObject)
             lists.insert(lists.end(), l.begin(), l.end());
         if (lists.empty()) return size_t(0);
-        splatBuffer = createBuffer();
-        glNamedBufferStorage(splatBuffer.get(), GLsizeiptr(inst.size() * sizeof(DecalRecordGpu)), inst.data(),
-                             0);
+        splatRecords.assign(inst);
         const std::vector<DecalTypeGpu>& typeRecords = splatBatch.typeRecords();
         splatTypes = createBuffer();
         glNamedBufferStorage(splatTypes.get(), GLsizeiptr(typeRecords.size() * sizeof(DecalTypeGpu)),
@@ -521,7 +522,8 @@ struct Renderer::Impl {
         splatLists = createBuffer();
         glNamedBufferStorage(splatLists.get(), GLsizeiptr(lists.size() * sizeof(uint32_t)), lists.data(), 0);
         splatBatch.markUploaded();
-        TextureSpaceDecals::SplatInputs in{splatBuffer.get(),
+        TextureSpaceDecals::SplatInputs in{splatRecords.bounds(),
+                                           splatRecords.bodies(),
                                            splatTypes.get(),
                                            splatLists.get(),
                                            projector->resources().albedoLayers,

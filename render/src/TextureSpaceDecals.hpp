@@ -45,7 +45,7 @@ public:
     // the pose of the pose buffers (skinned objects through worldToObject[o]: camera-relative world
     // to object o's space), as the geometry pass draws them; otherwise at rest.
     struct SplatInputs {
-        GLuint instances = 0, types = 0, lists = 0;
+        GLuint bounds = 0, bodies = 0, types = 0, lists = 0; // the decals' two parts (DecalRecordBuffers)
         GLuint decalAlbedo = 0, decalNormal = 0;
         bool posed = false;
         std::vector<glm::mat4> worldToObject;

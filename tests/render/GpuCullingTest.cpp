@@ -25,7 +25,7 @@ using namespace spatter::test;
 namespace {
 
 // `count` decals on the wall (object 0) scattered over an area wider than the view and the wall,
-// some deep enough to reach the camera, in three sizes.
+// some deep enough to reach the camera, in three sizes, one in five projected along a slanted axis.
 std::vector<Decal> scatteredDecals(int count, uint64_t seed) {
     Rng rng(seed);
     std::vector<Decal> decals;
@@ -33,6 +33,7 @@ std::vector<Decal> scatteredDecals(int count, uint64_t seed) {
         Decal d = test::WallScene::decalAt(0, {rng.uniform(-6.0f, 6.0f), rng.uniform(-4.0f, 4.0f), 0.05f});
         d.size = glm::vec2(0.2f + 0.3f * float(i % 3));
         d.halfDepth = i % 7 == 0 ? 4.0f : 0.2f; // deep boxes reach the eye at the close views
+        if (i % 5 == 0) d.setProjectionAxis({0.7f, -0.4f, 1.0f}); // slanted boxes
         decals.push_back(d);
     }
     // Deep boxes around the close views' eye, (0.2, 1, 0.6) in the world, and beside it.
@@ -50,31 +51,47 @@ struct Culled {
     ProjectorStats stats;
 };
 
-// The coverage of `decals` on the wall shaped by `shape` and moved by `offset`, seen by `camera`
-// (moved too), culled on the CPU or on the GPU (with or without the occlusion test).
+// How a coverage run differs from the plain wall.
+struct Variant {
+    bool occlusion = true;               // the GPU's occlusion test
+    glm::dmat4 shape{1.0};               // the wall's shape (before it moves)
+    std::vector<DecalType> types;        // types after the wall's own
+    std::vector<uint8_t> hostDrawn;      // types the host draws (DecalProjector::setHostDrawn)
+    std::vector<glm::dmat4> moreObjects; // the projector's objects after the wall's (moved with it)
+};
+
+// The coverage of `decals` on the wall shaped by `variant.shape` and moved by `offset`, seen by
+// `camera` (moved too), culled on the CPU or on the GPU.
 Culled coverage(const std::vector<Decal>& decals, const glm::dvec3& offset, Camera camera, bool onGpu,
-                bool occlusion = true, const glm::dmat4& shape = glm::dmat4(1.0)) {
+                const Variant& variant = {}) {
     test::WallScene wall;
-    const glm::dmat4 move = glm::translate(glm::dmat4(1.0), offset) * shape;
+    wall.types.insert(wall.types.end(), variant.types.begin(), variant.types.end());
+    const glm::dmat4 move = glm::translate(glm::dmat4(1.0), offset) * variant.shape;
     for (size_t i = 0; i < wall.scene.objects.size(); ++i) {
         wall.scene.objects[i].transform = move * wall.scene.objects[i].transform;
         wall.transforms[i] = wall.scene.objects[i].transform;
     }
+    std::vector<glm::dmat4> transforms = wall.transforms;
+    std::vector<uint8_t> ids = wall.ids;
+    for (const glm::dmat4& t : variant.moreObjects)
+        transforms.push_back(move * t);
+    ids.resize(transforms.size(), 0);
     camera.eye += offset;
     camera.target += offset;
     Result<test::ForeignHost> host = test::ForeignHost::create(kWallWidth, kWallHeight);
     ProjectorSettings settings;
     settings.gpuCullingFrom = onGpu ? 0 : std::numeric_limits<size_t>::max();
     settings.waitForTimers = true; // this draw's counts
-    settings.occlusionCulling = occlusion;
+    settings.occlusionCulling = variant.occlusion;
     Result<DecalProjector> projector = DecalProjector::create(settings);
     EXPECT_TRUE(host.ok() && projector.ok());
     if (!host || !projector) return {};
     host->setScene(wall.scene);
     host->draw(wall.transforms, wall.ids, camera);
     host->clearCoverage();
-    EXPECT_TRUE(projector->setObjects(wall.transforms, wall.ids).ok());
+    EXPECT_TRUE(projector->setObjects(transforms, ids).ok());
     projector->setDecalTypes(wall.types);
+    projector->setHostDrawn(variant.hostDrawn, {});
     projector->setDecals(decals);
     ProjectorDraw draw;
     draw.coverageTexture = host->coverageTexture();
@@ -87,8 +104,11 @@ Culled coverage(const std::vector<Decal>& decals, const glm::dvec3& offset, Came
 
 void expectSameAsCpu(const char* name, const std::vector<Decal>& decals, const glm::dvec3& offset,
                      const Camera& camera, bool occlusion, const glm::dmat4& shape = glm::dmat4(1.0)) {
-    const Culled cpu = coverage(decals, offset, camera, false, true, shape);
-    const Culled gpu = coverage(decals, offset, camera, true, occlusion, shape);
+    Variant variant;
+    variant.shape = shape;
+    const Culled cpu = coverage(decals, offset, camera, false, variant);
+    variant.occlusion = occlusion;
+    const Culled gpu = coverage(decals, offset, camera, true, variant);
     std::printf("%s: %zu drawn (%zu inside), %zu culled; %zu covered pixels\n", name, cpu.stats.drawn,
                 cpu.stats.inside, cpu.stats.culled, test::countSet(cpu.coverage));
     EXPECT_GT(test::countSet(cpu.coverage), 0u) << name;
@@ -174,6 +194,66 @@ TEST(GpuCulling, MatchesTheCpuFarFromTheOrigin) {
     expectSameAsCpu("far close", decals, far, test::lookAt({0.2, 1.0, 0.6}, {0.0, 1.0, 0.0}));
 }
 
+namespace {
+
+// The CPU's and the GPU's culling of `decals` under `variant` give the same coverage and counts.
+void expectSameCounts(const std::vector<Decal>& decals, const Variant& variant) {
+    const Camera camera = test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0});
+    const Culled cpu = coverage(decals, {}, camera, false, variant);
+    const Culled gpu = coverage(decals, {}, camera, true, variant);
+    std::printf("%zu drawn, %zu the host's, %zu that cannot be drawn; %zu covered pixels\n", cpu.stats.drawn,
+                cpu.stats.hostDrawn, cpu.stats.invalid, test::countSet(cpu.coverage));
+    EXPECT_GT(test::countSet(cpu.coverage), 0u);
+    EXPECT_EQ(gpu.coverage, cpu.coverage);
+    EXPECT_EQ(gpu.stats.hostDrawn, cpu.stats.hostDrawn);
+    EXPECT_EQ(gpu.stats.invalid, cpu.stats.invalid);
+    EXPECT_GE(gpu.stats.drawn, cpu.stats.drawn);
+    EXPECT_LE(gpu.stats.drawn, cpu.stats.drawn + 2);
+}
+
+} // namespace
+
+// Decals of a type the host draws, of a type that cannot be drawn, and naming a type or an object
+// that does not exist, in view and out of it: the GPU counts them as the CPU does and draws none (its
+// first pass then reads each decal's type, which it skips while every type is the projector's).
+TEST(GpuCulling, CountsTheHostsDecalsAndThoseThatCannotBeDrawnAsTheCpuDoes) {
+    SPATTER_REQUIRE_GL(gl);
+    const test::WallScene wall;
+    Variant variant;
+    variant.types = {wall.types.at(0), wall.types.at(0)};
+    variant.types[1].texture = 99; // no such layer
+    const uint16_t host = uint16_t(wall.types.size()), none = uint16_t(host + 1);
+    variant.hostDrawn.assign(host + 1, 0);
+    variant.hostDrawn[host] = 1;
+    std::vector<Decal> decals = scatteredDecals(400, 23);
+    for (size_t i = 0; i < decals.size(); ++i) {
+        const uint16_t kinds[4] = {0, host, none, uint16_t(none + 5)};
+        decals[i].type = kinds[i % 4];
+        if (i % 9 == 0) decals[i].object = 7; // no such object
+    }
+    expectSameCounts(decals, variant);
+}
+
+// The decals' bounds hold object indices below 65,535 and send the culling to the body for the
+// others: decals on objects on either side of that line are culled as the CPU culls them. The
+// objects they name are the wall; the others, 65,535 among them, lie 50 m aside, where a decal
+// given the wrong object (the field's 0xffff, or 65,536 and 70,000 cut to 16 bits) would be culled.
+TEST(GpuCulling, FindsTheObjectsOfDecalsPastTheBoundsObjectField) {
+    SPATTER_REQUIRE_GL(gl);
+    const test::WallScene wall;
+    const uint32_t objects[4] = {0, 65534, 65536, 70000};
+    Variant variant;
+    variant.moreObjects.assign(70001 - wall.transforms.size(),
+                               glm::translate(glm::dmat4(1.0), glm::dvec3(50.0, 0.0, 0.0)) *
+                                   wall.transforms[0]);
+    for (const uint32_t o : objects)
+        if (o >= wall.transforms.size()) variant.moreObjects[o - wall.transforms.size()] = wall.transforms[0];
+    std::vector<Decal> decals = scatteredDecals(300, 29);
+    for (size_t i = 0; i < decals.size(); ++i)
+        decals[i].object = objects[i % 4];
+    expectSameCounts(decals, variant);
+}
+
 // Below gpuCullingFrom the projector culls on the GPU while many decals are in view
 // (gpuCullingInViewFrom, here 8): the first draw culls on the CPU and finds more than that in view,
 // the next takes the GPU and covers the same pixels; turned away from the wall, one more draw stays
@@ -244,8 +324,10 @@ TEST(GpuCulling, OcclusionCullsTheBoxesHiddenBehindTheSceneAndNoPixelChanges) {
         d.size = glm::vec2(0.3f);
         decals.push_back(d);
     }
-    const Culled open = coverage(decals, glm::dvec3(0.0), camera, true, false);
-    const Culled occluded = coverage(decals, glm::dvec3(0.0), camera, true, true);
+    Variant noOcclusion;
+    noOcclusion.occlusion = false;
+    const Culled open = coverage(decals, glm::dvec3(0.0), camera, true, noOcclusion);
+    const Culled occluded = coverage(decals, glm::dvec3(0.0), camera, true);
     EXPECT_EQ(open.stats.drawn, decals.size());
     EXPECT_EQ(occluded.stats.drawn, 4u) << "the six boxes behind the crate are culled";
     EXPECT_EQ(occluded.stats.culled, 6u);
@@ -254,8 +336,8 @@ TEST(GpuCulling, OcclusionCullsTheBoxesHiddenBehindTheSceneAndNoPixelChanges) {
     EXPECT_EQ(occluded.coverage, open.coverage);
     // Far from the origin too, where the depth of a box and of the crate differ by little.
     const glm::dvec3 far(1.0e5, -2.0e4, 3.0e5);
-    const Culled openFar = coverage(decals, far, camera, true, false);
-    const Culled occludedFar = coverage(decals, far, camera, true, true);
+    const Culled openFar = coverage(decals, far, camera, true, noOcclusion);
+    const Culled occludedFar = coverage(decals, far, camera, true);
     EXPECT_EQ(occludedFar.coverage, openFar.coverage);
     EXPECT_LE(occludedFar.stats.drawn, openFar.stats.drawn);
 }

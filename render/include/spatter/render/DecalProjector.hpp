@@ -45,7 +45,7 @@
 // state exactly as it found it, as Dear ImGui's OpenGL 3 backend does: it saves and restores the
 // bound draw and read framebuffers, viewport, program, vertex array, active texture unit and the
 // 2D and 2D-array textures and samplers of units 0-7, the uniform buffer bindings 0-1 and shader
-// storage bindings 0-8 (with their ranges), image units 0-2 and the generic uniform, shader storage, array,
+// storage bindings 0-9 (with their ranges), image units 0-2 and the generic uniform, shader storage, array,
 // pixel unpack, draw indirect and dispatch indirect buffer bindings, blending (enable per draw buffer 0-3,
 // equations, functions), colour masks of draw buffers 0-3, depth test, function and mask, stencil test,
 // scissor test, face culling and cull mode, front face, clip control, GL_FRAMEBUFFER_SRGB, the unpack
@@ -288,13 +288,14 @@ struct ProjectorStats {
 
 // GL objects of the projector that a host may read: the decal texture arrays, and the instance data
 // for its own debug drawing (decal box outlines). Valid until the next setDecals, addDecalTexture* or
-// draw. Layouts: glsl/decal_data.glsl (DecalRecord, DecalTypeRecord, the visible list, and decalData(),
-// which unpacks a decal) and glsl/projector.glsl
+// draw. Layouts: glsl/decal_data.glsl (DecalBounds at binding 9, DecalBody at binding 3,
+// DecalTypeRecord, the visible list, and decalData(), which unpacks a decal) and glsl/projector.glsl
 // (ProjectorObject), installed beside this header.
 struct ProjectorResources {
     uint32_t albedoLayers = 0; // GL_TEXTURE_2D_ARRAY, SRGB8_ALPHA8: decal albedo, straight alpha
     uint32_t normalLayers = 0; // GL_TEXTURE_2D_ARRAY, RGBA8: tangent-space normal maps
-    uint32_t decals = 0;       // shader storage: DecalRecord (48 bytes) per decal given to setDecals
+    uint32_t decals = 0;       // shader storage: DecalBody (32 bytes) per decal given to setDecals
+    uint32_t decalBounds = 0;  // shader storage: DecalBounds (16 bytes) per decal (decal_data.glsl)
     uint32_t types = 0;        // shader storage: DecalTypeRecord per decal type
     uint32_t visible = 0;      // shader storage: uint decal indices of the last draw, visibleCount of them
     uint32_t objects = 0;      // shader storage: ProjectorObject per object (relative to the last eye)

@@ -1,0 +1,87 @@
+#include "DecalRecordBuffers.hpp"
+
+#include "SphereCull.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace spatter::render_detail {
+
+namespace {
+
+constexpr uint32_t kObjectField = 0xffffu; // the bounds' object index; this value: the body's
+
+// The high half of the bits of a float at least `radius` (positive): the next such value up unless
+// the low half is zero. Past the largest float it is infinite, a sphere no plane culls.
+uint32_t radiusBits(double radius) {
+    float f = float(radius);
+    if (double(f) < radius) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    uint32_t bits = 0;
+    std::memcpy(&bits, &f, sizeof bits);
+    if ((bits & 0xffffu) != 0u) bits += 0x10000u;
+    return bits & 0xffff0000u;
+}
+
+template <typename T, typename F> std::vector<T> parts(const std::vector<DecalRecordGpu>& records, F part) {
+    std::vector<T> out;
+    out.reserve(records.size());
+    for (const DecalRecordGpu& r : records)
+        out.push_back(part(r));
+    return out;
+}
+
+template <typename T> void storeExactly(GlBuffer& buffer, size_t& capacity, const std::vector<T>& items) {
+    buffer = createBuffer();
+    capacity = items.size() * sizeof(T);
+    glNamedBufferStorage(buffer.get(), GLsizeiptr(capacity), items.data(), 0);
+}
+
+} // namespace
+
+DecalBoundsGpu recordBounds(const DecalRecordGpu& r) {
+    const bool drawable = r.centerDepth.w > 0.0f;
+    const uint32_t object = r.info.x < kObjectField ? r.info.x : kObjectField;
+    return {glm::vec3(r.centerDepth), (drawable ? radiusBits(recordRadius(r)) : 0u) | object};
+}
+
+DecalBodyGpu recordBody(const DecalRecordGpu& r) {
+    return {r.frame, r.halfSize, r.centerDepth.w, r.info.x, r.info.y, r.info.z};
+}
+
+float boundsRadius(const DecalBoundsGpu& b) {
+    const uint32_t bits = b.objectRadius & 0xffff0000u;
+    float radius = 0.0f;
+    std::memcpy(&radius, &bits, sizeof radius);
+    return radius;
+}
+
+void DecalRecordBuffers::reserve(size_t count, size_t keep) {
+    growBuffer(bounds_, boundsCapacity_, count * sizeof(DecalBoundsGpu), 64 * sizeof(DecalBoundsGpu),
+               keep * sizeof(DecalBoundsGpu));
+    growBuffer(bodies_, bodiesCapacity_, count * sizeof(DecalBodyGpu), 64 * sizeof(DecalBodyGpu),
+               keep * sizeof(DecalBodyGpu));
+}
+
+size_t DecalRecordBuffers::upload(size_t begin, const std::vector<DecalRecordGpu>& records) {
+    const std::vector<DecalBoundsGpu> bounds = parts<DecalBoundsGpu>(records, recordBounds);
+    const std::vector<DecalBodyGpu> bodies = parts<DecalBodyGpu>(records, recordBody);
+    glNamedBufferSubData(bounds_.get(), GLintptr(begin * sizeof(DecalBoundsGpu)),
+                         GLsizeiptr(bounds.size() * sizeof(DecalBoundsGpu)), bounds.data());
+    glNamedBufferSubData(bodies_.get(), GLintptr(begin * sizeof(DecalBodyGpu)),
+                         GLsizeiptr(bodies.size() * sizeof(DecalBodyGpu)), bodies.data());
+    return records.size() * (sizeof(DecalBoundsGpu) + sizeof(DecalBodyGpu));
+}
+
+void DecalRecordBuffers::assign(const std::vector<DecalRecordGpu>& records) {
+    const std::vector<DecalRecordGpu> some = records.empty() ? std::vector<DecalRecordGpu>(1) : records;
+    storeExactly(bounds_, boundsCapacity_, parts<DecalBoundsGpu>(some, recordBounds));
+    storeExactly(bodies_, bodiesCapacity_, parts<DecalBodyGpu>(some, recordBody));
+}
+
+void DecalRecordBuffers::bind() const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBoundsBuffer, bounds_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBuffer, bodies_.get());
+}
+
+} // namespace spatter::render_detail
