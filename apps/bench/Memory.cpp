@@ -217,8 +217,7 @@ int runMemoryCommand(int argc, char** argv) {
             std::printf("renderer GPU: first frame uploaded %.1f MB: %.1f B per decal of records + 4 B per "
                         "visible decal (%zu visible) + one type\n",
                         mb(uploaded), gpuPerDecal, frame->decalsDrawn);
-            std::printf("              memory gone: %.1f B per decal (%s; the buffer grows by doubling)\n",
-                        gpuMeasured, gpuHow.c_str());
+            std::printf("              memory gone: %.1f B per decal (%s)\n", gpuMeasured, gpuHow.c_str());
             j["renderer_cpu_bytes_per_decal"] = rendererCpu;
             j["renderer_cpu_heap_bytes_per_decal"] = rendererCpuHeap;
             j["gpu_buffer_bytes_per_decal"] = gpuHeld;

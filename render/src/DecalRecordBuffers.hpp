@@ -23,7 +23,7 @@ float boundsRadius(const DecalBoundsGpu& b);
 
 class DecalRecordBuffers {
 public:
-    // Room for `count` records (doubling, from 64), keeping the first `keep` records held.
+    // Room for `count` records (growBuffer: by a quarter, from 64), keeping the first `keep` held.
     void reserve(size_t count, size_t keep);
     // Sends `records` to places [begin, begin + records.size()) (within the room reserved); returns
     // the bytes sent.

@@ -4,6 +4,7 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <utility>
 
@@ -94,12 +95,16 @@ inline bool reserveBuffer(GlBuffer& buffer, size_t& capacity, size_t bytes, size
     return true;
 }
 
-// reserveBuffer that keeps the first `keep` bytes of the old buffer, copied on the GPU.
+// Grows `buffer` like reserveBuffer, keeping the first `keep` bytes of the old buffer (copied on the
+// GPU), but by a quarter of its capacity (at least `minimum`), or to `bytes` itself where that is
+// more: a large batch takes no room to spare, a stream of small ones a copy now and then.
 inline bool growBuffer(GlBuffer& buffer, size_t& capacity, size_t bytes, size_t minimum, size_t keep) {
     if (bytes <= capacity && buffer) return false;
     GlBuffer old = std::move(buffer);
     const size_t oldCapacity = old ? capacity : 0;
-    reserveBuffer(buffer, capacity, bytes, minimum);
+    capacity = std::max({bytes, oldCapacity + oldCapacity / 4, minimum});
+    buffer = createBuffer();
+    glNamedBufferStorage(buffer.get(), GLsizeiptr(capacity), nullptr, GL_DYNAMIC_STORAGE_BIT);
     keep = keep < oldCapacity ? keep : oldCapacity;
     if (keep > 0) glCopyNamedBufferSubData(old.get(), buffer.get(), 0, 0, GLsizeiptr(keep));
     return true;

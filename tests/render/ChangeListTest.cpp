@@ -185,22 +185,23 @@ TEST(ChangeList, ALongRunOfSpawnsKeepsGpuMemoryFlatAndNeverDrawsARemovedDecal) {
         const DecalChanges changes = r->sys->changesSince(r->version);
         r->version = changes.version;
         r->h->projector.updateDecals(r->sys->decals(), changes);
+        mostAlive = std::max(mostAlive, r->sys->decals().size()); // the budget, and those fading out
         if (frame % 40 != 39) continue;
         ProjectorStats st;
         drawThrough(*r, r->h->projector, &st);
         const DecalStats& s = r->sys->stats();
         EXPECT_EQ(st.decals, r->sys->decals().size());
-        mostAlive = std::max(mostAlive, r->sys->decals().size()); // the budget, and those fading out
         EXPECT_EQ(s.placed, s.alive - s.fading + s.evicted + s.expired + s.removed);
         const ProjectorResources res = r->h->projector.resources();
         const size_t bytes = bufferBytes(res.decals) + bufferBytes(res.decalBounds);
+        if (frame < kFrames / 2) continue; // the decals alive (the budget and those fading) settle
         if (bufferAtBudget == 0) bufferAtBudget = bytes;
         EXPECT_EQ(bytes, bufferAtBudget) << "frame " << frame << ": the decal buffers grew past the budget";
     }
     std::printf("%d spawns: %zu decals alive, decal buffers %zu bytes, %llu evicted, %llu expired\n",
                 kFrames * kPerFrame, r->sys->decals().size(), bufferAtBudget,
                 (unsigned long long)r->sys->stats().evicted, (unsigned long long)r->sys->stats().expired);
-    EXPECT_LE(bufferAtBudget, 2 * mostAlive * 48); // 48 bytes a decal, the buffers grown by doubling
+    EXPECT_LE(bufferAtBudget, mostAlive * 48 * 5 / 4); // 48 bytes a decal, grown by a quarter at a time
 
     // Every decal removed: nothing of them is drawn any more, by either projector.
     ASSERT_TRUE(r->sys->removeObject(0).ok());
