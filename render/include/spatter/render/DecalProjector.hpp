@@ -266,7 +266,8 @@ struct ProjectorStats {
     size_t inside = 0;          // of those, boxes that may hold the eye or cross the near plane (a
                                 // conservative test; 0 with GPU culling, which does not tell)
     size_t bytesUploaded = 0;   // instance and visibility data sent to the GPU by this draw
-    size_t instanceUploads = 0; // buffer uploads of decal instances: one per run of changed decals
+    size_t instanceUploads = 0; // runs of changed decals uploaded (each one write to the bounds, one to
+                                // the bodies)
     size_t drawCalls = 0;
     bool skipped = true; // no visible decal: no normal copy, no draw
     // The copy of the host's normals that decals blending normal maps read (G-buffer blend): "" (none
