@@ -49,13 +49,6 @@ DecalBodyGpu recordBody(const DecalRecordGpu& r) {
     return {r.frame, r.halfSize, r.centerDepth.w, r.info.x, r.info.y, r.info.z};
 }
 
-float boundsRadius(const DecalBoundsGpu& b) {
-    const uint32_t bits = b.objectRadius & 0xffff0000u;
-    float radius = 0.0f;
-    std::memcpy(&radius, &bits, sizeof radius);
-    return radius;
-}
-
 void DecalRecordBuffers::reserve(size_t count, size_t keep) {
     growBuffer(bounds_, boundsCapacity_, count * sizeof(DecalBoundsGpu), 64 * sizeof(DecalBoundsGpu),
                keep * sizeof(DecalBoundsGpu));

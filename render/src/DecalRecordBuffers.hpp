@@ -18,8 +18,6 @@ namespace spatter::render_detail {
 // record that cannot be drawn has a radius of 0.
 DecalBoundsGpu recordBounds(const DecalRecordGpu& r);
 DecalBodyGpu recordBody(const DecalRecordGpu& r);
-// The radius in the bounds' bits 16-31, as the shaders read it.
-float boundsRadius(const DecalBoundsGpu& b);
 
 class DecalRecordBuffers {
 public:
