@@ -126,12 +126,14 @@ StressResult runExtremeSizesRender(const StressConfig& cfg) {
     const int width = cfg.full ? 320 : 128, height = cfg.full ? 240 : 96;
     Result<Renderer> renderer = caseRenderer(cfg, width, height, r);
     if (!renderer) return r;
+    Result<Renderer> gpuCulled = caseRenderer(cfg, width, height, r, 0); // the same, culled on the GPU
+    if (!gpuCulled) return r;
     const Scene scene = planeScene(5.0); // 10 m wide
     Camera cam;
     cam.eye = {0.0, 4.0, 9.0};
     cam.target = {0.0, 0.0, -1.0};
     Result<DecalSystem> sys = DecalSystem::create(scene, unlimitedSettings(cfg.seed));
-    if (!sys || !renderer->setScene(scene)) {
+    if (!sys || !renderer->setScene(scene) || !gpuCulled->setScene(scene)) {
         r.failure(sys ? "setScene failed" : sys.error());
         r.row("scene", INFINITY, 0.0, 0);
         return r;
@@ -150,15 +152,17 @@ StressResult runExtremeSizesRender(const StressConfig& cfg) {
             plane[size_t(j) * size_t(width) + size_t(i)] = 1;
             hitPoint[size_t(j) * size_t(width) + size_t(i)] = p;
         }
-    auto frame = [&](const std::vector<Decal>& decals, const std::vector<DecalType>& types, View view,
-                     FrameStats* stats) -> Result<Image> {
-        renderer->setDecalTypes(types);
-        renderer->setDecals(decals);
-        Result<FrameStats> fs = renderer->render(cam, view);
+    auto frameOf = [&](Renderer& through, const std::vector<Decal>& decals,
+                       const std::vector<DecalType>& types, View view, FrameStats* stats) -> Result<Image> {
+        through.setDecalTypes(types);
+        through.setDecals(decals);
+        Result<FrameStats> fs = through.render(cam, view);
         if (!fs) return fail(fs.error());
         if (stats) *stats = fs.value();
-        return renderer->readback();
+        return through.readback();
     };
+    auto frame = [&](const std::vector<Decal>& decals, const std::vector<DecalType>& types, View view,
+                     FrameStats* stats) { return frameOf(renderer.value(), decals, types, view, stats); };
     Result<Image> bare = frame({}, {}, View::Final, nullptr);
     if (!bare) {
         r.failure(bare.error());
@@ -167,7 +171,7 @@ StressResult runExtremeSizesRender(const StressConfig& cfg) {
     }
 
     double hugeMismatch = 0.0, midMismatch = 0.0;
-    size_t tinyPixels = 0, invalid = 0, outside = 0, renders = 0;
+    size_t tinyPixels = 0, invalid = 0, outside = 0, renders = 0, unlikeGpu = 0;
     for (double f : sizeFactors(cfg.full)) {
         const DecalType type = makeType("render " + sizeLabel(f), float(10.0 * f), 80.0f);
         const uint16_t ti = sys->registerType(type).value();
@@ -184,8 +188,10 @@ StressResult runExtremeSizesRender(const StressConfig& cfg) {
         FrameStats stats;
         Result<Image> coverage = frame({decal}, types, View::Coverage, &stats);
         Result<Image> lit = coverage ? frame({decal}, types, View::Final, nullptr) : coverage;
-        if (!lit) {
-            r.failure(lit.error());
+        Result<Image> gpuCoverage =
+            lit ? frameOf(gpuCulled.value(), {decal}, types, View::Coverage, nullptr) : lit;
+        if (!lit || !gpuCoverage) {
+            r.failure(!lit ? lit.error() : gpuCoverage.error());
             invalid++;
             continue;
         }
@@ -196,6 +202,7 @@ StressResult runExtremeSizesRender(const StressConfig& cfg) {
         size_t refCount = 0, covCount = 0, inter = 0, uni = 0, interPlane = 0, uniPlane = 0;
         for (size_t p = 0; p < pixels; ++p) {
             cov[p] = coverage->rgba[4 * p] > 127 ? 1 : 0;
+            unlikeGpu += (gpuCoverage->rgba[4 * p] > 127 ? 1 : 0) != cov[p] ? 1 : 0;
             if (plane[p]) {
                 const glm::dvec3 q = hitPoint[p] - w.center;
                 ref[p] = std::fabs(glm::dot(q, glm::dvec3(w.frame.tangent))) <= 0.5 * w.size.x &&
@@ -255,6 +262,8 @@ StressResult runExtremeSizesRender(const StressConfig& cfg) {
     r.row("mid-sized decals (>= 50 px): 1 - IoU against the CPU reference", midMismatch, 0.02, renders);
     r.row("tiny decals (<= 1 px in the reference): pixels covered", double(tinyPixels), 4.0, renders);
     r.row("final image: pixels changed outside the decal's footprint (count)", double(outside), 0.0,
+          renders * pixels);
+    r.row("coverage culled on the GPU: pixels unlike the CPU culling's (count)", double(unlikeGpu), 0.0,
           renders * pixels);
     return r;
 }
