@@ -80,11 +80,6 @@ struct DecalData {
     vec4 params;         // x: cosine of the largest accepted angle; y: roughness written
 };
 
-// Whether record `r` can be drawn at all (its box is not degenerate; its type and object are checked apart).
-bool decalRecordValid(DecalRecord r) {
-    return r.centerDepth.w > 0.0;
-}
-
 // The rotation of a packed frame (PackedFrame.hpp): columns tangent, bitangent (not yet mirrored),
 // normal. The three smallest components of the unit quaternion are 20 bits each, offset by 2^19,
 // in the order w, x, y, z without the largest, which bits 60-61 name.

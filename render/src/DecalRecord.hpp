@@ -12,10 +12,10 @@
 
 namespace spatter::render_detail {
 
-// The record of `d`; false (and a record with a zero box but its object, type and IDs) when its box
-// is degenerate, not finite, without an orientation or too far from its object's origin for its size
-// to be inverted in float. The record
-// keeps the decal's packed frame as it is: the shaders unpack it.
+// The record of `d`; false (and a record with a zero box but its object, type and object decal ID)
+// when its box is degenerate, not finite, without an orientation or too far from its object's origin
+// for its size to be inverted in float. The record keeps the decal's packed frame as it is: the
+// shaders unpack it.
 bool buildDecalRecord(const Decal& d, DecalRecordGpu& out);
 
 // The type as the shaders read it; info.z is 0 when decals of the type cannot be drawn (a texture

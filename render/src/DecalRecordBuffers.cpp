@@ -67,7 +67,8 @@ size_t DecalRecordBuffers::upload(size_t begin, const std::vector<DecalRecordGpu
 }
 
 void DecalRecordBuffers::assign(const std::vector<DecalRecordGpu>& records) {
-    const std::vector<DecalRecordGpu> some = records.empty() ? std::vector<DecalRecordGpu>(1) : records;
+    static const std::vector<DecalRecordGpu> kNoDecal(1); // a buffer is never empty
+    const std::vector<DecalRecordGpu>& some = records.empty() ? kNoDecal : records;
     storeExactly(bounds_, boundsCapacity_, parts<DecalBoundsGpu>(some, recordBounds));
     storeExactly(bodies_, bodiesCapacity_, parts<DecalBodyGpu>(some, recordBody));
 }

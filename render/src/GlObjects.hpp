@@ -83,15 +83,21 @@ inline GlBuffer createBuffer() {
     return GlBuffer(n);
 }
 
-// Grows `buffer` (immutable storage, GL_DYNAMIC_STORAGE_BIT) to hold `bytes`, doubling from at least
-// `minimum`; true when it was recreated (its contents are then undefined).
+// A new buffer of `capacity` bytes (immutable storage, GL_DYNAMIC_STORAGE_BIT, contents undefined).
+inline GlBuffer dynamicBuffer(size_t capacity) {
+    GlBuffer buffer = createBuffer();
+    glNamedBufferStorage(buffer.get(), GLsizeiptr(capacity), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    return buffer;
+}
+
+// Grows `buffer` (dynamicBuffer) to hold `bytes`, doubling from at least `minimum`; true when it was
+// recreated (its contents are then undefined).
 inline bool reserveBuffer(GlBuffer& buffer, size_t& capacity, size_t bytes, size_t minimum) {
     if (bytes <= capacity && buffer) return false;
     capacity = capacity > minimum ? capacity : minimum;
     while (capacity < bytes)
         capacity *= 2;
-    buffer = createBuffer();
-    glNamedBufferStorage(buffer.get(), GLsizeiptr(capacity), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    buffer = dynamicBuffer(capacity);
     return true;
 }
 
@@ -103,8 +109,7 @@ inline bool growBuffer(GlBuffer& buffer, size_t& capacity, size_t bytes, size_t 
     GlBuffer old = std::move(buffer);
     const size_t oldCapacity = old ? capacity : 0;
     capacity = std::max({bytes, oldCapacity + oldCapacity / 4, minimum});
-    buffer = createBuffer();
-    glNamedBufferStorage(buffer.get(), GLsizeiptr(capacity), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    buffer = dynamicBuffer(capacity);
     keep = keep < oldCapacity ? keep : oldCapacity;
     if (keep > 0) glCopyNamedBufferSubData(old.get(), buffer.get(), 0, 0, GLsizeiptr(keep));
     return true;

@@ -72,8 +72,8 @@ struct alignas(16) DecalRecordGpu {
     glm::uvec2 frame;      // Decal::packedFrame (PackedFrame.hpp): x its low 32 bits, y its high ones
     glm::vec2 halfSize;    // half the width and height
     glm::uvec4 info;       // x: object index; y: type (bits 0-15), object decal ID (16-23), opacity in
-                           // 1/255 (24-31); z: slant (DecalProjection.hpp); w: decal ID (CPU only).
-                           // Mirrored: bit 62 of the frame
+                           // 1/255 (24-31); z: slant (DecalProjection.hpp); w: 0 (no part reads
+                           // the decal ID). Mirrored: bit 62 of the frame
 };
 static_assert(sizeof(DecalRecordGpu) == 48, "DecalRecordGpu is three vec4s");
 
