@@ -39,12 +39,16 @@ Bytes per decal and per object, measured:
                  handle slots (the containers' growth included)
   renderer CPU   what the projector holds on the CPU for the decals by its own count
                  (DecalProjector::memory: the draw order, validity bits, and the decal records while it
-                 culls on the CPU), and the C heap the renderer keeps after Renderer::setDecals and the
-                 first frame (with what the GL driver allocates: some drivers keep copies of the buffers
+                 culls on the CPU), and the C heap the renderer keeps after Renderer::setDecals and five
+                 frames (with what the GL driver allocates: some drivers keep copies of the buffers
                  that the GPU row counts)
-  renderer GPU   record bytes uploaded in the first frame (FrameStats), and the GPU memory the
-                 driver reports gone (GL_NVX_gpu_memory_info) where the driver has it, else the
-                 resident set growth (a software renderer keeps its buffers in process memory)
+  renderer GPU   record bytes uploaded in the first frame (FrameStats); the projector's buffers
+                 (DecalProjector::memory), those sized by the decals held apart from those sized by
+                 the viewport; and the GPU memory the driver reports gone after five frames
+                 (GL_NVX_gpu_memory_info) where the driver has it, else the resident set growth (a
+                 software renderer keeps its buffers in process memory). The frames after the first
+                 count: the GPU's counts of the decals in view arrive a frame late and pick the
+                 occlusion test and the screen tiles, whose buffers come then
   per object     a proxy of MESH (meshoptimizer, 0.5%): its mesh; the Embree BVH of it as the
                  collision world builds it (user geometry) and as Embree's own triangles (device
                  memory monitor); the collision world; one decal texture array layer; a
@@ -76,6 +80,9 @@ size_t meshBytes(const Mesh& m) {
     return bytesOf(m.positions) + bytesOf(m.normals) + bytesOf(m.uvs) + bytesOf(m.tangents) +
            bytesOf(m.indices) + bytesOf(m.submeshes);
 }
+
+// Frames rendered after the first before the renderer's memory is read.
+constexpr int kSettleFrames = 4;
 
 double mb(double bytes) {
     return bytes / 1e6;
@@ -188,12 +195,16 @@ int runMemoryCommand(int argc, char** argv) {
             renderer->setDecals(sys->decals());
             const size_t r1 = residentBytes();
             Result<FrameStats> frame = renderer->render(view.camera, View::Final);
-            const long vram3 = nvxAvailableKb();
-            const size_t h1 = heapBytes(), r2 = residentBytes(); // what stays after the upload
             if (!frame) {
                 std::cerr << "spatter-bench memory: " << frame.error() << "\n";
                 return 1;
             }
+            // The frames after the first settle what the renderer keeps: the GPU's counts of the
+            // decals in view arrive a frame late and pick the occlusion test and the screen tiles.
+            for (int settle = 0; settle < kSettleFrames; ++settle)
+                if (!renderer->render(view.camera, View::Final)) return 1;
+            const long vram3 = nvxAvailableKb();
+            const size_t h1 = heapBytes(), r2 = residentBytes(); // what stays after the upload
             const ProjectorMemory held = renderer->decalMemory();
             rendererCpuHeap = (double(h1) - double(h0)) / double(placed);
             rendererCpu = double(held.cpuBytes) / double(placed);
@@ -206,21 +217,31 @@ int runMemoryCommand(int argc, char** argv) {
                 gpuHow = "GL_NVX_gpu_memory_info";
             } else {
                 gpuMeasured = (double(r2) - double(r1)) / double(placed);
-                gpuHow = "resident set growth of the first frame (software renderer)";
+                gpuHow = "resident set growth over the frames (software renderer)";
             }
             std::printf(
-                "renderer CPU: the projector's own count %.1f B per decal; the heap after setDecals and a "
-                "frame %+.1f MB (%.1f B per decal, the GL driver's allocations included), resident %+.1f "
+                "renderer CPU: the projector's own count %.1f B per decal; the heap after setDecals and five "
+                "frames %+.1f MB (%.1f B per decal, the GL driver's allocations included), resident %+.1f "
                 "MB\n",
                 rendererCpu, mb(double(h1) - double(h0)), rendererCpuHeap, mb(double(r1) - double(r0)));
-            std::printf("renderer GPU: the projector's buffers %.1f B per decal (capacities)\n", gpuHeld);
+            const double screen = double(held.gpuScreenBytes);
+            std::printf("renderer GPU: the projector's buffers %.1f B per decal (capacities): %.1f B per decal "
+                        "sized by the decals held, %.1f MB by the viewport and the decals in view\n",
+                        gpuHeld, (double(held.gpuBufferBytes) - screen) / double(placed), mb(screen));
             std::printf("renderer GPU: first frame uploaded %.1f MB: %.1f B per decal of records + 4 B per "
                         "visible decal (%zu visible) + one type\n",
                         mb(uploaded), gpuPerDecal, frame->decalsDrawn);
             std::printf("              memory gone: %.1f B per decal (%s)\n", gpuMeasured, gpuHow.c_str());
+            if (vram2 >= 0 && vram3 >= 0) {
+                const double driver = double(vram2 - vram3) * 1024.0 - double(held.gpuBufferBytes);
+                std::printf("              of which beyond the projector's buffers (the driver's own): %.1f MB\n",
+                            mb(driver));
+                j["gpu_driver_bytes"] = driver;
+            }
             j["renderer_cpu_bytes_per_decal"] = rendererCpu;
             j["renderer_cpu_heap_bytes_per_decal"] = rendererCpuHeap;
             j["gpu_buffer_bytes_per_decal"] = gpuHeld;
+            j["gpu_screen_buffer_bytes"] = screen;
             j["renderer_cpu_resident_bytes_per_decal"] = (double(r1) - double(r0)) / double(placed);
             j["gpu_bytes_per_decal"] = gpuPerDecal;
             j["gpu_bytes_per_visible_decal"] = 4;

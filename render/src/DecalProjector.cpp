@@ -755,8 +755,8 @@ ProjectorMemory DecalProjector::memory() const {
     const Impl& m = *impl_;
     ProjectorMemory r;
     r.cpuBytes = m.batch.cpuBytes();
-    r.gpuBufferBytes =
-        m.buffers.gpuBytes() + m.culling.gpuBytes() + m.forward.gpuBytes() + m.pyramid.gpuBytes();
+    r.gpuScreenBytes = m.forward.gpuBytes() + m.pyramid.gpuBytes();
+    r.gpuBufferBytes = m.buffers.gpuBytes() + m.culling.gpuBytes() + r.gpuScreenBytes;
     return r;
 }
 

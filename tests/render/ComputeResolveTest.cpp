@@ -21,6 +21,7 @@ constexpr int kResolveHeight = 120;
 struct Rendered {
     Image albedo, normal, coverage;
     std::string variant, coverageVariant;
+    ProjectorMemory memory;
 };
 
 // The gallery's shots (test::galleryShots) drawn with `resolve`.
@@ -43,6 +44,7 @@ Rendered renderGallery(DeferredResolve resolve) {
     out.normal = test::renderView(r.value(), g.camera, View::Normal);
     out.coverage = test::renderView(r.value(), g.camera, View::Coverage, &st);
     out.coverageVariant = st.decalVariant;
+    out.memory = r->decalMemory();
     return out;
 }
 
@@ -92,6 +94,17 @@ TEST(ComputeResolve, CoverageModeDrawsTheBoxes) {
     const Rendered compute = renderGallery(DeferredResolve::Compute);
     EXPECT_EQ(compute.coverageVariant.find("COMPUTE"), std::string::npos) << compute.coverageVariant;
     EXPECT_EQ(boxes.coverage.rgba, compute.coverage.rgba);
+}
+
+TEST(ComputeResolve, CountsItsScreenTilesAsMemorySizedByTheViewport) {
+    SPATTER_REQUIRE_GL(gl);
+    const ProjectorMemory boxes = renderGallery(DeferredResolve::Boxes).memory;
+    const ProjectorMemory compute = renderGallery(DeferredResolve::Compute).memory;
+    // Culled on the CPU, the boxes need no depth pyramid and no tiles.
+    EXPECT_EQ(boxes.gpuScreenBytes, 0u);
+    EXPECT_GT(compute.gpuScreenBytes, 0u);
+    // The tiles are all the compute pass adds to what the boxes hold.
+    EXPECT_EQ(compute.gpuBufferBytes - compute.gpuScreenBytes, boxes.gpuBufferBytes);
 }
 
 // In a foreign host's frame (standard Z, RGBA8 albedo, RGB10_A2 world normals, object IDs), with

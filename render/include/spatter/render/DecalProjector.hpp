@@ -320,7 +320,9 @@ struct ProjectorMemory {
     size_t cpuBytes = 0;       // the draw order, a validity bit per decal, the CPU copy of the records
                                // (until draw() culls on the GPU) and records waiting for upload
     size_t gpuBufferBytes = 0; // the decal records, types, objects, draw order, culling and forward
-                               // buffers and the visible list (capacities: buffers grow by doubling)
+                               // buffers and the visible list (capacities, grown ahead of need)
+    size_t gpuScreenBytes = 0; // the part of gpuBufferBytes sized by the viewport and the decals in
+                               // view, not by the decals held: the depth pyramid and the screen tiles
 };
 
 class DecalProjector {
