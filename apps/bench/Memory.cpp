@@ -225,17 +225,19 @@ int runMemoryCommand(int argc, char** argv) {
                 "MB\n",
                 rendererCpu, mb(double(h1) - double(h0)), rendererCpuHeap, mb(double(r1) - double(r0)));
             const double screen = double(held.gpuScreenBytes);
-            std::printf("renderer GPU: the projector's buffers %.1f B per decal (capacities): %.1f B per decal "
-                        "sized by the decals held, %.1f MB by the viewport and the decals in view\n",
-                        gpuHeld, (double(held.gpuBufferBytes) - screen) / double(placed), mb(screen));
+            std::printf(
+                "renderer GPU: the projector's buffers %.1f B per decal (capacities): %.1f B per decal "
+                "sized by the decals held, %.1f MB by the viewport and the decals in view\n",
+                gpuHeld, (double(held.gpuBufferBytes) - screen) / double(placed), mb(screen));
             std::printf("renderer GPU: first frame uploaded %.1f MB: %.1f B per decal of records + 4 B per "
                         "visible decal (%zu visible) + one type\n",
                         mb(uploaded), gpuPerDecal, frame->decalsDrawn);
             std::printf("              memory gone: %.1f B per decal (%s)\n", gpuMeasured, gpuHow.c_str());
             if (vram2 >= 0 && vram3 >= 0) {
                 const double driver = double(vram2 - vram3) * 1024.0 - double(held.gpuBufferBytes);
-                std::printf("              of which beyond the projector's buffers (the driver's own): %.1f MB\n",
-                            mb(driver));
+                std::printf(
+                    "              of which beyond the projector's buffers (the driver's own): %.1f MB\n",
+                    mb(driver));
                 j["gpu_driver_bytes"] = driver;
             }
             j["renderer_cpu_bytes_per_decal"] = rendererCpu;
