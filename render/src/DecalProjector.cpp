@@ -755,7 +755,7 @@ ProjectorMemory DecalProjector::memory() const {
     const Impl& m = *impl_;
     ProjectorMemory r;
     r.cpuBytes = m.batch.cpuBytes();
-    r.gpuScreenBytes = m.forward.gpuBytes() + m.pyramid.gpuBytes();
+    r.gpuScreenBytes = m.forward.gpuBytes() + m.pyramid.gpuBytes() + m.normalCopy.gpuBytes();
     r.gpuBufferBytes = m.buffers.gpuBytes() + m.culling.gpuBytes() + r.gpuScreenBytes;
     return r;
 }

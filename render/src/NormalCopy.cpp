@@ -88,6 +88,14 @@ void NormalCopy::allocate(GLuint hostNormals) {
     format_ = format;
     width_ = w;
     height_ = h;
+    GLint bits = 0;
+    for (GLenum channel :
+         {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE, GL_TEXTURE_ALPHA_SIZE}) {
+        GLint b = 0;
+        glGetTextureLevelParameteriv(texture_.get(), 0, channel, &b);
+        bits += b;
+    }
+    bytes_ = size_t(w) * size_t(h) * size_t(bits) / 8;
 }
 
 void NormalCopy::copyViewport(const HostFrame& f) const {

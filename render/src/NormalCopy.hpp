@@ -49,12 +49,15 @@ public:
 
     GLuint texture() const { return texture_.get(); }
     GLuint program() const { return program_.get(); }
+    // Bytes of the copy's texels (0 before the first allocate).
+    size_t gpuBytes() const { return bytes_; }
 
 private:
     GlProgram program_;
     GlTexture texture_;
     GLenum format_ = 0;
     int width_ = 0, height_ = 0;
+    size_t bytes_ = 0;
 };
 
 } // namespace spatter::render_detail

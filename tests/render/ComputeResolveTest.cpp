@@ -96,15 +96,16 @@ TEST(ComputeResolve, CoverageModeDrawsTheBoxes) {
     EXPECT_EQ(boxes.coverage.rgba, compute.coverage.rgba);
 }
 
-TEST(ComputeResolve, CountsItsScreenTilesAsMemorySizedByTheViewport) {
+TEST(ComputeResolve, CountsItsScreenTilesAndTheNormalCopyAsMemorySizedByTheViewport) {
     SPATTER_REQUIRE_GL(gl);
     const ProjectorMemory boxes = renderGallery(DeferredResolve::Boxes).memory;
     const ProjectorMemory compute = renderGallery(DeferredResolve::Compute).memory;
-    // Culled on the CPU, the boxes need no depth pyramid and no tiles.
-    EXPECT_EQ(boxes.gpuScreenBytes, 0u);
+    // Culled on the CPU, the boxes need no depth pyramid and no tiles: the copy of the renderer's
+    // normals (4 bytes a texel) is all they hold by the viewport.
+    EXPECT_EQ(boxes.gpuScreenBytes, size_t(kResolveWidth) * kResolveHeight * 4);
     EXPECT_GT(compute.gpuScreenBytes, 0u);
-    // The tiles are all the compute pass adds to what the boxes hold.
-    EXPECT_EQ(compute.gpuBufferBytes - compute.gpuScreenBytes, boxes.gpuBufferBytes);
+    // The same decals take the same buffers either way.
+    EXPECT_EQ(compute.gpuBufferBytes - compute.gpuScreenBytes, boxes.gpuBufferBytes - boxes.gpuScreenBytes);
 }
 
 // In a foreign host's frame (standard Z, RGBA8 albedo, RGB10_A2 world normals, object IDs), with

@@ -320,9 +320,11 @@ struct ProjectorMemory {
     size_t cpuBytes = 0;       // the draw order, a validity bit per decal, the CPU copy of the records
                                // (until draw() culls on the GPU) and records waiting for upload
     size_t gpuBufferBytes = 0; // the decal records, types, objects, draw order, culling and forward
-                               // buffers and the visible list (capacities, grown ahead of need)
+                               // buffers, the visible list (capacities, grown ahead of need), and the
+                               // textures: the depth pyramid and the copy of the host's normals
     size_t gpuScreenBytes = 0; // the part of gpuBufferBytes sized by the viewport and the decals in
-                               // view, not by the decals held: the depth pyramid and the screen tiles
+                               // view, not by the decals held: the depth pyramid, the screen tiles
+                               // and the normal copy
 };
 
 class DecalProjector {
