@@ -57,9 +57,10 @@ Embree refit), cycling through N poses of the cycle (the poses are evaluated bef
 Spawn: DecalSystem::spawn per call on the skinned object posed at 30% of its cycle (render mesh as
 collision mesh; each hit also anchored to the render surface) against spawn on the same posed mesh
 built as a static object, the same rays (scattered around the posed mesh, 90% aimed at its surface),
-each run into a fresh system with room for every decal; and the same through proxies: the skinned
-object through its 0.5% deforming proxy (each hit then also found on the render mesh and the
-decal placed there), the static twin through a 0.5% proxy of its own. Target: skinned at most 2x static.
+each run into a fresh system with room for every decal, skinned and static runs in turns; and the
+same through proxies: the skinned object through its 0.5% deforming proxy (each hit then also found
+on the render mesh and the decal placed there), the static twin through a 0.5% proxy of its own.
+Target: skinned at most 2x static.
 
 Drift: decals (5% of the diagonal) shot at several times of the cycle, then the object posed at N
 frames of the whole cycle. For each decal and frame, the distance along the surface (in the plane of
@@ -196,22 +197,37 @@ struct SpawnTiming {
     size_t placed = 0;    // in one run
 };
 
-// Median over the runs of the thread CPU time per spawn of `rays`, each run into a fresh system
-// from `make`, so that every run places into the same empty system.
-Result<SpawnTiming> spawnSeconds(const std::function<Result<DecalSystem>()>& make,
-                                 const std::vector<Ray>& rays, size_t runs) {
-    std::vector<double> times;
-    size_t placed = 0;
-    for (size_t r = 0; r < runs; ++r) {
-        Result<DecalSystem> system = make();
-        if (!system) return fail(system.error());
-        const double t0 = threadCpuNow();
-        for (const Ray& ray : rays)
-            system->spawn(ray, 0);
-        times.push_back((threadCpuNow() - t0) / double(rays.size()));
-        placed = system->stats().placed;
-    }
-    return SpawnTiming{median(times), placed};
+using SystemMaker = std::function<Result<DecalSystem>()>;
+
+// The thread CPU time per spawn of `rays` into a fresh system from `make`, so that every run places
+// into the same empty system; `placed`: the decals it placed.
+Result<double> spawnRunSeconds(const SystemMaker& make, const std::vector<Ray>& rays, size_t& placed) {
+    Result<DecalSystem> system = make();
+    if (!system) return fail(system.error());
+    const double t0 = threadCpuNow();
+    for (const Ray& ray : rays)
+        system->spawn(ray, 0);
+    const double seconds = (threadCpuNow() - t0) / double(rays.size());
+    placed = system->stats().placed;
+    return seconds;
+}
+
+// The medians over `runs` runs of each of `first` and `second`, run in turns (first, second, first,
+// ...), so that the machine's load, which drifts over a run of several seconds, weighs on both alike.
+Result<std::pair<SpawnTiming, SpawnTiming>> spawnSecondsInTurns(const SystemMaker& first,
+                                                                const SystemMaker& second,
+                                                                const std::vector<Ray>& rays, size_t runs) {
+    std::vector<double> times[2];
+    SpawnTiming out[2];
+    for (size_t r = 0; r < runs; ++r)
+        for (int k = 0; k < 2; ++k) {
+            Result<double> t = spawnRunSeconds(k == 0 ? first : second, rays, out[k].placed);
+            if (!t) return fail(t.error());
+            times[k].push_back(t.value());
+        }
+    for (int k = 0; k < 2; ++k)
+        out[k].seconds = median(times[k]);
+    return std::make_pair(out[0], out[1]);
 }
 
 struct SpawnRow {
@@ -231,24 +247,21 @@ Result<std::pair<SpawnTiming, SpawnTiming>> spawnPair(const SkinnedModel& m,
                                                       const std::optional<Proxy>& twinProxy,
                                                       const ModelPose& pose, const std::vector<Ray>& rays,
                                                       const Sizes& sizes) {
-    Result<SpawnTiming> skinned = spawnSeconds(
-        [&]() -> Result<DecalSystem> {
-            Result<DecalSystem> s = holeSystem(skinnedWorld(m, proxy), m.decalSize, rays.size());
-            if (!s) return s;
-            if (Status p = poseSystem(s.value(), m, pose); !p) return fail(p.error());
-            return s;
-        },
-        rays, sizes.runs);
-    if (!skinned) return fail(m.name + ": " + skinned.error());
+    const SystemMaker skinned = [&]() -> Result<DecalSystem> {
+        Result<DecalSystem> s = holeSystem(skinnedWorld(m, proxy), m.decalSize, rays.size());
+        if (!s) return s;
+        if (Status p = poseSystem(s.value(), m, pose); !p) return fail(p.error());
+        return s;
+    };
     const std::vector<std::optional<Proxy>> twinProxies = {twinProxy};
-    Result<SpawnTiming> statik = spawnSeconds(
-        [&] {
-            return holeSystem(CollisionWorld::build(twin, twinProxies, oneThreadWorld()), m.decalSize,
-                              rays.size());
-        },
-        rays, sizes.runs);
-    if (!statik) return fail(m.name + ": " + statik.error());
-    return std::make_pair(skinned.value(), statik.value());
+    const SystemMaker statik = [&] {
+        return holeSystem(CollisionWorld::build(twin, twinProxies, oneThreadWorld()), m.decalSize,
+                          rays.size());
+    };
+    Result<std::pair<SpawnTiming, SpawnTiming>> timings =
+        spawnSecondsInTurns(skinned, statik, rays, sizes.runs);
+    if (!timings) return fail(m.name + ": " + timings.error());
+    return timings.value();
 }
 
 Result<SpawnRow> measureSpawn(const SkinnedModel& m, const Proxy& proxy, const Sizes& sizes) {
