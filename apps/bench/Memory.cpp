@@ -36,7 +36,8 @@ Bytes per decal and per object, measured:
   decal system   C heap (glibc mallinfo2, or ASan's statistics in an ASan build) taken by N
                  decals spawned with spawnAttached, spread so that a cell of the area grid holds
                  about 8: the decal records, the per-decal bookkeeping, the area grid and the
-                 handle slots (the containers' growth included)
+                 handle slots (the containers' growth included); and the same by the system's own
+                 count, by what it serves (DecalSystem::memory)
   renderer CPU   what the projector holds on the CPU for the decals by its own count
                  (DecalProjector::memory: the draw order, validity bits, and the decal records while it
                  culls on the CPU), and the C heap the renderer keeps after Renderer::setDecals and five
@@ -152,6 +153,19 @@ int runMemoryCommand(int argc, char** argv) {
         "  of which the Decal record itself: %zu B (sizeof); a game that keeps a DecalHandle per decal adds "
         "%zu B\n",
         sizeof(Decal), sizeof(DecalHandle));
+    const DecalSystemMemory own = sys->memory();
+    const auto perDecal = [&](size_t bytes) { return double(bytes) / double(placed); };
+    std::printf("  by its own count %.1f B per decal: records %.1f, handles %.1f, area limits %.1f, change "
+                "list %.1f, other %.1f\n",
+                perDecal(own.total()), perDecal(own.records), perDecal(own.handles), perDecal(own.areaLimits),
+                perDecal(own.changeLog), perDecal(own.other));
+    Json ownJson;
+    ownJson["records"] = own.records;
+    ownJson["handles"] = own.handles;
+    ownJson["area_limits"] = own.areaLimits;
+    ownJson["change_log"] = own.changeLog;
+    ownJson["other"] = own.other;
+    j["decal_system_bytes"] = ownJson;
     j["cpu_bytes_per_decal"] = cpuPerDecal;
     j["cpu_resident_bytes_per_decal"] = (double(rss1) - double(rss0)) / double(placed);
     j["decal_record_bytes"] = sizeof(Decal);

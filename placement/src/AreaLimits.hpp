@@ -65,6 +65,12 @@ public:
     uint32_t newer(uint32_t slot) const { return links_[size_t(slot) * stride_].next; }
     // The cell `slot` (linked) was linked with.
     CellKey cellOf(uint32_t slot) const;
+    // Bytes of its own allocations (capacities).
+    size_t bytes() const {
+        return links_.capacity() * sizeof(Link) + cellOf_.capacity() * sizeof(uint32_t) +
+               cells_.capacity() * sizeof(Cell) + table_.capacity() * sizeof(uint32_t) +
+               objects_.capacity() * sizeof(List);
+    }
 
 private:
     struct Link {

@@ -105,6 +105,8 @@ public:
         }
     }
 
+    size_t bytes() const { return (words_.capacity() + summary_.capacity()) * sizeof(uint64_t); }
+
 private:
     static uint64_t upTo(unsigned bit) { return (uint64_t(2) << bit) - 1; } // bits 0..bit
     static unsigned highestBit(uint64_t v) { return 63u - unsigned(__builtin_clzll(v)); }
@@ -822,6 +824,21 @@ std::vector<uint8_t> DecalSystem::objectIds() const {
 
 const DecalStats& DecalSystem::stats() const {
     return impl_->stats;
+}
+
+DecalSystemMemory DecalSystem::memory() const {
+    const Impl& s = *impl_;
+    DecalSystemMemory m;
+    m.records = s.decals.capacity() * sizeof(Decal);
+    m.handles = s.slotOf.capacity() * sizeof(uint32_t) + s.slots.capacity() * sizeof(Slot) +
+                s.freeSlots.capacity() * sizeof(uint32_t);
+    m.areaLimits = s.limits.bytes();
+    m.changeLog = s.changeLog.capacity() * sizeof(DecalChange);
+    // A node of the fading table holds its entry and a link; the table a pointer per bucket.
+    const size_t fadingNode = sizeof(std::pair<const uint32_t, double>) + sizeof(void*);
+    m.other = s.timed.bytes() + s.fadingSince.size() * fadingNode +
+              s.fadingSince.bucket_count() * sizeof(void*) + s.anchors.bytes();
+    return m;
 }
 const DecalSettings& DecalSystem::settings() const {
     return impl_->settings;

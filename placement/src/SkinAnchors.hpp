@@ -32,6 +32,15 @@ public:
     // Forgets the anchor of the decal of slot `slot` on `object`, if it has one.
     void erase(uint32_t slot, uint32_t object);
 
+    // Bytes of its anchor lists and slot index (capacities; the hash table's nodes, one per object
+    // with anchors, left out).
+    size_t bytes() const {
+        size_t b = indexOf_.capacity() * sizeof(uint32_t);
+        for (const auto& [object, list] : byObject_)
+            b += list.capacity() * sizeof(Entry);
+        return b;
+    }
+
     // Every anchor, by ascending slot (a save's order does not depend on the hash table's).
     std::vector<SavedAnchor> saved() const;
     // Replaces the anchors with `saved`, each on the object of the decal objectOf(slot) names.

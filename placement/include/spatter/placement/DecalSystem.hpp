@@ -88,6 +88,17 @@ struct DecalStats {
     bool operator!=(const DecalStats& o) const { return !(*this == o); }
 };
 
+// What a decal system holds for its decals (DecalSystem::memory), from the capacities of its own
+// containers; the collision world it traces is not in it.
+struct DecalSystemMemory {
+    size_t records = 0;    // the Decal records (decals())
+    size_t handles = 0;    // the handle slots, each decal's slot and the free slots
+    size_t areaLimits = 0; // the per-area limits: the counted decals' links and cells, the area grid
+    size_t changeLog = 0;  // the changes changesSince() can still give
+    size_t other = 0;      // the decals update() visits, those fading out, the anchors on skinned objects
+    size_t total() const { return records + handles + areaLimits + changeLog + other; }
+};
+
 // A decal's box in world space: |x| <= size.x / 2, |y| <= size.y / 2, |z| <= halfDepth in `frame`
 // around `center`, its depth lines running along `projection` (a decal projected along its shot:
 // the rectangle at height z above the plane is shifted along the plane with the axis). Exact for rigid
@@ -222,6 +233,8 @@ public:
     std::vector<uint8_t> objectIds() const;
 
     const DecalStats& stats() const;
+    // The bytes it holds for its decals, by what they serve (a const call: never during a mutation).
+    DecalSystemMemory memory() const;
     const DecalSettings& settings() const;
     const CollisionWorld& world() const;
     // Seconds accumulated by update().
