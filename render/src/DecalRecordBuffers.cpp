@@ -73,9 +73,9 @@ void DecalRecordBuffers::assign(const std::vector<DecalRecordGpu>& records) {
     storeExactly(bodies_, bodiesCapacity_, parts<DecalBodyGpu>(some, recordBody));
 }
 
-void DecalRecordBuffers::bind() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBoundsBuffer, bounds_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBuffer, bodies_.get());
+void bindDecalRecords(GLuint bounds, GLuint bodies) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBoundsBuffer, bounds);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBuffer, bodies);
 }
 
 } // namespace spatter::render_detail

@@ -19,6 +19,9 @@ namespace spatter::render_detail {
 DecalBoundsGpu recordBounds(const DecalRecordGpu& r);
 DecalBodyGpu recordBody(const DecalRecordGpu& r);
 
+// Binds a decal set's two buffers at their binding points (kDecalBoundsBuffer, kDecalBuffer).
+void bindDecalRecords(GLuint bounds, GLuint bodies);
+
 class DecalRecordBuffers {
 public:
     // Room for `count` records (growBuffer: by a quarter, from 64), keeping the first `keep` held.
@@ -29,8 +32,8 @@ public:
     // Buffers sized to hold exactly `records` (one record that cannot be drawn when it is empty).
     void assign(const std::vector<DecalRecordGpu>& records);
 
-    // Both at their binding points (kDecalBoundsBuffer, kDecalBuffer).
-    void bind() const;
+    // Both at their binding points (bindDecalRecords).
+    void bind() const { bindDecalRecords(bounds(), bodies()); }
     GLuint bounds() const { return bounds_.get(); }
     GLuint bodies() const { return bodies_.get(); }
     size_t bytes() const { return boundsCapacity_ + bodiesCapacity_; }

@@ -209,8 +209,7 @@ struct Renderer::Impl {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kObjectBuffer, objectBuffer.get());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kMaterialBuffer, scene.materialBuffer());
         const ProjectorResources decals = projector->resources();
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBoundsBuffer, decals.decalBounds);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBuffer, decals.decals);
+        bindDecalRecords(decals.decalBounds, decals.decals);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBuffer, decals.visible);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalTypeBuffer, decals.types);
     }

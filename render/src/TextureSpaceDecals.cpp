@@ -1,5 +1,6 @@
 #include "TextureSpaceDecals.hpp"
 
+#include "DecalRecordBuffers.hpp"
 #include "GlState.hpp"
 #include "RendererShaders.hpp"
 #include "ShaderProgram.hpp"
@@ -163,8 +164,7 @@ Result<size_t> TextureSpaceDecals::splat(const std::vector<std::vector<uint32_t>
         baseState(layer.framebuffer.get(), layer.size);
         glEnable(GL_BLEND);
         glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBoundsBuffer, in.bounds);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalBuffer, in.bodies);
+        bindDecalRecords(in.bounds, in.bodies);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecalTypeBuffer, in.types);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kVisibleBuffer, in.lists);
         glBindTextureUnit(3, in.decalAlbedo);
