@@ -41,7 +41,9 @@ layout(std430, binding = SPATTER_FORWARD_TILES_BINDING) SPATTER_FORWARD_ACCESS b
     ivec4 spatterTileGrid;     // x, y: the viewport's lower left corner (pixels); z: tiles per row; w: rows
     ivec4 spatterTileInfo;     // x: tile size (pixels); y: 1 when normal maps take their frame from
                                // the surface's position derivatives (DecalNormalFrame::DepthDerivatives);
-                               // z: 1 when the binning culled on the GPU left decals out
+                               // z: 1 when the binning culled on the GPU left decals out (more
+                               // in view than its buffers held); w: culled on the GPU, the most
+                               // decals one tile holds
     vec4 spatterForwardParams; // x: fade start (fraction of the half-depth)
     uvec2 spatterTiles[];
 };
@@ -49,3 +51,13 @@ layout(std430, binding = SPATTER_FORWARD_TILES_BINDING) SPATTER_FORWARD_ACCESS b
 layout(std430, binding = SPATTER_FORWARD_ITEMS_BINDING) SPATTER_FORWARD_ACCESS buffer SpatterForwardItems {
     uint spatterTileItems[]; // indices into spatterForwardDecals
 };
+
+// A run whose first item is SPATTER_WHOLE_LIST belongs to a tile with more decals than the runs had
+// room for (binned on the GPU): its decals are every decal binned, the first run.y of
+// spatterForwardDecals, walked in drawing order.
+#define SPATTER_WHOLE_LIST 0xffffffffu
+
+// The index into spatterForwardDecals of the k-th decal (k < run.y) of a tile's run.
+uint spatterRunItem(uvec2 run, uint k) {
+    return run.x == SPATTER_WHOLE_LIST ? k : spatterTileItems[run.x + k];
+}

@@ -40,16 +40,17 @@ Bytes per decal and per object, measured:
                  count, by what it serves (DecalSystem::memory)
   renderer CPU   what the projector holds on the CPU for the decals by its own count
                  (DecalProjector::memory: the draw order, validity bits, and the decal records while it
-                 culls on the CPU), and the C heap the renderer keeps after Renderer::setDecals and five
+                 culls on the CPU), and the C heap the renderer keeps after Renderer::setDecals and 35
                  frames (with what the GL driver allocates: some drivers keep copies of the buffers
                  that the GPU row counts)
   renderer GPU   record bytes uploaded in the first frame (FrameStats); the projector's buffers
                  (DecalProjector::memory), those sized by the decals held apart from those sized by
-                 the viewport; and the GPU memory the driver reports gone after five frames
+                 the viewport; and the GPU memory the driver reports gone after 35 frames
                  (GL_NVX_gpu_memory_info) where the driver has it, else the resident set growth (a
                  software renderer keeps its buffers in process memory). The frames after the first
                  count: the GPU's counts of the decals in view arrive a frame late and pick the
-                 occlusion test and the screen tiles, whose buffers come then
+                 occlusion test and the screen tiles, whose buffers come then, and a copy of the
+                 normals that the draws stopped reading is freed after 30 draws
   per object     a proxy of MESH (meshoptimizer, 0.5%): its mesh; the Embree BVH of it as the
                  collision world builds it (user geometry) and as Embree's own triangles (device
                  memory monitor); the collision world; one decal texture array layer; a
@@ -82,8 +83,11 @@ size_t meshBytes(const Mesh& m) {
            bytesOf(m.indices) + bytesOf(m.submeshes);
 }
 
-// Frames rendered after the first before the renderer's memory is read.
-constexpr int kSettleFrames = 4;
+// Frames rendered after the first before the renderer's memory is read: enough for the GPU's counts
+// to pick the resolve and for a copy of the normals that draws no longer read to be freed
+// (ProjectorMemory::kNormalCopyIdleDraws).
+constexpr int kSettleFrames = ProjectorMemory::kNormalCopyIdleDraws + 4;
+static_assert(kSettleFrames + 1 == 35, "the help text and the report say 35 frames");
 
 double mb(double bytes) {
     return bytes / 1e6;
@@ -214,7 +218,8 @@ int runMemoryCommand(int argc, char** argv) {
                 return 1;
             }
             // The frames after the first settle what the renderer keeps: the GPU's counts of the
-            // decals in view arrive a frame late and pick the occlusion test and the screen tiles.
+            // decals in view arrive a frame late and pick the occlusion test and the screen tiles, and
+            // the copy of the normals goes once the compute resolve has drawn for a while.
             for (int settle = 0; settle < kSettleFrames; ++settle)
                 if (!renderer->render(view.camera, View::Final)) return 1;
             const long vram3 = nvxAvailableKb();
@@ -234,7 +239,7 @@ int runMemoryCommand(int argc, char** argv) {
                 gpuHow = "resident set growth over the frames (software renderer)";
             }
             std::printf(
-                "renderer CPU: the projector's own count %.1f B per decal; the heap after setDecals and five "
+                "renderer CPU: the projector's own count %.1f B per decal; the heap after setDecals and 35 "
                 "frames %+.1f MB (%.1f B per decal, the GL driver's allocations included), resident %+.1f "
                 "MB\n",
                 rendererCpu, mb(double(h1) - double(h0)), rendererCpuHeap, mb(double(r1) - double(r0)));

@@ -158,6 +158,7 @@ struct DecalProjector::Impl {
     ComputeResolve resolve;
     bool computeOnAuto = false; // DeferredResolve::Auto resolves in compute: not a software rasteriser
     int boxesSinceLeftOut = 0;  // draws Auto drew as boxes since a binning left decals out
+    int drawsWithoutCopy = 0;   // draws and bins in a row that took no copy of the host's normals
     int drawsSinceProbe = 15;   // draws since occlusion culling last ran (the first draw tries it)
     size_t gpuCullingFrom = 0;  // settings.gpuCullingFrom, or its default for this context
     size_t gpuCullingInViewFrom = std::numeric_limits<size_t>::max(); // or its setting
@@ -204,6 +205,7 @@ struct DecalProjector::Impl {
     size_t copyNormals(const HostFrame& f, const DecalVisibility& vis, const BoxDraws& boxes,
                        NormalCopyMode mode, bool depthTest) {
         normalCopy.allocate(f.normals.texture);
+        drawsWithoutCopy = -1; // endPass counts this draw
         if (mode == NormalCopyMode::Viewport) {
             normalCopy.copyViewport(f);
             return 0;
@@ -392,15 +394,18 @@ struct DecalProjector::Impl {
             stats.bytesUploaded +=
                 buffers.uploadRecords(batch, stats.instanceUploads) + buffers.uploadDrawOrder(batch, culling);
             cullOnGpu(camera.cull, nullptr, false, stats); // waitForTimers: read after the pass
-            // Before the GPU has given any count, waitForTimers waits for this one's here.
-            if (settings.waitForTimers && stats.drawn == 0) takeGpuCounts(true, stats);
+            // Before the GPU has given any count, the binning waits for this one's here (once: the
+            // first binning's buffers are sized by it, not guessed), as waitForTimers does.
+            if (!culling.hasCounted() || (settings.waitForTimers && stats.drawn == 0))
+                takeGpuCounts(true, stats);
             // Room for twice the decals in the frustum of the latest count the GPU has given (the
             // binning tests no occlusion, which a draw of boxes in between may have): a sudden jump
             // past it leaves decals out for a frame.
             const size_t inFrustum = stats.drawn + culling.occludedCount();
             const size_t capacity = std::min(batch.size(), std::max<size_t>(4096, 2 * inFrustum));
-            stats.bytesUploaded += forward.binCulled(frame, settings.forwardTileSize, head, culling.draws(),
-                                                     capacity, uint32_t(settings.forwardTileCapacity));
+            stats.bytesUploaded +=
+                forward.binCulled(frame, settings.forwardTileSize, head, culling.draws(), capacity, tileRun(),
+                                  uint32_t(settings.forwardTileCapacity));
             stats.drawCalls += 5;
         } else {
             stats.bytesUploaded += uploadDecals(vis, stats.instanceUploads);
@@ -408,6 +413,32 @@ struct DecalProjector::Impl {
             stats.bytesUploaded += forward.bin(frame, vis, settings.forwardTileSize, head);
             stats.drawCalls += stats.skipped ? 0 : 4;
         }
+    }
+
+    // The length of the screen tiles' runs when the GPU culls: twice the most decals of one tile in the
+    // latest binning the GPU has finished (16 before it has said), a power of two from 16, at most
+    // forwardTileCapacity. A tile with more, up to forwardTileCapacity, walks the whole list, exact
+    // and slower, and the next binning's runs are long enough. The runs take 4 bytes a tile each: 8.4
+    // MB at 1080p with 16-pixel tiles and 256, 0.5 MB with 16.
+    uint32_t tileRun() {
+        const uint32_t most = uint32_t(settings.forwardTileCapacity);
+        const uint32_t fullest = forward.fullestTile(false).value_or(16);
+        uint32_t run = 16;
+        while (run < most && run < 2 * uint64_t(fullest))
+            run *= 2;
+        return std::min(run, most);
+    }
+
+    // The decals in view when the GPU culls, as DeferredResolve::Auto weighs them: the GPU's latest
+    // count; before its first, the CPU's where it culled before, and at least kComputeResolveFrom. A
+    // world culled on the GPU from its first draw holds gpuCullingFrom decals or more, where the
+    // compute resolve is the likelier choice and costs a few hundredths of a millisecond more where it
+    // is not; the boxes would make the copy of the normals, which a later compute resolve leaves
+    // unused.
+    size_t gpuInView() {
+        const size_t counted = culling.visibleCount(false);
+        if (culling.hasCounted()) return counted;
+        return std::max(cpuInView, ProjectorSettings::kComputeResolveFrom);
     }
 
     // The visible list (culled on the GPU, or `vis`), the normal copy the decals read when they write
@@ -505,6 +536,8 @@ struct DecalProjector::Impl {
         stats.gpuMs = times.decalsMs;
         stats.gpuFrame = times.frame;
         ++draws;
+        constexpr int kIdle = ProjectorMemory::kNormalCopyIdleDraws;
+        if (drawsWithoutCopy < kIdle && ++drawsWithoutCopy == kIdle) normalCopy.release();
     }
 
     // The pass itself: one instanced draw of the boxes (BoxDraws). Returns the draws made.
@@ -693,7 +726,7 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     if (fillsDBuffer(options)) m.dbuffer.prepare(frame.depth.texture); // cleared, even when nothing is drawn
     if (stats.skipped) return stats;
     const uint32_t bits = m.variantBits(frame, options, vis.flags);
-    const size_t inView = onGpu ? m.culling.visibleCount(false) : vis.visible.size();
+    const size_t inView = onGpu ? m.gpuInView() : vis.visible.size();
     if (const std::optional<ComputeResolve::Targets> targets = m.computeTargets(frame, options, inView))
         return m.resolveInCompute(frame, *targets, camera, onGpu, vis, bits, stats);
     Passes passes;

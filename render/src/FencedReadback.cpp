@@ -31,6 +31,7 @@ void FencedReadback::reset() {
     if (fence_) glDeleteSync(fence_);
     fence_ = nullptr;
     std::fill(latest_.begin(), latest_.end(), 0u);
+    hasRead_ = false;
 }
 
 const std::vector<uint32_t>& FencedReadback::latest(bool wait) {
@@ -41,6 +42,7 @@ const std::vector<uint32_t>& FencedReadback::latest(bool wait) {
     glGetNamedBufferSubData(buffer_.get(), 0, GLsizeiptr(latest_.size() * sizeof(uint32_t)), latest_.data());
     glDeleteSync(fence_);
     fence_ = nullptr;
+    hasRead_ = true;
     return latest_;
 }
 

@@ -27,17 +27,20 @@ public:
     GLuint target();
     // Marks the copies queued since the last fence as one read.
     void fence();
-    // Drops a read not taken yet, and its values: the latest read becomes zeros.
+    // Drops a read not taken yet, and its values: the latest read becomes zeros, and none has been read.
     void reset();
     // The values of the latest read the GPU has finished (this one's when `wait`).
     const std::vector<uint32_t>& latest(bool wait);
     // The values latest() last gave, without a new look at the fence.
     const std::vector<uint32_t>& values() const { return latest_; }
+    // Whether a read has finished since construction or reset(): the values are the GPU's.
+    bool hasRead() const { return hasRead_; }
 
 private:
     GlBuffer buffer_;
     GLsync fence_ = nullptr;
     std::vector<uint32_t> latest_;
+    bool hasRead_ = false;
 };
 
 } // namespace spatter::render_detail

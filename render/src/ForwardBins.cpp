@@ -76,7 +76,7 @@ glm::ivec2 ForwardBins::grid(const ForwardFrame& frame, int tileSize, ForwardGri
 
 size_t ForwardBins::bin(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize,
                         ForwardGridGpu head) {
-    leftOut_.reset(); // sized on the CPU, the tiles hold every decal: nothing is left out from here on
+    tileInfo_.reset(); // sized on the CPU, the tiles hold every decal: nothing is left out from here on
     const glm::ivec2 tiles = grid(frame, tileSize, head);
     const uint32_t tileCount = uint32_t(tiles.x) * uint32_t(tiles.y);
     const size_t items = tileRects(frame, vis, tileSize, tiles);
@@ -104,13 +104,18 @@ size_t ForwardBins::bin(const ForwardFrame& frame, const DecalVisibility& vis, i
 }
 
 size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGridGpu head, GLuint draws,
-                              size_t capacity, uint32_t tileCapacity) {
+                              size_t capacity, uint32_t tileCapacity, uint32_t mostPerTile) {
     const glm::ivec2 tiles = grid(frame, tileSize, head);
     const uint32_t tileCount = uint32_t(tiles.x) * uint32_t(tiles.y);
     reserveBuffer(tiles_, tilesCapacity_, sizeof(ForwardGridGpu) + tileCount * sizeof(glm::uvec2), 4096);
     reserveBuffer(counts_, countsCapacity_, tileCount * sizeof(uint32_t), 4096);
     reserveBuffer(decals_, decalsCapacity_, capacity * sizeof(ForwardDecalGpu), 64 * sizeof(ForwardDecalGpu));
-    reserveBuffer(items_, itemsCapacity_, size_t(tileCount) * tileCapacity * sizeof(uint32_t), 4096);
+    const size_t itemBytes = size_t(tileCount) * tileCapacity * sizeof(uint32_t);
+    if (itemsCapacity_ > 4096 && itemsCapacity_ >= 4 * itemBytes) {
+        items_.reset();
+        itemsCapacity_ = 0;
+    }
+    reserveBuffer(items_, itemsCapacity_, itemBytes, 4096);
     glNamedBufferSubData(tiles_.get(), 0, sizeof head, &head);
     const uint32_t zero = 0;
     glClearNamedBufferSubData(counts_.get(), GL_R32UI, 0, GLsizeiptr(tileCount * sizeof(uint32_t)),
@@ -129,15 +134,23 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
     glUseProgram(sortCulled_.get());
     glUniform1ui(0, tileCount);
     glUniform1ui(1, tileCapacity);
+    glUniform1ui(2, uint32_t(capacity));
+    glUniform1ui(3, mostPerTile);
     glDispatchCompute(groups(tileCount), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    leftOut_.copy(tiles_.get(), offsetof(ForwardGridGpu, info) + 2 * sizeof(int32_t), 0, 1);
-    leftOut_.fence();
+    tileInfo_.copy(tiles_.get(), offsetof(ForwardGridGpu, info) + 2 * sizeof(int32_t), 0, 2);
+    tileInfo_.fence();
     return sizeof head;
 }
 
 bool ForwardBins::leftOut(bool wait) {
-    return leftOut_.latest(wait)[0] != 0;
+    return tileInfo_.latest(wait)[0] != 0;
+}
+
+std::optional<uint32_t> ForwardBins::fullestTile(bool wait) {
+    const uint32_t fullest = tileInfo_.latest(wait)[1];
+    if (!tileInfo_.hasRead()) return std::nullopt;
+    return fullest;
 }
 
 void ForwardBins::dispatch(uint32_t visible, uint32_t tileCount) const {

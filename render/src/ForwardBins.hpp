@@ -5,7 +5,10 @@
 // runs of an item list and fill and sort the runs into drawing order (shaders/forward_*.comp). The
 // screen rectangles come from the CPU culling, so the item list's size is known before the GPU runs.
 // After culling on the GPU the count is not known on the CPU: the tiles then have runs of a fixed
-// length, filled as the rectangles are found.
+// length, filled as the rectangles are found. A tile with more decals than its run holds, up to a
+// limit, walks every decal binned instead (SPATTER_WHOLE_LIST in shaders/forward_data.glsl): exact,
+// and slower for that tile. The GPU reports the fullest tile, by which the caller sizes the runs of
+// later binnings.
 
 #include "DecalBatch.hpp"
 #include "FencedReadback.hpp"
@@ -16,6 +19,7 @@
 #include "spatter/render/DecalProjector.hpp"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace spatter::render_detail {
@@ -30,14 +34,19 @@ public:
     size_t bin(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize, ForwardGridGpu head);
     // The same for a visible list the GPU culled (GpuCulling; `draws` its indirect draw, whose instance
     // count is the list's length), with no count on the CPU: up to `capacity` visible decals are binned
-    // (the rest are left out), each tile holds up to `tileCapacity` of them, and two passes do it (the
-    // rectangles found and the runs filled at once, then sorted). Returns the bytes sent.
+    // (the rest are left out), each tile's run holds up to `tileCapacity` of them (a tile with more, up
+    // to `mostPerTile`, takes the whole list; past that the rest are left out), and two passes do it (the
+    // rectangles found and the runs filled at once, then sorted). The item list is made anew, smaller, where
+    // a quarter of it will do. Returns the bytes sent.
     size_t binCulled(const ForwardFrame& frame, int tileSize, ForwardGridGpu head, GLuint draws,
-                     size_t capacity, uint32_t tileCapacity);
+                     size_t capacity, uint32_t tileCapacity, uint32_t mostPerTile);
     void bind(const ForwardBindings& b) const;
-    // Whether the latest binCulled the GPU has finished (this one's when `wait`) left decals out: a tile
-    // past its capacity, or more visible decals than the buffers held.
+    // Whether the latest binCulled the GPU has finished (this one's when `wait`) left decals out: more
+    // visible decals than the buffers held, or a tile past `mostPerTile`.
     bool leftOut(bool wait);
+    // The most decals one tile held in the latest binCulled the GPU has finished (this one's when
+    // `wait`); nothing before the first, or after a binning culled on the CPU.
+    std::optional<uint32_t> fullestTile(bool wait);
 
     GLuint decals() const { return decals_.get(); }
     GLuint tiles() const { return tiles_.get(); }
@@ -61,7 +70,7 @@ private:
     size_t decalsCapacity_ = 0, tilesCapacity_ = 0, itemsCapacity_ = 0, rectsCapacity_ = 0,
            countsCapacity_ = 0;
     std::vector<glm::uvec2> rectsCpu_;
-    FencedReadback leftOut_; // spatterTileInfo.z of the latest binCulled
+    FencedReadback tileInfo_{2}; // spatterTileInfo.z and .w of the latest binCulled
 };
 
 } // namespace spatter::render_detail

@@ -63,6 +63,8 @@ public:
     // The visible count of the last run when `wait` (waiting for the GPU), else that of the latest
     // run the GPU has finished (0 before the first).
     uint32_t visibleCount(bool wait);
+    // Whether the GPU has given a count yet (visibleCount reads it).
+    bool hasCounted() const { return counts_.hasRead(); }
     // In the run visibleCount last read: the boxes in the frustum the occlusion test culled, the
     // decals that cannot be drawn (their box, type or object) and those the host draws itself
     // (DecalProjector::setHostDrawn).

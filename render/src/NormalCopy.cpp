@@ -98,6 +98,13 @@ void NormalCopy::allocate(GLuint hostNormals) {
     bytes_ = size_t(w) * size_t(h) * size_t(bits) / 8;
 }
 
+void NormalCopy::release() {
+    texture_.reset();
+    format_ = 0;
+    width_ = height_ = 0;
+    bytes_ = 0;
+}
+
 void NormalCopy::copyViewport(const HostFrame& f) const {
     glCopyImageSubData(f.normals.texture, GL_TEXTURE_2D, 0, f.x, f.y, 0, texture_.get(), GL_TEXTURE_2D, 0,
                        f.x, f.y, 0, f.width, f.height, 1);

@@ -3,7 +3,9 @@
 // host's normal texture must read the surface as it was before any decal, so the projector reads a
 // copy. Where the visible boxes cover little of the viewport the copy is taken under them only: the
 // screen rectangle of each of a few boxes, or a draw of the boxes with shaders/normal_copy.frag (at
-// the cost of the pixels they cover); where they cover much of it, the whole viewport at once.
+// the cost of the pixels they cover); where they cover much of it, the whole viewport at once. The
+// copy is as large as the host's normal texture; the projector frees it when its draws have stopped
+// reading it (ProjectorMemory::kNormalCopyIdleDraws).
 
 #include "DecalBatch.hpp"
 #include "GlObjects.hpp"
@@ -42,6 +44,8 @@ public:
     Status prepare();
     // Gives the copy the host normal texture's format and size.
     void allocate(GLuint hostNormals);
+    // Frees the copy's texels (allocate() makes them again).
+    void release();
     // Copies the frame's viewport of the host's normals.
     void copyViewport(const HostFrame& f) const;
     // Copies the screen rectangles (normalised device x, y bounds) of `vis`'s boxes.

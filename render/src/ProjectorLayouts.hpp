@@ -52,7 +52,8 @@ static_assert(sizeof(ForwardDecalGpu) == 144, "ForwardDecalGpu must match Spatte
 // The head of std430 SpatterForwardTiles; the tiles' runs (uvec2 each) follow.
 struct alignas(16) ForwardGridGpu {
     glm::ivec4 grid;  // x, y: viewport corner; z: tiles per row; w: rows
-    glm::ivec4 info;  // x: tile size; y: 1 with the derivative normal frame; z: decals left out (GPU)
+    glm::ivec4 info;  // x: tile size; y: 1 with the derivative normal frame; z: decals left out (GPU);
+                      // w: the most decals of one tile (GPU)
     glm::vec4 params; // x: fade start
 };
 static_assert(sizeof(ForwardGridGpu) == 48, "ForwardGridGpu must match SpatterForwardTiles' head");

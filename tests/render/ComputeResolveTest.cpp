@@ -171,3 +171,66 @@ TEST(ComputeResolve, ReportsDecalsLeftOutOfAFullTile) {
         EXPECT_EQ(st->tilesLeftOut, count > 16) << count << " decals";
     }
 }
+
+// Culled on the GPU, the tiles' runs are sized by the fullest tile of an earlier binning; a tile with
+// more decals than its run holds (up to forwardTileCapacity) walks every decal in view. 40 overlapping
+// decals over one spot blend to the same pixels drawn after a draw of two decals (runs of 16: the
+// whole list) as drawn a second time (runs of 128), and nothing is reported left out.
+TEST(ComputeResolve, ATileFullerThanItsRunBlendsEveryDecalInOrder) {
+    SPATTER_REQUIRE_GL(gl);
+    std::vector<Image> albedo, normal;
+    for (const bool afterFew : {false, true}) {
+        ProjectorSettings settings;
+        settings.deferredResolve = DeferredResolve::Compute;
+        settings.gpuCullingFrom = 0;
+        settings.waitForTimers = true;
+        std::optional<test::HostedWall> h = test::HostedWall::make(settings);
+        ASSERT_TRUE(h);
+        std::vector<Decal> decals;
+        for (int i = 0; i < 40; ++i)
+            decals.push_back(test::WallScene::decalAt(0, {0.01f * float(i), 0.0f, 0.05f}));
+        if (!afterFew) h->projector.setDecals(decals);
+        ASSERT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, true)).ok());
+        h->host.draw(h->wall.transforms, h->wall.ids, h->wall.camera);
+        h->projector.setDecals(decals);
+        const HostFrame f = h->host.frame(h->wall.camera, true);
+        Result<ProjectorStats> st = h->projector.draw(f);
+        ASSERT_TRUE(st.ok()) << st.error();
+        EXPECT_TRUE(st->gpuCulled);
+        EXPECT_NE(st->variant.find("COMPUTE"), std::string::npos) << st->variant;
+        EXPECT_FALSE(st->tilesLeftOut) << afterFew;
+        albedo.push_back(h->host.read(f.albedoTexture));
+        normal.push_back(h->host.read(f.normals.texture));
+    }
+    EXPECT_EQ(test::differingPixels(albedo[0], albedo[1]), 0u);
+    EXPECT_EQ(test::differingPixels(normal[0], normal[1]), 0u);
+}
+
+// The tiles' runs are sized by the fullest tile the GPU reported: runs of 32 before any report, of
+// 128 after a draw with 40 decals over one spot, of 16 after one with the wall's two decals (the
+// items made anew, smaller).
+TEST(ComputeResolve, SizesTheTilesRunsByTheFullestTile) {
+    SPATTER_REQUIRE_GL(gl);
+    ProjectorSettings settings;
+    settings.deferredResolve = DeferredResolve::Compute;
+    settings.gpuCullingFrom = 0;
+    settings.waitForTimers = true;
+    std::optional<test::HostedWall> h = test::HostedWall::make(settings);
+    ASSERT_TRUE(h);
+    std::vector<Decal> stacked;
+    for (int i = 0; i < 40; ++i)
+        stacked.push_back(test::WallScene::decalAt(0, {0.01f * float(i), 0.0f, 0.05f}));
+    std::vector<size_t> screenBytes;
+    for (int draw = 0; draw < 4; ++draw) {
+        h->projector.setDecals(draw < 2 ? stacked : h->wall.decals);
+        h->host.draw(h->wall.transforms, h->wall.ids, h->wall.camera);
+        ASSERT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, true)).ok());
+        screenBytes.push_back(h->projector.memory().gpuScreenBytes);
+    }
+    // 24 tiles, runs of 4-byte items, in buffers of 4096 bytes doubled as needed: 24 x 32 x 4 bytes
+    // take 4096, 24 x 128 x 4 take 16384, 24 x 16 x 4 take 4096 again.
+    static_assert(test::kWallWidth / 16 * (test::kWallHeight / 16) == 24, "the wall's frame has 24 tiles");
+    EXPECT_EQ(screenBytes[1] - screenBytes[0], 16384u - 4096u);
+    EXPECT_EQ(screenBytes[1], screenBytes[2]);
+    EXPECT_EQ(screenBytes[2] - screenBytes[3], screenBytes[1] - screenBytes[0]);
+}

@@ -95,11 +95,15 @@ TEST(Forward, AppliedInTheHostsShaderGivesWhatTheGBufferBlendGivesInOrder) {
 // Culled on the GPU (no count on the CPU: tiles of a fixed length, filled as the rectangles are
 // found on the GPU), the forward pass gives what it gives culled on the CPU, bit for bit, with the
 // decals stacked in the same tiles and the wall's decals spread over the view.
+// Culled on the GPU, the tiles' runs are sized by the fullest tile of an earlier binning; a tile with
+// more walks every decal binned, in drawing order, to the same pixels: the 40 stacked decals binned a
+// second time (runs of 128) and binned after the wall's two (runs of 16: the whole list).
 TEST(Forward, CulledOnTheGpuGivesWhatCulledOnTheCpuGives) {
     SPATTER_REQUIRE_GL(gl);
-    Image images[2];
-    ProjectorStats stats[2];
-    for (const bool onGpu : {false, true}) {
+    Image images[3];
+    ProjectorStats stats[3];
+    for (const int run : {0, 1, 2}) {
+        const bool onGpu = run > 0;
         std::optional<test::HostedWall> h = test::HostedWall::make();
         ASSERT_TRUE(h);
         ProjectorSettings settings;
@@ -110,6 +114,11 @@ TEST(Forward, CulledOnTheGpuGivesWhatCulledOnTheCpuGives) {
         h->projector = std::move(p).value();
         ASSERT_TRUE(h->projector.setObjects(h->wall.transforms, h->wall.ids).ok());
         h->projector.setDecalTypes(twoLooks(h->wall));
+        if (run > 0) {
+            h->projector.setDecals(run == 1 ? stackedDecals(h->wall, 40) : h->wall.decals);
+            ASSERT_TRUE(
+                h->host.drawForward(h->wall.transforms, h->wall.ids, h->wall.camera, h->projector).ok());
+        }
         std::vector<Decal> decals = stackedDecals(h->wall, 40);
         for (int i = 0; i < 30; ++i) // some in view, some beyond its edges
             decals.push_back(
@@ -119,8 +128,9 @@ TEST(Forward, CulledOnTheGpuGivesWhatCulledOnTheCpuGives) {
             h->host.drawForward(h->wall.transforms, h->wall.ids, h->wall.camera, h->projector);
         ASSERT_TRUE(st.ok()) << st.error();
         EXPECT_EQ(st->gpuCulled, onGpu);
-        stats[onGpu] = st.value();
-        images[onGpu] = h->host.read(h->host.albedoTexture());
+        EXPECT_FALSE(st->tilesLeftOut);
+        stats[run] = st.value();
+        images[run] = h->host.read(h->host.albedoTexture());
     }
     std::printf("forward, %zu decals: %zu drawn culled on the CPU, %zu on the GPU\n", stats[0].decals,
                 stats[0].drawn, stats[1].drawn);
@@ -128,6 +138,7 @@ TEST(Forward, CulledOnTheGpuGivesWhatCulledOnTheCpuGives) {
     EXPECT_GT(stats[0].culled, 0u);
     EXPECT_GE(stats[1].drawn, stats[0].drawn); // the GPU's float test keeps a margin
     EXPECT_EQ(test::differingPixels(images[0], images[1]), 0u);
+    EXPECT_EQ(test::differingPixels(images[0], images[2]), 0u);
 }
 
 TEST(Forward, TilesAreEmptyWhenNoDecalIsInView) {

@@ -526,3 +526,42 @@ TEST(Projector, EveryDepthConventionRebuildsTheSameSurface) {
         "(expected %zu and %.0f)\n",
         standard, standard01, reversedZ, linear, orthographic, orthoLinear, expected, orthoSide * orthoSide);
 }
+
+// The copy of the host's normals that decals writing normals read is held while draws read it:
+// ProjectorMemory::kNormalCopyIdleDraws draws of decals that write none free it, and the next draw
+// that needs it makes it again and blends as a projector that never freed it.
+TEST(Projector, FreesTheCopyOfTheHostsNormalsOnceItsDrawsStopReadingIt) {
+    SPATTER_REQUIRE_GL(gl);
+    std::optional<test::HostedWall> h = test::HostedWall::make();
+    ASSERT_TRUE(h);
+    // Two overlapping decals: their boxes read normals the other writes, so the draw takes a copy.
+    std::vector<Decal> decals = h->wall.decals;
+    decals.push_back(test::WallScene::decalAt(0, {-0.4f, 0.2f, 0.05f}));
+    h->projector.setDecals(decals);
+    auto drawNormals = [&]() -> std::optional<Image> {
+        h->host.draw(h->wall.transforms, h->wall.ids, h->wall.camera);
+        Result<ProjectorStats> st = h->projector.draw(h->host.frame(h->wall.camera, true));
+        EXPECT_TRUE(st.ok()) << st.error();
+        if (!st) return std::nullopt;
+        return h->host.read(h->host.frame(h->wall.camera, true).normals.texture);
+    };
+    const std::optional<Image> first = drawNormals();
+    ASSERT_TRUE(first);
+    const size_t copy = h->projector.memory().gpuScreenBytes;
+    EXPECT_EQ(copy, size_t(test::kWallWidth) * test::kWallHeight * 4);
+
+    std::vector<DecalType> plain = h->wall.types;
+    plain[0].normalMap = false;
+    h->projector.setDecalTypes(plain);
+    for (int i = 1; i < ProjectorMemory::kNormalCopyIdleDraws; ++i)
+        ASSERT_TRUE(drawNormals());
+    EXPECT_EQ(h->projector.memory().gpuScreenBytes, copy) << "freed before the draws in a row";
+    ASSERT_TRUE(drawNormals());
+    EXPECT_EQ(h->projector.memory().gpuScreenBytes, 0u);
+
+    h->projector.setDecalTypes(h->wall.types);
+    const std::optional<Image> again = drawNormals();
+    ASSERT_TRUE(again);
+    EXPECT_EQ(h->projector.memory().gpuScreenBytes, copy);
+    EXPECT_EQ(test::differingPixels(*first, *again), 0u);
+}

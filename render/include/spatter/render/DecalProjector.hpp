@@ -156,8 +156,9 @@ struct HostFrame {
 // How draw() blends the decals into the host's G-buffer.
 enum class DeferredResolve {
     Auto,    // Compute on a GPU from kComputeResolveFrom decals in view (culled on the GPU: in an earlier
-             // draw's view), Boxes for fewer and on a software rasteriser (llvmpipe): each where it
-             // costs less (the compute pass's binning is a fixed cost that a few boxes undercut)
+             // draw's view, and Compute before the GPU's first count), Boxes for fewer and on a
+             // software rasteriser (llvmpipe): each where it costs less (the compute pass's binning is
+             // a fixed cost that a few boxes undercut)
     Boxes,   // a box per visible decal, drawn over the G-buffer (the rasteriser hands each box its pixels)
     Compute, // one compute pass over the screen tiles of the forward path's binning: each pixel with
              // decals in its tile reads the host's targets once, applies its decals in drawing order
@@ -165,9 +166,9 @@ enum class DeferredResolve {
              // targets it can load and store (albedo RGBA8 or SRGB8_ALPHA8 of immutable storage,
              // normals RG16F, RGBA16F, RGB10_A2 or RGBA8, roughness R8, RG8 or RGBA8 in R, G or B, or
              // in the albedo's alpha); other frames, coverage mode, angleReject off and the DBuffer
-             // path use boxes. Culled on the GPU, a tile takes at most forwardTileCapacity decals, as
-             // bin()'s do; decals left out are reported (ProjectorStats::tilesLeftOut), and Auto then
-             // draws boxes for 16 draws
+             // path use boxes. Culled on the GPU, the tiles are binned as bin()'s are
+             // (forwardTileCapacity); decals left out are reported (ProjectorStats::tilesLeftOut), and
+             // Auto then draws boxes for 16 draws
 };
 
 struct ProjectorSettings {
@@ -181,9 +182,14 @@ struct ProjectorSettings {
     DecalNormalFrame normalFrame = DecalNormalFrame::DecalAxes;
     int decalTextureSize = 256; // size of the decal texture layers: a power of two in [16, 2048]
     int forwardTileSize = 16;   // side of the forward path's screen tiles, pixels: a power of two in [8, 64]
-    // The most decals a forward tile holds when bin() culls on the GPU (where the count is not known on
-    // the CPU, each tile gets a run of this length; decals past it in a tile are left out of it), in
-    // [16, 4096]: 4 bytes per tile each (8 MB at 1080p with 16-pixel tiles and 256).
+    // The longest run of decals a screen tile gets when the binning (bin(), the compute resolve) culls
+    // on the GPU, in [16, 4096]. The count is not known on the CPU then: each tile gets a run of twice
+    // the most decals of one tile in the latest binning the GPU has reported (16 before the first
+    // report), a power of two from 16, at most this. A tile with more decals than its run holds, up to
+    // this, walks every decal in view instead (SPATTER_WHOLE_LIST in forward_data.glsl): the same
+    // pixels, slower for that tile and that frame; decals past this in one tile are left out of it
+    // (ProjectorStats::tilesLeftOut). The runs take 4 bytes a tile each: 8.4 MB at 1080p with 16-pixel
+    // tiles and 256, 0.5 MB with 16.
     int forwardTileCapacity = 256;
     // draw() builds the visible list on the GPU from this many decals on (given to setDecals): the CPU
     // then does no per-decal work per frame, the pass is not skipped when nothing is in view, and the
@@ -279,8 +285,7 @@ struct ProjectorStats {
     bool gpuCulled = false; // the visible list was built on the GPU (ProjectorSettings::gpuCullingFrom)
     // The latest binning culled on the GPU that the GPU has finished (this one's with waitForTimers), of
     // bin() or of the compute resolve, left decals out of screen tiles: a tile past forwardTileCapacity,
-    // or more decals in view than twice an earlier count. DeferredResolve::Auto then draws boxes for a
-    // while.
+    // or more decals in view than twice an earlier count. DeferredResolve::Auto then draws boxes for a while.
     bool tilesLeftOut = false;
     std::string variant;   // shader features used, e.g. "IDS WRAP NORMAL_MAP FADE"
     double gpuMs = 0.0;    // GPU time of the pass, of frame `gpuFrame` (see waitForTimers)
@@ -325,6 +330,12 @@ struct ProjectorMemory {
     size_t gpuScreenBytes = 0; // the part of gpuBufferBytes sized by the viewport and the decals in
                                // view, not by the decals held: the depth pyramid, the screen tiles
                                // and the normal copy
+    // The normal copy is held while draws read it: kNormalCopyIdleDraws draws and bins in a row that
+    // take none (no decal writing normals in view, normals blended in place, or the compute resolve,
+    // which reads the targets before it writes them) free it, and the next draw that needs it makes it
+    // again. Half a second at 60 frames a second, so that a view hovering between a draw that copies
+    // and one that does not keeps the copy rather than making it anew every frame.
+    static constexpr int kNormalCopyIdleDraws = 30;
 };
 
 class DecalProjector {
