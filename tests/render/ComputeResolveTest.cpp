@@ -63,6 +63,23 @@ std::pair<int, size_t> difference(const Image& a, const Image& b, int tolerance,
     return {largest, over};
 }
 
+// The compute resolve of decals the GPU culls, the counts of each draw read at its end.
+ProjectorSettings culledCompute() {
+    ProjectorSettings settings;
+    settings.deferredResolve = DeferredResolve::Compute;
+    settings.gpuCullingFrom = 0;
+    settings.waitForTimers = true;
+    return settings;
+}
+
+// `count` decals on the wall a hundredth apart, overlapping over one spot.
+std::vector<Decal> stackedOnWall(int count) {
+    std::vector<Decal> decals;
+    for (int i = 0; i < count; ++i)
+        decals.push_back(test::WallScene::decalAt(0, {0.01f * float(i), 0.0f, 0.05f}));
+    return decals;
+}
+
 } // namespace
 
 TEST(ComputeResolve, BlendsTheGBufferAsTheBoxesDo) {
@@ -153,17 +170,11 @@ TEST(ComputeResolve, BlendsAHostsFrameAsTheBoxesDo) {
 TEST(ComputeResolve, ReportsDecalsLeftOutOfAFullTile) {
     SPATTER_REQUIRE_GL(gl);
     for (const int count : {8, 40}) {
-        ProjectorSettings settings;
-        settings.deferredResolve = DeferredResolve::Compute;
-        settings.gpuCullingFrom = 0;
+        ProjectorSettings settings = culledCompute();
         settings.forwardTileCapacity = 16;
-        settings.waitForTimers = true;
         std::optional<test::HostedWall> h = test::HostedWall::make(settings);
         ASSERT_TRUE(h);
-        std::vector<Decal> decals;
-        for (int i = 0; i < count; ++i)
-            decals.push_back(test::WallScene::decalAt(0, {0.01f * float(i), 0.0f, 0.05f}));
-        h->projector.setDecals(decals);
+        h->projector.setDecals(stackedOnWall(count));
         Result<ProjectorStats> st = h->projector.draw(h->host.frame(h->wall.camera, true));
         ASSERT_TRUE(st.ok()) << st.error();
         EXPECT_TRUE(st->gpuCulled);
@@ -180,15 +191,9 @@ TEST(ComputeResolve, ATileFullerThanItsRunBlendsEveryDecalInOrder) {
     SPATTER_REQUIRE_GL(gl);
     std::vector<Image> albedo, normal;
     for (const bool afterFew : {false, true}) {
-        ProjectorSettings settings;
-        settings.deferredResolve = DeferredResolve::Compute;
-        settings.gpuCullingFrom = 0;
-        settings.waitForTimers = true;
-        std::optional<test::HostedWall> h = test::HostedWall::make(settings);
+        std::optional<test::HostedWall> h = test::HostedWall::make(culledCompute());
         ASSERT_TRUE(h);
-        std::vector<Decal> decals;
-        for (int i = 0; i < 40; ++i)
-            decals.push_back(test::WallScene::decalAt(0, {0.01f * float(i), 0.0f, 0.05f}));
+        const std::vector<Decal> decals = stackedOnWall(40);
         if (!afterFew) h->projector.setDecals(decals);
         ASSERT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, true)).ok());
         h->host.draw(h->wall.transforms, h->wall.ids, h->wall.camera);
@@ -211,15 +216,9 @@ TEST(ComputeResolve, ATileFullerThanItsRunBlendsEveryDecalInOrder) {
 // items made anew, smaller).
 TEST(ComputeResolve, SizesTheTilesRunsByTheFullestTile) {
     SPATTER_REQUIRE_GL(gl);
-    ProjectorSettings settings;
-    settings.deferredResolve = DeferredResolve::Compute;
-    settings.gpuCullingFrom = 0;
-    settings.waitForTimers = true;
-    std::optional<test::HostedWall> h = test::HostedWall::make(settings);
+    std::optional<test::HostedWall> h = test::HostedWall::make(culledCompute());
     ASSERT_TRUE(h);
-    std::vector<Decal> stacked;
-    for (int i = 0; i < 40; ++i)
-        stacked.push_back(test::WallScene::decalAt(0, {0.01f * float(i), 0.0f, 0.05f}));
+    const std::vector<Decal> stacked = stackedOnWall(40);
     std::vector<size_t> screenBytes;
     for (int draw = 0; draw < 4; ++draw) {
         h->projector.setDecals(draw < 2 ? stacked : h->wall.decals);
