@@ -49,6 +49,7 @@ void DecalBatch::setMirrorLimit(size_t limit) {
     if (mirror_ && size() >= limit) {
         std::vector<DecalRecordGpu>().swap(records_); // frees the memory, which "= {}" keeps
         mirror_ = false;
+        order_.setMirrored(false);
     }
 }
 
@@ -58,6 +59,7 @@ void DecalBatch::setDecals(const std::vector<Decal>& decals) {
     sound_.assign(decals.size(), true);
     unsound_ = 0;
     mirror_ = decals.size() < mirrorLimit_;
+    order_.setMirrored(mirror_);
     records_ = mirror_ ? std::vector<DecalRecordGpu>(decals.size()) : std::vector<DecalRecordGpu>{};
     staged_.clear();
     typeBound_ = 0;
@@ -136,6 +138,7 @@ void DecalBatch::updateMirror(const std::vector<Decal>& decals) {
     const bool want = decals.size() < mirrorLimit_;
     if (want == mirror_) return;
     mirror_ = want;
+    order_.setMirrored(want);
     std::vector<DecalRecordGpu>().swap(records_);
     if (!want) return;
     records_.resize(decals.size());

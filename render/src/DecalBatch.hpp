@@ -83,8 +83,10 @@ public:
     // The DecalFlag bits of the valid decals (without the CPU copy: of every type that can be drawn).
     uint32_t flagsUnion() const;
     const DrawOrder& order() const { return order_; }
-    // The runs of order entries changed since the last call (DrawOrder::takeChanged).
-    std::vector<std::pair<size_t, size_t>> takeOrderChanges() { return order_.takeChanged(); }
+    // The order's changes since the last call (DrawOrder::takeChanged); every entry when `all`.
+    DrawOrder::Changes takeOrderChanges(bool all = false) { return order_.takeChanged(all); }
+    // The GPU's copy of the order has taken them (DrawOrder::uploaded).
+    void orderUploaded() { order_.uploaded(); }
     bool mirrored() const { return mirror_; }
     // The CPU copy of the records (mirrored() only) and whether record i can be drawn.
     const std::vector<DecalRecordGpu>& instances() const { return records_; }

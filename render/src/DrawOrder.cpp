@@ -89,10 +89,12 @@ void DrawOrder::place(const std::vector<Decal>& decals, const std::vector<uint32
         return;
     }
     // A new layout: the decals there in their order, then the new ones.
+    std::vector<uint32_t> rebuilt;
+    const std::vector<uint32_t>& entries = held_ ? entries_ : (rebuilt = rebuiltEntries());
     std::vector<std::vector<uint32_t>> byRank(regions_.size());
     for (size_t r = 0; r < regions_.size(); ++r)
         for (size_t e = regions_[r].start; e < regions_[r].start + regions_[r].used; ++e)
-            if (entries_[e] != kEmpty) byRank[r].push_back(entries_[e]);
+            if (entries[e] != kEmpty) byRank[r].push_back(entries[e]);
     for (const uint32_t i : pending_) {
         if (i == kEmpty) continue;
         const uint32_t r = rankOf(decals[i], typeRank);
@@ -103,15 +105,54 @@ void DrawOrder::place(const std::vector<Decal>& decals, const std::vector<uint32
     layout(byRank);
 }
 
-std::vector<std::pair<size_t, size_t>> DrawOrder::takeChanged() {
-    std::vector<std::pair<size_t, size_t>> runs;
-    if (relaid_)
-        runs.emplace_back(0, entries_.size());
-    else
-        runs = sparseRuns(std::move(changed_), 64);
+DrawOrder::Changes DrawOrder::takeChanged(bool all) {
+    Changes c;
+    c.all = relaid_ || all;
+    if (c.all && !held_) {
+        entries_ = rebuiltEntries();
+        held_ = true;
+    }
+    if (!c.all && mirrored_) c.runs = sparseRuns(std::move(changed_), 64);
+    if (!c.all && !mirrored_) {
+        // The last write of each entry, in entry order.
+        std::stable_sort(writes_.begin(), writes_.end(),
+                         [](const glm::uvec2& a, const glm::uvec2& b) { return a.x < b.x; });
+        for (size_t i = 0; i < writes_.size(); ++i)
+            if (i + 1 == writes_.size() || writes_[i + 1].x != writes_[i].x) c.writes.push_back(writes_[i]);
+    }
     changed_.clear();
+    std::vector<glm::uvec2>().swap(writes_);
     relaid_ = false;
-    return runs;
+    return c;
+}
+
+void DrawOrder::uploaded() {
+    if (mirrored_ || !held_) return;
+    std::vector<uint32_t>().swap(entries_);
+    held_ = false;
+}
+
+void DrawOrder::setMirrored(bool mirrored) {
+    if (mirrored == mirrored_) return;
+    mirrored_ = mirrored;
+    if (mirrored) {
+        if (!held_) entries_ = rebuiltEntries();
+        held_ = true;
+        for (const glm::uvec2& w : writes_) // not taken yet: uploaded as changed entries
+            changed_.push_back(w.x);
+        std::vector<glm::uvec2>().swap(writes_);
+        return;
+    }
+    // The GPU's copy may be behind (the CPU culled): all of it goes up next, then the entries go.
+    changed_.clear();
+    relaid_ = true;
+}
+
+std::vector<uint32_t> DrawOrder::rebuiltEntries() const {
+    std::vector<uint32_t> entries(size_, kEmpty);
+    for (size_t d = 0; d < pos_.size(); ++d)
+        if (!(pos_[d] & kPending)) entries[pos_[d]] = uint32_t(d);
+    return entries;
 }
 
 void DrawOrder::layout(const std::vector<std::vector<uint32_t>>& byRank) {
@@ -122,19 +163,26 @@ void DrawOrder::layout(const std::vector<std::vector<uint32_t>>& byRank) {
         regions_[r] = Region{start, n + n / 4 + 64, n, 0}; // room to grow by a quarter before the next layout
         start += regions_[r].size;
     }
+    size_ = start;
     entries_.assign(start, kEmpty);
+    held_ = true;
     for (size_t r = 0; r < byRank.size(); ++r)
         for (size_t k = 0; k < byRank[r].size(); ++k) {
             entries_[regions_[r].start + k] = byRank[r][k];
             pos_[byRank[r][k]] = uint32_t(regions_[r].start + k);
         }
     changed_.clear();
+    std::vector<glm::uvec2>().swap(writes_);
     relaid_ = true;
 }
 
 void DrawOrder::set(size_t entry, uint32_t value) {
-    entries_[entry] = value;
-    if (!relaid_) changed_.push_back(uint32_t(entry));
+    if (held_) entries_[entry] = value;
+    if (relaid_) return;
+    if (mirrored_)
+        changed_.push_back(uint32_t(entry));
+    else
+        writes_.push_back({uint32_t(entry), value});
 }
 
 size_t DrawOrder::regionOf(size_t entry) const {

@@ -32,33 +32,55 @@ Status GpuCulling::prepare() {
     if (!exact) return fail(exact.error());
     Result<GlProgram> scatter = projectorComputeProgram("cull_scatter.comp");
     if (!scatter) return fail(scatter.error());
+    Result<GlProgram> write = projectorComputeProgram("order_write.comp");
+    if (!write) return fail(write.error());
     classify_ = std::move(classify.value());
     exact_ = std::move(exact.value());
     scatter_ = std::move(scatter.value());
+    write_ = std::move(write.value());
     counters_ = createBuffer();
     glNamedBufferStorage(counters_.get(), GLsizeiptr(sizeof kCountersAtStart), nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
     return {};
 }
 
-size_t GpuCulling::updateDrawOrder(const std::vector<uint32_t>& entries,
-                                   const std::vector<std::pair<size_t, size_t>>& runs) {
-    entries_ = uint32_t(entries.size());
-    const size_t bytes = std::max<size_t>(1, entries.size()) * sizeof(uint32_t);
-    if (bytes > orderCapacity_ || !order_) { // sized as the order is: it has room to grow of its own
+size_t GpuCulling::updateDrawOrder(const DrawOrder& order, const DrawOrder::Changes& changes) {
+    entries_ = uint32_t(order.size());
+    const std::vector<uint32_t>& entries = order.entries();
+    const size_t bytes = std::max<size_t>(1, order.size()) * sizeof(uint32_t);
+    // Sized as the order is (it has room to grow of its own): only a new layout, whose changes are
+    // all of its entries, makes it longer.
+    if (bytes > orderCapacity_ || !order_) {
         order_ = createBuffer();
         orderCapacity_ = bytes;
         glNamedBufferStorage(order_.get(), GLsizeiptr(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    if (changes.all) {
         glNamedBufferSubData(order_.get(), 0, GLsizeiptr(entries.size() * sizeof(uint32_t)), entries.data());
         return entries.size() * sizeof(uint32_t);
     }
+    if (!changes.writes.empty()) return writeDrawOrder(changes.writes);
     size_t sent = 0;
-    for (const auto& [begin, end] : runs) {
+    for (const auto& [begin, end] : changes.runs) {
         glNamedBufferSubData(order_.get(), GLintptr(begin * sizeof(uint32_t)),
                              GLsizeiptr((end - begin) * sizeof(uint32_t)), &entries[begin]);
         sent += (end - begin) * sizeof(uint32_t);
     }
     return sent;
+}
+
+size_t GpuCulling::writeDrawOrder(const std::vector<glm::uvec2>& writes) {
+    const size_t bytes = writes.size() * sizeof(glm::uvec2);
+    reserveBuffer(writes_, writesCapacity_, bytes, 4096);
+    glNamedBufferSubData(writes_.get(), 0, GLsizeiptr(bytes), writes.data());
+    // Over bindings the culling binds its own buffers to again (bind()).
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClassesBinding, writes_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOrderBinding, order_.get());
+    glUseProgram(write_.get());
+    glUniform1ui(0, uint32_t(writes.size()));
+    glDispatchCompute(uint32_t((writes.size() + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    return bytes;
 }
 
 uint32_t GpuCulling::reserve(size_t decals, GlBuffer& visible, size_t& visibleCapacity) {

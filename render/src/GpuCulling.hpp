@@ -11,6 +11,7 @@
 // not tell which may hold the eye). A pass over every place is what a large world costs, so only the
 // first pass makes one, and it reads no more of a record than its box's centre, size and object.
 
+#include "DrawOrder.hpp"
 #include "FencedReadback.hpp"
 #include "GlObjects.hpp"
 
@@ -48,10 +49,9 @@ public:
 
     // Builds the compute programs on first use.
     Status prepare();
-    // Sends the draw order's entries (DrawOrder.hpp) in `runs` (all of them when the buffer grows);
-    // returns the bytes sent.
-    size_t updateDrawOrder(const std::vector<uint32_t>& entries,
-                           const std::vector<std::pair<size_t, size_t>>& runs);
+    // Sends `order`'s `changes` (DrawOrder::takeChanged): every entry, runs of its entries, or writes
+    // applied by a compute pass (order_write.comp); returns the bytes sent.
+    size_t updateDrawOrder(const DrawOrder& order, const DrawOrder::Changes& changes);
     // Culls the decals of the draw order (`what.decals` of them) against the frame block's camera, and
     // against `occlusion`'s pyramid when it has one. The visible list goes into `visible` (grown to hold that
     // many indices; `visibleCapacity` in bytes). Binds its own buffers over shader storage bindings 0-2 and
@@ -73,7 +73,7 @@ public:
     uint32_t hostDrawnCount() const { return counts_.values()[3]; }
 
     // Bytes of the GPU buffers it holds.
-    size_t gpuBytes() const { return classesCapacity_ + groupsCapacity_ + orderCapacity_; }
+    size_t gpuBytes() const { return classesCapacity_ + groupsCapacity_ + orderCapacity_ + writesCapacity_; }
 
 private:
     // Grows the buffers for this run and `visible` for `decals` indices; returns the groups of 256
@@ -81,9 +81,12 @@ private:
     uint32_t reserve(size_t decals, GlBuffer& visible, size_t& visibleCapacity);
     void bind(const GlBuffer& visible) const;
 
-    GlProgram classify_, exact_, scatter_;
-    GlBuffer classes_, groups_, counters_, order_;
-    size_t classesCapacity_ = 0, groupsCapacity_ = 0, orderCapacity_ = 0;
+    // Applies `writes` to the draw order's buffer (order_write.comp).
+    size_t writeDrawOrder(const std::vector<glm::uvec2>& writes);
+
+    GlProgram classify_, exact_, scatter_, write_;
+    GlBuffer classes_, groups_, counters_, order_, writes_;
+    size_t classesCapacity_ = 0, groupsCapacity_ = 0, orderCapacity_ = 0, writesCapacity_ = 0;
     uint32_t entries_ = 0;     // of the draw order
     FencedReadback counts_{4}; // the visible, occluded, invalid and host-drawn counts of a run
 };

@@ -77,9 +77,10 @@ size_t ProjectorBuffers::uploadVisible(const std::vector<uint32_t>& list) {
 }
 
 size_t ProjectorBuffers::uploadDrawOrder(DecalBatch& batch, GpuCulling& culling) {
-    std::vector<std::pair<size_t, size_t>> runs = batch.takeOrderChanges();
-    if (!std::exchange(orderOnGpu_, true)) runs = {{0, batch.order().entries().size()}};
-    return culling.updateDrawOrder(batch.order().entries(), runs);
+    const DrawOrder::Changes changes = batch.takeOrderChanges(!std::exchange(orderOnGpu_, true));
+    const size_t sent = culling.updateDrawOrder(batch.order(), changes);
+    batch.orderUploaded();
+    return sent;
 }
 
 void ProjectorBuffers::bind() const {

@@ -278,7 +278,9 @@ TEST(BenchSmoke, CharactersQuickTimesTheFrameWithAndWithoutTheirDecals) {
 TEST(BenchSmoke, RenderPathsTimeEveryPathOfTheProjectorWithTheSameDecals) {
     SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("bench-paths");
-    ASSERT_EQ(runBench("render --quick --groups paths --frames 1 --json " + dir + "/p.json", dir + "/log"), 0)
+    ASSERT_EQ(runBench("render --quick --groups paths --frames 1 --max-seconds 60 --json " + dir + "/p.json",
+                       dir + "/log"),
+              0)
         << readAll(dir + "/log");
     const nlohmann::json j = readJson(dir + "/p.json");
     ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << readAll(dir + "/p.json");

@@ -155,6 +155,8 @@ TEST(ChangeList, UpdatesDrawExactlyWhatTheDecalsTakenWholeDraw) {
     SPATTER_REQUIRE_GL(gl);
     expectUpdatesMatchWholeDecals(std::nullopt, "culled on the CPU");
     expectUpdatesMatchWholeDecals(size_t(0), "culled on the GPU");
+    // From 30 decals on: the CPU stops keeping the records and the draw order's entries mid-run.
+    expectUpdatesMatchWholeDecals(size_t(30), "culled on the GPU from 30 decals");
 }
 
 TEST(ChangeList, ALongRunOfSpawnsKeepsGpuMemoryFlatAndNeverDrawsARemovedDecal) {

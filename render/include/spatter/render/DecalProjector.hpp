@@ -322,8 +322,9 @@ struct ProjectorResources {
 // What the projector holds for its decals (DecalProjector::memory), counted from its own
 // allocations; the driver's own copies and bookkeeping are not in it.
 struct ProjectorMemory {
-    size_t cpuBytes = 0;       // the draw order, a validity bit per decal, the CPU copy of the records
-                               // (until draw() culls on the GPU) and records waiting for upload
+    size_t cpuBytes = 0;       // each decal's place in the draw order, a validity bit per decal, the
+                               // draw order's entries and the CPU copy of the records (until draw()
+                               // culls on the GPU) and records waiting for upload
     size_t gpuBufferBytes = 0; // the decal records, types, objects, draw order, culling and forward
                                // buffers, the visible list (capacities, grown ahead of need), and the
                                // textures: the depth pyramid and the copy of the host's normals
@@ -359,9 +360,10 @@ public:
     // draws over the older ones of its priority). The decals are taken whole, as by setDecals, when
     // the changes are not complete or do not fit the decals held, and after setDecalTypes changed the
     // types' priorities. The projector keeps no copy of the decals: the changes and `decals` together
-    // say what changed. Per decal it keeps 48 bytes on the GPU, and on the CPU about 10 bytes (its
-    // place in the draw order, a validity bit) plus a 48-byte record for culling on the CPU, which
-    // goes once draw() culls on the GPU (ProjectorSettings::gpuCullingFrom).
+    // say what changed. Per decal it keeps 48 bytes on the GPU, and on the CPU about 4 bytes (its
+    // place in the draw order, a validity bit) plus, for culling on the CPU, a 48-byte record and the
+    // draw order's entries (5 bytes), which go once draw() culls on the GPU
+    // (ProjectorSettings::gpuCullingFrom): the draw order's changes then go to the GPU as writes.
     void updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes);
     // Object-to-world transforms (double) and 8-bit decal IDs, one entry per object that decals may
     // name (Decal::object). Fails, changing nothing, when the counts differ or a transform is not
