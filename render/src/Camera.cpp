@@ -70,7 +70,9 @@ Result<Camera> parseCamera(const std::string& text) {
 }
 
 std::string formatCamera(const Camera& c) {
-    auto v = [](const glm::dvec3& p) { return exactNumber(p.x) + "," + exactNumber(p.y) + "," + exactNumber(p.z); };
+    auto v = [](const glm::dvec3& p) {
+        return exactNumber(p.x) + "," + exactNumber(p.y) + "," + exactNumber(p.z);
+    };
     return "eye=" + v(c.eye) + ";target=" + v(c.target) + ";up=" + v(c.up) + ";fov=" + exactNumber(c.fovYDeg);
 }
 
@@ -83,7 +85,8 @@ Status validateCamera(const Camera& c) {
         return fail("camera: fov " + exactNumber(c.fovYDeg) + " is outside [" + exactNumber(kMinFovDeg) +
                     ", 180) degrees");
     if (!std::isfinite(c.nearPlane) || c.nearPlane < kMinNearPlane)
-        return fail("camera: near plane " + exactNumber(c.nearPlane) + " is below " + exactNumber(kMinNearPlane));
+        return fail("camera: near plane " + exactNumber(c.nearPlane) + " is below " +
+                    exactNumber(kMinNearPlane));
     if (!std::isfinite(c.farPlane) || (c.farPlane != 0.0 && c.farPlane <= c.nearPlane))
         return fail("camera: far plane must be 0 (infinite) or beyond the near plane");
     const glm::dvec3 dir = c.target - c.eye;

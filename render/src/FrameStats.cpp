@@ -63,11 +63,12 @@ std::string toJson(const FrameStats& s) {
     field("draw_calls", std::to_string(s.drawCalls));
     field("triangles", std::to_string(s.triangles));
     field("cpu_ms", jsonNumber(s.cpuMs));
-    field("gpu_ms", "{\"geometry\":" + jsonNumber(s.gpu.geometryMs) + ",\"decals\":" + jsonNumber(s.gpu.decalsMs) +
-                        ",\"late\":" + jsonNumber(s.gpu.lateMs) + ",\"lighting\":" + jsonNumber(s.gpu.lightingMs) +
-                        ",\"overlay\":" + jsonNumber(s.gpu.overlayMs) + ",\"splat\":" + jsonNumber(s.gpu.splatMs) +
-                        ",\"volumetric\":" + jsonNumber(s.gpu.volumetricMs) + ",\"total\":" +
-                        jsonNumber(s.gpu.totalMs()) + ",\"frame\":" + std::to_string(s.gpu.frame) + "}");
+    field("gpu_ms",
+          "{\"geometry\":" + jsonNumber(s.gpu.geometryMs) + ",\"decals\":" + jsonNumber(s.gpu.decalsMs) +
+              ",\"late\":" + jsonNumber(s.gpu.lateMs) + ",\"lighting\":" + jsonNumber(s.gpu.lightingMs) +
+              ",\"overlay\":" + jsonNumber(s.gpu.overlayMs) + ",\"splat\":" + jsonNumber(s.gpu.splatMs) +
+              ",\"volumetric\":" + jsonNumber(s.gpu.volumetricMs) + ",\"total\":" +
+              jsonNumber(s.gpu.totalMs()) + ",\"frame\":" + std::to_string(s.gpu.frame) + "}");
     field("gl_renderer", quoted(s.glRenderer));
     field("gl_vendor", quoted(s.glVendor));
     field("gl_version", quoted(s.glVersion));

@@ -337,8 +337,10 @@ TEST(HausdorffBound, PiecesOverHolesFoldsAndSeamsStayAboveTheDenseEstimate) {
         const size_t cell = t / 2, i = cell / 40, j = cell % 40;
         if ((i == 20 || i == 21) && (j == 20 || j == 21)) continue;
         const uint32_t* c = &bumpy.indices[3 * t];
-        if (i == 10) holed.indices.insert(holed.indices.end(), {c[0], c[2], c[1]});
-        else holed.indices.insert(holed.indices.end(), {c[0], c[1], c[2]});
+        if (i == 10)
+            holed.indices.insert(holed.indices.end(), {c[0], c[2], c[1]});
+        else
+            holed.indices.insert(holed.indices.end(), {c[0], c[1], c[2]});
     }
     Mesh coarse = grid(3, 0.05f, 0.9f, [](float x, float y) { return 0.015f * (x - y); });
     for (const Mesh& under : {bumpy, holed, unshared(holed)}) {

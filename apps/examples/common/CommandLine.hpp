@@ -74,7 +74,8 @@ struct Inputs {
 // drawn differently). The far plane lies at twice the distance to the farthest corner of the
 // scene's bounds, so that a decal box that holds the eye keeps its far faces.
 // Decals take spatter-render's defaults: the bullet_hole look, decals of 2% of the scene's bounding
-// diagonal (decalSizeForScene) within 80 degrees and seed 1 for rays. Fails on a scene or decal file that cannot be used, with its loader's message.
+// diagonal (decalSizeForScene) within 80 degrees and seed 1 for rays. Fails on a scene or decal file that
+// cannot be used, with its loader's message.
 spatter::Result<Inputs> loadInputs(const Options& options);
 
 } // namespace example

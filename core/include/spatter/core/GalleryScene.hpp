@@ -20,8 +20,8 @@
 //   (+-6, 3.4, -2.6), facing +Z: open single-sided grids whose UVs map them once onto the unit
 //   square, so they can carry texture-space decals; the demo waves them on the GPU.
 // Every object's mesh is built around its own origin and placed by its transform. Closed meshes
-// (every edge used by two triangles): walls, pillars, crates, arch, targets (not the floor and banners). All meshes have unit
-// normals from the displaced geometry, UVs in metres and tangents. World bounds lie inside
+// (every edge used by two triangles): walls, pillars, crates, arch, targets (not the floor and banners). All
+// meshes have unit normals from the displaced geometry, UVs in metres and tangents. World bounds lie inside
 // x in [-10, 10], y in [-0.1, 4.25], z in [-4, 8].
 // Triangles in total (3 targets): detail 0 a few thousand, detail 2 (default) between 40k and 150k.
 

@@ -26,12 +26,12 @@
 // triangle into two convex parts, each bounded against the triangle on its side), and, where cutting
 // it would likely cost more, by laying it over B's triangles along its normal (a convex part over
 // each, bounded against it by convexity; PieceOverlay.hpp in the sources); a triangle above the level
-// is cut by halving its longest edge (one new exact distance) and the halves bounded again. The acceptance level is max(L + margin, tolerance), where L is the
-// largest distance measured so far, so pieces are refined only where the distance may exceed what is
-// already known (plus the margin) and what is asked. The bound reported is the largest bound of an
-// accepted node or piece: every point of A lies in one of them, so it is >= h(A, B). A piece whose
-// enclosing radius is at most the margin is always accepted (its Lipschitz bound is at most
-// L + margin), so the refinement ends. When a measured distance exceeds the tolerance, the answer to
+// is cut by halving its longest edge (one new exact distance) and the halves bounded again. The acceptance
+// level is max(L + margin, tolerance), where L is the largest distance measured so far, so pieces are refined
+// only where the distance may exceed what is already known (plus the margin) and what is asked. The bound
+// reported is the largest bound of an accepted node or piece: every point of A lies in one of them, so it is
+// >= h(A, B). A piece whose enclosing radius is at most the margin is always accepted (its Lipschitz bound is
+// at most L + margin), so the refinement ends. When a measured distance exceeds the tolerance, the answer to
 // "is h <= tol?" is no, and the search stops there (`exceeded`).
 //
 // Work is split over the subtrees of the hierarchy on up to 16 threads; each subtree starts from the
