@@ -132,7 +132,7 @@ void main() {
 #endif
     bool changed = false;
     for (uint k = 0u; k < run.y; ++k) {
-        uint index = spatterRunItem(run, k);
+        uint index = spatterTileItems[run.x + k];
         vec3 box = spatterBoxPosition(index, p);
         if (!all(lessThanEqual(abs(box), vec3(1.0)))) continue;
         changed = blendDecal(spatterForwardDecals[index], box, p, dpdx, dpdy, n, id, t) || changed;

@@ -119,7 +119,7 @@ int spatterApplyForwardDecals(vec2 fragCoord, vec3 position, uint objectId, inou
     vec3 n = s.normal; // every decal tests the surface, not the decals before it
     int changed = 0;
     for (uint k = 0u; k < run.y; ++k) {
-        uint index = spatterRunItem(run, k);
+        uint index = spatterTileItems[run.x + k];
         vec3 box = spatterBoxPosition(index, position); // most candidates end here: only the box is read
         if (!all(lessThanEqual(abs(box), vec3(1.0)))) continue;
         if (spatterApplyDecal(spatterForwardDecals[index], box, position, dpdx, dpdy, objectId, n, s)) ++changed;

@@ -36,7 +36,9 @@ layout(std430, binding = SPATTER_FORWARD_DECALS_BINDING) SPATTER_FORWARD_ACCESS 
 };
 
 // The screen's tiles, row by row from the viewport's lower left corner: for each, its decals as a run
-// of spatterTileItems (first, count), in drawing order.
+// of spatterTileItems (first, count), in drawing order. Binned on the GPU, a tile with more decals
+// than its run holds gets a run over every decal binned (the items 0, 1, 2, ... kept after the
+// tiles' runs).
 layout(std430, binding = SPATTER_FORWARD_TILES_BINDING) SPATTER_FORWARD_ACCESS buffer SpatterForwardTiles {
     ivec4 spatterTileGrid;     // x, y: the viewport's lower left corner (pixels); z: tiles per row; w: rows
     ivec4 spatterTileInfo;     // x: tile size (pixels); y: 1 when normal maps take their frame from
@@ -51,13 +53,3 @@ layout(std430, binding = SPATTER_FORWARD_TILES_BINDING) SPATTER_FORWARD_ACCESS b
 layout(std430, binding = SPATTER_FORWARD_ITEMS_BINDING) SPATTER_FORWARD_ACCESS buffer SpatterForwardItems {
     uint spatterTileItems[]; // indices into spatterForwardDecals
 };
-
-// A run whose first item is SPATTER_WHOLE_LIST belongs to a tile with more decals than the runs had
-// room for (binned on the GPU): its decals are every decal binned, the first run.y of
-// spatterForwardDecals, walked in drawing order.
-#define SPATTER_WHOLE_LIST 0xffffffffu
-
-// The index into spatterForwardDecals of the k-th decal (k < run.y) of a tile's run.
-uint spatterRunItem(uvec2 run, uint k) {
-    return run.x == SPATTER_WHOLE_LIST ? k : spatterTileItems[run.x + k];
-}

@@ -1,8 +1,9 @@
 // Forward binning, pass 4: one invocation per tile sorts its item run into drawing order
 // (insertion sort: runs are short), so that overlapping decals blend as
 // the deferred paths blend them. Culled on the GPU, a tile with more decals than its run holds, up to
-// u_mostPerTile, gets the whole list instead (SPATTER_WHOLE_LIST); past that the decals past its run
-// are left out. The most decals of a tile is kept for the CPU, which sizes the next runs by it.
+// u_mostPerTile, gets a run over every decal binned instead (the identity items at u_everyDecal, in
+// drawing order already); past that the decals past its run are left out. The most decals of a tile
+// is kept for the CPU, which sizes the next runs by it.
 #define SPATTER_FORWARD_WRITE 1
 #include "forward_data.glsl"
 
@@ -14,6 +15,7 @@ layout(location = 0) uniform uint u_tiles;
 layout(location = 1) uniform uint u_tileCapacity;
 layout(location = 2) uniform uint u_count;       // the most decals the buffers hold
 layout(location = 3) uniform uint u_mostPerTile; // ProjectorSettings::forwardTileCapacity
+layout(location = 4) uniform uint u_everyDecal;  // the first of the items 0, 1, 2, ...
 layout(std430, binding = 2) readonly buffer TileCounts {
     uint tileCounts[];
 };
@@ -41,7 +43,7 @@ void main() {
     keepMost(count); // in uniform control flow: before any invocation returns
     if (t >= u_tiles) return;
     if (count > u_tileCapacity && count <= u_mostPerTile) {
-        spatterTiles[t] = uvec2(SPATTER_WHOLE_LIST, min(visibleCount, u_count));
+        spatterTiles[t] = uvec2(u_everyDecal, min(visibleCount, u_count));
         return;
     }
     if (count > u_tileCapacity) spatterTileInfo.z = 1; // the decals past the run are left out

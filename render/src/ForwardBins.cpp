@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -76,7 +77,8 @@ glm::ivec2 ForwardBins::grid(const ForwardFrame& frame, int tileSize, ForwardGri
 
 size_t ForwardBins::bin(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize,
                         ForwardGridGpu head) {
-    tileInfo_.reset(); // sized on the CPU, the tiles hold every decal: nothing is left out from here on
+    tileInfo_.reset();    // sized on the CPU, the tiles hold every decal: nothing is left out from here on
+    everyDecalCount_ = 0; // the items are written from the start
     const glm::ivec2 tiles = grid(frame, tileSize, head);
     const uint32_t tileCount = uint32_t(tiles.x) * uint32_t(tiles.y);
     const size_t items = tileRects(frame, vis, tileSize, tiles);
@@ -110,12 +112,8 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
     reserveBuffer(tiles_, tilesCapacity_, sizeof(ForwardGridGpu) + tileCount * sizeof(glm::uvec2), 4096);
     reserveBuffer(counts_, countsCapacity_, tileCount * sizeof(uint32_t), 4096);
     reserveBuffer(decals_, decalsCapacity_, capacity * sizeof(ForwardDecalGpu), 64 * sizeof(ForwardDecalGpu));
-    const size_t itemBytes = size_t(tileCount) * tileCapacity * sizeof(uint32_t);
-    if (itemsCapacity_ > 4096 && itemsCapacity_ >= 4 * itemBytes) {
-        items_.reset();
-        itemsCapacity_ = 0;
-    }
-    reserveBuffer(items_, itemsCapacity_, itemBytes, 4096);
+    const size_t runItems = size_t(tileCount) * tileCapacity;
+    const size_t sent = sizeof head + reserveItems(runItems, capacity);
     glNamedBufferSubData(tiles_.get(), 0, sizeof head, &head);
     const uint32_t zero = 0;
     glClearNamedBufferSubData(counts_.get(), GL_R32UI, 0, GLsizeiptr(tileCount * sizeof(uint32_t)),
@@ -136,11 +134,32 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
     glUniform1ui(1, tileCapacity);
     glUniform1ui(2, uint32_t(capacity));
     glUniform1ui(3, mostPerTile);
+    glUniform1ui(4, uint32_t(runItems));
     glDispatchCompute(groups(tileCount), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     tileInfo_.copy(tiles_.get(), offsetof(ForwardGridGpu, info) + 2 * sizeof(int32_t), 0, 2);
     tileInfo_.fence();
-    return sizeof head;
+    return sent;
+}
+
+size_t ForwardBins::reserveItems(size_t runItems, size_t everyDecal) {
+    const size_t bytes = (runItems + everyDecal) * sizeof(uint32_t);
+    // Made anew where it is short or four times what is needed, with a quarter more for room: the
+    // run over every decal follows the decals in view from frame to frame.
+    const bool anew =
+        !items_ || bytes > itemsCapacity_ || (itemsCapacity_ > 4096 && itemsCapacity_ >= 4 * bytes);
+    if (anew) {
+        itemsCapacity_ = std::max<size_t>(4096, bytes + bytes / 4);
+        items_ = dynamicBuffer(itemsCapacity_);
+    }
+    if (!anew && everyDecalAt_ == runItems && everyDecalCount_ >= everyDecal) return 0;
+    std::vector<uint32_t> every(everyDecal);
+    std::iota(every.begin(), every.end(), 0u);
+    glNamedBufferSubData(items_.get(), GLintptr(runItems * sizeof(uint32_t)),
+                         GLsizeiptr(everyDecal * sizeof(uint32_t)), every.data());
+    everyDecalAt_ = runItems;
+    everyDecalCount_ = everyDecal;
+    return everyDecal * sizeof(uint32_t);
 }
 
 bool ForwardBins::leftOut(bool wait) {

@@ -6,9 +6,9 @@
 // screen rectangles come from the CPU culling, so the item list's size is known before the GPU runs.
 // After culling on the GPU the count is not known on the CPU: the tiles then have runs of a fixed
 // length, filled as the rectangles are found. A tile with more decals than its run holds, up to a
-// limit, walks every decal binned instead (SPATTER_WHOLE_LIST in shaders/forward_data.glsl): exact,
-// and slower for that tile. The GPU reports the fullest tile, by which the caller sizes the runs of
-// later binnings.
+// limit, gets a run over every decal binned instead (the items 0, 1, 2, ... that follow the tiles'
+// runs, which a host's shader reads as any run): exact, and slower for that tile. The GPU reports
+// the fullest tile, by which the caller sizes the runs of later binnings.
 
 #include "DecalBatch.hpp"
 #include "FencedReadback.hpp"
@@ -35,9 +35,9 @@ public:
     // The same for a visible list the GPU culled (GpuCulling; `draws` its indirect draw, whose instance
     // count is the list's length), with no count on the CPU: up to `capacity` visible decals are binned
     // (the rest are left out), each tile's run holds up to `tileCapacity` of them (a tile with more, up
-    // to `mostPerTile`, takes the whole list; past that the rest are left out), and two passes do it (the
-    // rectangles found and the runs filled at once, then sorted). The item list is made anew, smaller, where
-    // a quarter of it will do. Returns the bytes sent.
+    // to `mostPerTile`, gets a run over every decal binned; past that the rest are left out), and two
+    // passes do it (the rectangles found and the runs filled at once, then sorted). Returns the bytes
+    // sent.
     size_t binCulled(const ForwardFrame& frame, int tileSize, ForwardGridGpu head, GLuint draws,
                      size_t capacity, uint32_t tileCapacity, uint32_t mostPerTile);
     void bind(const ForwardBindings& b) const;
@@ -62,6 +62,11 @@ private:
     size_t tileRects(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize, glm::ivec2 tiles);
     void dispatch(uint32_t visible, uint32_t tileCount) const;
 
+    // Room in the items for `runItems` of the tiles' runs and, after them, the items 0, 1, 2, ... of
+    // the runs over `everyDecal` decals (sent when the room or their place changed; the item list made
+    // anew, smaller, where a quarter of it will do). Returns the bytes sent.
+    size_t reserveItems(size_t runItems, size_t everyDecal);
+
     // The grid of `frame`'s tiles, the head's grid filled in.
     glm::ivec2 grid(const ForwardFrame& frame, int tileSize, ForwardGridGpu& head) const;
 
@@ -69,6 +74,7 @@ private:
     GlBuffer decals_, tiles_, items_, rects_, counts_;
     size_t decalsCapacity_ = 0, tilesCapacity_ = 0, itemsCapacity_ = 0, rectsCapacity_ = 0,
            countsCapacity_ = 0;
+    size_t everyDecalAt_ = 0, everyDecalCount_ = 0; // the identity items in items_ (0: none)
     std::vector<glm::uvec2> rectsCpu_;
     FencedReadback tileInfo_{2}; // spatterTileInfo.z and .w of the latest binCulled
 };

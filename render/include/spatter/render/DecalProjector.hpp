@@ -186,7 +186,7 @@ struct ProjectorSettings {
     // on the GPU, in [16, 4096]. The count is not known on the CPU then: each tile gets a run of twice
     // the most decals of one tile in the latest binning the GPU has reported (16 before the first
     // report), a power of two from 16, at most this. A tile with more decals than its run holds, up to
-    // this, walks every decal in view instead (SPATTER_WHOLE_LIST in forward_data.glsl): the same
+    // this, gets a run over every decal in view instead (items 0, 1, 2, ... after the tiles' runs): the same
     // pixels, slower for that tile and that frame; decals past this in one tile are left out of it
     // (ProjectorStats::tilesLeftOut). The runs take 4 bytes a tile each: 8.4 MB at 1080p with 16-pixel
     // tiles and 256, 0.5 MB with 16.
