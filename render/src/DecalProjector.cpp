@@ -14,6 +14,7 @@
 #include "HostFrameCheck.hpp"
 #include "NormalCopy.hpp"
 #include "NormalMatrix.hpp"
+#include "PowerOfTwo.hpp"
 #include "ProjectorBuffers.hpp"
 #include "ProjectorLayouts.hpp"
 #include "ProjectorShaders.hpp"
@@ -417,16 +418,13 @@ struct DecalProjector::Impl {
 
     // The length of the screen tiles' runs when the GPU culls: twice the most decals of one tile in the
     // latest binning the GPU has finished (16 before it has said), a power of two from 16, at most
-    // forwardTileCapacity. A tile with more, up to forwardTileCapacity, walks the whole list, exact
-    // and slower, and the next binning's runs are long enough. The runs take 4 bytes a tile each: 8.4
-    // MB at 1080p with 16-pixel tiles and 256, 0.5 MB with 16.
+    // forwardTileCapacity. A tile with more, up to forwardTileCapacity, gets a run over every decal
+    // binned (exact, slower for that tile), and the next binning's runs are long enough. The runs take
+    // 4 bytes a tile each: 8.4 MB at 1080p with 16-pixel tiles and 256, 0.5 MB with 16.
     uint32_t tileRun() {
-        const uint32_t most = uint32_t(settings.forwardTileCapacity);
-        const uint32_t fullest = forward.fullestTile(false).value_or(16);
-        uint32_t run = 16;
-        while (run < most && run < 2 * uint64_t(fullest))
-            run *= 2;
-        return std::min(run, most);
+        const uint64_t fullest = forward.fullestTile(false).value_or(16);
+        return uint32_t(
+            std::clamp<uint64_t>(nextPowerOfTwo(2 * fullest), 16, uint64_t(settings.forwardTileCapacity)));
     }
 
     // The decals in view when the GPU culls, as DeferredResolve::Auto weighs them: the GPU's latest

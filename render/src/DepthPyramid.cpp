@@ -1,5 +1,7 @@
 #include "DepthPyramid.hpp"
 
+#include "PowerOfTwo.hpp"
+
 #include "ProjectorVariants.hpp"
 
 #include <algorithm>
@@ -11,13 +13,6 @@ namespace {
 int convention(const HostFrame& f) {
     if (f.depth.encoding == DepthEncoding::LinearView) return 2;
     return f.depth.reversedZ ? 1 : 0;
-}
-
-int nextPowerOfTwo(int v) {
-    int p = 1;
-    while (p < v)
-        p *= 2;
-    return p;
 }
 
 GLuint groups(int size) {
@@ -51,7 +46,8 @@ Status DepthPyramid::prepare(const HostFrame& f) {
 
 Occlusion DepthPyramid::build(const HostFrame& f, GLuint sampler) {
     const int c = convention(f);
-    allocate({nextPowerOfTwo((f.width + 1) / 2), nextPowerOfTwo((f.height + 1) / 2)});
+    allocate({int(nextPowerOfTwo(uint64_t((f.width + 1) / 2))),
+              int(nextPowerOfTwo(uint64_t((f.height + 1) / 2)))});
     glUseProgram(programs_[c].get());
     glBindTextureUnit(0, f.depth.texture);
     glBindSampler(0, sampler);

@@ -99,9 +99,7 @@ void NormalCopy::allocate(GLuint hostNormals) {
 }
 
 void NormalCopy::release() {
-    texture_.reset();
-    format_ = 0;
-    width_ = height_ = 0;
+    texture_.reset(); // allocate() makes a texture anew when there is none
     bytes_ = 0;
 }
 
