@@ -157,9 +157,9 @@ int runPersistenceCommand(int argc, char** argv) {
     const size_t placed = src.decals().size();
     const double perDecal = double(bytes.size()) / double(placed);
     size_t clipped = 0, fading = 0;
-    for (const Decal& d : src.decals()) {
-        clipped += d.clips[0].active() || d.clips[1].active() ? 1 : 0;
-        fading += float(d.opacity) < 1.0f ? 1 : 0;
+    for (size_t i = 0; i < placed; ++i) {
+        clipped += src.craterClips(i).any() ? 1 : 0;
+        fading += float(src.decals()[i].opacity) < 1.0f ? 1 : 0;
     }
     std::printf(
         "\n%zu decals placed (%zu with clipped craters, %zu fading); save %zu bytes: %.2f B per decal "

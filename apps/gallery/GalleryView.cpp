@@ -56,7 +56,8 @@ void syncRenderer(Renderer& renderer, const GallerySim& sim) {
     if (sim.evaluator()) renderer.setPose(*sim.evaluator()); // before the rails, which it would undo
     for (const Rail& rail : sim.rails())
         renderer.setObjectTransform(rail.object, sim.transform(rail.object));
-    renderer.setDecals(sim.decals().decals());
+    const DecalSystem& decals = sim.decals();
+    renderer.setDecals(decals.decals(), [&decals](size_t i) { return decals.craterClips(i); });
 }
 
 } // namespace spatter::gallery

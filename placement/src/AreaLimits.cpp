@@ -20,10 +20,16 @@ size_t CellKeyHash::operator()(const CellKey& k) const {
     return size_t(mix(h, k.space));
 }
 
-AreaLimits::AreaLimits(size_t objectCount, uint32_t budget, bool cellOrder, bool objectOrder)
+AreaLimits::AreaLimits(size_t objectCount, uint32_t budget, uint32_t cellLimit, uint32_t objectLimit)
     : budget_(budget), objects_(objectCount) {
-    if (objectOrder) objectPos_ = stride_++;
-    if (cellOrder) cellPos_ = stride_++;
+    if (objectLimit < budget) {
+        object_.prev = stride_++;
+        object_.next = stride_++;
+    }
+    if (cellLimit < budget) {
+        if (cellLimit > kSinglyLinkedCells) cell_.prev = stride_++;
+        cell_.next = stride_++;
+    }
 }
 
 CellKey AreaLimits::keyOf(const Cell& c) {
@@ -105,30 +111,38 @@ void AreaLimits::dropCell(uint32_t c) {
     cellsInUse_--;
 }
 
-void AreaLimits::pushBack(List& list, unsigned pos, uint32_t slot) {
+void AreaLimits::pushBack(List& list, Links at, uint32_t slot) {
     list.count++;
-    Link& l = links_[size_t(slot) * stride_ + pos];
-    l.prev = list.tail;
-    l.next = kNone;
+    if (at.prev != kNone) word(slot, at.prev) = list.tail;
+    word(slot, at.next) = kNone;
     if (list.tail != kNone)
-        links_[size_t(list.tail) * stride_ + pos].next = slot;
+        word(list.tail, at.next) = slot;
     else
         list.head = slot;
     list.tail = slot;
 }
 
-void AreaLimits::erase(List& list, unsigned pos, uint32_t slot) {
+uint32_t AreaLimits::before(const List& list, uint32_t next, uint32_t slot) const {
+    uint32_t prev = kNone;
+    for (uint32_t s = list.head; s != slot; s = links_[size_t(s) * stride_ + next])
+        prev = s;
+    return prev;
+}
+
+void AreaLimits::erase(List& list, Links at, uint32_t slot) {
     list.count--;
-    Link& l = links_[size_t(slot) * stride_ + pos];
-    if (l.prev != kNone)
-        links_[size_t(l.prev) * stride_ + pos].next = l.next;
+    const uint32_t prev = at.prev != kNone ? word(slot, at.prev) : before(list, at.next, slot);
+    const uint32_t next = word(slot, at.next);
+    if (prev != kNone)
+        word(prev, at.next) = next;
     else
-        list.head = l.next;
-    if (l.next != kNone)
-        links_[size_t(l.next) * stride_ + pos].prev = l.prev;
-    else
-        list.tail = l.prev;
-    l = Link();
+        list.head = next;
+    if (next != kNone && at.prev != kNone)
+        word(next, at.prev) = prev;
+    else if (next == kNone)
+        list.tail = prev;
+    if (at.prev != kNone) word(slot, at.prev) = kNone;
+    word(slot, at.next) = kNone;
 }
 
 void AreaLimits::link(uint32_t slot, const CellKey& key, uint32_t object) {
@@ -136,19 +150,19 @@ void AreaLimits::link(uint32_t slot, const CellKey& key, uint32_t object) {
         reserveCapped(cellOf_, size_t(slot) + 1, budget_);
         reserveCapped(links_, (size_t(slot) + 1) * stride_, size_t(budget_) * stride_);
         cellOf_.resize(size_t(slot) + 1, kNone);
-        links_.resize(cellOf_.size() * stride_);
+        links_.resize(cellOf_.size() * stride_, kNone);
     }
     if (object >= objects_.size()) objects_.resize(size_t(object) + 1);
     uint32_t c = findCell(key);
     if (c == kNone) c = addCell(key);
     cellOf_[slot] = c;
-    pushBack(global_, 0, slot);
-    if (objectPos_ != 0)
-        pushBack(objects_[object], objectPos_, slot);
+    pushBack(global_, kGlobal, slot);
+    if (object_.next != kNone)
+        pushBack(objects_[object], object_, slot);
     else
         objects_[object].count++;
-    if (cellPos_ != 0)
-        pushBack(cells_[c].list, cellPos_, slot);
+    if (cell_.next != kNone)
+        pushBack(cells_[c].list, cell_, slot);
     else
         cells_[c].list.count++;
 }
@@ -157,13 +171,13 @@ void AreaLimits::unlink(uint32_t slot, uint32_t object) {
     if (!linked(slot)) return;
     const uint32_t c = cellOf_[slot];
     cellOf_[slot] = kNone;
-    erase(global_, 0, slot);
-    if (objectPos_ != 0)
-        erase(objects_[object], objectPos_, slot);
+    erase(global_, kGlobal, slot);
+    if (object_.next != kNone)
+        erase(objects_[object], object_, slot);
     else
         objects_[object].count--;
-    if (cellPos_ != 0)
-        erase(cells_[c].list, cellPos_, slot);
+    if (cell_.next != kNone)
+        erase(cells_[c].list, cell_, slot);
     else
         cells_[c].list.count--;
     if (cells_[c].list.count == 0) dropCell(c);
@@ -174,13 +188,13 @@ CellKey AreaLimits::cellOf(uint32_t slot) const {
 }
 
 uint32_t AreaLimits::oldestInCell(const CellKey& key) const {
-    if (cellPos_ == 0) return cellCount(key) != 0 ? oldest() : kNone;
+    if (cell_.next == kNone) return cellCount(key) != 0 ? oldest() : kNone;
     const uint32_t c = findCell(key);
     return c == kNone ? kNone : cells_[c].list.head;
 }
 
 uint32_t AreaLimits::oldestOfObject(uint32_t object) const {
-    if (objectPos_ == 0) return objectCount(object) != 0 ? oldest() : kNone;
+    if (object_.next == kNone) return objectCount(object) != 0 ? oldest() : kNone;
     return object < objects_.size() ? objects_[object].head : kNone;
 }
 

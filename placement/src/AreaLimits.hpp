@@ -3,10 +3,13 @@
 // (by slot) sits in three lists in spawn order: its cell of the spatial hash, its object, and the
 // global list, so counting and finding the oldest are O(1).
 //
-// Memory: a slot keeps the 32-bit index of its cell and two 32-bit links per list it is ordered in
-// (at most 28 bytes); a cell in use keeps its key and list (40 bytes) and a 32-bit entry in an
-// open-addressing table at most half full. A limit at or above the budget keeps no order of its own
-// (see AreaLimits()), which saves that list's 8 bytes per slot.
+// Memory: a slot keeps the 32-bit index of its cell and 32-bit links in the lists it is ordered in:
+// two in the global list and the object's (previous and next), one in its cell's (next) while the
+// cell limit is at most kSinglyLinkedCells, else two (at most 28 bytes); a cell in use keeps its key
+// and list (40 bytes) and a 32-bit entry in an open-addressing table at most half full. A limit at or
+// above the budget keeps no order of its own (see AreaLimits()), which saves that list's links.
+
+#include "spatter/placement/DecalSystem.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -29,16 +32,20 @@ struct CellKeyHash {
 class AreaLimits {
 public:
     static constexpr uint32_t kNone = UINT32_MAX;
+    // Cells whose limit is at most this keep their lists singly linked (kSmallCellLimit): a cell
+    // then holds at most this many counted decals, so taking one out of its middle walks at most that
+    // far. The oldest, which evictions by the cell's limit and the budget take, is the head.
+    static constexpr uint32_t kSinglyLinkedCells = kSmallCellLimit;
 
-    // `cellOrder` and `objectOrder` say whether the cells' and the objects' lists are kept in spawn
-    // order. The counted decals never outnumber the budget, so a limit at or above the budget is
-    // reached only when every counted decal is in that one cell (object): its oldest is then the
-    // oldest of all, and without the order oldestInCell / oldestOfObject return oldest(), which is
-    // that same decal. The counts are kept either way.
-    // `budget`: the decals the limits are meant to hold; the per-slot arrays grow up to it without
-    // slack (CappedGrowth.hpp).
-    explicit AreaLimits(size_t objectCount = 0, uint32_t budget = 4096, bool cellOrder = true,
-                        bool objectOrder = true);
+    // `cellLimit` and `objectLimit` are the most counted decals of a cell and of an object; their
+    // lists are kept in spawn order while the limit is below the budget. The counted decals never
+    // outnumber the budget, so a limit at or above it is reached only when every counted decal is
+    // in that one cell (object): its oldest is then the oldest of all, and without the order
+    // oldestInCell / oldestOfObject return oldest(), which is that same decal. The counts are kept
+    // either way. `budget`: the decals the limits are meant to hold; the per-slot arrays grow up to
+    // it without slack (CappedGrowth.hpp).
+    explicit AreaLimits(size_t objectCount = 0, uint32_t budget = 4096, uint32_t cellLimit = 16,
+                        uint32_t objectLimit = 1024);
 
     // Adds `slot` as the newest decal of its cell, its object and the world. `slot` must not be linked.
     void link(uint32_t slot, const CellKey& key, uint32_t object);
@@ -62,20 +69,22 @@ public:
     uint32_t oldest() const { return global_.head; }
     // The linked slot spawned after `slot` (linked) in the world's order, or kNone: from oldest(), the
     // counted decals oldest first. A save walks them so that a load links them in the same order.
-    uint32_t newer(uint32_t slot) const { return links_[size_t(slot) * stride_].next; }
+    uint32_t newer(uint32_t slot) const { return links_[size_t(slot) * stride_ + kGlobal.next]; }
     // The cell `slot` (linked) was linked with.
     CellKey cellOf(uint32_t slot) const;
     // Bytes of its own allocations (capacities).
     size_t bytes() const {
-        return links_.capacity() * sizeof(Link) + cellOf_.capacity() * sizeof(uint32_t) +
+        return links_.capacity() * sizeof(uint32_t) + cellOf_.capacity() * sizeof(uint32_t) +
                cells_.capacity() * sizeof(Cell) + table_.capacity() * sizeof(uint32_t) +
                objects_.capacity() * sizeof(List);
     }
 
 private:
-    struct Link {
+    // Where a list's links lie among a slot's words; prev kNone: singly linked.
+    struct Links {
         uint32_t prev = kNone, next = kNone;
     };
+    static constexpr Links kGlobal{0, 1};
     struct List {
         uint32_t head = kNone, tail = kNone, count = 0;
     };
@@ -97,15 +106,16 @@ private:
     // Takes an empty cell out of the table and frees its index.
     void dropCell(uint32_t cell);
 
-    // Lists by their position in a slot's links: 0 the global list, then the ordered ones.
-    void pushBack(List& list, unsigned pos, uint32_t slot);
-    void erase(List& list, unsigned pos, uint32_t slot);
+    uint32_t& word(uint32_t slot, uint32_t pos) { return links_[size_t(slot) * stride_ + pos]; }
+    void pushBack(List& list, Links at, uint32_t slot);
+    void erase(List& list, Links at, uint32_t slot);
+    // The slot before `slot` in `list`, found by walking a singly linked list from its head.
+    uint32_t before(const List& list, uint32_t next, uint32_t slot) const;
 
     uint32_t budget_ = 0;
-    unsigned stride_ = 1;          // links per slot
-    unsigned objectPos_ = 0;       // position of the object list's links, 0: not ordered
-    unsigned cellPos_ = 0;         // position of the cell list's links, 0: not ordered
-    std::vector<Link> links_;      // by slot, stride_ each
+    unsigned stride_ = 2;          // 32-bit links per slot
+    Links object_, cell_;          // where the object's and the cell's lists lie; next kNone: not ordered
+    std::vector<uint32_t> links_;  // by slot, stride_ each
     std::vector<uint32_t> cellOf_; // by slot: its cell, kNone when not linked
     std::vector<Cell> cells_;      // by cell index
     uint32_t freeCells_ = kNone;   // first free cell index

@@ -74,15 +74,14 @@ void addCandidate(std::vector<Plane>& planes, const Plane& p) {
 
 } // namespace
 
-void findCraterClips(const CollisionWorld& world, const glm::dmat4& objectToWorld, double errorBound,
-                     Decal& decal) {
-    for (CraterClip& c : decal.clips)
-        c = CraterClip{};
+CraterClips findCraterClips(const CollisionWorld& world, const glm::dmat4& objectToWorld, double errorBound,
+                            const Decal& decal) {
+    CraterClips clips;
     const glm::dmat4 toWorld = objectToWorld * craterToObject(decal);
     const CraterSpace cs{toWorld, glm::dmat3(toWorld)};
     // One crater unit along the normal, in world units: the scale of h and of the gap in crater space.
     const double unit = glm::length(cs.linear[2]);
-    if (!(unit > 0.0) || !std::isfinite(unit)) return;
+    if (!(unit > 0.0) || !std::isfinite(unit)) return clips;
     const double h = errorBound / unit;
     const double gap = 2.0 * h + 0.02;
     const double depthBound = double(craterDepthBound());
@@ -112,7 +111,8 @@ void findCraterClips(const CollisionWorld& world, const glm::dmat4& objectToWorl
     std::sort(planes.begin(), planes.end(),
               [](const Plane& a, const Plane& b) { return a.offset < b.offset; });
     for (size_t i = 0; i < planes.size() && i < 2; ++i)
-        decal.clips[i] = packCraterClip(glm::vec3(planes[i].normal), float(planes[i].offset));
+        clips.planes[i] = packCraterClip(glm::vec3(planes[i].normal), float(planes[i].offset));
+    return clips;
 }
 
 } // namespace spatter

@@ -12,6 +12,7 @@
 // kept. The proxies of objects met are in the world as they are at that moment; a decal keeps its
 // planes when other objects move later.
 
+#include "spatter/core/CraterClip.hpp"
 #include "spatter/core/Decal.hpp"
 #include "spatter/placement/CollisionWorld.hpp"
 
@@ -19,9 +20,9 @@
 
 namespace spatter {
 
-// Sets `decal.clips` for `decal` (object space, its box sound) on an object with `objectToWorld`,
-// whose collision mesh stays within `errorBound` (world units) of the render surface.
-void findCraterClips(const CollisionWorld& world, const glm::dmat4& objectToWorld, double errorBound,
-                     Decal& decal);
+// The clip planes of `decal` (object space, its box sound) on an object with `objectToWorld`, whose
+// collision mesh stays within `errorBound` (world units) of the render surface.
+CraterClips findCraterClips(const CollisionWorld& world, const glm::dmat4& objectToWorld, double errorBound,
+                            const Decal& decal);
 
 } // namespace spatter

@@ -1,3 +1,4 @@
+#include "ChangeLog.hpp"
 #include "DecalSaveFormat.hpp"
 #include "NumberChecks.hpp"
 #include "SavedDecal.hpp"
@@ -208,11 +209,13 @@ Status readDecalColumns(ByteReader& r, DecalSystemState& st, uint32_t version) {
     if (!opacities) return opacities;
     if (badOpacity < n)
         return corrupt("decal " + std::to_string(badOpacity) + ": opacity is not a number in [0, 1]");
+    st.clips.assign(n, CraterClips{});
     Status clips = readSparse(r, "clips", n, 8, [&](const uint8_t* p, size_t i) {
-        for (int k = 0; k < 2; ++k, p += 4) {
-            d[i].clips[k].octX = int8_t(p[0]);
-            d[i].clips[k].octY = int8_t(p[1]);
-            d[i].clips[k].offset = int16_t(loadU16(p + 2));
+        for (CraterClip& c : st.clips[i].planes) {
+            c.octX = int8_t(p[0]);
+            c.octY = int8_t(p[1]);
+            c.offset = int16_t(loadU16(p + 2));
+            p += 4;
         }
     });
     if (!clips) return clips;
@@ -484,6 +487,7 @@ Result<DecalSystemState> decode(const uint8_t* data, size_t size) {
     if (Status s = checkCells(st); !s) return fail(s.error());
     if (Status s = checkStats(st); !s) return fail(s.error());
     if (Status s = checkAnchors(st); !s) return fail(s.error());
+    if (Status s = checkChangeLog(st.changeLog, st.decals.size()); !s) return corrupt(s.error());
     return st;
 }
 

@@ -107,14 +107,6 @@ void writeSlots(ByteWriter& w, const DecalSystemState& st) {
     writeColumn(w, st.freeSlots.size(), [&](size_t i) { return st.freeSlots[i]; });
 }
 
-bool sameClips(const Decal& a, const Decal& b) {
-    for (int k = 0; k < 2; ++k)
-        if (a.clips[k].octX != b.clips[k].octX || a.clips[k].octY != b.clips[k].octY ||
-            a.clips[k].offset != b.clips[k].offset)
-            return false;
-    return true;
-}
-
 void writeDecals(ByteWriter& w, const DecalSystemState& st) {
     const std::vector<Decal>& d = st.decals;
     const size_t n = d.size();
@@ -125,14 +117,14 @@ void writeDecals(ByteWriter& w, const DecalSystemState& st) {
     writeSparse(
         w, n, 1, [&](size_t i) { return d[i].opacity.bits() == 255; },
         [&](uint8_t* q, size_t i) { q[0] = d[i].opacity.bits(); });
-    const Decal plain;
     writeSparse(
-        w, n, 8, [&](size_t i) { return sameClips(d[i], plain); },
+        w, n, 8, [&](size_t i) { return st.clips[i] == CraterClips{}; },
         [&](uint8_t* q, size_t i) {
-            for (int k = 0; k < 2; ++k, q += 4) {
-                q[0] = uint8_t(d[i].clips[k].octX);
-                q[1] = uint8_t(d[i].clips[k].octY);
-                storeU16(q + 2, uint16_t(d[i].clips[k].offset));
+            for (const CraterClip& c : st.clips[i].planes) {
+                q[0] = uint8_t(c.octX);
+                q[1] = uint8_t(c.octY);
+                storeU16(q + 2, uint16_t(c.offset));
+                q += 4;
             }
         });
     writeSparse(

@@ -3,6 +3,7 @@
 
 #include "AreaLimits.hpp"
 #include "CappedGrowth.hpp"
+#include "ChangeLog.hpp"
 #include "CraterClipping.hpp"
 #include "DecalSystemState.hpp"
 #include "SkinAnchors.hpp"
@@ -115,9 +116,6 @@ private:
     std::vector<uint64_t> summary_;
 };
 
-// The change log keeps at least this many entries (DecalSystem::changesSince).
-constexpr size_t kMinChangeLog = 4096;
-
 } // namespace
 
 uint64_t DecalStats::rejectedTotal() const {
@@ -145,9 +143,11 @@ struct DecalSystem::Impl {
     // The decals evicted under FadeOldest, which the limits no longer count, by slot: the clock time
     // of the eviction. Few at a time, so a side table rather than 8 bytes beside every decal.
     std::unordered_map<uint32_t, double> fadingSince;
-    DenseIndexSet timed;                // dense indices update() visits: type lifetime > 0, or fading
-    std::vector<DecalChange> changeLog; // the newest changes of decals, oldest first
-    uint64_t changeLogBase = 0;         // the version before changeLog[0]
+    // The clip planes of volumetric decals that have one, by slot (craterClips()): a side table, as most
+    // decals have none.
+    std::unordered_map<uint32_t, CraterClips> clipsBySlot;
+    DenseIndexSet timed; // dense indices update() visits: type lifetime > 0, or fading
+    ChangeLog changeLog; // the newest changes of decals
     std::vector<Slot> slots;
     std::vector<uint32_t> freeSlots;
     AreaLimits limits;
@@ -157,8 +157,7 @@ struct DecalSystem::Impl {
 
     Impl(CollisionWorld w, const DecalSettings& s)
         : world(std::move(w)), settings(s), rng(s.seed),
-          // A cap at or above the budget needs no spawn order of its own (AreaLimits()).
-          limits(world.objectCount(), s.budget, s.maxPerCell < s.budget, s.maxPerObject < s.budget) {}
+          limits(world.objectCount(), s.budget, s.maxPerCell, s.maxPerObject) {}
 
     SpawnResult reject(SpawnStatus status, std::string reason) {
         stats.rejected[size_t(status)]++;
@@ -193,27 +192,9 @@ struct DecalSystem::Impl {
         return key;
     }
 
-    uint64_t version() const { return changeLogBase + changeLog.size(); }
+    uint64_t version() const { return changeLog.version(); }
 
-    // Appends to the change log. It holds at most max(kMinChangeLog, decals / 4) entries: when full
-    // it drops the oldest ones down to half of that (amortised O(1) per entry). Its capacity grows to
-    // that bound at most, and shrinks when the bound falls to half of it.
-    void logChange(uint32_t index, uint32_t from, DecalChangeKind kind) {
-        const size_t bound = std::max(kMinChangeLog, decals.size() / 4);
-        if (changeLog.size() >= bound) {
-            const size_t drop = changeLog.size() - bound / 2;
-            changeLog.erase(changeLog.begin(), changeLog.begin() + std::ptrdiff_t(drop));
-            changeLogBase += drop;
-            if (changeLog.capacity() > 2 * bound) changeLog.shrink_to_fit();
-        }
-        if (changeLog.size() == changeLog.capacity())
-            changeLog.reserve(std::min(bound, std::max<size_t>(256, 2 * changeLog.size())));
-        DecalChange c;
-        c.index = index;
-        c.from = from;
-        c.kind = kind;
-        changeLog.push_back(c);
-    }
+    void logChange(uint32_t index, DecalChangeKind kind) { changeLog.append(index, kind, decals.size()); }
 
     bool fading(uint32_t dense) const {
         return !fadingSince.empty() && fadingSince.count(slotOf[dense]) != 0;
@@ -222,6 +203,7 @@ struct DecalSystem::Impl {
     void removeDense(uint32_t dense) {
         const uint32_t slot = slotOf[dense];
         if (!fadingSince.empty() && fadingSince.erase(slot) != 0) stats.fading--;
+        if (!clipsBySlot.empty()) clipsBySlot.erase(slot);
         anchors.erase(slot, decals[dense].object);
         limits.unlink(slot, decals[dense].object);
         slots[slot].dense = kNone;
@@ -242,7 +224,7 @@ struct DecalSystem::Impl {
         decals.pop_back();
         slotOf.pop_back();
         stats.alive = decals.size();
-        logChange(dense, last, DecalChangeKind::Removed);
+        logChange(dense, DecalChangeKind::Removed);
     }
 
     void evict(uint32_t slot) {
@@ -351,7 +333,7 @@ struct DecalSystem::Impl {
             return reject(SpawnStatus::AreaLimit, std::move(why));
         }
 
-        if (t.volumetric) findCraterClips(world, o.transform, h, d);
+        const CraterClips clips = t.volumetric ? findCraterClips(world, o.transform, h, d) : CraterClips{};
 
         uint32_t slot;
         if (!freeSlots.empty()) {
@@ -370,9 +352,10 @@ struct DecalSystem::Impl {
         slotOf.push_back(slot);
         if (t.lifetime > 0.0f) timed.set(dense);
         limits.link(slot, key, objectIndex);
+        if (clips.any()) clipsBySlot[slot] = clips;
         stats.placed++;
         stats.alive = decals.size();
-        logChange(dense, dense, DecalChangeKind::Added);
+        logChange(dense, DecalChangeKind::Added);
 
         SpawnResult r;
         r.status = SpawnStatus::Placed;
@@ -723,7 +706,7 @@ Status DecalSystem::update(double dt) {
             s.removeDense(i);
         } else if (const Opacity stored(opacity); stored.bits() != d.opacity.bits()) {
             d.opacity = stored; // a change only when the stored step does
-            s.logChange(i, i, DecalChangeKind::Changed);
+            s.logChange(i, DecalChangeKind::Changed);
         }
     }
     return {};
@@ -761,6 +744,13 @@ const std::vector<Decal>& DecalSystem::decals() const {
     return impl_->decals;
 }
 
+CraterClips DecalSystem::craterClips(size_t index) const {
+    const Impl& s = *impl_;
+    if (index >= s.decals.size() || s.clipsBySlot.empty()) return {};
+    const auto it = s.clipsBySlot.find(s.slotOf[index]);
+    return it != s.clipsBySlot.end() ? it->second : CraterClips{};
+}
+
 uint64_t DecalSystem::version() const {
     return impl_->version();
 }
@@ -768,11 +758,7 @@ uint64_t DecalSystem::version() const {
 void DecalSystem::changesSince(uint64_t version, DecalChanges& out) const {
     const Impl& s = *impl_;
     out.version = s.version();
-    out.changes.clear();
-    out.complete = version >= s.changeLogBase && version <= out.version;
-    if (out.complete)
-        out.changes.assign(s.changeLog.begin() + std::ptrdiff_t(version - s.changeLogBase),
-                           s.changeLog.end());
+    out.complete = s.changeLog.since(version, s.decals.size(), out.changes);
 }
 
 DecalChanges DecalSystem::changesSince(uint64_t version) const {
@@ -795,7 +781,7 @@ Result<TransformUpdate> DecalSystem::setPose(uint32_t object, const glm::dmat4& 
     if (!update) return update;
     s.anchors.repose(
         object, s.world, s.decals, [&s](uint32_t slot) { return s.slots[slot].dense; },
-        [&s](uint32_t dense) { s.logChange(dense, dense, DecalChangeKind::Changed); });
+        [&s](uint32_t dense) { s.logChange(dense, DecalChangeKind::Changed); });
     return update;
 }
 
@@ -833,11 +819,13 @@ DecalSystemMemory DecalSystem::memory() const {
     m.handles = s.slotOf.capacity() * sizeof(uint32_t) + s.slots.capacity() * sizeof(Slot) +
                 s.freeSlots.capacity() * sizeof(uint32_t);
     m.areaLimits = s.limits.bytes();
-    m.changeLog = s.changeLog.capacity() * sizeof(DecalChange);
+    m.changeLog = s.changeLog.bytes();
     // A node of the fading table holds its entry and a link; the table a pointer per bucket.
     const size_t fadingNode = sizeof(std::pair<const uint32_t, double>) + sizeof(void*);
+    const size_t clipsNode = sizeof(std::pair<const uint32_t, CraterClips>) + sizeof(void*);
     m.other = s.timed.bytes() + s.fadingSince.size() * fadingNode +
-              s.fadingSince.bucket_count() * sizeof(void*) + s.anchors.bytes();
+              s.fadingSince.bucket_count() * sizeof(void*) + s.clipsBySlot.size() * clipsNode +
+              s.clipsBySlot.bucket_count() * sizeof(void*) + s.anchors.bytes();
     return m;
 }
 const DecalSettings& DecalSystem::settings() const {
@@ -884,6 +872,9 @@ DecalSystemState DecalSystemAccess::capture(const DecalSystem& system) {
     st.stats = s.stats;
     st.decals = s.decals;
     st.slotOf = s.slotOf;
+    st.clips.assign(s.decals.size(), CraterClips{});
+    for (const auto& [slot, clips] : s.clipsBySlot)
+        st.clips[s.slots[slot].dense] = clips;
     st.generations.reserve(s.slots.size());
     for (const Slot& slot : s.slots)
         st.generations.push_back(slot.generation);
@@ -898,8 +889,8 @@ DecalSystemState DecalSystemAccess::capture(const DecalSystem& system) {
             st.cellExceptions.push_back({uint32_t(st.limitOrder.size()), key});
         st.limitOrder.push_back(slot);
     }
-    st.changeLogBase = s.changeLogBase;
-    st.changeLog = s.changeLog;
+    st.changeLogBase = s.changeLog.base();
+    s.changeLog.since(st.changeLogBase, s.decals.size(), st.changeLog);
     st.anchors = s.anchors.saved();
     return st;
 }
@@ -917,8 +908,7 @@ void DecalSystemAccess::restore(DecalSystem& system, DecalSystemState&& st, cons
     s.rng = Rng::fromState(st.rngState, st.rngIncrement);
     s.time = st.time;
     s.stats = st.stats;
-    s.changeLogBase = st.changeLogBase;
-    s.changeLog = std::move(st.changeLog);
+    s.changeLog.assign(st.changeLogBase, st.changeLog);
     restoreDecals(s, st);
     relink(s, st, plan.keepObject);
     for (size_t i = s.decals.size(); i-- > 0;) { // as removeObject does
@@ -939,6 +929,9 @@ void DecalSystemAccess::restoreDecals(DecalSystem::Impl& s, DecalSystemState& st
     s.freeSlots = std::move(st.freeSlots);
     s.anchors.restore(st.anchors, [&s](uint32_t slot) { return s.decals[s.slots[slot].dense].object; });
     s.fadingSince = std::unordered_map<uint32_t, double>(st.fading.begin(), st.fading.end());
+    s.clipsBySlot.clear();
+    for (uint32_t i = 0; i < st.clips.size(); ++i)
+        if (st.clips[i].any()) s.clipsBySlot[s.slotOf[i]] = st.clips[i];
     s.timed = DenseIndexSet();
     for (uint32_t i = 0; i < s.decals.size(); ++i)
         if (s.types[s.decals[i].type].lifetime > 0.0f || s.fading(i)) s.timed.set(i);
@@ -947,8 +940,7 @@ void DecalSystemAccess::restoreDecals(DecalSystem::Impl& s, DecalSystemState& st
 void DecalSystemAccess::relink(DecalSystem::Impl& s, const DecalSystemState& st,
                                const std::vector<bool>& keep) {
     const DecalSettings& set = s.settings;
-    s.limits = AreaLimits(s.world.objectCount(), set.budget, set.maxPerCell < set.budget,
-                          set.maxPerObject < set.budget);
+    s.limits = AreaLimits(s.world.objectCount(), set.budget, set.maxPerCell, set.maxPerObject);
     size_t exception = 0;
     for (uint32_t k = 0; k < st.limitOrder.size(); ++k) {
         const uint32_t slot = st.limitOrder[k];

@@ -44,6 +44,7 @@ struct DecalSystemState {
     DecalStats stats;
     std::vector<Decal> decals;                       // dense, as decals() gives them
     std::vector<uint32_t> slotOf;                    // parallel to decals: each one's handle slot
+    std::vector<CraterClips> clips;                  // parallel to decals: their craters' clip planes
     std::vector<uint32_t> generations;               // by slot
     std::vector<uint32_t> freeSlots;                 // the last is the next one used
     std::vector<std::pair<uint32_t, double>> fading; // (slot, clock time of its eviction), by slot

@@ -3,8 +3,9 @@
 // its padding and its layout are the compiler's), little-endian:
 //   center x, y, z (f32 each), halfDepth (f32), packedFrame (u64, PackedFrame.hpp),
 //   size x, y (f32 each), spawnTime (f64), id (u32).
-// The other fields go in columns of their own (DecalSaveWriter.cpp): opacity and clips, which
-// most decals share, and type, object and objectId, which the save stores narrower or derives.
+// The other fields go in columns of their own (DecalSaveWriter.cpp): opacity and the crater clips
+// kept beside the decals (DecalSystem::craterClips), which most decals share or lack, and type, object
+// and objectId, which the save stores narrower or derives.
 
 #include "SaveBytes.hpp"
 #include "spatter/core/Decal.hpp"

@@ -87,16 +87,20 @@ void DecalRouting::splat(const Decal& d) {
     if (splatted_[d.object].insert(decalKey(d, deforming_[d.object] != 0)).second) pending_.push_back(d);
 }
 
-void DecalRouting::setCraters(const std::vector<Decal>& decals, const std::vector<DecalType>& types,
-                              VolumetricDecals& craters) const {
+void DecalRouting::setCraters(const std::vector<Decal>& decals, const CraterClipsOf& clips,
+                              const std::vector<DecalType>& types, VolumetricDecals& craters) const {
     std::vector<Decal> volumetric;
+    std::vector<CraterClips> planes;
     for (size_t i = 0; i < kinds_.size(); ++i)
-        if (kinds_[i] == kVolumetric) volumetric.push_back(decals[i]);
-    craters.setDecals(volumetric, types, modes_.size());
+        if (kinds_[i] == kVolumetric) {
+            volumetric.push_back(decals[i]);
+            planes.push_back(clips ? clips(i) : CraterClips{});
+        }
+    craters.setDecals(volumetric, planes, types, modes_.size());
 }
 
-void DecalRouting::take(const std::vector<Decal>& decals, const std::vector<DecalType>& types,
-                        VolumetricDecals& craters) {
+void DecalRouting::take(const std::vector<Decal>& decals, const CraterClipsOf& clips,
+                        const std::vector<DecalType>& types, VolumetricDecals& craters) {
     kinds_.clear();
     textureSpace_ = 0;
     if (drawsSome()) kinds_.resize(decals.size());
@@ -105,7 +109,7 @@ void DecalRouting::take(const std::vector<Decal>& decals, const std::vector<Deca
         if (kinds_[i] == kTextureSpace) splat(decals[i]);
     }
     std::vector<uint8_t>(kinds_).swap(kinds_); // no room kept past the decals
-    setCraters(decals, types, craters);
+    setCraters(decals, clips, types, craters);
     current_ = true;
 }
 
@@ -142,8 +146,9 @@ bool DecalRouting::replayChanges(const DecalChanges& changes, std::vector<uint32
     return true;
 }
 
-bool DecalRouting::replay(const std::vector<Decal>& decals, const DecalChanges& changes,
-                          const std::vector<DecalType>& types, VolumetricDecals& craters) {
+bool DecalRouting::replay(const std::vector<Decal>& decals, const CraterClipsOf& clips,
+                          const DecalChanges& changes, const std::vector<DecalType>& types,
+                          VolumetricDecals& craters) {
     if (!current_ || !changes.complete) return false;
     if (kinds_.empty() && !drawsSome()) return true; // nothing is the renderer's
     std::vector<uint32_t> stale;
@@ -156,7 +161,7 @@ bool DecalRouting::replay(const std::vector<Decal>& decals, const DecalChanges& 
         cratersChanged = cratersChanged || kinds_[i] == kVolumetric;
         if (kinds_[i] == kTextureSpace) splat(decals[i]);
     }
-    if (cratersChanged) setCraters(decals, types, craters);
+    if (cratersChanged) setCraters(decals, clips, types, craters);
     return true;
 }
 

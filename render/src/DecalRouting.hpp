@@ -9,6 +9,7 @@
 
 #include "VolumetricDecals.hpp"
 
+#include "spatter/core/CraterClip.hpp"
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalChanges.hpp"
 #include "spatter/core/DecalType.hpp"
@@ -38,15 +39,15 @@ public:
     std::vector<uint8_t> hostTypes() const { return volumetricTypes_; }
     std::vector<uint8_t> hostObjects() const;
 
-    // Every decal afresh: the volumetric ones go to `craters`, the new ones on texture-space objects
-    // to the pending splats.
-    void take(const std::vector<Decal>& decals, const std::vector<DecalType>& types,
-              VolumetricDecals& craters);
+    // Every decal afresh: the volumetric ones go to `craters` with their clip planes (`clips`, may be
+    // empty), the new ones on texture-space objects to the pending splats.
+    void take(const std::vector<Decal>& decals, const CraterClipsOf& clips,
+              const std::vector<DecalType>& types, VolumetricDecals& craters);
     // The decals after `changes` (DecalChanges.hpp), replayed on the kinds: new decals on
     // texture-space objects are splatted, and a change to a volumetric decal gives `craters` the
     // volumetric decals afresh (a scan of `decals`). False, with the kinds to be taken afresh, when
     // the changes are not complete or do not fit, and after setTypes or setMode.
-    bool replay(const std::vector<Decal>& decals, const DecalChanges& changes,
+    bool replay(const std::vector<Decal>& decals, const CraterClipsOf& clips, const DecalChanges& changes,
                 const std::vector<DecalType>& types, VolumetricDecals& craters);
 
     // Decals on texture-space objects among those last given (drawn by neither the projector nor the
@@ -61,8 +62,8 @@ private:
     bool drawsSome() const;
     uint8_t kindOf(const Decal& d) const;
     void splat(const Decal& d);
-    void setCraters(const std::vector<Decal>& decals, const std::vector<DecalType>& types,
-                    VolumetricDecals& craters) const;
+    void setCraters(const std::vector<Decal>& decals, const CraterClipsOf& clips,
+                    const std::vector<DecalType>& types, VolumetricDecals& craters) const;
     void markStale(uint32_t i, std::vector<uint32_t>& stale, bool& cratersChanged);
     bool replayChanges(const DecalChanges& changes, std::vector<uint32_t>& stale, bool& cratersChanged);
 

@@ -646,7 +646,7 @@ Status Renderer::setScene(const Scene& scene) {
     }
     m.updateHostDrawn();
     m.projector->setDecals({});
-    m.routing.take({}, m.types, m.volumetric);
+    m.routing.take({}, {}, m.types, m.volumetric);
     m.overlayMeshes.clear();
     return {};
 }
@@ -758,17 +758,18 @@ void Renderer::setDecalTypes(const std::vector<DecalType>& types) {
     impl_->updateHostDrawn();
 }
 
-void Renderer::setDecals(const std::vector<Decal>& decals) {
+void Renderer::setDecals(const std::vector<Decal>& decals, const CraterClipsOf& clips) {
     Impl& m = *impl_;
     m.projector->setDecals(decals);
-    m.routing.take(decals, m.types, m.volumetric);
+    m.routing.take(decals, clips, m.types, m.volumetric);
 }
 
-void Renderer::updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes) {
+void Renderer::updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes,
+                            const CraterClipsOf& clips) {
     Impl& m = *impl_;
     m.projector->updateDecals(decals, changes);
-    if (!m.routing.replay(decals, changes, m.types, m.volumetric))
-        m.routing.take(decals, m.types, m.volumetric);
+    if (!m.routing.replay(decals, clips, changes, m.types, m.volumetric))
+        m.routing.take(decals, clips, m.types, m.volumetric);
 }
 
 Result<int> Renderer::addDecalTexture(const Image& albedo, const Image& normalMap) {

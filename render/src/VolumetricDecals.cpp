@@ -108,12 +108,14 @@ Status VolumetricDecals::create() {
     return {};
 }
 
-void VolumetricDecals::setDecals(const std::vector<Decal>& decals, const std::vector<DecalType>& types,
-                                 size_t objectCount) {
+void VolumetricDecals::setDecals(const std::vector<Decal>& decals, const std::vector<CraterClips>& clips,
+                                 const std::vector<DecalType>& types, size_t objectCount) {
     decals_.clear();
+    clips_.clear();
     cosMaxAngle_.clear();
     invalid_ = 0;
-    for (const Decal& d : decals) {
+    for (size_t i = 0; i < decals.size(); ++i) {
+        const Decal& d = decals[i];
         const Frame f = d.frame();
         const bool ok = d.object < objectCount && d.type < types.size() &&
                         std::isfinite(types[d.type].maxAngleDeg) && finite3(d.center) && finite3(f.normal) &&
@@ -123,6 +125,7 @@ void VolumetricDecals::setDecals(const std::vector<Decal>& decals, const std::ve
                         glm::length(glm::cross(f.tangent, f.bitangent)) > 0.5f;
         if (ok) {
             decals_.push_back(d);
+            clips_.push_back(i < clips.size() ? clips[i] : CraterClips{});
             const float angle = std::clamp(types[d.type].maxAngleDeg, 0.0f, 90.0f);
             cosMaxAngle_.push_back(std::cos(glm::radians(angle)));
         } else
@@ -161,8 +164,8 @@ size_t VolumetricDecals::draw(const GBuffer& gbuffer, GLuint idTexture, bool com
         r.normal = glm::mat4(glm::mat3(normal));
         const glm::dvec3 axis = glm::normalize(normal * glm::dvec3(0.0, 0.0, 1.0));
         r.plane = glm::vec4(glm::vec3(axis), float(glm::dot(axis, glm::dvec3(rel[3]))));
-        r.clips[0] = unpackCraterClip(d.clips[0]);
-        r.clips[1] = unpackCraterClip(d.clips[1]);
+        r.clips[0] = unpackCraterClip(clips_[k].planes[0]);
+        r.clips[1] = unpackCraterClip(clips_[k].planes[1]);
         // The footprint and the surface agree on a flat wall; allow a quarter of the radius for
         // curvature and depth precision.
         const double radius = std::max(glm::length(glm::dvec3(rel[0])), glm::length(glm::dvec3(rel[1])));

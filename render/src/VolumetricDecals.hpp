@@ -21,12 +21,13 @@
 //           above the crater point (its projection along the decal axis), darkened with depth;
 //           the normal is the crater's, so the lighting pass shades the hole. In the coverage view
 //           the crater marks its pixels covered.
-// Both draws are cut by the decal's two clip planes (Decal::clips, gl_ClipDistance): near an edge of
+// Both draws are cut by the decal's two clip planes (CraterClips, gl_ClipDistance): near an edge of
 // a crate or a pillar, or behind a thin wall, the cup and its footprint stop where the solid ends.
 
 #include "GBuffer.hpp"
 #include "GlObjects.hpp"
 
+#include "spatter/core/CraterClip.hpp"
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalType.hpp"
 #include "spatter/core/Result.hpp"
@@ -44,9 +45,11 @@ public:
     // Builds the crater variants and the programs.
     Status create();
 
-    // The volumetric decals to draw (`types` indexed by Decal::type); those naming a missing object
-    // or type, with a non-finite or degenerate frame or size are skipped and counted.
-    void setDecals(const std::vector<Decal>& decals, const std::vector<DecalType>& types, size_t objectCount);
+    // The volumetric decals to draw (`types` indexed by Decal::type) and their clip planes (parallel to
+    // `decals`; none past its end); those naming a missing object or type, with a non-finite or
+    // degenerate frame or size are skipped and counted.
+    void setDecals(const std::vector<Decal>& decals, const std::vector<CraterClips>& clips,
+                   const std::vector<DecalType>& types, size_t objectCount);
     size_t size() const { return decals_.size(); }
     size_t invalidCount() const { return invalid_; }
 
@@ -64,6 +67,7 @@ private:
         float depth = 0.0f;                              // deepest point, in units of the radius
     };
     std::vector<Decal> decals_;
+    std::vector<CraterClips> clips_; // per decal
     std::vector<float> cosMaxAngle_; // per decal, from its type
     size_t invalid_ = 0;
     Variant variants_[kVariants];

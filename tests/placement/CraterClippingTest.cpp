@@ -41,29 +41,40 @@ Fixture makeFixture(Scene scene) {
     return f;
 }
 
-const Decal& shoot(Fixture& f, glm::dvec3 target, glm::dvec3 dir, uint16_t type) {
+// A placed volumetric decal and the clip planes the system keeps for it.
+struct Crater {
+    Decal decal;
+    CraterClips clips;
+};
+
+Crater crater(const Fixture& f, DecalHandle handle) {
+    const Decal* d = f.system.get(handle);
+    return {*d, f.system.craterClips(size_t(d - f.system.decals().data()))};
+}
+
+Crater shoot(Fixture& f, glm::dvec3 target, glm::dvec3 dir, uint16_t type) {
     Ray r;
     r.origin = target - 2.0 * dir;
     r.direction = dir;
     const SpawnResult res = f.system.spawn(r, type);
     EXPECT_TRUE(res.placed()) << res.reason;
-    return *f.system.get(res.handle);
+    return crater(f, res.handle);
 }
 
-int activeClips(const Decal& d) {
-    return int(d.clips[0].active()) + int(d.clips[1].active());
+int activeClips(const Crater& c) {
+    return int(c.clips.planes[0].active()) + int(c.clips.planes[1].active());
 }
 
-// World positions of the vertices of every crater variant placed by `d`, with or without its clips.
-std::vector<glm::dvec3> craterPoints(const Decal& d, const glm::dmat4& objectToWorld, bool clipped) {
-    const glm::dmat4 m = objectToWorld * craterToObject(d);
+// World positions of the vertices of every crater variant placed by `c`, with or without its clips.
+std::vector<glm::dvec3> craterPoints(const Crater& c, const glm::dmat4& objectToWorld, bool clipped) {
+    const glm::dmat4 m = objectToWorld * craterToObject(c.decal);
     std::vector<glm::dvec3> out;
     for (uint32_t v = 0; v < 4; ++v) {
-        const Result<Mesh> crater = makeCraterMesh(v);
-        for (const glm::vec3& q : crater.value().positions) {
+        const Result<Mesh> mesh = makeCraterMesh(v);
+        for (const glm::vec3& q : mesh.value().positions) {
             bool kept = true;
-            for (const CraterClip& c : d.clips) {
-                const glm::vec4 p = unpackCraterClip(c);
+            for (const CraterClip& plane : c.clips.planes) {
+                const glm::vec4 p = unpackCraterClip(plane);
                 kept = kept && glm::dot(glm::vec3(p), q) <= p.w;
             }
             if (kept || !clipped) out.push_back(glm::dvec3(m * glm::dvec4(glm::dvec3(q), 1.0)));
@@ -88,7 +99,7 @@ TEST(CraterClipping, WideThickWallGivesNoClipPlanes) {
     Scene s;
     s.objects.push_back(box("wall", {0, 0, 0}, {2.0f, 2.0f, 0.5f}));
     Fixture f = makeFixture(s);
-    const Decal& d = shoot(f, {0.3, 0.2, 0.5}, {0.0, 0.0, -1.0}, f.volumetric);
+    const Crater d = shoot(f, {0.3, 0.2, 0.5}, {0.0, 0.0, -1.0}, f.volumetric);
     EXPECT_EQ(activeClips(d), 0);
 }
 
@@ -97,14 +108,14 @@ TEST(CraterClipping, CraterNearConvexEdgeIsCutAtTheSideFace) {
     Scene s;
     s.objects.push_back(box("pillar", {0, 0, 0}, glm::vec3(half)));
     Fixture f = makeFixture(s);
-    const Decal& d = shoot(f, {0.45, 0.0, 0.5}, {0.0, 0.0, -1.0}, f.volumetric);
+    const Crater d = shoot(f, {0.45, 0.0, 0.5}, {0.0, 0.0, -1.0}, f.volumetric);
     ASSERT_EQ(activeClips(d), 1);
     // Unclipped, the cup pokes out of the side face x = 0.5; clipped, nothing does.
     EXPECT_GT(outside(craterPoints(d, glm::dmat4(1.0), false), {0, 0, 0}, half), 0.02);
     EXPECT_LE(outside(craterPoints(d, glm::dmat4(1.0), true), {0, 0, 0}, half), 1e-6);
     // The plane is the side face: its normal along +x in the world, at x = 0.5 within quantisation.
-    const glm::vec4 p = unpackCraterClip(d.clips[0]);
-    const glm::dmat3 toWorld(craterToObject(d));
+    const glm::vec4 p = unpackCraterClip(d.clips.planes[0]);
+    const glm::dmat3 toWorld(craterToObject(d.decal));
     const glm::dvec3 n = glm::normalize(glm::transpose(glm::inverse(toWorld)) * glm::dvec3(p));
     EXPECT_GT(n.x, 0.999);
 }
@@ -114,7 +125,7 @@ TEST(CraterClipping, CraterAtBoxCornerIsCutByBothSideFaces) {
     Scene s;
     s.objects.push_back(box("crate", {0, 0, 0}, glm::vec3(half)));
     Fixture f = makeFixture(s);
-    const Decal& d = shoot(f, {0.46, 0.45, 0.5}, {0.0, 0.0, -1.0}, f.volumetric);
+    const Crater d = shoot(f, {0.46, 0.45, 0.5}, {0.0, 0.0, -1.0}, f.volumetric);
     EXPECT_EQ(activeClips(d), 2);
     EXPECT_GT(outside(craterPoints(d, glm::dmat4(1.0), false), {0, 0, 0}, half), 0.02);
     EXPECT_LE(outside(craterPoints(d, glm::dmat4(1.0), true), {0, 0, 0}, half), 1e-6);
@@ -125,7 +136,7 @@ TEST(CraterClipping, CraterDeeperThanAThinWallIsCutAtItsBack) {
     Scene s;
     s.objects.push_back(box("panel", {0, 0, 0}, glm::vec3(half)));
     Fixture f = makeFixture(s);
-    const Decal& d = shoot(f, {0.0, 0.3, 0.01}, {0.0, 0.0, -1.0}, f.volumetric);
+    const Crater d = shoot(f, {0.0, 0.3, 0.01}, {0.0, 0.0, -1.0}, f.volumetric);
     ASSERT_EQ(activeClips(d), 1);
     EXPECT_GT(outside(craterPoints(d, glm::dmat4(1.0), false), {0, 0, 0}, half), 0.02);
     EXPECT_LE(outside(craterPoints(d, glm::dmat4(1.0), true), {0, 0, 0}, half), 1e-6);
@@ -139,7 +150,7 @@ TEST(CraterClipping, WallStandingOnAFloorIsNotCutWhereTheFloorGoesOn) {
         s.objects.push_back(box("floor", {0.0, -0.5, 0.0}, {3.0f, 0.5f, 3.0f}));
         s.objects.push_back(box("wall", {0.0, 1.0 - overlap, 0.0}, {2.0f, 1.0f, 0.5f}));
         Fixture f = makeFixture(s);
-        const Decal& d = shoot(f, {0.2, 0.04, 0.5}, {0.0, 0.0, -1.0}, f.volumetric);
+        const Crater d = shoot(f, {0.2, 0.04, 0.5}, {0.0, 0.0, -1.0}, f.volumetric);
         EXPECT_EQ(activeClips(d), 0) << "overlap " << overlap;
     }
 }
@@ -148,7 +159,7 @@ TEST(CraterClipping, FlatDecalsGetNoClipPlanes) {
     Scene s;
     s.objects.push_back(box("pillar", {0, 0, 0}, {0.5f, 2.0f, 0.5f}));
     Fixture f = makeFixture(s);
-    const Decal& d = shoot(f, {0.45, 0.0, 0.5}, {0.0, 0.0, -1.0}, f.flat);
+    const Crater d = shoot(f, {0.45, 0.0, 0.5}, {0.0, 0.0, -1.0}, f.flat);
     EXPECT_EQ(activeClips(d), 0);
 }
 
@@ -162,7 +173,7 @@ TEST(CraterClipping, SpawnAtAndSpawnAttachedClipLikeSpawn) {
         f.system.spawnAttached(0, {0.45f, -0.5f, 0.5f}, {0.0f, 0.0f, 1.0f}, f.volumetric);
     for (const SpawnResult& r : {at, attached}) {
         ASSERT_TRUE(r.placed()) << r.reason;
-        const Decal& d = *f.system.get(r.handle);
+        const Crater d = crater(f, r.handle);
         EXPECT_EQ(activeClips(d), 1);
         EXPECT_LE(outside(craterPoints(d, glm::dmat4(1.0), true), {0, 0, 0}, half), 1e-6);
     }
@@ -173,9 +184,8 @@ TEST(CraterClipping, ClipPlanesFollowAMovingObject) {
     Scene s;
     s.objects.push_back(box("target", centre, glm::vec3(half), true));
     Fixture f = makeFixture(s);
-    const Decal& placed = shoot(f, {0.45, 1.0, 0.5}, {0.0, 0.0, -1.0}, f.volumetric);
-    ASSERT_EQ(activeClips(placed), 1);
-    const Decal d = placed;
+    const Crater d = shoot(f, {0.45, 1.0, 0.5}, {0.0, 0.0, -1.0}, f.volumetric);
+    ASSERT_EQ(activeClips(d), 1);
     glm::dmat4 moved = glm::translate(glm::dmat4(1.0), glm::dvec3(3.0, 2.0, -1.0));
     moved = glm::rotate(moved, 1.1, glm::dvec3(0.3, 1.0, 0.2));
     ASSERT_TRUE(f.system.setTransform(0, moved).ok());

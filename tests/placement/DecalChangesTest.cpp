@@ -23,12 +23,12 @@ bool sameBytes(const Decal& a, const Decal& b) {
     return same(a.packedFrame, b.packedFrame) && same(a.center, b.center) && same(a.size, b.size) &&
            same(a.halfDepth, b.halfDepth) && same(a.object, b.object) && same(a.id, b.id) &&
            same(a.type, b.type) && same(a.objectId, b.objectId) && same(a.spawnTime, b.spawnTime) &&
-           same(a.opacity, b.opacity) && same(a.slant, b.slant) && same(a.clips, b.clips);
+           same(a.opacity, b.opacity) && same(a.slant, b.slant);
 }
 // A field added to Decal must be added to sameBytes (the record has no padding: its fields fill it).
 static_assert(sizeof(glm::vec3) + sizeof(float) + sizeof(uint64_t) + sizeof(glm::vec2) + sizeof(double) +
                       2 * sizeof(uint32_t) + sizeof(uint16_t) + sizeof(uint8_t) + sizeof(Opacity) +
-                      sizeof(uint32_t) + 2 * sizeof(CraterClip) ==
+                      sizeof(uint32_t) ==
                   sizeof(Decal),
               "Decal has fields sameBytes does not compare");
 

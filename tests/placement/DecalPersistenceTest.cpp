@@ -123,6 +123,9 @@ DecalLoadReport load(DecalSystem& s, const std::vector<uint8_t>& bytes) {
 
 ::testing::AssertionResult sameSystem(const DecalSystem& a, const DecalSystem& b) {
     if (::testing::AssertionResult r = sameDecals(a.decals(), b.decals()); !r) return r;
+    for (size_t i = 0; i < a.decals().size(); ++i)
+        if (!(a.craterClips(i) == b.craterClips(i)))
+            return ::testing::AssertionFailure() << "decal " << i << ": crater clips differ";
     if (a.stats() != b.stats()) return ::testing::AssertionFailure() << "statistics differ";
     if (a.version() != b.version()) return ::testing::AssertionFailure() << "versions differ";
     const std::vector<uint8_t> sa = saved(a), sb = saved(b);
@@ -215,6 +218,10 @@ TEST_P(RoundTrip, LoadedSystemContinuesExactlyLikeOneThatNeverStopped) {
     EXPECT_EQ(report.droppedDecals, 0u);
     EXPECT_EQ(report.decals, reference.decals().size());
     EXPECT_TRUE(sameSystem(loaded, reference));
+    size_t clipped = 0; // craters whose clip planes the comparison covers
+    for (size_t i = 0; i < loaded.decals().size(); ++i)
+        clipped += loaded.craterClips(i).any() ? 1 : 0;
+    EXPECT_GT(clipped, 0u);
     play(reference, kHalf, 2 * kHalf);
     play(loaded, kHalf, 2 * kHalf);
     const DecalStats& stats = reference.stats();
@@ -697,6 +704,22 @@ TEST_F(DecalPersistence, DecalOnAnObjectTheSaveDoesNotHoldIsRefused) {
     b[at + 1] = 200;
     reseal(b);
     expectRefused(b, "decal 0 lies on object 200, which the save has not in its world");
+}
+
+// The log keeps no source of a change (a removal's is the decals' count after it), so a save whose
+// sources do not follow from its decals is refused rather than replayed into other changes.
+TEST_F(DecalPersistence, ChangeLogThatDoesNotLeadToTheDecalsIsRefused) {
+    std::vector<uint8_t> b = bytes;
+    size_t at = sectionAt(b, "CHNG");
+    uint32_t n = 0;
+    std::memcpy(&n, &b[at + 8], 4);
+    ASSERT_GT(n, 0u);
+    at += 12;
+    column(b, at, n); // indices
+    const size_t sources = at;
+    b[sources + 1 + size_t(n - 1) * b[sources]] ^= 1; // the newest change's source, one off
+    reseal(b);
+    expectRefused(b, "does not lead to the");
 }
 
 TEST_F(DecalPersistence, SlotUsedTwiceIsRefused) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <set>
 
 using namespace spatter;
 using namespace spatter::test;
@@ -417,6 +418,44 @@ TEST(DecalSystem, FullCellsEvictTheOldest) {
     ASSERT_TRUE(s.spawn(ray({4.2, 1.3, 0.0}, {0.0, 0.0, -1.0}), type).placed());
     EXPECT_EQ(s.decals().size(), 4u);
     EXPECT_EQ(s.stats().evicted, 2u);
+}
+
+// A cell's list is singly linked up to kSmallCellLimit decals and doubly linked above:
+// removals from its middle and its end must leave the oldest-first order of evictions intact either way.
+TEST(DecalSystem, RemovalsFromAFullCellKeepItsEvictionOrder) {
+    for (const uint32_t cap : {5u, kSmallCellLimit + 36}) {
+        SCOPED_TRACE("maxPerCell " + std::to_string(cap));
+        DecalSettings settings;
+        settings.maxPerCell = cap;
+        settings.cellSize = 1.0f;
+        DecalSystem s = makeSystem(rangeScene(0), settings);
+        const uint16_t type = addType(s, plainType());
+        std::vector<DecalHandle> handles;
+        auto spawnOne = [&] {
+            const double x = 0.1 + 0.8 * double(handles.size() % 97) / 97.0;
+            const SpawnResult r = s.spawn(ray({x, 1.3, 0.0}, {0.0, 0.0, -1.0}), type);
+            ASSERT_TRUE(r.placed()) << r.reason;
+            handles.push_back(r.handle);
+        };
+        for (uint32_t i = 0; i < cap; ++i)
+            spawnOne();
+        // Out of the middle, the newest (the list's end) and the second oldest.
+        const std::set<uint32_t> removed = {cap / 2, cap - 1, 1};
+        for (uint32_t k : removed)
+            ASSERT_TRUE(s.remove(handles[k]));
+        // Three spawns fill the cell again; the fourth and fifth evict the two oldest left.
+        for (int i = 0; i < 5; ++i)
+            spawnOne();
+        EXPECT_EQ(s.stats().evicted, 2u);
+        std::vector<uint32_t> left;
+        for (uint32_t i = 0; i < cap; ++i)
+            if (removed.count(i) == 0) left.push_back(i);
+        for (uint32_t i = 0; i < handles.size(); ++i) {
+            const bool gone = removed.count(i) != 0 || i == left[0] || i == left[1];
+            EXPECT_EQ(s.get(handles[i]) == nullptr, gone) << "decal " << i;
+        }
+        EXPECT_EQ(s.decals().size(), size_t(cap));
+    }
 }
 
 TEST(DecalSystem, FullCellsRejectUnderTheRejectPolicy) {

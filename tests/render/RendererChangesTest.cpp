@@ -143,8 +143,10 @@ TEST(RendererChanges, UpdatesDrawWhatTheDecalsTakenWholeDrawWithCratersAndSplats
             const DecalChanges c = p->sys->changesSince(p->version);
             ASSERT_TRUE(c.complete);
             p->version = c.version;
-            p->changes->updateDecals(p->sys->decals(), c);
-            p->whole->setDecals(p->sys->decals());
+            const DecalSystem& sys = *p->sys;
+            const CraterClipsOf clips = [&sys](size_t i) { return sys.craterClips(i); };
+            p->changes->updateDecals(sys.decals(), c, clips);
+            p->whole->setDecals(sys.decals(), clips);
             FrameStats a, b;
             const Image ia = test::renderView(*p->changes, overhead(), View::Final, &a);
             const Image ib = test::renderView(*p->whole, overhead(), View::Final, &b);

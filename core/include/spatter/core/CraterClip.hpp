@@ -13,10 +13,15 @@
 // origin (which holds every crater whose depth bound is at most sqrt(3)), so that a packed plane
 // never lets the crater out of the solid.
 //
+// A volumetric decal has two (CraterClips); the decal system keeps them beside its decals
+// (DecalSystem::craterClips) for the few that have one, not in every Decal record.
+//
 //   CraterClip c = packCraterClip(glm::vec3(1, 0, 0), 0.4f);  // the solid ends at x = 0.4
 //   glm::vec4 plane = unpackCraterClip(c);                    // xyz unit normal, w offset
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <glm/glm.hpp>
 
 namespace spatter {
@@ -31,7 +36,23 @@ struct CraterClip {
     static constexpr int16_t kNone = INT16_MAX;
 
     bool active() const { return offset != kNone; }
+    bool operator==(const CraterClip& o) const {
+        return octX == o.octX && octY == o.octY && offset == o.offset;
+    }
 };
+
+// The clip planes of one volumetric decal; inactive planes keep the whole crater.
+struct CraterClips {
+    CraterClip planes[2];
+    bool any() const { return planes[0].active() || planes[1].active(); }
+    bool operator==(const CraterClips& o) const {
+        return planes[0] == o.planes[0] && planes[1] == o.planes[1];
+    }
+};
+
+// The clips of the decal at an index of a decal array, as a renderer asks for them
+// (DecalSystem::craterClips); an empty function: no decal has any.
+using CraterClipsOf = std::function<CraterClips(size_t index)>;
 
 // Crater space of `decal` to the space of its object (the decal's frame scaled by half its width,
 // half its height and the smaller of the two, translated to its centre).

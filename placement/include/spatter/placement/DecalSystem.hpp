@@ -30,6 +30,7 @@
 //   fills the hole; an opacity that update() changes (bit for bit) as Changed. The version is the
 //   number of changes logged since create(); a call that changes no decal logs nothing.
 
+#include "spatter/core/CraterClip.hpp"
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalChanges.hpp"
 #include "spatter/core/DecalType.hpp"
@@ -56,6 +57,11 @@ enum class LimitPolicy : uint8_t {
                  // fadeOutTime, then update() removes it (stats: evicted, when the fade starts)
     Reject,      // the spawn fails with SpawnStatus::AreaLimit
 };
+
+// A cell limit (DecalSettings::maxPerCell) at most this keeps 4 bytes less per decal: a cell's decals
+// are then few enough that taking one out of the middle of their spawn order (a removal, an expiry, an
+// object's eviction) walks the cell's list instead of keeping a link back from each decal.
+constexpr uint32_t kSmallCellLimit = 64;
 
 struct DecalSettings {
     uint64_t seed = 1;        // decal IDs, rotations, size jitter and object IDs all derive from it
@@ -147,7 +153,7 @@ public:
     // hit's geometric normal (facing the ray); tangent = the ray direction projected onto the surface
     // (frameFromNormalAndHint: then world X, then Duff et al.), turned by a random angle. A decal of
     // a volumetric type gets the clip planes of its crater from the collision proxy around it, in
-    // all three spawn calls (Decal::clips, placement/src/CraterClipping.hpp).
+    // all three spawn calls (craterClips()).
     SpawnResult spawn(const Ray& ray, uint16_t type);
 
     // Places a decal centred on the collision surface at `position`, facing `normal` (world space,
@@ -194,13 +200,18 @@ public:
 
     // The live decals, contiguous, for the renderer. Order is deterministic but changes on removals.
     const std::vector<Decal>& decals() const;
+    // The clip planes of the crater of decals()[index] (volumetric types; CraterClip.hpp): where the
+    // solid it is carved into ends. None active for other decals, a crater away from any edge and an
+    // index out of range. Kept beside the decals for the few that have them, as a renderer takes them:
+    //   renderer.setDecals(sys->decals(), [&](size_t i) { return sys->craterClips(i); });
+    CraterClips craterClips(size_t index) const;
 
     // The version of decals(): the number of changes logged since create() (0: the system as created).
     uint64_t version() const;
     // The changes that turn decals() as it was at `version` into decals() now (DecalChanges.hpp), and
     // the version they lead to. The log keeps the newest max(4096, decals().size() / 4) changes at
-    // most (when full it drops the older half; 12 bytes each: 48 KiB up to 16384 decals, then 3 bytes
-    // per decal); a `version` older than what it keeps, or newer than version(), gives
+    // most (when full it drops the older half; 5 bytes each: 20 KiB up to 16384 decals, then 1.25
+    // bytes per decal); a `version` older than what it keeps, or newer than version(), gives
     // complete == false and no changes: take decals() whole. O(changes returned). The second form
     // reuses `out`'s memory.
     DecalChanges changesSince(uint64_t version) const;

@@ -60,6 +60,7 @@
 // out of range) never crashes: calls that can fail return a Status, and unusable decals are skipped
 // and counted in FrameStats::decalsInvalid.
 
+#include "spatter/core/CraterClip.hpp"
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalType.hpp"
 #include "spatter/core/Image.hpp"
@@ -183,20 +184,22 @@ public:
     // texture array: 0..3 are the built-in DecalTexture values.
     void setDecalTypes(const std::vector<DecalType>& types);
     // The decals to draw (object space, as DecalSystem::decals() gives them). Decals whose type,
-    // as last given to setDecalTypes, is volumetric are drawn as holes, not by the decal pass.
+    // as last given to setDecalTypes, is volumetric are drawn as holes, not by the decal pass, cut by
+    // the clip planes `clips` gives for their index (DecalSystem::craterClips; none when empty).
     // Every decal is taken whole (updateDecals takes only what changed). Decals on texture-space
     // objects are not drawn by the decal pass: each is splatted into its object's decal texture by the next
     // render call after it first appears (recognised by its ID, object, type, frame and size; on a
     // skinned or morphed object, whose decals the decal system moves with the pose, by its ID, object,
     // type, size and spawn time), in the pose of that frame, and stays there.
-    void setDecals(const std::vector<Decal>& decals);
+    void setDecals(const std::vector<Decal>& decals, const CraterClipsOf& clips = {});
     // The decals after `changes` (DecalSystem::changesSince): only the decals the changes name are
     // built and uploaded (DecalProjector::updateDecals), new decals on texture-space objects splatted.
     // While some type is volumetric or some object texture-space the renderer keeps a byte per decal
     // (its kind), and a change to a volumetric decal takes the volumetric decals afresh (a scan of
     // `decals`). Takes the decals whole, as setDecals, when the changes are not complete or do not
     // fit, and after setDecalTypes or setObjectDecalMode.
-    void updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes);
+    void updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes,
+                      const CraterClipsOf& clips = {});
     // Adds a decal texture layer (resized to the layer size); `normalMap` may be empty for a flat
     // one. Returns its layer index.
     Result<int> addDecalTexture(const Image& albedo, const Image& normalMap = {});
