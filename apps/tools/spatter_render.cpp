@@ -321,7 +321,7 @@ int main(int argc, char** argv) {
             return failure(s.error());
     }
     renderer->setDecalTypes(loaded->types);
-    renderer->setDecals(loaded->decals);
+    renderer->setDecals(loaded->decals, spatter::craterClipsOf(loaded->clips));
     spatter::Result<spatter::FrameStats> stats = renderer->render(camera, view);
     if (!stats) return failure(stats.error());
     spatter::Result<spatter::Image> image = renderer->readback();

@@ -64,4 +64,8 @@ glm::vec4 unpackCraterClip(const CraterClip& c) {
     return glm::vec4(decodeNormal(c.octX, c.octY), float(c.offset) / kOffsetScale);
 }
 
+CraterClipsOf craterClipsOf(const std::vector<CraterClips>& clips) {
+    return [&clips](size_t i) { return i < clips.size() ? clips[i] : CraterClips{}; };
+}
+
 } // namespace spatter

@@ -277,6 +277,8 @@ Result<LoadedDecals> placeRays(const std::string& path, const Scene& scene, cons
     for (const SpawnResult& r : results)
         out.placed += r.placed() ? 1 : 0;
     out.decals = sys->decals();
+    for (size_t k = 0; k < out.decals.size(); ++k)
+        out.clips.push_back(sys->craterClips(k));
     for (int k = 0; k < int(DecalTexture::Count); ++k)
         out.types.push_back(withLook(type, k));
     for (size_t k = 0; k < out.decals.size(); ++k)

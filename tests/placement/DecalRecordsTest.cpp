@@ -166,6 +166,23 @@ TEST(DecalRecords, RayFilesArePlacedThroughTheDecalSystem) {
     EXPECT_FALSE(placeRays(path, scene, type, 0, 7).ok());
 }
 
+// Volumetric rays give each crater the clip planes the decal system found for it: a crater at the
+// box's edge is cut at its side face, one in the middle of a face is not.
+TEST(DecalRecords, VolumetricRayFilesKeepTheCratersClipPlanes) {
+    const Scene scene = test::boxScene();
+    const std::string path = writeFile("craters.txt", "0.45 0 3 0 0 -1\n0 0 3 0 0 -1\n");
+    DecalType type;
+    type.name = "hole";
+    type.size = {0.2f, 0.2f};
+    type.volumetric = true;
+    Result<LoadedDecals> loaded = placeRays(path, scene, type, int(DecalTexture::BulletHole), 7);
+    ASSERT_TRUE(loaded.ok()) << loaded.error();
+    ASSERT_EQ(loaded->decals.size(), 2u);
+    ASSERT_EQ(loaded->clips.size(), 2u);
+    EXPECT_TRUE(loaded->clips[0].any());
+    EXPECT_FALSE(loaded->clips[1].any());
+}
+
 TEST(DecalLooks, NamesGiveTheBuiltInTexturesAndMixedTakesThemInTurn) {
     EXPECT_EQ(parseDecalLook("bullet_hole").value(), int(DecalTexture::BulletHole));
     EXPECT_EQ(parseDecalLook("scorch").value(), int(DecalTexture::Scorch));

@@ -322,7 +322,7 @@ double pokeOut(Renderer& r, const Camera& cam, const std::vector<Decal>& decals,
     r.setDecals({});
     renderView(r, cam, View::Depth);
     const std::vector<float> before = r.readbackDepth().value();
-    r.setDecals(decals, [&](size_t i) { return i < clips.size() ? clips[i] : CraterClips{}; });
+    r.setDecals(decals, craterClipsOf(clips));
     renderView(r, cam, View::Depth);
     const std::vector<float> after = r.readbackDepth().value();
     const glm::dvec3 forward = -cameraBasis(cam).back;

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <functional>
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace spatter {
 
@@ -53,6 +54,9 @@ struct CraterClips {
 // The clips of the decal at an index of a decal array, as a renderer asks for them
 // (DecalSystem::craterClips); an empty function: no decal has any.
 using CraterClipsOf = std::function<CraterClips(size_t index)>;
+
+// The clips of `clips` by index, none past its end. It refers to `clips`: for the call it is given to.
+CraterClipsOf craterClipsOf(const std::vector<CraterClips>& clips);
 
 // Crater space of `decal` to the space of its object (the decal's frame scaled by half its width,
 // half its height and the smaller of the two, translated to its centre).

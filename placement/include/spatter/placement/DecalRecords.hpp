@@ -7,9 +7,10 @@
 //   Result<LoadedDecals> d = loadPlacedRecords("decals.jsonl", scene, DecalType{}, kMixedLooks);
 //   if (!d) std::fprintf(stderr, "%s\n", d.error().c_str());   // "decals.jsonl:3: ..."
 //   projector.setDecalTypes(d->types);
-//   projector.setDecals(d->decals);
+//   projector.setDecals(d->decals);   // spatter's renderer: setDecals(d->decals, craterClipsOf(d->clips))
 //   projector.setObjects(transforms, d->objectIds);
 
+#include "spatter/core/CraterClip.hpp"
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalType.hpp"
 #include "spatter/core/Result.hpp"
@@ -28,6 +29,8 @@ struct LoadedDecals {
     std::vector<Decal> decals;         // in their objects' space; Decal::type indexes `types`
     std::vector<DecalType> types;      // the looks of DecalLooks.hpp on the caller's base type
     std::vector<uint8_t> objectIds;    // one per scene object: its 8-bit decal ID
+    std::vector<CraterClips> clips;    // parallel to decals where a ray file placed volumetric ones
+                                       // (DecalSystem::craterClips), else empty
     std::vector<std::string> warnings; // objects the ray trace leaves out, and why (placeRays)
     size_t records = 0;                // records (non-blank lines) or rays (ray lines) read
     size_t placed = 0;                 // decals made from them
