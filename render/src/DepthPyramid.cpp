@@ -1,10 +1,9 @@
 #include "DepthPyramid.hpp"
 
-#include "PowerOfTwo.hpp"
-
 #include "ProjectorVariants.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace spatter::render_detail {
 
@@ -19,14 +18,27 @@ GLuint groups(int size) {
     return GLuint((size + 7) / 8);
 }
 
+// The most levels: a box wider than the top level's texels reads several of them.
+constexpr int kMaxLevels = 7;
+
+// Level 0 for a viewport of `width` x `height`: half of it a side, rounded up to a multiple of the
+// top level's footprint, so that every level halves the one below exactly (GL's mip levels round
+// down, which would drop an odd level's last row), and the number of levels.
+std::pair<glm::ivec2, int> levelZero(int width, int height) {
+    const glm::ivec2 half((width + 1) / 2, (height + 1) / 2);
+    int levels = 1;
+    while (levels < kMaxLevels && (1 << levels) <= std::max(half.x, half.y))
+        ++levels;
+    const int step = 1 << (levels - 1);
+    return {(half + step - 1) / step * step, levels};
+}
+
 } // namespace
 
-void DepthPyramid::allocate(glm::ivec2 size) {
-    if (texture_ && size == size_) return;
+void DepthPyramid::allocate(glm::ivec2 size, int levels) {
+    if (texture_ && size == size_ && levels == levels_) return;
     size_ = size;
-    levels_ = 1;
-    for (int s = std::max(size.x, size.y); s > 1; s /= 2)
-        ++levels_;
+    levels_ = levels;
     texture_ = createTexture(GL_TEXTURE_2D);
     glTextureStorage2D(texture_.get(), levels_, GL_R32F, size.x, size.y);
     // texelFetch reaches the levels above the base only with a mipmap filter.
@@ -46,8 +58,8 @@ Status DepthPyramid::prepare(const HostFrame& f) {
 
 Occlusion DepthPyramid::build(const HostFrame& f, GLuint sampler) {
     const int c = convention(f);
-    allocate({int(nextPowerOfTwo(uint64_t((f.width + 1) / 2))),
-              int(nextPowerOfTwo(uint64_t((f.height + 1) / 2)))});
+    const auto [size, levels] = levelZero(f.width, f.height);
+    allocate(size, levels);
     glUseProgram(programs_[c].get());
     glBindTextureUnit(0, f.depth.texture);
     glBindSampler(0, sampler);

@@ -1,8 +1,10 @@
 #pragma once
 // DepthPyramid: the host's depth as a mip chain of farthest depths (shaders/depth_pyramid.comp), for
 // the GPU culling's occlusion test: a box whose nearest point lies beyond every texel of the level
-// where its screen rectangle spans at most two texels a side cannot show a pixel. Level 0 is half the
-// viewport, rounded up to a power of two a side (4 MB at 1080p with the levels above it).
+// where its screen rectangle spans at most two texels a side cannot show a pixel (or, past the top
+// level, beyond every texel of the top level under it). Level 0 is half the viewport, rounded up to a
+// multiple of 64 texels a side so that seven levels halve exactly (2.9 MB at 1080p with the levels
+// above it, where a power of two a side took 5.6 MB).
 
 #include "GlObjects.hpp"
 #include "GpuCulling.hpp"
@@ -26,7 +28,7 @@ public:
     size_t gpuBytes() const;
 
 private:
-    void allocate(glm::ivec2 size);
+    void allocate(glm::ivec2 size, int levels);
 
     GlProgram programs_[3]; // window standard Z, window reversed Z, linear view distance
     GlTexture texture_;

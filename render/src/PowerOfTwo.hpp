@@ -1,6 +1,5 @@
 #pragma once
-// The smallest power of two at or above a size: texture levels (DepthPyramid) and the screen tiles'
-// runs (DecalProjector) are sized so.
+// The smallest power of two at or above a size: the screen tiles' runs (DecalProjector) are sized so.
 
 #include <cstdint>
 
