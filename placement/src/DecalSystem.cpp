@@ -143,9 +143,9 @@ struct DecalSystem::Impl {
     // The decals evicted under FadeOldest, which the limits no longer count, by slot: the clock time
     // of the eviction. Few at a time, so a side table rather than 8 bytes beside every decal.
     std::unordered_map<uint32_t, double> fadingSince;
-    // The clip planes of volumetric decals that have one, by slot (craterClips()): a side table, as most
-    // decals have none.
-    std::unordered_map<uint32_t, CraterClips> clipsBySlot;
+    // The clip planes of the volumetric decals, by slot (craterClips()): empty until a crater has one,
+    // so that a world without clipped craters keeps nothing for them, and then 8 bytes a slot.
+    std::vector<CraterClips> clipsBySlot;
     DenseIndexSet timed; // dense indices update() visits: type lifetime > 0, or fading
     ChangeLog changeLog; // the newest changes of decals
     std::vector<Slot> slots;
@@ -196,6 +196,14 @@ struct DecalSystem::Impl {
 
     void logChange(uint32_t index, DecalChangeKind kind) { changeLog.append(index, kind, decals.size()); }
 
+    void setClips(uint32_t slot, const CraterClips& clips) {
+        if (slot >= clipsBySlot.size()) {
+            reserveCapped(clipsBySlot, slots.size(), settings.budget);
+            clipsBySlot.resize(slots.size());
+        }
+        clipsBySlot[slot] = clips;
+    }
+
     bool fading(uint32_t dense) const {
         return !fadingSince.empty() && fadingSince.count(slotOf[dense]) != 0;
     }
@@ -203,7 +211,7 @@ struct DecalSystem::Impl {
     void removeDense(uint32_t dense) {
         const uint32_t slot = slotOf[dense];
         if (!fadingSince.empty() && fadingSince.erase(slot) != 0) stats.fading--;
-        if (!clipsBySlot.empty()) clipsBySlot.erase(slot);
+        if (slot < clipsBySlot.size()) clipsBySlot[slot] = CraterClips{};
         anchors.erase(slot, decals[dense].object);
         limits.unlink(slot, decals[dense].object);
         slots[slot].dense = kNone;
@@ -352,7 +360,7 @@ struct DecalSystem::Impl {
         slotOf.push_back(slot);
         if (t.lifetime > 0.0f) timed.set(dense);
         limits.link(slot, key, objectIndex);
-        if (clips.any()) clipsBySlot[slot] = clips;
+        if (clips.any()) setClips(slot, clips);
         stats.placed++;
         stats.alive = decals.size();
         logChange(dense, DecalChangeKind::Added);
@@ -746,9 +754,9 @@ const std::vector<Decal>& DecalSystem::decals() const {
 
 CraterClips DecalSystem::craterClips(size_t index) const {
     const Impl& s = *impl_;
-    if (index >= s.decals.size() || s.clipsBySlot.empty()) return {};
-    const auto it = s.clipsBySlot.find(s.slotOf[index]);
-    return it != s.clipsBySlot.end() ? it->second : CraterClips{};
+    if (index >= s.decals.size()) return {};
+    const uint32_t slot = s.slotOf[index];
+    return slot < s.clipsBySlot.size() ? s.clipsBySlot[slot] : CraterClips{};
 }
 
 uint64_t DecalSystem::version() const {
@@ -822,10 +830,9 @@ DecalSystemMemory DecalSystem::memory() const {
     m.changeLog = s.changeLog.bytes();
     // A node of the fading table holds its entry and a link; the table a pointer per bucket.
     const size_t fadingNode = sizeof(std::pair<const uint32_t, double>) + sizeof(void*);
-    const size_t clipsNode = sizeof(std::pair<const uint32_t, CraterClips>) + sizeof(void*);
     m.other = s.timed.bytes() + s.fadingSince.size() * fadingNode +
-              s.fadingSince.bucket_count() * sizeof(void*) + s.clipsBySlot.size() * clipsNode +
-              s.clipsBySlot.bucket_count() * sizeof(void*) + s.anchors.bytes();
+              s.fadingSince.bucket_count() * sizeof(void*) + s.clipsBySlot.capacity() * sizeof(CraterClips) +
+              s.anchors.bytes();
     return m;
 }
 const DecalSettings& DecalSystem::settings() const {
@@ -872,9 +879,9 @@ DecalSystemState DecalSystemAccess::capture(const DecalSystem& system) {
     st.stats = s.stats;
     st.decals = s.decals;
     st.slotOf = s.slotOf;
-    st.clips.assign(s.decals.size(), CraterClips{});
-    for (const auto& [slot, clips] : s.clipsBySlot)
-        st.clips[s.slots[slot].dense] = clips;
+    st.clips.reserve(s.decals.size());
+    for (size_t i = 0; i < s.decals.size(); ++i)
+        st.clips.push_back(system.craterClips(i));
     st.generations.reserve(s.slots.size());
     for (const Slot& slot : s.slots)
         st.generations.push_back(slot.generation);
@@ -929,9 +936,9 @@ void DecalSystemAccess::restoreDecals(DecalSystem::Impl& s, DecalSystemState& st
     s.freeSlots = std::move(st.freeSlots);
     s.anchors.restore(st.anchors, [&s](uint32_t slot) { return s.decals[s.slots[slot].dense].object; });
     s.fadingSince = std::unordered_map<uint32_t, double>(st.fading.begin(), st.fading.end());
-    s.clipsBySlot.clear();
+    s.clipsBySlot = {};
     for (uint32_t i = 0; i < st.clips.size(); ++i)
-        if (st.clips[i].any()) s.clipsBySlot[s.slotOf[i]] = st.clips[i];
+        if (st.clips[i].any()) s.setClips(s.slotOf[i], st.clips[i]);
     s.timed = DenseIndexSet();
     for (uint32_t i = 0; i < s.decals.size(); ++i)
         if (s.types[s.decals[i].type].lifetime > 0.0f || s.fading(i)) s.timed.set(i);

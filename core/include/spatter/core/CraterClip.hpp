@@ -14,7 +14,7 @@
 // never lets the crater out of the solid.
 //
 // A volumetric decal has two (CraterClips); the decal system keeps them beside its decals
-// (DecalSystem::craterClips) for the few that have one, not in every Decal record.
+// (DecalSystem::craterClips) once a crater has one, not in every Decal record.
 //
 //   CraterClip c = packCraterClip(glm::vec3(1, 0, 0), 0.4f);  // the solid ends at x = 0.4
 //   glm::vec4 plane = unpackCraterClip(c);                    // xyz unit normal, w offset

@@ -73,7 +73,8 @@ struct Decal {
 };
 
 // A record of 56 bytes. What only volumetric decals need, their crater's clip planes, lives beside the
-// decals (DecalSystem::craterClips): most decals have none, and a million decals keep 8 MB less.
+// decals (DecalSystem::craterClips) once a crater has them: a world without clipped craters keeps 8 MB
+// less a million decals.
 static_assert(sizeof(Decal) <= 56, "a Decal record grew past 56 bytes");
 
 } // namespace spatter

@@ -202,7 +202,8 @@ public:
     const std::vector<Decal>& decals() const;
     // The clip planes of the crater of decals()[index] (volumetric types; CraterClip.hpp): where the
     // solid it is carved into ends. None active for other decals, a crater away from any edge and an
-    // index out of range. Kept beside the decals for the few that have them, as a renderer takes them:
+    // index out of range. Kept beside the decals once a crater has them (8 bytes a handle slot, none
+    // before), and given to a renderer so:
     //   renderer.setDecals(sys->decals(), [&](size_t i) { return sys->craterClips(i); });
     CraterClips craterClips(size_t index) const;
 
