@@ -124,7 +124,7 @@ void AreaLimits::pushBack(List& list, Links at, uint32_t slot) {
 
 uint32_t AreaLimits::before(const List& list, uint32_t next, uint32_t slot) const {
     uint32_t prev = kNone;
-    for (uint32_t s = list.head; s != slot; s = links_[size_t(s) * stride_ + next])
+    for (uint32_t s = list.head; s != slot && s != kNone; s = links_[size_t(s) * stride_ + next])
         prev = s;
     return prev;
 }
