@@ -27,7 +27,9 @@ AreaLimits::AreaLimits(size_t objectCount, uint32_t budget, uint32_t cellLimit, 
         object_.next = stride_++;
     }
     if (cellLimit < budget) {
-        if (cellLimit > kSinglyLinkedCells) cell_.prev = stride_++;
+        // Up to kSmallCellLimit a cell holds so few counted decals that taking one out of its middle
+        // walks its list; the oldest, which evictions take, is the head.
+        if (cellLimit > kSmallCellLimit) cell_.prev = stride_++;
         cell_.next = stride_++;
     }
 }

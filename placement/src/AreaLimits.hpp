@@ -5,7 +5,7 @@
 //
 // Memory: a slot keeps the 32-bit index of its cell and 32-bit links in the lists it is ordered in:
 // two in the global list and the object's (previous and next), one in its cell's (next) while the
-// cell limit is at most kSinglyLinkedCells, else two (at most 28 bytes); a cell in use keeps its key
+// cell limit is at most kSmallCellLimit, else two (at most 28 bytes); a cell in use keeps its key
 // and list (40 bytes) and a 32-bit entry in an open-addressing table at most half full. A limit at or
 // above the budget keeps no order of its own (see AreaLimits()), which saves that list's links.
 
@@ -32,10 +32,6 @@ struct CellKeyHash {
 class AreaLimits {
 public:
     static constexpr uint32_t kNone = UINT32_MAX;
-    // Cells whose limit is at most this keep their lists singly linked (kSmallCellLimit): a cell
-    // then holds at most this many counted decals, so taking one out of its middle walks at most that
-    // far. The oldest, which evictions by the cell's limit and the budget take, is the head.
-    static constexpr uint32_t kSinglyLinkedCells = kSmallCellLimit;
 
     // `cellLimit` and `objectLimit` are the most counted decals of a cell and of an object; their
     // lists are kept in spawn order while the limit is below the budget. The counted decals never

@@ -14,7 +14,6 @@
 #include "HostFrameCheck.hpp"
 #include "NormalCopy.hpp"
 #include "NormalMatrix.hpp"
-#include "PowerOfTwo.hpp"
 #include "ProjectorBuffers.hpp"
 #include "ProjectorLayouts.hpp"
 #include "ProjectorShaders.hpp"
@@ -35,6 +34,14 @@ namespace spatter {
 using namespace render_detail;
 
 namespace {
+
+// The smallest power of two at or above `v` (1 for 0): the screen tiles' runs are sized so.
+uint64_t nextPowerOfTwo(uint64_t v) {
+    uint64_t p = 1;
+    while (p < v)
+        p *= 2;
+    return p;
+}
 
 std::string join(const std::vector<std::string>& parts) {
     std::string s;
