@@ -56,8 +56,8 @@ bool sphereOutside(DecalBounds b, float radius, ProjectorObject o) {
 
 uint classify(uint i) {
     DecalBounds b = decalBounds[i];
-    uint object = b.objectRadius & 0xffffu;
-    if (object == 0xffffu) object = decalBodies[i].object;
+    uint object = b.objectRadius & 0xffffu; // the whole index where there are at most 65,536 objects
+    if (u_params.y > 65536.0) object = decalObject(b.objectRadius, decalBodies[i].look);
     bool objectKnown = float(object) < u_params.y, hostType = false, typeDrawable = true;
     if (u_checkTypes != 0u) { // otherwise every type is drawn by the projector and every decal has one
         uint type = decalBodies[i].look & 0xffffu;

@@ -13,6 +13,7 @@ layout(location = 1) uniform vec4 u_camera; // y: 1 reversed Z; z: 1 clip depth 
 // 2 view distance; z, w: its level 0's size.
 layout(location = 2) uniform ivec4 u_occlusion;
 layout(binding = 0) uniform sampler2D s_pyramid;
+const int kPyramidTexelPixels = 4; // a level-0 texel's pixels a side (depth_pyramid.comp)
 
 layout(std430, binding = 0) coherent buffer Classes {
     uint classBits[];
@@ -75,11 +76,11 @@ bool hidden(vec4 corners[8]) {
         hi = max(hi, ndc);
         near = min(near, farness(clip));
     }
-    // Level-0 texels (two pixels a side) under the rectangle, a pixel wider for rounding.
+    // Level-0 texels (kPyramidTexelPixels a side) under the rectangle, a pixel wider for rounding.
     vec2 pixels = 1.0 / u_viewport.zw;
     vec2 a = clamp((lo * 0.5 + 0.5) * pixels - 1.0, vec2(0.0), pixels - 1.0);
     vec2 b = clamp((hi * 0.5 + 0.5) * pixels + 1.0, vec2(0.0), pixels - 1.0);
-    ivec2 t0 = ivec2(a) / 2, t1 = ivec2(b) / 2;
+    ivec2 t0 = ivec2(a) / kPyramidTexelPixels, t1 = ivec2(b) / kPyramidTexelPixels;
     int extent = max(t1.x - t0.x, t1.y - t0.y);
     int level = min(extent == 0 ? 0 : findMSB(extent) + 1, u_occlusion.x - 1);
     t0 >>= level;

@@ -20,7 +20,7 @@ void main() {
     vec3 c = vec3((corner & 1) != 0 ? 1.0 : -1.0, (corner & 2) != 0 ? 1.0 : -1.0, (corner & 4) != 0 ? 1.0 : -1.0);
     // A mirroring box-to-world transform turns the winding inside out; mirroring the cube in its
     // own space (it maps onto itself) turns it back.
-    bool mirrored = ((d.info.w & SPATTER_DECAL_MIRRORED) != 0u) != (o.info.y != 0u);
+    bool mirrored = ((d.info.z & SPATTER_DECAL_MIRRORED) != 0u) != (o.info.y != 0u);
     if (mirrored) c.x = -c.x;
 
     vec4 local = vec4(c, 1.0);
@@ -33,6 +33,6 @@ void main() {
     v_bitangent = w.bitangent;
     v_normal = w.normal;
     v_tint = d.tint;
-    v_info = uvec4(d.info.y, d.info.z, d.info.w, 0u);
+    v_info = uvec4(o.info.x, d.info.y, d.info.z, 0u);
     v_params = d.params.xy;
 }

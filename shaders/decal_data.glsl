@@ -1,5 +1,5 @@
 // Decal instances as the projector stores them (DecalProjector::resources()), shared by the projector's
-// shaders and any host's debug drawing: the decals (bounds at binding 9 and bodies at binding 3, 48
+// shaders and any host's debug drawing: the decals (bounds at binding 9 and bodies at binding 3, 44
 // bytes in all), the decal types (binding 8), the visible list of the last draw (binding 4), the
 // SPATTER_DECAL_* flags, and the octahedral normal encoding. Mirrored on the C++ side by
 // render/src/GpuLayouts.hpp (DecalBoundsGpu, DecalBodyGpu, DecalTypeGpu).
@@ -7,21 +7,22 @@
 #include "decal_flags.glsl"
 
 // One decal is kept in two parts: its bounds (binding 9, 16 bytes), all the culling's pass over every
-// decal reads, and its body (binding 3, 32 bytes), the rest of its box and what is its own; the rest
-// of its look comes from its type.
+// decal reads, and its body (binding 3, 28 bytes), the rest of its box and what is its own; the rest
+// of its look comes from its type, and the decal ID it clips to from its object.
 struct DecalBounds {
     vec3 center;       // the box's centre in object space
     uint objectRadius; // bits 16-31: the box's bounding radius in object space, the high half of a
                        // float rounded up (0: a decal that cannot be drawn); bits 0-15: the object
-                       // index, 0xffff when it is 65,535 or more (the body's)
+                       // index's low 16 bits
 };
 
+// Scalars only: an array of them has a stride of 28 bytes.
 struct DecalBody {
-    uvec2 frame;     // the packed frame (spatter/core/PackedFrame.hpp): x its low 32 bits, y its high ones
-    vec2 halfSize;   // half the width and height
+    uint frameLow, frameHigh; // the packed frame (spatter/core/PackedFrame.hpp), its low and high 32 bits
+    float halfWidth, halfHeight;
     float halfDepth; // 0 for a decal that cannot be drawn
-    uint object;     // object index
-    uint look;       // type index (bits 0-15), object decal ID (16-23), opacity in 1/255 (24-31)
+    uint look;       // type index (bits 0-15), the object index's bits 16-23 (16-23), opacity in
+                     // 1/255 (24-31)
     uint slant;      // the projection axis's slopes along the tangent and bitangent as two halves
                      // (spatter/core/DecalProjection.hpp). A left-handed frame: bit 62 of the frame
 };
@@ -34,21 +35,27 @@ layout(std430, binding = 3) readonly buffer DecalBuffer {
     DecalBody decalBodies[];
 };
 
+// The object index of a decal from the low bits in its bounds and its body's look.
+uint decalObject(uint boundsObjectRadius, uint look) {
+    return (boundsObjectRadius & 0xffffu) | (look & 0x00ff0000u);
+}
+
 // One decal's two parts together.
 struct DecalRecord {
     vec4 centerDepth; // xyz: the box's centre in object space; w: its half depth
     uvec2 frame;
     vec2 halfSize;
-    uvec3 info; // x: object index; y: type, object decal ID, opacity (DecalBody::look); z: slant
+    uvec3 info; // x: object index; y: type, opacity (DecalBody::look); z: slant
 };
 
 DecalRecord decalRecord(uint index) {
     DecalBody b = decalBodies[index];
+    DecalBounds bounds = decalBounds[index];
     DecalRecord r;
-    r.centerDepth = vec4(decalBounds[index].center, b.halfDepth);
-    r.frame = b.frame;
-    r.halfSize = b.halfSize;
-    r.info = uvec3(b.object, b.look, b.slant);
+    r.centerDepth = vec4(bounds.center, b.halfDepth);
+    r.frame = uvec2(b.frameLow, b.frameHigh);
+    r.halfSize = vec2(b.halfWidth, b.halfHeight);
+    r.info = uvec3(decalObject(bounds.objectRadius, b.look), b.look, b.slant);
     return r;
 }
 
@@ -76,7 +83,7 @@ struct DecalData {
     vec4 bitangent;      // w: half height
     vec4 normal;         // w: half depth
     vec4 tint;           // rgb tint; a: tint alpha * opacity
-    uvec4 info;          // x: object index, y: object decal ID, z: texture layer, w: SPATTER_DECAL_* flags
+    uvec3 info;          // x: object index, y: texture layer, z: SPATTER_DECAL_* flags
     vec4 params;         // x: cosine of the largest accepted angle; y: roughness written
 };
 
@@ -131,7 +138,7 @@ DecalData unpackDecal(DecalRecord r) {
     d.bitangent = vec4(frame[1], h.y);
     d.normal = vec4(frame[2], h.z);
     d.tint = vec4(t.tint.rgb, t.tint.a * float(r.info.y >> 24) / 255.0);
-    d.info = uvec4(r.info.x, (r.info.y >> 16) & 0xffu, t.info.x, t.info.y | (mirrored ? SPATTER_DECAL_MIRRORED : 0u));
+    d.info = uvec3(r.info.x, t.info.x, t.info.y | (mirrored ? SPATTER_DECAL_MIRRORED : 0u));
     d.params = t.params;
     return d;
 }

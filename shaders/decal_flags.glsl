@@ -1,4 +1,4 @@
-// The decal type's features, as bits of DecalData::info.w (and of SpatterForwardDecal::info.z).
+// The decal type's features, as bits of DecalData::info.z (and of SpatterForwardDecal::info.z).
 // Mirrored on the C++ side by render/src/GpuLayouts.hpp (DecalFlag).
 const uint SPATTER_DECAL_WRAP = 1u;
 const uint SPATTER_DECAL_NORMAL_MAP = 2u;

@@ -3,7 +3,7 @@
 // the farness of every texel its screen rectangle touches is hidden behind the scene. Farness grows
 // with distance whatever the host's convention: window depth as it is (STANDARD_Z), its negation
 // (reversed Z), or the view distance (DEPTH_LINEAR, background infinitely far). Level 0 holds the
-// farthest of each 2x2 block of the viewport's pixels; every level above, the farthest of 2x2 below.
+// farthest of each 4x4 block of the viewport's pixels; every level above, the farthest of 2x2 below.
 // Texels past the viewport are infinitely far: they never hide anything.
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -14,6 +14,7 @@ layout(location = 0) uniform ivec4 u_viewport; // the host's viewport: x, y, wid
 layout(location = 1) uniform int u_level;      // 0: from the depth texture, else from u_src
 
 const float kFar = 3.0e38;
+const int kTexelPixels = 4; // a level-0 texel's pixels a side (DepthPyramid.hpp, cull_exact.comp)
 
 float farness(ivec2 pixel) {
     if (pixel.x >= u_viewport.z || pixel.y >= u_viewport.w) return kFar;
@@ -33,8 +34,10 @@ void main() {
     if (t.x >= size.x || t.y >= size.y) return;
     float f;
     if (u_level == 0) {
-        f = max(max(farness(2 * t), farness(2 * t + ivec2(1, 0))),
-                max(farness(2 * t + ivec2(0, 1)), farness(2 * t + ivec2(1, 1))));
+        f = -kFar;
+        for (int y = 0; y < kTexelPixels; ++y)
+            for (int x = 0; x < kTexelPixels; ++x)
+                f = max(f, farness(kTexelPixels * t + ivec2(x, y)));
     } else {
         f = max(max(imageLoad(u_src, 2 * t).r, imageLoad(u_src, 2 * t + ivec2(1, 0)).r),
                 max(imageLoad(u_src, 2 * t + ivec2(0, 1)).r, imageLoad(u_src, 2 * t + ivec2(1, 1)).r));

@@ -66,7 +66,7 @@ void main() {
     f.bitangent = w.bitangent;
     f.normal = w.normal;
     f.tint = d.tint;
-    f.info = uvec4(d.info.y, d.info.z, d.info.w, 0u);
+    f.info = uvec4(o.info.x, d.info.y, d.info.z, 0u);
     f.params = d.params;
     spatterForwardDecals[i] = f;
 #ifdef FORWARD_CULLED

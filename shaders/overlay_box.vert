@@ -26,6 +26,6 @@ void main() {
     vec3 objectPos = vec3(dot(d.boxToObject[0], local), dot(d.boxToObject[1], local), dot(d.boxToObject[2], local));
     vec3 rel = (o.model * vec4(objectPos, 1.0)).xyz;
     gl_Position = u_viewProj * vec4(rel * u_depthScale, 1.0);
-    uint id = d.info.y; // the decal's object decal ID
+    uint id = o.info.x; // the object decal ID the decal clips to
     v_color = id == 0u ? vec3(1.0, 0.72, 0.1) : idColor(id);
 }

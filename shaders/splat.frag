@@ -31,7 +31,7 @@ void main() {
     vec4 ph = vec4(v_position, 1.0);
     vec3 box = vec3(dot(d.objectToBox[0], ph), dot(d.objectToBox[1], ph), dot(d.objectToBox[2], ph));
     vec3 n = normalize(v_normal);
-    uint flags = d.info.w;
+    uint flags = d.info.z;
 
     vec2 uv = box.xy;
     if ((flags & SPATTER_DECAL_WRAP) != 0u) {
@@ -53,7 +53,7 @@ void main() {
     if ((flags & SPATTER_DECAL_FADE_LINEAR) != 0u) fade = f;
     else if ((flags & SPATTER_DECAL_FADE_SMOOTH) != 0u) fade = f * f * (3.0 - 2.0 * f);
 
-    vec3 layer = vec3(tc, float(d.info.z));
+    vec3 layer = vec3(tc, float(d.info.y));
     vec4 tex = textureGrad(s_decalAlbedo, layer, tcdx, tcdy);
     float alpha = clamp(tex.a * d.tint.a * fade, 0.0, 1.0);
     o_albedo = vec4(tex.rgb * d.tint.rgb, alpha);

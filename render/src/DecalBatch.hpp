@@ -1,11 +1,11 @@
 #pragma once
-// DecalBatch: the CPU side of the decal store. The decals live on the GPU as 48-byte records
-// (DecalRecord.hpp); the batch builds the records of the decals that changed (all of them on
-// setDecals, those a DecalChanges names on applyChanges) and stages them for upload, keeps the
-// draw order (DrawOrder.hpp) and a validity bit per decal. It keeps a CPU copy of the records and
-// of the draw order's entries only while it holds fewer decals than its mirror limit, for culling
-// them on the CPU, in draw order, into the visible list; above it no per-decal data but each
-// decal's place in the order and the validity bit stays on the CPU, and the GPU culls (GpuCulling).
+// DecalBatch: the CPU side of the decal store. The decals live on the GPU as 44-byte records
+// (DecalRecord.hpp, DecalRecordBuffers.hpp); the batch builds the records of the decals that changed (all of
+// them on setDecals, those a DecalChanges names on applyChanges) and stages them for upload, keeps the draw
+// order (DrawOrder.hpp) and a validity bit per decal. It keeps a CPU copy of the records and of the draw
+// order's entries only while it holds fewer decals than its mirror limit, for culling them on the CPU, in
+// draw order, into the visible list; above it no per-decal data but each decal's place in the order and the
+// validity bit stays on the CPU, and the GPU culls (GpuCulling).
 
 #include "DecalRecord.hpp"
 #include "DrawOrder.hpp"

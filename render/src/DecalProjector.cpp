@@ -640,6 +640,9 @@ Status DecalProjector::setObjects(const std::vector<glm::dmat4>& transforms,
     if (transforms.size() != ids.size())
         return fail("projector: " + std::to_string(transforms.size()) + " transforms but " +
                     std::to_string(ids.size()) + " object IDs");
+    if (transforms.size() > kMaxProjectorObjects)
+        return fail("projector: " + std::to_string(transforms.size()) + " objects (" +
+                    std::to_string(kMaxProjectorObjects) + " at most)");
     for (size_t i = 0; i < transforms.size(); ++i)
         if (const std::string p = transformProblem(transforms[i]); !p.empty())
             return fail("projector: object " + std::to_string(i) + ": " + p);

@@ -32,9 +32,7 @@ bool soundNumbers(const Decal& d) {
 
 bool buildDecalRecord(const Decal& d, DecalRecordGpu& out) {
     out = DecalRecordGpu{};
-    out.info =
-        glm::uvec4(d.object, uint32_t(d.type) | uint32_t(d.objectId) << 16 | uint32_t(d.opacity.bits()) << 24,
-                   d.slant, 0u);
+    out.info = glm::uvec4(d.object, uint32_t(d.type) | uint32_t(d.opacity.bits()) << 24, d.slant, 0u);
     if (!soundNumbers(d) || !hasOrientation(d.packedFrame)) return false;
     out.centerDepth = glm::vec4(d.center, d.halfDepth);
     out.frame = glm::uvec2(uint32_t(d.packedFrame), uint32_t(d.packedFrame >> 32));

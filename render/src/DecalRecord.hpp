@@ -1,7 +1,7 @@
 #pragma once
 // DecalRecord: a Decal and a DecalType as the GPU keeps them (DecalRecordGpu, DecalTypeGpu in
-// GpuLayouts.hpp): 48 bytes per decal, its box and what is its own, and one entry per type for the
-// rest of its look.
+// GpuLayouts.hpp): 48 bytes per decal, its box and what is its own (44 on the GPU:
+// DecalRecordBuffers.hpp), and one entry per type for the rest of its look.
 
 #include "GpuLayouts.hpp"
 
@@ -12,10 +12,9 @@
 
 namespace spatter::render_detail {
 
-// The record of `d`; false (and a record with a zero box but its object, type and object decal ID)
-// when its box is degenerate, not finite, without an orientation or too far from its object's origin
-// for its size to be inverted in float. The record keeps the decal's packed frame as it is: the
-// shaders unpack it.
+// The record of `d`; false (and a record with a zero box but its object and type) when its box is degenerate,
+// not finite, without an orientation or too far from its object's origin for its size to be inverted in
+// float. The record keeps the decal's packed frame as it is: the shaders unpack it.
 bool buildDecalRecord(const Decal& d, DecalRecordGpu& out);
 
 // The type as the shaders read it; info.z is 0 when decals of the type cannot be drawn (a texture

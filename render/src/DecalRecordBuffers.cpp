@@ -2,6 +2,7 @@
 
 #include "SphereCull.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -9,8 +10,6 @@
 namespace spatter::render_detail {
 
 namespace {
-
-constexpr uint32_t kObjectField = 0xffffu; // the bounds' object index; this value: the body's
 
 // The high half of the bits of a float at least `radius` (positive): the next such value up unless
 // the low half is zero. Past the largest float it is infinite, a sphere no plane culls.
@@ -37,16 +36,23 @@ template <typename T> void storeExactly(GlBuffer& buffer, size_t& capacity, cons
     glNamedBufferStorage(buffer.get(), GLsizeiptr(capacity), items.data(), 0);
 }
 
+// The object index in 24 bits: past them, their largest value, which names no object
+// (kMaxProjectorObjects).
+uint32_t objectField(const DecalRecordGpu& r) {
+    return std::min(r.info.x, kMaxProjectorObjects);
+}
+
 } // namespace
 
 DecalBoundsGpu recordBounds(const DecalRecordGpu& r) {
     const bool drawable = r.centerDepth.w > 0.0f;
-    const uint32_t object = r.info.x < kObjectField ? r.info.x : kObjectField;
-    return {glm::vec3(r.centerDepth), (drawable ? radiusBits(recordRadius(r)) : 0u) | object};
+    return {glm::vec3(r.centerDepth),
+            (drawable ? radiusBits(recordRadius(r)) : 0u) | (objectField(r) & 0xffffu)};
 }
 
 DecalBodyGpu recordBody(const DecalRecordGpu& r) {
-    return {r.frame, r.halfSize, r.centerDepth.w, r.info.x, r.info.y, r.info.z};
+    const uint32_t look = (r.info.y & 0xff00ffffu) | (objectField(r) >> 16) << 16;
+    return {{r.frame.x, r.frame.y}, {r.halfSize.x, r.halfSize.y}, r.centerDepth.w, look, r.info.z};
 }
 
 void DecalRecordBuffers::reserve(size_t count, size_t keep) {

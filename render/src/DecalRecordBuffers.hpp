@@ -1,9 +1,10 @@
 #pragma once
 // DecalRecordBuffers: the two GPU buffers that hold decal records (DecalRecordGpu) in the form the
 // shaders read them (decal_data.glsl): the bounds, 16 bytes a decal, all that the culling's pass over
-// every decal reads (its centre, a bounding radius and its object), and the bodies, 32 bytes, the
-// rest, which the passes over the decals in view read with the bounds. Kept apart, the pass over a
-// million decals reads a third of the bytes it would read from whole records.
+// every decal reads (its centre, a bounding radius and its object's index, the low 16 bits of it),
+// and the bodies, 28 bytes, the rest, which the passes over the decals in view read with the bounds.
+// Kept apart, the pass over a million decals reads a third of the bytes it would read from whole
+// records.
 
 #include "GlObjects.hpp"
 #include "GpuLayouts.hpp"

@@ -20,17 +20,21 @@ GLuint groups(int size) {
 
 // The most levels: a box wider than the top level's texels reads several of them.
 constexpr int kMaxLevels = 7;
+// A level-0 texel's pixels a side (kTexelPixels in depth_pyramid.comp, kPyramidTexelPixels in
+// cull_exact.comp).
+constexpr int kTexelPixels = 4;
 
-// Level 0 for a viewport of `width` x `height`: half of it a side, rounded up to a multiple of the
-// top level's footprint, so that every level halves the one below exactly (GL's mip levels round
-// down, which would drop an odd level's last row), and the number of levels.
+// Level 0 for a viewport of `width` x `height`: a texel per kTexelPixels a side, rounded up to a
+// multiple of the top level's footprint, so that every level halves the one below exactly (GL's mip
+// levels round down, which would drop an odd level's last row), and the number of levels.
 std::pair<glm::ivec2, int> levelZero(int width, int height) {
-    const glm::ivec2 half((width + 1) / 2, (height + 1) / 2);
+    const glm::ivec2 texels((width + kTexelPixels - 1) / kTexelPixels,
+                            (height + kTexelPixels - 1) / kTexelPixels);
     int levels = 1;
-    while (levels < kMaxLevels && (1 << levels) <= std::max(half.x, half.y))
+    while (levels < kMaxLevels && (1 << levels) <= std::max(texels.x, texels.y))
         ++levels;
     const int step = 1 << (levels - 1);
-    return {(half + step - 1) / step * step, levels};
+    return {(texels + step - 1) / step * step, levels};
 }
 
 } // namespace

@@ -2,9 +2,10 @@
 // DepthPyramid: the host's depth as a mip chain of farthest depths (shaders/depth_pyramid.comp), for
 // the GPU culling's occlusion test: a box whose nearest point lies beyond every texel of the level
 // where its screen rectangle spans at most two texels a side cannot show a pixel (or, past the top
-// level, beyond every texel of the top level under it). Level 0 is half the viewport, rounded up to a
-// multiple of 64 texels a side so that seven levels halve exactly (2.9 MB at 1080p with the levels
-// above it, where a power of two a side took 5.6 MB).
+// level, beyond every texel of the top level under it). A level-0 texel holds 4 x 4 pixels: level 0
+// is a quarter of the viewport a side, rounded up to a multiple of 64 texels so that seven levels
+// halve exactly (0.87 MB at 1080p with the levels above it; 2.9 MB at 2 x 2 pixels, which tests
+// only boxes under about 8 pixels against finer texels, and 5.6 MB at a power of two a side).
 
 #include "GlObjects.hpp"
 #include "GpuCulling.hpp"

@@ -71,9 +71,9 @@ struct alignas(16) DecalRecordGpu {
     glm::vec4 centerDepth; // xyz: the box's centre in object space; w: its half depth (0: not drawable)
     glm::uvec2 frame;      // Decal::packedFrame (PackedFrame.hpp): x its low 32 bits, y its high ones
     glm::vec2 halfSize;    // half the width and height
-    glm::uvec4 info;       // x: object index; y: type (bits 0-15), object decal ID (16-23), opacity in
-                           // 1/255 (24-31); z: slant (DecalProjection.hpp); w: 0 (no part reads
-                           // the decal ID). Mirrored: bit 62 of the frame
+    glm::uvec4 info;       // x: object index; y: type (bits 0-15), opacity in 1/255 (24-31); z: slant
+                           // (DecalProjection.hpp); w: 0. Mirrored: bit 62 of the frame. A decal
+                           // clips to its object's decal ID (ProjectorObjectGpu), not its own
 };
 static_assert(sizeof(DecalRecordGpu) == 48, "DecalRecordGpu is three vec4s");
 
@@ -81,20 +81,25 @@ static_assert(sizeof(DecalRecordGpu) == 48, "DecalRecordGpu is three vec4s");
 struct alignas(16) DecalBoundsGpu {
     glm::vec3 center;      // the box's centre in object space
     uint32_t objectRadius; // bits 16-31: bounding radius (a float's high half, rounded up; 0: not
-                           // drawable); bits 0-15: object index, 0xffff from 65,535 on (the body's)
+                           // drawable); bits 0-15: the object index's low 16 bits
 };
 static_assert(sizeof(DecalBoundsGpu) == 16, "DecalBoundsGpu must match DecalBounds (std430)");
 
-// std430, binding kDecalBuffer: the rest of a decal (DecalBody).
-struct alignas(8) DecalBodyGpu {
-    glm::uvec2 frame;
-    glm::vec2 halfSize;
+// std430, binding kDecalBuffer: the rest of a decal (DecalBody). Scalars only, so that the array's
+// stride is 28 bytes (a vector member would align the struct, and its stride, to 8 or 16).
+struct DecalBodyGpu {
+    uint32_t frame[2]; // Decal::packedFrame: its low 32 bits, its high ones
+    float halfSize[2];
     float halfDepth;
-    uint32_t object;
-    uint32_t look; // type (bits 0-15), object decal ID (16-23), opacity in 1/255 (24-31)
+    uint32_t look; // type (bits 0-15), object index bits 16-23 (16-23), opacity in 1/255 (24-31)
     uint32_t slant;
 };
-static_assert(sizeof(DecalBodyGpu) == 32, "DecalBodyGpu must match DecalBody (std430)");
+static_assert(sizeof(DecalBodyGpu) == 28, "DecalBodyGpu must match DecalBody (std430)");
+
+// The most objects a projector takes: a decal's object index is 24 bits on the GPU (DecalBodyGpu),
+// and the largest such value names no object (a decal whose object index does not fit is kept with
+// it, and not drawn).
+constexpr uint32_t kMaxProjectorObjects = (1u << 24) - 1;
 
 // std430, binding kDecalTypeBuffer: one per decal type (DecalTypeRecord in decal_data.glsl).
 struct alignas(16) DecalTypeGpu {

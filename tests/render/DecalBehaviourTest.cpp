@@ -456,7 +456,7 @@ TEST(DecalPass, UploadsOnlyChangedInstances) {
     r->setDecals(decals);
     FrameStats st;
     test::renderView(r.value(), cam, View::Final, &st);
-    const size_t instance = 48, type = 48, visible = st.decalsDrawn * sizeof(uint32_t);
+    const size_t instance = 44, type = 48, visible = st.decalsDrawn * sizeof(uint32_t);
     ASSERT_EQ(st.decalsDrawn, 50u);
     EXPECT_EQ(st.decalBytesUploaded, 50 * instance + type + visible); // the records, and the type once
 

@@ -232,23 +232,25 @@ TEST(GpuCulling, CountsTheHostsDecalsAndThoseThatCannotBeDrawnAsTheCpuDoes) {
     expectSameCounts(decals, variant);
 }
 
-// The decals' bounds hold object indices below 65,535 and send the culling to the body for the
-// others: decals on objects on either side of that line are culled as the CPU culls them. The
-// objects they name are the wall; the others, 65,535 among them, lie 50 m aside, where a decal
-// given the wrong object (the field's 0xffff, or 65,536 and 70,000 cut to 16 bits) would be culled.
-TEST(GpuCulling, FindsTheObjectsOfDecalsPastTheBoundsObjectField) {
+// The decals' bounds hold the low 16 bits of their object's index and their bodies the next 8,
+// which the culling reads while there are more than 65,536 objects: decals on objects on either side
+// of that line are culled as the CPU culls them, and one whose index does not fit in 24 bits names no
+// object. The objects they name are the wall; the others lie 50 m aside, where a decal given the
+// wrong object (70,000 cut to 16 bits, 2^24 + 3 cut to 24) would be culled or counted otherwise.
+TEST(GpuCulling, FindsTheObjectsOfDecalsPastTheBoundsObjectBits) {
     SPATTER_REQUIRE_GL(gl);
     const test::WallScene wall;
-    const uint32_t objects[4] = {0, 65534, 65536, 70000};
+    const uint32_t objects[5] = {0, 65535, 65536, 70000, (1u << 24) + 3u};
     Variant variant;
     variant.moreObjects.assign(70001 - wall.transforms.size(),
                                glm::translate(glm::dmat4(1.0), glm::dvec3(50.0, 0.0, 0.0)) *
                                    wall.transforms[0]);
     for (const uint32_t o : objects)
-        if (o >= wall.transforms.size()) variant.moreObjects[o - wall.transforms.size()] = wall.transforms[0];
+        if (o >= wall.transforms.size() && o <= 70000)
+            variant.moreObjects[o - wall.transforms.size()] = wall.transforms[0];
     std::vector<Decal> decals = scatteredDecals(300, 29);
     for (size_t i = 0; i < decals.size(); ++i)
-        decals[i].object = objects[i % 4];
+        decals[i].object = objects[i % 5];
     expectSameCounts(decals, variant);
 }
 

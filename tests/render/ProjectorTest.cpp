@@ -288,6 +288,34 @@ TEST(Projector, BlendsIntoTheHostsTargetsAndClipsByObjectId) {
     EXPECT_GT(withoutIds, withIds);
 }
 
+// A decal clips to the decal ID the host gives its object (setObjects), not to the one it carries:
+// the crate's decal covers the same pixels whatever its own ID says, and once the crate's ID changes
+// in the host's frame and in setObjects alike it follows.
+TEST(Projector, ClipsADecalToItsObjectsIdNotItsOwn) {
+    SPATTER_REQUIRE_GL(gl);
+    std::optional<test::HostedWall> h = test::HostedWall::make();
+    ASSERT_TRUE(h);
+    auto covered = [&](const std::vector<uint8_t>& ids) {
+        h->host.draw(h->wall.transforms, ids, h->wall.camera);
+        EXPECT_TRUE(h->projector.setObjects(h->wall.transforms, ids).ok());
+        ProjectorDraw draw;
+        draw.coverageTexture = h->host.coverageTexture();
+        h->host.clearCoverage();
+        EXPECT_TRUE(h->projector.draw(h->host.frame(h->wall.camera, true), draw).ok());
+        return test::whiteMask(h->host.read(h->host.coverageTexture()));
+    };
+    const std::vector<uint8_t> asPlaced = covered(h->wall.ids);
+    std::vector<Decal> ownIdsWrong = h->wall.decals;
+    for (Decal& d : ownIdsWrong)
+        d.objectId = uint8_t(d.objectId + 40);
+    h->projector.setDecals(ownIdsWrong);
+    EXPECT_EQ(covered(h->wall.ids), asPlaced);
+    std::vector<uint8_t> renamed = h->wall.ids;
+    renamed[1] = 99;
+    EXPECT_EQ(covered(renamed), asPlaced);
+    EXPECT_GT(test::countSet(asPlaced), 0u);
+}
+
 TEST(Projector, RejectsHostFramesThatDoNotFitNamingTheFieldAndDrawsNothing) {
     SPATTER_REQUIRE_GL(gl);
     std::optional<test::HostedWall> h = test::HostedWall::make();

@@ -62,7 +62,7 @@ TEST(Upload, ABatchOf100000SpawnsReachesTheGpuInOneUpload) {
     ASSERT_TRUE(first.ok()) << first.error();
     ASSERT_GT(first->drawn, 0u);
     EXPECT_EQ(first->instanceUploads, 1u);
-    EXPECT_GE(first->bytesUploaded, size_t(kShots) * 48u);
+    EXPECT_GE(first->bytesUploaded, size_t(kShots) * 44u);
 
     // A second batch into a buffer that already has room: still one upload, of the new records only.
     std::vector<Ray> more(rays.begin(), rays.begin() + 20000);
@@ -75,9 +75,9 @@ TEST(Upload, ABatchOf100000SpawnsReachesTheGpuInOneUpload) {
     Result<ProjectorStats> batch = projector->draw(host->frame(camera, false));
     ASSERT_TRUE(batch.ok()) << batch.error();
     EXPECT_EQ(batch->instanceUploads, 1u);
-    EXPECT_GE(batch->bytesUploaded, size_t(20000) * 48u);
+    EXPECT_GE(batch->bytesUploaded, size_t(20000) * 44u);
     EXPECT_LT(batch->bytesUploaded,
-              size_t(20000) * (48u + 4u) + 65536u); // the 48-byte records, their draw-order entries
+              size_t(20000) * (44u + 4u) + 65536u); // the 44-byte records, their draw-order entries
 
     ASSERT_TRUE(sys->spawn(Ray{{0.1, 5.0, 0.1}, {0, -1, 0}}, t).placed());
     projector->updateDecals(sys->decals(), sys->changesSince(version));

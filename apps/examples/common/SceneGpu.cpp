@@ -51,11 +51,13 @@ ObjectGpu upload(const spatter::Scene& scene, const spatter::Mesh& mesh) {
     return g;
 }
 
-// The smallest decal ID that no decal has; fails when the decals use all 256.
-spatter::Result<uint8_t> unusedDecalId(const std::vector<spatter::Decal>& decals) {
+// The smallest decal ID that no decal clips to (a decal clips to its object's ID, `objectIds`); fails
+// when the decals use all 256.
+spatter::Result<uint8_t> unusedDecalId(const std::vector<spatter::Decal>& decals,
+                                       const std::vector<uint8_t>& objectIds) {
     std::array<bool, 256> used{};
     for (const spatter::Decal& d : decals)
-        used[d.objectId] = true;
+        if (d.object < objectIds.size()) used[objectIds[d.object]] = true;
     for (size_t id = 0; id < used.size(); ++id)
         if (!used[id]) return uint8_t(id);
     return spatter::fail("the decals use all 256 object decal IDs: none is left for the objects that take "
@@ -71,7 +73,7 @@ spatter::Result<SceneGpu> uploadScene(const Inputs& in) {
     for (size_t i = 0; i < in.scene.objects.size(); ++i) {
         const spatter::SceneObject& o = in.scene.objects[i];
         if (!o.receivesDecals) {
-            spatter::Result<uint8_t> id = unusedDecalId(in.decals.decals);
+            spatter::Result<uint8_t> id = unusedDecalId(in.decals.decals, in.decals.objectIds);
             if (!id) return spatter::fail(id.error());
             g.decalIds[i] = id.value();
         }

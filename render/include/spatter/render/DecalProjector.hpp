@@ -10,7 +10,7 @@
 // sorts the visible decals into screen tiles on the GPU and the host's forward fragment shader
 // applies those of its pixel (hostShader("forward.glsl")).
 //
-// It owns the decal records (48 bytes each, object space, on the GPU; uploaded when they change), the
+// It owns the decal records (44 bytes each, object space, on the GPU; uploaded when they change), the
 // decal texture array
 // (built-in layers and addDecalTexture*), the shader variants and the GPU timer of its pass. It knows
 // nothing of scenes, meshes, materials or lighting: per frame the host hands it the decals (as
@@ -300,7 +300,7 @@ struct ProjectorStats {
 struct ProjectorResources {
     uint32_t albedoLayers = 0; // GL_TEXTURE_2D_ARRAY, SRGB8_ALPHA8: decal albedo, straight alpha
     uint32_t normalLayers = 0; // GL_TEXTURE_2D_ARRAY, RGBA8: tangent-space normal maps
-    uint32_t decals = 0;       // shader storage: DecalBody (32 bytes) per decal given to setDecals
+    uint32_t decals = 0;       // shader storage: DecalBody (28 bytes) per decal given to setDecals
     uint32_t decalBounds = 0;  // shader storage: DecalBounds (16 bytes) per decal (decal_data.glsl)
     uint32_t types = 0;        // shader storage: DecalTypeRecord per decal type
     uint32_t visible = 0;      // shader storage: uint decal indices of the last draw, visibleCount of them
@@ -360,14 +360,16 @@ public:
     // draws over the older ones of its priority). The decals are taken whole, as by setDecals, when
     // the changes are not complete or do not fit the decals held, and after setDecalTypes changed the
     // types' priorities. The projector keeps no copy of the decals: the changes and `decals` together
-    // say what changed. Per decal it keeps 48 bytes on the GPU, and on the CPU about 4 bytes (its
+    // say what changed. Per decal it keeps 44 bytes on the GPU, and on the CPU about 4 bytes (its
     // place in the draw order, a validity bit) plus, for culling on the CPU, a 48-byte record and the
     // draw order's entries (5 bytes), which go once draw() culls on the GPU
     // (ProjectorSettings::gpuCullingFrom): the draw order's changes then go to the GPU as writes.
     void updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes);
     // Object-to-world transforms (double) and 8-bit decal IDs, one entry per object that decals may
-    // name (Decal::object). Fails, changing nothing, when the counts differ or a transform is not
-    // finite and affine; a singular transform is taken (its decals collapse and are not drawn).
+    // name (Decal::object); a decal clips to its object's decal ID (Decal::objectId is not read).
+    // Fails, changing nothing, when the counts differ, there are more than 16,777,215 objects (a
+    // decal's object index takes 24 bits on the GPU) or a transform is not finite and affine; a
+    // singular transform is taken (its decals collapse and are not drawn).
     Status setObjects(const std::vector<glm::dmat4>& transforms, const std::vector<uint8_t>& ids);
     // Decals the host draws by other means, which the projector keeps but does not draw (counted in
     // ProjectorStats::hostDrawn): those of the types with a nonzero entry in `types` (indexed as
