@@ -5,6 +5,18 @@
 
 namespace spatter {
 
+namespace {
+
+// The array's size before a change of `kind` that left it `after` long (an addition made it one
+// longer, a removal one shorter).
+uint64_t sizeBefore(DecalChangeKind kind, uint64_t after) {
+    if (kind == DecalChangeKind::Added) return after - 1;
+    if (kind == DecalChangeKind::Removed) return after + 1;
+    return after;
+}
+
+} // namespace
+
 void ChangeLog::append(uint32_t index, DecalChangeKind kind, size_t decals) {
     const size_t bound = std::max(kMinEntries, decals / 4);
     if (index_.size() >= bound) {
@@ -31,14 +43,13 @@ bool ChangeLog::since(uint64_t version, size_t decals, std::vector<DecalChange>&
     if (version < base_ || version > this->version()) return false;
     const size_t first = size_t(version - base_);
     out.resize(index_.size() - first);
-    size_t size = decals; // the array's size after entry k
+    uint64_t size = decals; // the array's size after entry k
     for (size_t k = index_.size(); k-- > first;) {
         DecalChange& c = out[k - first];
         c.index = index_[k];
         c.kind = kind_[k];
         c.from = c.kind == DecalChangeKind::Removed ? uint32_t(size) : c.index;
-        if (c.kind == DecalChangeKind::Added) size--;
-        if (c.kind == DecalChangeKind::Removed) size++;
+        size = sizeBefore(c.kind, size);
     }
     return true;
 }
@@ -59,20 +70,14 @@ Status checkChangeLog(const std::vector<DecalChange>& entries, size_t decals) {
     uint64_t size = decals; // after entry k
     for (size_t k = entries.size(); k-- > 0;) {
         const DecalChange& c = entries[k];
-        bool fits = false;
-        if (c.kind == DecalChangeKind::Added) {
-            fits = size > 0 && c.index == size - 1 && c.from == c.index;
-            size--;
-        } else if (c.kind == DecalChangeKind::Removed) {
-            fits = c.from == size && c.index <= c.from;
-            size++;
-        } else {
-            fits = c.index < size && c.from == c.index;
-        }
+        bool fits = c.index < size && c.from == c.index; // a change inside the array
+        if (c.kind == DecalChangeKind::Added) fits = size > 0 && c.index == size - 1 && c.from == c.index;
+        if (c.kind == DecalChangeKind::Removed) fits = c.from == size && c.index <= c.from;
         if (!fits)
             return fail("change " + std::to_string(k) + " of the log (index " + std::to_string(c.index) +
                         ", from " + std::to_string(c.from) + ") does not lead to the " +
                         std::to_string(decals) + " decals saved");
+        size = sizeBefore(c.kind, size);
     }
     return {};
 }
