@@ -3,7 +3,9 @@
 
 layout(std430, binding = 2) coherent buffer GroupData {
     // [0, groups): the visible places of each group; [groups, 2 groups): the groups that have one, in
-    // no particular order (cull_scatter.comp runs over these)
+    // no particular order (cull_scatter.comp runs over these); from 2 groups on, the visible places of
+    // each block of kBlockGroups groups, so that a group's first place in the visible list sums at
+    // most a block's groups and the blocks before it, not every group before it
     uint groupData[];
 };
 
@@ -30,4 +32,5 @@ layout(std430, binding = 6) readonly buffer DrawOrder {
 };
 
 const uint kGroupPlaces = 256u;
+const uint kBlockGroups = 256u;
 const uint kCandidateGroup = 64u; // cull_exact.comp's local size

@@ -1,6 +1,7 @@
 // GPU culling, pass 3 of 3 (GpuCulling): one work group per group of the draw order with a visible
 // place (listed by cull_exact.comp), and at least one. It finds the group's first place in the visible list, the
-// visible places of the groups before it, and writes its visible decals' indices there in draw order,
+// visible places of the groups before it (those of the blocks before its block, and of its block's
+// groups before it), and writes its visible decals' indices there in draw order,
 // each at that first place plus the visible places before it in the group (from the class bits). The
 // first work group also writes the counts the CPU reads back.
 #include "cull_layout.glsl"
@@ -26,8 +27,9 @@ void main() {
         readback = uint[4](draw.instanceCount, occludedCount, invalidCount, hostDrawnCount);
     if (gl_WorkGroupID.x >= visibleGroupCount) return; // the one work group when none is visible
     uint group = groupData[u_groups + gl_WorkGroupID.x];
-    uint sum = 0u;
-    for (uint g = t; g < group; g += 256u) sum += groupData[g];
+    uint block = group / kBlockGroups, sum = 0u; // the visible places of the blocks and groups before
+    for (uint b = t; b < block; b += 256u) sum += groupData[2u * u_groups + b];
+    if (block * kBlockGroups + t < group) sum += groupData[block * kBlockGroups + t];
     partial[t] = sum;
     barrier();
     for (uint stride = 128u; stride > 0u; stride >>= 1) { // the sum of the groups before this one

@@ -71,12 +71,17 @@ void main() {
     spatterForwardDecals[i] = f;
 #ifdef FORWARD_CULLED
     uvec4 r = tileRect(d, o);
+    uint most = 0u; // of the decals in this decal's tiles, counting it
     for (uint y = r.y; y <= r.w; ++y)
         for (uint x = r.x; x <= r.z; ++x) {
             uint t = y * uint(spatterTileGrid.z) + x;
             uint slot = atomicAdd(tileCounts[t], 1u);
             if (slot < u_tileCapacity) spatterTileItems[t * u_tileCapacity + slot] = i;
+            most = max(most, slot + 1u);
         }
+    // The most decals of a tile, for the CPU, which sizes the next runs by it: an atomic only while
+    // this decal's tiles hold more than the largest count seen yet.
+    if (int(most) > spatterTileInfo.w) atomicMax(spatterTileInfo.w, int(most));
 #else
     uvec2 r = tileRects[i];
     for (uint y = r.x >> 16; y <= (r.y >> 16); ++y)

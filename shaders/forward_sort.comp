@@ -1,14 +1,17 @@
-// Forward binning, pass 4: one invocation per tile sorts its item run into drawing order
-// (insertion sort: runs are short), so that overlapping decals blend as
-// the deferred paths blend them. Culled on the GPU, a tile with more decals than its run holds, up to
-// u_mostPerTile, gets a run over every decal binned instead (the identity items at u_everyDecal, in
-// drawing order already); past that the decals past its run are left out. The most decals of a tile
-// is kept for the CPU, which sizes the next runs by it.
+// Forward binning, pass 4: sorts each tile's item run into drawing order, so that overlapping decals
+// blend as the deferred paths blend them. Where the fullest tile holds a few decals (the caller's
+// choice), one invocation a tile sorts its run by insertion (a work group takes 64 tiles); otherwise
+// (SORT_BY_TILE) one work group a tile sorts a run of up to kSharedRun items by rank: it reads the
+// run into shared memory, and each item goes to the place the number of smaller items gives it (the
+// items of a run are distinct decals); a longer run, which only culling on the CPU or a
+// forwardTileCapacity above kSharedRun makes, is sorted by insertion. Culled on the GPU, a tile with
+// more decals than its run holds, up to u_mostPerTile, gets a run over every decal binned instead
+// (the identity items at u_everyDecal, in drawing order already); past that the decals past its run
+// are left out.
 #define SPATTER_FORWARD_WRITE 1
 #include "forward_data.glsl"
 
 layout(local_size_x = 64) in;
-layout(location = 0) uniform uint u_tiles;
 
 #ifdef FORWARD_CULLED
 // Culled on the GPU, each tile's run starts at t * u_tileCapacity; pass 1 counted its decals.
@@ -23,36 +26,27 @@ layout(std430, binding = 2) readonly buffer TileCounts {
 layout(std430, binding = 0) readonly buffer CulledDraw {
     uint drawIndices, visibleCount, drawFirstIndex, drawBaseVertex, drawBaseInstance;
 };
-
-shared uint groupMost; // the most decals of a tile of this work group
-
-// The most decals of a tile into spatterTileInfo.w: a work group's most first, then one atomic a group.
-void keepMost(uint count) {
-    if (gl_LocalInvocationIndex == 0u) groupMost = 0u;
-    barrier();
-    atomicMax(groupMost, count);
-    barrier();
-    if (gl_LocalInvocationIndex == 0u) atomicMax(spatterTileInfo.w, int(groupMost));
-}
 #endif
 
-void main() {
-    uint t = gl_GlobalInvocationID.x;
+// Tile t's run, which `writer` sets from the tile's count when culled on the GPU; (0, 0) for a run
+// that needs no sorting.
+uvec2 tileRun(uint t, bool writer) {
 #ifdef FORWARD_CULLED
-    uint count = t < u_tiles ? tileCounts[t] : 0u;
-    keepMost(count); // in uniform control flow: before any invocation returns
-    if (t >= u_tiles) return;
+    uint count = tileCounts[t];
     if (count > u_tileCapacity && count <= u_mostPerTile) {
-        spatterTiles[t] = uvec2(u_everyDecal, min(visibleCount, u_count));
-        return;
+        if (writer) spatterTiles[t] = uvec2(u_everyDecal, min(visibleCount, u_count));
+        return uvec2(0u);
     }
-    if (count > u_tileCapacity) spatterTileInfo.z = 1; // the decals past the run are left out
+    if (count > u_tileCapacity && writer) spatterTileInfo.z = 1; // the decals past the run are left out
     uvec2 run = uvec2(t * u_tileCapacity, min(count, u_tileCapacity));
-    spatterTiles[t] = run;
+    if (writer) spatterTiles[t] = run;
+    return run;
 #else
-    if (t >= u_tiles) return;
-    uvec2 run = spatterTiles[t];
+    return spatterTiles[t];
 #endif
+}
+
+void insertionSort(uvec2 run) {
     for (uint k = run.x + 1u; k < run.x + run.y; ++k) {
         uint item = spatterTileItems[k];
         uint j = k;
@@ -60,3 +54,32 @@ void main() {
         spatterTileItems[j] = item;
     }
 }
+
+#ifdef SORT_BY_TILE
+const uint kSharedRun = 256u;
+shared uint sItems[kSharedRun];
+
+void main() {
+    uint t = gl_WorkGroupID.y * uint(spatterTileGrid.z) + gl_WorkGroupID.x, k0 = gl_LocalInvocationIndex;
+    uvec2 run = tileRun(t, k0 == 0u);
+    if (run.y <= 1u) return; // uniform in the work group
+    if (run.y > kSharedRun) {
+        if (k0 == 0u) insertionSort(run);
+        return;
+    }
+    for (uint k = k0; k < run.y; k += 64u) sItems[k] = spatterTileItems[run.x + k];
+    barrier();
+    for (uint k = k0; k < run.y; k += 64u) {
+        uint item = sItems[k], rank = 0u;
+        for (uint j = 0u; j < run.y; ++j) rank += sItems[j] < item ? 1u : 0u;
+        spatterTileItems[run.x + rank] = item;
+    }
+}
+#else
+layout(location = 0) uniform uint u_tiles;
+
+void main() {
+    uint t = gl_GlobalInvocationID.x;
+    if (t < u_tiles) insertionSort(tileRun(t, true));
+}
+#endif

@@ -14,6 +14,9 @@ namespace spatter::render_detail {
 namespace {
 
 constexpr GLuint kGroup = 64; // local size of the per-decal and per-tile passes
+// The longest runs (twice the fullest tile's decals, a power of two) that one invocation sorts;
+// longer ones are sorted by a work group a tile (forward_sort.comp's SORT_BY_TILE).
+constexpr uint32_t kThreadSortRun = 32;
 
 GLuint groups(uint32_t n) {
     return GLuint((n + kGroup - 1) / kGroup);
@@ -42,8 +45,12 @@ Status ForwardBins::prepare() {
     if (!prepareCulled) return fail(prepareCulled.error());
     Result<GlProgram> sortCulled = projectorComputeProgram("forward_sort.comp", {"FORWARD_CULLED"});
     if (!sortCulled) return fail(sortCulled.error());
+    Result<GlProgram> sortCulledByTile =
+        projectorComputeProgram("forward_sort.comp", {"FORWARD_CULLED", "SORT_BY_TILE"});
+    if (!sortCulledByTile) return fail(sortCulledByTile.error());
     prepareCulled_ = std::move(prepareCulled.value());
     sortCulled_ = std::move(sortCulled.value());
+    sortCulledByTile_ = std::move(sortCulledByTile.value());
     prepare_ = std::move(prepare.value());
     scan_ = std::move(scan.value());
     fill_ = std::move(fill.value());
@@ -129,13 +136,18 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
     glUniform1ui(1, tileCapacity);
     glDispatchCompute(groups(uint32_t(capacity)), 1, 1); // invocations past the visible count return at once
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(sortCulled_.get());
-    glUniform1ui(0, tileCount);
+    // Runs sized for a fullest tile of more than a few decals are sorted by a work group each.
+    const bool byTile = tileCapacity > kThreadSortRun;
+    glUseProgram(byTile ? sortCulledByTile_.get() : sortCulled_.get());
+    if (!byTile) glUniform1ui(0, tileCount);
     glUniform1ui(1, tileCapacity);
     glUniform1ui(2, uint32_t(capacity));
     glUniform1ui(3, mostPerTile);
     glUniform1ui(4, uint32_t(runItems));
-    glDispatchCompute(groups(tileCount), 1, 1);
+    if (byTile)
+        glDispatchCompute(GLuint(tiles.x), GLuint(tiles.y), 1);
+    else
+        glDispatchCompute(groups(tileCount), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     tileInfo_.copy(tiles_.get(), offsetof(ForwardGridGpu, info) + 2 * sizeof(int32_t), 0, 2);
     tileInfo_.fence();

@@ -70,7 +70,7 @@ private:
     // The grid of `frame`'s tiles, the head's grid filled in.
     glm::ivec2 grid(const ForwardFrame& frame, int tileSize, ForwardGridGpu& head) const;
 
-    GlProgram prepare_, scan_, fill_, sort_, prepareCulled_, sortCulled_;
+    GlProgram prepare_, scan_, fill_, sort_, prepareCulled_, sortCulled_, sortCulledByTile_;
     GlBuffer decals_, tiles_, items_, rects_, counts_;
     size_t decalsCapacity_ = 0, tilesCapacity_ = 0, itemsCapacity_ = 0, rectsCapacity_ = 0,
            countsCapacity_ = 0;

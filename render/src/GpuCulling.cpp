@@ -10,6 +10,8 @@ namespace spatter::render_detail {
 namespace {
 
 constexpr uint32_t kGroupPlaces = 256; // places of a group: the local size of the first and last passes
+constexpr uint32_t kBlockGroups =
+    256; // groups of a block (cull_layout.glsl): the scatter sums blocks, then groups
 
 // Binding points of the culling passes (shaders/cull*.comp).
 constexpr GLuint kClassesBinding = 0, kReadbackBinding = 1, kGroupsBinding = 2, kCountersBinding = 5,
@@ -86,7 +88,8 @@ size_t GpuCulling::writeDrawOrder(const std::vector<glm::uvec2>& writes) {
 uint32_t GpuCulling::reserve(size_t decals, GlBuffer& visible, size_t& visibleCapacity) {
     const uint32_t groups = std::max<uint32_t>(1, (entries_ + kGroupPlaces - 1) / kGroupPlaces);
     reserveBuffer(classes_, classesCapacity_, size_t(groups) * kGroupPlaces / 8, 4096); // a bit a place
-    reserveBuffer(groups_, groupsCapacity_, 2 * size_t(groups) * sizeof(uint32_t), 4096);
+    const size_t blocks = (size_t(groups) + kBlockGroups - 1) / kBlockGroups;
+    reserveBuffer(groups_, groupsCapacity_, (2 * size_t(groups) + blocks) * sizeof(uint32_t), 4096);
     reserveBuffer(order_, orderCapacity_, sizeof(uint32_t), 4096); // bound even when empty
     // The visible list, and the exact test's candidates before it.
     if (reserveBuffer(visible, visibleCapacity, decals * sizeof(uint32_t), 4096)) {

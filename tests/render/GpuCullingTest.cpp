@@ -178,6 +178,22 @@ TEST(GpuCulling, MatchesTheCpuOverManyGroupsOfTheDrawOrder) {
     expectSameAsCpu("many", decals, glm::dvec3(0.0), test::lookAt({0.0, 1.0, 2.0}, {0.5, 1.0, 0.0}));
 }
 
+// Past 65,536 places the groups form several blocks of 256, whose visible places the scatter sums
+// before those of its own block's groups: 300 decals on the wall, each followed by 499 far out of
+// view, put visible places in every block of the draw order's 150,300.
+TEST(GpuCulling, MatchesTheCpuOverManyBlocksOfTheDrawOrder) {
+    SPATTER_REQUIRE_GL(gl);
+    std::vector<Decal> decals;
+    for (const Decal& d : scatteredDecals(300, 31)) {
+        decals.push_back(d);
+        Decal away = d;
+        away.center.x += 500.0f;
+        decals.insert(decals.end(), 499, away);
+    }
+    // Without the occlusion test, which hides a box behind the crate here that the CPU counts drawn.
+    expectSameAsCpu("blocks", decals, glm::dvec3(0.0), test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0}), false);
+}
+
 // The wall sheared (x moves by y) stretches a box up to 1.618 times, more than its longest column
 // (1.414) says: both culling paths size their bounding spheres by a bound that holds for a shear.
 // Rows of decals, whose corners point the way the shear stretches most across the side planes of a
