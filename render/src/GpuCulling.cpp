@@ -9,9 +9,9 @@ namespace spatter::render_detail {
 
 namespace {
 
-constexpr uint32_t kGroupPlaces = 256; // places of a group: the local size of the first and last passes
-constexpr uint32_t kBlockGroups =
-    256; // groups of a block (cull_layout.glsl): the scatter sums blocks, then groups
+constexpr uint32_t kGroupPlaces = 256; // places of a group: the local size of the first pass
+// Groups of a block (cull_layout.glsl): the scatter sums the blocks before a group's, then the groups.
+constexpr uint32_t kBlockGroups = 256;
 
 // Binding points of the culling passes (shaders/cull*.comp).
 constexpr GLuint kClassesBinding = 0, kReadbackBinding = 1, kGroupsBinding = 2, kCountersBinding = 5,
