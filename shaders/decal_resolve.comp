@@ -114,6 +114,14 @@ void main() {
     float depth = texelFetch(s_depth, pixel, 0).r;
     if (isBackground(depth)) return;
     vec3 p = hostPosition(vec2(pixel) + 0.5, depth);
+#ifdef SPARSE_TILES
+    // Runs of a few decals, most pixels in none of them: a pixel that no box holds stops before its
+    // neighbours and targets are read.
+    bool held = false;
+    for (uint k = 0u; k < run.y && !held; ++k)
+        held = all(lessThanEqual(abs(spatterBoxPosition(spatterTileItems[run.x + k], p)), vec3(1.0)));
+    if (!held) return;
+#endif
     vec3 dpdx = positionStep(pixel, p, ivec2(1, 0)), dpdy = positionStep(pixel, p, ivec2(0, 1));
     vec4 albedo = imageLoad(i_albedo, pixel);
     Targets t;

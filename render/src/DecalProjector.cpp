@@ -515,7 +515,10 @@ struct DecalProjector::Impl {
         binVisible(forwardFrame(f), camera, onGpu, vis, stats);
         bindInputs(f);
         forward.bind(ForwardBindings{});
-        const Status resolved = resolve.run(f, targets, defines);
+        // Runs sized for a fullest tile of a few decals: most pixels of a tile lie in none of them.
+        std::vector<std::string> resolveDefines = defines;
+        if (onGpu && ForwardBins::shortRuns(tileRun())) resolveDefines.push_back("SPARSE_TILES");
+        const Status resolved = resolve.run(f, targets, resolveDefines);
         ++stats.drawCalls;
         endPass(onGpu, stats);
         if (!resolved) return fail(resolved.error());

@@ -14,9 +14,6 @@ namespace spatter::render_detail {
 namespace {
 
 constexpr GLuint kGroup = 64; // local size of the per-decal and per-tile passes
-// The longest runs (twice the fullest tile's decals, a power of two) that one invocation sorts;
-// longer ones are sorted by a work group a tile (forward_sort.comp's SORT_BY_TILE).
-constexpr uint32_t kThreadSortRun = 32;
 
 GLuint groups(uint32_t n) {
     return GLuint((n + kGroup - 1) / kGroup);
@@ -137,7 +134,7 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
     glDispatchCompute(groups(uint32_t(capacity)), 1, 1); // invocations past the visible count return at once
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     // Runs sized for a fullest tile of more than a few decals are sorted by a work group each.
-    const bool byTile = tileCapacity > kThreadSortRun;
+    const bool byTile = !shortRuns(tileCapacity);
     glUseProgram(byTile ? sortCulledByTile_.get() : sortCulled_.get());
     if (!byTile) glUniform1ui(0, tileCount);
     glUniform1ui(1, tileCapacity);

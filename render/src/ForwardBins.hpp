@@ -26,6 +26,12 @@ namespace spatter::render_detail {
 
 class ForwardBins {
 public:
+    // Whether runs of `tileCapacity` items (twice the fullest tile's decals, a power of two) are short:
+    // one invocation sorts each (longer ones are sorted by a work group a tile, forward_sort.comp's
+    // SORT_BY_TILE), and the compute resolve tests a pixel against the boxes before it reads more
+    // (decal_resolve.comp's SPARSE_TILES).
+    static bool shortRuns(uint32_t tileCapacity) { return tileCapacity <= 32; }
+
     // Builds the compute programs on first use.
     Status prepare();
     // Bins the visible decals of `vis` (in draw order, as the visible list holds them) into the tiles

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <optional>
 
 using namespace spatter;
 
@@ -24,12 +25,14 @@ struct Rendered {
     ProjectorMemory memory;
 };
 
-// The gallery's shots (test::galleryShots) drawn with `resolve`.
-Rendered renderGallery(DeferredResolve resolve) {
+// The gallery's shots (test::galleryShots) drawn with `resolve`, culled on the GPU from
+// `gpuCullingFrom` decals.
+Rendered renderGallery(DeferredResolve resolve, std::optional<size_t> gpuCullingFrom = {}) {
     const test::GalleryShots g = test::galleryShots();
     EXPECT_GT(g.placed.placed, 40u);
     RendererSettings settings;
     settings.deferredResolve = resolve;
+    settings.gpuCullingFrom = gpuCullingFrom;
     Result<Renderer> r = test::makeRenderer(kResolveWidth, kResolveHeight, settings);
     EXPECT_TRUE(r.ok()) << r.error();
     if (!r) return {};
@@ -82,10 +85,15 @@ std::vector<Decal> stackedOnWall(int count) {
 
 } // namespace
 
-TEST(ComputeResolve, BlendsTheGBufferAsTheBoxesDo) {
+// Culled on the CPU, and on the GPU, whose short tile runs (a fullest tile of a few decals) have the
+// resolve test a pixel against the boxes before it reads its neighbours and targets.
+class ComputeResolveCulling : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ComputeResolveCulling, BlendsTheGBufferAsTheBoxesDo) {
     SPATTER_REQUIRE_GL(gl);
-    const Rendered boxes = renderGallery(DeferredResolve::Boxes);
-    const Rendered compute = renderGallery(DeferredResolve::Compute);
+    const std::optional<size_t> from = GetParam() ? std::optional<size_t>(0) : std::nullopt;
+    const Rendered boxes = renderGallery(DeferredResolve::Boxes, from);
+    const Rendered compute = renderGallery(DeferredResolve::Compute, from);
     ASSERT_EQ(boxes.albedo.rgba.size(), compute.albedo.rgba.size());
     EXPECT_EQ(boxes.variant.find("COMPUTE"), std::string::npos) << boxes.variant;
     EXPECT_NE(compute.variant.find("COMPUTE"), std::string::npos) << compute.variant;
@@ -104,6 +112,11 @@ TEST(ComputeResolve, BlendsTheGBufferAsTheBoxesDo) {
     const size_t covered = test::countSet(test::whiteMask(compute.coverage));
     EXPECT_GT(covered, pixels / 20);
 }
+
+INSTANTIATE_TEST_SUITE_P(CpuAndGpu, ComputeResolveCulling, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& p) {
+                             return p.param ? "GpuCulled" : "CpuCulled";
+                         });
 
 TEST(ComputeResolve, CoverageModeDrawsTheBoxes) {
     SPATTER_REQUIRE_GL(gl);
