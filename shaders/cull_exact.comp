@@ -119,7 +119,8 @@ void main() {
             atomicAdd(sVisible, 1u);
             atomicOr(classBits[place / 32u], 1u << (place % 32u));
             uint group = place / kGroupPlaces;
-            atomicAdd(groupData[2u * u_groups + group / kBlockGroups], 1u);
+            if (u_groups > kBlockGroups) // with one block the scatter reads no block's sum
+                atomicAdd(groupData[2u * u_groups + group / kBlockGroups], 1u);
             if (atomicAdd(groupData[group], 1u) == 0u) { // the group's first visible place lists it
                 uint k = atomicAdd(visibleGroupCount, 1u);
                 groupData[u_groups + k] = group;

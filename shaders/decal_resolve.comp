@@ -74,6 +74,11 @@ vec3 positionStep(ivec2 pixel, vec3 p, ivec2 step) {
     return best;
 }
 
+// Whether a point at `box` in a decal's unit box lies inside it.
+bool inBox(vec3 box) {
+    return all(lessThanEqual(abs(box), vec3(1.0)));
+}
+
 // What the pixel's decals make of its targets, decal after decal as the blend state would.
 struct Targets {
     vec3 albedo;    // linear
@@ -119,7 +124,7 @@ void main() {
     // neighbours and targets are read.
     bool held = false;
     for (uint k = 0u; k < run.y && !held; ++k)
-        held = all(lessThanEqual(abs(spatterBoxPosition(spatterTileItems[run.x + k], p)), vec3(1.0)));
+        held = inBox(spatterBoxPosition(spatterTileItems[run.x + k], p));
     if (!held) return;
 #endif
     vec3 dpdx = positionStep(pixel, p, ivec2(1, 0)), dpdy = positionStep(pixel, p, ivec2(0, 1));
@@ -142,7 +147,7 @@ void main() {
     for (uint k = 0u; k < run.y; ++k) {
         uint index = spatterTileItems[run.x + k];
         vec3 box = spatterBoxPosition(index, p);
-        if (!all(lessThanEqual(abs(box), vec3(1.0)))) continue;
+        if (!inBox(box)) continue;
         changed = blendDecal(spatterForwardDecals[index], box, p, dpdx, dpdy, n, id, t) || changed;
     }
     if (!changed) return;

@@ -392,8 +392,9 @@ struct DecalProjector::Impl {
 
     // Bins the visible decals into the screen tiles of `frame` (ForwardBins): those the GPU culls, or
     // `vis` culled on the CPU. Adds the bytes sent and the calls made to `stats`. Needs
-    // forward.prepare() and, on the GPU, culling.prepare().
-    void binVisible(const ForwardFrame& frame, const FrameCamera& camera, bool onGpu,
+    // forward.prepare() and, on the GPU, culling.prepare(). Returns whether the tiles' runs are short
+    // (ForwardBins::shortRuns; only those of a GPU binning, whose runs are sized by the fullest tile).
+    bool binVisible(const ForwardFrame& frame, const FrameCamera& camera, bool onGpu,
                     const DecalVisibility& vis, ProjectorStats& stats) {
         ForwardGridGpu head{};
         head.info.y = settings.normalFrame == DecalNormalFrame::DepthDerivatives ? 1 : 0;
@@ -411,16 +412,17 @@ struct DecalProjector::Impl {
             // past it leaves decals out for a frame.
             const size_t inFrustum = stats.drawn + culling.occludedCount();
             const size_t capacity = std::min(batch.size(), std::max<size_t>(4096, 2 * inFrustum));
-            stats.bytesUploaded +=
-                forward.binCulled(frame, settings.forwardTileSize, head, culling.draws(), capacity, tileRun(),
-                                  uint32_t(settings.forwardTileCapacity));
+            const uint32_t run = tileRun();
+            stats.bytesUploaded += forward.binCulled(frame, settings.forwardTileSize, head, culling.draws(),
+                                                     capacity, run, uint32_t(settings.forwardTileCapacity));
             stats.drawCalls += 5;
-        } else {
-            stats.bytesUploaded += uploadDecals(vis, stats.instanceUploads);
-            buffers.bind();
-            stats.bytesUploaded += forward.bin(frame, vis, settings.forwardTileSize, head);
-            stats.drawCalls += stats.skipped ? 0 : 4;
+            return ForwardBins::shortRuns(run);
         }
+        stats.bytesUploaded += uploadDecals(vis, stats.instanceUploads);
+        buffers.bind();
+        stats.bytesUploaded += forward.bin(frame, vis, settings.forwardTileSize, head);
+        stats.drawCalls += stats.skipped ? 0 : 4;
+        return false;
     }
 
     // The length of the screen tiles' runs when the GPU culls: twice the most decals of one tile in the
@@ -512,12 +514,12 @@ struct DecalProjector::Impl {
         stats.variant = join(defines) + (defines.empty() ? "" : " ") + "COMPUTE";
         GlStateGuard guard;
         beginPass(f, camera);
-        binVisible(forwardFrame(f), camera, onGpu, vis, stats);
+        const bool shortRuns = binVisible(forwardFrame(f), camera, onGpu, vis, stats);
         bindInputs(f);
         forward.bind(ForwardBindings{});
         // Runs sized for a fullest tile of a few decals: most pixels of a tile lie in none of them.
         std::vector<std::string> resolveDefines = defines;
-        if (onGpu && ForwardBins::shortRuns(tileRun())) resolveDefines.push_back("SPARSE_TILES");
+        if (shortRuns) resolveDefines.push_back("SPARSE_TILES");
         const Status resolved = resolve.run(f, targets, resolveDefines);
         ++stats.drawCalls;
         endPass(onGpu, stats);
