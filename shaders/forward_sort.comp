@@ -19,8 +19,8 @@ layout(location = 1) uniform uint u_tileCapacity;
 layout(location = 2) uniform uint u_count;       // the most decals the buffers hold
 layout(location = 3) uniform uint u_mostPerTile; // ProjectorSettings::forwardTileCapacity
 layout(location = 4) uniform uint u_everyDecal;  // the first of the items 0, 1, 2, ...
-layout(std430, binding = 2) readonly buffer TileCounts {
-    uint tileCounts[];
+layout(std430, binding = 2) buffer TileCounts {
+    uint tileCounts[]; // zeroed here once read, for the next binning
 };
 // The GPU culling's indirect draw: its instance count is the length of the visible list.
 layout(std430, binding = 0) readonly buffer CulledDraw {
@@ -62,6 +62,10 @@ shared uint sItems[kSharedRun];
 void main() {
     uint t = gl_WorkGroupID.y * uint(spatterTileGrid.z) + gl_WorkGroupID.x, k0 = gl_LocalInvocationIndex;
     uvec2 run = tileRun(t, k0 == 0u);
+#ifdef FORWARD_CULLED
+    barrier(); // every invocation has read the count
+    if (k0 == 0u) tileCounts[t] = 0u;
+#endif
     if (run.y <= 1u) return; // uniform in the work group
     if (run.y > kSharedRun) {
         if (k0 == 0u) insertionSort(run);
@@ -80,6 +84,10 @@ layout(location = 0) uniform uint u_tiles;
 
 void main() {
     uint t = gl_GlobalInvocationID.x;
-    if (t < u_tiles) insertionSort(tileRun(t, true));
+    if (t >= u_tiles) return;
+    insertionSort(tileRun(t, true));
+#ifdef FORWARD_CULLED
+    tileCounts[t] = 0u;
+#endif
 }
 #endif

@@ -457,6 +457,7 @@ struct DecalProjector::Impl {
         if (onGpu) {
             stats.bytesUploaded += buffers.uploadDrawOrder(batch, culling);
             boxes = cullOnGpu(camera.cull, &f, false, stats); // waitForTimers: read after the pass
+            culling.readBack(); // before the boxes, so that its copy waits on the culling alone
         } else {
             stats.bytesUploaded += buffers.uploadVisible(vis.visible);
         }
@@ -537,6 +538,8 @@ struct DecalProjector::Impl {
     // The end of it: the GPU time (and, with waitForTimers, this draw's counts when `gpuCounts`: it
     // culled on the GPU) in `stats`.
     void endPass(bool gpuCounts, ProjectorStats& stats) {
+        culling.readBack(); // the counts the next draws size and choose by
+        forward.readBack();
         timers.end();
         // This draw's counts once the pass is queued: waiting between the culling and the boxes would
         // leave the GPU idle inside the pass.

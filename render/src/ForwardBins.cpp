@@ -81,7 +81,9 @@ glm::ivec2 ForwardBins::grid(const ForwardFrame& frame, int tileSize, ForwardGri
 
 size_t ForwardBins::bin(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize,
                         ForwardGridGpu head) {
-    tileInfo_.reset();    // sized on the CPU, the tiles hold every decal: nothing is left out from here on
+    tileInfo_.reset(); // sized on the CPU, the tiles hold every decal: nothing is left out from here on
+    unread_ = false;
+    zeroCounts_ = 0;      // the scan and the fill leave them counted
     everyDecalCount_ = 0; // the items are written from the start
     const glm::ivec2 tiles = grid(frame, tileSize, head);
     const uint32_t tileCount = uint32_t(tiles.x) * uint32_t(tiles.y);
@@ -114,14 +116,16 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
     const glm::ivec2 tiles = grid(frame, tileSize, head);
     const uint32_t tileCount = uint32_t(tiles.x) * uint32_t(tiles.y);
     reserveBuffer(tiles_, tilesCapacity_, sizeof(ForwardGridGpu) + tileCount * sizeof(glm::uvec2), 4096);
-    reserveBuffer(counts_, countsCapacity_, tileCount * sizeof(uint32_t), 4096);
+    if (reserveBuffer(counts_, countsCapacity_, tileCount * sizeof(uint32_t), 4096)) zeroCounts_ = 0;
     reserveBuffer(decals_, decalsCapacity_, capacity * sizeof(ForwardDecalGpu), 64 * sizeof(ForwardDecalGpu));
     const size_t runItems = size_t(tileCount) * tileCapacity;
     const size_t sent = sizeof head + reserveItems(runItems, capacity);
     glNamedBufferSubData(tiles_.get(), 0, sizeof head, &head);
-    const uint32_t zero = 0;
-    glClearNamedBufferSubData(counts_.get(), GL_R32UI, 0, GLsizeiptr(tileCount * sizeof(uint32_t)),
-                              GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    if (tileCount > zeroCounts_) { // the sort pass zeroes the counts it reads for the next binning
+        const uint32_t zero = 0;
+        glClearNamedBufferSubData(counts_.get(), GL_R32UI, 0, GLsizeiptr(tileCount * sizeof(uint32_t)),
+                                  GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    }
     const ForwardBindings b;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, draws);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kForwardCountBuffer, counts_.get());
@@ -145,10 +149,18 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
         glDispatchCompute(GLuint(tiles.x), GLuint(tiles.y), 1);
     else
         glDispatchCompute(groups(tileCount), 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    zeroCounts_ = std::max(zeroCounts_, tileCount);
+    unread_ = true;
+    return sent;
+}
+
+void ForwardBins::readBack() {
+    if (!unread_) return;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     tileInfo_.copy(tiles_.get(), offsetof(ForwardGridGpu, info) + 2 * sizeof(int32_t), 0, 2);
     tileInfo_.fence();
-    return sent;
+    unread_ = false;
 }
 
 size_t ForwardBins::reserveItems(size_t runItems, size_t everyDecal) {
@@ -172,6 +184,7 @@ size_t ForwardBins::reserveItems(size_t runItems, size_t everyDecal) {
 }
 
 bool ForwardBins::leftOut(bool wait) {
+    if (wait) readBack();
     return tileInfo_.latest(wait)[0] != 0;
 }
 

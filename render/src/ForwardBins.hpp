@@ -47,7 +47,12 @@ public:
     size_t binCulled(const ForwardFrame& frame, int tileSize, ForwardGridGpu head, GLuint draws,
                      size_t capacity, uint32_t tileCapacity, uint32_t mostPerTile);
     void bind(const ForwardBindings& b) const;
-    // Whether the latest binCulled the GPU has finished (this one's when `wait`) left decals out: more
+    // Queues the read-back of the last binCulled's left-out flag and fullest tile (leftOut and
+    // fullestTile read them), once a binning: at the end of the pass, where the copy and its fence no
+    // longer hold up the passes after the binning.
+    void readBack();
+    // Whether the latest binCulled the GPU has finished (this one's when `wait`, read back now if
+    // readBack() has not been) left decals out: more
     // visible decals than the buffers held, or a tile past `mostPerTile`.
     bool leftOut(bool wait);
     // The most decals one tile held in the latest binCulled the GPU has finished (this one's when
@@ -83,6 +88,8 @@ private:
     size_t everyDecalAt_ = 0, everyDecalCount_ = 0; // the identity items in items_ (0: none)
     std::vector<glm::uvec2> rectsCpu_;
     FencedReadback tileInfo_{2}; // spatterTileInfo.z and .w of the latest binCulled
+    bool unread_ = false;        // a binCulled whose tile info readBack() has not queued
+    uint32_t zeroCounts_ = 0; // tiles, from the first, whose counts are zero (binCulled's sort zeroes them)
 };
 
 } // namespace spatter::render_detail

@@ -57,20 +57,24 @@ public:
     // many indices; `visibleCapacity` in bytes). Binds its own buffers over shader storage bindings 0-2 and
     // 5-7 (the projector's objects at 1 among them) and the dispatch-indirect buffer.
     void run(const CullRun& what, const Occlusion& occlusion, GlBuffer& visible, size_t& visibleCapacity);
+    // Queues the read-back of the last run's counts (visibleCount and the others read them), once a
+    // run: at the end of the pass, where the copy and its fence no longer hold up the passes after
+    // the culling.
+    void readBack();
     // One DrawElementsIndirectCommand: the cube's 36 indices, the visible count as instances (followed by the
     // occluded, invalid and host-drawn counts).
     GLuint draws() const { return counters_.get(); }
-    // The visible count of the last run when `wait` (waiting for the GPU), else that of the latest
-    // run the GPU has finished (0 before the first).
+    // The visible count of the last run when `wait` (read back now if readBack() has not been, and
+    // waiting for the GPU), else that of the latest run the GPU has finished (0 before the first).
     uint32_t visibleCount(bool wait);
     // Whether the GPU has given a count yet (visibleCount reads it).
     bool hasCounted() const { return counts_.hasRead(); }
     // In the run visibleCount last read: the boxes in the frustum the occlusion test culled, the
     // decals that cannot be drawn (their box, type or object) and those the host draws itself
     // (DecalProjector::setHostDrawn).
-    uint32_t occludedCount() const { return counts_.values()[1]; }
-    uint32_t invalidCount() const { return counts_.values()[2]; }
-    uint32_t hostDrawnCount() const { return counts_.values()[3]; }
+    uint32_t occludedCount() const { return counts_.values()[4]; }
+    uint32_t invalidCount() const { return counts_.values()[5]; }
+    uint32_t hostDrawnCount() const { return counts_.values()[6]; }
 
     // Bytes of the GPU buffers it holds.
     size_t gpuBytes() const { return classesCapacity_ + groupsCapacity_ + orderCapacity_ + writesCapacity_; }
@@ -87,8 +91,10 @@ private:
     GlProgram classify_, exact_, scatter_, write_;
     GlBuffer classes_, groups_, counters_, order_, writes_;
     size_t classesCapacity_ = 0, groupsCapacity_ = 0, orderCapacity_ = 0, writesCapacity_ = 0;
-    uint32_t entries_ = 0;     // of the draw order
-    FencedReadback counts_{4}; // the visible, occluded, invalid and host-drawn counts of a run
+    uint32_t entries_ = 0; // of the draw order
+    // The counters from the indirect draw's instance count (the visible count) to the host-drawn count.
+    FencedReadback counts_{7};
+    bool unread_ = false; // a run whose counts readBack() has not queued
 };
 
 } // namespace spatter::render_detail
