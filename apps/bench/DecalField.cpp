@@ -99,7 +99,7 @@ Result<FrameTimes> timeFrames(Renderer& renderer, const Camera& camera, const Re
         if (!s) return fail(s.error());
         if (now() - start > 0.5 * maxSeconds) break;
     }
-    std::vector<double> decals, geometry, lighting, total, cpu;
+    std::vector<double> decals, geometry, lighting, total, cpu, cull, bin, draw, readBack;
     for (size_t i = 0; i < frames; ++i) {
         if (i > 0 && now() - start > maxSeconds) {
             t.capped = true;
@@ -112,6 +112,10 @@ Result<FrameTimes> timeFrames(Renderer& renderer, const Camera& camera, const Re
         lighting.push_back(s->gpu.lightingMs);
         total.push_back(s->gpu.totalMs());
         cpu.push_back(s->cpuMs);
+        cull.push_back(s->decalStages.cullMs);
+        bin.push_back(s->decalStages.binMs);
+        draw.push_back(s->decalStages.drawMs);
+        readBack.push_back(s->decalStages.readBackMs);
         t.last = s.value();
     }
     t.frames = decals.size();
@@ -120,6 +124,7 @@ Result<FrameTimes> timeFrames(Renderer& renderer, const Camera& camera, const Re
     t.lightingMs = median(lighting);
     t.totalMs = median(total);
     t.cpuMs = median(cpu);
+    t.decalStages = {median(cull), median(bin), median(draw), median(readBack), t.last.decalStages.frame};
     return t;
 }
 

@@ -45,6 +45,7 @@ std::vector<Decal> decalField(const DecalFieldView& view, size_t total, size_t v
 // GPU pass times of frames rendered with RendererSettings::waitForTimers: medians over the frames.
 struct FrameTimes {
     double decalsMs = 0, geometryMs = 0, lightingMs = 0, totalMs = 0, cpuMs = 0;
+    ProjectorStageTimes decalStages; // medians of the frames (RendererSettings::decalStageTimers)
     size_t frames = 0;
     bool capped = false; // stopped by the time limit before the frames asked for
     FrameStats last;     // the stats of the last frame

@@ -70,6 +70,10 @@ renderer's decal pass.
 --forward-tile N  the forward path's tile size in pixels (ProjectorSettings::forwardTileSize, default 16)
 --resolve MODE    how the G-buffer blend is drawn (ProjectorSettings::deferredResolve): auto (default:
                   one compute pass on a GPU from 256 decals in view, boxes otherwise), boxes or compute
+--stages          also time the decal pass's stages (ProjectorSettings::stageTimers: GPU timestamps
+                  after the culling, the binning, the drawing and the read-back of the counts; each
+                  waits for the work before it, so the stages add up to a little more than decal ms)
+                  and print them (JSON rows: "decal_stages_ms": {"cull", "bin", "draw", "read_back"})
 --quick           720p and 1080p, at most 10,000 decals, 2 frames, 3 s per row (smoke test)
 --json FILE       {"rows": [{"group", "resolution", "world", "visible", "decal_px", "feature",
                   "decal_ms", "ns_per_visible_decal", "projector_ms", "host_pass_ms",
@@ -203,8 +207,8 @@ HostPath hostPath(const std::string& name) {
 // One renderer per normal frame, resized and given scenes as the rows need them.
 class Bench {
 public:
-    Bench(std::unique_ptr<GlContext> context, int forwardTile, DeferredResolve resolve)
-        : context_(std::move(context)), forwardTile_(forwardTile), resolve_(resolve) {}
+    Bench(std::unique_ptr<GlContext> context, int forwardTile, DeferredResolve resolve, bool stages)
+        : context_(std::move(context)), forwardTile_(forwardTile), resolve_(resolve), stages_(stages) {}
     const GlContext& context() const { return *context_; }
 
     Result<RenderRow> run(const Config& c, size_t frames, double maxSeconds) {
@@ -222,6 +226,7 @@ public:
             rs.waitForTimers = f.wait;
             rs.occlusionCulling = f.occlusion;
             rs.deferredResolve = resolve_;
+            rs.decalStageTimers = stages_;
             rs.normalFrame = f.depthFrame ? DecalNormalFrame::DepthDerivatives : DecalNormalFrame::DecalAxes;
             Result<Renderer> r = Renderer::create(*context_, rs);
             if (!r) return fail(r.error());
@@ -365,6 +370,7 @@ private:
     std::unique_ptr<GlContext> context_;
     int forwardTile_ = 16;
     DeferredResolve resolve_ = DeferredResolve::Auto;
+    bool stages_ = false;
     std::optional<PathHost> pathHost_;
     glm::ivec2 pathSize_{0};
     std::optional<DecalProjector> projector_;
@@ -378,6 +384,25 @@ private:
 // The feature, and whether the roof hides most of the view.
 std::string featureLabel(const Config& c) {
     return c.roof ? c.feature + "+roof" : c.feature;
+}
+
+// The decal pass's stages of the rows that timed them (--stages).
+void printStages(const std::vector<RenderRow>& rows) {
+    std::vector<std::vector<std::string>> table;
+    for (const RenderRow& r : rows) {
+        const ProjectorStageTimes& st = r.times.decalStages;
+        if (!r.error.empty() || st.frame < 0) continue;
+        const Config& c = r.config;
+        table.push_back({c.group, c.resolution, std::to_string(c.world), std::to_string(c.visible),
+                         fixed(c.size * r.height, 0), featureLabel(c), fixed(st.cullMs, 3),
+                         fixed(st.binMs, 3), fixed(st.drawMs, 3), fixed(st.readBackMs, 3),
+                         fixed(st.cullMs + st.binMs + st.drawMs + st.readBackMs, 3),
+                         fixed(r.times.decalsMs, 3)});
+    }
+    std::printf("\ndecal pass stages (ms, medians; GPU timestamps between the stages)\n");
+    printTable({"group", "res", "world", "visible", "px", "feature", "cull", "bin", "draw", "read-back",
+                "sum", "decal ms"},
+               table);
 }
 
 Json renderRowJson(const RenderRow& r) {
@@ -412,6 +437,11 @@ Json renderRowJson(const RenderRow& r) {
     j["set_decals_s"] = r.setDecalsS;
     j["frames"] = r.times.frames;
     j["capped"] = r.times.capped;
+    if (r.times.decalStages.frame >= 0) {
+        const ProjectorStageTimes& st = r.times.decalStages;
+        j["decal_stages_ms"] =
+            Json{{"cull", st.cullMs}, {"bin", st.binMs}, {"draw", st.drawMs}, {"read_back", st.readBackMs}};
+    }
     if (projectorPath(c)) {
         j["projector_ms"] = r.path.projectorMs;
         j["host_pass_ms"] = r.path.hostPassMs;
@@ -546,7 +576,7 @@ int runRenderCommand(int argc, char** argv) {
     const std::optional<Args> parsed =
         commandArgs(argc, argv, kRenderCommand, kRenderUsage,
                     {"--groups", "--frames", "--max-seconds", "--json", "--forward-tile", "--resolve"},
-                    {"--quick"}, exitCode);
+                    {"--quick", "--stages"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
     if (!args.positional.empty()) return usageError(kRenderCommand, "no positional arguments");
@@ -584,7 +614,8 @@ int runRenderCommand(int argc, char** argv) {
         std::cerr << "spatter-bench render: no OpenGL context: " << gl.error() << "\n";
         return 1;
     }
-    Bench bench(std::make_unique<GlContext>(std::move(gl).value()), int(forwardTile.value()), resolve);
+    Bench bench(std::make_unique<GlContext>(std::move(gl).value()), int(forwardTile.value()), resolve,
+                args.has("--stages"));
     const ContextInfo& info = bench.context().info();
     std::printf("spatter-bench render: %s (%s), %s\nmachine: %s\n", info.renderer.c_str(),
                 info.platform.c_str(), info.version.c_str(), describe(machine).c_str());
@@ -658,6 +689,8 @@ int runRenderCommand(int argc, char** argv) {
     printTable({"group", "res", "world", "visible", "px", "feature", "decal ms", "ns/decal", "geometry ms",
                 "lighting ms", "cpu ms", "frames", "variant"},
                table);
+
+    if (args.has("--stages")) printStages(rows);
 
     Json targets;
     printPaths(rows, targets);

@@ -19,6 +19,7 @@
 #include "ProjectorShaders.hpp"
 #include "ProjectorVariants.hpp"
 #include "ShaderProgram.hpp"
+#include "StageTimers.hpp"
 
 #include "spatter/core/Scene.hpp"
 
@@ -173,6 +174,7 @@ struct DecalProjector::Impl {
     bool culledOnGpu = false; // the latest draw or bin culled on the GPU
     size_t cpuInView = 0;     // decals in view at the latest culling on the CPU
     GpuTimers timers;
+    StageTimers stages; // with settings.stageTimers
     uint64_t draws = 0;
 
     Result<GLuint> program(uint32_t bits) {
@@ -407,6 +409,7 @@ struct DecalProjector::Impl {
             // first binning's buffers are sized by it, not guessed), as waitForTimers does.
             if (!culling.hasCounted() || (settings.waitForTimers && stats.drawn == 0))
                 takeGpuCounts(true, stats);
+            markStage(PassStage::Culled);
             // Room for twice the decals in the frustum of the latest count the GPU has given (the
             // binning tests no occlusion, which a draw of boxes in between may have): a sudden jump
             // past it leaves decals out for a frame.
@@ -415,12 +418,15 @@ struct DecalProjector::Impl {
             const uint32_t run = tileRun();
             stats.bytesUploaded += forward.binCulled(frame, settings.forwardTileSize, head, culling.draws(),
                                                      capacity, run, uint32_t(settings.forwardTileCapacity));
+            markStage(PassStage::Binned);
             stats.drawCalls += 5;
             return ForwardBins::shortRuns(run);
         }
         stats.bytesUploaded += uploadDecals(vis, stats.instanceUploads);
+        markStage(PassStage::Culled);
         buffers.bind();
         stats.bytesUploaded += forward.bin(frame, vis, settings.forwardTileSize, head);
+        markStage(PassStage::Binned);
         stats.drawCalls += stats.skipped ? 0 : 4;
         return false;
     }
@@ -461,6 +467,7 @@ struct DecalProjector::Impl {
         } else {
             stats.bytesUploaded += buffers.uploadVisible(vis.visible);
         }
+        markStage(PassStage::Culled);
         const bool inPlace = !(vis.flags & kDecalWrap) && passes.roughness == 0;
         const NormalCopyMode copy = !passes.writesNormals ? NormalCopyMode::None
                                     : onGpu               ? normalCopyMode(culling.visibleCount(false))
@@ -532,15 +539,23 @@ struct DecalProjector::Impl {
     void beginPass(const HostFrame& f, const FrameCamera& camera) {
         timers.beginFrame(draws);
         timers.begin(GpuPass::Decals);
+        if (settings.stageTimers) stages.beginFrame(draws);
         buffers.uploadFrame(f, camera.view, camera.viewProj, settings.fadeStart, transforms, ids, batch);
+    }
+
+    // Marks the end of a stage of the pass (ProjectorSettings::stageTimers).
+    void markStage(PassStage stage) {
+        if (settings.stageTimers) stages.mark(stage);
     }
 
     // The end of it: the GPU time (and, with waitForTimers, this draw's counts when `gpuCounts`: it
     // culled on the GPU) in `stats`.
     void endPass(bool gpuCounts, ProjectorStats& stats) {
+        markStage(PassStage::Drawn);
         culling.readBack(); // the counts the next draws size and choose by
         forward.readBack();
         timers.end();
+        if (settings.stageTimers) stats.stages = stages.endFrame(settings.waitForTimers);
         // This draw's counts once the pass is queued: waiting between the culling and the boxes would
         // leave the GPU idle inside the pass.
         if (gpuCounts && settings.waitForTimers) takeGpuCounts(true, stats);
@@ -621,6 +636,7 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTextureSubImage2D(impl->zeroIds.get(), 0, 0, 0, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
     impl->timers.create();
+    if (settings.stageTimers) impl->stages.create();
     return DecalProjector(std::move(impl));
 }
 

@@ -69,6 +69,10 @@ std::string toJson(const FrameStats& s) {
               ",\"overlay\":" + jsonNumber(s.gpu.overlayMs) + ",\"splat\":" + jsonNumber(s.gpu.splatMs) +
               ",\"volumetric\":" + jsonNumber(s.gpu.volumetricMs) + ",\"total\":" +
               jsonNumber(s.gpu.totalMs()) + ",\"frame\":" + std::to_string(s.gpu.frame) + "}");
+    const ProjectorStageTimes& st = s.decalStages;
+    field("decal_stages_ms", "{\"cull\":" + jsonNumber(st.cullMs) + ",\"bin\":" + jsonNumber(st.binMs) +
+                                 ",\"draw\":" + jsonNumber(st.drawMs) + ",\"read_back\":" +
+                                 jsonNumber(st.readBackMs) + ",\"frame\":" + std::to_string(st.frame) + "}");
     field("gl_renderer", quoted(s.glRenderer));
     field("gl_vendor", quoted(s.glVendor));
     field("gl_version", quoted(s.glVersion));

@@ -579,6 +579,7 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
     projector.gpuCullingFrom = settings.gpuCullingFrom;
     projector.gpuCullingInViewFrom = settings.gpuCullingInViewFrom;
     projector.occlusionCulling = settings.occlusionCulling;
+    projector.stageTimers = settings.decalStageTimers;
     projector.deferredResolve = settings.deferredResolve;
     Result<DecalProjector> p = DecalProjector::create(projector);
     if (!p) return fail("renderer: " + p.error());
@@ -909,6 +910,7 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
     stats.decalPassSkipped = decals->skipped;
     stats.decalVariant = decals->variant;
     stats.decalNormalCopy = decals->normalCopy;
+    stats.decalStages = decals->stages;
     m.drawCalls += decals->drawCalls;
     if (m.hasLate) {
         m.timers.begin(GpuPass::Late);

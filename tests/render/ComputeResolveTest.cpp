@@ -251,3 +251,41 @@ TEST(ComputeResolve, SizesTheTilesRunsByTheFullestTile) {
     EXPECT_EQ(screenBytes[2], screenBytes[1]);
     EXPECT_LT(screenBytes[3], screenBytes[1] / 4);
 }
+
+// With ProjectorSettings::stageTimers the pass's time splits into its stages, of the same frame as
+// its GPU time: the compute resolve bins and draws; the boxes bin nothing, and their stages add up
+// to the pass's time; without the setting no stage is timed.
+TEST(ComputeResolve, StageTimersSplitThePassIntoItsStages) {
+    SPATTER_REQUIRE_GL(gl);
+    for (const DeferredResolve resolve : {DeferredResolve::Compute, DeferredResolve::Boxes}) {
+        ProjectorSettings settings = culledCompute();
+        settings.deferredResolve = resolve;
+        settings.stageTimers = true;
+        std::optional<test::HostedWall> h = test::HostedWall::make(settings);
+        ASSERT_TRUE(h);
+        h->projector.setDecals(stackedOnWall(40));
+        for (int draw = 0; draw < 3; ++draw) {
+            h->host.draw(h->wall.transforms, h->wall.ids, h->wall.camera);
+            Result<ProjectorStats> st = h->projector.draw(h->host.frame(h->wall.camera, true));
+            ASSERT_TRUE(st.ok()) << st.error();
+            const ProjectorStageTimes& s = st->stages;
+            EXPECT_EQ(s.frame, st->gpuFrame);
+            EXPECT_GE(s.cullMs, 0.0);
+            EXPECT_GE(s.readBackMs, 0.0);
+            EXPECT_GT(s.drawMs, 0.0);
+            if (resolve == DeferredResolve::Compute) {
+                EXPECT_GT(s.binMs, 0.0);
+                continue;
+            }
+            EXPECT_EQ(s.binMs, 0.0);
+            const double sum = s.cullMs + s.drawMs + s.readBackMs;
+            EXPECT_NEAR(sum, st->gpuMs, 0.5 * st->gpuMs + 0.05) << "draw " << draw;
+        }
+    }
+    std::optional<test::HostedWall> h = test::HostedWall::make(culledCompute());
+    ASSERT_TRUE(h);
+    h->projector.setDecals(stackedOnWall(4));
+    Result<ProjectorStats> st = h->projector.draw(h->host.frame(h->wall.camera, true));
+    ASSERT_TRUE(st.ok()) << st.error();
+    EXPECT_EQ(st->stages.frame, -1);
+}

@@ -220,6 +220,9 @@ struct ProjectorSettings {
     DeferredResolve deferredResolve = DeferredResolve::Auto;
     bool waitForTimers = false; // draw() waits for its GPU time (tools, benchmarks); otherwise the
                                 // time reported is that of an earlier frame, read without stalling
+    // GPU timestamps between the pass's stages, for ProjectorStats::stages (profiling: each waits for
+    // the GPU work queued before it, a few microseconds a mark on a GPU).
+    bool stageTimers = false;
 };
 
 // Where a draw puts the decals (the forward path, DecalProjector::bin, draws nothing).
@@ -261,6 +264,16 @@ struct ProjectorDraw {
     bool angleReject = true; // false: no angle test (debugging)
 };
 
+// Where a pass's GPU time went (ProjectorSettings::stageTimers), in milliseconds, each stage from the
+// end of the one before it: the frame's and decals' uploads and the culling (on the GPU, or the CPU's
+// visible list sent), the binning into screen tiles (the compute resolve and bin(); 0 for boxes), the
+// drawing (the normal copy and the boxes, or the compute resolve; 0 for bin()), and the copies of the
+// counts the CPU reads back.
+struct ProjectorStageTimes {
+    double cullMs = 0.0, binMs = 0.0, drawMs = 0.0, readBackMs = 0.0;
+    int64_t frame = -1; // the draw call count the times belong to (as ProjectorStats::gpuFrame); -1: none
+};
+
 // What one draw did.
 struct ProjectorStats {
     size_t decals = 0;          // decals given to setDecals
@@ -287,9 +300,10 @@ struct ProjectorStats {
     // bin() or of the compute resolve, left decals out of screen tiles: a tile past forwardTileCapacity,
     // or more decals in view than twice an earlier count. DeferredResolve::Auto then draws boxes for a while.
     bool tilesLeftOut = false;
-    std::string variant;   // shader features used, e.g. "IDS WRAP NORMAL_MAP FADE"
-    double gpuMs = 0.0;    // GPU time of the pass, of frame `gpuFrame` (see waitForTimers)
-    int64_t gpuFrame = -1; // the draw call count (0 for the first) the time belongs to; -1: none yet
+    std::string variant;        // shader features used, e.g. "IDS WRAP NORMAL_MAP FADE"
+    double gpuMs = 0.0;         // GPU time of the pass, of frame `gpuFrame` (see waitForTimers)
+    int64_t gpuFrame = -1;      // the draw call count (0 for the first) the time belongs to; -1: none yet
+    ProjectorStageTimes stages; // with ProjectorSettings::stageTimers (frame -1 without)
 };
 
 // GL objects of the projector that a host may read: the decal texture arrays, and the instance data

@@ -1,6 +1,7 @@
 #pragma once
 // FrameStats: what one Renderer::render call did and how long its passes took on the GPU.
 
+#include "spatter/render/DecalProjector.hpp"
 #include "spatter/render/View.hpp"
 
 #include <cstddef>
@@ -57,6 +58,7 @@ struct FrameStats {
     size_t triangles = 0; // scene triangles drawn in the geometry passes
     double cpuMs = 0.0;   // wall time of render() on the CPU
     GpuPassTimes gpu;
+    ProjectorStageTimes decalStages; // the decal pass's stages (RendererSettings::decalStageTimers)
 
     std::string glRenderer;
     std::string glVendor;
@@ -64,7 +66,8 @@ struct FrameStats {
 };
 
 // One JSON object with every field above ("gpu_ms": {"geometry", "decals", "late", "lighting",
-// "overlay", "splat", "total", "frame"}).
+// "overlay", "splat", "total", "frame"}; "decal_stages_ms": {"cull", "bin", "draw", "read_back",
+// "frame"}).
 std::string toJson(const FrameStats& stats);
 
 } // namespace spatter

@@ -112,6 +112,7 @@ struct RendererSettings {
     std::optional<size_t> gpuCullingInViewFrom;              // decals in view from which it does below that
                                                              // (ProjectorSettings::gpuCullingInViewFrom)
     bool occlusionCulling = true;                            // ProjectorSettings::occlusionCulling
+    bool decalStageTimers = false;                           // ProjectorSettings::stageTimers
     DeferredResolve deferredResolve = DeferredResolve::Auto; // ProjectorSettings::deferredResolve
     LightSettings light;
 };
