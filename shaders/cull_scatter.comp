@@ -3,7 +3,8 @@
 // visible list, the visible places of the groups before it (those of the blocks before its block,
 // and of its block's groups before it), and writes its visible decals' indices there in draw order:
 // an invocation per 32-place word of the group's class bits, from the word's first place in the list
-// (the visible places of the words before it) on.
+// (the visible places of the words before it) on. The first work group also writes the counts the
+// CPU reads back.
 #include "cull_layout.glsl"
 
 layout(local_size_x = 64) in;
@@ -11,6 +12,9 @@ layout(location = 0) uniform uint u_groups;
 
 layout(std430, binding = 0) readonly buffer Classes {
     uint classBits[];
+};
+layout(std430, binding = 1) writeonly buffer Readback {
+    uint readback[4]; // the visible, occluded, invalid and host-drawn counts (GpuCulling::counts_)
 };
 layout(std430, binding = 7) writeonly buffer VisibleOut {
     uint visibleOut[];
@@ -22,7 +26,9 @@ shared uint words[kWords];
 
 void main() {
     uint t = gl_LocalInvocationIndex;
-    if (gl_WorkGroupID.x >= visibleGroupCount) return;
+    if (gl_WorkGroupID.x == 0u && t == 0u)
+        readback = uint[4](draw.instanceCount, occludedCount, invalidCount, hostDrawnCount);
+    if (gl_WorkGroupID.x >= visibleGroupCount) return; // the one work group when none is visible
     uint group = groupData[u_groups + gl_WorkGroupID.x];
     uint block = group / kBlockGroups, sum = 0u; // the visible places of the blocks and groups before
     for (uint b = t; b < block; b += 64u) sum += groupData[2u * u_groups + b];

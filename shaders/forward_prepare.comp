@@ -22,6 +22,11 @@ layout(location = 1) uniform uint u_tileCapacity; // items per tile
 layout(std430, binding = 0) readonly buffer CulledDraw {
     uint drawIndices, visibleCount, drawFirstIndex, drawBaseVertex, drawBaseInstance;
 };
+// What the CPU reads back (ForwardBins::tileInfo_): 1 when decals were left out, the most decals of
+// a tile (written by pass 4).
+layout(std430, binding = 10) writeonly buffer TileReadback {
+    uint tileReadback[2];
+};
 
 // The tiles of the box's screen rectangle (x0, y0, x1, y1, inclusive), a pixel wider on each side for
 // the float rounding of the box test; every tile when a corner lies behind the eye.
@@ -52,7 +57,10 @@ layout(std430, binding = 0) readonly buffer TileRects {
 void main() {
     uint i = gl_GlobalInvocationID.x;
 #ifdef FORWARD_CULLED
-    if (i == 0u && visibleCount > u_count) spatterTileInfo.z = 1; // decals past the buffers are left out
+    if (i == 0u) { // decals past the buffers are left out
+        if (visibleCount > u_count) spatterTileInfo.z = 1;
+        tileReadback[0] = visibleCount > u_count ? 1u : 0u;
+    }
     if (i >= min(visibleCount, u_count)) return;
 #else
     if (i >= u_count) return;

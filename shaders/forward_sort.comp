@@ -26,6 +26,11 @@ layout(std430, binding = 2) buffer TileCounts {
 layout(std430, binding = 0) readonly buffer CulledDraw {
     uint drawIndices, visibleCount, drawFirstIndex, drawBaseVertex, drawBaseInstance;
 };
+// What the CPU reads back (ForwardBins::tileInfo_): 1 when decals were left out (zeroed by pass 1),
+// the most decals of a tile.
+layout(std430, binding = 10) writeonly buffer TileReadback {
+    uint tileReadback[2];
+};
 #endif
 
 // Tile t's run, which `writer` sets from the tile's count when culled on the GPU; (0, 0) for a run
@@ -33,11 +38,15 @@ layout(std430, binding = 0) readonly buffer CulledDraw {
 uvec2 tileRun(uint t, bool writer) {
 #ifdef FORWARD_CULLED
     uint count = tileCounts[t];
+    if (t == 0u && writer) tileReadback[1] = uint(spatterTileInfo.w); // pass 1 has found the most
     if (count > u_tileCapacity && count <= u_mostPerTile) {
         if (writer) spatterTiles[t] = uvec2(u_everyDecal, min(visibleCount, u_count));
         return uvec2(0u);
     }
-    if (count > u_tileCapacity && writer) spatterTileInfo.z = 1; // the decals past the run are left out
+    if (count > u_tileCapacity && writer) { // the decals past the run are left out
+        spatterTileInfo.z = 1;
+        tileReadback[0] = 1u;
+    }
     uvec2 run = uvec2(t * u_tileCapacity, min(count, u_tileCapacity));
     if (writer) spatterTiles[t] = run;
     return run;

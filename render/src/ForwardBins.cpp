@@ -13,7 +13,8 @@ namespace spatter::render_detail {
 
 namespace {
 
-constexpr GLuint kGroup = 64; // local size of the per-decal and per-tile passes
+constexpr GLuint kGroup = 64;               // local size of the per-decal and per-tile passes
+constexpr GLuint kTileReadbackBinding = 10; // TileReadback of forward_prepare.comp and forward_sort.comp
 
 GLuint groups(uint32_t n) {
     return GLuint((n + kGroup - 1) / kGroup);
@@ -132,6 +133,7 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.decals, decals_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.tiles, tiles_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.items, items_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTileReadbackBinding, tileInfo_.target());
     glUseProgram(prepareCulled_.get());
     glUniform1ui(0, uint32_t(capacity));
     glUniform1ui(1, tileCapacity);
@@ -158,8 +160,7 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
 void ForwardBins::readBack() {
     if (!unread_) return;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    tileInfo_.copy(tiles_.get(), offsetof(ForwardGridGpu, info) + 2 * sizeof(int32_t), 0, 2);
-    tileInfo_.fence();
+    tileInfo_.mark();
     unread_ = false;
 }
 

@@ -11,8 +11,8 @@
 // the fullest tile, by which the caller sizes the runs of later binnings.
 
 #include "DecalBatch.hpp"
-#include "FencedReadback.hpp"
 #include "GlObjects.hpp"
+#include "GpuReadback.hpp"
 #include "ProjectorLayouts.hpp"
 
 #include "spatter/core/Result.hpp"
@@ -47,9 +47,9 @@ public:
     size_t binCulled(const ForwardFrame& frame, int tileSize, ForwardGridGpu head, GLuint draws,
                      size_t capacity, uint32_t tileCapacity, uint32_t mostPerTile);
     void bind(const ForwardBindings& b) const;
-    // Queues the read-back of the last binCulled's left-out flag and fullest tile (leftOut and
-    // fullestTile read them), once a binning: at the end of the pass, where the copy and its fence no
-    // longer hold up the passes after the binning.
+    // Marks the last binCulled's left-out flag and fullest tile, which its passes write into the
+    // read-back buffer, as ready to read (leftOut and fullestTile read them), once a binning: at the
+    // end of the pass, where the mark holds up no pass after the binning.
     void readBack();
     // Whether the latest binCulled the GPU has finished (this one's when `wait`, read back now if
     // readBack() has not been) left decals out: more
@@ -87,8 +87,8 @@ private:
            countsCapacity_ = 0;
     size_t everyDecalAt_ = 0, everyDecalCount_ = 0; // the identity items in items_ (0: none)
     std::vector<glm::uvec2> rectsCpu_;
-    FencedReadback tileInfo_{2}; // spatterTileInfo.z and .w of the latest binCulled
-    bool unread_ = false;        // a binCulled whose tile info readBack() has not queued
+    GpuReadback tileInfo_{2}; // the latest binCulled's left-out flag and most decals of a tile
+    bool unread_ = false;     // a binCulled whose tile info readBack() has not marked
     uint32_t zeroCounts_ = 0; // tiles, from the first, whose counts are zero (binCulled's sort zeroes them)
 };
 

@@ -14,12 +14,13 @@ constexpr uint32_t kGroupPlaces = 256; // places of a group: the local size of t
 constexpr uint32_t kBlockGroups = 256;
 
 // Binding points of the culling passes (shaders/cull*.comp).
-constexpr GLuint kClassesBinding = 0, kGroupsBinding = 2, kCountersBinding = 5, kOrderBinding = 6,
-                 kListBinding = 7;
+constexpr GLuint kClassesBinding = 0, kReadbackBinding = 1, kGroupsBinding = 2, kCountersBinding = 5,
+                 kOrderBinding = 6, kListBinding = 7;
 // Counters in shaders/cull_layout.glsl as a run starts: the indirect draw (the cube's 36 indices, no
 // instance yet), the occluded, invalid and host-drawn counts, the exact test's dispatch and its
-// candidates, the scatter's dispatch and its groups.
-constexpr std::array<uint32_t, 16> kCountersAtStart = {36, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 1, 1, 0};
+// candidates, the scatter's dispatch (one work group at least: it writes the read-back counts) and its
+// groups.
+constexpr std::array<uint32_t, 16> kCountersAtStart = {36, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0, 1, 1, 1, 0};
 constexpr GLintptr kExactDispatchOffset = 8 * sizeof(uint32_t);
 constexpr GLintptr kScatterDispatchOffset = 12 * sizeof(uint32_t);
 
@@ -126,6 +127,8 @@ void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& 
     glBindSampler(0, 0);
     glDispatchComputeIndirect(kExactDispatchOffset);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    // The scatter writes the counts read back where the other passes read the projector's objects.
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kReadbackBinding, counts_.target());
     glUseProgram(scatter_.get());
     glUniform1ui(0, groups);
     glDispatchComputeIndirect(kScatterDispatchOffset);
@@ -136,8 +139,7 @@ void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& 
 void GpuCulling::readBack() {
     if (!unread_) return;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    counts_.copy(counters_.get(), sizeof(uint32_t), 0, counts_.values().size()); // from the instance count on
-    counts_.fence();
+    counts_.mark();
     unread_ = false;
 }
 

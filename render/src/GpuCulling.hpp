@@ -12,8 +12,8 @@
 // first pass makes one, and it reads no more of a record than its box's centre, size and object.
 
 #include "DrawOrder.hpp"
-#include "FencedReadback.hpp"
 #include "GlObjects.hpp"
+#include "GpuReadback.hpp"
 
 #include "spatter/core/Result.hpp"
 
@@ -57,9 +57,9 @@ public:
     // many indices; `visibleCapacity` in bytes). Binds its own buffers over shader storage bindings 0-2 and
     // 5-7 (the projector's objects at 1 among them) and the dispatch-indirect buffer.
     void run(const CullRun& what, const Occlusion& occlusion, GlBuffer& visible, size_t& visibleCapacity);
-    // Queues the read-back of the last run's counts (visibleCount and the others read them), once a
-    // run: at the end of the pass, where the copy and its fence no longer hold up the passes after
-    // the culling.
+    // Marks the last run's counts, which its last pass writes into the read-back buffer, as ready to
+    // read (visibleCount and the others read them), once a run: at the end of the pass, where the
+    // mark holds up no pass after the culling.
     void readBack();
     // One DrawElementsIndirectCommand: the cube's 36 indices, the visible count as instances (followed by the
     // occluded, invalid and host-drawn counts).
@@ -72,9 +72,9 @@ public:
     // In the run visibleCount last read: the boxes in the frustum the occlusion test culled, the
     // decals that cannot be drawn (their box, type or object) and those the host draws itself
     // (DecalProjector::setHostDrawn).
-    uint32_t occludedCount() const { return counts_.values()[4]; }
-    uint32_t invalidCount() const { return counts_.values()[5]; }
-    uint32_t hostDrawnCount() const { return counts_.values()[6]; }
+    uint32_t occludedCount() const { return counts_.values()[1]; }
+    uint32_t invalidCount() const { return counts_.values()[2]; }
+    uint32_t hostDrawnCount() const { return counts_.values()[3]; }
 
     // Bytes of the GPU buffers it holds.
     size_t gpuBytes() const { return classesCapacity_ + groupsCapacity_ + orderCapacity_ + writesCapacity_; }
@@ -91,10 +91,9 @@ private:
     GlProgram classify_, exact_, scatter_, write_;
     GlBuffer classes_, groups_, counters_, order_, writes_;
     size_t classesCapacity_ = 0, groupsCapacity_ = 0, orderCapacity_ = 0, writesCapacity_ = 0;
-    uint32_t entries_ = 0; // of the draw order
-    // The counters from the indirect draw's instance count (the visible count) to the host-drawn count.
-    FencedReadback counts_{7};
-    bool unread_ = false; // a run whose counts readBack() has not queued
+    uint32_t entries_ = 0;  // of the draw order
+    GpuReadback counts_{4}; // the visible, occluded, invalid and host-drawn counts of a run
+    bool unread_ = false;   // a run whose counts readBack() has not marked
 };
 
 } // namespace spatter::render_detail
