@@ -159,7 +159,7 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
 
 void ForwardBins::readBack() {
     if (!unread_) return;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
     tileInfo_.mark();
     unread_ = false;
 }

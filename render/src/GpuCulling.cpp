@@ -138,7 +138,7 @@ void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& 
 
 void GpuCulling::readBack() {
     if (!unread_) return;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
     counts_.mark();
     unread_ = false;
 }
