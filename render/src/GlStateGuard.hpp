@@ -16,7 +16,7 @@ public:
     static constexpr int kTextureUnits = 8;
     static constexpr int kDrawBuffers = 4;
     static constexpr int kUniformBindings = 2;
-    static constexpr int kStorageBindings = 10;
+    static constexpr int kStorageBindings = 11;
     static constexpr int kImageUnits = 3;
 
     GlStateGuard();

@@ -45,7 +45,7 @@
 // state exactly as it found it, as Dear ImGui's OpenGL 3 backend does: it saves and restores the
 // bound draw and read framebuffers, viewport, program, vertex array, active texture unit and the
 // 2D and 2D-array textures and samplers of units 0-7, the uniform buffer bindings 0-1 and shader
-// storage bindings 0-9 (with their ranges), image units 0-2 and the generic uniform, shader storage, array,
+// storage bindings 0-10 (with their ranges), image units 0-2 and the generic uniform, shader storage, array,
 // pixel unpack, draw indirect and dispatch indirect buffer bindings, blending (enable per draw buffer 0-3,
 // equations, functions), colour masks of draw buffers 0-3, depth test, function and mask, stencil test,
 // scissor test, face culling and cull mode, front face, clip control, GL_FRAMEBUFFER_SRGB, the unpack
