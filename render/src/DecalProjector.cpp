@@ -57,6 +57,18 @@ bool softwareRasteriser() {
     return renderer && (std::strstr(renderer, "llvmpipe") || std::strstr(renderer, "softpipe"));
 }
 
+// The context's shader storage bindings against the projector's (GlStateGuard::kStorageBindings: its
+// buffers use bindings 0-10; OpenGL 4.5 promises 8).
+Status checkStorageBindings() {
+    GLint bindings = 0;
+    glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &bindings);
+    if (bindings >= GlStateGuard::kStorageBindings) return {};
+    return fail(
+        "projector: the context has " + std::to_string(bindings) +
+        " shader storage buffer bindings (GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS); the projector needs " +
+        std::to_string(GlStateGuard::kStorageBindings));
+}
+
 Status validateSettings(const ProjectorSettings& s) {
     if (!std::isfinite(s.wrapMaxAngleDeg) || s.wrapMaxAngleDeg < 0.0f || s.wrapMaxAngleDeg > 180.0f)
         return fail("projector: wrapMaxAngleDeg must be in [0, 180]");
@@ -608,6 +620,7 @@ DecalProjector::~DecalProjector() = default;
 
 Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings) {
     if (Status s = validateSettings(settings); !s) return fail(s.error());
+    if (Status s = checkStorageBindings(); !s) return fail(s.error());
     GlStateGuard guard;
     auto impl = std::make_unique<Impl>();
     impl->settings = settings;
