@@ -475,7 +475,7 @@ struct DecalProjector::Impl {
         if (onGpu) {
             stats.bytesUploaded += buffers.uploadDrawOrder(batch, culling);
             boxes = cullOnGpu(camera.cull, &f, false, stats); // waitForTimers: read after the pass
-            culling.readBack(); // before the boxes, so that its copy waits on the culling alone
+            culling.readBack(); // before the boxes, so that its mark waits on the culling alone
         } else {
             stats.bytesUploaded += buffers.uploadVisible(vis.visible);
         }

@@ -82,8 +82,7 @@ glm::ivec2 ForwardBins::grid(const ForwardFrame& frame, int tileSize, ForwardGri
 
 size_t ForwardBins::bin(const ForwardFrame& frame, const DecalVisibility& vis, int tileSize,
                         ForwardGridGpu head) {
-    tileInfo_.reset(); // sized on the CPU, the tiles hold every decal: nothing is left out from here on
-    unread_ = false;
+    tileInfo_.reset();    // sized on the CPU, the tiles hold every decal: nothing is left out from here on
     zeroCounts_ = 0;      // the scan and the fill leave them counted
     everyDecalCount_ = 0; // the items are written from the start
     const glm::ivec2 tiles = grid(frame, tileSize, head);
@@ -153,15 +152,11 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
         glDispatchCompute(groups(tileCount), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     zeroCounts_ = std::max(zeroCounts_, tileCount);
-    unread_ = true;
     return sent;
 }
 
 void ForwardBins::readBack() {
-    if (!unread_) return;
-    glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
     tileInfo_.mark();
-    unread_ = false;
 }
 
 size_t ForwardBins::reserveItems(size_t runItems, size_t everyDecal) {

@@ -88,7 +88,6 @@ private:
     size_t everyDecalAt_ = 0, everyDecalCount_ = 0; // the identity items in items_ (0: none)
     std::vector<glm::uvec2> rectsCpu_;
     GpuReadback tileInfo_{2}; // the latest binCulled's left-out flag and most decals of a tile
-    bool unread_ = false;     // a binCulled whose tile info readBack() has not marked
     uint32_t zeroCounts_ = 0; // tiles, from the first, whose counts are zero (binCulled's sort zeroes them)
 };
 

@@ -133,14 +133,10 @@ void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& 
     glUniform1ui(0, groups);
     glDispatchComputeIndirect(kScatterDispatchOffset);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    unread_ = true;
 }
 
 void GpuCulling::readBack() {
-    if (!unread_) return;
-    glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
     counts_.mark();
-    unread_ = false;
 }
 
 uint32_t GpuCulling::visibleCount(bool wait) {

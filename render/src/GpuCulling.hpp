@@ -93,7 +93,6 @@ private:
     size_t classesCapacity_ = 0, groupsCapacity_ = 0, orderCapacity_ = 0, writesCapacity_ = 0;
     uint32_t entries_ = 0;  // of the draw order
     GpuReadback counts_{4}; // the visible, occluded, invalid and host-drawn counts of a run
-    bool unread_ = false;   // a run whose counts readBack() has not marked
 };
 
 } // namespace spatter::render_detail

@@ -4,7 +4,7 @@
 
 namespace spatter::render_detail {
 
-GLuint GpuReadback::target() {
+GpuReadback::Slot& GpuReadback::current() {
     Slot& slot = slots_[current_];
     if (!slot.buffer) {
         const auto bytes = GLsizeiptr(latest_.size() * sizeof(uint32_t));
@@ -17,12 +17,19 @@ GLuint GpuReadback::target() {
         glCreateQueries(GL_TIMESTAMP, 1, &q);
         slot.query = GlQuery(q);
     }
-    return slot.buffer.get();
+    return slot;
+}
+
+GLuint GpuReadback::target() {
+    pending_ = true;
+    return current().buffer.get();
 }
 
 void GpuReadback::mark() {
-    target();
-    Slot& slot = slots_[current_];
+    if (!pending_) return;
+    pending_ = false;
+    glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+    Slot& slot = current();
     glQueryCounter(slot.query.get(), GL_TIMESTAMP);
     slot.marked = ++marks_;
     current_ = (current_ + 1) % kRing;
@@ -32,6 +39,7 @@ void GpuReadback::mark() {
 void GpuReadback::reset() {
     for (Slot& s : slots_)
         s.marked = 0;
+    pending_ = false;
     readTo_ = marks_;
     std::fill(latest_.begin(), latest_.end(), 0u);
     hasRead_ = false;

@@ -24,13 +24,14 @@ public:
     explicit GpuReadback(size_t values = 1) : latest_(values, 0) {}
 
     // The buffer the next read's values go to, for a shader to write them into (bound as a storage
-    // buffer).
+    // buffer): from here to the next mark() a read is pending.
     GLuint target();
-    // Marks the writes queued so far into target() as one read (after a
-    // GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT barrier); the next read goes to the next buffer of the ring.
+    // Marks the writes queued into target() since the last mark as one read (after a
+    // GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT barrier), and sends the next read to the next buffer of the
+    // ring; nothing when no read is pending.
     void mark();
-    // Drops the reads not taken yet, and their values: the latest read becomes zeros, and none has
-    // been read.
+    // Drops the reads not taken yet (and a pending one), and their values: the latest read becomes
+    // zeros, and none has been read.
     void reset();
     // The values of the latest read the GPU has finished (the latest marked when `wait`).
     const std::vector<uint32_t>& latest(bool wait);
@@ -47,12 +48,14 @@ private:
         GlQuery query;
         uint64_t marked = 0; // the mark's number (from 1); 0: none to read
     };
+    Slot& current(); // made on first use
     void read(Slot& slot);
 
     std::array<Slot, kRing> slots_;
-    size_t current_ = 0;  // the slot target() gives
-    uint64_t marks_ = 0;  // marks made
-    uint64_t readTo_ = 0; // the newest mark read or dropped
+    size_t current_ = 0;   // the slot target() gives
+    bool pending_ = false; // target() given since the last mark
+    uint64_t marks_ = 0;   // marks made
+    uint64_t readTo_ = 0;  // the newest mark read or dropped
     std::vector<uint32_t> latest_;
     bool hasRead_ = false;
 };
