@@ -94,7 +94,7 @@ void main() {
         if (sCounts[0] != 0u) atomicAdd(invalidCount, sCounts[0]);
         if (sCounts[1] != 0u) atomicAdd(hostDrawnCount, sCounts[1]);
         groupData[group] = 0u;
-        if (group % kBlockGroups == 0u) groupData[2u * gl_NumWorkGroups.x + group / kBlockGroups] = 0u;
+        if (group % kBlockGroups == 0u) groupData[gl_NumWorkGroups.x + group / kBlockGroups] = 0u;
     }
     if (t < kGroupPlaces / 32u) classBits[group * (kGroupPlaces / 32u) + t] = 0u;
     barrier();

@@ -2,7 +2,7 @@
 // box corner by corner against the view, as DecalBatch::cull does on the CPU, with margins that keep
 // float rounding from culling a box the CPU would keep, and, with a depth pyramid of the host's frame
 // (DepthPyramid), culls the boxes hidden behind the scene. A visible place sets its class bit, counts
-// in its group (the first to do so lists the group for the scatter) and in the indirect draw.
+// in its group and in the indirect draw.
 #include "projector.glsl"
 #include "cull_layout.glsl"
 
@@ -120,12 +120,8 @@ void main() {
             atomicOr(classBits[place / 32u], 1u << (place % 32u));
             uint group = place / kGroupPlaces;
             if (u_groups > kBlockGroups) // with one block the scatter reads no block's sum
-                atomicAdd(groupData[2u * u_groups + group / kBlockGroups], 1u);
-            if (atomicAdd(groupData[group], 1u) == 0u) { // the group's first visible place lists it
-                uint k = atomicAdd(visibleGroupCount, 1u);
-                groupData[u_groups + k] = group;
-                atomicMax(scatter.x, k + 1u);
-            }
+                atomicAdd(groupData[u_groups + group / kBlockGroups], 1u);
+            atomicAdd(groupData[group], 1u);
         } else if (c == kOccluded) {
             atomicAdd(sOccluded, 1u);
         }

@@ -2,10 +2,9 @@
 // cull_scatter.comp). A place is an entry of the draw order; a group, 256 consecutive places.
 
 layout(std430, binding = 2) coherent buffer GroupData {
-    // [0, groups): the visible places of each group; [groups, 2 groups): the groups that have one, in
-    // no particular order (cull_scatter.comp runs over these); from 2 groups on, the visible places of
-    // each block of kBlockGroups groups, so that a group's first place in the visible list sums at
-    // most a block's groups and the blocks before it, not every group before it
+    // [0, groups): the visible places of each group; from groups on, the visible places of each block
+    // of kBlockGroups groups, so that a group's first place in the visible list sums at most a block's
+    // groups and the blocks before it, not every group before it
     uint groupData[];
 };
 
@@ -23,8 +22,6 @@ layout(std430, binding = 5) coherent buffer Counters {
     uint hostDrawnCount;       // decals of a type or on an object the host draws itself
     DispatchIndirect exact;    // cull_exact.comp's work groups
     uint candidateCount;       // places cull.comp left to cull_exact.comp
-    DispatchIndirect scatter;  // cull_scatter.comp's work groups: the groups with a visible place
-    uint visibleGroupCount;
 };
 
 layout(std430, binding = 6) readonly buffer DrawOrder {

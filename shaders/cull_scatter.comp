@@ -1,6 +1,6 @@
-// GPU culling, pass 3 of 3 (GpuCulling): one work group per group of the draw order with a visible
-// place (listed by cull_exact.comp), and at least one. It finds the group's first place in the
-// visible list, the visible places of the groups before it (those of the blocks before its block,
+// GPU culling, pass 3 of 3 (GpuCulling): one work group per group of the draw order, dispatched
+// directly (a group without a visible place returns at once: cheaper than listing the groups that
+// have one and dispatching over that list). It finds the group's first place in the visible list, the visible places of the groups before it (those of the blocks before its block,
 // and of its block's groups before it), and writes its visible decals' indices there in draw order:
 // an invocation per 32-place word of the group's class bits, from the word's first place in the list
 // (the visible places of the words before it) on. The first work group also writes the counts the
@@ -28,10 +28,10 @@ void main() {
     uint t = gl_LocalInvocationIndex;
     if (gl_WorkGroupID.x == 0u && t == 0u)
         readback = uint[4](draw.instanceCount, occludedCount, invalidCount, hostDrawnCount);
-    if (gl_WorkGroupID.x >= visibleGroupCount) return; // the one work group when none is visible
-    uint group = groupData[u_groups + gl_WorkGroupID.x];
+    uint group = gl_WorkGroupID.x;
+    if (groupData[group] == 0u) return; // the work group's one group has no visible place
     uint block = group / kBlockGroups, sum = 0u; // the visible places of the blocks and groups before
-    for (uint b = t; b < block; b += 64u) sum += groupData[2u * u_groups + b];
+    for (uint b = t; b < block; b += 64u) sum += groupData[u_groups + b];
     for (uint g = block * kBlockGroups + t; g < group; g += 64u) sum += groupData[g];
     partial[t] = sum;
     if (t < kWords) words[t] = classBits[group * kWords + t];

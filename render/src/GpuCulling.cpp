@@ -18,11 +18,9 @@ constexpr GLuint kClassesBinding = 0, kReadbackBinding = 1, kGroupsBinding = 2, 
                  kOrderBinding = 6, kListBinding = 7;
 // Counters in shaders/cull_layout.glsl as a run starts: the indirect draw (the cube's 36 indices, no
 // instance yet), the occluded, invalid and host-drawn counts, the exact test's dispatch and its
-// candidates, the scatter's dispatch (one work group at least: it writes the read-back counts) and its
-// groups.
-constexpr std::array<uint32_t, 16> kCountersAtStart = {36, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0, 1, 1, 1, 0};
+// candidates.
+constexpr std::array<uint32_t, 12> kCountersAtStart = {36, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0};
 constexpr GLintptr kExactDispatchOffset = 8 * sizeof(uint32_t);
-constexpr GLintptr kScatterDispatchOffset = 12 * sizeof(uint32_t);
 
 } // namespace
 
@@ -89,7 +87,7 @@ uint32_t GpuCulling::reserve(size_t decals, GlBuffer& visible, size_t& visibleCa
     const uint32_t groups = std::max<uint32_t>(1, (entries_ + kGroupPlaces - 1) / kGroupPlaces);
     reserveBuffer(classes_, classesCapacity_, size_t(groups) * kGroupPlaces / 8, 4096); // a bit a place
     const size_t blocks = (size_t(groups) + kBlockGroups - 1) / kBlockGroups;
-    reserveBuffer(groups_, groupsCapacity_, (2 * size_t(groups) + blocks) * sizeof(uint32_t), 4096);
+    reserveBuffer(groups_, groupsCapacity_, (size_t(groups) + blocks) * sizeof(uint32_t), 4096);
     reserveBuffer(order_, orderCapacity_, sizeof(uint32_t), 4096); // bound even when empty
     // The visible list, and the exact test's candidates before it.
     if (reserveBuffer(visible, visibleCapacity, decals * sizeof(uint32_t), 4096)) {
@@ -126,12 +124,12 @@ void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& 
     glBindTextureUnit(0, occlusion.texture);
     glBindSampler(0, 0);
     glDispatchComputeIndirect(kExactDispatchOffset);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); // the scatter is dispatched directly
     // The scatter writes the counts read back where the other passes read the projector's objects.
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kReadbackBinding, counts_.target());
     glUseProgram(scatter_.get());
     glUniform1ui(0, groups);
-    glDispatchComputeIndirect(kScatterDispatchOffset);
+    glDispatchCompute(groups, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
