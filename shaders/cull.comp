@@ -89,7 +89,6 @@ void main() {
     if (t == 0u) {
         if (sCandidates != 0u) {
             sFirst = atomicAdd(candidateCount, sCandidates);
-            atomicMax(exact.x, (sFirst + sCandidates + kCandidateGroup - 1u) / kCandidateGroup);
         }
         if (sCounts[0] != 0u) atomicAdd(invalidCount, sCounts[0]);
         if (sCounts[1] != 0u) atomicAdd(hostDrawnCount, sCounts[1]);

@@ -1,12 +1,14 @@
-// GPU culling, pass 2 of 3 (GpuCulling): one invocation per candidate cull.comp listed. It tests the
-// box corner by corner against the view, as DecalBatch::cull does on the CPU, with margins that keep
-// float rounding from culling a box the CPU would keep, and, with a depth pyramid of the host's frame
-// (DepthPyramid), culls the boxes hidden behind the scene. A visible place sets its class bit, counts
+// GPU culling, pass 2 of 3 (GpuCulling): invocations striding over the candidates cull.comp listed
+// (a number of work groups the CPU knows, so that it dispatches them without reading the count). It
+// tests each box corner by corner against the view, as DecalBatch::cull does on the CPU, with margins
+// that keep float rounding from culling a box the CPU would keep, and, with a depth pyramid of the
+// host's frame (DepthPyramid), culls the boxes hidden behind the scene. A visible place sets its class bit, counts
 // in its group and in the indirect draw.
 #include "projector.glsl"
 #include "cull_layout.glsl"
 
-layout(local_size_x = 64) in; // kCandidateGroup
+const uint kCandidateGroup = 64u;
+layout(local_size_x = kCandidateGroup) in;
 layout(location = 0) uniform uint u_groups; // of the draw order
 layout(location = 1) uniform vec4 u_camera; // y: 1 reversed Z; z: 1 clip depth -1..1
 // x: the depth pyramid's levels (0: no occlusion test); y: 0 window depth standard Z, 1 reversed Z,
@@ -110,8 +112,9 @@ void main() {
         sOccluded = 0u;
     }
     barrier();
-    uint i = gl_GlobalInvocationID.x;
-    if (i < candidateCount) {
+    // Dispatched directly at a size the CPU knows, the invocations stride over the candidates.
+    uint stride = gl_NumWorkGroups.x * kCandidateGroup, count = candidateCount;
+    for (uint i = gl_GlobalInvocationID.x; i < count; i += stride) {
         uint place = candidates[i], entry = drawOrder[place];
         candidates[i] = entry;
         uint c = test(entry);

@@ -8,9 +8,6 @@ layout(std430, binding = 2) coherent buffer GroupData {
     uint groupData[];
 };
 
-struct DispatchIndirect {
-    uint x, y, z;
-};
 struct DrawElementsIndirect {
     uint count, instanceCount, firstIndex, baseVertex, baseInstance;
 };
@@ -20,7 +17,6 @@ layout(std430, binding = 5) coherent buffer Counters {
     uint occludedCount;        // boxes in the frustum that the occlusion test culled
     uint invalidCount;         // decals that cannot be drawn: their box, type or object
     uint hostDrawnCount;       // decals of a type or on an object the host draws itself
-    DispatchIndirect exact;    // cull_exact.comp's work groups
     uint candidateCount;       // places cull.comp left to cull_exact.comp
 };
 
@@ -30,4 +26,3 @@ layout(std430, binding = 6) readonly buffer DrawOrder {
 
 const uint kGroupPlaces = 256u;
 const uint kBlockGroups = 256u;
-const uint kCandidateGroup = 64u; // cull_exact.comp's local size

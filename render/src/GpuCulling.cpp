@@ -17,10 +17,13 @@ constexpr uint32_t kBlockGroups = 256;
 constexpr GLuint kClassesBinding = 0, kReadbackBinding = 1, kGroupsBinding = 2, kCountersBinding = 5,
                  kOrderBinding = 6, kListBinding = 7;
 // Counters in shaders/cull_layout.glsl as a run starts: the indirect draw (the cube's 36 indices, no
-// instance yet), the occluded, invalid and host-drawn counts, the exact test's dispatch and its
-// candidates.
-constexpr std::array<uint32_t, 12> kCountersAtStart = {36, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 0};
-constexpr GLintptr kExactDispatchOffset = 8 * sizeof(uint32_t);
+// instance yet), the occluded, invalid and host-drawn counts and the exact test's candidates.
+constexpr std::array<uint32_t, 9> kCountersAtStart = {36, 0, 0, 0, 0, 0, 0, 0, 0};
+// The exact test's work groups of 64 at most: dispatched directly (an indirect dispatch at the
+// candidates' count needs a command barrier, which costs more than idle groups), its invocations
+// stride over the candidates; 131,072 of them take the 100,000 candidates of a frame with that many
+// decals in view in one step each (512 groups made those rows 3 to 4 us slower).
+constexpr uint32_t kExactGroups = 2048;
 
 } // namespace
 
@@ -103,7 +106,6 @@ void GpuCulling::bind(const GlBuffer& visible) const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountersBinding, counters_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kOrderBinding, order_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kListBinding, visible.get());
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, counters_.get());
 }
 
 void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& visible,
@@ -115,7 +117,7 @@ void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& 
     glUniform1ui(0, entries_);
     glUniform1ui(1, what.checkTypes ? 1u : 0u);
     glDispatchCompute(groups, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(exact_.get());
     glUniform1ui(0, groups);
     glUniform4f(1, 0.0f, what.reversedZ ? 1.0f : 0.0f, what.clipMinusOne ? 1.0f : 0.0f, 0.0f);
@@ -123,8 +125,8 @@ void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& 
                 occlusion.size.y);
     glBindTextureUnit(0, occlusion.texture);
     glBindSampler(0, 0);
-    glDispatchComputeIndirect(kExactDispatchOffset);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT); // the scatter is dispatched directly
+    glDispatchCompute(std::min(kExactGroups, std::max(1u, (entries_ + 63) / 64)), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     // The scatter writes the counts read back where the other passes read the projector's objects.
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kReadbackBinding, counts_.target());
     glUseProgram(scatter_.get());
