@@ -1,9 +1,9 @@
 // GPU culling, pass 2 of 3 (GpuCulling): invocations striding over the candidates cull.comp listed
-// (a number of work groups the CPU knows, so that it dispatches them without reading the count). It
-// tests each box corner by corner against the view, as DecalBatch::cull does on the CPU, with margins
-// that keep float rounding from culling a box the CPU would keep, and, with a depth pyramid of the
-// host's frame (DepthPyramid), culls the boxes hidden behind the scene. A visible place sets its class bit, counts
-// in its group and in the indirect draw.
+// (work groups the CPU dispatches directly, sized by an earlier frame's counts, so that it need not
+// read this frame's). It tests each box corner by corner against the view, as DecalBatch::cull does
+// on the CPU, with margins that keep float rounding from culling a box the CPU would keep, and, with
+// a depth pyramid of the host's frame (DepthPyramid), culls the boxes hidden behind the scene. A
+// visible place sets its class bit and counts in its group and in the indirect draw.
 #include "projector.glsl"
 #include "cull_layout.glsl"
 

@@ -1,10 +1,13 @@
-// GPU culling, pass 3 of 3 (GpuCulling): one work group per group of the draw order, dispatched
-// directly (a group without a visible place returns at once: cheaper than listing the groups that
-// have one and dispatching over that list). It finds the group's first place in the visible list, the visible places of the groups before it (those of the blocks before its block,
-// and of its block's groups before it), and writes its visible decals' indices there in draw order:
-// an invocation per 32-place word of the group's class bits, from the word's first place in the list
-// (the visible places of the words before it) on. The first work group also writes the counts the
-// CPU reads back.
+// GPU culling, pass 3 of 3 (GpuCulling): for each group of the draw order with a visible place, its
+// first place in the visible list, the visible places of the groups before it (those of the blocks
+// before its block, and of its block's groups before it), and its visible decals' indices written
+// there in draw order: an invocation per 32-place word of the group's class bits, from the word's
+// first place in the list (the visible places of the words before it) on. Dispatched directly, at a
+// number of work groups the CPU sizes by an earlier frame's visible count (a software rasteriser pays
+// for every work group): work group w looks at groups w, w + W, w + 2 W, ... (W work groups), an
+// invocation a group, 64 at a time, and writes those that have a visible place one after the other,
+// so that groups in view side by side go to different work groups. The first work group also writes
+// the counts the CPU reads back.
 #include "cull_layout.glsl"
 
 layout(local_size_x = 64) in;
@@ -23,13 +26,10 @@ layout(std430, binding = 7) writeonly buffer VisibleOut {
 const uint kWords = kGroupPlaces / 32u; // of class bits a group
 shared uint partial[64];
 shared uint words[kWords];
+shared uint sFound, sGroups[64]; // of the groups looked at in a round, those with a visible place
 
-void main() {
-    uint t = gl_LocalInvocationIndex;
-    if (gl_WorkGroupID.x == 0u && t == 0u)
-        readback = uint[4](draw.instanceCount, occludedCount, invalidCount, hostDrawnCount);
-    uint group = gl_WorkGroupID.x;
-    if (groupData[group] == 0u) return; // the work group's one group has no visible place
+// Writes the visible decals of `group`, which has one; all the work group's invocations take part.
+void writeGroup(uint group, uint t) {
     uint block = group / kBlockGroups, sum = 0u; // the visible places of the blocks and groups before
     for (uint b = t; b < block; b += 64u) sum += groupData[u_groups + b];
     for (uint g = block * kBlockGroups + t; g < group; g += 64u) sum += groupData[g];
@@ -40,9 +40,27 @@ void main() {
         if (t < stride) partial[t] += partial[t + stride];
         barrier();
     }
-    if (t >= kWords) return;
-    uint bits = words[t], at = partial[0];
-    for (uint w = 0u; w < t; ++w) at += uint(bitCount(words[w]));
-    for (; bits != 0u; bits &= bits - 1u)
-        visibleOut[at++] = drawOrder[group * kGroupPlaces + t * 32u + uint(findLSB(bits))];
+    if (t < kWords) {
+        uint bits = words[t], at = partial[0];
+        for (uint w = 0u; w < t; ++w) at += uint(bitCount(words[w]));
+        for (; bits != 0u; bits &= bits - 1u)
+            visibleOut[at++] = drawOrder[group * kGroupPlaces + t * 32u + uint(findLSB(bits))];
+    }
+    barrier(); // the next group reuses the shared arrays
+}
+
+void main() {
+    uint t = gl_LocalInvocationIndex, w = gl_NumWorkGroups.x;
+    if (gl_WorkGroupID.x == 0u && t == 0u)
+        readback = uint[4](draw.instanceCount, occludedCount, invalidCount, hostDrawnCount);
+    for (uint first = gl_WorkGroupID.x; first < u_groups; first += 64u * w) {
+        if (t == 0u) sFound = 0u;
+        barrier();
+        uint group = first + t * w;
+        if (group < u_groups && groupData[group] != 0u) sGroups[atomicAdd(sFound, 1u)] = group;
+        barrier();
+        uint found = sFound;
+        for (uint k = 0u; k < found; ++k)
+            writeGroup(sGroups[k], t);
+    }
 }

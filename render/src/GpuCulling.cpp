@@ -19,11 +19,17 @@ constexpr GLuint kClassesBinding = 0, kReadbackBinding = 1, kGroupsBinding = 2, 
 // Counters in shaders/cull_layout.glsl as a run starts: the indirect draw (the cube's 36 indices, no
 // instance yet), the occluded, invalid and host-drawn counts and the exact test's candidates.
 constexpr std::array<uint32_t, 9> kCountersAtStart = {36, 0, 0, 0, 0, 0, 0, 0, 0};
-// The exact test's work groups of 64 at most: dispatched directly (an indirect dispatch at the
-// candidates' count needs a command barrier, which costs more than idle groups), its invocations
-// stride over the candidates; 131,072 of them take the 100,000 candidates of a frame with that many
-// decals in view in one step each (512 groups made those rows 3 to 4 us slower).
-constexpr uint32_t kExactGroups = 2048;
+// The corner test and the scatter are dispatched directly, not indirectly at this run's counts: an
+// indirect dispatch needs a command barrier, which costs a GPU more than work groups that find no
+// work. A software rasteriser pays for every work group, so they are sized by the latest counts read
+// back, with room to spare; their invocations stride over the work, so a run whose counts outgrow an
+// earlier one's is still whole, only slower. The corner test takes 2,048 work groups of 64 at most
+// (512 made the rows with 100,000 decals in view 3 to 4 us slower on an H200), and twice the boxes
+// in the frustum, which its candidates hardly exceed, plus a margin; the scatter takes a work group
+// for each group of places at most, and half the visible decals plus a margin (a work group writes
+// the groups it finds with a visible one one after the other, two on average where every visible
+// decal has a group of its own; decals in view side by side share groups).
+constexpr uint32_t kExactGroupsMost = 2048, kExactGroupsMargin = 64, kScatterGroupsMargin = 16;
 
 } // namespace
 
@@ -125,14 +131,28 @@ void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& 
                 occlusion.size.y);
     glBindTextureUnit(0, occlusion.texture);
     glBindSampler(0, 0);
-    glDispatchCompute(std::min(kExactGroups, std::max(1u, (entries_ + 63) / 64)), 1, 1);
+    glDispatchCompute(exactGroups(), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     // The scatter writes the counts read back where the other passes read the projector's objects.
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kReadbackBinding, counts_.target());
     glUseProgram(scatter_.get());
     glUniform1ui(0, groups);
-    glDispatchCompute(groups, 1, 1);
+    glDispatchCompute(scatterGroups(groups), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+uint32_t GpuCulling::exactGroups() const {
+    const uint64_t places = std::max<uint64_t>(1, (uint64_t(entries_) + 63) / 64);
+    if (!counts_.hasRead()) return uint32_t(std::min<uint64_t>(kExactGroupsMost, places));
+    const uint64_t inFrustum = uint64_t(counts_.values()[0]) + counts_.values()[1];
+    return uint32_t(
+        std::min<uint64_t>({kExactGroupsMost, places, (2 * inFrustum + 63) / 64 + kExactGroupsMargin}));
+}
+
+// At least one: the first work group writes the counts read back.
+uint32_t GpuCulling::scatterGroups(uint32_t groups) const {
+    if (!counts_.hasRead()) return groups;
+    return uint32_t(std::min<uint64_t>(groups, uint64_t(counts_.values()[0]) / 2 + kScatterGroupsMargin));
 }
 
 void GpuCulling::readBack() {

@@ -3,13 +3,13 @@
 // on the CPU each frame would cost more than the draw (ProjectorSettings::gpuCullingFrom). Three
 // compute passes over the projector's decal instances and objects (bound at their binding points,
 // objects relative to this frame's eye): every place of the draw order (DrawOrder.hpp) through a
-// bounding-sphere test that needs no unpacked frame (cull.comp); the few left through the corner test
-// DecalBatch::cull makes and the occlusion test (cull_exact.comp); then, for each group of 256 places (those
-// without a visible one return at once), its visible indices into the visible list in draw order
-// (cull_scatter.comp). The draw's instance count goes into an indirect draw buffer; the boxes are then drawn
-// by their far faces (the GPU does not tell which may hold the eye). A pass over every place is what a large
-// world costs, so only the first pass makes one, and it reads no more of a record than its box's centre, size
-// and object.
+// bounding-sphere test that needs no unpacked frame (cull.comp); the few left through the corner
+// test DecalBatch::cull makes and the occlusion test (cull_exact.comp); then, for each group of 256
+// places with a visible one, its visible indices into the visible list in draw order
+// (cull_scatter.comp). The draw's instance count goes into an indirect draw buffer; the boxes are
+// then drawn by their far faces (the GPU does not tell which may hold the eye). A pass over every
+// place is what a large world costs, so only the first pass makes one, and it reads no more of a
+// record than its box's centre, size and object.
 
 #include "DrawOrder.hpp"
 #include "GlObjects.hpp"
@@ -84,6 +84,9 @@ private:
     // places of the draw order.
     uint32_t reserve(size_t decals, GlBuffer& visible, size_t& visibleCapacity);
     void bind(const GlBuffer& visible) const;
+    // The work groups of the corner test and of the scatter, sized by the latest counts read back.
+    uint32_t exactGroups() const;
+    uint32_t scatterGroups(uint32_t groups) const;
 
     // Applies `writes` to the draw order's buffer (order_write.comp).
     size_t writeDrawOrder(const std::vector<glm::uvec2>& writes);
