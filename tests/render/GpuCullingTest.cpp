@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 using namespace spatter;
 using namespace spatter::test;
@@ -49,6 +50,7 @@ std::vector<Decal> scatteredDecals(int count, uint64_t seed) {
 struct Culled {
     std::vector<uint8_t> coverage;
     ProjectorStats stats;
+    std::vector<uint8_t> albedo; // the host's albedo target, the decals blended into it in draw order
 };
 
 // How a coverage run differs from the plain wall.
@@ -58,6 +60,7 @@ struct Variant {
     std::vector<DecalType> types;        // types after the wall's own
     std::vector<uint8_t> hostDrawn;      // types the host draws (DecalProjector::setHostDrawn)
     std::vector<glm::dmat4> moreObjects; // the projector's objects after the wall's (moved with it)
+    std::optional<Camera> earlier;       // a view drawn first, whose counts size the culling's passes
 };
 
 // The coverage of `decals` on the wall shaped by `variant.shape` and moved by `offset`, seen by
@@ -87,19 +90,27 @@ Culled coverage(const std::vector<Decal>& decals, const glm::dvec3& offset, Came
     EXPECT_TRUE(host.ok() && projector.ok());
     if (!host || !projector) return {};
     host->setScene(wall.scene);
-    host->draw(wall.transforms, wall.ids, camera);
-    host->clearCoverage();
     EXPECT_TRUE(projector->setObjects(transforms, ids).ok());
     projector->setDecalTypes(wall.types);
     projector->setHostDrawn(variant.hostDrawn, {});
     projector->setDecals(decals);
     ProjectorDraw draw;
     draw.coverageTexture = host->coverageTexture();
+    if (variant.earlier) {
+        Camera earlier = *variant.earlier;
+        earlier.eye += offset;
+        earlier.target += offset;
+        host->draw(wall.transforms, wall.ids, earlier);
+        EXPECT_TRUE(projector->draw(host->frame(earlier, true), draw).ok());
+    }
+    host->draw(wall.transforms, wall.ids, camera);
+    host->clearCoverage();
     Result<ProjectorStats> st = projector->draw(host->frame(camera, true), draw);
     EXPECT_TRUE(st.ok()) << st.error();
     if (!st) return {};
     EXPECT_EQ(st->gpuCulled, onGpu);
-    return {test::whiteMask(host->read(host->coverageTexture())), st.value()};
+    return {test::whiteMask(host->read(host->coverageTexture())), st.value(),
+            host->read(host->albedoTexture()).rgba};
 }
 
 // The GPU's culling covers the same pixels as the CPU's; its float test keeps a margin: it may draw a
@@ -192,6 +203,33 @@ TEST(GpuCulling, MatchesTheCpuOverManyBlocksOfTheDrawOrder) {
     }
     // Without the occlusion test, which hides a box behind the crate here that the CPU counts drawn.
     expectSameAsCpu("blocks", decals, glm::dvec3(0.0), test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0}), false);
+}
+
+// The GPU's passes are sized by the counts of an earlier draw: a view that takes in thousands of
+// decals after one that took in none still culls every box, its corner test's invocations striding
+// over more candidates than they were sized for: the same boxes as a first draw, in the same order
+// (the same albedo, where overlapping decals blend), the same pixels as the CPU. (Without the
+// occlusion test, whose depth pyramid the earlier draw changes.)
+TEST(GpuCulling, MatchesTheCpuWhenTheViewTakesInFarMoreThanTheDrawBefore) {
+    SPATTER_REQUIRE_GL(gl);
+    const std::vector<Decal> decals = scatteredDecals(20000, 23);
+    const Camera camera = test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0});
+    Variant variant;
+    variant.occlusion = false;
+    const Culled cpu = coverage(decals, {}, camera, false, variant);
+    const Culled first = coverage(decals, {}, camera, true, variant);
+    variant.earlier = test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 8.0}); // facing away from the wall
+    const Culled after = coverage(decals, {}, camera, true, variant);
+    std::printf("%zu drawn, %zu culled; %zu covered pixels\n", after.stats.drawn, after.stats.culled,
+                test::countSet(after.coverage));
+    EXPECT_GT(after.stats.drawn, 4096u); // past what the earlier counts size the corner test for
+    EXPECT_EQ(after.stats.drawn, first.stats.drawn);
+    EXPECT_EQ(after.stats.culled, first.stats.culled);
+    EXPECT_TRUE(after.coverage == first.coverage);
+    EXPECT_TRUE(after.albedo == first.albedo);
+    EXPECT_TRUE(after.coverage == cpu.coverage);
+    EXPECT_TRUE(after.albedo == cpu.albedo);
+    EXPECT_GT(test::countSet(after.coverage), 0u);
 }
 
 // The wall sheared (x moves by y) stretches a box up to 1.618 times, more than its longest column
