@@ -206,13 +206,22 @@ TEST(GpuCulling, MatchesTheCpuOverManyBlocksOfTheDrawOrder) {
 }
 
 // The GPU's passes are sized by the counts of an earlier draw: a view that takes in thousands of
-// decals after one that took in none still culls every box, its corner test's invocations striding
-// over more candidates than they were sized for: the same boxes as a first draw, in the same order
+// decals after one that took in none still culls every box, its passes' invocations striding over
+// more candidates and groups than they were sized for: the same boxes as a first draw, in the same order
 // (the same albedo, where overlapping decals blend), the same pixels as the CPU. (Without the
 // occlusion test, whose depth pyramid the earlier draw changes.)
 TEST(GpuCulling, MatchesTheCpuWhenTheViewTakesInFarMoreThanTheDrawBefore) {
     SPATTER_REQUIRE_GL(gl);
-    const std::vector<Decal> decals = scatteredDecals(20000, 23);
+    // Each scattered decal followed by a tiny one between the eye and the near plane: the sphere test
+    // passes it, the corner test culls it, so that the candidates are not the visible decals and a
+    // group the scatter skipped would draw the wrong ones.
+    std::vector<Decal> decals;
+    for (const Decal& d : scatteredDecals(10000, 23)) {
+        decals.push_back(d);
+        decals.push_back(test::WallScene::decalAt(0, {0.0f, 0.0f, 4.03f})); // 0.02 in front of the eye
+        decals.back().size = glm::vec2(0.004f);
+        decals.back().halfDepth = 0.004f;
+    }
     const Camera camera = test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0});
     Variant variant;
     variant.occlusion = false;
