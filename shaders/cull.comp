@@ -87,9 +87,7 @@ void main() {
     else if (c != kCulled) atomicAdd(sCounts[c - kInvalid], 1u);
     barrier();
     if (t == 0u) {
-        if (sCandidates != 0u) {
-            sFirst = atomicAdd(candidateCount, sCandidates);
-        }
+        if (sCandidates != 0u) sFirst = atomicAdd(candidateCount, sCandidates);
         if (sCounts[0] != 0u) atomicAdd(invalidCount, sCounts[0]);
         if (sCounts[1] != 0u) atomicAdd(hostDrawnCount, sCounts[1]);
         groupData[group] = 0u;

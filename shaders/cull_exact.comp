@@ -112,7 +112,6 @@ void main() {
         sOccluded = 0u;
     }
     barrier();
-    // Dispatched directly at a size the CPU knows, the invocations stride over the candidates.
     uint stride = gl_NumWorkGroups.x * kCandidateGroup, count = candidateCount;
     for (uint i = gl_GlobalInvocationID.x; i < count; i += stride) {
         uint place = candidates[i], entry = drawOrder[place];

@@ -58,8 +58,9 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
 #ifdef FORWARD_CULLED
     if (i == 0u) { // decals past the buffers are left out
-        if (visibleCount > u_count) spatterTileInfo.z = 1;
-        tileReadback[0] = visibleCount > u_count ? 1u : 0u;
+        bool leftOut = visibleCount > u_count;
+        if (leftOut) spatterTileInfo.z = 1;
+        tileReadback[0] = leftOut ? 1u : 0u;
     }
     if (i >= min(visibleCount, u_count)) return;
 #else

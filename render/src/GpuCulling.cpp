@@ -30,6 +30,7 @@ constexpr std::array<uint32_t, 9> kCountersAtStart = {36, 0, 0, 0, 0, 0, 0, 0, 0
 // the groups it finds with a visible one one after the other, two on average where every visible
 // decal has a group of its own; decals in view side by side share groups).
 constexpr uint32_t kExactGroupsMost = 2048, kExactGroupsMargin = 64, kScatterGroupsMargin = 16;
+constexpr uint64_t kExactGroupSize = 64; // cull_exact.comp's local size
 
 } // namespace
 
@@ -142,11 +143,13 @@ void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& 
 }
 
 uint32_t GpuCulling::exactGroups() const {
-    const uint64_t places = std::max<uint64_t>(1, (uint64_t(entries_) + 63) / 64);
+    const uint64_t places =
+        std::max<uint64_t>(1, (uint64_t(entries_) + kExactGroupSize - 1) / kExactGroupSize);
     if (!counts_.hasRead()) return uint32_t(std::min<uint64_t>(kExactGroupsMost, places));
     const uint64_t inFrustum = uint64_t(counts_.values()[0]) + counts_.values()[1];
     return uint32_t(
-        std::min<uint64_t>({kExactGroupsMost, places, (2 * inFrustum + 63) / 64 + kExactGroupsMargin}));
+        std::min<uint64_t>({kExactGroupsMost, places,
+                            (2 * inFrustum + kExactGroupSize - 1) / kExactGroupSize + kExactGroupsMargin}));
 }
 
 // At least one: the first work group writes the counts read back.

@@ -55,7 +55,7 @@ public:
     // Culls the decals of the draw order (`what.decals` of them) against the frame block's camera, and
     // against `occlusion`'s pyramid when it has one. The visible list goes into `visible` (grown to hold that
     // many indices; `visibleCapacity` in bytes). Binds its own buffers over shader storage bindings 0-2 and
-    // 5-7 (the projector's objects at 1 among them) and the dispatch-indirect buffer.
+    // 5-7 (the projector's objects at 1 among them, then the read-back buffer for the last pass).
     void run(const CullRun& what, const Occlusion& occlusion, GlBuffer& visible, size_t& visibleCapacity);
     // Marks the last run's counts, which its last pass writes into the read-back buffer, as ready to
     // read (visibleCount and the others read them), once a run: at the end of the pass, where the
