@@ -4,8 +4,8 @@
 //   - it lies inside the box,
 //   - the pixel's object decal ID equals the decal's (IDS; left out when the scene has no dynamic
 //     objects or ID clipping is switched off),
-//   - the pixel's normal is within the decal's largest angle of the decal axis (NO_ANGLE: the
-//     angle rejection is switched off),
+//   - the pixel's normal is within the decal's largest angle of both its normal and the axis its box
+//     is projected along (depth_axis.glsl; NO_ANGLE: the angle rejection is switched off),
 //   - (WRAP) the footprint, with texture coordinates pushed outward by the surface slope
 //     (Listing 20.4), lies inside the decal's rectangle.
 // COVERAGE writes 1 for every such pixel (location 0, the host's coverage texture); otherwise the decal's albedo is blended by its alpha
@@ -30,6 +30,7 @@ flat in vec4 v_worldToBox[3];
 flat in vec4 v_tangent;
 flat in vec4 v_bitangent;
 flat in vec4 v_normal;
+flat in vec3 v_axis;
 flat in vec4 v_tint;
 flat in uvec4 v_info;
 flat in vec2 v_params;
@@ -94,6 +95,7 @@ void main() {
 #endif
 #ifndef NO_ANGLE
     keep = keep && dot(n, v_normal.xyz) >= v_params.x;
+    if ((flags & SPATTER_DECAL_SLANTED) != 0u) keep = keep && dot(n, v_axis) >= v_params.x;
 #endif
     if (!keep) discard;
 

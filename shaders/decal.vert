@@ -3,11 +3,13 @@
 // world space by its object's transform, and the inverse, world -> unit box, goes to the fragment
 // shader together with the decal frame in world space.
 #include "projector.glsl"
+#include "depth_axis.glsl"
 
 flat out vec4 v_worldToBox[3]; // rows: camera-relative world -> unit box [-1, 1]^3
 flat out vec4 v_tangent;       // xyz: world unit tangent; w: half width (world units)
 flat out vec4 v_bitangent;     // w: half height
-flat out vec4 v_normal;        // xyz: world unit decal axis; w: half depth
+flat out vec4 v_normal;        // xyz: world unit decal normal; w: half depth
+flat out vec3 v_axis;          // world unit axis the box is projected along (depth_axis.glsl)
 flat out vec4 v_tint;
 flat out uvec4 v_info;         // x: object decal ID, y: texture layer, z: SPATTER_DECAL_* flags
 flat out vec2 v_params;        // x: cosine of the largest accepted angle, y: roughness
@@ -32,6 +34,7 @@ void main() {
     v_tangent = w.tangent;
     v_bitangent = w.bitangent;
     v_normal = w.normal;
+    v_axis = spatterDepthAxis(w.worldToBox[0].xyz, w.worldToBox[1].xyz, w.normal.xyz);
     v_tint = d.tint;
     v_info = uvec4(o.info.x, d.info.y, d.info.z, 0u);
     v_params = d.params.xy;

@@ -138,7 +138,8 @@ DecalData unpackDecal(DecalRecord r) {
     d.bitangent = vec4(frame[1], h.y);
     d.normal = vec4(frame[2], h.z);
     d.tint = vec4(t.tint.rgb, t.tint.a * float(r.info.y >> 24) / 255.0);
-    d.info = uvec3(r.info.x, t.info.x, t.info.y | (mirrored ? SPATTER_DECAL_MIRRORED : 0u));
+    d.info = uvec3(r.info.x, t.info.x,
+                   t.info.y | (mirrored ? SPATTER_DECAL_MIRRORED : 0u) | (r.info.z != 0u ? SPATTER_DECAL_SLANTED : 0u));
     d.params = t.params;
     return d;
 }

@@ -24,7 +24,7 @@ struct SpatterForwardDecal {
     vec4 worldToBox[3]; // rows: camera-relative world -> unit box [-1, 1]^3
     vec4 tangent;       // xyz: world unit tangent; w: half width
     vec4 bitangent;     // w: half height
-    vec4 normal;        // xyz: world unit decal axis; w: half depth
+    vec4 normal;        // xyz: world unit decal normal; w: half depth
     vec4 tint;          // rgb tint; a: tint alpha * opacity
     uvec4 info;         // x: object decal ID, y: texture layer, z: SPATTER_DECAL_* flags
     vec4 params;        // x: cosine of the largest accepted angle, y: roughness written

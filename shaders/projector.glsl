@@ -90,7 +90,7 @@ vec4 encodeHostNormal(vec3 n) {
 }
 
 // A decal in camera-relative world space, as its box is drawn (decal.vert) or binned (forward):
-// rows of world -> unit box, and the unit tangent, bitangent and axis with the half width, height and
+// rows of world -> unit box, and the unit tangent, bitangent and normal with the half width, height and
 // depth in w.
 struct WorldDecal {
     vec4 worldToBox[3];

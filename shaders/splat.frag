@@ -1,10 +1,12 @@
 // Texture-space decals: projects the decal box through the texel's object-space position and
 // discards texels outside it (the same inclusion rule as the decal pass: inside the box, normal
-// within the type's angle of the decal axis, wrapped footprint inside the rectangle). Writes the
-// decal's albedo (premultiplied by blending, coverage in alpha) and its normal expressed in the
-// surface's tangent frame, so that the geometry pass can apply it on the deformed surface.
+// within the type's angle of the decal's normal and of its projection axis, wrapped footprint
+// inside the rectangle). Writes the decal's albedo (premultiplied by blending, coverage in alpha)
+// and its normal expressed in the surface's tangent frame, so that the geometry pass can apply it
+// on the deformed surface.
 // MASK writes 1 for every texel a triangle covers (the UV coverage mask).
 #include "common.glsl"
+#include "depth_axis.glsl"
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -46,6 +48,8 @@ void main() {
 
     bool keep = all(lessThanEqual(abs(box), vec3(1.0))) && all(lessThanEqual(abs(uv), vec2(1.0))) &&
                 dot(n, d.normal.xyz) >= d.params.x;
+    if ((flags & SPATTER_DECAL_SLANTED) != 0u)
+        keep = keep && dot(n, spatterDepthAxis(d.objectToBox[0].xyz, d.objectToBox[1].xyz, d.normal.xyz)) >= d.params.x;
     if (!keep) discard;
 
     float fade = 1.0;

@@ -18,7 +18,8 @@ enum Binding : uint32_t {
     kDecalBoundsBuffer = 9,
 };
 
-// Decal flags (DecalTypeGpu::info.y; kDecalMirrored from DecalRecordGpu::frame), as SPATTER_DECAL_* in
+// Decal flags (DecalTypeGpu::info.y; kDecalMirrored from DecalRecordGpu::frame, kDecalSlanted from its
+// slant), as SPATTER_DECAL_* in
 // shaders/decal_flags.glsl.
 enum DecalFlag : uint32_t {
     kDecalWrap = 1u,
@@ -27,6 +28,7 @@ enum DecalFlag : uint32_t {
     kDecalFadeSmooth = 8u,
     kDecalRoughness = 16u,
     kDecalMirrored = 32u,
+    kDecalSlanted = 64u,
 };
 
 // std140 uniform block, binding kFrameBlock.

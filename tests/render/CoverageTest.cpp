@@ -186,6 +186,17 @@ TEST(Coverage, MatchesCpuReferenceWithTheCameraInsideDecalBoxes) {
     expectCoverageMatches("inside", scene, placed, inside, 0.97);
 }
 
+// A decal shot at a face beside a ridge, the other face within the type's angle of the decal's
+// normal but turned away from the shot: the GPU's paths leave it as the reference does.
+TEST(Coverage, MatchesCpuReferenceBesideAFaceTheShotCannotReach) {
+    SPATTER_REQUIRE_GL(gl);
+    const test::RidgeShot ridge = test::ridgeShot(50.0, 60.0);
+    ASSERT_EQ(ridge.inputs.decals.size(), 1u);
+    const test::Placed placed{ridge.inputs, 1};
+    expectCoverageMatches("ridge", ridge.scene, placed, test::lookAt({-0.2, -0.1, 0.45}, {0.0, 0.0, -0.03}),
+                          0.97);
+}
+
 TEST(Coverage, DecalsPlacedThroughACoarseProxyCoverTheDrawnSurface) {
     SPATTER_REQUIRE_GL(gl);
     GallerySettings gs;

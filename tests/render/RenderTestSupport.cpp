@@ -81,7 +81,7 @@ std::vector<uint8_t> referenceCoverage(const Scene& scene, const CoverageInputs&
 
     struct DecalRef {
         glm::dmat4 worldToBox;
-        glm::dvec3 tangent, bitangent, axis, halfSize;
+        glm::dvec3 tangent, bitangent, normal, axis, halfSize;
         double cosMax;
         bool wrap;
         uint8_t id;
@@ -99,7 +99,13 @@ std::vector<uint8_t> referenceCoverage(const Scene& scene, const CoverageInputs&
         const glm::dvec3 t = lin * glm::dvec3(d.frame().tangent), b = lin * glm::dvec3(d.frame().bitangent);
         r.tangent = glm::normalize(t);
         r.bitangent = glm::normalize(b);
-        r.axis = glm::normalize(normalMatrix * glm::dvec3(d.frame().normal));
+        r.normal = glm::normalize(normalMatrix * glm::dvec3(d.frame().normal));
+        // The axis the box is projected along (shaders/depth_axis.glsl): where the box's first two
+        // coordinates stay the same, on the normal's side.
+        const glm::dvec3 rowT(r.worldToBox[0][0], r.worldToBox[1][0], r.worldToBox[2][0]);
+        const glm::dvec3 rowB(r.worldToBox[0][1], r.worldToBox[1][1], r.worldToBox[2][1]);
+        r.axis = glm::normalize(glm::cross(rowT, rowB));
+        if (glm::dot(r.axis, r.normal) < 0.0) r.axis = -r.axis;
         r.halfSize = glm::dvec3(glm::length(t) * 0.5 * d.size.x, glm::length(b) * 0.5 * d.size.y,
                                 glm::length(lin * glm::dvec3(d.frame().normal)) * d.halfDepth);
         double angle = type.maxAngleDeg;
@@ -151,7 +157,7 @@ std::vector<uint8_t> referenceCoverage(const Scene& scene, const CoverageInputs&
                 if (useIds && r.id != pixelId) continue;
                 const glm::dvec3 box = glm::dvec3(r.worldToBox * glm::dvec4(hit->position, 1.0));
                 if (std::fabs(box.x) > 1.0 || std::fabs(box.y) > 1.0 || std::fabs(box.z) > 1.0) continue;
-                if (glm::dot(n, r.axis) < r.cosMax) continue;
+                if (std::min(glm::dot(n, r.normal), glm::dot(n, r.axis)) < r.cosMax) continue;
                 if (r.wrap) {
                     const glm::dvec3 q = box * r.halfSize;
                     const double sx = glm::dot(n, r.tangent), sy = glm::dot(n, r.bitangent);

@@ -55,9 +55,9 @@ struct CoverageInputs {
 // (Embree, through CollisionWorld built on the render meshes), and the inclusion rule of the
 // decal pass applied in double precision to the hit point and its interpolated shading normal:
 // inside the box, same object ID (scenes with dynamic objects), normal within the type's angle of
-// the decal axis (wrap-around types: within max(maxAngleDeg, wrapMaxAngleDeg)), and for
-// wrap-around types the wrapped footprint inside the decal rectangle. Returns a mask of
-// width x height, row 0 at the top.
+// both the decal normal and the axis the box is projected along (wrap-around types: within
+// max(maxAngleDeg, wrapMaxAngleDeg)), and for wrap-around types the wrapped footprint inside the
+// decal rectangle. Returns a mask of width x height, row 0 at the top.
 std::vector<uint8_t> referenceCoverage(const Scene& scene, const CoverageInputs& in, const Camera& camera,
                                        int width, int height);
 

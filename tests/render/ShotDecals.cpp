@@ -4,6 +4,8 @@
 #include "spatter/core/Random.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
+#include <cmath>
+
 namespace spatter::test {
 
 Placed shootFromCamera(const Scene& scene, const Camera& cam, const std::vector<DecalType>& types, int shots,
@@ -62,6 +64,59 @@ GalleryShots galleryShots() {
         makeType("scorch", {1.2f, 1.2f}, DecalTexture::Scorch, false, 0.8f)};
     g.placed = shootFromCamera(g.scene, g.camera, types, 60, 7);
     return g;
+}
+
+namespace {
+
+Scene ridgeScene(double fallDegrees) {
+    const float a = float(fallDegrees * kPi / 180.0), drop = 0.5f * std::tan(a);
+    const glm::vec3 flat(0.0f, 0.0f, 1.0f), falling(-std::sin(a), 0.0f, std::cos(a));
+    Mesh m;
+    m.positions = {{0.0f, -0.3f, 0.0f},   {0.5f, -0.3f, 0.0f}, {0.5f, 0.3f, 0.0f}, {0.0f, 0.3f, 0.0f},
+                   {-0.5f, -0.3f, -drop}, {0.0f, -0.3f, 0.0f}, {0.0f, 0.3f, 0.0f}, {-0.5f, 0.3f, -drop}};
+    m.normals = {flat, flat, flat, flat, falling, falling, falling, falling};
+    m.indices = {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7};
+    Scene s;
+    s.source = "test:ridge";
+    s.objects.push_back(makeSceneObject("ridge", m));
+    return s;
+}
+
+} // namespace
+
+DecalType paintType() {
+    DecalType t;
+    t.name = "paint";
+    t.texture = int(DecalTexture::Paint);
+    t.size = glm::vec2(0.3f);
+    t.randomRotation = false;
+    return t;
+}
+
+CoverageInputs shotFromTheRight(const Scene& scene, const DecalType& t, const glm::dvec3& aim,
+                                double degrees) {
+    CoverageInputs in;
+    Result<DecalSystem> s = DecalSystem::create(scene);
+    EXPECT_TRUE(s.ok()) << s.error();
+    if (!s) return in;
+    const uint16_t type = s->registerType(t).value();
+    const double a = degrees * kPi / 180.0;
+    const glm::dvec3 back(std::sin(a), 0.0, std::cos(a));
+    Ray ray;
+    ray.origin = aim + 2.0 * back;
+    ray.direction = -back;
+    const SpawnResult placed = s->spawn(ray, type);
+    EXPECT_TRUE(placed.placed()) << placed.reason;
+    in.decals = s->decals();
+    in.types = {t};
+    in.objectIds = s->objectIds();
+    return in;
+}
+
+RidgeShot ridgeShot(double fallDegrees, double shotDegrees) {
+    Scene scene = ridgeScene(fallDegrees);
+    CoverageInputs in = shotFromTheRight(scene, paintType(), glm::dvec3(0.04, 0.0, 0.0), shotDegrees);
+    return RidgeShot{std::move(scene), std::move(in)};
 }
 
 } // namespace spatter::test

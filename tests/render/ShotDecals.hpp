@@ -35,4 +35,22 @@ struct GalleryShots {
 };
 GalleryShots galleryShots();
 
+// A paint decal type 0.3 wide, not turned, projected along its shot.
+DecalType paintType();
+
+// One decal of type `t` shot at `aim` from the right (+X), `degrees` off +Z, with `t` as the inputs'
+// type 0 (the shot is expected to place).
+CoverageInputs shotFromTheRight(const Scene& scene, const DecalType& t, const glm::dvec3& aim,
+                                double degrees);
+
+// A roof ridge along Y: a flat face (z = 0, normal +Z) for x in [0, 0.5] and, left of the ridge, a
+// face falling away at `fallDegrees` (normal (-sin, 0, cos)) for x in [-0.5, 0], 0.6 deep along Y; and
+// one paintType() decal shot at the flat face 0.04 right of the ridge from the right, `shotDegrees`
+// off its normal.
+struct RidgeShot {
+    Scene scene;
+    CoverageInputs inputs;
+};
+RidgeShot ridgeShot(double fallDegrees, double shotDegrees);
+
 } // namespace spatter::test

@@ -1,17 +1,18 @@
 // Decals projected along the shot, drawn: no bleeding through a thin slab onto its back face or the
-// wall behind it, whatever the angle of the shot, and the GPU's slanted boxes cover what the CPU
-// reference's do.
+// wall behind it, whatever the angle of the shot, no paint on a face the shot could not reach, and
+// the GPU's slanted boxes cover what the CPU reference's do.
 
 #include "RenderTestSupport.hpp"
+#include "ShotDecals.hpp"
 
 #include "TestData.hpp"
 
 #include "spatter/core/MeshBuilder.hpp"
-#include "spatter/placement/DecalSystem.hpp"
+#include "spatter/placement/CollisionWorld.hpp"
 
 #include <gtest/gtest.h>
 
-#include <cmath>
+#include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 
 using namespace spatter;
@@ -32,48 +33,71 @@ Scene slabScene() {
 
 // One decal shot at the slab's front face `degrees` from its normal, from the right (+X).
 test::CoverageInputs shotAtSlab(const Scene& scene, double degrees) {
-    DecalType t;
-    t.name = "paint";
-    t.texture = int(DecalTexture::Paint);
-    t.size = glm::vec2(0.3f);
+    DecalType t = test::paintType();
     t.maxAngleDeg = 85.0f;
-    t.randomRotation = false;
-    Result<DecalSystem> s = DecalSystem::create(scene);
-    EXPECT_TRUE(s.ok()) << s.error();
-    const uint16_t type = s->registerType(t).value();
-    const double a = degrees * kPi / 180.0;
-    const glm::dvec3 back(std::sin(a), 0.0, std::cos(a));
-    Ray ray;
-    ray.origin = glm::dvec3(0.0, 0.1, 0.01) + 2.0 * back;
-    ray.direction = -back;
-    const SpawnResult r = s->spawn(ray, type);
-    EXPECT_TRUE(r.placed()) << r.reason;
-    test::CoverageInputs in;
-    in.decals = s->decals();
-    in.types = {t};
-    return in;
+    return test::shotFromTheRight(scene, t, glm::dvec3(0.0, 0.1, 0.01), degrees);
 }
 
-// Covered pixels of `cam` whose surface is not the slab's face facing `side` (+1 front, -1 back).
-size_t coveredOffTheSlab(const Scene& scene, const std::vector<uint8_t>& coverage, const Camera& cam,
-                         double side) {
+// Covered pixels of `cam` whose surface (the hit of the pixel's ray, if any) `counts`.
+size_t coveredWhere(const Scene& scene, const std::vector<uint8_t>& coverage, const Camera& cam,
+                    const std::function<bool(const std::optional<Hit>&)>& counts) {
     Result<CollisionWorld> world = CollisionWorld::build(scene);
     EXPECT_TRUE(world.ok()) << world.error();
-    size_t off = 0;
+    size_t n = 0;
     for (int j = 0; j < kH; ++j)
         for (int i = 0; i < kW; ++i) {
             if (!coverage[size_t(j) * kW + size_t(i)]) continue;
             Ray ray;
             ray.origin = cam.eye;
             ray.direction = pixelDirection(cam, kW, kH, i, j);
-            const std::optional<Hit> hit = world->intersect(ray);
-            const bool face = hit && hit->object == 0 && hit->normal.z * side > 0.99;
-            if (!face) ++off;
+            if (counts(world->intersect(ray))) ++n;
         }
-    return off;
+    return n;
+}
+
+// Covered pixels of `cam` whose surface is not the slab's face facing `side` (+1 front, -1 back).
+size_t coveredOffTheSlab(const Scene& scene, const std::vector<uint8_t>& coverage, const Camera& cam,
+                         double side) {
+    return coveredWhere(scene, coverage, cam, [side](const std::optional<Hit>& hit) {
+        return !(hit && hit->object == 0 && hit->normal.z * side > 0.99);
+    });
+}
+
+// Covered pixels of `cam` whose surface is the ridge's falling face (normal x below -0.1).
+size_t coveredOnTheFallingFace(const Scene& scene, const std::vector<uint8_t>& coverage, const Camera& cam) {
+    return coveredWhere(scene, coverage, cam,
+                        [](const std::optional<Hit>& hit) { return hit && hit->normal.x < -0.1; });
 }
 
 } // namespace
+
+TEST(ShotProjection, AFaceTurnedAwayFromTheShotTakesNoPaintThoughItFacesTheDecalNormal) {
+    SPATTER_REQUIRE_GL(gl);
+    // The falling face is 50 degrees from the flat face's normal, within the type's 80, but 110 from
+    // the reversed shot, which comes from the right 60 degrees off the normal: the shot cannot reach it.
+    const test::RidgeShot ridge = test::ridgeShot(50.0, 60.0);
+    ASSERT_EQ(ridge.inputs.decals.size(), 1u);
+    const Scene& scene = ridge.scene;
+    const test::CoverageInputs& in = ridge.inputs;
+
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    ASSERT_TRUE(r->setScene(scene).ok());
+    r->setDecals(in.decals);
+    const Camera cam = test::lookAt({-0.5, -0.2, 0.9}, {0.0, 0.0, -0.05});
+    r->setDecalTypes(in.types);
+    const std::vector<uint8_t> seen = test::whiteMask(test::renderView(r.value(), cam, View::Coverage));
+    EXPECT_GT(test::countSet(seen), 100u);
+    EXPECT_EQ(coveredOnTheFallingFace(scene, seen, cam), 0u);
+    EXPECT_GE(test::iou(seen, test::referenceCoverage(scene, in, cam, kW, kH)), 0.97);
+
+    // Without the angle test the box does reach the falling face: the test can see it.
+    test::CoverageInputs anyAngle = in;
+    anyAngle.types[0].maxAngleDeg = 180.0f;
+    r->setDecalTypes(anyAngle.types);
+    const std::vector<uint8_t> all = test::whiteMask(test::renderView(r.value(), cam, View::Coverage));
+    EXPECT_GT(coveredOnTheFallingFace(scene, all, cam), 20u);
+}
 
 TEST(ShotProjection, GrazingShotsMarkNeitherTheBackOfAThinSlabNorTheWallBehind) {
     SPATTER_REQUIRE_GL(gl);

@@ -24,7 +24,8 @@ struct DecalType {
     bool randomRotation = true; // rotate the tangent about the normal by a seeded random angle
     float maxAngleDeg = 80.0f;  // largest angle between the reversed ray and the surface normal;
                                 // the renderer also rejects pixels whose normal is farther than
-                                // this from the decal axis
+                                // this from the decal's normal or from the axis it is projected
+                                // along (the reversed shot, for a decal along its shot)
     float lifetime = 0.0f;      // seconds; 0 = permanent
     float fadeOutTime = 1.0f;   // seconds of fading before a decal is removed (lifetime, eviction)
     float halfDepth = 0.0f;     // override of the automatic half-depth; 0 = automatic
