@@ -172,6 +172,23 @@ std::vector<uint8_t> referenceCoverage(const Scene& scene, const CoverageInputs&
     return mask;
 }
 
+size_t coveredWhere(const Scene& scene, const std::vector<uint8_t>& coverage, const Camera& cam,
+                    const std::function<bool(const std::optional<Hit>&)>& counts) {
+    Result<CollisionWorld> world = CollisionWorld::build(scene);
+    EXPECT_TRUE(world.ok()) << world.error();
+    if (!world) return 0;
+    size_t n = 0;
+    for (int j = 0; j < kH; ++j)
+        for (int i = 0; i < kW; ++i) {
+            if (!coverage[size_t(j) * kW + size_t(i)]) continue;
+            Ray ray;
+            ray.origin = cam.eye;
+            ray.direction = pixelDirection(cam, kW, kH, i, j);
+            if (counts(world->intersect(ray))) ++n;
+        }
+    return n;
+}
+
 void dumpImage(const std::string& name, const Image& image) {
     if (!std::getenv("SPATTER_TEST_IMAGES")) return;
     static const std::string dir = scratchDir("render-images");

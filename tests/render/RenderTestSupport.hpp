@@ -1,6 +1,6 @@
 #pragma once
 // Shared pieces of the render tests: one headless GL context per test process, a renderer factory,
-// rendering one frame to an image, and the CPU reference for decal coverage.
+// rendering one frame to an image, the CPU reference for decal coverage and what a mask covers.
 
 #include "HeadlessGl.hpp"
 
@@ -8,6 +8,7 @@
 #include "spatter/core/DecalType.hpp"
 #include "spatter/core/Image.hpp"
 #include "spatter/core/Scene.hpp"
+#include "spatter/placement/CollisionWorld.hpp"
 #include "spatter/render/Camera.hpp"
 #include "spatter/render/GlContext.hpp"
 #include "spatter/render/Renderer.hpp"
@@ -15,6 +16,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +63,11 @@ struct CoverageInputs {
 // decal rectangle. Returns a mask of width x height, row 0 at the top.
 std::vector<uint8_t> referenceCoverage(const Scene& scene, const CoverageInputs& in, const Camera& camera,
                                        int width, int height);
+
+// The set pixels of a kW x kH `coverage` mask of `cam` whose surface (the hit of the pixel's ray
+// against the scene's meshes, if any) `counts`.
+size_t coveredWhere(const Scene& scene, const std::vector<uint8_t>& coverage, const Camera& cam,
+                    const std::function<bool(const std::optional<Hit>&)>& counts);
 
 // Writes the image under the test scratch directory when SPATTER_TEST_IMAGES is set (debugging).
 void dumpImage(const std::string& name, const Image& image);

@@ -66,23 +66,19 @@ GalleryShots galleryShots() {
     return g;
 }
 
-namespace {
-
-Scene ridgeScene(double fallDegrees) {
+Mesh ridgeMesh(double fallDegrees) {
     const float a = float(fallDegrees * kPi / 180.0), drop = 0.5f * std::tan(a);
     const glm::vec3 flat(0.0f, 0.0f, 1.0f), falling(-std::sin(a), 0.0f, std::cos(a));
     Mesh m;
     m.positions = {{0.0f, -0.3f, 0.0f},   {0.5f, -0.3f, 0.0f}, {0.5f, 0.3f, 0.0f}, {0.0f, 0.3f, 0.0f},
                    {-0.5f, -0.3f, -drop}, {0.0f, -0.3f, 0.0f}, {0.0f, 0.3f, 0.0f}, {-0.5f, 0.3f, -drop}};
     m.normals = {flat, flat, flat, flat, falling, falling, falling, falling};
+    m.uvs = {{0.52f, 0.2f}, {0.98f, 0.2f}, {0.98f, 0.8f}, {0.52f, 0.8f},
+             {0.02f, 0.2f}, {0.48f, 0.2f}, {0.48f, 0.8f}, {0.02f, 0.8f}};
     m.indices = {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7};
-    Scene s;
-    s.source = "test:ridge";
-    s.objects.push_back(makeSceneObject("ridge", m));
-    return s;
+    computeTangents(m);
+    return m;
 }
-
-} // namespace
 
 DecalType paintType() {
     DecalType t;
@@ -114,7 +110,9 @@ CoverageInputs shotFromTheRight(const Scene& scene, const DecalType& t, const gl
 }
 
 RidgeShot ridgeShot(double fallDegrees, double shotDegrees) {
-    Scene scene = ridgeScene(fallDegrees);
+    Scene scene;
+    scene.source = "test:ridge";
+    scene.objects.push_back(makeSceneObject("ridge", ridgeMesh(fallDegrees)));
     CoverageInputs in = shotFromTheRight(scene, paintType(), glm::dvec3(0.04, 0.0, 0.0), shotDegrees);
     return RidgeShot{std::move(scene), std::move(in)};
 }

@@ -44,9 +44,12 @@ CoverageInputs shotFromTheRight(const Scene& scene, const DecalType& t, const gl
                                 double degrees);
 
 // A roof ridge along Y: a flat face (z = 0, normal +Z) for x in [0, 0.5] and, left of the ridge, a
-// face falling away at `fallDegrees` (normal (-sin, 0, cos)) for x in [-0.5, 0], 0.6 deep along Y; and
-// one paintType() decal shot at the flat face 0.04 right of the ridge from the right, `shotDegrees`
-// off its normal.
+// face falling away at `fallDegrees` (normal (-sin, 0, cos)) for x in [-0.5, 0], 0.6 deep along Y;
+// each face a UV island of its own (u in [0.52, 0.98] and [0.02, 0.48]), with tangents.
+Mesh ridgeMesh(double fallDegrees);
+
+// The ridge as a scene, and one paintType() decal shot at its flat face 0.04 right of the ridge from
+// the right, `shotDegrees` off its normal.
 struct RidgeShot {
     Scene scene;
     CoverageInputs inputs;

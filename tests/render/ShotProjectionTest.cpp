@@ -8,11 +8,9 @@
 #include "TestData.hpp"
 
 #include "spatter/core/MeshBuilder.hpp"
-#include "spatter/placement/CollisionWorld.hpp"
 
 #include <gtest/gtest.h>
 
-#include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 
 using namespace spatter;
@@ -36,23 +34,6 @@ test::CoverageInputs shotAtSlab(const Scene& scene, double degrees) {
     DecalType t = test::paintType();
     t.maxAngleDeg = 85.0f;
     return test::shotFromTheRight(scene, t, glm::dvec3(0.0, 0.1, 0.01), degrees);
-}
-
-// Covered pixels of `cam` whose surface (the hit of the pixel's ray, if any) `counts`.
-size_t coveredWhere(const Scene& scene, const std::vector<uint8_t>& coverage, const Camera& cam,
-                    const std::function<bool(const std::optional<Hit>&)>& counts) {
-    Result<CollisionWorld> world = CollisionWorld::build(scene);
-    EXPECT_TRUE(world.ok()) << world.error();
-    size_t n = 0;
-    for (int j = 0; j < kH; ++j)
-        for (int i = 0; i < kW; ++i) {
-            if (!coverage[size_t(j) * kW + size_t(i)]) continue;
-            Ray ray;
-            ray.origin = cam.eye;
-            ray.direction = pixelDirection(cam, kW, kH, i, j);
-            if (counts(world->intersect(ray))) ++n;
-        }
-    return n;
 }
 
 // Covered pixels of `cam` whose surface is not the slab's face facing `side` (+1 front, -1 back).

@@ -1,8 +1,9 @@
 // Texture-space decals and vertex animation: routing by object mode, splatting once, the seam
-// dilation, agreement with the projected decal on a flat surface, and decals that follow a
-// deforming surface while projected ones slide.
+// dilation, agreement with the projected decal on a flat surface and beside a face the shot cannot
+// reach, and decals that follow a deforming surface while projected ones slide.
 
 #include "RenderTestSupport.hpp"
+#include "ShotDecals.hpp"
 
 #include "TestData.hpp"
 
@@ -185,6 +186,35 @@ TEST(TextureSpaceDecals, SplatsOnceAndMatchesTheProjectedDecal) {
 
     ASSERT_TRUE(r->clearObjectDecals(0));
     EXPECT_EQ(test::countSet(brightMask(albedo(r.value()))), 0u);
+}
+
+// A decal shot 60 degrees off the normal of one face of a ridge: the other face, 50 degrees from the
+// decal's normal but 110 from the reversed shot, takes no paint, splatted or projected.
+TEST(TextureSpaceDecals, ASplatLeavesAFaceTheShotCannotReachAsTheProjectedDecalDoes) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r) << r.error();
+    const Scene scene = sceneWith(test::ridgeMesh(50.0));
+    ASSERT_TRUE(r->setScene(scene));
+    DecalType t = whiteType(r.value());
+    t.size = glm::vec2(0.3f);
+    t.randomRotation = false;
+    r->setDecalTypes({t});
+    const test::CoverageInputs in = test::shotFromTheRight(scene, t, glm::dvec3(0.04, 0.0, 0.0), 60.0);
+    ASSERT_EQ(in.decals.size(), 1u);
+    ASSERT_NE(in.decals[0].slant, 0u);
+    const Camera cam = test::lookAt({-0.5, -0.2, 0.9}, {0.0, 0.0, -0.05});
+    auto onFallingFace = [](const std::optional<Hit>& hit) { return hit && hit->normal.x < -0.1; };
+
+    r->setDecals(in.decals);
+    const std::vector<uint8_t> projected = brightMask(test::renderView(r.value(), cam, View::Albedo));
+    ASSERT_TRUE(r->setObjectDecalMode(0, DecalMode::TextureSpace, 256));
+    r->setDecals(in.decals);
+    const std::vector<uint8_t> splatted = brightMask(test::renderView(r.value(), cam, View::Albedo));
+    EXPECT_GT(test::countSet(splatted), 100u);
+    EXPECT_EQ(test::coveredWhere(scene, projected, cam, onFallingFace), 0u);
+    EXPECT_EQ(test::coveredWhere(scene, splatted, cam, onFallingFace), 0u);
+    EXPECT_GT(test::iou(projected, splatted), 0.9);
 }
 
 TEST(TextureSpaceDecals, DecalAcrossUvSeamShowsNoGap) {
