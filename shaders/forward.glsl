@@ -7,7 +7,6 @@
 // SPATTER_DECAL_NORMAL_UNIT before this text to move them (and the buffers: forward_data.glsl).
 #include "decal_flags.glsl"
 #include "forward_data.glsl"
-#include "depth_axis.glsl"
 
 #ifndef SPATTER_DECAL_ALBEDO_UNIT
 #define SPATTER_DECAL_ALBEDO_UNIT 14
@@ -72,8 +71,7 @@ bool spatterDecalLook(SpatterForwardDecal d, vec3 box, vec3 dpdx, vec3 dpdy, uin
         uv = (q.xy - q.z * vec2(dot(n, d.tangent.xyz), dot(n, d.bitangent.xyz))) / halfSize.xy;
     }
     bool keep = all(lessThanEqual(abs(uv), vec2(1.0))) && objectId == d.info.x && dot(n, d.normal.xyz) >= d.params.x;
-    if ((flags & SPATTER_DECAL_SLANTED) != 0u)
-        keep = keep && dot(n, spatterDepthAxis(d.worldToBox[0].xyz, d.worldToBox[1].xyz, d.normal.xyz)) >= d.params.x;
+    if ((flags & SPATTER_DECAL_SLANTED) != 0u) keep = keep && dot(n, d.axis.xyz) >= d.params.x;
     if (!keep) return false;
 
     float f = clamp((1.0 - abs(box.z)) / max(1.0 - spatterForwardParams.x, 1e-4), 0.0, 1.0);

@@ -28,6 +28,7 @@ struct SpatterForwardDecal {
     vec4 tint;          // rgb tint; a: tint alpha * opacity
     uvec4 info;         // x: object decal ID, y: texture layer, z: SPATTER_DECAL_* flags
     vec4 params;        // x: cosine of the largest accepted angle, y: roughness written
+    vec4 axis;          // xyz: world unit axis the box is projected along (depth_axis.glsl)
 };
 
 // One per visible decal, in drawing order.

@@ -7,6 +7,7 @@
 #define SPATTER_FORWARD_WRITE 1
 #include "projector.glsl"
 #include "forward_data.glsl"
+#include "depth_axis.glsl"
 
 layout(local_size_x = 64) in;
 layout(location = 0) uniform uint u_count; // visible decals (FORWARD_CULLED: the most the buffers hold)
@@ -77,6 +78,7 @@ void main() {
     f.tint = d.tint;
     f.info = uvec4(o.info.x, d.info.y, d.info.z, 0u);
     f.params = d.params;
+    f.axis = vec4(spatterDepthAxis(w.worldToBox[0].xyz, w.worldToBox[1].xyz, w.normal.xyz), 0.0);
     spatterForwardDecals[i] = f;
 #ifdef FORWARD_CULLED
     uvec4 r = tileRect(d, o);

@@ -19,8 +19,7 @@ enum Binding : uint32_t {
 };
 
 // Decal flags (DecalTypeGpu::info.y; kDecalMirrored from DecalRecordGpu::frame, kDecalSlanted from its
-// slant), as SPATTER_DECAL_* in
-// shaders/decal_flags.glsl.
+// slant), as SPATTER_DECAL_* in shaders/decal_flags.glsl.
 enum DecalFlag : uint32_t {
     kDecalWrap = 1u,
     kDecalNormalMap = 2u,

@@ -46,8 +46,9 @@ struct alignas(16) ForwardDecalGpu {
     glm::vec4 tangent, bitangent, normal, tint;
     glm::uvec4 info;
     glm::vec4 params;
+    glm::vec4 axis;
 };
-static_assert(sizeof(ForwardDecalGpu) == 144, "ForwardDecalGpu must match SpatterForwardDecal (std430)");
+static_assert(sizeof(ForwardDecalGpu) == 160, "ForwardDecalGpu must match SpatterForwardDecal (std430)");
 
 // The head of std430 SpatterForwardTiles; the tiles' runs (uvec2 each) follow.
 struct alignas(16) ForwardGridGpu {
