@@ -38,7 +38,10 @@ same rays, measured in one run with Google Benchmark (repetitions randomly inter
   world_single  CollisionWorld::intersect (validation, double-precision clipping and refinement,
                 watertight user-geometry triangles, order-independent closest hit)
   world_batch   CollisionWorld::intersectBatch on batches of --batch-size rays
-  spawn         DecalSystem::spawn (the above plus the decal: frame, size, limits, handle)
+  spawn         DecalSystem::spawn (the above plus the decal: frame, size, limits, handle),
+                the decals projected along the shot (the default)
+  spawn_normal  the same with a type projected along the normal: what the shot's axis costs
+                (shot_over_normal)
   spawn_batch   DecalSystem::spawnBatch on batches of --batch-size rays, one thread
 
 Three ray sets: 'scattered' (rays from random points around the mesh to random surface points),
@@ -60,7 +63,7 @@ MESH       anything loadScene reads, or a file in the shared data (default: stan
 --embree-config CONFIG  Embree device configuration for both sides, e.g. "isa=avx2" (default: Embree's)
 --filter REGEX  run only the measurements whose "set/method" name matches (for profiling)
 --json FILE     the numbers as JSON: raw_single_ns, raw_packet_ns, spawn_ns, spawn_batch_ns,
-                spawn_over_raw, batch_speedup and the details
+                spawn_over_raw, batch_speedup, shot_over_normal and the details
 )";
 
 // Collects the per-iteration real time (ns) of every repetition, by benchmark name.
@@ -94,12 +97,13 @@ struct Method {
     const char* key;
     const char* label;
 };
-constexpr std::array<Method, 6> kMethods{{
+constexpr std::array<Method, 7> kMethods{{
     {"raw_single", "raw rtcIntersect1"},
     {"raw_packet", "raw rtcIntersect16"},
     {"world_single", "CollisionWorld::intersect"},
     {"world_batch", "CollisionWorld::intersectBatch"},
     {"spawn", "DecalSystem::spawn"},
+    {"spawn_normal", "DecalSystem::spawn, along the normal"},
     {"spawn_batch", "DecalSystem::spawnBatch"},
 }};
 
@@ -218,8 +222,9 @@ int runPlacementCommand(int argc, char** argv) {
     // One decal system per ray set and spawning method, so that neither sees the other's decals.
     struct Setup {
         std::optional<RawEmbree> raw;
-        std::vector<DecalSystem> systems; // spawn, spawn_batch, statuses
+        std::vector<DecalSystem> systems; // spawn, spawn_batch, statuses, spawn_normal
         uint16_t type = 0;
+        uint16_t normalType = 0; // in systems[3]: projected along the normal
     };
     std::vector<Setup> setups(sets.size());
     for (size_t k = 0; k < sets.size(); ++k) {
@@ -231,7 +236,7 @@ int runPlacementCommand(int argc, char** argv) {
         }
         setups[k].raw.emplace(std::move(raw).value());
         setups[k].raw->prepare(sets[k].rays);
-        for (int s = 0; s < 3; ++s) {
+        for (int s = 0; s < 4; ++s) {
             WorldSettings ws;
             ws.deviceConfig = args.value("--embree-config");
             Result<CollisionWorld> world = CollisionWorld::build(scene, {}, ws);
@@ -245,6 +250,12 @@ int runPlacementCommand(int argc, char** argv) {
                 return 1;
             }
             setups[k].type = sys->registerType(type).value();
+            if (s == 3) {
+                DecalType alongNormal = type;
+                alongNormal.name = "bench-normal";
+                alongNormal.projection = Projection::Normal;
+                setups[k].normalType = sys->registerType(alongNormal).value();
+            }
             setups[k].systems.push_back(std::move(sys).value());
         }
     }
@@ -309,6 +320,10 @@ int runPlacementCommand(int argc, char** argv) {
             for (const Ray& r : set.rays)
                 benchmark::DoNotOptimize(su.systems[0].spawn(r, su.type));
         });
+        add("spawn_normal", [&] {
+            for (const Ray& r : set.rays)
+                benchmark::DoNotOptimize(su.systems[3].spawn(r, su.normalType));
+        });
         add("spawn_batch", [&] {
             std::vector<SpawnResult> results;
             for (const std::vector<Ray>& b : set.batches) {
@@ -342,6 +357,7 @@ int runPlacementCommand(int argc, char** argv) {
         }
         j["spawn_over_raw"] = number(perRay(k, "spawn") / raw);
         j["batch_speedup"] = number(perRay(k, "spawn") / perRay(k, "spawn_batch"));
+        j["shot_over_normal"] = number(perRay(k, "spawn") / perRay(k, "spawn_normal"));
     }
     const double spawnOverRaw = perRay(0, "spawn") / perRay(0, "raw_single");
     const double batchSpeedup = perRay(1, "spawn") / perRay(1, "spawn_batch");
@@ -358,6 +374,10 @@ int runPlacementCommand(int argc, char** argv) {
         std::printf(
             "batch_speedup (shotgun, %u rays per shot in a %g degree cone) %.2fx, target >= 1.3x: %s\n",
             unsigned(batchSize.value()), cone.value(), batchSpeedup, batchSpeedup >= 1.3 ? "met" : "missed");
+    const double shotOverNormal = perRay(0, "spawn") / perRay(0, "spawn_normal");
+    if (!std::isnan(shotOverNormal))
+        std::printf("shot_over_normal (scattered) %.3fx: spawn along the shot against along the normal\n",
+                    shotOverNormal);
     if (!std::isnan(burstSpawn) || !std::isnan(burstTrace))
         std::printf(
             "burst: spawn_batch %.2fx and intersectBatch %.2fx as fast per ray as one by one (%g degree "
@@ -392,6 +412,7 @@ int runPlacementCommand(int argc, char** argv) {
         j["spawn_batch_ns"] = number(perRay(1, "spawn_batch"));
         j["spawn_over_raw"] = number(spawnOverRaw);
         j["batch_speedup"] = number(batchSpeedup);
+        j["shot_over_normal"] = number(shotOverNormal);
         j["sets"] = setJson;
         if (Status s = writeJson(j, args.value("--json")); !s) {
             std::cerr << "spatter-bench placement: " << s.error() << "\n";
