@@ -218,13 +218,16 @@ int runPlacementCommand(int argc, char** argv) {
     DecalType type;
     type.name = "bench";
     type.size = glm::vec2(float(0.02 * input.diagonal));
+    DecalType alongNormal = type;
+    alongNormal.name = "bench-normal";
+    alongNormal.projection = Projection::Normal;
 
     // One decal system per ray set and spawning method, so that neither sees the other's decals.
     struct Setup {
         std::optional<RawEmbree> raw;
         std::vector<DecalSystem> systems; // spawn, spawn_batch, statuses, spawn_normal
         uint16_t type = 0;
-        uint16_t normalType = 0; // in systems[3]: projected along the normal
+        uint16_t normalType = 0; // the same type projected along the normal
     };
     std::vector<Setup> setups(sets.size());
     for (size_t k = 0; k < sets.size(); ++k) {
@@ -250,12 +253,7 @@ int runPlacementCommand(int argc, char** argv) {
                 return 1;
             }
             setups[k].type = sys->registerType(type).value();
-            if (s == 3) {
-                DecalType alongNormal = type;
-                alongNormal.name = "bench-normal";
-                alongNormal.projection = Projection::Normal;
-                setups[k].normalType = sys->registerType(alongNormal).value();
-            }
+            setups[k].normalType = sys->registerType(alongNormal).value();
             setups[k].systems.push_back(std::move(sys).value());
         }
     }

@@ -157,7 +157,7 @@ bool DecalBatch::typesPlain() const {
 }
 
 uint32_t DecalBatch::flagsUnion() const {
-    uint32_t flags = kDecalMirrored | kDecalSlanted;
+    uint32_t flags = kDecalMirrored;
     for (const DecalTypeGpu& t : typeRecords_)
         flags |= t.info.z == 1 ? t.info.y : 0u;
     return flags;

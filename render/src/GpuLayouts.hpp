@@ -18,8 +18,8 @@ enum Binding : uint32_t {
     kDecalBoundsBuffer = 9,
 };
 
-// Decal flags (DecalTypeGpu::info.y; kDecalMirrored from DecalRecordGpu::frame, kDecalSlanted from its
-// slant), as SPATTER_DECAL_* in shaders/decal_flags.glsl.
+// Decal flags (DecalTypeGpu::info.y; kDecalMirrored from DecalRecordGpu::frame; kDecalSlanted, which
+// only the shaders read, from its slant), as SPATTER_DECAL_* in shaders/decal_flags.glsl.
 enum DecalFlag : uint32_t {
     kDecalWrap = 1u,
     kDecalNormalMap = 2u,

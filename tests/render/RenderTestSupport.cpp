@@ -100,12 +100,7 @@ std::vector<uint8_t> referenceCoverage(const Scene& scene, const CoverageInputs&
         r.tangent = glm::normalize(t);
         r.bitangent = glm::normalize(b);
         r.normal = glm::normalize(normalMatrix * glm::dvec3(d.frame().normal));
-        // The axis the box is projected along (shaders/depth_axis.glsl): where the box's first two
-        // coordinates stay the same, on the normal's side.
-        const glm::dvec3 rowT(r.worldToBox[0][0], r.worldToBox[1][0], r.worldToBox[2][0]);
-        const glm::dvec3 rowB(r.worldToBox[0][1], r.worldToBox[1][1], r.worldToBox[2][1]);
-        r.axis = glm::normalize(glm::cross(rowT, rowB));
-        if (glm::dot(r.axis, r.normal) < 0.0) r.axis = -r.axis;
+        r.axis = glm::normalize(lin * glm::dvec3(d.projectionAxis())); // the box's depth lines
         r.halfSize = glm::dvec3(glm::length(t) * 0.5 * d.size.x, glm::length(b) * 0.5 * d.size.y,
                                 glm::length(lin * glm::dvec3(d.frame().normal)) * d.halfDepth);
         double angle = type.maxAngleDeg;
