@@ -92,19 +92,22 @@ struct DecalData {
 // in the order w, x, y, z without the largest, which bits 60-61 name.
 mat3 unpackFrame(uvec2 bits) {
     const float scale = 0.70710678 / 524287.0;
-    float small[3] = float[3](float(bitfieldExtract(bits.y, 8, 20)),
-                              float((bitfieldExtract(bits.y, 0, 8) << 12) | (bits.x >> 20)),
-                              float(bitfieldExtract(bits.x, 0, 20)));
+    // No arrays and no component picked by a variable: either makes the compiler keep the values in
+    // memory, for which a GPU driver reserves room for every invocation it can hold.
+    vec3 small = (vec3(float(bitfieldExtract(bits.y, 8, 20)),
+                       float((bitfieldExtract(bits.y, 0, 8) << 12) | (bits.x >> 20)),
+                       float(bitfieldExtract(bits.x, 0, 20))) -
+                  524288.0) *
+                 scale;
+    float sum = small.x * small.x;
+    sum += small.y * small.y;
+    sum += small.z * small.z;
+    float big = sqrt(max(0.0, 1.0 - sum));
     uint largest = bitfieldExtract(bits.y, 28, 2);
-    vec4 q; // w, x, y, z
-    float sum = 0.0;
-    int k = 0;
-    for (uint i = 0u; i < 4u; ++i) {
-        if (i == largest) continue;
-        q[i] = (small[k++] - 524288.0) * scale;
-        sum += q[i] * q[i];
-    }
-    q[largest] = sqrt(max(0.0, 1.0 - sum));
+    vec4 q = vec4(largest == 0u ? big : small.x, // w, x, y, z
+                  largest == 0u ? small.x : largest == 1u ? big : small.y,
+                  largest == 3u ? small.z : largest == 2u ? big : small.y,
+                  largest == 3u ? big : small.z);
     q = normalize(q);
     float w = q.x, x = q.y, y = q.z, z = q.w;
     return mat3(1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y),
