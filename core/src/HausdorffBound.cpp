@@ -7,6 +7,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <numeric>
@@ -26,6 +27,8 @@ constexpr uint32_t kHullTriangles = 16;
 constexpr size_t kStartSamples = 1024, kStartChunk = 64;
 // Subtrees handed out to the threads, per thread.
 constexpr size_t kSubtreesPerWorker = 32;
+// Subtrees walked first, per thread: those with the farthest starting samples (walkAll).
+constexpr size_t kFarthestFirstPerWorker = 2;
 // How far outside an edge of B the overlay bound cuts a piece, relative to the largest coordinates of
 // both meshes: above the rounding of a corner that lies on the edge (a proxy's vertex is often one of
 // the render mesh's), so that such a corner starts no sliver of a part.
@@ -186,10 +189,12 @@ public:
                       : 0.0),
           overlayEps_(kOverlayEps * (a.scale + b.scale)) {}
 
-    // Measures the point p of A (raises the lower bound).
-    void sample(const glm::dvec3& p) {
+    // Measures the point p of A (raises the lower bound); its distance.
+    double sample(const glm::dvec3& p) {
         ++queries;
-        see(measure(p).distance);
+        const double d = measure(p).distance;
+        see(d);
+        return d;
     }
 
     void walk(uint32_t root) {
@@ -484,12 +489,14 @@ public:
         for (unsigned w = 0; w < workers; ++w)
             starts_.emplace_back(a_, b_, s_, cache_, exceeded_, std::max(0.0, s_.knownLower));
         const size_t stride = std::max<size_t>(1, a_.triangles.size() / kStartSamples);
+        std::vector<double> sampled((a_.triangles.size() + stride - 1) / stride, 0.0);
         detail::parallelChunks(
-            (a_.triangles.size() + stride - 1) / stride, kStartChunk, workers,
+            sampled.size(), kStartChunk, workers,
             [&](size_t begin, size_t end, unsigned w) {
                 for (size_t i = begin; i < end && !exceeded_.load(std::memory_order_relaxed); ++i) {
                     const std::array<uint32_t, 3>& t = a_.triangles[i * stride];
-                    starts_[w].sample((a_.positions[t[0]] + a_.positions[t[1]] + a_.positions[t[2]]) / 3.0);
+                    sampled[i] = starts_[w].sample(
+                        (a_.positions[t[0]] + a_.positions[t[1]] + a_.positions[t[2]]) / 3.0);
                 }
             },
             [](double) { return true; }, &exceeded_);
@@ -497,7 +504,16 @@ public:
             walkLower_ = std::max(walkLower_, w.lower);
         roots_ = subtrees(a_, kSubtreesPerWorker * workers);
         parts_.assign(roots_.size(), {});
+        // A subtree's farthest sampled centroid: its triangles' range holds samples i * stride.
+        farthest_.assign(roots_.size(), 0.0);
+        for (size_t r = 0; r < roots_.size(); ++r) {
+            const Node& n = a_.nodes[roots_[r]];
+            for (size_t i = (n.first + stride - 1) / stride; i * stride < size_t(n.first) + n.count; ++i)
+                farthest_[r] = std::max(farthest_[r], sampled[i]);
+        }
     }
+    // The largest distance sampled in subtree i's triangles (0 where none was sampled).
+    double farthestSampled(size_t i) const { return farthest_[i]; }
     double startLower() const { return walkLower_; }
     // Every subtree's walk starts from at least this distance (one known to be attained).
     void raiseWalkLower(double known) { walkLower_ = std::max(walkLower_, known); }
@@ -537,8 +553,20 @@ private:
     std::vector<Walker> starts_; // one per thread
     double walkLower_ = 0.0;
     std::vector<uint32_t> roots_;
+    std::vector<double> farthest_; // farthestSampled
     std::vector<HausdorffResult> parts_;
 };
+
+// The farthest sample of the `count`-th farthest-sampled subtree of `order` (infinity for none).
+double farthestCut(const std::vector<std::pair<OneSided*, size_t>>& order, size_t count) {
+    if (count == 0) return std::numeric_limits<double>::infinity();
+    std::vector<double> d;
+    d.reserve(order.size());
+    for (const auto& [job, i] : order)
+        d.push_back(job->farthestSampled(i));
+    std::nth_element(d.begin(), d.begin() + std::ptrdiff_t(count - 1), d.end(), std::greater<>());
+    return d[count - 1];
+}
 
 // Walks the subtrees of the given directions on one pool of threads, taking them in turn.
 bool walkAll(const std::vector<OneSided*>& jobs, unsigned workers, std::atomic<bool>& exceeded,
@@ -552,6 +580,13 @@ bool walkAll(const std::vector<OneSided*>& jobs, unsigned workers, std::atomic<b
                 more = 1;
             }
     }
+    // The few subtrees with the farthest samples first, the others in turn as before: where a
+    // candidate lies beyond the tolerance, the walk that finds it, and with it the answer, comes
+    // early. Each subtree is walked on its own, so the order changes no bound.
+    const size_t first = std::min(order.size(), kFarthestFirstPerWorker * size_t(workers));
+    const double cut = farthestCut(order, first);
+    std::stable_partition(order.begin(), order.end(),
+                          [cut](const auto& x) { return x.first->farthestSampled(x.second) >= cut; });
     auto report = [&](double f) { return !progress || progress(float(f), "measure"); };
     return detail::parallelChunks(
         order.size(), 1, workers,
