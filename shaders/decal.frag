@@ -19,6 +19,7 @@
 // DBUFFER writes the same outputs into the projector's decal buffers (normals world space, signed);
 // their blend state keeps, in alpha, how much of the surface shows through (dbuffer.glsl).
 #include "projector.glsl"
+#include "depth_axis.glsl"
 
 layout(binding = 0) uniform sampler2D s_depth;
 layout(binding = 1) uniform sampler2D s_normal;
@@ -94,8 +95,7 @@ void main() {
     keep = keep && texelFetch(s_ids, pixel, 0).r == v_info.x;
 #endif
 #ifndef NO_ANGLE
-    keep = keep && dot(n, v_normal.xyz) >= v_params.x;
-    if ((flags & SPATTER_DECAL_SLANTED) != 0u) keep = keep && dot(n, v_axis) >= v_params.x;
+    keep = keep && spatterWithinAngle(n, v_normal.xyz, v_axis, flags, v_params.x);
 #endif
     if (!keep) discard;
 

@@ -1,3 +1,5 @@
+#include "decal_flags.glsl"
+
 // The axis a decal's box is projected along, in the space of the box's rows (world space in the decal
 // pass, object space for texture-space splats): the direction along which the box's first two
 // coordinates stay the same, on the side of the decal's normal. It is the reversed shot for a decal
@@ -11,4 +13,10 @@
 vec3 spatterDepthAxis(vec3 rowT, vec3 rowB, vec3 normal) {
     vec3 axis = normalize(cross(rowT, rowB));
     return dot(axis, normal) < 0.0 ? -axis : axis;
+}
+
+// Whether a surface of unit normal `n` takes a decal (of `flags`, SPATTER_DECAL_*) by the angle test
+// above: within the angle of cosine `minCos` of its `normal` and, off its normal, of its `axis`.
+bool spatterWithinAngle(vec3 n, vec3 normal, vec3 axis, uint flags, float minCos) {
+    return dot(n, normal) >= minCos && ((flags & SPATTER_DECAL_SLANTED) == 0u || dot(n, axis) >= minCos);
 }

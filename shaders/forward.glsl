@@ -6,6 +6,7 @@
 // Texture units default to ForwardBindings'; a host defines SPATTER_DECAL_ALBEDO_UNIT and
 // SPATTER_DECAL_NORMAL_UNIT before this text to move them (and the buffers: forward_data.glsl).
 #include "decal_flags.glsl"
+#include "depth_axis.glsl"
 #include "forward_data.glsl"
 
 #ifndef SPATTER_DECAL_ALBEDO_UNIT
@@ -70,8 +71,8 @@ bool spatterDecalLook(SpatterForwardDecal d, vec3 box, vec3 dpdx, vec3 dpdy, uin
         vec3 q = box * halfSize;
         uv = (q.xy - q.z * vec2(dot(n, d.tangent.xyz), dot(n, d.bitangent.xyz))) / halfSize.xy;
     }
-    bool keep = all(lessThanEqual(abs(uv), vec2(1.0))) && objectId == d.info.x && dot(n, d.normal.xyz) >= d.params.x;
-    if ((flags & SPATTER_DECAL_SLANTED) != 0u) keep = keep && dot(n, d.axis.xyz) >= d.params.x;
+    bool keep = all(lessThanEqual(abs(uv), vec2(1.0))) && objectId == d.info.x &&
+                spatterWithinAngle(n, d.normal.xyz, d.axis.xyz, flags, d.params.x);
     if (!keep) return false;
 
     float f = clamp((1.0 - abs(box.z)) / max(1.0 - spatterForwardParams.x, 1e-4), 0.0, 1.0);

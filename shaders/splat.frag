@@ -46,10 +46,9 @@ void main() {
     vec2 tcdx = dFdx(tc);
     vec2 tcdy = dFdy(tc);
 
+    vec3 axis = spatterDepthAxis(d.objectToBox[0].xyz, d.objectToBox[1].xyz, d.normal.xyz);
     bool keep = all(lessThanEqual(abs(box), vec3(1.0))) && all(lessThanEqual(abs(uv), vec2(1.0))) &&
-                dot(n, d.normal.xyz) >= d.params.x;
-    if ((flags & SPATTER_DECAL_SLANTED) != 0u)
-        keep = keep && dot(n, spatterDepthAxis(d.objectToBox[0].xyz, d.objectToBox[1].xyz, d.normal.xyz)) >= d.params.x;
+                spatterWithinAngle(n, d.normal.xyz, axis, flags, d.params.x);
     if (!keep) discard;
 
     float fade = 1.0;
