@@ -646,9 +646,13 @@ Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSu
     const unsigned workers = detail::workerCount();
     std::vector<double> worst(workers, 0.0);
     std::atomic<bool> above{false};
-    auto distance = [&](const glm::dvec3& p) {
+    // Only a sample farther than the worker's largest so far changes the result, and "is the surface
+    // within that distance?" stops at the first triangle that answers it: the exact query is made
+    // only where it is not.
+    auto raise = [&](double& largest, const glm::dvec3& p) {
+        if (b.query.within(p, largest)) return;
         const std::optional<ClosestPoint> c = b.query.closest(p);
-        return c ? c->distance : std::numeric_limits<double>::infinity();
+        largest = std::max(largest, c ? c->distance : std::numeric_limits<double>::infinity());
     };
     auto report = [&](double f) { return !progress || progress(float(f), "measure"); };
     const bool finished = detail::parallelChunks(
@@ -657,9 +661,9 @@ Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSu
             for (size_t i = begin; i < end && !above.load(std::memory_order_relaxed); ++i) {
                 const std::array<uint32_t, 3>& t = a.triangles[i * stride];
                 const glm::dvec3 p[3] = {a.positions[t[0]], a.positions[t[1]], a.positions[t[2]]};
-                worst[w] =
-                    std::max({worst[w], distance((p[0] + p[1] + p[2]) / 3.0), distance(0.5 * (p[0] + p[1])),
-                              distance(0.5 * (p[1] + p[2])), distance(0.5 * (p[2] + p[0]))});
+                for (const glm::dvec3& q : {(p[0] + p[1] + p[2]) / 3.0, 0.5 * (p[0] + p[1]),
+                                            0.5 * (p[1] + p[2]), 0.5 * (p[2] + p[0])})
+                    raise(worst[w], q);
                 if (worst[w] > stopAbove) above.store(true, std::memory_order_relaxed);
             }
         },

@@ -46,9 +46,20 @@ struct ClosestPointQuery::Impl {
 
 namespace {
 
+// How far p lies from the float point an Embree query is made at.
+double pointRounding(const glm::dvec3& p) {
+    return glm::length(p - glm::dvec3(glm::vec3(p)));
+}
+
+// A float radius at least `radius`.
+float roundedRadius(double radius) {
+    return std::nextafter(float(radius), std::numeric_limits<float>::infinity());
+}
+
 struct PointQueryState {
     const glm::dvec3* corners;
     glm::dvec3 p;
+    double rounding = 0.0; // pointRounding(p)
     double best2 = std::numeric_limits<double>::infinity();
     glm::dvec3 bestPoint{0.0};
     uint32_t bestTriangle = 0;
@@ -63,13 +74,49 @@ bool closestPointCallback(RTCPointQueryFunctionArguments* args) {
     s->best2 = d2;
     s->bestPoint = q;
     s->bestTriangle = args->primID;
-    // Rounded up so that no triangle at the current best distance is culled by the float radius.
-    const float r = std::nextafter(float(std::sqrt(d2)), std::numeric_limits<float>::infinity());
+    // Widened so that no triangle at the current best distance is culled by the float radius.
+    const float r = roundedRadius(std::sqrt(d2) + s->rounding);
     if (r < args->query->radius) {
         args->query->radius = r;
         return true;
     }
     return false;
+}
+
+// Whether some triangle lies within sqrt(radius2) of p: found at the first, after which the query's
+// radius is 0 so that Embree visits little more.
+struct WithinState {
+    const glm::dvec3* corners;
+    glm::dvec3 p;
+    double radius2;
+    bool found = false;
+};
+
+bool withinCallback(RTCPointQueryFunctionArguments* args) {
+    auto* s = static_cast<WithinState*>(args->userPtr);
+    if (s->found) return false;
+    const glm::dvec3* t = s->corners + 3 * size_t(args->primID);
+    const glm::dvec3 q = closestOnTriangle(s->p, t[0], t[1], t[2]);
+    if (!(glm::dot(q - s->p, q - s->p) <= s->radius2)) return false;
+    s->found = true;
+    args->query->radius = 0.0f;
+    return true;
+}
+
+bool finitePoint(const glm::dvec3& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+// An Embree point query at p (rounded to float) whose radius holds every point within `radius` of p
+// itself: widened by the rounding of p and rounded up (infinity stays infinity).
+RTCPointQuery pointQuery(const glm::dvec3& p, double radius) {
+    RTCPointQuery query;
+    query.x = float(p.x);
+    query.y = float(p.y);
+    query.z = float(p.z);
+    query.time = 0.0f;
+    query.radius = roundedRadius(radius + pointRounding(p));
+    return query;
 }
 
 } // namespace
@@ -123,17 +170,12 @@ Result<ClosestPointQuery> ClosestPointQuery::create(const Mesh& mesh) {
 }
 
 std::optional<ClosestPoint> ClosestPointQuery::closest(const glm::dvec3& p) const {
-    if (!impl_->scene) return std::nullopt;
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return std::nullopt;
+    if (!impl_->scene || !finitePoint(p)) return std::nullopt;
     PointQueryState state;
     state.corners = impl_->corners.data();
     state.p = p;
-    RTCPointQuery query;
-    query.x = float(p.x);
-    query.y = float(p.y);
-    query.z = float(p.z);
-    query.time = 0.0f;
-    query.radius = std::numeric_limits<float>::infinity();
+    state.rounding = pointRounding(p);
+    RTCPointQuery query = pointQuery(p, std::numeric_limits<double>::infinity());
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
     rtcPointQuery(impl_->scene, &query, &context, closestPointCallback, &state);
@@ -143,6 +185,16 @@ std::optional<ClosestPoint> ClosestPointQuery::closest(const glm::dvec3& p) cons
     out.distance = std::sqrt(state.best2);
     out.triangle = impl_->triangleIds[state.bestTriangle];
     return out;
+}
+
+bool ClosestPointQuery::within(const glm::dvec3& p, double radius) const {
+    if (!impl_->scene || !finitePoint(p) || !std::isfinite(radius) || radius < 0.0) return false;
+    WithinState state{impl_->corners.data(), p, radius * radius};
+    RTCPointQuery query = pointQuery(p, radius);
+    RTCPointQueryContext context;
+    rtcInitPointQueryContext(&context);
+    rtcPointQuery(impl_->scene, &query, &context, withinCallback, &state);
+    return state.found;
 }
 
 std::optional<ClosestPointQuery::RayMeet>

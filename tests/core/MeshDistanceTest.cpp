@@ -48,6 +48,35 @@ TEST(ClosestPointQuery, MatchesBruteForceOnASphere) {
     }
 }
 
+TEST(ClosestPointQuery, WithinAgreesWithTheClosestPointOnASphere) {
+    const Mesh m = latLongSphere(1.0f, 12, 16);
+    Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
+    ASSERT_TRUE(q) << q.error();
+    Rng rng(11);
+    for (int i = 0; i < 500; ++i) {
+        // Points far from the origin too, where the query point's rounding to float is largest.
+        const double scale = i % 2 ? 1.0 : 1e3;
+        const glm::dvec3 p = scale * glm::dvec3(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
+        const std::optional<ClosestPoint> c = q->closest(p);
+        ASSERT_TRUE(c);
+        EXPECT_TRUE(q->within(p, c->distance * (1.0 + 1e-12)));
+        EXPECT_FALSE(q->within(p, 0.99 * c->distance));
+    }
+}
+
+TEST(ClosestPointQuery, WithinAnswersNoForNonFiniteValuesAndNegativeRadii) {
+    const Mesh m = triangleMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});
+    Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
+    ASSERT_TRUE(q);
+    const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
+    EXPECT_TRUE(q->within({0.2, 0.2, 0.0}, 1e-12)); // on the surface
+    EXPECT_TRUE(q->within({0.2, 0.2, 1.0}, 1.0 + 1e-12));
+    EXPECT_FALSE(q->within({0.2, 0.2, 1.0}, -1.0));
+    EXPECT_FALSE(q->within({0.2, 0.2, 1.0}, nan));
+    EXPECT_FALSE(q->within({0.2, 0.2, 1.0}, inf));
+    EXPECT_FALSE(q->within({nan, 0.2, 1.0}, 5.0));
+}
+
 TEST(ClosestPointQuery, ExactAtFaceEdgeAndCornerOfOneTriangle) {
     const Mesh m = triangleMesh({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}, {0, 1, 2});
     Result<ClosestPointQuery> q = ClosestPointQuery::create(m);

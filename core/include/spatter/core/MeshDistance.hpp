@@ -64,6 +64,11 @@ public:
     // surface or `p` is not finite.
     std::optional<ClosestPoint> closest(const glm::dvec3& p) const;
 
+    // Whether some surface point lies within `radius` of `p` (exact up to double rounding): the
+    // search stops at the first such point. False when the mesh has no surface or a value is not
+    // finite.
+    bool within(const glm::dvec3& p, double radius) const;
+
     // Where the ray from `origin` along unit `direction` first meets the surface within `reach`
     // (single precision): the triangle (an index of the mesh) and the distance. Empty when it meets
     // none, or for a value that is not finite.
