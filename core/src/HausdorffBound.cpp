@@ -187,7 +187,9 @@ public:
                       ? std::max(0.0, (s.tolerance - detail::kRoundingAllowance * a.scale) /
                                           (1.0 + detail::kRoundingAllowance))
                       : 0.0),
-          overlayEps_(kOverlayEps * (a.scale + b.scale)) {}
+          overlayEps_(kOverlayEps * (a.scale + b.scale)) {
+        updateLevel();
+    }
 
     // Measures the point p of A (raises the lower bound); its distance.
     double sample(const glm::dvec3& p) {
@@ -222,13 +224,26 @@ public:
     size_t queries = 0;
 
 private:
-    double level() const { return std::max(lower + s_.margin, accept_); }
+    double level() const { return level_; }
     void accept(double bound) { upper = std::max(upper, bound); }
 
     void see(double distance) {
-        lower = std::max(lower, distance);
+        if (distance > lower) {
+            lower = distance;
+            updateLevel();
+        }
         measured = std::max(measured, distance);
         if (distance > s_.tolerance) exceeded_.store(true, std::memory_order_relaxed);
+    }
+
+    // The acceptance level from the lower bound: the margin above it, shrunk near the tolerance
+    // (HausdorffSettings::roomShare), or the tolerance when that is higher.
+    void updateLevel() {
+        double margin = s_.margin;
+        const double room = s_.tolerance - lower;
+        if (s_.roomShare > 0.0 && std::isfinite(s_.tolerance) && room >= s_.minRoom * s_.tolerance)
+            margin = std::min(margin, s_.roomShare * room);
+        level_ = std::max(lower + margin, accept_);
     }
 
     Measured measure(const glm::dvec3& p) const {
@@ -405,6 +420,7 @@ private:
     std::atomic<bool>& exceeded_;
     double accept_;
     double overlayEps_;
+    double level_ = 0.0; // level()
     std::vector<Piece> pieces_;
 };
 
@@ -472,6 +488,8 @@ Status checkSettings(const HausdorffSettings& s) {
     if (!(std::isfinite(s.margin) && s.margin > 0.0))
         return fail("Hausdorff bound: margin " + std::to_string(s.margin) + " is not finite and > 0");
     if (!(s.tolerance >= 0.0)) return fail("Hausdorff bound: tolerance is negative or NaN");
+    if (!(s.roomShare >= 0.0 && s.roomShare < 1.0) || !(s.minRoom > 0.0 && s.minRoom <= 1.0))
+        return fail("Hausdorff bound: roomShare must lie in [0, 1) and minRoom in (0, 1]");
     return {};
 }
 

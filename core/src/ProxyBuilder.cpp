@@ -73,10 +73,10 @@ constexpr double kSearchStep = 1.5, kSearchStepMax = 4.0;
 // percent of the distance).
 constexpr size_t kSampledProxyTriangles = 8192, kSampledRenderTriangles = 1024;
 constexpr double kLikelyFraction = 0.9;
-// A certificate left undecided by its margin (measured within the tolerance, bounded above it) is
-// redone with kSharpenShare of the room left as its margin, when that room is at least kSharpenRoom
-// of the tolerance.
-constexpr double kSharpenShare = 0.25, kSharpenRoom = 0.01;
+// Where a certificate's measured distance comes within its margin of the tolerance, the margin
+// shrinks to kRoomShare of the room left under it while that room is at least kMinRoom of the
+// tolerance (HausdorffSettings::roomShare), so that such a candidate is decided in one walk.
+constexpr double kRoomShare = 0.25, kMinRoom = 0.01;
 // Where likely candidates failed their certificate, the search goes on between the coarsest certified
 // one and them only when that one has more than this many times the triangles of the finest that
 // failed (less is all further runs could gain).
@@ -519,31 +519,10 @@ std::string directionError(const std::string& error, const char* which) {
     return error == "cancelled" ? error : std::string(which) + ": " + error;
 }
 
-// A direction the margin left undecided (every distance measured within the tolerance, the bound
-// above it), bounded again with kSharpenShare of the room left under the tolerance as its margin,
-// while that room is at least kSharpenRoom of it: the bound then ends at most at the tolerance unless
-// a distance above it is found. `measured`: the largest distance measured either way.
-Status sharpen(HausdorffResult& r, const HausdorffSurface& from, const HausdorffSurface& to,
-               const HausdorffSettings& settings, double measured, const ProgressCallback& progress,
-               const char* which) {
-    const double room = settings.tolerance - measured;
-    const bool undecided = !r.exceeded && r.upper > settings.tolerance;
-    if (!undecided || !(room >= kSharpenRoom * settings.tolerance) || kSharpenShare * room >= settings.margin)
-        return {};
-    HausdorffSettings sharp = settings;
-    sharp.margin = kSharpenShare * room;
-    sharp.knownLower = measured;
-    Result<HausdorffResult> again = boundOneSided(from, to, sharp, progress);
-    if (!again) return fail(directionError(again.error(), which));
-    again->queries += r.queries;
-    r = again.value();
-    return {};
-}
-
 // Certifies a candidate against the render mesh (HausdorffBound.hpp): both directions at once
 // (boundBothWays: with a finite `settings.tolerance`, the first distance above it either way stops
-// both), then each direction the margin left undecided sharpened.
-Status certify(Candidate& c, const HausdorffSurface& render, HausdorffSettings settings,
+// both).
+Status certify(Candidate& c, const HausdorffSurface& render, const HausdorffSettings& settings,
                const ProgressCallback& progress) {
     if (c.mesh.indices.empty()) { // simplified away entirely: never within a tolerance
         c.proxyToRender.exceeded = c.renderToProxy.exceeded = true;
@@ -558,13 +537,7 @@ Status certify(Candidate& c, const HausdorffSurface& render, HausdorffSettings s
     c.renderToProxy = both->ab;
     c.proxyToRender = both->ba;
     c.certified = true;
-    if (c.renderToProxy.exceeded || c.proxyToRender.exceeded) return {};
-    const double measured = std::max({settings.knownLower, c.renderToProxy.lower, c.proxyToRender.lower});
-    if (Status st = sharpen(c.renderToProxy, render, proxy, settings, measured, progress, "render to proxy");
-        !st)
-        return st;
-    if (c.renderToProxy.exceeded) return {};
-    return sharpen(c.proxyToRender, proxy, render, settings, measured, progress, "proxy to render");
+    return {};
 }
 
 // Progress of the whole search as one fraction: run k of an expected number, each run split into
@@ -896,6 +869,8 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
     certifying.margin =
         double(s.marginFraction) * (tolerance > 0.0 ? tolerance : kZeroToleranceScale * diagonal);
     certifying.tolerance = tolerance;
+    certifying.roomShare = kRoomShare;
+    certifying.minRoom = kMinRoom;
 
     Proxy proxy;
     proxy.tolerance = tolerance;

@@ -22,7 +22,7 @@ constexpr char kMagic[4] = {'S', 'P', 'X', 'C'};
 constexpr uint32_t kFormatVersion = 1;
 // Part of every key: bump it whenever the builder gives a different proxy for the same input, so
 // that entries written by an older builder are never loaded.
-constexpr uint32_t kBuilderVersion = 5;
+constexpr uint32_t kBuilderVersion = 6;
 // Bytes before the vertex data (magic through index count), and the checksum after it.
 constexpr size_t kHeaderSize = 4 + 4 + 8 + 4 * 4 + 8 * 2 + 8 * 5 + 4 * 2;
 constexpr size_t kChecksumSize = 8;

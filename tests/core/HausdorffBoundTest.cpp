@@ -102,6 +102,42 @@ TEST(HausdorffBound, BumpOverASquareIsBoundedAndAnsweredEarly) {
     EXPECT_LE(yes->queries, h->queries);
 }
 
+// A tolerance a little above the bump: the margin shrinks near it, so that the bound ends under the
+// tolerance in one walk rather than up to a margin above it, and stays a true bound.
+TEST(HausdorffBound, MarginShrinksNearTheToleranceSoThatACloseCaseIsDecided) {
+    Mesh bumpy;
+    const uint32_t n = 48;
+    for (uint32_t i = 0; i <= n; ++i)
+        for (uint32_t j = 0; j <= n; ++j) {
+            const float x = float(i) / float(n), y = float(j) / float(n);
+            const float r2 = (x - 0.43f) * (x - 0.43f) + (y - 0.57f) * (y - 0.57f);
+            bumpy.positions.push_back({x, y, 0.1f * std::exp(-r2 / 0.004f)});
+        }
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t j = 0; j < n; ++j) {
+            const uint32_t v = i * (n + 1) + j;
+            bumpy.indices.insert(bumpy.indices.end(), {v, v + n + 1, v + n + 2, v, v + n + 2, v + 1});
+        }
+    const Mesh flat = square(0.0f, 1.0f);
+    const HausdorffSurface a = surface(bumpy), b = surface(flat);
+    HausdorffSettings s;
+    s.tolerance = 0.102; // the bump's top is at most 0.1 above the square
+    s.margin = 0.5 * s.tolerance; // a coarse margin, which a bound near the tolerance overshoots
+    Result<HausdorffPair> plain = boundBothWays(b, a, s); // the margin as given: undecided
+    ASSERT_TRUE(plain) << plain.error();
+    EXPECT_FALSE(plain->ab.exceeded || plain->ba.exceeded);
+    EXPECT_GT(std::max(plain->ab.upper, plain->ba.upper), s.tolerance);
+    s.roomShare = 0.25;
+    Result<HausdorffPair> h = boundBothWays(b, a, s);
+    ASSERT_TRUE(h) << h.error();
+    EXPECT_TRUE(h->ab.within(s.tolerance) && h->ba.within(s.tolerance));
+    EXPECT_GE(h->ba.upper, denseOneSided(bumpy, flat, 20000, 1));
+    s.tolerance = 0.09; // below the top: still no
+    Result<HausdorffPair> no = boundBothWays(b, a, s);
+    ASSERT_TRUE(no);
+    EXPECT_TRUE(no->ba.exceeded);
+}
+
 // Both directions at once: each bound is a true upper bound of its direction, a "no" in either
 // direction stops both, and the answer is the same on every run.
 TEST(HausdorffBound, BothWaysBoundsEachDirectionAndStopsOnEitherNo) {
@@ -149,6 +185,13 @@ TEST(HausdorffBound, RejectsBadSettingsAndAOneSidedSurface) {
     s.margin = 0.01;
     s.tolerance = -1.0;
     EXPECT_THAT(boundHausdorff(a, a, s).error(), HasSubstr("tolerance"));
+    s.tolerance = 1.0;
+    s.roomShare = 1.0;
+    EXPECT_THAT(boundBothWays(a, a, s).error(), HasSubstr("roomShare"));
+    s.roomShare = 0.25;
+    s.minRoom = 0.0;
+    EXPECT_THAT(boundOneSided(a, a, s).error(), HasSubstr("minRoom"));
+    s.minRoom = 0.01;
     s.tolerance = std::numeric_limits<double>::infinity();
     EXPECT_THAT(boundHausdorff(a, empty, s).error(), HasSubstr("no surface"));
     Result<HausdorffResult> none = boundHausdorff(empty, empty, s);

@@ -81,6 +81,12 @@ struct HausdorffSettings {
     double tolerance = std::numeric_limits<double>::infinity();
     // A distance already known to be attained (e.g. the other direction's lower bound); 0 if none.
     double knownLower = 0.0;
+    // With a finite tolerance: where the largest distance measured comes within `margin` of it, the
+    // margin shrinks to this share of the room left under the tolerance, while that room is at least
+    // `minRoom` of the tolerance, so that a distance under the tolerance is certified in one walk
+    // instead of bounded above it (undecided). 0 keeps the margin as given.
+    double roomShare = 0.0;
+    double minRoom = 0.01;
 };
 
 struct HausdorffResult {

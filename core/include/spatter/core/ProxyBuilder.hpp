@@ -88,10 +88,10 @@ struct ProxySettings {
     // A render mesh with fewer triangles than this is its own proxy (h = 0).
     uint32_t smallMeshTriangles = 512;
     // Certification margin, as a fraction of the absolute tolerance, in (0, 1): a bound within it
-    // above the largest measured distance is not refined further. A candidate whose measured distance
-    // lies within it below the tolerance may be left uncertified (the search counts it as too coarse);
-    // the bound of an authored collider exceeds the measured distance by at most this (that of a
-    // proxy that missed the tolerance by at most 4 times this).
+    // above the largest measured distance is not refined further; near the tolerance it shrinks to a
+    // quarter of the room left under it, and a candidate measured within 1% below the tolerance may be
+    // left uncertified (the search counts it as too coarse); the bound of an authored collider exceeds the
+    // measured distance by at most this (that of a proxy that missed the tolerance by at most 4 times this).
     float marginFraction = 0.05f;
     // Simplification runs the search may make (>= 1).
     uint32_t maxAttempts = 8;
