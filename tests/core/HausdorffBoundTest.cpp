@@ -34,6 +34,23 @@ Mesh square(float z, float size) {
     return m;
 }
 
+// An n x n grid over the unit square with a bump 0.1 high at (0.43, 0.57), of squared width `width`.
+Mesh bumpOverSquare(uint32_t n, float width) {
+    Mesh bumpy;
+    for (uint32_t i = 0; i <= n; ++i)
+        for (uint32_t j = 0; j <= n; ++j) {
+            const float x = float(i) / float(n), y = float(j) / float(n);
+            const float r2 = (x - 0.43f) * (x - 0.43f) + (y - 0.57f) * (y - 0.57f);
+            bumpy.positions.push_back({x, y, 0.1f * std::exp(-r2 / width)});
+        }
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t j = 0; j < n; ++j) {
+            const uint32_t v = i * (n + 1) + j;
+            bumpy.indices.insert(bumpy.indices.end(), {v, v + n + 1, v + n + 2, v, v + n + 2, v + 1});
+        }
+    return bumpy;
+}
+
 // A meshoptimizer proxy of `render` at `tolerance` of the diagonal (the builder's own bound is not
 // used here, only its mesh).
 Mesh proxyOf(const Mesh& render, float tolerance) {
@@ -62,19 +79,7 @@ TEST(HausdorffBound, ParallelSquaresAreTheirOffsetApart) {
 // A bump in the middle of a fine grid over a square of two triangles: the farthest point of the grid
 // from the square is the bump's top; the early answer says no below it and yes above it.
 TEST(HausdorffBound, BumpOverASquareIsBoundedAndAnsweredEarly) {
-    Mesh bumpy;
-    const uint32_t n = 64;
-    for (uint32_t i = 0; i <= n; ++i)
-        for (uint32_t j = 0; j <= n; ++j) {
-            const float x = float(i) / float(n), y = float(j) / float(n);
-            const float r2 = (x - 0.43f) * (x - 0.43f) + (y - 0.57f) * (y - 0.57f);
-            bumpy.positions.push_back({x, y, 0.1f * std::exp(-r2 / 0.002f)});
-        }
-    for (uint32_t i = 0; i < n; ++i)
-        for (uint32_t j = 0; j < n; ++j) {
-            const uint32_t v = i * (n + 1) + j;
-            bumpy.indices.insert(bumpy.indices.end(), {v, v + n + 1, v + n + 2, v, v + n + 2, v + 1});
-        }
+    const Mesh bumpy = bumpOverSquare(64, 0.002f);
     const Mesh flat = square(0.0f, 1.0f);
     const HausdorffSurface a = surface(bumpy), b = surface(flat);
     const double dense = std::max(denseOneSided(bumpy, flat, 20000, 1), denseOneSided(flat, bumpy, 20000, 2));
@@ -105,23 +110,11 @@ TEST(HausdorffBound, BumpOverASquareIsBoundedAndAnsweredEarly) {
 // A tolerance a little above the bump: the margin shrinks near it, so that the bound ends under the
 // tolerance in one walk rather than up to a margin above it, and stays a true bound.
 TEST(HausdorffBound, MarginShrinksNearTheToleranceSoThatACloseCaseIsDecided) {
-    Mesh bumpy;
-    const uint32_t n = 48;
-    for (uint32_t i = 0; i <= n; ++i)
-        for (uint32_t j = 0; j <= n; ++j) {
-            const float x = float(i) / float(n), y = float(j) / float(n);
-            const float r2 = (x - 0.43f) * (x - 0.43f) + (y - 0.57f) * (y - 0.57f);
-            bumpy.positions.push_back({x, y, 0.1f * std::exp(-r2 / 0.004f)});
-        }
-    for (uint32_t i = 0; i < n; ++i)
-        for (uint32_t j = 0; j < n; ++j) {
-            const uint32_t v = i * (n + 1) + j;
-            bumpy.indices.insert(bumpy.indices.end(), {v, v + n + 1, v + n + 2, v, v + n + 2, v + 1});
-        }
+    const Mesh bumpy = bumpOverSquare(48, 0.004f);
     const Mesh flat = square(0.0f, 1.0f);
     const HausdorffSurface a = surface(bumpy), b = surface(flat);
     HausdorffSettings s;
-    s.tolerance = 0.102; // the bump's top is at most 0.1 above the square
+    s.tolerance = 0.102;          // the bump's top is at most 0.1 above the square
     s.margin = 0.5 * s.tolerance; // a coarse margin, which a bound near the tolerance overshoots
     Result<HausdorffPair> plain = boundBothWays(b, a, s); // the margin as given: undecided
     ASSERT_TRUE(plain) << plain.error();
