@@ -46,7 +46,10 @@ void main() {
     vec2 tcdx = dFdx(tc);
     vec2 tcdy = dFdy(tc);
 
-    vec3 axis = spatterDepthAxis(d.objectToBox[0].xyz, d.objectToBox[1].xyz, d.normal.xyz);
+    // The projection axis, which only a slanted decal's angle test reads.
+    vec3 axis = (flags & SPATTER_DECAL_SLANTED) != 0u
+                    ? spatterDepthAxis(d.objectToBox[0].xyz, d.objectToBox[1].xyz, d.normal.xyz)
+                    : d.normal.xyz;
     bool keep = all(lessThanEqual(abs(box), vec3(1.0))) && all(lessThanEqual(abs(uv), vec2(1.0))) &&
                 spatterWithinAngle(n, d.normal.xyz, axis, flags, d.params.x);
     if (!keep) discard;

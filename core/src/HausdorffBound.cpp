@@ -187,9 +187,7 @@ public:
                       ? std::max(0.0, (s.tolerance - detail::kRoundingAllowance * a.scale) /
                                           (1.0 + detail::kRoundingAllowance))
                       : 0.0),
-          overlayEps_(kOverlayEps * (a.scale + b.scale)) {
-        updateLevel();
-    }
+          overlayEps_(kOverlayEps * (a.scale + b.scale)) {}
 
     // Measures the point p of A (raises the lower bound); its distance.
     double sample(const glm::dvec3& p) {
@@ -224,26 +222,21 @@ public:
     size_t queries = 0;
 
 private:
-    double level() const { return level_; }
-    void accept(double bound) { upper = std::max(upper, bound); }
-
-    void see(double distance) {
-        if (distance > lower) {
-            lower = distance;
-            updateLevel();
-        }
-        measured = std::max(measured, distance);
-        if (distance > s_.tolerance) exceeded_.store(true, std::memory_order_relaxed);
-    }
-
-    // The acceptance level from the lower bound: the margin above it, shrunk near the tolerance
+    // The acceptance level: the margin above the lower bound, shrunk near the tolerance
     // (HausdorffSettings::roomShare), or the tolerance when that is higher.
-    void updateLevel() {
+    double level() const {
         double margin = s_.margin;
         const double room = s_.tolerance - lower;
         if (s_.roomShare > 0.0 && std::isfinite(s_.tolerance) && room >= s_.minRoom * s_.tolerance)
             margin = std::min(margin, s_.roomShare * room);
-        level_ = std::max(lower + margin, accept_);
+        return std::max(lower + margin, accept_);
+    }
+    void accept(double bound) { upper = std::max(upper, bound); }
+
+    void see(double distance) {
+        lower = std::max(lower, distance);
+        measured = std::max(measured, distance);
+        if (distance > s_.tolerance) exceeded_.store(true, std::memory_order_relaxed);
     }
 
     Measured measure(const glm::dvec3& p) const {
@@ -420,7 +413,6 @@ private:
     std::atomic<bool>& exceeded_;
     double accept_;
     double overlayEps_;
-    double level_ = 0.0; // level()
     std::vector<Piece> pieces_;
 };
 
