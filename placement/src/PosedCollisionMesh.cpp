@@ -62,6 +62,28 @@ void linkRings(PosedCollisionMesh::Drawn& drawn) {
                 acrossEdge(drawn, t, k).value_or(PosedCollisionMesh::Drawn::kBorder);
 }
 
+// The render triangle nearest to the centre of each piece of each triangle of `collision`
+// (Drawn::seeds), in the order seedOf numbers them.
+std::vector<uint32_t> seedTriangles(const ClosestPointQuery& query, const Mesh& collision) {
+    constexpr int n = PosedCollisionMesh::Drawn::kSeedCuts;
+    std::vector<uint32_t> seeds;
+    seeds.reserve(collision.triangleCount() * n * n);
+    for (size_t t = 0; t < collision.triangleCount(); ++t) {
+        const uint32_t* c = &collision.indices[3 * t];
+        const glm::dvec3 p0(collision.positions[c[0]]), e1 = glm::dvec3(collision.positions[c[1]]) - p0,
+                                                        e2 = glm::dvec3(collision.positions[c[2]]) - p0;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; i + j < n; ++j)
+                for (int flip = 0; flip < (i + j < n - 1 ? 2 : 1); ++flip) {
+                    const double third = flip ? 2.0 / 3.0 : 1.0 / 3.0;
+                    const glm::dvec3 centre = p0 + e1 * ((i + third) / n) + e2 * ((j + third) / n);
+                    const std::optional<ClosestPoint> near = query.closest(centre);
+                    seeds.push_back(near ? near->triangle : PosedCollisionMesh::Drawn::kBorder);
+                }
+    }
+    return seeds;
+}
+
 } // namespace
 
 Result<std::optional<PosedCollisionMesh>> posedCollisionMesh(const Scene& scene, size_t object,
@@ -86,6 +108,7 @@ Result<std::optional<PosedCollisionMesh>> posedCollisionMesh(const Scene& scene,
     Result<ClosestPointQuery> query = ClosestPointQuery::create(drawn.rest);
     if (!query) return fail(query.error());
     drawn.query = std::make_shared<const ClosestPointQuery>(std::move(query).value());
+    drawn.seeds = seedTriangles(*drawn.query, collision);
     out.drawn = std::move(drawn);
     return std::optional<PosedCollisionMesh>(std::move(out));
 }
@@ -270,6 +293,46 @@ std::optional<glm::dvec3> restDirection(const std::array<glm::dvec3, 3>& rest,
     return d / length;
 }
 
+// Where the line through `atRest` along `along` meets the drawn surface at rest, found by walking
+// from render triangle `seed` across the edge beyond which the line meets each triangle's plane;
+// nothing when the walk reaches a border or takes too many steps, or when the meet it reaches lies
+// behind `atRest` along the line beyond rounding (a layer in front of it, which the shot meets first,
+// may lie within the reach) or farther than `reach` before it. The steps read a few rest positions each, where a ray
+// query descends a hierarchy from its root.
+std::optional<ClosestPointQuery::RayMeet> restWalk(const PosedCollisionMesh::Drawn& drawn, uint32_t seed,
+                                                   const glm::dvec3& atRest, const glm::dvec3& along,
+                                                   double reach) {
+    constexpr int kSteps = 8; // triangles tested
+    uint32_t t = seed;
+    for (int step = 0; step < kSteps && t != PosedCollisionMesh::Drawn::kBorder; ++step) {
+        const uint32_t* c = &drawn.rest.indices[3 * size_t(t)];
+        const std::array<glm::dvec3, 3> corners = {glm::dvec3(drawn.rest.positions[c[0]]),
+                                                   glm::dvec3(drawn.rest.positions[c[1]]),
+                                                   glm::dvec3(drawn.rest.positions[c[2]])};
+        const std::optional<std::pair<double, glm::dvec3>> meet = lineOnPlane(atRest, along, corners);
+        if (!meet) return std::nullopt;
+        const glm::dvec3& bary = meet->second;
+        if (within(bary)) {
+            // A hit on a proxy triangle that the drawn surface shares meets it within rounding.
+            if (!(meet->first >= -reach && meet->first <= 1e-9 * reach)) return std::nullopt;
+            return ClosestPointQuery::RayMeet{t, meet->first};
+        }
+        const int k = bary.x <= bary.y && bary.x <= bary.z ? 0 : bary.y <= bary.z ? 1 : 2;
+        t = drawn.neighbours[3 * size_t(t) + size_t(k)];
+    }
+    return std::nullopt;
+}
+
+// The seed of the piece of the hit triangle that the hit lies in (Drawn::seeds).
+uint32_t seedOf(const PosedCollisionMesh::Drawn& drawn, const CollisionHit& hit) {
+    constexpr int n = PosedCollisionMesh::Drawn::kSeedCuts;
+    auto step = [](double b) { return b > 0.0 ? (b < 1.0 ? int(b * n) : n - 1) : 0; };
+    const int i = step(hit.bary.y), j = std::min(step(hit.bary.z), n - 1 - i);
+    const bool flip = i + j < n - 1 && (hit.bary.y * n - i) + (hit.bary.z * n - j) > 1.0;
+    const size_t k = size_t(hit.primitive) * n * n + size_t(i * (2 * n - i) + 2 * j + (flip ? 1 : 0));
+    return k < drawn.seeds.size() ? drawn.seeds[k] : PosedCollisionMesh::Drawn::kBorder;
+}
+
 // The nearer of the line's meets with the drawn surface at rest from `atRest` along `along` and
 // against it, within `reach`.
 std::optional<ClosestPointQuery::RayMeet>
@@ -282,10 +345,13 @@ nearestMeet(const ClosestPointQuery& query, const glm::dvec3& atRest, const glm:
 }
 
 // The render triangle the shot meets, found at rest (see anchorOf), and where the posed line meets it
-// or the triangle it passes into (walkToShot); nothing when neither search at rest finds one. The
-// first search takes the drawn surface the shot's line meets first from the reach before the hit to
-// the reach beyond it, in front of the proxy or behind it. Where that is another layer of the body,
-// one the line crosses at rest but not at the pose, the second takes the meet nearest the hit.
+// or the triangle it passes into (walkToShot); nothing when no search at rest finds one. The first
+// search walks across the rest mesh from the render triangle nearest to the hit's piece of its
+// triangle (restWalk): the layer of the drawn surface that the proxy stands for there, where it lies
+// in front of the hit. Otherwise the second takes the drawn surface the shot's line meets first from
+// the reach before the hit to the reach beyond it, in front of the proxy or behind it; where that is
+// another layer of the body, one the line crosses at rest but not at the pose, the third takes the
+// meet nearest the hit.
 std::optional<SurfaceLocation> shotThroughRest(const PosedCollisionMesh& mesh,
                                                const std::array<glm::dvec3, 3>& rest,
                                                const std::array<glm::dvec3, 3>& posed,
@@ -300,6 +366,9 @@ std::optional<SurfaceLocation> shotThroughRest(const PosedCollisionMesh& mesh,
         const std::array<glm::dvec3, 3> corners = posedCorners(mesh, hit.indices, found->triangle, pose);
         return walkToShot(mesh, found->triangle, corners, hit.position, hit.direction, pose);
     };
+    if (std::optional<SurfaceLocation> met =
+            walkFrom(restWalk(*mesh.drawn, seedOf(*mesh.drawn, hit), atRest, *along, hit.reach)))
+        return met;
     if (std::optional<SurfaceLocation> met =
             walkFrom(query.firstMeet(atRest - hit.reach * *along, *along, 2.0 * hit.reach)))
         return met;

@@ -41,6 +41,12 @@ struct PosedCollisionMesh {
         // (neighbours[3 t + k]; kBorder when there is none), so that a walk steps without a search.
         std::vector<uint32_t> neighbours;
         static constexpr uint32_t kBorder = UINT32_MAX;
+        // Each collision triangle cut into kSeedCuts^2 pieces (a grid of kSeedCuts steps along two of
+        // its edges), and for each piece the render triangle nearest to its centre at rest
+        // (seeds[kSeedCuts^2 t + piece]; kBorder for none): where the walk towards a hit in that
+        // piece starts.
+        std::vector<uint32_t> seeds;
+        static constexpr int kSeedCuts = 3;
     };
     std::optional<Drawn> drawn;
 };
@@ -79,12 +85,13 @@ struct CollisionHit {
 };
 
 // The point of the drawn surface that `hit` stands for, at `pose`. With a shot: its line is taken
-// to rest through the hit triangle's own deformation, and the render triangle it meets there (first
-// from the reach before the hit to the reach beyond it; failing that, nearest the hit) is posed; the
-// anchor is where the posed line meets that triangle or the neighbour it passes into, a few
-// triangles on. Else where the line meets, nearest the hit, a render triangle around the one nearest
-// the hit at rest (that triangle and those that share a corner with it, posed); failing both, where
-// it meets the nearest one's plane (the foot of the hit without a shot). With the anchor's frame at
+// to rest through the hit triangle's own deformation, and the render triangle it meets there (found
+// by walking across the rest mesh from the seed of the hit's piece where that meet lies in front of
+// the hit; otherwise the first from the reach before the hit to the reach beyond it; failing that,
+// nearest the hit) is posed; the anchor is where the posed line meets that triangle or the neighbour it
+// passes into, a few triangles on. Else where the line meets, nearest the hit, a render triangle around the
+// one nearest the hit at rest (that triangle and those that share a corner with it, posed); failing both,
+// where it meets the nearest one's plane (the foot of the hit without a shot). With the anchor's frame at
 // `pose` (anchorFrame), from the corners posed to find it. Empty when the render mesh has no surface,
 // the hit at rest is not finite, or the triangle found has collapsed at the pose.
 std::optional<SurfaceLocation> anchorOf(const PosedCollisionMesh& mesh, const CollisionHit& hit,
