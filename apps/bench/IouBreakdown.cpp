@@ -9,6 +9,7 @@ namespace {
 // Which fields of the render-placed decal a variant takes.
 struct Taken {
     bool centre = false, frame = false, slant = false, depth = false;
+    bool onlyBoth = false; // no decal where the render mesh places none
 };
 
 // Each shot's decal in both systems (nothing where a system places none).
@@ -29,7 +30,7 @@ ShotDecals placeBoth(DecalSystem& proxy, DecalSystem& render, const std::vector<
 std::vector<Decal> variant(const ShotDecals& decals, const Taken& taken) {
     std::vector<Decal> out;
     for (size_t i = 0; i < decals.proxy.size(); ++i) {
-        if (!decals.proxy[i]) continue;
+        if (!decals.proxy[i] || (taken.onlyBoth && !decals.render[i])) continue;
         Decal d = *decals.proxy[i];
         if (const std::optional<Decal>& r = decals.render[i]) {
             if (taken.centre) d.center = r->center;
@@ -58,7 +59,9 @@ Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, co
                                                   {&b.frame, {false, true, false, false}},
                                                   {&b.frameSlant, {false, true, true, false}},
                                                   {&b.allButDepth, {true, true, true, false}},
-                                                  {&b.all, {true, true, true, true}}};
+                                                  {&b.all, {true, true, true, true}},
+                                                  {&b.centreDepth, {true, false, false, true}},
+                                                  {&b.allPlacedByBoth, {true, true, true, true, true}}};
     for (const auto& [into, taken] : variants) {
         Result<std::vector<uint8_t>> mask = probe.mask(camera, variant(decals, taken));
         if (!mask) return fail(mask.error());

@@ -3,9 +3,12 @@
 // shots are placed in a system over the proxies and in one over the render meshes; the proxy-placed
 // decals are drawn again with fields taken from the decal the same shot places on the render mesh
 // (where both place one): its centre; its frame; its frame and slant; centre, frame and slant; and
-// all of those with its half-depth. What is still lost with every field taken is the shots that one
-// system places and the other does not (grazing silhouettes, the angle limit met on one surface and
-// not on the other): no correction of a placed decal can win it back.
+// all of those with its half-depth. Its centre and half-depth alone stand for a decal pass that finds
+// the drawn surface along the shot in the depth buffer and holds the box as shallow there as on the
+// render mesh. What is still lost with every field taken is the shots that one system places and the
+// other does not (grazing silhouettes, the angle limit met on one surface and not on the other); the
+// last variant drops the decals the render mesh does not place as well, which leaves the shots only
+// the render mesh places: no correction of a placed decal can win those back.
 
 #include "CoverageProbe.hpp"
 
@@ -23,6 +26,8 @@ namespace spatter::bench {
 
 struct IouBreakdown {
     double centre = 0.0, frame = 0.0, frameSlant = 0.0, allButDepth = 0.0, all = 0.0;
+    double centreDepth = 0.0;     // centre and half-depth
+    double allPlacedByBoth = 0.0; // every field, and no decal where the render mesh places none
 };
 
 // The IoUs against `reference` (the render-placed decals' mask from `camera`) of the decals `shots`

@@ -53,7 +53,9 @@ then one proxy per backend and tolerance. Columns:
   IoU-n     the same, both projected along the normal
   (--iou-breakdown: IoU again with fields of each proxy-placed decal taken from the decal the same
   shot places on the render mesh: its centre, its frame, frame and slant, all three, all three and
-  the half-depth; what is lost with all of them is the shots one surface places and the other not)
+  the half-depth; centre and half-depth alone (what a decal pass that found the drawn surface along
+  the shot in the depth buffer could take); what is lost with all of them is the shots one surface
+  places and the other not, and last, all of them with no decal where the render mesh places none)
   h         the proxy's certified error bound (% of the diagonal); '!' marks a missed tolerance
 
 The three.js peer (bench/peers/threejs: three-mesh-bvh raycast and DecalGeometry, on the same mesh
@@ -78,7 +80,8 @@ and rays) is run when node and npm are available and reported beside the rows.
 --json FILE        {"rows": [{"backend", "tolerance_rel", "proxy_triangles", "build_s", "placement_ns",
                    "batch_ns", "dist_p50_rel", "dist_p99_rel", "dist_max_rel", "normal_deg_p99",
                    "disagree_rate", "coverage_iou", "coverage_iou_normal", "iou_breakdown": {"centre",
-                   "frame", "frame_slant", "centre_frame_slant", "all"}, ...}], "peers": [...], ...}
+                   "frame", "frame_slant", "centre_frame_slant", "all", "centre_depth",
+                   "all_placed_by_both"}, ...}], "peers": [...], ...}
 )";
 
 constexpr double kRadToDeg = 57.295779513082320876;
@@ -235,10 +238,12 @@ void printBreakdowns(const std::vector<TradeoffRow>& rows) {
             table.push_back({r.backend, fmt(100.0 * r.toleranceRel, 3), fixed(r.iou, 4),
                              fixed(r.breakdown->centre, 4), fixed(r.breakdown->frame, 4),
                              fixed(r.breakdown->frameSlant, 4), fixed(r.breakdown->allButDepth, 4),
-                             fixed(r.breakdown->all, 4)});
+                             fixed(r.breakdown->all, 4), fixed(r.breakdown->centreDepth, 4),
+                             fixed(r.breakdown->allPlacedByBoth, 4)});
     if (table.empty()) return;
     std::printf("\nIoU along the shot with the render-placed decal's fields taken\n");
-    printTable({"backend", "tol%", "IoU", "centre", "frame", "frame+slant", "centre+frame+slant", "+depth"},
+    printTable({"backend", "tol%", "IoU", "centre", "frame", "frame+slant", "centre+frame+slant", "+depth",
+                "centre+depth", "all, both placed"},
                table);
 }
 
@@ -262,7 +267,9 @@ Json tradeoffRowJson(const TradeoffRow& r) {
                               {"frame", number(r.breakdown->frame)},
                               {"frame_slant", number(r.breakdown->frameSlant)},
                               {"centre_frame_slant", number(r.breakdown->allButDepth)},
-                              {"all", number(r.breakdown->all)}};
+                              {"all", number(r.breakdown->all)},
+                              {"centre_depth", number(r.breakdown->centreDepth)},
+                              {"all_placed_by_both", number(r.breakdown->allPlacedByBoth)}};
     j["status"] = r.status;
     j["reload_s"] = number(r.reloadS);
     j["bvh_s"] = number(r.bvhS);

@@ -111,13 +111,16 @@ TEST(BenchSmoke, TradeoffBreaksTheIouDownByTheFieldsTakenFromTheRenderPlacedDeca
     const nlohmann::json& proxy = j["rows"][1];
     ASSERT_TRUE(proxy.contains("iou_breakdown")) << proxy.dump();
     const nlohmann::json& b = proxy["iou_breakdown"];
-    for (const char* key : {"centre", "frame", "frame_slant", "centre_frame_slant", "all"}) {
+    for (const char* key : {"centre", "frame", "frame_slant", "centre_frame_slant", "all", "centre_depth",
+                            "all_placed_by_both"}) {
         EXPECT_GT(b[key].get<double>(), 0.0) << key;
         EXPECT_LE(b[key].get<double>(), 1.0) << key;
     }
-    // Taking every field leaves only the shots one surface places and the other does not.
+    // Taking every field leaves only the shots one surface places and the other does not; dropping the
+    // decals the render mesh does not place leaves those only it places.
     EXPECT_GE(b["all"].get<double>(), proxy["coverage_iou"].get<double>()) << proxy.dump();
     EXPECT_GT(b["all"].get<double>(), 0.9) << proxy.dump();
+    EXPECT_GT(b["all_placed_by_both"].get<double>(), 0.9) << proxy.dump();
 }
 
 TEST(BenchSmoke, ProxyComparesWithPlainMeshoptimizerInOneRun) {
