@@ -43,6 +43,56 @@ std::vector<Decal> variant(const ShotDecals& decals, const Taken& taken) {
     return out;
 }
 
+// Placement's frame on unit normal `n` with the shot `hint` (frameFromNormalAndHint), turned about
+// `n` as far as frame `f` is turned from placement's frame on its own normal: the decal's random
+// rotation, read back.
+Frame refitFrame(const Frame& f, const glm::vec3& n, const glm::vec3& hint) {
+    const Frame base = frameFromNormalAndHint(f.normal, hint);
+    const float angle = std::atan2(glm::dot(f.tangent, base.bitangent), glm::dot(f.tangent, base.tangent));
+    return rotateAboutNormal(frameFromNormalAndHint(n, hint), angle);
+}
+
+// Decal `d` as a decal pass reading the drawn surface would draw it: the line through its centre
+// along its projection axis, within its box, meets the drawn surface (traced in `drawn`, as the depth
+// buffer gives it where the camera sees that point); the decal is moved there, its frame refitted to
+// the drawn triangle's normal with the shot as hint (its projection axis reversed), its projection
+// axis kept in space and its half-depth `halfDepth`. Nothing where the line meets no drawn surface in
+// the box: the pass would drop the decal.
+std::optional<Decal> onDrawnSurface(const Decal& d, const CollisionWorld& drawn, const glm::dmat4& toWorld,
+                                    float halfDepth) {
+    const glm::dvec3 reach(d.boxToObject()[2]);
+    Ray line;
+    line.origin = glm::dvec3(toWorld * glm::dvec4(glm::dvec3(d.center) + reach, 1.0));
+    line.direction = glm::dvec3(toWorld * glm::dvec4(-2.0 * reach, 0.0));
+    line.tnear = 0.0;
+    line.tfar = 1.0;
+    const std::optional<Hit> hit = drawn.intersect(line);
+    if (!hit) return std::nullopt;
+    const Frame f = d.frame();
+    const glm::vec3 axis = d.projectionAxis(), n = glm::normalize(glm::vec3(hit->localNormal));
+    Decal out = d;
+    out.center = glm::vec3(hit->localPosition);
+    if (!out.setFrame(refitFrame(f, glm::dot(n, f.normal) < 0.0f ? -n : n, -axis))) return d;
+    out.setProjectionAxis(axis);
+    out.halfDepth = halfDepth;
+    return out;
+}
+
+// The proxy-placed decals as a decal pass reading the drawn surface would draw them (onDrawnSurface),
+// each as shallow as the render-placed decal of its shot where there is one.
+std::vector<Decal> drawnProbe(const ShotDecals& decals, const CollisionWorld& drawn, const Scene& scene) {
+    std::vector<Decal> out;
+    for (size_t i = 0; i < decals.proxy.size(); ++i) {
+        if (!decals.proxy[i]) continue;
+        const Decal& d = *decals.proxy[i];
+        const float halfDepth = decals.render[i] ? decals.render[i]->halfDepth : d.halfDepth;
+        if (std::optional<Decal> probed =
+                onDrawnSurface(d, drawn, scene.objects[d.object].transform, halfDepth))
+            out.push_back(*probed);
+    }
+    return out;
+}
+
 } // namespace
 
 Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, const Scene& scene,
@@ -67,6 +117,10 @@ Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, co
         if (!mask) return fail(mask.error());
         *into = iou(reference, mask.value());
     }
+    Result<std::vector<uint8_t>> probed =
+        probe.mask(camera, drawnProbe(decals, render.value().world(), scene));
+    if (!probed) return fail(probed.error());
+    b.drawnProbe = iou(reference, probed.value());
     return b;
 }
 

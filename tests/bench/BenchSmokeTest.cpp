@@ -112,7 +112,7 @@ TEST(BenchSmoke, TradeoffBreaksTheIouDownByTheFieldsTakenFromTheRenderPlacedDeca
     ASSERT_TRUE(proxy.contains("iou_breakdown")) << proxy.dump();
     const nlohmann::json& b = proxy["iou_breakdown"];
     for (const char* key : {"centre", "frame", "frame_slant", "centre_frame_slant", "all", "centre_depth",
-                            "all_placed_by_both"}) {
+                            "all_placed_by_both", "drawn_probe"}) {
         EXPECT_GT(b[key].get<double>(), 0.0) << key;
         EXPECT_LE(b[key].get<double>(), 1.0) << key;
     }
@@ -121,6 +121,8 @@ TEST(BenchSmoke, TradeoffBreaksTheIouDownByTheFieldsTakenFromTheRenderPlacedDeca
     EXPECT_GE(b["all"].get<double>(), proxy["coverage_iou"].get<double>()) << proxy.dump();
     EXPECT_GT(b["all"].get<double>(), 0.9) << proxy.dump();
     EXPECT_GT(b["all_placed_by_both"].get<double>(), 0.9) << proxy.dump();
+    // Re-laid on the drawn surface, the decals cover more of what the render-placed ones cover.
+    EXPECT_GT(b["drawn_probe"].get<double>(), proxy["coverage_iou"].get<double>()) << proxy.dump();
 }
 
 TEST(BenchSmoke, ProxyComparesWithPlainMeshoptimizerInOneRun) {
