@@ -1,5 +1,6 @@
 #include "IouBreakdown.hpp"
 
+#include "spatter/core/DecalRefit.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
 namespace spatter::bench {
@@ -43,21 +44,11 @@ std::vector<Decal> variant(const ShotDecals& decals, const Taken& taken) {
     return out;
 }
 
-// Placement's frame on unit normal `n` with the shot `hint` (frameFromNormalAndHint), turned about
-// `n` as far as frame `f` is turned from placement's frame on its own normal: the decal's random
-// rotation, read back.
-Frame refitFrame(const Frame& f, const glm::vec3& n, const glm::vec3& hint) {
-    const Frame base = frameFromNormalAndHint(f.normal, hint);
-    const float angle = std::atan2(glm::dot(f.tangent, base.bitangent), glm::dot(f.tangent, base.tangent));
-    return rotateAboutNormal(frameFromNormalAndHint(n, hint), angle);
-}
-
 // Decal `d` as a decal pass reading the drawn surface would draw it: the line through its centre
 // along its projection axis, within its box, meets the drawn surface (traced in `drawn`, as the depth
-// buffer gives it where the camera sees that point); the decal is moved there, its frame refitted to
-// the drawn triangle's normal with the shot as hint (its projection axis reversed), its projection
-// axis kept in space and its half-depth `halfDepth`. Nothing where the line meets no drawn surface in
-// the box: the pass would drop the decal.
+// buffer gives it where the camera sees that point), and the decal is laid again there (relaidDecal),
+// its box `halfDepth` deep; it stays as it is where the drawn normal cannot take it. Nothing where the
+// line meets no drawn surface in the box: the pass would drop the decal.
 std::optional<Decal> onDrawnSurface(const Decal& d, const CollisionWorld& drawn, const glm::dmat4& toWorld,
                                     float halfDepth) {
     const glm::dvec3 reach(d.boxToObject()[2]);
@@ -68,14 +59,9 @@ std::optional<Decal> onDrawnSurface(const Decal& d, const CollisionWorld& drawn,
     line.tfar = 1.0;
     const std::optional<Hit> hit = drawn.intersect(line);
     if (!hit) return std::nullopt;
-    const Frame f = d.frame();
-    const glm::vec3 axis = d.projectionAxis(), n = glm::normalize(glm::vec3(hit->localNormal));
-    Decal out = d;
-    out.center = glm::vec3(hit->localPosition);
-    if (!out.setFrame(refitFrame(f, glm::dot(n, f.normal) < 0.0f ? -n : n, -axis))) return d;
-    out.setProjectionAxis(axis);
-    out.halfDepth = halfDepth;
-    return out;
+    return relaidDecal(d, glm::dmat3(toWorld), glm::vec3(hit->localPosition), glm::vec3(hit->localNormal),
+                       halfDepth)
+        .value_or(d);
 }
 
 // The proxy-placed decals as a decal pass reading the drawn surface would draw them (onDrawnSurface),

@@ -3,6 +3,8 @@
 
 #include "PlacementTestUtil.hpp"
 
+#include "spatter/core/DecalRefit.hpp"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
@@ -31,6 +33,32 @@ CollisionWorld offsetFloorWorld(float offset) {
     Result<CollisionWorld> w = CollisionWorld::build(scene, proxies);
     EXPECT_TRUE(w.ok()) << w.error();
     return std::move(w).value();
+}
+
+// The drawn floor y = 0 (object space) of an object turned and scaled unevenly.
+Scene turnedFloor() {
+    Scene scene;
+    scene.source = "test:turned floor";
+    const glm::dmat4 transform =
+        glm::scale(glm::rotate(glm::dmat4(1.0), 0.3, glm::dvec3(0.2, 1.0, 0.4)), glm::dvec3(1.5, 0.8, 1.2));
+    scene.objects.push_back(makeSceneObject("floor", makeGrid({-2.0f, 2.0f}, {-2.0f, 2.0f}), transform));
+    return scene;
+}
+
+// A decal system over turnedFloor traced through a proxy tilted by `tiltDeg` about the x axis, or on the
+// floor's own mesh for `tiltDeg` < 0.
+DecalSystem turnedFloorSystem(double tiltDeg) {
+    const Scene scene = turnedFloor();
+    std::vector<std::optional<Proxy>> proxies;
+    if (tiltDeg >= 0.0) {
+        Mesh tilted = makeGrid({-2.0f, 2.0f}, {-2.0f, 2.0f});
+        for (glm::vec3& p : tilted.positions)
+            p.y = p.z * float(std::tan(tiltDeg * kPi / 180.0));
+        proxies.push_back(makeProxy(std::move(tilted), 0.5));
+    }
+    Result<DecalSystem> s = DecalSystem::create(buildWorld(scene, proxies));
+    EXPECT_TRUE(s.ok()) << s.error();
+    return std::move(s).value();
 }
 
 // `point` (object space) in the unit box of `d`.
@@ -115,4 +143,71 @@ TEST(ShotProjection, GrazingShotTurnsTheAxisToTheLargestSlant) {
     ASSERT_TRUE(r.placed()) << r.reason;
     const WorldDecal w = s.worldBox(*s.get(r.handle));
     EXPECT_LT(glm::length(glm::dvec3(w.projection) - shotFrom(kMaxSlantDeg, 0.0)), 1e-3);
+}
+
+// A decal placed through a proxy tilted against the drawn floor, laid again where the line along its
+// projection axis meets the floor (relaidDecal), is the decal placement lays on the floor with the same
+// shot: the same centre, frame (its random rotation included), slant and size, for shots 10 to 60
+// degrees off the normal, in an object turned and scaled unevenly.
+TEST(ShotProjection, ADecalRelaidOnTheDrawnSurfaceIsTheOnePlacementLaysThere) {
+    const glm::dmat4 toWorld = turnedFloor().objects[0].transform;
+    for (double degrees : {10.0, 35.0, 60.0})
+        for (double azimuth : {0.3, 2.0, 4.1}) {
+            const glm::dvec3 target(toWorld * glm::dvec4(0.2, 0.0, 0.3, 1.0));
+            const glm::dvec3 back = glm::normalize(glm::dmat3(toWorld) * shotFrom(degrees, azimuth));
+            const Ray shot = ray(target + 3.0 * back, -back);
+            DecalSystem throughProxy = turnedFloorSystem(6.0), onFloor = turnedFloorSystem(-1.0);
+            const SpawnResult a = throughProxy.spawn(shot, addType(throughProxy, plainType()));
+            const SpawnResult b = onFloor.spawn(shot, addType(onFloor, plainType()));
+            ASSERT_TRUE(a.placed() && b.placed()) << a.reason << b.reason;
+            const Decal proxyPlaced = *throughProxy.get(a.handle), drawn = *onFloor.get(b.handle);
+            const glm::vec3 axis = proxyPlaced.projectionAxis();
+            const glm::vec3 meet = proxyPlaced.center - axis * (proxyPlaced.center.y / axis.y);
+            const std::optional<Decal> relaid = relaidDecal(proxyPlaced, glm::dmat3(toWorld), meet,
+                                                            glm::vec3(0.0f, 1.0f, 0.0f), drawn.halfDepth);
+            ASSERT_TRUE(relaid.has_value());
+            const std::string where =
+                std::to_string(degrees) + " degrees, azimuth " + std::to_string(azimuth);
+            EXPECT_LT(glm::length(relaid->center - drawn.center), 1e-4f) << where;
+            const Frame f = relaid->frame(), g = drawn.frame();
+            EXPECT_LT(glm::length(f.tangent - g.tangent), 2e-3f) << where;
+            EXPECT_LT(glm::length(f.bitangent - g.bitangent), 2e-3f) << where;
+            EXPECT_LT(glm::length(f.normal - g.normal), 1e-5f) << where;
+            EXPECT_LT(glm::length(unpackSlant(relaid->slant) - unpackSlant(drawn.slant)), 2e-3f) << where;
+            EXPECT_LT(glm::length(relaid->size - drawn.size), 1e-4f * glm::length(drawn.size)) << where;
+            EXPECT_EQ(relaid->halfDepth, drawn.halfDepth);
+            // The proxy's own decal is off: its frame lies in the tilted facet's plane.
+            EXPECT_GT(glm::length(proxyPlaced.frame().normal - g.normal), 0.05f) << where;
+        }
+}
+
+TEST(ShotProjection, RelaidDecalRefusesWhatCannotBeLaidAndTurnsANormalDecalTheLeastWay) {
+    DecalSystem s = turnedFloorSystem(-1.0);
+    const uint16_t t = addType(s, plainType());
+    const SpawnResult r = s.spawnAt(glm::dvec3(turnedFloor().objects[0].transform * glm::dvec4(0, 0, 0, 1)),
+                                    glm::dvec3(0.0, 1.0, 0.0), t);
+    ASSERT_TRUE(r.placed()) << r.reason;
+    const Decal d = *s.get(r.handle);
+    ASSERT_EQ(d.slant, 0u);
+    const glm::dmat3 m(1.0);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const Frame f = d.frame();
+    const glm::vec3 across = glm::normalize(glm::cross(f.normal, f.tangent));
+    EXPECT_FALSE(relaidDecal(d, m, glm::vec3(nan, 0.0f, 0.0f), f.normal, 0.1f).has_value());
+    EXPECT_FALSE(relaidDecal(d, m, glm::vec3(0.0f), glm::vec3(0.0f), 0.1f).has_value());
+    EXPECT_FALSE(relaidDecal(d, m, glm::vec3(0.0f), glm::vec3(nan, 1.0f, 0.0f), 0.1f).has_value());
+    EXPECT_FALSE(relaidDecal(d, m, glm::vec3(0.0f), across, 0.1f).has_value());
+    EXPECT_FALSE(relaidDecal(d, m, glm::vec3(0.0f), f.normal, -0.1f).has_value());
+    EXPECT_FALSE(relaidDecal(d, glm::dmat3(0.0), glm::vec3(0.0f), f.normal, 0.1f).has_value());
+    Decal none = d;
+    none.packedFrame = kNoOrientation;
+    EXPECT_FALSE(relaidDecal(none, m, glm::vec3(0.0f), f.normal, 0.1f).has_value());
+    // Along its normal: turned about the tangent by 20 degrees, the tangent stays.
+    const glm::vec3 tilted = glm::normalize(f.normal + float(std::tan(20.0 * kPi / 180.0)) * f.bitangent);
+    const std::optional<Decal> turned = relaidDecal(d, m, d.center, tilted, d.halfDepth);
+    ASSERT_TRUE(turned.has_value());
+    EXPECT_LT(glm::length(turned->frame().normal - tilted), 1e-5f);
+    EXPECT_LT(glm::length(turned->frame().tangent - f.tangent), 1e-5f);
+    EXPECT_EQ(turned->slant, 0u);
+    EXPECT_EQ(turned->size, d.size);
 }
