@@ -44,13 +44,26 @@ std::vector<Decal> variant(const ShotDecals& decals, const Taken& taken) {
     return out;
 }
 
+// Whether the camera at `eye` sees `point` on the drawn surface: nothing of `drawn` lies between them.
+bool seenFrom(const glm::dvec3& eye, const glm::dvec3& point, const CollisionWorld& drawn) {
+    const glm::dvec3 to = point - eye;
+    Ray sight;
+    sight.origin = eye;
+    sight.direction = to;
+    sight.tnear = 0.0;
+    sight.tfar = 1.0;
+    const std::optional<Hit> hit = drawn.intersect(sight);
+    return !hit || (1.0 - hit->t) * glm::length(to) <= 1e-4 * glm::length(to);
+}
+
 // Decal `d` as a decal pass reading the drawn surface would draw it: the line through its centre
 // along its projection axis, within its box, meets the drawn surface (traced in `drawn`, as the depth
 // buffer gives it where the camera sees that point), and the decal is laid again there (relaidDecal),
-// its box `halfDepth` deep; it stays as it is where the drawn normal cannot take it. Nothing where the
-// line meets no drawn surface in the box: the pass would drop the decal.
+// its box `halfDepth` deep; it stays as it is where the drawn normal cannot take it, or, with `eye`,
+// where the camera there does not see the meet. Nothing where the line meets no drawn surface in the
+// box: the pass would drop the decal.
 std::optional<Decal> onDrawnSurface(const Decal& d, const CollisionWorld& drawn, const glm::dmat4& toWorld,
-                                    float halfDepth) {
+                                    float halfDepth, const std::optional<glm::dvec3>& eye) {
     const glm::dvec3 reach(d.boxToObject()[2]);
     Ray line;
     line.origin = glm::dvec3(toWorld * glm::dvec4(glm::dvec3(d.center) + reach, 1.0));
@@ -58,6 +71,7 @@ std::optional<Decal> onDrawnSurface(const Decal& d, const CollisionWorld& drawn,
     line.tnear = 0.0;
     line.tfar = 1.0;
     const std::optional<Hit> hit = drawn.intersect(line);
+    if (eye && !seenFrom(*eye, hit ? hit->position : line.origin + line.direction * 0.5, drawn)) return d;
     if (!hit) return std::nullopt;
     return relaidDecal(d, glm::dmat3(toWorld), glm::vec3(hit->localPosition), glm::vec3(hit->localNormal),
                        halfDepth)
@@ -66,14 +80,15 @@ std::optional<Decal> onDrawnSurface(const Decal& d, const CollisionWorld& drawn,
 
 // The proxy-placed decals as a decal pass reading the drawn surface would draw them (onDrawnSurface),
 // each as shallow as the render-placed decal of its shot where there is one.
-std::vector<Decal> drawnProbe(const ShotDecals& decals, const CollisionWorld& drawn, const Scene& scene) {
+std::vector<Decal> drawnProbe(const ShotDecals& decals, const CollisionWorld& drawn, const Scene& scene,
+                              const std::optional<glm::dvec3>& eye) {
     std::vector<Decal> out;
     for (size_t i = 0; i < decals.proxy.size(); ++i) {
         if (!decals.proxy[i]) continue;
         const Decal& d = *decals.proxy[i];
         const float halfDepth = decals.render[i] ? decals.render[i]->halfDepth : d.halfDepth;
         if (std::optional<Decal> probed =
-                onDrawnSurface(d, drawn, scene.objects[d.object].transform, halfDepth))
+                onDrawnSurface(d, drawn, scene.objects[d.object].transform, halfDepth, eye))
             out.push_back(*probed);
     }
     return out;
@@ -103,10 +118,14 @@ Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, co
         if (!mask) return fail(mask.error());
         *into = iou(reference, mask.value());
     }
-    Result<std::vector<uint8_t>> probed =
-        probe.mask(camera, drawnProbe(decals, render.value().world(), scene));
-    if (!probed) return fail(probed.error());
-    b.drawnProbe = iou(reference, probed.value());
+    const std::pair<double*, std::optional<glm::dvec3>> probes[] = {{&b.drawnProbe, std::nullopt},
+                                                                    {&b.drawnProbeSeen, camera.eye}};
+    for (const auto& [into, eye] : probes) {
+        Result<std::vector<uint8_t>> probed =
+            probe.mask(camera, drawnProbe(decals, render.value().world(), scene, eye));
+        if (!probed) return fail(probed.error());
+        *into = iou(reference, probed.value());
+    }
     return b;
 }
 

@@ -8,11 +8,13 @@
 // render mesh. What is still lost with every field taken is the shots that one system places and the
 // other does not (grazing silhouettes, the angle limit met on one surface and not on the other); the
 // next drops the decals the render mesh does not place as well, which leaves the shots only the
-// render mesh places: no correction of a placed decal can win those back. The last takes nothing from
-// the render-placed decal: each proxy-placed decal is re-laid where the line along its projection axis
-// meets the drawn surface, its frame built on the drawn normal as placement builds one and its box as
-// shallow as on the render mesh, and dropped where the line meets none in its box: what a decal pass
-// reading the drawn surface from the depth buffer would draw where the camera sees that point.
+// render mesh places: no correction of a placed decal can win those back. The drawn probe takes
+// nothing from the render-placed decal: each proxy-placed decal is laid again where the line along its
+// projection axis meets the drawn surface (relaidDecal), its box as shallow as on the render mesh, and
+// dropped where the line meets none in its box: what a decal pass reading the drawn surface from the
+// depth buffer would draw where the camera sees that point. Its second form leaves a decal as placed
+// where the camera does not see that point (or, for a line meeting nothing, the line's middle), as
+// such a pass would have to.
 
 #include "CoverageProbe.hpp"
 
@@ -32,7 +34,8 @@ struct IouBreakdown {
     double centre = 0.0, frame = 0.0, frameSlant = 0.0, allButDepth = 0.0, all = 0.0;
     double centreDepth = 0.0;     // centre and half-depth
     double allPlacedByBoth = 0.0; // every field, and no decal where the render mesh places none
-    double drawnProbe = 0.0;      // re-laid on the drawn surface met along the axis, dropped where none is
+    double drawnProbe = 0.0; // laid again where the axis meets the drawn surface, dropped where it meets none
+    double drawnProbeSeen = 0.0; // the same where the camera sees the meet (or the line's middle)
 };
 
 // The IoUs against `reference` (the render-placed decals' mask from `camera`) of the decals `shots`
