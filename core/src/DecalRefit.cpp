@@ -26,47 +26,48 @@ Frame leastTurn(const Frame& f, const glm::vec3& n) {
     return Frame{turn * f.tangent, turn * f.bitangent, n};
 }
 
+// The frame of decal `d` laid on `normal` (object space, facing the decal's normal), in world space
+// where placement builds frames (normals by the inverse transpose of `toWorld`, directions by
+// `toWorld`); nothing for a normal 89 degrees or more from the decal's.
+std::optional<Frame> laidWorldFrame(const Decal& d, const glm::dmat3& toWorld, const glm::vec3& normal) {
+    const Frame f = d.frame();
+    const glm::dmat3 normalToWorld = glm::transpose(glm::inverse(toWorld));
+    const glm::vec3 oldNormal = glm::normalize(glm::vec3(normalToWorld * glm::dvec3(f.normal)));
+    const glm::vec3 newNormal = glm::normalize(
+        glm::vec3(normalToWorld * glm::dvec3(glm::dot(normal, f.normal) < 0.0f ? -normal : normal)));
+    constexpr float kCosMaxTurn = 0.0174524f; // cos 89 degrees: an edge-on surface takes no decal
+    if (!(glm::dot(newNormal, oldNormal) > kCosMaxTurn)) return std::nullopt;
+    const glm::vec3 tangent = glm::normalize(glm::vec3(toWorld * glm::dvec3(f.tangent)));
+    const Frame old{tangent, glm::cross(oldNormal, tangent), oldNormal};
+    if (d.slant == 0) return leastTurn(old, newNormal);
+    const glm::vec3 hint = -glm::vec3(toWorld * glm::dvec3(d.projectionAxis())); // the shot
+    return turnedLike(frameFromNormalAndHint(newNormal, hint), frameFromNormalAndHint(oldNormal, hint), old);
+}
+
 } // namespace
 
 std::optional<Decal> relaidDecal(const Decal& d, const glm::dmat3& toWorld, const glm::vec3& point,
                                  const glm::vec3& normal, float halfDepth) {
-    const Frame f = d.frame();
     const double det = glm::determinant(toWorld);
-    if (f.normal == glm::vec3(0.0f) || !finite(point) || !finite(normal) || !std::isfinite(halfDepth) ||
-        halfDepth < 0.0f || !std::isfinite(det) || det == 0.0)
+    if (d.frame().normal == glm::vec3(0.0f) || !finite(point) || !finite(normal) ||
+        !std::isfinite(halfDepth) || halfDepth < 0.0f || !std::isfinite(det) || det == 0.0)
         return std::nullopt;
-    const glm::dmat3 toObject = glm::inverse(toWorld);
-    // The decal's frame and shot in world space, where placement builds frames: normals by the
-    // inverse transpose, directions by the matrix itself.
-    auto normalToWorld = [&](const glm::vec3& n) {
-        return glm::vec3(glm::transpose(toObject) * glm::dvec3(n));
-    };
-    const glm::vec3 oldNormal = glm::normalize(normalToWorld(f.normal));
-    glm::vec3 newNormal = normalToWorld(glm::dot(normal, f.normal) < 0.0f ? -normal : normal);
-    constexpr float kCosMaxTurn = 0.0174524f; // cos 89 degrees: an edge-on surface takes no decal
-    if (!(glm::dot(glm::normalize(newNormal), oldNormal) > kCosMaxTurn)) return std::nullopt;
-    newNormal = glm::normalize(newNormal);
-    const glm::vec3 axis = d.projectionAxis();
-    const glm::vec3 hint = -glm::vec3(toWorld * glm::dvec3(axis));
-    const glm::vec3 tangent = glm::vec3(toWorld * glm::dvec3(f.tangent));
-    const Frame old{glm::normalize(tangent), glm::cross(oldNormal, glm::normalize(tangent)), oldNormal};
-    const Frame laid = d.slant == 0 ? leastTurn(old, newNormal)
-                                    : turnedLike(frameFromNormalAndHint(newNormal, hint),
-                                                 frameFromNormalAndHint(oldNormal, hint), old);
+    const std::optional<Frame> laid = laidWorldFrame(d, toWorld, normal);
+    if (!laid) return std::nullopt;
     // Back to object space as placement takes its frames there, the decal's world size kept.
-    const glm::dvec3 n = glm::normalize(glm::transpose(toWorld) * glm::dvec3(laid.normal));
-    glm::dvec3 t = toObject * glm::dvec3(laid.tangent);
+    const glm::dvec3 n = glm::normalize(glm::transpose(toWorld) * glm::dvec3(laid->normal));
+    glm::dvec3 t = glm::inverse(toWorld) * glm::dvec3(laid->tangent);
     t = glm::normalize(t - n * glm::dot(n, t));
     const glm::dvec3 b = glm::cross(n, t);
-    const double worldWidth = double(d.size.x) * glm::length(toWorld * glm::dvec3(f.tangent));
-    const double worldHeight = double(d.size.y) * glm::length(toWorld * glm::dvec3(f.bitangent));
+    const Frame f = d.frame();
+    const glm::dvec2 worldSize(double(d.size.x) * glm::length(toWorld * glm::dvec3(f.tangent)),
+                               double(d.size.y) * glm::length(toWorld * glm::dvec3(f.bitangent)));
     Decal out = d;
     out.center = point;
     if (!out.setFrame(Frame{glm::vec3(t), glm::vec3(d.mirrored() ? -b : b), glm::vec3(n)}))
         return std::nullopt;
-    out.size = glm::vec2(float(worldWidth / glm::length(toWorld * t)),
-                         float(worldHeight / glm::length(toWorld * b)));
-    if (d.slant != 0) out.setProjectionAxis(axis); // a decal along its normal follows the new one
+    out.size = glm::vec2(worldSize / glm::dvec2(glm::length(toWorld * t), glm::length(toWorld * b)));
+    if (d.slant != 0) out.setProjectionAxis(d.projectionAxis()); // along its normal: the new one
     out.halfDepth = halfDepth;
     return out;
 }
