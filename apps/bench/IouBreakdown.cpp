@@ -3,6 +3,9 @@
 #include "spatter/core/DecalRefit.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace spatter::bench {
 
 namespace {
@@ -44,6 +47,15 @@ std::vector<Decal> variant(const ShotDecals& decals, const Taken& taken) {
     return out;
 }
 
+// How the drawn probe reads the drawn surface: exactly (no camera), or as a decal pass reading the
+// depth buffer of `camera` at `width` x `height` would: only where the camera sees the meet and, with
+// `depthNormal`, with the normal the pixels around it give.
+struct ProbeView {
+    const Camera* camera = nullptr;
+    int width = 0, height = 0;
+    bool depthNormal = false;
+};
+
 // Whether the camera at `eye` sees `point` on the drawn surface: nothing of `drawn` lies between them.
 bool seenFrom(const glm::dvec3& eye, const glm::dvec3& point, const CollisionWorld& drawn) {
     const glm::dvec3 to = point - eye;
@@ -56,14 +68,52 @@ bool seenFrom(const glm::dvec3& eye, const glm::dvec3& point, const CollisionWor
     return !hit || (1.0 - hit->t) * glm::length(to) <= 1e-4 * glm::length(to);
 }
 
+// The world normal the depth buffer of `view` gives at the pixel `point` falls in: the cross product of
+// the steps to the pixels beside and below, each taken on the side whose depth is nearer the pixel's
+// own (as a shader keeps a silhouette out of it), facing the camera; nothing off screen or where those
+// pixels see no surface.
+std::optional<glm::dvec3> depthNormal(const ProbeView& view, const glm::dvec3& point,
+                                      const CollisionWorld& drawn) {
+    const Camera& c = *view.camera;
+    const CameraBasis basis = cameraBasis(c);
+    const double t = std::tan(0.5 * c.fovYDeg * 3.14159265358979323846 / 180.0);
+    const double aspect = double(view.width) / double(view.height);
+    const glm::dvec3 d = point - c.eye;
+    const double depth = -glm::dot(d, basis.back);
+    if (!(depth > 0.0)) return std::nullopt;
+    const int i = int(std::floor((glm::dot(d, basis.right) / (depth * t * aspect) + 1.0) * 0.5 * view.width));
+    const int j = int(std::floor((1.0 - glm::dot(d, basis.up) / (depth * t)) * 0.5 * view.height));
+    auto at = [&](int di, int dj) -> std::optional<glm::dvec3> {
+        Ray r;
+        r.origin = c.eye;
+        r.direction = pixelDirection(c, view.width, view.height, i + di, j + dj);
+        const std::optional<Hit> h = drawn.intersect(r);
+        return h ? std::optional<glm::dvec3>(h->position) : std::nullopt;
+    };
+    const std::optional<glm::dvec3> p = at(0, 0), right = at(1, 0), left = at(-1, 0), down = at(0, 1),
+                                    up = at(0, -1);
+    if (!p) return std::nullopt;
+    auto step = [&](const std::optional<glm::dvec3>& ahead, const std::optional<glm::dvec3>& behind) {
+        auto gap = [&](const std::optional<glm::dvec3>& q) {
+            return q ? std::abs(glm::dot(*q - *p, basis.back)) : std::numeric_limits<double>::infinity();
+        };
+        if (!ahead && !behind) return glm::dvec3(0.0);
+        return gap(ahead) <= gap(behind) ? *ahead - *p : *p - *behind;
+    };
+    glm::dvec3 n = glm::cross(step(right, left), step(down, up));
+    if (!(glm::length(n) > 0.0)) return std::nullopt;
+    n = glm::normalize(n);
+    return glm::dot(n, c.eye - *p) < 0.0 ? -n : n;
+}
+
 // Decal `d` as a decal pass reading the drawn surface would draw it: the line through its centre
-// along its projection axis, within its box, meets the drawn surface (traced in `drawn`, as the depth
-// buffer gives it where the camera sees that point), and the decal is laid again there (relaidDecal),
-// its box `halfDepth` deep; it stays as it is where the drawn normal cannot take it, or, with `eye`,
-// where the camera there does not see the meet. Nothing where the line meets no drawn surface in the
+// along its projection axis, within its box, meets the drawn surface (traced in `drawn`), and the
+// decal is laid again there (relaidDecal) with the drawn triangle's normal or, by `view`, the depth
+// buffer's, its box `halfDepth` deep; it stays as it is where the normal cannot take it, or, with a
+// camera, where the camera does not see the meet. Nothing where the line meets no drawn surface in the
 // box: the pass would drop the decal.
 std::optional<Decal> onDrawnSurface(const Decal& d, const CollisionWorld& drawn, const glm::dmat4& toWorld,
-                                    float halfDepth, const std::optional<glm::dvec3>& eye) {
+                                    float halfDepth, const ProbeView& view) {
     const glm::dvec3 reach(d.boxToObject()[2]);
     Ray line;
     line.origin = glm::dvec3(toWorld * glm::dvec4(glm::dvec3(d.center) + reach, 1.0));
@@ -71,24 +121,31 @@ std::optional<Decal> onDrawnSurface(const Decal& d, const CollisionWorld& drawn,
     line.tnear = 0.0;
     line.tfar = 1.0;
     const std::optional<Hit> hit = drawn.intersect(line);
-    if (eye && !seenFrom(*eye, hit ? hit->position : line.origin + line.direction * 0.5, drawn)) return d;
+    if (view.camera &&
+        !seenFrom(view.camera->eye, hit ? hit->position : line.origin + line.direction * 0.5, drawn))
+        return d;
     if (!hit) return std::nullopt;
-    return relaidDecal(d, glm::dmat3(toWorld), glm::vec3(hit->localPosition), glm::vec3(hit->localNormal),
-                       halfDepth)
+    glm::dvec3 normal = hit->localNormal;
+    if (view.depthNormal) {
+        const std::optional<glm::dvec3> seen = depthNormal(view, hit->position, drawn);
+        if (!seen) return d;
+        normal = glm::transpose(glm::dmat3(toWorld)) * *seen; // world normals to object space
+    }
+    return relaidDecal(d, glm::dmat3(toWorld), glm::vec3(hit->localPosition), glm::vec3(normal), halfDepth)
         .value_or(d);
 }
 
 // The proxy-placed decals as a decal pass reading the drawn surface would draw them (onDrawnSurface),
 // each as shallow as the render-placed decal of its shot where there is one.
 std::vector<Decal> drawnProbe(const ShotDecals& decals, const CollisionWorld& drawn, const Scene& scene,
-                              const std::optional<glm::dvec3>& eye) {
+                              const ProbeView& view) {
     std::vector<Decal> out;
     for (size_t i = 0; i < decals.proxy.size(); ++i) {
         if (!decals.proxy[i]) continue;
         const Decal& d = *decals.proxy[i];
         const float halfDepth = decals.render[i] ? decals.render[i]->halfDepth : d.halfDepth;
         if (std::optional<Decal> probed =
-                onDrawnSurface(d, drawn, scene.objects[d.object].transform, halfDepth, eye))
+                onDrawnSurface(d, drawn, scene.objects[d.object].transform, halfDepth, view))
             out.push_back(*probed);
     }
     return out;
@@ -118,11 +175,14 @@ Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, co
         if (!mask) return fail(mask.error());
         *into = iou(reference, mask.value());
     }
-    const std::pair<double*, std::optional<glm::dvec3>> probes[] = {{&b.drawnProbe, std::nullopt},
-                                                                    {&b.drawnProbeSeen, camera.eye}};
-    for (const auto& [into, eye] : probes) {
+    const int width = probe.renderer().settings().width, height = probe.renderer().settings().height;
+    const std::pair<double*, ProbeView> probes[] = {
+        {&b.drawnProbe, ProbeView{}},
+        {&b.drawnProbeSeen, ProbeView{&camera, width, height, false}},
+        {&b.drawnProbeDepth, ProbeView{&camera, width, height, true}}};
+    for (const auto& [into, view] : probes) {
         Result<std::vector<uint8_t>> probed =
-            probe.mask(camera, drawnProbe(decals, render.value().world(), scene, eye));
+            probe.mask(camera, drawnProbe(decals, render.value().world(), scene, view));
         if (!probed) return fail(probed.error());
         *into = iou(reference, probed.value());
     }

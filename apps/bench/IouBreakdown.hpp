@@ -14,7 +14,8 @@
 // dropped where the line meets none in its box: what a decal pass reading the drawn surface from the
 // depth buffer would draw where the camera sees that point. Its second form leaves a decal as placed
 // where the camera does not see that point (or, for a line meeting nothing, the line's middle), as
-// such a pass would have to.
+// such a pass would have to; its third also takes the normal from the pixels around the meet, as the
+// pass would read it from the depth buffer at the probe's resolution.
 
 #include "CoverageProbe.hpp"
 
@@ -35,7 +36,8 @@ struct IouBreakdown {
     double centreDepth = 0.0;     // centre and half-depth
     double allPlacedByBoth = 0.0; // every field, and no decal where the render mesh places none
     double drawnProbe = 0.0; // laid again where the axis meets the drawn surface, dropped where it meets none
-    double drawnProbeSeen = 0.0; // the same where the camera sees the meet (or the line's middle)
+    double drawnProbeSeen = 0.0;  // the same where the camera sees the meet (or the line's middle)
+    double drawnProbeDepth = 0.0; // and with the normal of the depth buffer's pixels around the meet
 };
 
 // The IoUs against `reference` (the render-placed decals' mask from `camera`) of the decals `shots`

@@ -111,8 +111,9 @@ TEST(BenchSmoke, TradeoffBreaksTheIouDownByTheFieldsTakenFromTheRenderPlacedDeca
     const nlohmann::json& proxy = j["rows"][1];
     ASSERT_TRUE(proxy.contains("iou_breakdown")) << proxy.dump();
     const nlohmann::json& b = proxy["iou_breakdown"];
-    for (const char* key : {"centre", "frame", "frame_slant", "centre_frame_slant", "all", "centre_depth",
-                            "all_placed_by_both", "drawn_probe", "drawn_probe_seen"}) {
+    for (const char* key :
+         {"centre", "frame", "frame_slant", "centre_frame_slant", "all", "centre_depth", "all_placed_by_both",
+          "drawn_probe", "drawn_probe_seen", "drawn_probe_depth_normal"}) {
         EXPECT_GT(b[key].get<double>(), 0.0) << key;
         EXPECT_LE(b[key].get<double>(), 1.0) << key;
     }
