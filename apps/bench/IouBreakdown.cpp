@@ -1,6 +1,7 @@
 #include "IouBreakdown.hpp"
 
 #include "spatter/core/DecalRefit.hpp"
+#include "spatter/core/MeshDistance.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
 #include <cmath>
@@ -151,6 +152,35 @@ std::vector<Decal> drawnProbe(const ShotDecals& decals, const CollisionWorld& dr
     return out;
 }
 
+// The proxy-placed decals with their frames laid on the face normal of the render triangle nearest
+// to each centre (relaidDecal), their centres and depths kept: what placement could draw with, for
+// each part of a proxy triangle, the normal of the render surface it stands for.
+Result<std::vector<Decal>> nearestFaceFrames(const ShotDecals& decals, const Scene& scene) {
+    std::vector<std::optional<ClosestPointQuery>> queries(scene.objects.size());
+    std::vector<Decal> out;
+    for (const std::optional<Decal>& placed : decals.proxy) {
+        if (!placed) continue;
+        const Decal& d = *placed;
+        const Mesh& m = scene.objects[d.object].mesh;
+        if (!queries[d.object]) {
+            Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
+            if (!q) return fail(q.error());
+            queries[d.object] = std::move(q).value();
+        }
+        const std::optional<ClosestPoint> near = queries[d.object]->closest(glm::dvec3(d.center));
+        if (!near) {
+            out.push_back(d);
+            continue;
+        }
+        const uint32_t* c = &m.indices[3 * size_t(near->triangle)];
+        const glm::vec3 n =
+            glm::cross(m.positions[c[1]] - m.positions[c[0]], m.positions[c[2]] - m.positions[c[0]]);
+        out.push_back(relaidDecal(d, glm::dmat3(scene.objects[d.object].transform), d.center, n, d.halfDepth)
+                          .value_or(d));
+    }
+    return out;
+}
+
 } // namespace
 
 Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, const Scene& scene,
@@ -175,6 +205,11 @@ Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, co
         if (!mask) return fail(mask.error());
         *into = iou(reference, mask.value());
     }
+    Result<std::vector<Decal>> faced = nearestFaceFrames(decals, scene);
+    if (!faced) return fail(faced.error());
+    Result<std::vector<uint8_t>> facedMask = probe.mask(camera, faced.value());
+    if (!facedMask) return fail(facedMask.error());
+    b.nearestFace = iou(reference, facedMask.value());
     const int width = probe.renderer().settings().width, height = probe.renderer().settings().height;
     const std::pair<double*, ProbeView> probes[] = {
         {&b.drawnProbe, ProbeView{}},

@@ -15,7 +15,9 @@
 // depth buffer would draw where the camera sees that point. Its second form leaves a decal as placed
 // where the camera does not see that point (or, for a line meeting nothing, the line's middle), as
 // such a pass would have to; its third also takes the normal from the pixels around the meet, as the
-// pass would read it from the depth buffer at the probe's resolution.
+// pass would read it from the depth buffer at the probe's resolution. Last, placement's side: each
+// proxy-placed decal keeps its centre and depth, its frame laid on the face normal of the render
+// triangle nearest its centre, as a normal kept for each part of a proxy triangle could lay it.
 
 #include "CoverageProbe.hpp"
 
@@ -38,6 +40,7 @@ struct IouBreakdown {
     double drawnProbe = 0.0; // laid again where the axis meets the drawn surface, dropped where it meets none
     double drawnProbeSeen = 0.0;  // the same where the camera sees the meet (or the line's middle)
     double drawnProbeDepth = 0.0; // and with the normal of the depth buffer's pixels around the meet
+    double nearestFace = 0.0;     // frame on the nearest render triangle's normal, centre and depth kept
 };
 
 // The IoUs against `reference` (the render-placed decals' mask from `camera`) of the decals `shots`

@@ -59,7 +59,8 @@ then one proxy per backend and tolerance. Columns:
   nothing from it, each decal re-laid where the line along its axis meets the drawn surface, its
   frame built on the drawn normal as placement builds one, dropped where the line meets none; and
   the same only where the camera sees that meet, as a decal pass reading the depth buffer could,
-  and with the normal that the depth buffer's pixels around the meet give)
+  and with the normal that the depth buffer's pixels around the meet give; last, each decal's frame
+  laid on the face normal of the render triangle nearest its centre, centre and depth kept)
   h         the proxy's certified error bound (% of the diagonal); '!' marks a missed tolerance
 
 The three.js peer (bench/peers/threejs: three-mesh-bvh raycast and DecalGeometry, on the same mesh
@@ -86,7 +87,7 @@ and rays) is run when node and npm are available and reported beside the rows.
                    "disagree_rate", "coverage_iou", "coverage_iou_normal", "iou_breakdown": {"centre",
                    "frame", "frame_slant", "centre_frame_slant", "all", "centre_depth",
                    "all_placed_by_both", "drawn_probe", "drawn_probe_seen",
-                   "drawn_probe_depth_normal"}, ...}], "peers": [...], ...}
+                   "drawn_probe_depth_normal", "nearest_face_frame"}, ...}], "peers": [...], ...}
 )";
 
 constexpr double kRadToDeg = 57.295779513082320876;
@@ -245,11 +246,12 @@ void printBreakdowns(const std::vector<TradeoffRow>& rows) {
                              fixed(r.breakdown->frameSlant, 4), fixed(r.breakdown->allButDepth, 4),
                              fixed(r.breakdown->all, 4), fixed(r.breakdown->centreDepth, 4),
                              fixed(r.breakdown->allPlacedByBoth, 4), fixed(r.breakdown->drawnProbe, 4),
-                             fixed(r.breakdown->drawnProbeSeen, 4), fixed(r.breakdown->drawnProbeDepth, 4)});
+                             fixed(r.breakdown->drawnProbeSeen, 4), fixed(r.breakdown->drawnProbeDepth, 4),
+                             fixed(r.breakdown->nearestFace, 4)});
     if (table.empty()) return;
     std::printf("\nIoU along the shot with the render-placed decal's fields taken\n");
     printTable({"backend", "tol%", "IoU", "centre", "frame", "frame+slant", "centre+frame+slant", "+depth",
-                "centre+depth", "all, both placed", "drawn probe", "seen", "depth normal"},
+                "centre+depth", "all, both placed", "drawn probe", "seen", "depth normal", "nearest face"},
                table);
 }
 
@@ -278,7 +280,8 @@ Json tradeoffRowJson(const TradeoffRow& r) {
                               {"all_placed_by_both", number(r.breakdown->allPlacedByBoth)},
                               {"drawn_probe", number(r.breakdown->drawnProbe)},
                               {"drawn_probe_seen", number(r.breakdown->drawnProbeSeen)},
-                              {"drawn_probe_depth_normal", number(r.breakdown->drawnProbeDepth)}};
+                              {"drawn_probe_depth_normal", number(r.breakdown->drawnProbeDepth)},
+                              {"nearest_face_frame", number(r.breakdown->nearestFace)}};
     j["status"] = r.status;
     j["reload_s"] = number(r.reloadS);
     j["bvh_s"] = number(r.bvhS);

@@ -113,7 +113,7 @@ TEST(BenchSmoke, TradeoffBreaksTheIouDownByTheFieldsTakenFromTheRenderPlacedDeca
     const nlohmann::json& b = proxy["iou_breakdown"];
     for (const char* key :
          {"centre", "frame", "frame_slant", "centre_frame_slant", "all", "centre_depth", "all_placed_by_both",
-          "drawn_probe", "drawn_probe_seen", "drawn_probe_depth_normal"}) {
+          "drawn_probe", "drawn_probe_seen", "drawn_probe_depth_normal", "nearest_face_frame"}) {
         EXPECT_GT(b[key].get<double>(), 0.0) << key;
         EXPECT_LE(b[key].get<double>(), 1.0) << key;
     }
