@@ -1,11 +1,14 @@
 #include "IouBreakdown.hpp"
 
+#include "BenchSupport.hpp"
+
 #include "spatter/core/DecalRefit.hpp"
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace spatter::bench {
 
@@ -77,7 +80,7 @@ std::optional<glm::dvec3> depthNormal(const ProbeView& view, const glm::dvec3& p
                                       const CollisionWorld& drawn) {
     const Camera& c = *view.camera;
     const CameraBasis basis = cameraBasis(c);
-    const double t = std::tan(0.5 * c.fovYDeg * 3.14159265358979323846 / 180.0);
+    const double t = std::tan(0.5 * c.fovYDeg * kPi / 180.0);
     const double aspect = double(view.width) / double(view.height);
     const glm::dvec3 d = point - c.eye;
     const double depth = -glm::dot(d, basis.back);
@@ -193,34 +196,33 @@ Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, co
     if (!render) return fail(render.error());
     const ShotDecals decals = placeBoth(proxy.value(), render.value(), shots);
     IouBreakdown b;
-    const std::pair<double*, Taken> variants[] = {{&b.centre, {true, false, false, false}},
-                                                  {&b.frame, {false, true, false, false}},
-                                                  {&b.frameSlant, {false, true, true, false}},
-                                                  {&b.allButDepth, {true, true, true, false}},
-                                                  {&b.all, {true, true, true, true}},
-                                                  {&b.centreDepth, {true, false, false, true}},
-                                                  {&b.allPlacedByBoth, {true, true, true, true, true}}};
-    for (const auto& [into, taken] : variants) {
-        Result<std::vector<uint8_t>> mask = probe.mask(camera, variant(decals, taken));
+    auto add = [&](const char* column, const char* key, const std::vector<Decal>& drawn) -> Status {
+        Result<std::vector<uint8_t>> mask = probe.mask(camera, drawn);
         if (!mask) return fail(mask.error());
-        *into = iou(reference, mask.value());
-    }
+        b.push_back({column, key, iou(reference, mask.value())});
+        return {};
+    };
+    const std::tuple<const char*, const char*, Taken> taken[] = {
+        {"centre", "centre", {true, false, false, false}},
+        {"frame", "frame", {false, true, false, false}},
+        {"frame+slant", "frame_slant", {false, true, true, false}},
+        {"centre+frame+slant", "centre_frame_slant", {true, true, true, false}},
+        {"+depth", "all", {true, true, true, true}},
+        {"centre+depth", "centre_depth", {true, false, false, true}},
+        {"all, both placed", "all_placed_by_both", {true, true, true, true, true}}};
+    for (const auto& [column, key, fields] : taken)
+        if (Status st = add(column, key, variant(decals, fields)); !st) return fail(st.error());
+    const int width = probe.renderer().settings().width, height = probe.renderer().settings().height;
+    const std::tuple<const char*, const char*, ProbeView> views[] = {
+        {"drawn probe", "drawn_probe", ProbeView{}},
+        {"seen", "drawn_probe_seen", ProbeView{&camera, width, height, false}},
+        {"depth normal", "drawn_probe_depth_normal", ProbeView{&camera, width, height, true}}};
+    for (const auto& [column, key, view] : views)
+        if (Status st = add(column, key, drawnProbe(decals, render.value().world(), scene, view)); !st)
+            return fail(st.error());
     Result<std::vector<Decal>> faced = nearestFaceFrames(decals, scene);
     if (!faced) return fail(faced.error());
-    Result<std::vector<uint8_t>> facedMask = probe.mask(camera, faced.value());
-    if (!facedMask) return fail(facedMask.error());
-    b.nearestFace = iou(reference, facedMask.value());
-    const int width = probe.renderer().settings().width, height = probe.renderer().settings().height;
-    const std::pair<double*, ProbeView> probes[] = {
-        {&b.drawnProbe, ProbeView{}},
-        {&b.drawnProbeSeen, ProbeView{&camera, width, height, false}},
-        {&b.drawnProbeDepth, ProbeView{&camera, width, height, true}}};
-    for (const auto& [into, view] : probes) {
-        Result<std::vector<uint8_t>> probed =
-            probe.mask(camera, drawnProbe(decals, render.value().world(), scene, view));
-        if (!probed) return fail(probed.error());
-        *into = iou(reference, probed.value());
-    }
+    if (Status st = add("nearest face", "nearest_face_frame", faced.value()); !st) return fail(st.error());
     return b;
 }
 

@@ -33,15 +33,15 @@
 
 namespace spatter::bench {
 
-struct IouBreakdown {
-    double centre = 0.0, frame = 0.0, frameSlant = 0.0, allButDepth = 0.0, all = 0.0;
-    double centreDepth = 0.0;     // centre and half-depth
-    double allPlacedByBoth = 0.0; // every field, and no decal where the render mesh places none
-    double drawnProbe = 0.0; // laid again where the axis meets the drawn surface, dropped where it meets none
-    double drawnProbeSeen = 0.0;  // the same where the camera sees the meet (or the line's middle)
-    double drawnProbeDepth = 0.0; // and with the normal of the depth buffer's pixels around the meet
-    double nearestFace = 0.0;     // frame on the nearest render triangle's normal, centre and depth kept
+// One variant of the breakdown: its column in the table, its key in the JSON, its IoU.
+struct IouVariant {
+    const char* column;
+    const char* key;
+    double iou = 0.0;
 };
+
+// The variants in the order above, the table's.
+using IouBreakdown = std::vector<IouVariant>;
 
 // The IoUs against `reference` (the render-placed decals' mask from `camera`) of the decals `shots`
 // place through `proxies` with decal type `type`, each variant drawn by `probe`.

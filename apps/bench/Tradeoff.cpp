@@ -238,21 +238,20 @@ void measureErrors(const std::vector<std::optional<Hit>>& proxyHits,
 
 // The --iou-breakdown table, when some row has one.
 void printBreakdowns(const std::vector<TradeoffRow>& rows) {
+    std::vector<std::string> header = {"backend", "tol%", "IoU"};
     std::vector<std::vector<std::string>> table;
-    for (const TradeoffRow& r : rows)
-        if (r.breakdown)
-            table.push_back({r.backend, fmt(100.0 * r.toleranceRel, 3), fixed(r.iou, 4),
-                             fixed(r.breakdown->centre, 4), fixed(r.breakdown->frame, 4),
-                             fixed(r.breakdown->frameSlant, 4), fixed(r.breakdown->allButDepth, 4),
-                             fixed(r.breakdown->all, 4), fixed(r.breakdown->centreDepth, 4),
-                             fixed(r.breakdown->allPlacedByBoth, 4), fixed(r.breakdown->drawnProbe, 4),
-                             fixed(r.breakdown->drawnProbeSeen, 4), fixed(r.breakdown->drawnProbeDepth, 4),
-                             fixed(r.breakdown->nearestFace, 4)});
+    for (const TradeoffRow& r : rows) {
+        if (!r.breakdown) continue;
+        if (table.empty())
+            for (const IouVariant& v : *r.breakdown)
+                header.push_back(v.column);
+        table.push_back({r.backend, fmt(100.0 * r.toleranceRel, 3), fixed(r.iou, 4)});
+        for (const IouVariant& v : *r.breakdown)
+            table.back().push_back(fixed(v.iou, 4));
+    }
     if (table.empty()) return;
     std::printf("\nIoU along the shot with the render-placed decal's fields taken\n");
-    printTable({"backend", "tol%", "IoU", "centre", "frame", "frame+slant", "centre+frame+slant", "+depth",
-                "centre+depth", "all, both placed", "drawn probe", "seen", "depth normal", "nearest face"},
-               table);
+    printTable(header, table);
 }
 
 Json tradeoffRowJson(const TradeoffRow& r) {
@@ -270,18 +269,11 @@ Json tradeoffRowJson(const TradeoffRow& r) {
     j["disagree_rate"] = number(r.disagree);
     j["coverage_iou"] = number(r.iou);
     j["coverage_iou_normal"] = number(r.iouNormal);
-    if (r.breakdown)
-        j["iou_breakdown"] = {{"centre", number(r.breakdown->centre)},
-                              {"frame", number(r.breakdown->frame)},
-                              {"frame_slant", number(r.breakdown->frameSlant)},
-                              {"centre_frame_slant", number(r.breakdown->allButDepth)},
-                              {"all", number(r.breakdown->all)},
-                              {"centre_depth", number(r.breakdown->centreDepth)},
-                              {"all_placed_by_both", number(r.breakdown->allPlacedByBoth)},
-                              {"drawn_probe", number(r.breakdown->drawnProbe)},
-                              {"drawn_probe_seen", number(r.breakdown->drawnProbeSeen)},
-                              {"drawn_probe_depth_normal", number(r.breakdown->drawnProbeDepth)},
-                              {"nearest_face_frame", number(r.breakdown->nearestFace)}};
+    if (r.breakdown) {
+        j["iou_breakdown"] = Json::object();
+        for (const IouVariant& v : *r.breakdown)
+            j["iou_breakdown"][v.key] = number(v.iou);
+    }
     j["status"] = r.status;
     j["reload_s"] = number(r.reloadS);
     j["bvh_s"] = number(r.bvhS);

@@ -26,12 +26,12 @@ Frame leastTurn(const Frame& f, const glm::vec3& n) {
     return Frame{turn * f.tangent, turn * f.bitangent, n};
 }
 
-// The frame of decal `d` laid on `normal` (object space, facing the decal's normal), in world space
-// where placement builds frames (normals by the inverse transpose of `toWorld`, directions by
+// The frame `f` of decal `d` laid on `normal` (object space, facing the decal's normal), in world
+// space where placement builds frames (normals by the transpose of `toObject`, directions by
 // `toWorld`); nothing for a normal 89 degrees or more from the decal's.
-std::optional<Frame> laidWorldFrame(const Decal& d, const glm::dmat3& toWorld, const glm::vec3& normal) {
-    const Frame f = d.frame();
-    const glm::dmat3 normalToWorld = glm::transpose(glm::inverse(toWorld));
+std::optional<Frame> laidWorldFrame(const Decal& d, const Frame& f, const glm::dmat3& toWorld,
+                                    const glm::dmat3& toObject, const glm::vec3& normal) {
+    const glm::dmat3 normalToWorld = glm::transpose(toObject);
     const glm::vec3 oldNormal = glm::normalize(glm::vec3(normalToWorld * glm::dvec3(f.normal)));
     const glm::vec3 newNormal = glm::normalize(
         glm::vec3(normalToWorld * glm::dvec3(glm::dot(normal, f.normal) < 0.0f ? -normal : normal)));
@@ -48,18 +48,19 @@ std::optional<Frame> laidWorldFrame(const Decal& d, const glm::dmat3& toWorld, c
 
 std::optional<Decal> relaidDecal(const Decal& d, const glm::dmat3& toWorld, const glm::vec3& point,
                                  const glm::vec3& normal, float halfDepth) {
+    const Frame f = d.frame();
     const double det = glm::determinant(toWorld);
-    if (d.frame().normal == glm::vec3(0.0f) || !finite(point) || !finite(normal) ||
-        !std::isfinite(halfDepth) || halfDepth < 0.0f || !std::isfinite(det) || det == 0.0)
+    if (f.normal == glm::vec3(0.0f) || !finite(point) || !finite(normal) || !std::isfinite(halfDepth) ||
+        halfDepth < 0.0f || !std::isfinite(det) || det == 0.0)
         return std::nullopt;
-    const std::optional<Frame> laid = laidWorldFrame(d, toWorld, normal);
+    const glm::dmat3 toObject = glm::inverse(toWorld);
+    const std::optional<Frame> laid = laidWorldFrame(d, f, toWorld, toObject, normal);
     if (!laid) return std::nullopt;
     // Back to object space as placement takes its frames there, the decal's world size kept.
     const glm::dvec3 n = glm::normalize(glm::transpose(toWorld) * glm::dvec3(laid->normal));
-    glm::dvec3 t = glm::inverse(toWorld) * glm::dvec3(laid->tangent);
+    glm::dvec3 t = toObject * glm::dvec3(laid->tangent);
     t = glm::normalize(t - n * glm::dot(n, t));
     const glm::dvec3 b = glm::cross(n, t);
-    const Frame f = d.frame();
     const glm::dvec2 worldSize(double(d.size.x) * glm::length(toWorld * glm::dvec3(f.tangent)),
                                double(d.size.y) * glm::length(toWorld * glm::dvec3(f.bitangent)));
     Decal out = d;

@@ -176,6 +176,12 @@ std::optional<std::pair<double, glm::dvec3>> lineOnPlane(const glm::dvec3& hit, 
     return std::make_pair(glm::dot(e2, q) / det, glm::dvec3(1.0 - u - v, u, v));
 }
 
+// The corner of a triangle opposite the edge beyond which barycentric coordinates `bary` lie (their
+// smallest): a walk steps across that edge, to drawn.neighbours[3 t + k].
+int cornerFacing(const glm::dvec3& bary) {
+    return bary.x <= bary.y && bary.x <= bary.z ? 0 : bary.y <= bary.z ? 1 : 2;
+}
+
 // Whether barycentric coordinates lie in their triangle (within rounding).
 bool within(const glm::dvec3& bary) {
     constexpr double kSlack = 1e-9;
@@ -258,7 +264,7 @@ std::optional<SurfaceLocation> walkToShot(const PosedCollisionMesh& mesh, uint32
         if (!meet) return std::nullopt;
         const glm::dvec3& bary = meet->second;
         if (within(bary)) return located(SurfaceAnchor{t, bary}, corners);
-        const int k = bary.x <= bary.y && bary.x <= bary.z ? 0 : bary.y <= bary.z ? 1 : 2;
+        const int k = cornerFacing(bary);
         const uint32_t next = drawn.neighbours[3 * size_t(t) + size_t(k)];
         if (next == PosedCollisionMesh::Drawn::kBorder) return std::nullopt;
         const std::vector<uint32_t>& w = drawn.weld;
@@ -297,8 +303,8 @@ std::optional<glm::dvec3> restDirection(const std::array<glm::dvec3, 3>& rest,
 // from render triangle `seed` across the edge beyond which the line meets each triangle's plane;
 // nothing when the walk reaches a border or takes too many steps, or when the meet it reaches lies
 // behind `atRest` along the line beyond rounding (a layer in front of it, which the shot meets first,
-// may lie within the reach) or farther than `reach` before it. The steps read a few rest positions each, where a ray
-// query descends a hierarchy from its root.
+// may lie within the reach) or farther than `reach` before it. The steps read a few rest positions
+// each, where a ray query descends a hierarchy from its root.
 std::optional<ClosestPointQuery::RayMeet> restWalk(const PosedCollisionMesh::Drawn& drawn, uint32_t seed,
                                                    const glm::dvec3& atRest, const glm::dvec3& along,
                                                    double reach) {
@@ -317,8 +323,7 @@ std::optional<ClosestPointQuery::RayMeet> restWalk(const PosedCollisionMesh::Dra
             if (!(meet->first >= -reach && meet->first <= 1e-9 * reach)) return std::nullopt;
             return ClosestPointQuery::RayMeet{t, meet->first};
         }
-        const int k = bary.x <= bary.y && bary.x <= bary.z ? 0 : bary.y <= bary.z ? 1 : 2;
-        t = drawn.neighbours[3 * size_t(t) + size_t(k)];
+        t = drawn.neighbours[3 * size_t(t) + size_t(cornerFacing(bary))];
     }
     return std::nullopt;
 }
