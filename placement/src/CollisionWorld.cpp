@@ -1,5 +1,6 @@
 #include "spatter/placement/CollisionWorld.hpp"
 
+#include "DrawnNormals.hpp"
 #include "PosedCollisionMesh.hpp"
 #include "WatertightTriangles.hpp"
 
@@ -24,6 +25,7 @@ struct ObjectData : TracedTriangles {
     std::vector<glm::vec3> positions;          // collision mesh, object space
     glm::dmat4 inverse{1.0};                   // of info.transform, kept with it
     std::optional<PosedCollisionMesh> posable; // dynamic skinned or morphed objects: what setPose poses
+    std::optional<DrawnNormals> drawnNormals;  // proxies and colliders of objects that do not deform
     std::vector<glm::dmat4> poseJoints;        // the joint matrices of the last setPose (empty: rest)
     std::vector<double> poseMorphs;            // the morph weights of the last setPose
     RTCScene scene = nullptr;                  // dynamic objects: their own object-space scene
@@ -571,6 +573,11 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
             if (!posable) return fail(where + ": object '" + so.name + "': " + posable.error());
             od.posable = std::move(posable).value();
         }
+        if (mesh != &so.mesh && !od.posable) {
+            Result<DrawnNormals> normals = DrawnNormals::build(so.mesh, *mesh);
+            if (!normals) return fail(where + ": object '" + so.name + "': " + normals.error());
+            od.drawnNormals = std::move(normals).value();
+        }
         // The frame's origin comes from the objects whose scale and condition the trace can use.
         od.info.untraced = floatLinearProblem(so.transform);
         if (!od.info.untraced.empty()) continue;
@@ -763,6 +770,18 @@ std::optional<SurfaceLocation> CollisionWorld::anchorAt(uint32_t object, uint32_
     const double reach = 8.0 * od.info.errorBound + 1e-6 * double(od.info.localBounds.diagonal());
     const CollisionHit hit{od.positions, od.indices, primitive, bary, localPosition, localDirection, reach};
     return anchorOf(*od.posable, hit, Pose{od.poseJoints, od.poseMorphs, od.inverse});
+}
+
+std::optional<glm::dvec3> CollisionWorld::drawnNormalAt(uint32_t object, uint32_t primitive,
+                                                        const glm::dvec3& localPosition) const {
+    if (object >= impl_->objects.size()) return std::nullopt;
+    const ObjectData& od = impl_->objects[object];
+    if (!od.drawnNormals || !od.info.inWorld || size_t(primitive) >= od.indices.size() / 3)
+        return std::nullopt;
+    const uint32_t* c = &od.indices[3 * size_t(primitive)];
+    return od.drawnNormals->at(primitive,
+                               barycentric(localPosition, glm::dvec3(od.positions[c[0]]),
+                                           glm::dvec3(od.positions[c[1]]), glm::dvec3(od.positions[c[2]])));
 }
 
 std::optional<glm::dmat4> CollisionWorld::anchorFrame(uint32_t object, const SurfaceAnchor& anchor) const {

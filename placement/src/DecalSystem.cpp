@@ -283,9 +283,12 @@ struct DecalSystem::Impl {
     // no proxy error is left for the box to hold: its half-depth is depthMargin times its size (1% at
     // least), whatever its type asks, because on a body a deeper box would reach the torso behind an
     // arm. A placed decal's frame in object space, as packed, goes to `objectFrame` if given.
+    // `boundScale`: how many times the object's error bound the drawn surface may lie from `local`
+    // along `worldNormal` (DrawnFacing).
     SpawnResult place(uint32_t objectIndex, const glm::dvec3& local, const glm::dvec3& worldNormal,
                       const glm::dvec3& worldHint, uint16_t typeIndex, bool shot = false,
-                      bool onDrawnSurface = false, glm::dmat3* objectFrame = nullptr) {
+                      bool onDrawnSurface = false, glm::dmat3* objectFrame = nullptr,
+                      double boundScale = 1.0) {
         const CollisionObject& o = object(objectIndex);
         const DecalType& t = types[typeIndex];
         const Rng unused = rng;
@@ -297,7 +300,7 @@ struct DecalSystem::Impl {
         if (t.randomRotation) f = rotateAboutNormal(f, angle);
         const glm::vec2 size = t.size * scale;
         const glm::dmat3 m(o.transform);
-        const double h = world.worldErrorBound(objectIndex);
+        const double h = world.worldErrorBound(objectIndex) * boundScale;
         constexpr double kMinDrawnDepth = 0.01; // of the size: a box that still holds the surface under it
         const double extent = double(std::max(size.x, size.y));
         const float halfDepth = onDrawnSurface
@@ -396,8 +399,14 @@ struct DecalSystem::Impl {
     // decals keep the proxy's hit, where their crater is clipped. `hint` and `shot` as for place().
     SpawnResult placeAtHit(const Hit& hit, const glm::dvec3& dir, const std::optional<glm::dvec3>& facing,
                            const glm::dvec3& hint, uint16_t typeIndex, bool shot) {
-        if (!world.deforms(hit.object)) // only skinned and morphed objects pay for the drawn surface
+        if (!world.deforms(hit.object)) { // only skinned and morphed objects pay for the drawn surface
+            const DecalType& t = types[typeIndex];
+            if (!facing && shot && t.projection == Projection::Shot && !t.volumetric)
+                if (const std::optional<DrawnFacing> drawn = drawnFacing(hit, dir))
+                    return place(hit.object, hit.localPosition, drawn->normal, hint, typeIndex, shot, false,
+                                 nullptr, drawn->boundScale);
             return place(hit.object, hit.localPosition, facing ? *facing : hit.normal, hint, typeIndex, shot);
+        }
         const glm::dmat3 inv = glm::inverse(glm::dmat3(object(hit.object).transform));
         const std::optional<SurfaceLocation> drawn =
             world.anchorAt(hit.object, hit.primitive, hit.localPosition, inv * dir);
@@ -410,6 +419,35 @@ struct DecalSystem::Impl {
                                          typeIndex, shot, false, &frame);
         if (placed.placed() && drawn) anchors.add(placed.handle.slot, decals.back(), frame, *drawn);
         return placed;
+    }
+
+    // Which way a decal shot along `dir` (world space, unit) through a proxy or collider at `hit` faces:
+    // the drawn surface's normal under the hit (CollisionWorld::drawnNormalAt, world space), so that
+    // its footprint lies in the plane that is drawn. Its box must then reach farther along that
+    // normal: the shot meets the drawn surface within the slab of h around the hit's facet, over
+    // h / |dir . n| of its length, which spans |dir . n'| / |dir . n| times h along the new normal n'.
+    // Nothing (the decal faces the facet) where the object keeps no such normals, where n' does not
+    // face the shot within kMaxSlantDeg, or where the box would have to hold more than twice h.
+    struct DrawnFacing {
+        glm::dvec3 normal;
+        double boundScale;
+    };
+    std::optional<DrawnFacing> drawnFacing(const Hit& hit, const glm::dvec3& dir) const {
+        constexpr double kMaxBoundScale = 2.0;
+        const std::optional<glm::dvec3> local =
+            world.drawnNormalAt(hit.object, hit.primitive, hit.localPosition);
+        if (!local) return std::nullopt;
+        // Normals go to world space by the cofactors of the linear part (the inverse transpose up to
+        // its determinant, whose sign the turn towards the hit's normal takes up).
+        const glm::dmat3 m(object(hit.object).transform);
+        const glm::dmat3 cofactors(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1]));
+        glm::dvec3 n = glm::normalize(cofactors * *local);
+        if (glm::dot(n, hit.normal) < 0.0) n = -n; // also where the render mesh winds the other way
+        const double across = -glm::dot(dir, n), facet = -glm::dot(dir, hit.normal);
+        if (!(across >= std::cos(kMaxSlantDeg * kPi / 180.0)) || !(facet > 0.0)) return std::nullopt;
+        const double scale = std::max(1.0, across / facet);
+        if (scale > kMaxBoundScale) return std::nullopt;
+        return DrawnFacing{n, scale};
     }
 
     // The world normal a decal on the drawn surface at `drawn` faces: its render triangle's (carried by

@@ -1,5 +1,7 @@
 #include "PosedCollisionMesh.hpp"
 
+#include "TrianglePieces.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -63,23 +65,18 @@ void linkRings(PosedCollisionMesh::Drawn& drawn) {
 }
 
 // The render triangle nearest to the centre of each piece of each triangle of `collision`
-// (Drawn::seeds), in the order seedOf numbers them.
+// (Drawn::seeds).
 std::vector<uint32_t> seedTriangles(const ClosestPointQuery& query, const Mesh& collision) {
-    constexpr int n = PosedCollisionMesh::Drawn::kSeedCuts;
     std::vector<uint32_t> seeds;
-    seeds.reserve(collision.triangleCount() * n * n);
+    seeds.reserve(collision.triangleCount() * kPiecesPerTriangle);
     for (size_t t = 0; t < collision.triangleCount(); ++t) {
         const uint32_t* c = &collision.indices[3 * t];
-        const glm::dvec3 p0(collision.positions[c[0]]), e1 = glm::dvec3(collision.positions[c[1]]) - p0,
-                                                        e2 = glm::dvec3(collision.positions[c[2]]) - p0;
-        for (int i = 0; i < n; ++i)
-            for (int j = 0; i + j < n; ++j)
-                for (int flip = 0; flip < (i + j < n - 1 ? 2 : 1); ++flip) {
-                    const double third = flip ? 2.0 / 3.0 : 1.0 / 3.0;
-                    const glm::dvec3 centre = p0 + e1 * ((i + third) / n) + e2 * ((j + third) / n);
-                    const std::optional<ClosestPoint> near = query.closest(centre);
-                    seeds.push_back(near ? near->triangle : PosedCollisionMesh::Drawn::kBorder);
-                }
+        const glm::dvec3 p0(collision.positions[c[0]]);
+        forEachPieceCentre(p0, glm::dvec3(collision.positions[c[1]]) - p0,
+                           glm::dvec3(collision.positions[c[2]]) - p0, [&](const glm::dvec3& centre) {
+                               const std::optional<ClosestPoint> near = query.closest(centre);
+                               seeds.push_back(near ? near->triangle : PosedCollisionMesh::Drawn::kBorder);
+                           });
     }
     return seeds;
 }
@@ -330,11 +327,7 @@ std::optional<ClosestPointQuery::RayMeet> restWalk(const PosedCollisionMesh::Dra
 
 // The seed of the piece of the hit triangle that the hit lies in (Drawn::seeds).
 uint32_t seedOf(const PosedCollisionMesh::Drawn& drawn, const CollisionHit& hit) {
-    constexpr int n = PosedCollisionMesh::Drawn::kSeedCuts;
-    auto step = [](double b) { return b > 0.0 ? (b < 1.0 ? int(b * n) : n - 1) : 0; };
-    const int i = step(hit.bary.y), j = std::min(step(hit.bary.z), n - 1 - i);
-    const bool flip = i + j < n - 1 && (hit.bary.y * n - i) + (hit.bary.z * n - j) > 1.0;
-    const size_t k = size_t(hit.primitive) * n * n + size_t(i * (2 * n - i) + 2 * j + (flip ? 1 : 0));
+    const size_t k = size_t(hit.primitive) * kPiecesPerTriangle + pieceOf(hit.bary);
     return k < drawn.seeds.size() ? drawn.seeds[k] : PosedCollisionMesh::Drawn::kBorder;
 }
 

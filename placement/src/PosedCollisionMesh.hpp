@@ -41,12 +41,10 @@ struct PosedCollisionMesh {
         // (neighbours[3 t + k]; kBorder when there is none), so that a walk steps without a search.
         std::vector<uint32_t> neighbours;
         static constexpr uint32_t kBorder = UINT32_MAX;
-        // Each collision triangle cut into kSeedCuts^2 pieces (a grid of kSeedCuts steps along two of
-        // its edges), and for each piece the render triangle nearest to its centre at rest
-        // (seeds[kSeedCuts^2 t + piece]; kBorder for none): where the walk towards a hit in that
-        // piece starts.
+        // For each piece of each collision triangle (TrianglePieces.hpp), the render triangle nearest
+        // to its centre at rest (seeds[kPiecesPerTriangle t + piece]; kBorder for none): where the
+        // walk towards a hit in that piece starts.
         std::vector<uint32_t> seeds;
-        static constexpr int kSeedCuts = 3;
     };
     std::optional<Drawn> drawn;
 };

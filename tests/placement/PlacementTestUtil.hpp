@@ -96,6 +96,11 @@ inline Result<DeformingProxy> deformingProxy(const Scene& scene, float tolerance
 }
 
 // A proxy as the proxy builder would hand it over: a mesh and its error bound h.
+// `point` (object space) in the unit box of `d`.
+inline glm::dvec3 inBox(const Decal& d, const glm::dvec3& point) {
+    return glm::dvec3(glm::inverse(glm::dmat4(d.boxToObject())) * glm::dvec4(point, 1.0));
+}
+
 inline Proxy makeProxy(Mesh mesh, double errorBound) {
     Proxy p;
     p.mesh = std::move(mesh);

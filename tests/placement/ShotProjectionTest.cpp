@@ -35,35 +35,25 @@ CollisionWorld offsetFloorWorld(float offset) {
     return std::move(w).value();
 }
 
-// The drawn floor y = 0 (object space) of an object turned and scaled unevenly.
-Scene turnedFloor() {
+// The plane y = z tan(tiltDeg) (object space; the floor y = 0 for 0) of an object turned and scaled
+// unevenly.
+Scene turnedFloor(double tiltDeg = 0.0) {
     Scene scene;
     scene.source = "test:turned floor";
     const glm::dmat4 transform =
         glm::scale(glm::rotate(glm::dmat4(1.0), 0.3, glm::dvec3(0.2, 1.0, 0.4)), glm::dvec3(1.5, 0.8, 1.2));
-    scene.objects.push_back(makeSceneObject("floor", makeGrid({-2.0f, 2.0f}, {-2.0f, 2.0f}), transform));
+    Mesh plane = makeGrid({-2.0f, 2.0f}, {-2.0f, 2.0f});
+    for (glm::vec3& p : plane.positions)
+        p.y = p.z * float(std::tan(tiltDeg * kPi / 180.0));
+    scene.objects.push_back(makeSceneObject("floor", std::move(plane), transform));
     return scene;
 }
 
-// A decal system over turnedFloor traced through a proxy tilted by `tiltDeg` about the x axis, or on the
-// floor's own mesh for `tiltDeg` < 0.
+// A decal system over turnedFloor(tiltDeg), traced on its own mesh.
 DecalSystem turnedFloorSystem(double tiltDeg) {
-    const Scene scene = turnedFloor();
-    std::vector<std::optional<Proxy>> proxies;
-    if (tiltDeg >= 0.0) {
-        Mesh tilted = makeGrid({-2.0f, 2.0f}, {-2.0f, 2.0f});
-        for (glm::vec3& p : tilted.positions)
-            p.y = p.z * float(std::tan(tiltDeg * kPi / 180.0));
-        proxies.push_back(makeProxy(std::move(tilted), 0.5));
-    }
-    Result<DecalSystem> s = DecalSystem::create(buildWorld(scene, proxies));
+    Result<DecalSystem> s = DecalSystem::create(buildWorld(turnedFloor(tiltDeg)));
     EXPECT_TRUE(s.ok()) << s.error();
     return std::move(s).value();
-}
-
-// `point` (object space) in the unit box of `d`.
-glm::dvec3 inBox(const Decal& d, const glm::dvec3& point) {
-    return glm::dvec3(glm::inverse(glm::dmat4(d.boxToObject())) * glm::dvec4(point, 1.0));
 }
 
 } // namespace
@@ -145,10 +135,10 @@ TEST(ShotProjection, GrazingShotTurnsTheAxisToTheLargestSlant) {
     EXPECT_LT(glm::length(glm::dvec3(w.projection) - shotFrom(kMaxSlantDeg, 0.0)), 1e-3);
 }
 
-// A decal placed through a proxy tilted against the drawn floor, laid again where the line along its
-// projection axis meets the floor (relaidDecal), is the decal placement lays on the floor with the same
-// shot: the same centre, frame (its random rotation included), slant and size, for shots 10 to 60
-// degrees off the normal, in an object turned and scaled unevenly.
+// A decal placed on a plane tilted against the floor, laid again where the line along its projection
+// axis meets the floor (relaidDecal), is the decal placement lays on the floor with the same shot: the
+// same centre, frame (its random rotation included), slant and size, for shots 10 to 60 degrees off
+// the normal, in an object turned and scaled unevenly.
 TEST(ShotProjection, ADecalRelaidOnTheDrawnSurfaceIsTheOnePlacementLaysThere) {
     const glm::dmat4 toWorld = turnedFloor().objects[0].transform;
     for (double degrees : {10.0, 35.0, 60.0})
@@ -156,14 +146,14 @@ TEST(ShotProjection, ADecalRelaidOnTheDrawnSurfaceIsTheOnePlacementLaysThere) {
             const glm::dvec3 target(toWorld * glm::dvec4(0.2, 0.0, 0.3, 1.0));
             const glm::dvec3 back = glm::normalize(glm::dmat3(toWorld) * shotFrom(degrees, azimuth));
             const Ray shot = ray(target + 3.0 * back, -back);
-            DecalSystem throughProxy = turnedFloorSystem(6.0), onFloor = turnedFloorSystem(-1.0);
-            const SpawnResult a = throughProxy.spawn(shot, addType(throughProxy, plainType()));
+            DecalSystem onTilted = turnedFloorSystem(6.0), onFloor = turnedFloorSystem(0.0);
+            const SpawnResult a = onTilted.spawn(shot, addType(onTilted, plainType()));
             const SpawnResult b = onFloor.spawn(shot, addType(onFloor, plainType()));
             ASSERT_TRUE(a.placed() && b.placed()) << a.reason << b.reason;
-            const Decal proxyPlaced = *throughProxy.get(a.handle), drawn = *onFloor.get(b.handle);
-            const glm::vec3 axis = proxyPlaced.projectionAxis();
-            const glm::vec3 meet = proxyPlaced.center - axis * (proxyPlaced.center.y / axis.y);
-            const std::optional<Decal> relaid = relaidDecal(proxyPlaced, glm::dmat3(toWorld), meet,
+            const Decal tiltPlaced = *onTilted.get(a.handle), drawn = *onFloor.get(b.handle);
+            const glm::vec3 axis = tiltPlaced.projectionAxis();
+            const glm::vec3 meet = tiltPlaced.center - axis * (tiltPlaced.center.y / axis.y);
+            const std::optional<Decal> relaid = relaidDecal(tiltPlaced, glm::dmat3(toWorld), meet,
                                                             glm::vec3(0.0f, 1.0f, 0.0f), drawn.halfDepth);
             ASSERT_TRUE(relaid.has_value());
             const std::string where =
@@ -176,13 +166,13 @@ TEST(ShotProjection, ADecalRelaidOnTheDrawnSurfaceIsTheOnePlacementLaysThere) {
             EXPECT_LT(glm::length(unpackSlant(relaid->slant) - unpackSlant(drawn.slant)), 2e-3f) << where;
             EXPECT_LT(glm::length(relaid->size - drawn.size), 1e-4f * glm::length(drawn.size)) << where;
             EXPECT_EQ(relaid->halfDepth, drawn.halfDepth);
-            // The proxy's own decal is off: its frame lies in the tilted facet's plane.
-            EXPECT_GT(glm::length(proxyPlaced.frame().normal - g.normal), 0.05f) << where;
+            // The decal on the tilted plane is off: its frame lies in that plane.
+            EXPECT_GT(glm::length(tiltPlaced.frame().normal - g.normal), 0.05f) << where;
         }
 }
 
 TEST(ShotProjection, RelaidDecalRefusesWhatCannotBeLaidAndTurnsANormalDecalTheLeastWay) {
-    DecalSystem s = turnedFloorSystem(-1.0);
+    DecalSystem s = turnedFloorSystem(0.0);
     const uint16_t t = addType(s, plainType());
     const SpawnResult r = s.spawnAt(glm::dvec3(turnedFloor().objects[0].transform * glm::dvec4(0, 0, 0, 1)),
                                     glm::dvec3(0.0, 1.0, 0.0), t);

@@ -32,7 +32,8 @@ struct DecalType {
     bool onDynamic = true;      // may land on dynamic objects
     // The axis the texture is projected along (DecalProjection.hpp). Shot: a decal placed by spawn or
     // spawnBatch lands where its ray meets the drawn surface, even where that lies off the collision
-    // proxy; spawnAt and spawnAttached have no shot and project along the normal, as do volumetric
+    // proxy, and faces the drawn surface under the proxy (CollisionWorld::drawnNormalAt); spawnAt and
+    // spawnAttached have no shot and project along the normal, as do volumetric
     // types (a crater is carved along the normal).
     Projection projection = Projection::Shot;
 

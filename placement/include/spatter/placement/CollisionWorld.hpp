@@ -176,6 +176,14 @@ public:
     std::optional<SurfaceLocation> anchorAt(uint32_t object, uint32_t primitive,
                                             const glm::dvec3& localPosition,
                                             const glm::dvec3& localDirection = glm::dvec3(0.0)) const;
+    // Which way the drawn surface faces where a hit on a proxy or collider lands: the unit object-space
+    // face normal of the render triangle nearest the centre of the part of the hit triangle
+    // (`primitive`, Hit::primitive) that `localPosition` (Hit::localPosition) lies in, each collision
+    // triangle cut into nine parts whose normals are found when the world is built. Empty for an
+    // object whose collision mesh is its render mesh, one that deforms (anchorAt finds its drawn
+    // surface), one not in the world, a primitive out of range, or a render triangle without area.
+    std::optional<glm::dvec3> drawnNormalAt(uint32_t object, uint32_t primitive,
+                                            const glm::dvec3& localPosition) const;
     // The frame of `anchor` at the object's current pose, in its object space: columns the direction
     // of the anchor's render triangle's first edge, the perpendicular in its plane and its normal,
     // and, as translation, the anchor's point. What a decal on a deforming surface rides. Empty for

@@ -150,8 +150,11 @@ public:
     // maxAngleDeg), the decal's box (InvalidArgument when its size or half-depth in the object's
     // space is zero, denormal or not finite), limits (AreaLimit under LimitPolicy::Reject); the last
     // two apply to spawnAt and spawnAttached as well. The decal's frame: normal = the
-    // hit's geometric normal (facing the ray); tangent = the ray direction projected onto the surface
-    // (frameFromNormalAndHint: then world X, then Duff et al.), turned by a random angle. A decal of
+    // hit's geometric normal (facing the ray) or, for a type projected along the shot through a proxy
+    // or collider, the drawn surface's under the hit (CollisionWorld::drawnNormalAt, where it faces
+    // the shot; its box then as deep as holding the drawn surface along the shot needs); tangent =
+    // the ray direction projected onto the surface (frameFromNormalAndHint: then world X, then Duff et
+    // al.), turned by a random angle. A decal of
     // a volumetric type gets the clip planes of its crater from the collision proxy around it, in
     // all three spawn calls (craterClips()).
     SpawnResult spawn(const Ray& ray, uint16_t type);

@@ -1,0 +1,58 @@
+#include "DrawnNormals.hpp"
+
+#include "TrianglePieces.hpp"
+
+#include "spatter/core/MeshDistance.hpp"
+
+#include <cmath>
+
+namespace spatter {
+
+namespace {
+
+// `n` as three signed fractions of 32767 of its unit vector; zero for a vector without direction.
+std::array<int16_t, 3> packNormal(const glm::dvec3& n) {
+    const double length = glm::length(n);
+    if (!(length > 0.0) || !std::isfinite(length)) return {0, 0, 0};
+    const glm::dvec3 u = n / length;
+    return {int16_t(std::lround(u.x * 32767.0)), int16_t(std::lround(u.y * 32767.0)),
+            int16_t(std::lround(u.z * 32767.0))};
+}
+
+// The face normal of triangle `t` of `mesh` (not normalised; zero for one without area).
+glm::dvec3 faceNormal(const Mesh& mesh, uint32_t t) {
+    const uint32_t* c = &mesh.indices[3 * size_t(t)];
+    const glm::dvec3 p0(mesh.positions[c[0]]);
+    return glm::cross(glm::dvec3(mesh.positions[c[1]]) - p0, glm::dvec3(mesh.positions[c[2]]) - p0);
+}
+
+} // namespace
+
+Result<DrawnNormals> DrawnNormals::build(const Mesh& render, const Mesh& collision) {
+    Result<ClosestPointQuery> query = ClosestPointQuery::create(render);
+    if (!query) return fail(query.error());
+    DrawnNormals out;
+    out.normals_.reserve(collision.triangleCount() * kPiecesPerTriangle);
+    for (size_t t = 0; t < collision.triangleCount(); ++t) {
+        const uint32_t* c = &collision.indices[3 * t];
+        const glm::dvec3 p0(collision.positions[c[0]]);
+        forEachPieceCentre(p0, glm::dvec3(collision.positions[c[1]]) - p0,
+                           glm::dvec3(collision.positions[c[2]]) - p0, [&](const glm::dvec3& centre) {
+                               const std::optional<ClosestPoint> near = query->closest(centre);
+                               out.normals_.push_back(
+                                   packNormal(near ? faceNormal(render, near->triangle) : glm::dvec3(0.0)));
+                           });
+    }
+    return out;
+}
+
+std::optional<glm::dvec3> DrawnNormals::at(uint32_t triangle, const glm::dvec3& bary) const {
+    const size_t k = size_t(triangle) * kPiecesPerTriangle + pieceOf(bary);
+    if (k >= normals_.size()) return std::nullopt;
+    const std::array<int16_t, 3>& p = normals_[k];
+    const glm::dvec3 n(p[0], p[1], p[2]);
+    if (n == glm::dvec3(0.0)) return std::nullopt;
+    return glm::normalize(n);
+}
+
+} // namespace spatter
