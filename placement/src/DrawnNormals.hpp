@@ -28,9 +28,6 @@ public:
     // nearest render triangle has no area.
     std::optional<glm::dvec3> at(uint32_t triangle, const glm::dvec3& bary) const;
 
-    // Heap bytes the table holds.
-    size_t bytes() const { return normals_.capacity() * sizeof(normals_[0]); }
-
 private:
     // Each normal as three signed 16-bit fractions of 32767 (its direction to about 3e-5 radians);
     // zero where there is none.
