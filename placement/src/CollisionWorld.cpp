@@ -30,6 +30,13 @@ struct ObjectData : TracedTriangles {
     std::vector<double> poseMorphs;            // the morph weights of the last setPose
     RTCScene scene = nullptr;                  // dynamic objects: their own object-space scene
     unsigned geomId = kInvalidId; // static: geometry in the static scene; dynamic: instance in the top scene
+
+    // The barycentric coordinates of `local` (object space) in collision triangle `primitive` (in range).
+    glm::dvec3 barycentricOn(uint32_t primitive, const glm::dvec3& local) const {
+        const uint32_t* c = &indices[3 * size_t(primitive)];
+        return barycentric(local, glm::dvec3(positions[c[0]]), glm::dvec3(positions[c[1]]),
+                           glm::dvec3(positions[c[2]]));
+    }
 };
 
 const char* errorName(RTCError code) {
@@ -762,9 +769,7 @@ std::optional<SurfaceLocation> CollisionWorld::anchorAt(uint32_t object, uint32_
     if (object >= impl_->objects.size()) return std::nullopt;
     const ObjectData& od = impl_->objects[object];
     if (!od.posable || !od.info.inWorld || size_t(primitive) >= od.indices.size() / 3) return std::nullopt;
-    const uint32_t* c = &od.indices[3 * size_t(primitive)];
-    const glm::dvec3 bary = barycentric(localPosition, glm::dvec3(od.positions[c[0]]),
-                                        glm::dvec3(od.positions[c[1]]), glm::dvec3(od.positions[c[2]]));
+    const glm::dvec3 bary = od.barycentricOn(primitive, localPosition);
     // The drawn surface lies within h of the proxy: along a shot up to 82 degrees off its normal,
     // within 8h (and a hair more, for a proxy that is the drawn mesh itself).
     const double reach = 8.0 * od.info.errorBound + 1e-6 * double(od.info.localBounds.diagonal());
@@ -778,10 +783,7 @@ std::optional<glm::dvec3> CollisionWorld::drawnNormalAt(uint32_t object, uint32_
     const ObjectData& od = impl_->objects[object];
     if (!od.drawnNormals || !od.info.inWorld || size_t(primitive) >= od.indices.size() / 3)
         return std::nullopt;
-    const uint32_t* c = &od.indices[3 * size_t(primitive)];
-    return od.drawnNormals->at(primitive,
-                               barycentric(localPosition, glm::dvec3(od.positions[c[0]]),
-                                           glm::dvec3(od.positions[c[1]]), glm::dvec3(od.positions[c[2]])));
+    return od.drawnNormals->at(primitive, od.barycentricOn(primitive, localPosition));
 }
 
 std::optional<glm::dmat4> CollisionWorld::anchorFrame(uint32_t object, const SurfaceAnchor& anchor) const {

@@ -275,6 +275,11 @@ struct DecalSystem::Impl {
         return {};
     }
 
+    // Whether a decal of type `t` placed by a shot (`shot`) is projected along it.
+    static bool alongShot(const DecalType& t, bool shot) {
+        return shot && t.projection == Projection::Shot && !t.volumetric;
+    }
+
     // Places a decal of `typeIndex` on `objectIndex` at `local` (object space) facing `worldNormal`
     // (unit), its tangent from `worldHint`, which is the shot's direction when `shot` is set (and then
     // the projection axis of a type projected along the shot). Every check but the box and the limits
@@ -316,7 +321,7 @@ struct DecalSystem::Impl {
 
         Decal d;
         d.packedFrame = packFrame(tan, bit, n, false); // orthonormal already: packed as it is
-        if (shot && t.projection == Projection::Shot && !t.volumetric)
+        if (alongShot(t, shot))
             d.slant =
                 slantOf(tan, bit, n, -(inv * worldHint)); // directions go to object space by the inverse
         d.center = glm::vec3(local);
@@ -396,12 +401,13 @@ struct DecalSystem::Impl {
     // facing `facing` (world space, unit) or, when it is empty, the surface hit. On a skinned or
     // morphed object it lands on the drawn surface under the hit and is anchored there (SkinAnchors),
     // so that it follows the pose, and faces the render triangle when `facing` is empty; volumetric
-    // decals keep the proxy's hit, where their crater is clipped. `hint` and `shot` as for place().
+    // decals keep the proxy's hit, where their crater is clipped. On other objects a decal projected
+    // along its shot faces the drawn surface under the hit (drawnFacing). `hint` and `shot` as for
+    // place().
     SpawnResult placeAtHit(const Hit& hit, const glm::dvec3& dir, const std::optional<glm::dvec3>& facing,
                            const glm::dvec3& hint, uint16_t typeIndex, bool shot) {
-        if (!world.deforms(hit.object)) { // only skinned and morphed objects pay for the drawn surface
-            const DecalType& t = types[typeIndex];
-            if (!facing && shot && t.projection == Projection::Shot && !t.volumetric)
+        if (!world.deforms(hit.object)) { // only skinned and morphed objects are anchored to the skin
+            if (!facing && alongShot(types[typeIndex], shot))
                 if (const std::optional<DrawnFacing> drawn = drawnFacing(hit, dir))
                     return place(hit.object, hit.localPosition, drawn->normal, hint, typeIndex, shot, false,
                                  nullptr, drawn->boundScale);

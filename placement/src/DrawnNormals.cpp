@@ -2,8 +2,6 @@
 
 #include "TrianglePieces.hpp"
 
-#include "spatter/core/MeshDistance.hpp"
-
 #include <cmath>
 
 namespace spatter {
@@ -31,18 +29,10 @@ glm::dvec3 faceNormal(const Mesh& mesh, uint32_t t) {
 Result<DrawnNormals> DrawnNormals::build(const Mesh& render, const Mesh& collision) {
     Result<ClosestPointQuery> query = ClosestPointQuery::create(render);
     if (!query) return fail(query.error());
+    constexpr uint32_t kNone = UINT32_MAX;
     DrawnNormals out;
-    out.normals_.reserve(collision.triangleCount() * kPiecesPerTriangle);
-    for (size_t t = 0; t < collision.triangleCount(); ++t) {
-        const uint32_t* c = &collision.indices[3 * t];
-        const glm::dvec3 p0(collision.positions[c[0]]);
-        forEachPieceCentre(p0, glm::dvec3(collision.positions[c[1]]) - p0,
-                           glm::dvec3(collision.positions[c[2]]) - p0, [&](const glm::dvec3& centre) {
-                               const std::optional<ClosestPoint> near = query->closest(centre);
-                               out.normals_.push_back(
-                                   packNormal(near ? faceNormal(render, near->triangle) : glm::dvec3(0.0)));
-                           });
-    }
+    for (uint32_t t : nearestTrianglePerPiece(query.value(), collision, kNone))
+        out.normals_.push_back(packNormal(t != kNone ? faceNormal(render, t) : glm::dvec3(0.0)));
     return out;
 }
 

@@ -64,23 +64,6 @@ void linkRings(PosedCollisionMesh::Drawn& drawn) {
                 acrossEdge(drawn, t, k).value_or(PosedCollisionMesh::Drawn::kBorder);
 }
 
-// The render triangle nearest to the centre of each piece of each triangle of `collision`
-// (Drawn::seeds).
-std::vector<uint32_t> seedTriangles(const ClosestPointQuery& query, const Mesh& collision) {
-    std::vector<uint32_t> seeds;
-    seeds.reserve(collision.triangleCount() * kPiecesPerTriangle);
-    for (size_t t = 0; t < collision.triangleCount(); ++t) {
-        const uint32_t* c = &collision.indices[3 * t];
-        const glm::dvec3 p0(collision.positions[c[0]]);
-        forEachPieceCentre(p0, glm::dvec3(collision.positions[c[1]]) - p0,
-                           glm::dvec3(collision.positions[c[2]]) - p0, [&](const glm::dvec3& centre) {
-                               const std::optional<ClosestPoint> near = query.closest(centre);
-                               seeds.push_back(near ? near->triangle : PosedCollisionMesh::Drawn::kBorder);
-                           });
-    }
-    return seeds;
-}
-
 } // namespace
 
 Result<std::optional<PosedCollisionMesh>> posedCollisionMesh(const Scene& scene, size_t object,
@@ -105,7 +88,7 @@ Result<std::optional<PosedCollisionMesh>> posedCollisionMesh(const Scene& scene,
     Result<ClosestPointQuery> query = ClosestPointQuery::create(drawn.rest);
     if (!query) return fail(query.error());
     drawn.query = std::make_shared<const ClosestPointQuery>(std::move(query).value());
-    drawn.seeds = seedTriangles(*drawn.query, collision);
+    drawn.seeds = nearestTrianglePerPiece(*drawn.query, collision, PosedCollisionMesh::Drawn::kBorder);
     out.drawn = std::move(drawn);
     return std::optional<PosedCollisionMesh>(std::move(out));
 }

@@ -2,12 +2,18 @@
 // TrianglePieces: a triangle cut into kPieceCuts^2 pieces by a grid of kPieceCuts steps along its
 // edges from the first corner, numbered row by row (rows along the second corner's coordinate), each
 // cell's lower piece before its upper one. What the world keeps per piece of a collision triangle
-// (the drawn surface it stands for) is found at a piece's centre and read back at a hit by pieceOf.
+// (the drawn surface it stands for) is found at a piece's centre (nearestTrianglePerPiece) and read
+// back at a hit by pieceOf.
+
+#include "spatter/core/Mesh.hpp"
+#include "spatter/core/MeshDistance.hpp"
 
 #include <glm/glm.hpp>
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 namespace spatter {
 
@@ -37,5 +43,10 @@ inline size_t pieceOf(const glm::dvec3& bary) {
     const bool flip = i + j < n - 1 && (bary.y * n - i) + (bary.z * n - j) > 1.0;
     return size_t(i * (2 * n - i) + 2 * j + (flip ? 1 : 0)); // rows before i hold 2 (n - i') - 1 each
 }
+
+// For each piece of each triangle of `collision`, in piece order, the triangle of the mesh `query`
+// answers for that is nearest the piece's centre; `none` where it finds none.
+std::vector<uint32_t> nearestTrianglePerPiece(const ClosestPointQuery& query, const Mesh& collision,
+                                              uint32_t none);
 
 } // namespace spatter

@@ -4,26 +4,12 @@
 
 #include "PlacementTestUtil.hpp"
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <cmath>
 
 using namespace spatter;
 using namespace spatter::test;
 
 namespace {
-
-double radians(double degrees) {
-    return degrees * kPi / 180.0;
-}
-
-// The plane y = z tan(tiltDeg) + lift over [-2, 2]^2.
-Mesh tiltedPlane(double tiltDeg, float lift = 0.0f) {
-    Mesh m = makeGrid({-2.0f, 2.0f}, {-2.0f, 2.0f});
-    for (glm::vec3& p : m.positions)
-        p.y = p.z * float(std::tan(radians(tiltDeg))) + lift;
-    return m;
-}
 
 // A drawn floor y = 0 under `transform`, traced through the proxy `proxy` with bound `h`.
 DecalSystem floorThroughProxy(Mesh proxy, double h, const glm::dmat4& transform,
@@ -38,15 +24,11 @@ DecalSystem floorThroughProxy(Mesh proxy, double h, const glm::dmat4& transform,
     return std::move(s).value();
 }
 
-const glm::dmat4 kTurned =
-    glm::scale(glm::rotate(glm::dmat4(1.0), 0.3, glm::dvec3(0.2, 1.0, 0.4)), glm::dvec3(1.5, 0.8, 1.2));
-
 // The shot at the floor's object-space point `target` from `degrees` off its normal, turned about it
 // by `azimuth`, in the world of `toWorld`.
 Ray shotAt(const glm::dmat4& toWorld, const glm::dvec3& target, double degrees, double azimuth) {
-    const double a = radians(degrees);
-    const glm::dvec3 back(std::sin(a) * std::cos(azimuth), std::cos(a), std::sin(a) * std::sin(azimuth));
-    const glm::dvec3 worldBack = glm::normalize(glm::transpose(glm::inverse(glm::dmat3(toWorld))) * back);
+    const glm::dvec3 worldBack =
+        glm::normalize(glm::transpose(glm::inverse(glm::dmat3(toWorld))) * shotFrom(degrees, azimuth));
     const glm::dvec3 at(toWorld * glm::dvec4(target, 1.0));
     return ray(at + 3.0 * worldBack, -worldBack);
 }
@@ -64,7 +46,7 @@ glm::dvec3 floorMeet(const Ray& shot, const glm::dmat4& toWorld) {
 // A flat proxy over a drawn roof: each part of a proxy triangle keeps the normal of the roof's side
 // under it; a world traced on the render mesh itself keeps none.
 TEST(DrawnFacing, TheWorldKeepsTheDrawnSurfacesNormalUnderEachPartOfAProxyTriangle) {
-    const double slope = radians(30.0);
+    const double slope = 30.0 * kPi / 180.0;
     Mesh roof = makeGrid({-2.0f, -1.0f, 0.0f, 1.0f, 2.0f}, {-2.0f, 2.0f});
     for (glm::vec3& p : roof.positions)
         p.y = std::fabs(p.x) * float(std::tan(slope));
@@ -100,9 +82,9 @@ TEST(DrawnFacing, AShotThroughATiltedProxyIsLaidFacingTheDrawnSurface) {
         for (double azimuth : {0.3, 2.0, 4.1}) {
             const std::string where =
                 std::to_string(degrees) + " degrees, azimuth " + std::to_string(azimuth);
-            DecalSystem throughProxy = floorThroughProxy(tiltedPlane(6.0), 0.5, kTurned);
-            DecalSystem onFloor = floorThroughProxy(Mesh{}, 0.0, kTurned);
-            const Ray shot = shotAt(kTurned, {0.2, 0.0, 0.3}, degrees, azimuth);
+            DecalSystem throughProxy = floorThroughProxy(tiltedPlane(6.0), 0.5, turnedTransform());
+            DecalSystem onFloor = floorThroughProxy(Mesh{}, 0.0, turnedTransform());
+            const Ray shot = shotAt(turnedTransform(), {0.2, 0.0, 0.3}, degrees, azimuth);
             const SpawnResult a = throughProxy.spawn(shot, addType(throughProxy, plainType()));
             const SpawnResult b = onFloor.spawn(shot, addType(onFloor, plainType()));
             ASSERT_TRUE(a.placed() && b.placed()) << a.reason << b.reason;
@@ -111,7 +93,7 @@ TEST(DrawnFacing, AShotThroughATiltedProxyIsLaidFacingTheDrawnSurface) {
             EXPECT_LT(glm::length(f.normal - g.normal), 1e-4f) << where;
             EXPECT_LT(glm::length(f.tangent - g.tangent), 2e-3f) << where;
             EXPECT_LT(glm::length(unpackSlant(d.slant) - unpackSlant(drawn.slant)), 2e-3f) << where;
-            const glm::dvec3 meet = inBox(d, floorMeet(shot, kTurned));
+            const glm::dvec3 meet = inBox(d, floorMeet(shot, turnedTransform()));
             EXPECT_LT(std::max(std::fabs(meet.x), std::fabs(meet.y)), 1e-3) << where;
             EXPECT_LE(std::fabs(meet.z), 1.0) << where;
 

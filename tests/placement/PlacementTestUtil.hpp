@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
@@ -99,6 +100,26 @@ inline Result<DeformingProxy> deformingProxy(const Scene& scene, float tolerance
 // `point` (object space) in the unit box of `d`.
 inline glm::dvec3 inBox(const Decal& d, const glm::dvec3& point) {
     return glm::dvec3(glm::inverse(glm::dmat4(d.boxToObject())) * glm::dvec4(point, 1.0));
+}
+
+// The reversed shot `degrees` from the +Y normal, turned about it by `azimuth` radians.
+inline glm::dvec3 shotFrom(double degrees, double azimuth) {
+    const double a = degrees * kPi / 180.0;
+    return glm::dvec3(std::sin(a) * std::cos(azimuth), std::cos(a), std::sin(a) * std::sin(azimuth));
+}
+
+// The plane y = z tan(tiltDeg) + lift over [-2, 2]^2 (two triangles).
+inline Mesh tiltedPlane(double tiltDeg, float lift = 0.0f) {
+    Mesh m = makeGrid({-2.0f, 2.0f}, {-2.0f, 2.0f});
+    for (glm::vec3& p : m.positions)
+        p.y = p.z * float(std::tan(tiltDeg * kPi / 180.0)) + lift;
+    return m;
+}
+
+// An object transform that turns and scales unevenly.
+inline glm::dmat4 turnedTransform() {
+    return glm::scale(glm::rotate(glm::dmat4(1.0), 0.3, glm::dvec3(0.2, 1.0, 0.4)),
+                      glm::dvec3(1.5, 0.8, 1.2));
 }
 
 inline Proxy makeProxy(Mesh mesh, double errorBound) {

@@ -5,20 +5,12 @@
 
 #include "spatter/core/DecalRefit.hpp"
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <cmath>
 
 using namespace spatter;
 using namespace spatter::test;
 
 namespace {
-
-// The reversed shot `degrees` from the +Y normal, turned about it by `azimuth` radians.
-glm::dvec3 shotFrom(double degrees, double azimuth) {
-    const double a = degrees * kPi / 180.0;
-    return glm::dvec3(std::sin(a) * std::cos(azimuth), std::cos(a), std::sin(a) * std::sin(azimuth));
-}
 
 // A drawn plane y = 0 (4 x 4) whose collision proxy is the plane y = offset, with h = |offset|.
 CollisionWorld offsetFloorWorld(float offset) {
@@ -40,12 +32,7 @@ CollisionWorld offsetFloorWorld(float offset) {
 Scene turnedFloor(double tiltDeg = 0.0) {
     Scene scene;
     scene.source = "test:turned floor";
-    const glm::dmat4 transform =
-        glm::scale(glm::rotate(glm::dmat4(1.0), 0.3, glm::dvec3(0.2, 1.0, 0.4)), glm::dvec3(1.5, 0.8, 1.2));
-    Mesh plane = makeGrid({-2.0f, 2.0f}, {-2.0f, 2.0f});
-    for (glm::vec3& p : plane.positions)
-        p.y = p.z * float(std::tan(tiltDeg * kPi / 180.0));
-    scene.objects.push_back(makeSceneObject("floor", std::move(plane), transform));
+    scene.objects.push_back(makeSceneObject("floor", tiltedPlane(tiltDeg), turnedTransform()));
     return scene;
 }
 
