@@ -474,6 +474,10 @@ size_t HausdorffSurface::surfaceTriangleCount() const {
     return impl_->triangles.size();
 }
 
+const ClosestPointQuery& HausdorffSurface::query() const {
+    return impl_->query;
+}
+
 namespace {
 
 Status checkSettings(const HausdorffSettings& s) {

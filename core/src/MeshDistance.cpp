@@ -61,6 +61,7 @@ struct PointQueryState {
     glm::dvec3 p;
     double rounding = 0.0; // pointRounding(p)
     double best2 = std::numeric_limits<double>::infinity();
+    double reach2 = std::numeric_limits<double>::infinity(); // farther triangles are not taken
     glm::dvec3 bestPoint{0.0};
     uint32_t bestTriangle = 0;
 };
@@ -70,7 +71,7 @@ bool closestPointCallback(RTCPointQueryFunctionArguments* args) {
     const glm::dvec3* t = s->corners + 3 * size_t(args->primID);
     const glm::dvec3 q = closestOnTriangle(s->p, t[0], t[1], t[2]);
     const double d2 = glm::dot(q - s->p, q - s->p);
-    if (!(d2 < s->best2)) return false;
+    if (!(d2 < s->best2) || d2 > s->reach2) return false;
     s->best2 = d2;
     s->bestPoint = q;
     s->bestTriangle = args->primID;
@@ -170,12 +171,17 @@ Result<ClosestPointQuery> ClosestPointQuery::create(const Mesh& mesh) {
 }
 
 std::optional<ClosestPoint> ClosestPointQuery::closest(const glm::dvec3& p) const {
-    if (!impl_->scene || !finitePoint(p)) return std::nullopt;
+    return closest(p, std::numeric_limits<double>::infinity());
+}
+
+std::optional<ClosestPoint> ClosestPointQuery::closest(const glm::dvec3& p, double reach) const {
+    if (!impl_->scene || !finitePoint(p) || !(reach >= 0.0)) return std::nullopt;
     PointQueryState state;
     state.corners = impl_->corners.data();
     state.p = p;
     state.rounding = pointRounding(p);
-    RTCPointQuery query = pointQuery(p, std::numeric_limits<double>::infinity());
+    state.reach2 = reach * reach;
+    RTCPointQuery query = pointQuery(p, reach);
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
     rtcPointQuery(impl_->scene, &query, &context, closestPointCallback, &state);

@@ -898,6 +898,8 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
         if (Status st = certify(c, renderSurface.value(), sharp, measure); !st)
             return fail(st.error() == "cancelled" ? st.error() : "authored collider: " + st.error());
         takeBound(proxy, c, tolerance);
+        proxy.drawnNormals =
+            DrawnNormals::build(render, renderSurface->query(), proxy.mesh, proxy.errorBound);
         finishResult(proxy, start);
         store(s, key, proxy);
         return proxy;
@@ -952,6 +954,10 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
         proxy.source = ProxySource::Simplified;
         proxy.backend = best.backend;
         takeBound(proxy, best, tolerance);
+        Result<const HausdorffSurface*> drawn = renderSurface.get(); // ready: the search certified `best`
+        if (!drawn) return fail(drawn.error());
+        proxy.drawnNormals =
+            DrawnNormals::build(render, drawn.value()->query(), proxy.mesh, proxy.errorBound);
         if (!proxy.toleranceMet)
             proxy.notes.push_back(
                 std::string("h = ") + std::to_string(proxy.errorBound) + " is above the tolerance " +

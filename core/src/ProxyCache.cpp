@@ -19,12 +19,13 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr char kMagic[4] = {'S', 'P', 'X', 'C'};
-constexpr uint32_t kFormatVersion = 1;
+constexpr uint32_t kFormatVersion = 2;
 // Part of every key: bump it whenever the builder gives a different proxy for the same input, so
 // that entries written by an older builder are never loaded.
 constexpr uint32_t kBuilderVersion = 6;
-// Bytes before the vertex data (magic through index count), and the checksum after it.
-constexpr size_t kHeaderSize = 4 + 4 + 8 + 4 * 4 + 8 * 2 + 8 * 5 + 4 * 2;
+// Bytes before the vertex data (magic through the count of drawn normals), and the checksum after it.
+constexpr size_t kHeaderSize = 4 + 4 + 8 + 4 * 4 + 8 * 2 + 8 * 5 + 4 * 3;
+constexpr size_t kDrawnNormalSize = 6; // three 16-bit fractions
 constexpr size_t kChecksumSize = 8;
 
 uint32_t floatBits(float f) {
@@ -49,6 +50,11 @@ struct Writer {
         for (int i = 0; i < 8; ++i)
             bytes.push_back((unsigned char)(v >> (8 * i)));
     }
+    void i16(int16_t v) {
+        const uint16_t u = uint16_t(v);
+        bytes.push_back((unsigned char)(u & 0xffu));
+        bytes.push_back((unsigned char)(u >> 8));
+    }
     void f32(float v) { u32(floatBits(v)); }
     void f64(double v) { u64(doubleBits(v)); }
 };
@@ -71,6 +77,12 @@ struct Reader {
         for (int i = 0; i < 8; ++i)
             v |= uint64_t(data[at + size_t(i)]) << (8 * i);
         at += 8;
+        return true;
+    }
+    bool i16(int16_t& v) {
+        if (size - at < 2) return false;
+        v = int16_t(uint16_t(data[at] | (uint16_t(data[at + 1]) << 8)));
+        at += 2;
         return true;
     }
     bool f32(float& v) {
@@ -172,7 +184,8 @@ Result<Proxy> loadCachedProxy(const std::string& directory, uint64_t key) {
     if (std::memcmp(bytes.data(), kMagic, 4) != 0) return corrupt("bad magic");
 
     Reader r{bytes.data(), bytes.size(), 4};
-    uint32_t version = 0, source = 0, backend = 0, flags = 0, attempts = 0, vertexCount = 0, indexCount = 0;
+    uint32_t version = 0, source = 0, backend = 0, flags = 0, attempts = 0, vertexCount = 0, indexCount = 0,
+             drawnCount = 0;
     uint64_t storedKey = 0, inputTriangles = 0, samples = 0;
     Proxy p;
     // The size was checked against the header above, so these reads cannot fail.
@@ -191,10 +204,12 @@ Result<Proxy> loadCachedProxy(const std::string& directory, uint64_t key) {
     r.f64(p.samplingMargin);
     r.u32(vertexCount);
     r.u32(indexCount);
+    r.u32(drawnCount);
     if (version != kFormatVersion) return corrupt("format version " + std::to_string(version));
     if (storedKey != key) return corrupt("it holds another key");
-    const uint64_t expected =
-        uint64_t(kHeaderSize) + uint64_t(vertexCount) * 24u + uint64_t(indexCount) * 4u + kChecksumSize;
+    const uint64_t expected = uint64_t(kHeaderSize) + uint64_t(vertexCount) * 24u +
+                              uint64_t(indexCount) * 4u + uint64_t(drawnCount) * kDrawnNormalSize +
+                              kChecksumSize;
     if (expected != bytes.size())
         return corrupt(std::to_string(bytes.size()) + " bytes where its counts need " +
                        std::to_string(expected));
@@ -217,6 +232,13 @@ Result<Proxy> loadCachedProxy(const std::string& directory, uint64_t key) {
         r.f32(v.x), r.f32(v.y), r.f32(v.z);
     for (uint32_t& i : p.mesh.indices)
         r.u32(i);
+    std::vector<DrawnNormals::Packed> drawn(drawnCount);
+    for (DrawnNormals::Packed& n : drawn)
+        r.i16(n[0]), r.i16(n[1]), r.i16(n[2]);
+    p.drawnNormals = DrawnNormals(std::move(drawn));
+    if (!p.drawnNormals.empty() && !p.drawnNormals.fits(p.mesh.triangleCount()))
+        return corrupt(std::to_string(drawnCount) + " drawn normals for " +
+                       std::to_string(p.mesh.triangleCount()) + " triangles");
     for (uint32_t i : p.mesh.indices)
         if (i >= vertexCount) return corrupt("index past the vertex count");
     for (size_t i = 0; i < p.mesh.positions.size(); ++i) {
@@ -243,10 +265,12 @@ Status storeCachedProxy(const std::string& directory, uint64_t key, const Proxy&
     const std::string path = proxyCachePath(directory, key);
     if (m.normals.size() != m.positions.size())
         return fail("cache entry " + path + " not written: the proxy has no normal per position");
-    if (m.positions.size() > UINT32_MAX || m.indices.size() > UINT32_MAX)
+    const std::vector<DrawnNormals::Packed>& drawn = proxy.drawnNormals.packed();
+    if (m.positions.size() > UINT32_MAX || m.indices.size() > UINT32_MAX || drawn.size() > UINT32_MAX)
         return fail("cache entry " + path + " not written: the proxy is too large");
     Writer w;
-    w.bytes.reserve(kHeaderSize + m.positions.size() * 24 + m.indices.size() * 4 + kChecksumSize);
+    w.bytes.reserve(kHeaderSize + m.positions.size() * 24 + m.indices.size() * 4 +
+                    drawn.size() * kDrawnNormalSize + kChecksumSize);
     for (char c : kMagic)
         w.bytes.push_back((unsigned char)c);
     w.u32(kFormatVersion);
@@ -264,12 +288,15 @@ Status storeCachedProxy(const std::string& directory, uint64_t key, const Proxy&
     w.f64(proxy.samplingMargin);
     w.u32(uint32_t(m.positions.size()));
     w.u32(uint32_t(m.indices.size()));
+    w.u32(uint32_t(drawn.size()));
     for (const glm::vec3& v : m.positions)
         w.f32(v.x), w.f32(v.y), w.f32(v.z);
     for (const glm::vec3& v : m.normals)
         w.f32(v.x), w.f32(v.y), w.f32(v.z);
     for (uint32_t i : m.indices)
         w.u32(i);
+    for (const DrawnNormals::Packed& n : drawn)
+        w.i16(n[0]), w.i16(n[1]), w.i16(n[2]);
     w.u64(fnv1a(w.bytes.data(), w.bytes.size()));
 
     std::error_code ec;

@@ -1,10 +1,11 @@
 #include "spatter/placement/CollisionWorld.hpp"
 
-#include "DrawnNormals.hpp"
 #include "PosedCollisionMesh.hpp"
 #include "WatertightTriangles.hpp"
 
+#include "spatter/core/DrawnNormals.hpp"
 #include "spatter/core/LinearStretch.hpp"
+#include "spatter/core/TrianglePieces.hpp"
 #include "spatter/placement/TraceTransform.hpp"
 
 #include <embree3/rtcore.h>
@@ -211,6 +212,13 @@ uint64_t collisionMeshHash(const std::vector<glm::vec3>& positions, const std::v
     word(uint32_t(e));
     word(uint32_t(e >> 32));
     return h;
+}
+
+// Whether a collision mesh is the render mesh itself (a small mesh's own proxy): then no surface is
+// drawn under it but its own.
+bool sameSurface(const Mesh& collision, const Mesh& render) {
+    return &collision == &render ||
+           (collision.positions == render.positions && collision.indices == render.indices);
 }
 
 } // namespace
@@ -524,6 +532,11 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
             return fail(where + ": proxy of " + name + ": " + s.error());
         if (!std::isfinite(proxies[i]->errorBound) || proxies[i]->errorBound < 0.0)
             return fail(where + ": proxy of " + name + " has an error bound that is not finite and >= 0");
+        const DrawnNormals& drawn = proxies[i]->drawnNormals;
+        if (!drawn.empty() && !drawn.fits(proxies[i]->mesh.triangleCount()))
+            return fail(where + ": proxy of " + name + " has " + std::to_string(drawn.packed().size()) +
+                        " drawn normals, not " + std::to_string(kPiecesPerTriangle) + " for each of its " +
+                        std::to_string(proxies[i]->mesh.triangleCount()) + " triangles");
     }
     if (scene.objects.size() >= size_t(std::numeric_limits<uint32_t>::max()))
         return fail(where + ": too many objects");
@@ -554,9 +567,11 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         }
         const Mesh* mesh = &so.mesh;
         double h = 0.0;
+        DrawnNormals drawn; // which way the drawn surface faces under the collision mesh, if known
         if (!proxies.empty() && proxies[i]) {
             mesh = &proxies[i]->mesh;
             h = proxies[i]->errorBound;
+            drawn = proxies[i]->drawnNormals;
         } else if (settings.useColliders && so.collider) {
             // Certified, and at most 1% of the render mesh's diagonal above the measured distance.
             ProxySettings measure;
@@ -567,6 +582,7 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
             if (!measured) return fail(where + ": collider of object '" + so.name + "': " + measured.error());
             mesh = &*so.collider;
             h = measured->errorBound;
+            drawn = std::move(measured->drawnNormals);
         }
         od.info.inWorld = true;
         od.info.errorBound = h;
@@ -580,10 +596,13 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
             if (!posable) return fail(where + ": object '" + so.name + "': " + posable.error());
             od.posable = std::move(posable).value();
         }
-        if (mesh != &so.mesh && !od.posable) {
-            Result<DrawnNormals> normals = DrawnNormals::build(so.mesh, *mesh);
-            if (!normals) return fail(where + ": object '" + so.name + "': " + normals.error());
-            od.drawnNormals = std::move(normals).value();
+        if (!sameSurface(*mesh, so.mesh) && !od.posable) {
+            if (drawn.empty()) { // a proxy made elsewhere: found here, as buildProxy finds it
+                Result<DrawnNormals> normals = DrawnNormals::build(so.mesh, *mesh, h);
+                if (!normals) return fail(where + ": object '" + so.name + "': " + normals.error());
+                drawn = std::move(normals).value();
+            }
+            od.drawnNormals = std::move(drawn);
         }
         // The frame's origin comes from the objects whose scale and condition the trace can use.
         od.info.untraced = floatLinearProblem(so.transform);

@@ -1,6 +1,6 @@
 #include "PosedCollisionMesh.hpp"
 
-#include "TrianglePieces.hpp"
+#include "spatter/core/TrianglePieces.hpp"
 
 #include <algorithm>
 #include <array>

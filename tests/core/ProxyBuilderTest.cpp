@@ -42,17 +42,6 @@ Mesh displacedGrid(uint32_t n, float amplitude) {
     return m;
 }
 
-// The axis-aligned box [-h, h]^3: 8 vertices, 12 triangles.
-Mesh box(float h) {
-    Mesh m;
-    for (int i = 0; i < 8; ++i)
-        m.positions.push_back({i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h});
-    m.indices = {0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5, 0, 1, 5, 0, 5, 4,
-                 2, 6, 7, 2, 7, 3, 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6};
-    computeNormals(m);
-    return m;
-}
-
 // Lower estimate of the one-sided Hausdorff distance from `from` to `to`, by brute force over every
 // triangle of `to` (independent of the library's closest-point code).
 double bruteOneSided(const Mesh& from, const Mesh& to, size_t samples, uint64_t seed) {

@@ -33,6 +33,10 @@ Proxy sampleProxy() {
     p.inputTriangles = 5000;
     p.proxyTriangles = 4;
     p.attempts = 2;
+    std::vector<DrawnNormals::Packed> drawn;
+    for (int16_t i = 0; i < 36; ++i) // 9 pieces for each of the 4 triangles, negative values among them
+        drawn.push_back({int16_t(1000 * i - 17000), int16_t(-32767 + i), int16_t(i * i)});
+    p.drawnNormals = DrawnNormals(drawn);
     return p;
 }
 
@@ -74,8 +78,26 @@ TEST(ProxyCache, RoundTripsAProxy) {
     EXPECT_EQ(q->inputTriangles, p.inputTriangles);
     EXPECT_EQ(q->proxyTriangles, p.proxyTriangles);
     EXPECT_EQ(q->attempts, p.attempts);
+    EXPECT_EQ(q->drawnNormals.packed(), p.drawnNormals.packed());
     // Written through a temporary file that is renamed: nothing else is left in the directory.
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+TEST(ProxyCache, AnEntryWhoseDrawnNormalsDoNotFitItsTrianglesIsCorrupt) {
+    const std::string dir = test::scratchDir("cache-drawn-normals");
+    Proxy p = sampleProxy();
+    std::vector<DrawnNormals::Packed> fewer = p.drawnNormals.packed();
+    fewer.pop_back();
+    p.drawnNormals = DrawnNormals(fewer);
+    ASSERT_TRUE(storeCachedProxy(dir, 7, p).ok());
+    Result<Proxy> q = loadCachedProxy(dir, 7);
+    ASSERT_FALSE(q);
+    EXPECT_THAT(q.error(), HasSubstr("corrupt: 35 drawn normals for 4 triangles"));
+    p.drawnNormals = DrawnNormals(); // none at all is an entry of its own (the render mesh as proxy)
+    ASSERT_TRUE(storeCachedProxy(dir, 8, p).ok());
+    q = loadCachedProxy(dir, 8);
+    ASSERT_TRUE(q) << q.error();
+    EXPECT_TRUE(q->drawnNormals.empty());
 }
 
 TEST(ProxyCache, MissingEntryIsAMiss) {

@@ -4,6 +4,8 @@
 
 #include "PlacementTestUtil.hpp"
 
+#include "spatter/core/TrianglePieces.hpp"
+
 #include <cmath>
 
 using namespace spatter;
@@ -71,6 +73,35 @@ TEST(DrawnFacing, TheWorldKeepsTheDrawnSurfacesNormalUnderEachPartOfAProxyTriang
         }
     EXPECT_FALSE(world.drawnNormalAt(0, 2, glm::dvec3(0.0)).has_value()) << "primitive out of range";
     EXPECT_FALSE(world.drawnNormalAt(1, 0, glm::dvec3(0.0)).has_value()) << "object out of range";
+}
+
+// A proxy that comes with its table (buildProxy makes one, the cache keeps it) is taken as it is: the
+// world searches no render mesh for it. One that does not fit its triangles is refused, named.
+TEST(DrawnFacing, TheWorldTakesTheTableAProxyCarries) {
+    Scene scene;
+    scene.source = "test:floor";
+    scene.objects.push_back(makeSceneObject("floor", makeGrid({-2.0f, 2.0f}, {-2.0f, 2.0f})));
+    Proxy proxy = makeProxy(tiltedPlane(0.0, 0.1f), 0.1);
+    const DrawnNormals::Packed carried = {int16_t(0.6 * 32767), int16_t(0.8 * 32767), 0};
+    proxy.drawnNormals = DrawnNormals(
+        std::vector<DrawnNormals::Packed>(proxy.mesh.triangleCount() * kPiecesPerTriangle, carried));
+    std::vector<std::optional<Proxy>> proxies{proxy};
+    const CollisionWorld world = buildWorld(scene, proxies);
+    const std::optional<Hit> hit = world.intersect(ray({0.3, 3.0, -0.4}, {0.0, -1.0, 0.0}));
+    ASSERT_TRUE(hit.has_value());
+    const std::optional<glm::dvec3> n = world.drawnNormalAt(hit->object, hit->primitive, hit->localPosition);
+    ASSERT_TRUE(n.has_value());
+    EXPECT_LT(glm::length(*n - glm::dvec3(0.6, 0.8, 0.0)), 1e-4) << "the carried table, not the floor's up";
+
+    std::vector<DrawnNormals::Packed> fewer = proxy.drawnNormals.packed();
+    fewer.pop_back();
+    proxies[0]->drawnNormals = DrawnNormals(fewer);
+    Result<CollisionWorld> refused = CollisionWorld::build(scene, proxies);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().find(
+                  "proxy of object 'floor' has 17 drawn normals, not 9 for each of its 2 triangles"),
+              std::string::npos)
+        << refused.error();
 }
 
 // Through a proxy tilted 6 degrees against the drawn floor of an object turned and scaled unevenly, a

@@ -41,6 +41,16 @@ Mesh latLongSphere(float radius, uint32_t stacks, uint32_t slices, float bump) {
     return m;
 }
 
+Mesh box(float h) {
+    Mesh m;
+    for (int i = 0; i < 8; ++i)
+        m.positions.push_back({i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h});
+    m.indices = {0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5, 0, 1, 5, 0, 5, 4,
+                 2, 6, 7, 2, 7, 3, 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6};
+    computeNormals(m);
+    return m;
+}
+
 double segmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
     const glm::dvec3 d = b - a;
     const double len2 = glm::dot(d, d);

@@ -16,6 +16,9 @@ namespace spatter::test {
 // normals; `bump` displaces the radius by bump * sin(8 theta) * sin(8 phi) (0: a plain sphere).
 Mesh latLongSphere(float radius, uint32_t stacks, uint32_t slices, float bump = 0.0f);
 
+// The axis-aligned box [-h, h]^3: 8 vertices, 12 triangles facing out, with normals.
+Mesh box(float h);
+
 // Distance from `p` to the segment [a, b] (a point where a == b).
 double segmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b);
 

@@ -62,6 +62,8 @@ public:
     ~HausdorffSurface();
 
     size_t surfaceTriangleCount() const;
+    // The nearest-point structure over the mesh (its triangle indices are the mesh's).
+    const ClosestPointQuery& query() const;
 
     // The prepared data, opaque outside the certifier.
     struct Impl;

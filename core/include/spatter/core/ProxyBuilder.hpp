@@ -40,6 +40,7 @@
 // part of the surface and are dropped from simplified proxies; non-manifold input is accepted by both
 // backends.
 
+#include "spatter/core/DrawnNormals.hpp"
 #include "spatter/core/Mesh.hpp"
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/Result.hpp"
@@ -111,6 +112,9 @@ struct Proxy {
     // errorBound - max(proxyToRenderMax, renderToProxyMax): at most max(marginFraction * tolerance,
     // tolerance - that maximum).
     double samplingMargin = 0.0;
+    // For each piece of each proxy triangle, which way the render mesh faces there (DrawnNormals.hpp);
+    // empty when the render mesh is its own proxy.
+    DrawnNormals drawnNormals;
     size_t samples = 0;        // closest-point queries made to certify the final proxy
     size_t inputTriangles = 0; // render mesh triangles
     size_t proxyTriangles = 0;

@@ -6,8 +6,8 @@
 //   source, backend, flags (u32 each; flag 1 = tolerance met), attempts (u32),
 //   input triangles, samples (u64 each),
 //   tolerance, error bound, proxy-to-render max, render-to-proxy max, sampling margin (f64 each),
-//   vertex count, index count (u32 each),
-//   positions, normals (3 f32 per vertex each), indices (u32 each),
+//   vertex count, index count, drawn normal count (u32 each; the last 0, or 9 per triangle),
+//   positions, normals (3 f32 per vertex each), indices (u32 each), drawn normals (3 i16 each),
 //   checksum (u64): FNV-1a of every byte before it.
 // An entry is written to a temporary file in the same directory and renamed over the final name, so
 // a reader never sees a half-written entry. A truncated, resized or altered entry fails the size or

@@ -1,6 +1,6 @@
-#include "DrawnNormals.hpp"
+#include "spatter/core/DrawnNormals.hpp"
 
-#include "TrianglePieces.hpp"
+#include "spatter/core/TrianglePieces.hpp"
 
 #include <cmath>
 
@@ -9,7 +9,7 @@ namespace spatter {
 namespace {
 
 // `n` as three signed fractions of 32767 of its unit vector; zero for a vector without direction.
-std::array<int16_t, 3> packNormal(const glm::dvec3& n) {
+DrawnNormals::Packed packNormal(const glm::dvec3& n) {
     const double length = glm::length(n);
     if (!(length > 0.0) || !std::isfinite(length)) return {0, 0, 0};
     const glm::dvec3 u = n / length;
@@ -24,25 +24,38 @@ glm::dvec3 faceNormal(const Mesh& mesh, uint32_t t) {
     return glm::cross(glm::dvec3(mesh.positions[c[1]]) - p0, glm::dvec3(mesh.positions[c[2]]) - p0);
 }
 
+// A reach widened by double rounding: the pieces' centres are computed in double from float corners.
+constexpr double kReachAllowance = 1e-6;
+
 } // namespace
 
-Result<DrawnNormals> DrawnNormals::build(const Mesh& render, const Mesh& collision) {
+DrawnNormals DrawnNormals::build(const Mesh& render, const ClosestPointQuery& query, const Mesh& collision,
+                                 double reach) {
+    constexpr uint32_t kNone = UINT32_MAX;
+    std::vector<Packed> normals;
+    normals.reserve(collision.triangleCount() * kPiecesPerTriangle);
+    for (uint32_t t : nearestTrianglePerPiece(query, collision, kNone, reach * (1.0 + kReachAllowance)))
+        normals.push_back(packNormal(t != kNone ? faceNormal(render, t) : glm::dvec3(0.0)));
+    return DrawnNormals(std::move(normals));
+}
+
+Result<DrawnNormals> DrawnNormals::build(const Mesh& render, const Mesh& collision, double reach) {
     Result<ClosestPointQuery> query = ClosestPointQuery::create(render);
     if (!query) return fail(query.error());
-    constexpr uint32_t kNone = UINT32_MAX;
-    DrawnNormals out;
-    for (uint32_t t : nearestTrianglePerPiece(query.value(), collision, kNone))
-        out.normals_.push_back(packNormal(t != kNone ? faceNormal(render, t) : glm::dvec3(0.0)));
-    return out;
+    return build(render, query.value(), collision, reach);
 }
 
 std::optional<glm::dvec3> DrawnNormals::at(uint32_t triangle, const glm::dvec3& bary) const {
     const size_t k = size_t(triangle) * kPiecesPerTriangle + pieceOf(bary);
     if (k >= normals_.size()) return std::nullopt;
-    const std::array<int16_t, 3>& p = normals_[k];
+    const Packed& p = normals_[k];
     const glm::dvec3 n(p[0], p[1], p[2]);
     if (n == glm::dvec3(0.0)) return std::nullopt;
     return glm::normalize(n);
+}
+
+bool DrawnNormals::fits(size_t triangles) const {
+    return normals_.size() == triangles * kPiecesPerTriangle;
 }
 
 } // namespace spatter

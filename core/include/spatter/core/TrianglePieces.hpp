@@ -1,9 +1,9 @@
 #pragma once
 // TrianglePieces: a triangle cut into kPieceCuts^2 pieces by a grid of kPieceCuts steps along its
 // edges from the first corner, numbered row by row (rows along the second corner's coordinate), each
-// cell's lower piece before its upper one. What the world keeps per piece of a collision triangle
-// (the drawn surface it stands for) is found at a piece's centre (nearestTrianglePerPiece) and read
-// back at a hit by pieceOf.
+// cell's lower piece before its upper one. What is kept per piece of a proxy or collider triangle
+// (the drawn surface it stands for: DrawnNormals.hpp, the skinned objects' walk) is found at a
+// piece's centre (nearestTrianglePerPiece) and read back at a hit by pieceOf.
 
 #include "spatter/core/Mesh.hpp"
 #include "spatter/core/MeshDistance.hpp"
@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace spatter {
@@ -45,8 +46,11 @@ inline size_t pieceOf(const glm::dvec3& bary) {
 }
 
 // For each piece of each triangle of `collision`, in piece order, the triangle of the mesh `query`
-// answers for that is nearest the piece's centre; `none` where it finds none.
+// answers for that is nearest the piece's centre; `none` where it finds none. `reach`: how far that
+// surface may lie from `collision` (a certified bound such as a proxy's h; infinity when none is
+// known): the search looks that far first, then everywhere. On all cores.
 std::vector<uint32_t> nearestTrianglePerPiece(const ClosestPointQuery& query, const Mesh& collision,
-                                              uint32_t none);
+                                              uint32_t none,
+                                              double reach = std::numeric_limits<double>::infinity());
 
 } // namespace spatter
