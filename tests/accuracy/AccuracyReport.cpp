@@ -156,7 +156,6 @@ void recordCase(CaseReport report) {
 
 std::string accuracyTables(const std::vector<CaseReport>& cases) {
     std::string md;
-    if (!cases.empty()) md += "Proxies: " + cases.front().settings + ".\n\n";
     char header[1024];
     std::snprintf(header, sizeof header, kHeader, "mesh");
     md += header;

@@ -27,7 +27,6 @@ struct CaseReport {
     double buildSeconds = 0.0;       // building every proxy of the case
     double measureSeconds = 0.0;     // worlds, rays, queries and decals
     bool perObject = false;          // also write one row per object
-    std::string settings;            // how the proxies were built, in words
 };
 
 void recordCase(CaseReport report);

@@ -15,7 +15,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <iterator>
 #include <string>
@@ -64,26 +63,13 @@ const std::string& proxyCacheDir() {
     return dir.path;
 }
 
-// SPATTER_ACCURACY_DEFAULTS=1: build every proxy with the builder's defaults (what spatter-place
-// --proxy TOL builds; the run behind docs/ACCURACY.md, minutes on two cores).
-bool builderDefaults() {
-    const char* e = std::getenv("SPATTER_ACCURACY_DEFAULTS");
-    return e && std::string(e) == "1";
-}
-
-// The settings the proxies of a case are built with: the builder's defaults (backend Auto) with a
-// relative tolerance. Unless builderDefaults(), the suite keeps to its time budget with one
-// simplification run per backend and meshoptimizer alone on scenes of many objects.
-ProxySettings caseSettings(float tolerance, size_t receivers) {
+// The settings the proxies of a case are built with: the builder's defaults with a relative
+// tolerance, the proxies spatter-place --proxy TOL builds.
+ProxySettings caseSettings(float tolerance) {
     ProxySettings s;
     s.tolerance = tolerance;
     s.toleranceRelative = true;
-    s.backend = ProxyBackend::Auto;
     s.cacheDirectory = proxyCacheDir();
-    if (!builderDefaults()) {
-        s.maxAttempts = 1;
-        if (receivers > 1) s.backend = ProxyBackend::MeshOpt;
-    }
     return s;
 }
 
@@ -180,7 +166,7 @@ TEST_P(ProxyVersusRender, ProxyHitsStayWithinHAndDecalBoxesHoldTheRenderSurface)
 
     const Clock::time_point start = Clock::now();
     const size_t receivers = receiverCount(scene.value());
-    Result<Built> built = buildProxies(scene.value(), caseSettings(tolerance, receivers));
+    Result<Built> built = buildProxies(scene.value(), caseSettings(tolerance));
     ASSERT_TRUE(built) << built.error();
     const Clock::time_point builtAt = Clock::now();
 
@@ -205,9 +191,6 @@ TEST_P(ProxyVersusRender, ProxyHitsStayWithinHAndDecalBoxesHoldTheRenderSurface)
     report.buildSeconds = std::chrono::duration<double>(builtAt - start).count();
     report.measureSeconds = std::chrono::duration<double>(done - builtAt).count();
     report.perObject = report.objects.size() > 1;
-    report.settings = builderDefaults()
-                          ? "the builder's defaults (backend auto)"
-                          : "the suite's settings (one run per backend, meshopt alone on scenes)";
     std::printf("%s", accuracyTables({report}).c_str());
     recordCase(std::move(report));
 }
@@ -242,7 +225,7 @@ Scene bumpySphereScene() {
 
 TEST(Mismatch, FlagsProxyHitsAndDecalsWhenTheBoundIsUnderstated) {
     const Scene scene = bumpySphereScene();
-    ProxySettings s = caseSettings(0.02f, 1);
+    ProxySettings s = caseSettings(0.02f);
     s.cacheDirectory.clear();
     Result<Built> built = buildProxies(scene, s);
     ASSERT_TRUE(built) << built.error();
@@ -270,7 +253,7 @@ TEST(Mismatch, FlagsProxyHitsAndDecalsWhenTheBoundIsUnderstated) {
 TEST(Mismatch, DisagreementsAndOffsetsAreZeroWhenTheRenderMeshIsItsOwnProxy) {
     Scene scene = bumpySphereScene();
     scene.objects[0].mesh = makeSphere(1.0f, 12, 20); // 440 triangles: below the 512 threshold
-    ProxySettings s = caseSettings(0.02f, 1);
+    ProxySettings s = caseSettings(0.02f);
     s.cacheDirectory.clear();
     Result<Built> built = buildProxies(scene, s);
     ASSERT_TRUE(built) << built.error();
