@@ -221,6 +221,74 @@ bool sameSurface(const Mesh& collision, const Mesh& render) {
            (collision.positions == render.positions && collision.indices == render.indices);
 }
 
+// What CollisionWorld::build asks of the proxy of object `name`.
+Status checkProxy(const Proxy& proxy, const std::string& name) {
+    const std::string what = "proxy of object '" + name + "'";
+    if (Status s = validateMesh(proxy.mesh); !s) return fail(what + ": " + s.error());
+    if (!std::isfinite(proxy.errorBound) || proxy.errorBound < 0.0)
+        return fail(what + " has an error bound that is not finite and >= 0");
+    const DrawnNormals& drawn = proxy.drawnNormals;
+    const size_t triangles = proxy.mesh.triangleCount();
+    if (!drawn.empty() && !drawn.fits(triangles))
+        return fail(what + " has " + std::to_string(drawn.packed().size()) + " drawn normals, not " +
+                    std::to_string(kPiecesPerTriangle) + " for each of its " + std::to_string(triangles) +
+                    " triangles");
+    return {};
+}
+
+// A receiver's collision mesh and its bound h: its proxy's, its collider's (measured here), or its
+// render mesh with h = 0.
+struct CollisionMesh {
+    const Mesh* mesh;
+    double h = 0.0;
+    DrawnNormals drawn; // which way the drawn surface faces under it, if known already
+};
+
+Result<CollisionMesh> collisionMeshOf(const SceneObject& so, const Proxy* proxy,
+                                      const WorldSettings& settings) {
+    if (proxy) return CollisionMesh{&proxy->mesh, proxy->errorBound, proxy->drawnNormals};
+    if (!settings.useColliders || !so.collider) return CollisionMesh{&so.mesh, 0.0, DrawnNormals()};
+    // Certified, and at most 1% of the render mesh's diagonal above the measured distance.
+    ProxySettings measure;
+    measure.tolerance = 0.05f;
+    measure.toleranceRelative = true;
+    measure.marginFraction = 0.2f;
+    Result<Proxy> measured = buildProxy(so.mesh, measure, &*so.collider);
+    if (!measured) return fail("collider of object '" + so.name + "': " + measured.error());
+    return CollisionMesh{&*so.collider, measured->errorBound, std::move(measured->drawnNormals)};
+}
+
+// Fills `od` for receiver `i` of `scene`: its collision mesh and bound, what poses it (dynamic skinned
+// or morphed objects) and, for a collision mesh standing in for a static render mesh, which way the
+// drawn surface faces under it.
+Status setCollisionMesh(const Scene& scene, size_t i, const Proxy* proxy, const WorldSettings& settings,
+                        ObjectData& od) {
+    const SceneObject& so = scene.objects[i];
+    Result<CollisionMesh> c = collisionMeshOf(so, proxy, settings);
+    if (!c) return fail(c.error());
+    const Mesh& mesh = *c->mesh;
+    od.info.inWorld = true;
+    od.info.errorBound = c->h;
+    od.positions = mesh.positions;
+    od.indices.assign(mesh.indices.begin(), mesh.indices.begin() + mesh.triangleCount() * 3);
+    od.info.triangles = mesh.triangleCount();
+    od.info.localBounds = meshBounds(od.positions, od.indices);
+    od.info.meshHash = collisionMeshHash(od.positions, od.indices, c->h);
+    if (so.dynamic) {
+        Result<std::optional<PosedCollisionMesh>> posable = posedCollisionMesh(scene, i, mesh);
+        if (!posable) return fail("object '" + so.name + "': " + posable.error());
+        od.posable = std::move(posable).value();
+    }
+    if (sameSurface(mesh, so.mesh) || od.posable) return {};
+    if (c->drawn.empty()) { // a proxy made elsewhere: found here, as buildProxy finds it
+        Result<DrawnNormals> normals = DrawnNormals::build(so.mesh, mesh, c->h);
+        if (!normals) return fail("object '" + so.name + "': " + normals.error());
+        c->drawn = std::move(normals).value();
+    }
+    od.drawnNormals = std::move(c->drawn);
+    return {};
+}
+
 } // namespace
 
 struct CollisionWorld::Impl {
@@ -337,6 +405,75 @@ struct CollisionWorld::Impl {
     // Applies the rule of TraceTransform.hpp, with the frame's origin known, to every object in the
     // world, and sizes the box growth of the traced ones for ray starts anywhere in the world, with
     // room to spare (regrowBoxes).
+    // Every collision object into Embree: the static ones as geometries of one scene (in the float
+    // frame), the dynamic ones as instances of their own scenes; then the top scene committed.
+    void attachObjects() {
+        top = newScene();
+        rtcSetSceneFlags(top, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
+        rtcSetSceneBuildQuality(top, RTC_BUILD_QUALITY_LOW);
+        statics = newScene();
+        bool anyStatic = false;
+        for (size_t i = 0; i < objects.size(); ++i) {
+            ObjectData& od = objects[i];
+            if (!od.info.inWorld || od.info.triangles == 0) continue;
+            triangles += od.info.triangles;
+            if (od.info.dynamic) {
+                attachDynamic(od, uint32_t(i));
+            } else if (od.info.traced) {
+                attachStatic(od, uint32_t(i));
+                anyStatic = true;
+            }
+        }
+        rtcCommitScene(statics);
+        if (anyStatic) {
+            RTCGeometry inst = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+            rtcSetGeometryInstancedScene(inst, statics);
+            const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+            rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+            rtcCommitGeometry(inst);
+            staticInstance = rtcAttachGeometry(top, inst);
+            rtcReleaseGeometry(inst);
+        }
+        rtcCommitScene(top);
+    }
+
+    // A static object's triangles, in the float frame, into the static scene.
+    void attachStatic(ObjectData& od, uint32_t object) {
+        RTCGeometry g = triangleGeometry(od, &od.info.transform);
+        od.geomId = rtcAttachGeometry(statics, g);
+        rtcReleaseGeometry(g);
+        if (staticGeomToObject.size() <= od.geomId) staticGeomToObject.resize(od.geomId + 1, 0);
+        staticGeomToObject[od.geomId] = object;
+    }
+
+    // A dynamic object's triangles into a scene of its own, instanced in the top scene.
+    void attachDynamic(ObjectData& od, uint32_t object) {
+        od.scene = newScene();
+        // A posed mesh's hierarchy is refitted, not rebuilt: Embree refits a geometry of build
+        // quality REFIT in a two-level (LOW) scene flagged DYNAMIC, and rebuilds it otherwise.
+        if (od.posable) {
+            rtcSetSceneFlags(od.scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
+            rtcSetSceneBuildQuality(od.scene, RTC_BUILD_QUALITY_LOW);
+        }
+        RTCGeometry g = triangleGeometry(od, nullptr);
+        rtcAttachGeometry(od.scene, g);
+        rtcReleaseGeometry(g);
+        rtcCommitScene(od.scene);
+        // An untraced object's instance holds the identity, which Embree can invert, and is
+        // disabled until setTransform gives the object a usable transform.
+        RTCGeometry inst = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(inst, od.scene);
+        float xfm[12];
+        toEmbreeTransform(od.info.traced ? od.info.transform : glm::dmat4(1.0), origin, xfm);
+        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+        if (!od.info.traced) rtcDisableGeometry(inst);
+        rtcCommitGeometry(inst);
+        od.geomId = rtcAttachGeometry(top, inst);
+        rtcReleaseGeometry(inst);
+        if (instanceToObject.size() <= od.geomId) instanceToObject.resize(od.geomId + 1, 0);
+        instanceToObject[od.geomId] = object;
+    }
+
     void decideTraced() {
         DBounds frame;
         for (ObjectData& od : objects) {
@@ -525,19 +662,10 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
     if (!proxies.empty() && proxies.size() != scene.objects.size())
         return fail(where + ": " + std::to_string(proxies.size()) + " proxies for " +
                     std::to_string(scene.objects.size()) + " objects");
-    for (size_t i = 0; i < proxies.size(); ++i) {
-        if (!proxies[i]) continue;
-        const std::string name = "object '" + scene.objects[i].name + "'";
-        if (Status s = validateMesh(proxies[i]->mesh); !s)
-            return fail(where + ": proxy of " + name + ": " + s.error());
-        if (!std::isfinite(proxies[i]->errorBound) || proxies[i]->errorBound < 0.0)
-            return fail(where + ": proxy of " + name + " has an error bound that is not finite and >= 0");
-        const DrawnNormals& drawn = proxies[i]->drawnNormals;
-        if (!drawn.empty() && !drawn.fits(proxies[i]->mesh.triangleCount()))
-            return fail(where + ": proxy of " + name + " has " + std::to_string(drawn.packed().size()) +
-                        " drawn normals, not " + std::to_string(kPiecesPerTriangle) + " for each of its " +
-                        std::to_string(proxies[i]->mesh.triangleCount()) + " triangles");
-    }
+    for (size_t i = 0; i < proxies.size(); ++i)
+        if (proxies[i])
+            if (Status s = checkProxy(*proxies[i], scene.objects[i].name); !s)
+                return fail(where + ": " + s.error());
     if (scene.objects.size() >= size_t(std::numeric_limits<uint32_t>::max()))
         return fail(where + ": too many objects");
 
@@ -565,45 +693,9 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
             od.info.localBounds = so.mesh.bounds();
             continue;
         }
-        const Mesh* mesh = &so.mesh;
-        double h = 0.0;
-        DrawnNormals drawn; // which way the drawn surface faces under the collision mesh, if known
-        if (!proxies.empty() && proxies[i]) {
-            mesh = &proxies[i]->mesh;
-            h = proxies[i]->errorBound;
-            drawn = proxies[i]->drawnNormals;
-        } else if (settings.useColliders && so.collider) {
-            // Certified, and at most 1% of the render mesh's diagonal above the measured distance.
-            ProxySettings measure;
-            measure.tolerance = 0.05f;
-            measure.toleranceRelative = true;
-            measure.marginFraction = 0.2f;
-            Result<Proxy> measured = buildProxy(so.mesh, measure, &*so.collider);
-            if (!measured) return fail(where + ": collider of object '" + so.name + "': " + measured.error());
-            mesh = &*so.collider;
-            h = measured->errorBound;
-            drawn = std::move(measured->drawnNormals);
-        }
-        od.info.inWorld = true;
-        od.info.errorBound = h;
-        od.positions = mesh->positions;
-        od.indices.assign(mesh->indices.begin(), mesh->indices.begin() + mesh->triangleCount() * 3);
-        od.info.triangles = mesh->triangleCount();
-        od.info.localBounds = meshBounds(od.positions, od.indices);
-        od.info.meshHash = collisionMeshHash(od.positions, od.indices, h);
-        if (so.dynamic) {
-            Result<std::optional<PosedCollisionMesh>> posable = posedCollisionMesh(scene, i, *mesh);
-            if (!posable) return fail(where + ": object '" + so.name + "': " + posable.error());
-            od.posable = std::move(posable).value();
-        }
-        if (!sameSurface(*mesh, so.mesh) && !od.posable) {
-            if (drawn.empty()) { // a proxy made elsewhere: found here, as buildProxy finds it
-                Result<DrawnNormals> normals = DrawnNormals::build(so.mesh, *mesh, h);
-                if (!normals) return fail(where + ": object '" + so.name + "': " + normals.error());
-                drawn = std::move(normals).value();
-            }
-            od.drawnNormals = std::move(drawn);
-        }
+        const Proxy* proxy = !proxies.empty() && proxies[i] ? &*proxies[i] : nullptr;
+        if (Status s = setCollisionMesh(scene, i, proxy, settings, od); !s)
+            return fail(where + ": " + s.error());
         // The frame's origin comes from the objects whose scale and condition the trace can use.
         od.info.untraced = floatLinearProblem(so.transform);
         if (!od.info.untraced.empty()) continue;
@@ -617,62 +709,7 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         impl->origin = allBounds.center();
     impl->decideTraced();
 
-    impl->top = impl->newScene();
-    rtcSetSceneFlags(impl->top, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
-    rtcSetSceneBuildQuality(impl->top, RTC_BUILD_QUALITY_LOW);
-    impl->statics = impl->newScene();
-    bool anyStatic = false;
-    for (size_t i = 0; i < impl->objects.size(); ++i) {
-        ObjectData& od = impl->objects[i];
-        if (!od.info.inWorld || od.info.triangles == 0) continue;
-        impl->triangles += od.info.triangles;
-        if (!od.info.dynamic && !od.info.traced) continue;
-        if (!od.info.dynamic) {
-            RTCGeometry g = impl->triangleGeometry(od, &od.info.transform);
-            od.geomId = rtcAttachGeometry(impl->statics, g);
-            rtcReleaseGeometry(g);
-            if (impl->staticGeomToObject.size() <= od.geomId)
-                impl->staticGeomToObject.resize(od.geomId + 1, 0);
-            impl->staticGeomToObject[od.geomId] = uint32_t(i);
-            anyStatic = true;
-        } else {
-            od.scene = impl->newScene();
-            // A posed mesh's hierarchy is refitted, not rebuilt: Embree refits a geometry of build
-            // quality REFIT in a two-level (LOW) scene flagged DYNAMIC, and rebuilds it otherwise.
-            if (od.posable) {
-                rtcSetSceneFlags(od.scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
-                rtcSetSceneBuildQuality(od.scene, RTC_BUILD_QUALITY_LOW);
-            }
-            RTCGeometry g = impl->triangleGeometry(od, nullptr);
-            rtcAttachGeometry(od.scene, g);
-            rtcReleaseGeometry(g);
-            rtcCommitScene(od.scene);
-            // An untraced object's instance holds the identity, which Embree can invert, and is
-            // disabled until setTransform gives the object a usable transform.
-            RTCGeometry inst = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_INSTANCE);
-            rtcSetGeometryInstancedScene(inst, od.scene);
-            float xfm[12];
-            toEmbreeTransform(od.info.traced ? od.info.transform : glm::dmat4(1.0), impl->origin, xfm);
-            rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
-            if (!od.info.traced) rtcDisableGeometry(inst);
-            rtcCommitGeometry(inst);
-            od.geomId = rtcAttachGeometry(impl->top, inst);
-            rtcReleaseGeometry(inst);
-            if (impl->instanceToObject.size() <= od.geomId) impl->instanceToObject.resize(od.geomId + 1, 0);
-            impl->instanceToObject[od.geomId] = uint32_t(i);
-        }
-    }
-    rtcCommitScene(impl->statics);
-    if (anyStatic) {
-        RTCGeometry inst = rtcNewGeometry(impl->device, RTC_GEOMETRY_TYPE_INSTANCE);
-        rtcSetGeometryInstancedScene(inst, impl->statics);
-        const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
-        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
-        rtcCommitGeometry(inst);
-        impl->staticInstance = rtcAttachGeometry(impl->top, inst);
-        rtcReleaseGeometry(inst);
-    }
-    rtcCommitScene(impl->top);
+    impl->attachObjects();
     if (!impl->deviceError.empty()) return fail(where + ": " + impl->deviceError);
     impl->updateTraceBounds();
     return CollisionWorld(std::move(impl));
