@@ -102,6 +102,9 @@ Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, co
         }
     }
     out.proxy = std::move(best->proxy);
+    // A deforming object's world finds the drawn surface itself, in every pose; the table faced the
+    // drawn surface of one pose (and, simplified in another pose, of that one).
+    out.proxy.drawnNormals = DrawnNormals();
     out.proxy.errorBound = best->poses.bound;
     out.proxy.toleranceMet = out.proxy.errorBound <= out.proxy.tolerance;
     out.deformation = std::move(best->deformation);

@@ -180,7 +180,7 @@ std::optional<ClosestPoint> ClosestPointQuery::closest(const glm::dvec3& p, doub
     state.corners = impl_->corners.data();
     state.p = p;
     state.rounding = pointRounding(p);
-    state.reach2 = reach * reach;
+    state.reach2 = reach * reach * (1.0 + 1e-12); // a point at the reach, up to double rounding
     RTCPointQuery query = pointQuery(p, reach);
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);

@@ -64,6 +64,32 @@ TEST(ClosestPointQuery, WithinAgreesWithTheClosestPointOnASphere) {
     }
 }
 
+// Searched within a reach, the nearest point is the one found everywhere where it lies within the
+// reach (at it included), and nothing where it lies beyond or the reach is negative or NaN.
+TEST(ClosestPointQuery, WithinAReachFindsTheNearestPointOrNothing) {
+    const Mesh m = latLongSphere(1.0f, 12, 16);
+    Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
+    ASSERT_TRUE(q) << q.error();
+    Rng rng(13);
+    for (int i = 0; i < 300; ++i) {
+        const glm::dvec3 p(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2));
+        const std::optional<ClosestPoint> everywhere = q->closest(p);
+        ASSERT_TRUE(everywhere);
+        const double d = everywhere->distance;
+        for (double reach : {d, 1.5 * d + 1e-9}) {
+            const std::optional<ClosestPoint> within = q->closest(p, reach);
+            ASSERT_TRUE(within) << "reach " << reach << ", nearest at " << d;
+            EXPECT_EQ(within->distance, d);
+            EXPECT_EQ(within->triangle, everywhere->triangle);
+        }
+        if (d > 1e-6) {
+            EXPECT_FALSE(q->closest(p, 0.9 * d)) << "nearest at " << d;
+        }
+    }
+    EXPECT_FALSE(q->closest(glm::dvec3(0.0), -1.0));
+    EXPECT_FALSE(q->closest(glm::dvec3(0.0), std::nan("")));
+}
+
 TEST(ClosestPointQuery, WithinAnswersNoForNonFiniteValuesAndNegativeRadii) {
     const Mesh m = triangleMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});
     Result<ClosestPointQuery> q = ClosestPointQuery::create(m);

@@ -136,6 +136,7 @@ TEST(DeformingProxy, HoldsItsBoundOverThePosesWhereARestProxyCutsAcrossTheBend) 
     EXPECT_TRUE(p->simplifiedPosed);
     EXPECT_LT(p->proxy.proxyTriangles, arm.objects[0].mesh.triangleCount() / 4);
     EXPECT_EQ(p->proxy.errorBound, p->poses.bound);
+    EXPECT_TRUE(p->proxy.drawnNormals.empty()) << "they would face one pose's drawn surface";
     EXPECT_LT(p->poses.sampledMax, 2.0 * p->proxy.tolerance);
     EXPECT_GT(p->restPoses.sampledMax, 10.0 * p->poses.sampledMax)
         << "a proxy simplified at rest keeps no rings at the elbow";

@@ -166,7 +166,9 @@ TEST(ProxyCacheFaults, TruncatedOrCorruptEntryIsRebuiltAndRewritten) {
         EXPECT_TRUE(again->cached);
         EXPECT_EQ(again->mesh.positions, first->mesh.positions);
         EXPECT_EQ(again->errorBound, first->errorBound);
+        EXPECT_EQ(again->drawnNormals.packed(), first->drawnNormals.packed());
     }
+    EXPECT_TRUE(first->drawnNormals.fits(first->mesh.triangleCount()));
 }
 
 TEST(ProxyCacheFaults, SceneFileChangedOnDiskInvalidatesItsEntry) {

@@ -22,7 +22,7 @@
 namespace spatter {
 
 struct DeformingProxy {
-    Proxy proxy;                   // rest pose; errorBound = poses.bound
+    Proxy proxy;                   // rest pose; errorBound = poses.bound; no drawnNormals
     VertexDeformation deformation; // of proxy.mesh, transferred from the render mesh
     PoseBound poses;               // its bound over the poses
     PoseBound restPoses;           // the bound over the poses of the proxy simplified at rest

@@ -63,9 +63,9 @@ public:
     // The nearest surface point to `p`, exact up to double rounding. Empty when the mesh has no
     // surface or `p` is not finite.
     std::optional<ClosestPoint> closest(const glm::dvec3& p) const;
-    // The same, searched only within `reach` of `p`: empty also when no surface point lies that near
-    // (or `reach` is NaN or negative). A caller that knows how far the surface can be (a certified
-    // bound) saves most of the search.
+    // The same, searched only within `reach` of `p` (up to double rounding): empty also when no surface
+    // point lies that near, or `reach` is NaN or negative. A caller that knows how far the surface can
+    // be (a certified bound) saves most of the search.
     std::optional<ClosestPoint> closest(const glm::dvec3& p, double reach) const;
 
     // Whether some surface point lies within `radius` of `p` (exact up to double rounding): the
