@@ -79,8 +79,9 @@ Options:
                     collider, where it has one, is its proxy; h is certified by the proxy builder.
                     On a terminal, stderr shows the progress of the builds
   --cache DIR       with auto and TOL: reuse proxies stored in DIR and store new ones there, keyed
-                    by a hash of the object's mesh, its collider and the proxy settings (a second
-                    run simplifies and measures nothing; a corrupt entry is rebuilt). Without it
+                    by a hash of the object's mesh, its collider and the proxy settings, and for
+                    a skinned or morphed object of its skin and its sampled poses (a second run
+                    simplifies and measures nothing; a corrupt entry is rebuilt). Without it
                     nothing is cached
   --translate X,Y,Z move the whole scene by this offset before building the collision world (the
                     rays are given in the moved world)

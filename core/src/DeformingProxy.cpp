@@ -1,8 +1,10 @@
 #include "spatter/core/DeformingProxy.hpp"
 
 #include "spatter/core/MeshDistance.hpp"
+#include "spatter/core/ProxyCache.hpp"
 #include "spatter/core/SceneEvaluator.hpp"
 
+#include <chrono>
 #include <string>
 
 namespace spatter {
@@ -12,6 +14,45 @@ namespace {
 // Poses sampled per animation for buildObjectProxy: 64 keeps a proxy build of a character within about
 // a second on one core (boundOverPoses certifies each sample).
 constexpr int kObjectPoseSamples = 64;
+
+// Changes whenever buildDeformingProxy makes something else of the same inputs.
+constexpr uint32_t kDeformingVersion = 1;
+
+// FNV-1a over values in memory, continuing one hash.
+struct PoseHasher {
+    uint64_t h = kFnvOffset;
+    template <class T> void add(const T& v) { h = fnv1a(&v, sizeof(T), h); }
+    template <class T> void add(const std::vector<T>& v) {
+        add(uint64_t(v.size()));
+        h = fnv1a(v.data(), v.size() * sizeof(T), h);
+    }
+};
+
+// The cache key of the proxy buildObjectProxy makes for deforming object `object`: the key of its
+// rest proxy, its joint influences and morph targets, and at every pose boundOverPoses samples the
+// object's transform, its skin's joint matrices and its morph weights (so that a change of the
+// hierarchy, the skin or the animations that moves the object in a sampled pose changes the key).
+uint64_t deformingProxyCacheKey(const Scene& scene, size_t object, const ProxySettings& settings,
+                                int samples) {
+    const SceneObject& o = scene.objects[object];
+    PoseHasher h;
+    h.add(kDeformingVersion);
+    h.add(proxyCacheKey(o.mesh, settings, nullptr));
+    h.add(samples);
+    h.add(o.skinWeights.influences);
+    h.add(o.skinWeights.joints);
+    h.add(o.skinWeights.weights);
+    for (const MorphTarget& m : o.morphTargets)
+        h.add(m.positions);
+    SceneEvaluator evaluator(scene);
+    forEachSampledPose(scene, samples, [&](int animation, int, double t) {
+        evaluator.evaluate(animation, t);
+        h.add(evaluator.objectTransform(object));
+        if (o.skin != -1) h.add(evaluator.jointMatrices(size_t(o.skin)));
+        h.add(evaluator.morphWeights(object));
+    });
+    return h.h;
+}
 
 struct PoseCandidate {
     Proxy proxy;
@@ -112,14 +153,47 @@ Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, co
     return out;
 }
 
+namespace {
+
+// buildDeformingProxy's proxy of `object` with kObjectPoseSamples, through the cache when `settings`
+// name one (deformingProxyCacheKey): a start from the cache samples no pose.
+Result<Proxy> objectDeformingProxy(const Scene& scene, size_t object, const ProxySettings& settings) {
+    const auto start = std::chrono::steady_clock::now();
+    auto finish = [&](Proxy& p) {
+        p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    const bool caching = !settings.cacheDirectory.empty();
+    const uint64_t key = caching ? deformingProxyCacheKey(scene, object, settings, kObjectPoseSamples) : 0;
+    std::vector<std::string> notes;
+    if (caching) {
+        Result<Proxy> hit = loadCachedProxy(settings.cacheDirectory, key);
+        if (hit) {
+            finish(hit.value());
+            return hit;
+        }
+        if (hit.error().rfind("no cache entry", 0) != 0) notes.push_back(hit.error() + "; rebuilt");
+    }
+    Result<DeformingProxy> built = buildDeformingProxy(scene, object, settings, kObjectPoseSamples);
+    if (!built) return fail(built.error());
+    Proxy p = std::move(built->proxy);
+    p.cached = false; // its rest proxy may come from the cache, but its poses were measured
+    p.notes.insert(p.notes.begin(), notes.begin(), notes.end());
+    if (caching && p.source != ProxySource::OwnMesh)
+        if (Status st = storeCachedProxy(settings.cacheDirectory, key, p); !st) p.notes.push_back(st.error());
+    finish(p);
+    return p;
+}
+
+} // namespace
+
 Result<Proxy> buildObjectProxy(const Scene& scene, size_t object, const ProxySettings& settings,
                                const ProgressCallback& progress) {
+    if (object >= scene.objects.size())
+        return fail("object proxy: object " + std::to_string(object) + " out of range");
     const SceneObject& o = scene.objects[object];
     if (!o.dynamic || (o.skin == -1 && o.morphTargets.empty()))
         return buildProxy(o.mesh, settings, o.collider ? &*o.collider : nullptr, progress);
-    Result<DeformingProxy> p = buildDeformingProxy(scene, object, settings, kObjectPoseSamples);
-    if (!p) return fail(p.error());
-    return std::move(p->proxy);
+    return objectDeformingProxy(scene, object, settings);
 }
 
 } // namespace spatter

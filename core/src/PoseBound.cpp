@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace spatter {
@@ -45,6 +46,23 @@ Result<Sample> sampleAt(const Scene& scene, size_t object, const Mesh& collision
     return s;
 }
 
+// Takes sample `s`, at time `t` of animation `a`, into `out`, with the interval from the sample before
+// it in the same animation (`previous`) when there is one.
+void take(PoseBound& out, const std::optional<Sample>& previous, const Sample& s, int a, double t) {
+    ++out.poses;
+    if (s.bound > out.sampledMax) {
+        out.sampledMax = s.bound;
+        out.worstAnimation = a;
+        out.worstTime = t;
+    }
+    out.bound = std::max(out.bound, s.bound);
+    if (!previous) return;
+    const double motion = 0.5 * (largestDisplacement(previous->render, s.render) +
+                                 largestDisplacement(previous->collision, s.collision));
+    out.motion = std::max(out.motion, motion);
+    out.bound = std::max(out.bound, std::max(previous->bound, s.bound) + motion);
+}
+
 } // namespace
 
 Result<PoseBound> boundOverPoses(const Scene& scene, size_t object, const Mesh& collision,
@@ -61,33 +79,22 @@ Result<PoseBound> boundOverPoses(const Scene& scene, size_t object, const Mesh& 
         return fail("pose bound: the deformation does not match the collision mesh and the object");
     SceneEvaluator evaluator(scene);
     PoseBound out;
-    const int animations = int(scene.animation.animations.size());
-    for (int a = animations > 0 ? 0 : -1; a < std::max(animations, 0); ++a) {
-        const double duration = a >= 0 ? scene.animation.animations[size_t(a)].duration : 0.0;
-        std::optional<Sample> previous;
-        for (int i = 0; i <= (a >= 0 ? samples : 0); ++i) {
-            const double t = duration * double(i) / double(samples);
-            evaluator.evaluate(a, t);
-            Result<Sample> s = sampleAt(scene, object, collision, deformation, evaluator, margin);
-            if (!s)
-                return fail("pose bound at " + std::to_string(t) + " s of animation " + std::to_string(a) +
-                            ": " + s.error());
-            ++out.poses;
-            if (s->bound > out.sampledMax) {
-                out.sampledMax = s->bound;
-                out.worstAnimation = a;
-                out.worstTime = t;
-            }
-            out.bound = std::max(out.bound, s->bound);
-            if (previous) {
-                const double motion = 0.5 * (largestDisplacement(previous->render, s->render) +
-                                             largestDisplacement(previous->collision, s->collision));
-                out.motion = std::max(out.motion, motion);
-                out.bound = std::max(out.bound, std::max(previous->bound, s->bound) + motion);
-            }
-            previous = std::move(s).value();
+    std::optional<Sample> previous;
+    std::string error;
+    forEachSampledPose(scene, samples, [&](int a, int step, double t) {
+        if (!error.empty()) return;
+        if (step == 0) previous.reset();
+        evaluator.evaluate(a, t);
+        Result<Sample> s = sampleAt(scene, object, collision, deformation, evaluator, margin);
+        if (!s) {
+            error = "pose bound at " + std::to_string(t) + " s of animation " + std::to_string(a) + ": " +
+                    s.error();
+            return;
         }
-    }
+        take(out, previous, s.value(), a, t);
+        previous = std::move(s).value();
+    });
+    if (!error.empty()) return fail(error);
     return out;
 }
 

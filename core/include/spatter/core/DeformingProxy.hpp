@@ -37,7 +37,11 @@ Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, co
 
 // The proxy of `scene.objects[object]`: buildDeformingProxy for a dynamic object that is skinned or
 // morphed (its bound holds over the animation; `progress` is not called), otherwise buildProxy of its
-// render mesh against its authored collider, if it has one.
+// render mesh against its authored collider, if it has one. With settings.cacheDirectory a deforming
+// object's proxy is cached too (ProxyCache.hpp), keyed by its rest proxy's key, its joint influences
+// and morph targets, and its transform, joint matrices and morph weights at every sampled pose, so a
+// start from the cache measures no pose; cached is true then, and false after poses were measured.
+// Fails for an object out of range.
 Result<Proxy> buildObjectProxy(const Scene& scene, size_t object, const ProxySettings& settings,
                                const ProgressCallback& progress = {});
 

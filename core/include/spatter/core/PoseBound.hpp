@@ -31,6 +31,19 @@ struct PoseBound {
     double worstTime = 0.0;
 };
 
+// Calls `f(animation, step, t)` for every pose boundOverPoses samples, in its order: each animation
+// of the scene at `samples` + 1 evenly spaced times t from 0 to its duration (step 0 to `samples`),
+// or the rest pose alone (animation -1, step 0, t 0) for a scene without animations.
+template <class F> void forEachSampledPose(const Scene& scene, int samples, F&& f) {
+    const int animations = int(scene.animation.animations.size());
+    if (animations == 0) return f(-1, 0, 0.0);
+    for (int a = 0; a < animations; ++a) {
+        const double duration = scene.animation.animations[size_t(a)].duration;
+        for (int i = 0; i <= samples; ++i)
+            f(a, i, duration * double(i) / double(samples));
+    }
+}
+
 // The bound of collision mesh `collision` (object space, deformed by `deformation`, which must match
 // it) against the render mesh of `scene.objects[object]` over the scene's animations, sampled
 // `samples` (>= 1) times each. Each certification may exceed the distance it measures by `margin`
