@@ -24,9 +24,6 @@ glm::dvec3 faceNormal(const Mesh& mesh, uint32_t t) {
     return glm::cross(glm::dvec3(mesh.positions[c[1]]) - p0, glm::dvec3(mesh.positions[c[2]]) - p0);
 }
 
-// A reach widened by double rounding: the pieces' centres are computed in double from float corners.
-constexpr double kReachAllowance = 1e-6;
-
 } // namespace
 
 DrawnNormals DrawnNormals::build(const Mesh& render, const ClosestPointQuery& query, const Mesh& collision,
@@ -34,7 +31,7 @@ DrawnNormals DrawnNormals::build(const Mesh& render, const ClosestPointQuery& qu
     constexpr uint32_t kNone = UINT32_MAX;
     std::vector<Packed> normals;
     normals.reserve(collision.triangleCount() * kPiecesPerTriangle);
-    for (uint32_t t : nearestTrianglePerPiece(query, collision, kNone, reach * (1.0 + kReachAllowance)))
+    for (uint32_t t : nearestTrianglePerPiece(query, collision, kNone, reach))
         normals.push_back(packNormal(t != kNone ? faceNormal(render, t) : glm::dvec3(0.0)));
     return DrawnNormals(std::move(normals));
 }
