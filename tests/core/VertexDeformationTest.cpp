@@ -1,5 +1,6 @@
 #include "spatter/core/VertexDeformation.hpp"
 #include "spatter/core/DeformingProxy.hpp"
+#include "spatter/core/HausdorffBound.hpp"
 #include "spatter/core/MeshBuilder.hpp"
 #include "spatter/core/PoseBound.hpp"
 #include "spatter/core/SceneEvaluator.hpp"
@@ -117,6 +118,70 @@ TEST(PoseBound, RenderMeshAsItsOwnCollisionMeshIsWithinItsMotionAllowance) {
     EXPECT_LE(b->bound, b->sampledMax + b->motion);
 }
 
+// Between its sampled poses the bound still holds: the arm's proxy simplified at rest, which strays
+// most where the elbow bends most, half-way through the swing, sampled at thirds of it, so that the
+// worst pose lies between two samples; at poses inside every interval, the distance measured between
+// the arm and the proxy stays within the bound, and somewhere exceeds every sampled one.
+TEST(PoseBound, HoldsBetweenItsSampledPoses) {
+    const Scene arm = makeSkinnedArm();
+    const SceneObject& o = arm.objects[0];
+    ProxySettings settings;
+    settings.tolerance = 0.02f;
+    settings.toleranceRelative = true;
+    Result<Proxy> proxy = buildProxy(o.mesh, settings);
+    ASSERT_TRUE(proxy.ok()) << proxy.error();
+    Result<VertexDeformation> d = transferDeformation(o.mesh, deformationOf(o), proxy->mesh);
+    ASSERT_TRUE(d.ok()) << d.error();
+    constexpr int kSamples = 3;
+    Result<PoseBound> b = boundOverPoses(arm, 0, proxy->mesh, d.value(), kSamples, 1e-3);
+    ASSERT_TRUE(b.ok()) << b.error();
+    SceneEvaluator evaluator(arm);
+    const double period = arm.animation.animations[0].duration;
+    double largest = 0.0;
+    for (int i = 0; i < kSamples; ++i)
+        for (double f : {0.25, 0.5, 0.75}) {
+            evaluator.evaluate(0, period * (i + f) / kSamples);
+            const Mesh render = withPositions(o.mesh, posedPositions(arm, 0, evaluator));
+            const Mesh posed = withPositions(
+                proxy->mesh,
+                posePositions(proxy->mesh.positions, d.value(), evaluator.jointMatrices(0),
+                              evaluator.morphWeights(0), glm::inverse(evaluator.objectTransform(0))));
+            Result<HausdorffSurface> r = HausdorffSurface::create(render),
+                                     c = HausdorffSurface::create(posed);
+            ASSERT_TRUE(r.ok() && c.ok());
+            HausdorffSettings sharp;
+            sharp.margin = 1e-3;
+            Result<HausdorffResult> h = boundHausdorff(r.value(), c.value(), sharp);
+            ASSERT_TRUE(h.ok()) << h.error();
+            EXPECT_LE(h->lower, b->bound) << "at " << (i + f) / kSamples << " of the swing";
+            largest = std::max(largest, h->lower);
+        }
+    EXPECT_GT(largest, b->sampledMax) << "the worst pose lies between two samples";
+    EXPECT_GT(b->motion, 0.0);
+}
+
+// Surfaces that one motion carries together add nothing to the bound, however far they travel: the
+// arm sliding 2 m along x without turning, its render mesh as its own collision mesh.
+TEST(PoseBound, SurfacesThatMoveTogetherAddNoMotion) {
+    SkinnedArmSettings still;
+    still.swingDeg = 0.0;
+    still.bendDeg = 0.0;
+    Scene arm = makeSkinnedArm(still);
+    AnimationChannel slide;
+    slide.node = 1; // the shoulder, which carries the elbow
+    slide.path = AnimationPath::Translation;
+    slide.times = {0.0, arm.animation.animations[0].duration};
+    slide.width = 3;
+    slide.values = {0.0, 0.0, 0.0, 2.0, 0.0, 0.0};
+    arm.animation.animations[0].channels = {slide};
+    ASSERT_TRUE(validateScene(arm).ok());
+    const SceneObject& o = arm.objects[0];
+    Result<PoseBound> b = boundOverPoses(arm, 0, o.mesh, deformationOf(o), 8, 1e-4);
+    ASSERT_TRUE(b.ok()) << b.error();
+    EXPECT_LT(b->motion, 1e-9) << "each interval moves every vertex 0.25 m the same way";
+    EXPECT_LE(b->bound, b->sampledMax + 1e-9);
+}
+
 TEST(PoseBound, RejectsBadArguments) {
     const Scene arm = makeSkinnedArm();
     const SceneObject& o = arm.objects[0];
@@ -134,6 +199,7 @@ TEST(DeformingProxy, HoldsItsBoundOverThePosesWhereARestProxyCutsAcrossTheBend) 
     Result<DeformingProxy> p = buildDeformingProxy(arm, 0, settings, 32);
     ASSERT_TRUE(p.ok()) << p.error();
     EXPECT_TRUE(p->simplifiedPosed);
+    EXPECT_FALSE(p->restCertified) << "it certifies below the rest proxy's sampled distances";
     EXPECT_LT(p->proxy.proxyTriangles, arm.objects[0].mesh.triangleCount() / 4);
     EXPECT_EQ(p->proxy.errorBound, p->poses.bound);
     EXPECT_TRUE(p->proxy.drawnNormals.empty()) << "they would face one pose's drawn surface";

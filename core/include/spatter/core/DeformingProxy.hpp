@@ -25,8 +25,12 @@ struct DeformingProxy {
     Proxy proxy;                   // rest pose; errorBound = poses.bound; no drawnNormals
     VertexDeformation deformation; // of proxy.mesh, transferred from the render mesh
     PoseBound poses;               // its bound over the poses
-    PoseBound restPoses;           // the bound over the poses of the proxy simplified at rest
-    bool simplifiedPosed = false;  // true: simplified in the pose poses.worstTime of restPoses
+    // The proxy simplified at rest over the poses: its bound (boundOverPoses, restCertified), or only
+    // its sampled distances (sampledOverPoses, a lower bound) where the proxy simplified in a pose
+    // certifies below them, so that the rest proxy loses without being certified.
+    PoseBound restPoses;
+    bool restCertified = false;
+    bool simplifiedPosed = false; // true: simplified in the pose poses.worstTime of restPoses
 };
 
 // Builds the proxy of `scene.objects[object]` (skinned or morphed) with `settings`, sampling each

@@ -9,11 +9,16 @@
 // its duration (a scene without animations: the rest pose alone). At each sampled pose both meshes
 // are posed (posedPositions, posePositions) and the two-sided Hausdorff distance between them is
 // certified (boundHausdorff: an upper bound, never below the true distance). Between two neighbouring
-// samples a point of either surface is at most half the larger vertex displacement of the interval
-// away from where it is at the nearer sample, if vertices move close to straight at even speed over
-// the interval (which sampling finely enough makes true: the interval's chord then matches its
-// path), so the bound over the interval is the larger of its two sampled bounds plus half of the
-// render mesh's and half of the collision mesh's largest displacement.
+// samples every vertex is taken to move straight at even speed (which sampling finely enough makes
+// true: the interval's chord then matches its path), so every point of either surface does too. A
+// point x and its nearest point y on the other surface at one end of the interval then move apart by
+// at most how far the two surfaces move against each other there: the largest difference between a
+// displacement of a corner of x's triangle (of a piece of it, for a collision triangle larger than the
+// render triangles) and one of y's, over pairs of triangles within that end's bound of each other.
+// From either end the distance grows by at most that share of the interval, so the bound over the
+// interval is the larger of its two sampled bounds plus half the larger of the two ends' relative
+// motions. Two surfaces that move together (the same joints carry both) gain little over an
+// interval, however far they travel.
 
 #include "spatter/core/Mesh.hpp"
 #include "spatter/core/Result.hpp"
@@ -25,7 +30,7 @@ namespace spatter {
 struct PoseBound {
     double bound = 0.0;      // over every animation: the largest interval bound (see above)
     double sampledMax = 0.0; // the largest certified bound at a sampled pose
-    double motion = 0.0;     // the largest allowance for the motion within an interval
+    double motion = 0.0;     // the largest allowance for the surfaces' relative motion in an interval
     size_t poses = 0;        // poses sampled
     int worstAnimation = -1; // where sampledMax was found (-1: the rest pose)
     double worstTime = 0.0;
@@ -50,5 +55,13 @@ template <class F> void forEachSampledPose(const Scene& scene, int samples, F&& 
 // (absolute, > 0). Fails on bad arguments or when a pose cannot be certified (the message says which).
 Result<PoseBound> boundOverPoses(const Scene& scene, size_t object, const Mesh& collision,
                                  const VertexDeformation& deformation, int samples, double margin);
+
+// The same poses sampled, not certified: at each, the largest distance sampledLowerBound finds both
+// ways at up to `maxTriangles` triangles a direction, a distance the meshes attain there. `bound` and
+// `sampledMax` are the largest of them (no motion allowance), so boundOverPoses is never below it;
+// `motion` is 0. Much cheaper than boundOverPoses: for finding the worst pose and for ruling a
+// candidate out. Fails like boundOverPoses.
+Result<PoseBound> sampledOverPoses(const Scene& scene, size_t object, const Mesh& collision,
+                                   const VertexDeformation& deformation, int samples, size_t maxTriangles);
 
 } // namespace spatter

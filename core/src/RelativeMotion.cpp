@@ -1,0 +1,196 @@
+#include "RelativeMotion.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <unordered_map>
+
+namespace spatter::detail {
+
+namespace {
+
+// Cells per axis at most: keeps a cell key within 21 bits per axis.
+constexpr double kMaxCells = 1 << 20;
+// A cell is at least this share of the largest triangle's box, so that no box meets more than about
+// 17^3 cells.
+constexpr double kLargestShare = 1.0 / 16.0;
+
+// A triangle, or a piece of one, at the pose.
+struct Triangle {
+    glm::dvec3 p[3], d[3]; // corners and their displacements
+
+    double longestEdge() const {
+        return std::max({glm::length(p[1] - p[0]), glm::length(p[2] - p[1]), glm::length(p[0] - p[2])});
+    }
+};
+
+Triangle triangleOf(const MovingMesh& mesh, size_t t) {
+    Triangle tri;
+    for (int k = 0; k < 3; ++k) {
+        const uint32_t v = mesh.topology.indices[3 * t + size_t(k)];
+        tri.p[k] = mesh.positions[v];
+        tri.d[k] = mesh.displacement[v];
+    }
+    return tri;
+}
+
+// The four triangles of `t` cut at its edges' midpoints, each point moving by the blend of its
+// corners' displacements.
+std::array<Triangle, 4> quarters(const Triangle& t) {
+    Triangle m;
+    for (int k = 0; k < 3; ++k) {
+        m.p[k] = 0.5 * (t.p[k] + t.p[(k + 1) % 3]);
+        m.d[k] = 0.5 * (t.d[k] + t.d[(k + 1) % 3]);
+    }
+    std::array<Triangle, 4> q;
+    for (int k = 0; k < 3; ++k) { // the corner k with the midpoints of its two edges
+        q[k].p[0] = t.p[k], q[k].d[0] = t.d[k];
+        q[k].p[1] = m.p[k], q[k].d[1] = m.d[k];
+        q[k].p[2] = m.p[(k + 2) % 3], q[k].d[2] = m.d[(k + 2) % 3];
+    }
+    q[3] = m;
+    return q;
+}
+
+// An axis-aligned box.
+struct Box {
+    glm::dvec3 lo, hi;
+};
+
+Box boxOf(const Triangle& t, double grow = 0.0) {
+    return {glm::min(t.p[0], glm::min(t.p[1], t.p[2])) - grow,
+            glm::max(t.p[0], glm::max(t.p[1], t.p[2])) + grow};
+}
+
+bool overlap(const Box& a, const Box& b) {
+    return glm::all(glm::lessThanEqual(a.lo, b.hi)) && glm::all(glm::lessThanEqual(b.lo, a.hi));
+}
+
+// The render mesh's triangles in a uniform grid of cubes, each in every cell its box meets, for the
+// triangles whose boxes meet a given box.
+class TriangleGrid {
+public:
+    explicit TriangleGrid(const std::vector<Triangle>& triangles) : seen_(triangles.size(), 0) {
+        boxes_.reserve(triangles.size());
+        Box all = boxOf(triangles.front());
+        double size = 0.0, largest = 0.0;
+        for (const Triangle& t : triangles) {
+            boxes_.push_back(boxOf(t));
+            all = {glm::min(all.lo, boxes_.back().lo), glm::max(all.hi, boxes_.back().hi)};
+            const glm::dvec3 e = boxes_.back().hi - boxes_.back().lo;
+            size += std::max(e.x, std::max(e.y, e.z));
+            largest = std::max(largest, std::max(e.x, std::max(e.y, e.z)));
+        }
+        lo_ = all.lo;
+        const glm::dvec3 extent = all.hi - all.lo;
+        cell_ = std::max({size / double(triangles.size()), kLargestShare * largest,
+                          std::max(extent.x, std::max(extent.y, extent.z)) / kMaxCells,
+                          std::numeric_limits<double>::min()});
+        for (size_t t = 0; t < boxes_.size(); ++t)
+            forEachCell(boxes_[t], [&](uint64_t key) { cells_[key].push_back(uint32_t(t)); });
+    }
+
+    // Calls f(triangle) once for every triangle whose box meets `box`: through the cells it meets, or
+    // over every triangle where it meets more cells than there are triangles.
+    template <class F> void forEachMeeting(const Box& box, F&& f) {
+        const glm::dvec3 cells = glm::dvec3(cellOf(box.hi) - cellOf(box.lo)) + 1.0;
+        if (cells.x * cells.y * cells.z > double(boxes_.size())) {
+            for (size_t t = 0; t < boxes_.size(); ++t)
+                if (overlap(box, boxes_[t])) f(uint32_t(t));
+            return;
+        }
+        ++stamp_;
+        forEachCell(box, [&](uint64_t key) {
+            const auto it = cells_.find(key);
+            if (it == cells_.end()) return;
+            for (uint32_t t : it->second)
+                if (seen_[t] != stamp_ && overlap(box, boxes_[t])) {
+                    seen_[t] = stamp_;
+                    f(t);
+                }
+        });
+    }
+
+private:
+    template <class F> void forEachCell(const Box& box, F&& f) const {
+        const glm::ivec3 a = cellOf(box.lo), b = cellOf(box.hi);
+        for (int x = a.x; x <= b.x; ++x)
+            for (int y = a.y; y <= b.y; ++y)
+                for (int z = a.z; z <= b.z; ++z)
+                    f(uint64_t(x) | (uint64_t(y) << 21) | (uint64_t(z) << 42));
+    }
+    glm::ivec3 cellOf(const glm::dvec3& p) const {
+        const glm::dvec3 q = glm::clamp((p - lo_) / cell_, glm::dvec3(0.0), glm::dvec3(kMaxCells));
+        return glm::ivec3(glm::floor(q));
+    }
+
+    std::vector<Box> boxes_;
+    std::vector<uint32_t> seen_;
+    uint32_t stamp_ = 0;
+    glm::dvec3 lo_{0.0};
+    double cell_ = 1.0;
+    std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
+};
+
+std::vector<Triangle> trianglesOf(const MovingMesh& mesh) {
+    std::vector<Triangle> out(mesh.topology.indices.size() / 3);
+    for (size_t t = 0; t < out.size(); ++t)
+        out[t] = triangleOf(mesh, t);
+    return out;
+}
+
+// The largest |displacement of a corner of `a` - displacement of a corner of `b`|.
+double cornerMotion(const Triangle& a, const Triangle& b) {
+    double most = 0.0;
+    for (const glm::dvec3& i : a.d)
+        for (const glm::dvec3& k : b.d)
+            most = std::max(most, glm::length(i - k));
+    return most;
+}
+
+// Halvings of a collision triangle's edges at most, to pieces about as large as the render triangles.
+constexpr int kMaxDepth = 5;
+
+bool finite(const glm::dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool finite(const MovingMesh& mesh) {
+    for (uint32_t v : mesh.topology.indices)
+        if (!finite(mesh.positions[v]) || !finite(mesh.displacement[v])) return false;
+    return true;
+}
+
+} // namespace
+
+double relativeMotion(const MovingMesh& render, const MovingMesh& collision, double reach) {
+    if (render.topology.indices.size() < 3 || collision.topology.indices.size() < 3) return 0.0;
+    if (!finite(render) || !finite(collision) || !std::isfinite(reach))
+        return std::numeric_limits<double>::infinity();
+    const std::vector<Triangle> drawn = trianglesOf(render);
+    double edge = 0.0;
+    for (const Triangle& t : drawn)
+        edge = std::max(edge, t.longestEdge());
+    TriangleGrid grid(drawn);
+    double most = 0.0;
+    // A collision triangle is cut until its pieces are no longer than the render triangles: the
+    // corners of a large one, spanning a joint, move apart, while each piece moves nearly as the render
+    // triangles near it do.
+    std::function<void(const Triangle&, int)> visit = [&](const Triangle& p, int depth) {
+        if (depth < kMaxDepth && p.longestEdge() > edge) {
+            for (const Triangle& q : quarters(p))
+                visit(q, depth + 1);
+            return;
+        }
+        grid.forEachMeeting(boxOf(p, reach),
+                            [&](uint32_t t) { most = std::max(most, cornerMotion(p, drawn[t])); });
+    };
+    for (const Triangle& p : trianglesOf(collision))
+        visit(p, 0);
+    return most;
+}
+
+} // namespace spatter::detail
