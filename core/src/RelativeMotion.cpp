@@ -1,10 +1,11 @@
 #include "RelativeMotion.hpp"
 
+#include "SurfaceGeometry.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <unordered_map>
 
@@ -73,7 +74,7 @@ bool overlap(const Box& a, const Box& b) {
 // triangles whose boxes meet a given box.
 class TriangleGrid {
 public:
-    explicit TriangleGrid(const std::vector<Triangle>& triangles) : seen_(triangles.size(), 0) {
+    explicit TriangleGrid(const std::vector<Triangle>& triangles) {
         boxes_.reserve(triangles.size());
         Box all = boxOf(triangles.front());
         double size = 0.0, largest = 0.0;
@@ -93,22 +94,29 @@ public:
             forEachCell(boxes_[t], [&](uint64_t key) { cells_[key].push_back(uint32_t(t)); });
     }
 
+    // One caller's marks of the triangles already visited, so that several threads can search.
+    struct Visits {
+        std::vector<uint32_t> seen;
+        uint32_t stamp = 0;
+    };
+    Visits visits() const { return {std::vector<uint32_t>(boxes_.size(), 0), 0}; }
+
     // Calls f(triangle) once for every triangle whose box meets `box`: through the cells it meets, or
     // over every triangle where it meets more cells than there are triangles.
-    template <class F> void forEachMeeting(const Box& box, F&& f) {
+    template <class F> void forEachMeeting(const Box& box, Visits& v, F&& f) const {
         const glm::dvec3 cells = glm::dvec3(cellOf(box.hi) - cellOf(box.lo)) + 1.0;
         if (cells.x * cells.y * cells.z > double(boxes_.size())) {
             for (size_t t = 0; t < boxes_.size(); ++t)
                 if (overlap(box, boxes_[t])) f(uint32_t(t));
             return;
         }
-        ++stamp_;
+        ++v.stamp;
         forEachCell(box, [&](uint64_t key) {
             const auto it = cells_.find(key);
             if (it == cells_.end()) return;
             for (uint32_t t : it->second)
-                if (seen_[t] != stamp_ && overlap(box, boxes_[t])) {
-                    seen_[t] = stamp_;
+                if (v.seen[t] != v.stamp && overlap(box, boxes_[t])) {
+                    v.seen[t] = v.stamp;
                     f(t);
                 }
         });
@@ -128,8 +136,6 @@ private:
     }
 
     std::vector<Box> boxes_;
-    std::vector<uint32_t> seen_;
-    uint32_t stamp_ = 0;
     glm::dvec3 lo_{0.0};
     double cell_ = 1.0;
     std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
@@ -142,12 +148,14 @@ std::vector<Triangle> trianglesOf(const MovingMesh& mesh) {
     return out;
 }
 
-// The largest |displacement of a corner of `a` - displacement of a corner of `b`|.
-double cornerMotion(const Triangle& a, const Triangle& b) {
+// The largest |displacement of a corner of `a` - displacement of a corner of `b`|, squared.
+double cornerMotion2(const Triangle& a, const Triangle& b) {
     double most = 0.0;
     for (const glm::dvec3& i : a.d)
-        for (const glm::dvec3& k : b.d)
-            most = std::max(most, glm::length(i - k));
+        for (const glm::dvec3& k : b.d) {
+            const glm::dvec3 d = i - k;
+            most = std::max(most, glm::dot(d, d));
+        }
     return most;
 }
 
@@ -164,33 +172,55 @@ bool finite(const MovingMesh& mesh) {
     return true;
 }
 
+// The render triangles and what a search among them needs.
+struct Drawn {
+    const std::vector<Triangle>& triangles;
+    const TriangleGrid& grid;
+    double edge;  // the longest render edge
+    double reach; // the pose's bound
+};
+
+// The largest squared corner motion between the collision triangle `p` and the render triangles near
+// it. A collision triangle is cut until its pieces are no longer than the render triangles: the
+// corners of a large one, spanning a joint, move apart, while each piece moves nearly as the render
+// triangles near it do.
+double pieceMotion2(const Triangle& p, int depth, const Drawn& drawn, TriangleGrid::Visits& visits) {
+    double most = 0.0;
+    if (depth < kMaxDepth && p.longestEdge() > drawn.edge) {
+        for (const Triangle& q : quarters(p))
+            most = std::max(most, pieceMotion2(q, depth + 1, drawn, visits));
+        return most;
+    }
+    drawn.grid.forEachMeeting(boxOf(p, drawn.reach), visits, [&](uint32_t t) {
+        most = std::max(most, cornerMotion2(p, drawn.triangles[t]));
+    });
+    return most;
+}
+
 } // namespace
 
 double relativeMotion(const MovingMesh& render, const MovingMesh& collision, double reach) {
     if (render.topology.indices.size() < 3 || collision.topology.indices.size() < 3) return 0.0;
     if (!finite(render) || !finite(collision) || !std::isfinite(reach))
         return std::numeric_limits<double>::infinity();
-    const std::vector<Triangle> drawn = trianglesOf(render);
+    const std::vector<Triangle> triangles = trianglesOf(render);
     double edge = 0.0;
-    for (const Triangle& t : drawn)
+    for (const Triangle& t : triangles)
         edge = std::max(edge, t.longestEdge());
-    TriangleGrid grid(drawn);
-    double most = 0.0;
-    // A collision triangle is cut until its pieces are no longer than the render triangles: the
-    // corners of a large one, spanning a joint, move apart, while each piece moves nearly as the render
-    // triangles near it do.
-    std::function<void(const Triangle&, int)> visit = [&](const Triangle& p, int depth) {
-        if (depth < kMaxDepth && p.longestEdge() > edge) {
-            for (const Triangle& q : quarters(p))
-                visit(q, depth + 1);
-            return;
-        }
-        grid.forEachMeeting(boxOf(p, reach),
-                            [&](uint32_t t) { most = std::max(most, cornerMotion(p, drawn[t])); });
-    };
-    for (const Triangle& p : trianglesOf(collision))
-        visit(p, 0);
-    return most;
+    const TriangleGrid grid(triangles);
+    const Drawn drawn{triangles, grid, edge, reach};
+    const std::vector<Triangle> pieces = trianglesOf(collision);
+    const unsigned workers = std::max(1u, std::min(workerCount(), unsigned(pieces.size() / 64 + 1)));
+    std::vector<TriangleGrid::Visits> visits(workers, grid.visits());
+    std::vector<double> most(workers, 0.0);
+    parallelChunks(
+        pieces.size(), 16, workers,
+        [&](size_t begin, size_t end, unsigned w) {
+            for (size_t i = begin; i < end; ++i)
+                most[w] = std::max(most[w], pieceMotion2(pieces[i], 0, drawn, visits[w]));
+        },
+        [](double) { return true; });
+    return std::sqrt(*std::max_element(most.begin(), most.end()));
 }
 
 } // namespace spatter::detail

@@ -27,8 +27,8 @@ struct MovingMesh {
 
 // The largest |displacement(i) - displacement(k)| over corners i of a piece of a collision triangle and
 // k of a render triangle whose bounding boxes lie within `reach` of each other at this pose (a
-// superset of the pairs within `reach`). 0 when either mesh has no triangle; infinity when a position,
-// a displacement or `reach` is not finite.
+// superset of the pairs within `reach`), on all cores. 0 when either mesh has no triangle; infinity
+// when a position, a displacement or `reach` is not finite.
 double relativeMotion(const MovingMesh& render, const MovingMesh& collision, double reach);
 
 } // namespace spatter::detail
