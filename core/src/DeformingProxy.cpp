@@ -65,14 +65,23 @@ struct PoseCandidate {
 // most and how far at least.
 constexpr size_t kSampledTriangles = 4096;
 
-// `proxy` with its deformation and the distances over the poses, sampled (sampledOverPoses).
-Result<PoseCandidate> sampled(const Scene& scene, size_t object, Proxy proxy, int samples) {
+// `proxy` with the deformation transferred to it; its poses not measured yet.
+Result<PoseCandidate> candidate(const Scene& scene, size_t object, Proxy proxy) {
     const SceneObject& o = scene.objects[object];
     Result<VertexDeformation> d = transferDeformation(o.mesh, deformationOf(o), proxy.mesh);
     if (!d) return fail(d.error());
-    Result<PoseBound> b = sampledOverPoses(scene, object, proxy.mesh, d.value(), samples, kSampledTriangles);
+    return PoseCandidate{std::move(proxy), std::move(d).value(), PoseBound{}};
+}
+
+// `proxy` with its deformation and the distances over the poses, sampled (sampledOverPoses).
+Result<PoseCandidate> sampled(const Scene& scene, size_t object, Proxy proxy, int samples) {
+    Result<PoseCandidate> c = candidate(scene, object, std::move(proxy));
+    if (!c) return c;
+    Result<PoseBound> b =
+        sampledOverPoses(scene, object, c->proxy.mesh, c->deformation, samples, kSampledTriangles);
     if (!b) return fail(b.error());
-    return PoseCandidate{std::move(proxy), std::move(d).value(), b.value()};
+    c->poses = b.value();
+    return c;
 }
 
 // `c` with its bound over the poses certified (boundOverPoses).
@@ -134,12 +143,10 @@ Result<std::optional<PoseCandidate>> posedCandidate(const Scene& scene, size_t o
     Result<Proxy> posed =
         simplifiedInPose(scene, object, rest.poses.worstAnimation, rest.poses.worstTime, settings);
     if (!posed) return fail(posed.error());
-    const SceneObject& o = scene.objects[object];
-    Result<VertexDeformation> d = transferDeformation(o.mesh, deformationOf(o), posed->mesh);
-    if (!d) return fail(d.error());
-    PoseCandidate c{std::move(posed).value(), std::move(d).value(), PoseBound{}};
-    if (Status st = judge(scene, object, c, samples); !st) return fail(st.error());
-    return std::optional<PoseCandidate>(std::move(c));
+    Result<PoseCandidate> c = candidate(scene, object, std::move(posed).value());
+    if (!c) return fail(c.error());
+    if (Status st = judge(scene, object, c.value(), samples); !st) return fail(st.error());
+    return std::optional<PoseCandidate>(std::move(c).value());
 }
 
 } // namespace
