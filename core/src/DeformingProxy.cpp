@@ -4,6 +4,8 @@
 #include "spatter/core/ProxyCache.hpp"
 #include "spatter/core/SceneEvaluator.hpp"
 
+#include "ValueHasher.hpp"
+
 #include <chrono>
 #include <string>
 
@@ -17,17 +19,7 @@ namespace {
 constexpr int kObjectPoseSamples = 32;
 
 // Changes whenever buildDeformingProxy makes something else of the same inputs.
-constexpr uint32_t kDeformingVersion = 2;
-
-// FNV-1a over values in memory, continuing one hash.
-struct PoseHasher {
-    uint64_t h = kFnvOffset;
-    template <class T> void add(const T& v) { h = fnv1a(&v, sizeof(T), h); }
-    template <class T> void add(const std::vector<T>& v) {
-        add(uint64_t(v.size()));
-        h = fnv1a(v.data(), v.size() * sizeof(T), h);
-    }
-};
+constexpr uint32_t kDeformingVersion = 3;
 
 // The cache key of the proxy buildObjectProxy makes for deforming object `object`: the key of its
 // rest proxy, its joint influences and morph targets, and at every pose boundOverPoses samples the
@@ -36,21 +28,22 @@ struct PoseHasher {
 uint64_t deformingProxyCacheKey(const Scene& scene, size_t object, const ProxySettings& settings,
                                 int samples) {
     const SceneObject& o = scene.objects[object];
-    PoseHasher h;
-    h.add(kDeformingVersion);
-    h.add(proxyCacheKey(o.mesh, settings, nullptr));
-    h.add(samples);
-    h.add(o.skinWeights.influences);
-    h.add(o.skinWeights.joints);
-    h.add(o.skinWeights.weights);
-    for (const MorphTarget& m : o.morphTargets)
-        h.add(m.positions);
+    detail::ValueHasher h;
+    h.u32(kDeformingVersion);
+    h.u64(proxyCacheKey(o.mesh, settings, nullptr));
+    h.u32(uint32_t(samples));
+    h.u32(uint32_t(o.skinWeights.influences));
+    h.each(o.skinWeights.joints, [&](uint16_t j) { h.u32(j); });
+    h.each(o.skinWeights.weights, [&](double w) { h.f64(w); });
+    h.each(o.morphTargets,
+           [&](const MorphTarget& m) { h.each(m.positions, [&](const glm::vec3& p) { h.vec3(p); }); });
     SceneEvaluator evaluator(scene);
     forEachSampledPose(scene, samples, [&](int animation, int, double t) {
         evaluator.evaluate(animation, t);
-        h.add(evaluator.objectTransform(object));
-        if (o.skin != -1) h.add(evaluator.jointMatrices(size_t(o.skin)));
-        h.add(evaluator.morphWeights(object));
+        h.mat4(evaluator.objectTransform(object));
+        if (o.skin != -1)
+            h.each(evaluator.jointMatrices(size_t(o.skin)), [&](const glm::dmat4& m) { h.mat4(m); });
+        h.each(evaluator.morphWeights(object), [&](double w) { h.f64(w); });
     });
     return h.h;
 }

@@ -27,15 +27,20 @@ std::vector<glm::dvec3> displacement(const std::vector<glm::dvec3>& from, const 
     return d;
 }
 
-// The motion allowance of the interval from sample `a` to sample `b`: half the most the two surfaces
-// move against each other over it, their points paired as they lie at either end
-// (RelativeMotion.hpp). With the two sampled bounds it bounds the distance within the interval.
-double motionBetween(const Mesh& render, const Mesh& collision, const Sample& a, const Sample& b) {
-    const std::vector<glm::dvec3> dr = displacement(a.render, b.render);
-    const std::vector<glm::dvec3> dc = displacement(a.collision, b.collision);
-    const double atA = detail::relativeMotion({render, a.render, dr}, {collision, a.collision, dc}, a.bound);
-    const double atB = detail::relativeMotion({render, b.render, dr}, {collision, b.collision, dc}, b.bound);
-    return 0.5 * std::max(atA, atB);
+// The most the two surfaces move against each other over the interval from `before` to `at` and the
+// one from `at` to `after` (either may be null: no such interval), their points paired as they lie at
+// `at` (RelativeMotion.hpp).
+detail::Motions motionsAt(const Mesh& render, const Mesh& collision, const Sample* before, const Sample& at,
+                          const Sample* after) {
+    std::vector<glm::dvec3> dr[2], dc[2];
+    if (before)
+        dr[0] = displacement(before->render, at.render),
+        dc[0] = displacement(before->collision, at.collision);
+    if (after)
+        dr[1] = displacement(at.render, after->render), dc[1] = displacement(at.collision, after->collision);
+    return detail::relativeMotion(
+        {render, at.render, {before ? &dr[0] : nullptr, after ? &dr[1] : nullptr}},
+        {collision, at.collision, {before ? &dc[0] : nullptr, after ? &dc[1] : nullptr}}, at.bound);
 }
 
 // Both meshes at the evaluator's pose, and their surfaces.
@@ -117,12 +122,39 @@ void takePose(PoseBound& out, double bound, int a, double t) {
     out.bound = std::max(out.bound, bound);
 }
 
-// Takes the interval between samples `a` and `b` (of the same animation) into `out`.
-void takeInterval(PoseBound& out, const Mesh& render, const Mesh& collision, const Sample& a,
-                  const Sample& b) {
-    const double motion = motionBetween(render, collision, a, b);
-    out.motion = std::max(out.motion, motion);
-    out.bound = std::max(out.bound, std::max(a.bound, b.bound) + motion);
+// The samples of one animation walked so far: the last two, and the relative motion measured at the
+// earlier one over the interval after it.
+struct Walk {
+    std::optional<Sample> before, at;
+    double motionAfterBefore = 0.0;
+};
+
+// Measures the relative motion at `w.at` over the intervals from `w.before` and to `next` (null at the
+// animation's end), and takes the interval from `w.before` to `w.at`, both its ends now measured, into
+// `out`: the larger sampled bound plus half the larger motion at either end.
+void advance(PoseBound& out, const Mesh& render, const Mesh& collision, Walk& w, const Sample* next) {
+    const Sample* before = w.before ? &*w.before : nullptr;
+    const detail::Motions m = motionsAt(render, collision, before, *w.at, next);
+    if (before) {
+        const double motion = 0.5 * std::max(w.motionAfterBefore, m[0]);
+        out.motion = std::max(out.motion, motion);
+        out.bound = std::max(out.bound, std::max(before->bound, w.at->bound) + motion);
+    }
+    w.motionAfterBefore = m[1];
+}
+
+// Calls `step(animation, index, t, evaluator)` (returning a Status) at every pose forEachSampledPose
+// names, the evaluator set to it; stops at the first failure and names its pose.
+template <class Step> Status walkPoses(const Scene& scene, int samples, Step&& step) {
+    SceneEvaluator evaluator(scene);
+    std::string error;
+    forEachSampledPose(scene, samples, [&](int a, int i, double t) {
+        if (!error.empty()) return;
+        evaluator.evaluate(a, t);
+        if (Status st = step(a, i, t, evaluator); !st) error = poseName(a, t) + ": " + st.error();
+    });
+    if (!error.empty()) return fail(error);
+    return {};
 }
 
 } // namespace
@@ -133,24 +165,24 @@ Result<PoseBound> boundOverPoses(const Scene& scene, size_t object, const Mesh& 
         return fail(st.error());
     if (!(margin > 0.0) || !std::isfinite(margin))
         return fail("pose bound: the margin must be finite and > 0");
-    SceneEvaluator evaluator(scene);
+    const Mesh& render = scene.objects[object].mesh;
     PoseBound out;
-    std::optional<Sample> previous;
-    std::string error;
-    forEachSampledPose(scene, samples, [&](int a, int step, double t) {
-        if (!error.empty()) return;
-        if (step == 0) previous.reset();
-        evaluator.evaluate(a, t);
-        Result<Sample> s = sampleAt(scene, object, collision, deformation, evaluator, margin);
-        if (!s) {
-            error = poseName(a, t) + ": " + s.error();
-            return;
-        }
-        takePose(out, s->bound, a, t);
-        if (previous) takeInterval(out, scene.objects[object].mesh, collision, *previous, s.value());
-        previous = std::move(s).value();
-    });
-    if (!error.empty()) return fail(error);
+    Walk walk;
+    Status st =
+        walkPoses(scene, samples, [&](int a, int i, double t, const SceneEvaluator& evaluator) -> Status {
+            if (i == 0) walk = Walk{};
+            Result<Sample> s = sampleAt(scene, object, collision, deformation, evaluator, margin);
+            if (!s) return fail(s.error());
+            takePose(out, s->bound, a, t);
+            if (walk.at) {
+                advance(out, render, collision, walk, &s.value());
+                walk.before = std::move(walk.at);
+            }
+            walk.at = std::move(s).value();
+            if (i == samples && walk.before) advance(out, render, collision, walk, nullptr);
+            return {};
+        });
+    if (!st) return fail(st.error());
     return out;
 }
 
@@ -158,20 +190,15 @@ Result<PoseBound> sampledOverPoses(const Scene& scene, size_t object, const Mesh
                                    const VertexDeformation& deformation, int samples, size_t maxTriangles) {
     if (Status st = checkArguments(scene, object, collision, deformation, samples); !st)
         return fail(st.error());
-    SceneEvaluator evaluator(scene);
     PoseBound out;
-    std::string error;
-    forEachSampledPose(scene, samples, [&](int a, int, double t) {
-        if (!error.empty()) return;
-        evaluator.evaluate(a, t);
-        Result<double> d = sampledAt(scene, object, collision, deformation, evaluator, maxTriangles);
-        if (!d) {
-            error = poseName(a, t) + ": " + d.error();
-            return;
-        }
-        takePose(out, d.value(), a, t);
-    });
-    if (!error.empty()) return fail(error);
+    Status st =
+        walkPoses(scene, samples, [&](int a, int, double t, const SceneEvaluator& evaluator) -> Status {
+            Result<double> d = sampledAt(scene, object, collision, deformation, evaluator, maxTriangles);
+            if (!d) return fail(d.error());
+            takePose(out, d.value(), a, t);
+            return {};
+        });
+    if (!st) return fail(st.error());
     return out;
 }
 

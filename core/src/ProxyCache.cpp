@@ -1,5 +1,7 @@
 #include "spatter/core/ProxyCache.hpp"
 
+#include "ValueHasher.hpp"
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -16,6 +18,9 @@ namespace spatter {
 
 namespace fs = std::filesystem;
 
+using detail::doubleBits;
+using detail::floatBits;
+
 namespace {
 
 constexpr char kMagic[4] = {'S', 'P', 'X', 'C'};
@@ -27,17 +32,6 @@ constexpr uint32_t kBuilderVersion = 6;
 constexpr size_t kHeaderSize = 4 + 4 + 8 + 4 * 4 + 8 * 2 + 8 * 5 + 4 * 3;
 constexpr size_t kDrawnNormalSize = 6; // three 16-bit fractions
 constexpr size_t kChecksumSize = 8;
-
-uint32_t floatBits(float f) {
-    uint32_t u;
-    std::memcpy(&u, &f, 4);
-    return u;
-}
-uint64_t doubleBits(double d) {
-    uint64_t u;
-    std::memcpy(&u, &d, 8);
-    return u;
-}
 
 // Little-endian byte writer and bounds-checked reader.
 struct Writer {
@@ -99,35 +93,6 @@ struct Reader {
     }
 };
 
-// Incremental FNV-1a over little-endian values.
-struct Hasher {
-    uint64_t h = kFnvOffset;
-    void u32(uint32_t v) {
-        unsigned char b[4];
-        for (int i = 0; i < 4; ++i)
-            b[i] = (unsigned char)(v >> (8 * i));
-        h = fnv1a(b, 4, h);
-    }
-    void u64(uint64_t v) {
-        unsigned char b[8];
-        for (int i = 0; i < 8; ++i)
-            b[i] = (unsigned char)(v >> (8 * i));
-        h = fnv1a(b, 8, h);
-    }
-    void f32(float v) { u32(floatBits(v)); }
-    void mesh(const Mesh& m) {
-        u64(m.positions.size());
-        for (const glm::vec3& p : m.positions) {
-            f32(p.x);
-            f32(p.y);
-            f32(p.z);
-        }
-        u64(m.indices.size());
-        for (uint32_t i : m.indices)
-            u32(i);
-    }
-};
-
 } // namespace
 
 uint64_t fnv1a(const void* data, size_t size, uint64_t hash) {
@@ -140,7 +105,7 @@ uint64_t fnv1a(const void* data, size_t size, uint64_t hash) {
 }
 
 uint64_t proxyCacheKey(const Mesh& render, const ProxySettings& s, const Mesh* authoredCollider) {
-    Hasher h;
+    detail::ValueHasher h;
     h.u32(kFormatVersion);
     h.u32(kBuilderVersion);
     h.mesh(render);

@@ -21,7 +21,8 @@ constexpr double kLargestShare = 1.0 / 16.0;
 
 // A triangle, or a piece of one, at the pose.
 struct Triangle {
-    glm::dvec3 p[3], d[3]; // corners and their displacements
+    glm::dvec3 p[3];             // corners
+    glm::dvec3 d[kIntervals][3]; // their displacements over each interval
 
     double longestEdge() const {
         return std::max({glm::length(p[1] - p[0]), glm::length(p[2] - p[1]), glm::length(p[0] - p[2])});
@@ -33,7 +34,9 @@ Triangle triangleOf(const MovingMesh& mesh, size_t t) {
     for (int k = 0; k < 3; ++k) {
         const uint32_t v = mesh.topology.indices[3 * t + size_t(k)];
         tri.p[k] = mesh.positions[v];
-        tri.d[k] = mesh.displacement[v];
+        for (int j = 0; j < kIntervals; ++j)
+            tri.d[j][k] =
+                mesh.displacements[size_t(j)] ? (*mesh.displacements[size_t(j)])[v] : glm::dvec3(0.0);
     }
     return tri;
 }
@@ -44,13 +47,18 @@ std::array<Triangle, 4> quarters(const Triangle& t) {
     Triangle m;
     for (int k = 0; k < 3; ++k) {
         m.p[k] = 0.5 * (t.p[k] + t.p[(k + 1) % 3]);
-        m.d[k] = 0.5 * (t.d[k] + t.d[(k + 1) % 3]);
+        for (int j = 0; j < kIntervals; ++j)
+            m.d[j][k] = 0.5 * (t.d[j][k] + t.d[j][(k + 1) % 3]);
     }
     std::array<Triangle, 4> q;
     for (int k = 0; k < 3; ++k) { // the corner k with the midpoints of its two edges
-        q[k].p[0] = t.p[k], q[k].d[0] = t.d[k];
-        q[k].p[1] = m.p[k], q[k].d[1] = m.d[k];
-        q[k].p[2] = m.p[(k + 2) % 3], q[k].d[2] = m.d[(k + 2) % 3];
+        const int corner[3] = {k, k, (k + 2) % 3};
+        const Triangle* from[3] = {&t, &m, &m};
+        for (int c = 0; c < 3; ++c) {
+            q[size_t(k)].p[c] = from[c]->p[corner[c]];
+            for (int j = 0; j < kIntervals; ++j)
+                q[size_t(k)].d[j][c] = from[c]->d[j][corner[c]];
+        }
     }
     q[3] = m;
     return q;
@@ -148,16 +156,25 @@ std::vector<Triangle> trianglesOf(const MovingMesh& mesh) {
     return out;
 }
 
-// The largest |displacement of a corner of `a` - displacement of a corner of `b`|, squared.
-double cornerMotion2(const Triangle& a, const Triangle& b) {
-    double most = 0.0;
-    for (const glm::dvec3& i : a.d)
-        for (const glm::dvec3& k : b.d) {
-            const glm::dvec3 d = i - k;
-            most = std::max(most, glm::dot(d, d));
-        }
-    return most;
+// Takes, for each interval, the largest |displacement of a corner of `a` - displacement of a corner
+// of `b`|, squared, into `most`.
+void takeCornerMotion2(const Triangle& a, const Triangle& b, Motions& most) {
+    for (int j = 0; j < kIntervals; ++j)
+        for (const glm::dvec3& i : a.d[j])
+            for (const glm::dvec3& k : b.d[j]) {
+                const glm::dvec3 d = i - k;
+                most[size_t(j)] = std::max(most[size_t(j)], glm::dot(d, d));
+            }
 }
+
+void takeMax(Motions& most, const Motions& m) {
+    for (size_t j = 0; j < most.size(); ++j)
+        most[j] = std::max(most[j], m[j]);
+}
+
+// The room for rounding added to the pairs' reach, as a share of the largest coordinate: the bound is
+// certified on the meshes rounded to float (a relative 6e-8) and the pairs are picked in double.
+constexpr double kRoundingShare = 1e-6;
 
 // Halvings of a collision triangle's edges at most, to pieces about as large as the render triangles.
 constexpr int kMaxDepth = 5;
@@ -167,9 +184,21 @@ bool finite(const glm::dvec3& v) {
 }
 
 bool finite(const MovingMesh& mesh) {
-    for (uint32_t v : mesh.topology.indices)
-        if (!finite(mesh.positions[v]) || !finite(mesh.displacement[v])) return false;
+    for (uint32_t v : mesh.topology.indices) {
+        if (!finite(mesh.positions[v])) return false;
+        for (const std::vector<glm::dvec3>* d : mesh.displacements)
+            if (d && !finite((*d)[v])) return false;
+    }
     return true;
+}
+
+// The largest magnitude of a coordinate of the mesh's triangles.
+double largestCoordinate(const std::vector<Triangle>& triangles) {
+    double most = 0.0;
+    for (const Triangle& t : triangles)
+        for (const glm::dvec3& p : t.p)
+            most = std::max({most, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    return most;
 }
 
 // The render triangles and what a search among them needs.
@@ -177,50 +206,59 @@ struct Drawn {
     const std::vector<Triangle>& triangles;
     const TriangleGrid& grid;
     double edge;  // the longest render edge
-    double reach; // the pose's bound
+    double reach; // the pose's bound, with room for rounding
 };
 
 // The largest squared corner motion between the collision triangle `p` and the render triangles near
 // it. A collision triangle is cut until its pieces are no longer than the render triangles: the
 // corners of a large one, spanning a joint, move apart, while each piece moves nearly as the render
 // triangles near it do.
-double pieceMotion2(const Triangle& p, int depth, const Drawn& drawn, TriangleGrid::Visits& visits) {
-    double most = 0.0;
+Motions pieceMotion2(const Triangle& p, int depth, const Drawn& drawn, TriangleGrid::Visits& visits) {
+    Motions most{};
     if (depth < kMaxDepth && p.longestEdge() > drawn.edge) {
         for (const Triangle& q : quarters(p))
-            most = std::max(most, pieceMotion2(q, depth + 1, drawn, visits));
+            takeMax(most, pieceMotion2(q, depth + 1, drawn, visits));
         return most;
     }
-    drawn.grid.forEachMeeting(boxOf(p, drawn.reach), visits, [&](uint32_t t) {
-        most = std::max(most, cornerMotion2(p, drawn.triangles[t]));
-    });
+    drawn.grid.forEachMeeting(boxOf(p, drawn.reach), visits,
+                              [&](uint32_t t) { takeCornerMotion2(p, drawn.triangles[t], most); });
     return most;
 }
 
 } // namespace
 
-double relativeMotion(const MovingMesh& render, const MovingMesh& collision, double reach) {
-    if (render.topology.indices.size() < 3 || collision.topology.indices.size() < 3) return 0.0;
-    if (!finite(render) || !finite(collision) || !std::isfinite(reach))
-        return std::numeric_limits<double>::infinity();
+Motions relativeMotion(const MovingMesh& render, const MovingMesh& collision, double reach) {
+    if (render.topology.indices.size() < 3 || collision.topology.indices.size() < 3) return {};
+    if (!finite(render) || !finite(collision) || !std::isfinite(reach)) {
+        Motions infinite;
+        infinite.fill(std::numeric_limits<double>::infinity());
+        return infinite;
+    }
     const std::vector<Triangle> triangles = trianglesOf(render);
+    const std::vector<Triangle> pieces = trianglesOf(collision);
     double edge = 0.0;
     for (const Triangle& t : triangles)
         edge = std::max(edge, t.longestEdge());
     const TriangleGrid grid(triangles);
-    const Drawn drawn{triangles, grid, edge, reach};
-    const std::vector<Triangle> pieces = trianglesOf(collision);
+    const double rounding =
+        kRoundingShare * std::max(largestCoordinate(triangles), largestCoordinate(pieces));
+    const Drawn drawn{triangles, grid, edge, reach + rounding};
     const unsigned workers = std::max(1u, std::min(workerCount(), unsigned(pieces.size() / 64 + 1)));
     std::vector<TriangleGrid::Visits> visits(workers, grid.visits());
-    std::vector<double> most(workers, 0.0);
+    std::vector<Motions> most(workers, Motions{});
     parallelChunks(
         pieces.size(), 16, workers,
         [&](size_t begin, size_t end, unsigned w) {
             for (size_t i = begin; i < end; ++i)
-                most[w] = std::max(most[w], pieceMotion2(pieces[i], 0, drawn, visits[w]));
+                takeMax(most[w], pieceMotion2(pieces[i], 0, drawn, visits[w]));
         },
         [](double) { return true; });
-    return std::sqrt(*std::max_element(most.begin(), most.end()));
+    Motions out{};
+    for (const Motions& m : most)
+        takeMax(out, m);
+    for (double& m : out)
+        m = std::sqrt(m);
+    return out;
 }
 
 } // namespace spatter::detail

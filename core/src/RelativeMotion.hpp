@@ -14,21 +14,29 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <vector>
 
 namespace spatter::detail {
 
-// Both meshes at one pose and their vertices' displacements to the other end of the interval.
+// The displacements measured at a pose: to the sample before it and to the one after it.
+constexpr int kIntervals = 2;
+using Motions = std::array<double, kIntervals>;
+
+// A mesh at one pose and its vertices' displacements from there over the interval before the pose
+// and the one after it (null where the pose has no such neighbour: no motion).
 struct MovingMesh {
     const Mesh& topology; // indices; positions are not read
     const std::vector<glm::dvec3>& positions;
-    const std::vector<glm::dvec3>& displacement;
+    std::array<const std::vector<glm::dvec3>*, kIntervals> displacements;
 };
 
-// The largest |displacement(i) - displacement(k)| over corners i of a piece of a collision triangle and
-// k of a render triangle whose bounding boxes lie within `reach` of each other at this pose (a
-// superset of the pairs within `reach`), on all cores. 0 when either mesh has no triangle; infinity
-// when a position, a displacement or `reach` is not finite.
-double relativeMotion(const MovingMesh& render, const MovingMesh& collision, double reach);
+// For each interval, the largest |displacement(i) - displacement(k)| over corners i of a piece of a
+// collision triangle and k of a render triangle whose bounding boxes lie within `reach` of each other
+// at this pose (a superset of the pairs within `reach`, with room for the rounding of the float
+// meshes `reach` was certified on), on all cores. The pairs are found once for both intervals. 0
+// when either mesh has no triangle; infinity when a position, a displacement or `reach` is not
+// finite.
+Motions relativeMotion(const MovingMesh& render, const MovingMesh& collision, double reach);
 
 } // namespace spatter::detail
