@@ -11,6 +11,7 @@
 #include "spatter/placement/DecalPersistence.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/placement/RayParser.hpp"
+#include "spatter/placement/ScenePosing.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
@@ -146,32 +147,6 @@ int usageError(const std::string& message) {
 
 bool deforms(const spatter::SceneObject& o) {
     return o.dynamic && (o.skin >= 0 || !o.morphTargets.empty());
-}
-
-// Poses the animated receivers of `system` at time t of the scene's first animation (deforming ones
-// with setPose, the others with setTransform), in the world moved by `offset`.
-void poseScene(spatter::DecalSystem& system, const spatter::Scene& scene, double t,
-               const glm::dvec3& offset) {
-    spatter::SceneEvaluator evaluator(scene);
-    evaluator.evaluate(0, t);
-    const glm::dmat4 move = glm::translate(glm::dmat4(1.0), offset);
-    for (uint32_t i = 0; i < scene.objects.size(); ++i) {
-        const spatter::SceneObject& o = scene.objects[i];
-        if (o.node < 0 || !o.dynamic || !system.world().object(i)->inWorld) continue;
-        const glm::dmat4 transform = move * evaluator.objectTransform(i);
-        if (!deforms(o)) {
-            system.setTransform(i, transform);
-            continue;
-        }
-        std::vector<glm::dmat4> joints;
-        if (o.skin >= 0)
-            for (const glm::dmat4& j : evaluator.jointMatrices(size_t(o.skin)))
-                joints.push_back(move * j);
-        if (spatter::Result<spatter::TransformUpdate> r =
-                system.setPose(i, transform, joints, evaluator.morphWeights(i));
-            !r)
-            std::cerr << "spatter-place: warning: " << r.error() << "\n";
-    }
 }
 
 // The render triangle a decal on a deforming object lies on at time t, and its barycentric
@@ -370,7 +345,9 @@ int main(int argc, char** argv) {
             std::cerr
                 << "spatter-place: warning: --time: the scene has no animation; traced in its rest pose\n";
         else
-            poseScene(system.value(), scene.value(), *time, translate);
+            for (const std::string& refused :
+                 spatter::poseDecalSystem(system.value(), scene.value(), {*time, translate}))
+                std::cerr << "spatter-place: warning: " << refused << "\n";
     }
     std::optional<Anchors> anchors;
     if (time && !scene->animation.animations.empty()) anchors.emplace(scene.value(), *time);

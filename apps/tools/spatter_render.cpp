@@ -77,11 +77,12 @@ View:
                   before rendering; before the first key a channel holds its first value, after
                   the last its last. A scene without animations is drawn in its rest pose (skins
                   and morph weights as the file sets them) with a warning. Decals, rays and camera
-                  are given in the posed world; rays are traced against the objects' rest meshes at
-                  their posed transforms. A --decals record that spatter-place --time placed on a
-                  skinned or morphed object at another time ("time" and "anchor") is moved to this
-                  pose with the render triangle it lies on; other decals on such objects follow the
-                  object's transform only, not the deformation.
+                  are given in the posed world; rays meet the scene as it is drawn (skinned and
+                  morphed objects deformed, and their decals placed on the drawn skin). A --decals
+                  record that spatter-place --time placed on a skinned or morphed object at another
+                  time ("time" and "anchor") is moved to this pose with the render triangle it lies
+                  on; other decals on such objects follow the object's transform only, not the
+                  deformation.
 Output:
   --out FILE.png  the image (default render.png)
   --stats FILE    frame stats as JSON: decals drawn, culled, invalid, per-pass GPU milliseconds,
@@ -288,11 +289,12 @@ int main(int argc, char** argv) {
     type.volumetric = volumetric;
 
     spatter::Result<spatter::LoadedDecals> loaded = spatter::LoadedDecals{};
+    const std::optional<spatter::DrawPose> drawn =
+        time ? std::optional<spatter::DrawPose>({*time, translate}) : std::nullopt;
     if (!decalsPath.empty())
-        loaded = spatter::loadPlacedRecords(decalsPath, scene.value(), type, look.value(),
-                                            time ? std::optional<spatter::DrawPose>({*time, translate})
-                                                 : std::nullopt);
-    if (!raysPath.empty()) loaded = spatter::placeRays(raysPath, scene.value(), type, look.value(), seed);
+        loaded = spatter::loadPlacedRecords(decalsPath, scene.value(), type, look.value(), drawn);
+    if (!raysPath.empty())
+        loaded = spatter::placeRays(raysPath, scene.value(), type, look.value(), seed, drawn);
     if (!loaded) return failure(loaded.error());
     for (const std::string& warning : loaded->warnings)
         std::cerr << "spatter-render: warning: " << warning << "\n";

@@ -33,11 +33,14 @@ std::vector<glm::dvec3> displacement(const std::vector<glm::dvec3>& from, const 
 detail::Motions motionsAt(const Mesh& render, const Mesh& collision, const Sample* before, const Sample& at,
                           const Sample* after) {
     std::vector<glm::dvec3> dr[2], dc[2];
-    if (before)
-        dr[0] = displacement(before->render, at.render),
+    if (before) {
+        dr[0] = displacement(before->render, at.render);
         dc[0] = displacement(before->collision, at.collision);
-    if (after)
-        dr[1] = displacement(at.render, after->render), dc[1] = displacement(at.collision, after->collision);
+    }
+    if (after) {
+        dr[1] = displacement(at.render, after->render);
+        dc[1] = displacement(at.collision, after->collision);
+    }
     return detail::relativeMotion(
         {render, at.render, {before ? &dr[0] : nullptr, after ? &dr[1] : nullptr}},
         {collision, at.collision, {before ? &dc[0] : nullptr, after ? &dc[1] : nullptr}}, at.bound);

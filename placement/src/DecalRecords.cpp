@@ -5,6 +5,7 @@
 #include "spatter/placement/DecalLooks.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/placement/RayParser.hpp"
+#include "spatter/placement/ScenePosing.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -257,7 +258,7 @@ Result<LoadedDecals> loadPlacedRecords(const std::string& path, const Scene& sce
 }
 
 Result<LoadedDecals> placeRays(const std::string& path, const Scene& scene, const DecalType& type, int look,
-                               uint64_t seed) {
+                               uint64_t seed, const std::optional<DrawPose>& drawn) {
     Result<std::pair<std::vector<Ray>, size_t>> rays = readRays(path);
     if (!rays) return fail(rays.error());
     DecalSettings settings;
@@ -271,6 +272,9 @@ Result<LoadedDecals> placeRays(const std::string& path, const Scene& scene, cons
     if (!index) return fail(index.error());
     LoadedDecals out;
     out.warnings = sys->world().warnings();
+    if (drawn)
+        for (std::string& refused : poseDecalSystem(sys.value(), scene, drawn.value()))
+            out.warnings.push_back(std::move(refused));
     out.records = rays->second;
     std::vector<SpawnResult> results;
     sys->spawnBatch(rays->first, index.value(), results);

@@ -4,6 +4,8 @@
 
 #include "TestData.hpp"
 
+#include "spatter/core/SceneEvaluator.hpp"
+#include "spatter/core/SkinnedArm.hpp"
 #include "spatter/placement/DecalLooks.hpp"
 #include "spatter/placement/DecalRecords.hpp"
 
@@ -11,12 +13,35 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
+#include <optional>
 #include <sstream>
 
 using namespace spatter;
 using ::testing::HasSubstr;
 
 namespace {
+
+// The triangle of `indices` over `positions` that the ray from `origin` along `dir` meets first, by
+// brute force (Moller-Trumbore in double); ~0 for none.
+size_t firstHit(const std::vector<glm::dvec3>& positions, const std::vector<uint32_t>& indices,
+                const glm::dvec3& origin, const glm::dvec3& dir) {
+    size_t best = ~size_t(0);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (size_t t = 0; 3 * t + 2 < indices.size(); ++t) {
+        const glm::dvec3 a = positions[indices[3 * t]], e1 = positions[indices[3 * t + 1]] - a,
+                         e2 = positions[indices[3 * t + 2]] - a;
+        const glm::dvec3 p = glm::cross(dir, e2);
+        const double det = glm::dot(e1, p);
+        if (std::abs(det) < 1e-15) continue;
+        const glm::dvec3 s = origin - a;
+        const double u = glm::dot(s, p) / det;
+        const glm::dvec3 q = glm::cross(s, e1);
+        const double v = glm::dot(dir, q) / det, dist = glm::dot(e2, q) / det;
+        if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && dist > 0.0 && dist < nearest) nearest = dist, best = t;
+    }
+    return best;
+}
 
 std::string json3(const glm::dvec3& v) {
     std::ostringstream s;
@@ -164,6 +189,55 @@ TEST(DecalRecords, RayFilesArePlacedThroughTheDecalSystem) {
     EXPECT_EQ(again->decals[1].id, loaded->decals[1].id);
     type.size = {-1.0f, 0.2f};
     EXPECT_FALSE(placeRays(path, scene, type, 0, 7).ok());
+}
+
+// With a pose, rays meet a skinned object as it is drawn then: a shot at the bent forearm of
+// builtin:skinned-arm places its decal on the posed skin, where at rest there is no forearm.
+TEST(DecalRecords, RayFilesMeetASkinnedObjectAsItIsDrawnAtThePose) {
+    Scene scene = makeSkinnedArm();
+    const double t = 1.0; // the elbow bent most
+    SceneEvaluator evaluator(scene);
+    evaluator.evaluate(0, t);
+    scene.objects[0].transform = evaluator.objectTransform(0); // as spatter-render draws it
+    const Mesh& rest = scene.objects[0].mesh;
+    std::vector<glm::dvec3> posed = posedPositions(scene, 0, evaluator);
+    for (glm::dvec3& p : posed)
+        p = glm::dvec3(scene.objects[0].transform * glm::dvec4(p, 1.0));
+    // The forearm triangle a shot along its normal meets first, near the hand.
+    std::optional<std::pair<glm::dvec3, glm::dvec3>> aim; // the point and the shot's origin
+    for (size_t k = 0; k + 2 < rest.indices.size() && !aim; k += 3) {
+        const uint32_t* c = &rest.indices[k];
+        if (rest.positions[c[0]].y < 0.85f) continue;
+        const glm::dvec3 centre = (posed[c[0]] + posed[c[1]] + posed[c[2]]) / 3.0;
+        const glm::dvec3 n = glm::normalize(glm::cross(posed[c[1]] - posed[c[0]], posed[c[2]] - posed[c[0]]));
+        const glm::dvec3 origin = centre + 0.3 * n;
+        if (firstHit(posed, rest.indices, origin, -n) == k / 3) aim.emplace(centre, origin);
+    }
+    ASSERT_TRUE(aim);
+    const glm::dvec3 d = aim->first - aim->second;
+    std::ostringstream ray;
+    ray.precision(17);
+    ray << aim->second.x << " " << aim->second.y << " " << aim->second.z << " " << d.x << " " << d.y << " "
+        << d.z << "\n";
+    const std::string path = writeFile("forearm.txt", ray.str());
+    DecalType type;
+    type.name = "t";
+    type.size = {0.05f, 0.05f};
+
+    Result<LoadedDecals> drawn = placeRays(path, scene, type, 0, 7, DrawPose{t, glm::dvec3(0.0)});
+    ASSERT_TRUE(drawn.ok()) << drawn.error();
+    ASSERT_EQ(drawn->placed, 1u);
+    const glm::dvec3 centre =
+        glm::dvec3(scene.objects[0].transform * glm::dvec4(glm::dvec3(drawn->decals[0].center), 1.0));
+    EXPECT_LT(glm::length(centre - aim->first), 1e-4);
+
+    Result<LoadedDecals> atRest = placeRays(path, scene, type, 0, 7);
+    ASSERT_TRUE(atRest.ok()) << atRest.error();
+    for (const Decal& decal : atRest->decals) {
+        const glm::dvec3 c =
+            glm::dvec3(scene.objects[0].transform * glm::dvec4(glm::dvec3(decal.center), 1.0));
+        EXPECT_GT(glm::length(c - aim->first), 0.05) << "the rest mesh has no forearm there";
+    }
 }
 
 // Volumetric rays give each crater the clip planes the decal system found for it: a crater at the

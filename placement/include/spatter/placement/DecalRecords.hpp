@@ -83,9 +83,12 @@ Result<LoadedDecals> loadPlacedRecords(const std::string& path, const Scene& sce
 // order through a DecalSystem on the scene's render meshes with `type`, `seed` and no area limits or
 // budget. Lines that do not parse and rays the system rejects place nothing. Every decal gets
 // `type` with the look lookOf(look, k) (types holds the four looks, indexed by DecalTexture); the
-// object IDs are the system's. Fails on an unreadable file, a scene the collision world cannot take,
-// or a `type` the system refuses.
+// object IDs are the system's. With `drawn`, the rays meet the scene as it stands then: skinned and
+// morphed objects deformed as the scene's first animation has them at drawn->time, in the world moved
+// by drawn->offset (poseDecalSystem; the objects' transforms in `scene` are those of that pose), and
+// an object the system cannot pose is left as it was with a warning. Fails on an unreadable file, a
+// scene the collision world cannot take, or a `type` the system refuses.
 Result<LoadedDecals> placeRays(const std::string& path, const Scene& scene, const DecalType& type, int look,
-                               uint64_t seed);
+                               uint64_t seed, const std::optional<DrawPose>& drawn = std::nullopt);
 
 } // namespace spatter
