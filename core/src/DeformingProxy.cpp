@@ -14,7 +14,7 @@ namespace spatter {
 namespace {
 
 // Poses sampled per animation for buildObjectProxy: on the gallery's dummy, 32 give a bound over the
-// poses of 0.035 (64: 0.022 in twice the time, 16: 0.058 in half), in 0.7 s on two cores
+// poses of 0.035 (64: 0.022 in twice the time, 16: 0.058 in half), in 0.4 to 0.7 s on two cores
 // (boundOverPoses certifies each sample).
 constexpr int kObjectPoseSamples = 32;
 
