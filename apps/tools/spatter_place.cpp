@@ -13,7 +13,6 @@
 #include "spatter/placement/RayParser.hpp"
 #include "spatter/placement/ScenePosing.hpp"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -143,10 +142,6 @@ std::vector<std::string> split(const std::string& s, char sep) {
 int usageError(const std::string& message) {
     std::cerr << "spatter-place: " << message << "\n(see spatter-place --help)\n";
     return 2;
-}
-
-bool deforms(const spatter::SceneObject& o) {
-    return o.dynamic && (o.skin >= 0 || !o.morphTargets.empty());
 }
 
 // The render triangle a decal on a deforming object lies on at time t, and its barycentric
@@ -421,7 +416,7 @@ int main(int argc, char** argv) {
                 rec["projection"] = vec3(w.projection);
                 rec["max_angle_deg"] = shortFloat(maxAngle);
                 rec["proxy_error_bound"] = system->world().worldErrorBound(d.object);
-                if (anchors && deforms(scene->objects[d.object])) {
+                if (anchors && system->world().deforms(d.object)) {
                     rec["time"] = *time;
                     rec["anchor"] = anchors->of(d);
                 }

@@ -8,8 +8,14 @@ namespace spatter {
 
 namespace {
 
-bool deforms(const SceneObject& o) {
-    return o.skin >= 0 || !o.morphTargets.empty();
+// The joint matrices of object `o`'s skin at the evaluator's pose, moved by `move` (none unskinned).
+std::vector<glm::dmat4> movedJoints(const SceneEvaluator& evaluator, const SceneObject& o,
+                                    const glm::dmat4& move) {
+    std::vector<glm::dmat4> joints;
+    if (o.skin >= 0)
+        for (const glm::dmat4& j : evaluator.jointMatrices(size_t(o.skin)))
+            joints.push_back(move * j);
+    return joints;
 }
 
 } // namespace
@@ -25,16 +31,10 @@ std::vector<std::string> poseDecalSystem(DecalSystem& system, const Scene& scene
         const CollisionObject* c = system.world().object(i);
         if (o.node < 0 || !o.dynamic || !c || !c->inWorld) continue;
         const glm::dmat4 transform = move * evaluator.objectTransform(i);
-        Result<TransformUpdate> r = TransformUpdate{};
-        if (!deforms(o)) {
-            r = system.setTransform(i, transform);
-        } else {
-            std::vector<glm::dmat4> joints;
-            if (o.skin >= 0)
-                for (const glm::dmat4& j : evaluator.jointMatrices(size_t(o.skin)))
-                    joints.push_back(move * j);
-            r = system.setPose(i, transform, joints, evaluator.morphWeights(i));
-        }
+        const Result<TransformUpdate> r =
+            system.world().deforms(i)
+                ? system.setPose(i, transform, movedJoints(evaluator, o, move), evaluator.morphWeights(i))
+                : system.setTransform(i, transform);
         if (!r) refused.push_back(r.error());
     }
     return refused;
