@@ -2,6 +2,7 @@
 
 #include "BenchSupport.hpp"
 #include "CoverageProbe.hpp"
+#include "DrawnSurface.hpp"
 #include "IouBreakdown.hpp"
 #include "ThreejsPeer.hpp"
 
@@ -31,7 +32,7 @@ const char* kTradeoffUsage =
     R"(usage: spatter-bench tradeoff MESH|SCENE [--subdivide N] [--backends LIST] [--tolerances LIST]
                               [--rays N] [--batch-size N] [--passes N] [--cap-seconds S]
                               [--openmesh-max-triangles N] [--coverage-decals N] [--size WxH]
-                              [--camera SPEC] [--no-render] [--no-peer] [--peer-seconds S]
+                              [--probe-size WxH] [--camera SPEC] [--no-render] [--no-peer] [--peer-seconds S]
                               [--seed N] [--quick] [--json FILE]
 
 Run time against error. The receivers of MESH|SCENE (anything loadScene reads, or a file in the
@@ -51,6 +52,9 @@ then one proxy per backend and tolerance. Columns:
             decals placed on the render mesh, same rays from the camera (needs an OpenGL context),
             projected along the shot (the default)
   IoU-n     the same, both projected along the normal
+  IoU-p     IoU along the shot with each proxy-placed decal laid again on the drawn surface where a
+            frame from the camera finds its axis line meets it in the depth buffer
+            (Renderer::findSurface, DecalSystem::layOnDrawnSurface), at --probe-size
   (--iou-breakdown: IoU again with fields of each proxy-placed decal taken from the decal the same
   shot places on the render mesh: its centre, its frame, frame and slant, all three, all three and
   the half-depth; centre and half-depth alone (what a decal pass that found the drawn surface along
@@ -77,6 +81,8 @@ and rays) is run when node and npm are available and reported beside the rows.
 --openmesh-max-triangles N  skip OpenMesh above N render triangles (default: no limit)
 --coverage-decals N decals shot from the camera for the IoU (default 300)
 --size WxH         coverage image size (default 640x480)
+--probe-size WxH   size of the frame whose depth IoU-p's decals are laid on (default 1440x1080: the
+                   coverage camera at 1080 rows)
 --camera SPEC      "eye=x,y,z;target=x,y,z[;up=..;fov=..]" (default: outside the bounds, looking in)
 --no-render        no OpenGL context: IoU not measured
 --iou-breakdown    where the IoU along the shot is lost (above; a table after the rows)
@@ -84,7 +90,8 @@ and rays) is run when node and npm are available and reported beside the rows.
 --quick            2000 rays, one pass, tolerances 0.5,2, 60 coverage decals, peer capped at 5 s
 --json FILE        {"rows": [{"backend", "tolerance_rel", "proxy_triangles", "build_s", "placement_ns",
                    "batch_ns", "dist_p50_rel", "dist_p99_rel", "dist_max_rel", "normal_deg_p99",
-                   "disagree_rate", "coverage_iou", "coverage_iou_normal", "iou_breakdown": {"centre",
+                   "disagree_rate", "coverage_iou", "coverage_iou_normal", "coverage_iou_probed",
+                   "iou_breakdown": {"centre",
                    "frame", "frame_slant", "centre_frame_slant", "all", "centre_depth",
                    "all_placed_by_both", "drawn_probe", "drawn_probe_seen",
                    "drawn_probe_depth_normal", "nearest_face_frame"}, ...}], "peers": [...], ...}
@@ -101,7 +108,8 @@ struct TradeoffRow {
     double placementNs = std::nan(""), batchNs = std::nan("");
     double distP50 = std::nan(""), distP99 = std::nan(""), distMax = std::nan("");
     double offsetP99 = std::nan(""), normalP99 = std::nan(""), disagree = std::nan("");
-    double iou = std::nan(""), iouNormal = std::nan(""), errorBoundRel = std::nan("");
+    double iou = std::nan(""), iouNormal = std::nan(""), iouProbed = std::nan(""),
+           errorBoundRel = std::nan("");
     std::optional<IouBreakdown> breakdown; // --iou-breakdown
     bool toleranceMet = true;
     uint32_t attempts = 0;
@@ -141,15 +149,22 @@ struct ShotCoverage {
     }
 
     // The coverage mask of the decals the shots place through `proxies` (empty: the render mesh),
-    // projected along `projection`.
+    // projected along `projection`; with `probeSize`, laid again on the drawn surface as the camera's
+    // depth at that size finds it (DrawnSurface.hpp).
     Result<std::vector<uint8_t>> mask(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
-                                      double diagonal, uint64_t seed, Projection projection) {
+                                      double diagonal, uint64_t seed, Projection projection,
+                                      std::optional<glm::ivec2> probeSize = std::nullopt) {
         DecalType t = probe.type();
         t.projection = projection;
         Result<DecalSystem> sys = coverageSystem(CollisionWorld::build(scene, proxies), t, diagonal, seed);
         if (!sys) return fail(sys.error());
         std::vector<SpawnResult> results;
         sys->spawnBatch(shots, 0, results);
+        if (probeSize)
+            if (Result<size_t> laid =
+                    layOnDrawnSurface(sys.value(), results, probe.renderer(), camera, *probeSize);
+                !laid)
+                return fail(laid.error());
         return probe.mask(camera, sys->decals());
     }
 
@@ -269,6 +284,7 @@ Json tradeoffRowJson(const TradeoffRow& r) {
     j["disagree_rate"] = number(r.disagree);
     j["coverage_iou"] = number(r.iou);
     j["coverage_iou_normal"] = number(r.iouNormal);
+    j["coverage_iou_probed"] = number(r.iouProbed);
     if (r.breakdown) {
         j["iou_breakdown"] = Json::object();
         for (const IouVariant& v : *r.breakdown)
@@ -309,6 +325,7 @@ std::vector<std::string> tableRow(const TradeoffRow& r) {
             pct(r.disagree),
             std::isnan(r.iou) ? "-" : fixed(r.iou, 4),
             std::isnan(r.iouNormal) ? "-" : fixed(r.iouNormal, 4),
+            std::isnan(r.iouProbed) ? "-" : fixed(r.iouProbed, 4),
             done ? h : r.status};
 }
 
@@ -319,8 +336,8 @@ int runTradeoffCommand(int argc, char** argv) {
     const std::optional<Args> parsed =
         commandArgs(argc, argv, kTradeoffCommand, kTradeoffUsage,
                     {"--subdivide", "--backends", "--tolerances", "--rays", "--batch-size", "--passes",
-                     "--cap-seconds", "--openmesh-max-triangles", "--coverage-decals", "--size", "--camera",
-                     "--peer-seconds", "--seed", "--json"},
+                     "--cap-seconds", "--openmesh-max-triangles", "--coverage-decals", "--size",
+                     "--probe-size", "--camera", "--peer-seconds", "--seed", "--json"},
                     {"--no-render", "--no-peer", "--quick", "--iou-breakdown"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
@@ -375,6 +392,10 @@ int runTradeoffCommand(int argc, char** argv) {
     int width = 640, height = 480;
     if (args.has("--size") && std::sscanf(args.value("--size").c_str(), "%dx%d", &width, &height) != 2)
         errors.push_back("--size must be WxH");
+    glm::ivec2 probeSize(1440, 1080);
+    if (args.has("--probe-size") &&
+        std::sscanf(args.value("--probe-size").c_str(), "%dx%d", &probeSize.x, &probeSize.y) != 2)
+        errors.push_back("--probe-size must be WxH");
     if (!errors.empty()) return usageError(kTradeoffCommand, errors.front());
     if (subdivide > 4)
         return usageError(kTradeoffCommand, "--subdivide at most 4 (each step makes 4 times the triangles)");
@@ -382,6 +403,8 @@ int runTradeoffCommand(int argc, char** argv) {
         return usageError(kTradeoffCommand, "counts must be positive");
     if (width < 16 || height < 16 || width > 8192 || height > 8192)
         return usageError(kTradeoffCommand, "--size must be between 16x16 and 8192x8192");
+    if (probeSize.x < 16 || probeSize.y < 16 || probeSize.x > 8192 || probeSize.y > 8192)
+        return usageError(kTradeoffCommand, "--probe-size must be between 16x16 and 8192x8192");
     for (double t : tolerances)
         if (!(t > 0.0 && t < 100.0))
             return usageError(kTradeoffCommand, "--tolerances must lie in (0, 100)%");
@@ -488,7 +511,7 @@ int runTradeoffCommand(int argc, char** argv) {
         }
         measureErrors(renderHits, renderHits, rays, renderQuery.value(), diagonal, r);
         r.errorBoundRel = 0.0;
-        if (probe) r.iou = r.iouNormal = 1.0;
+        if (probe) r.iou = r.iouNormal = r.iouProbed = 1.0;
         rows.push_back(r);
         progress(r);
     }
@@ -548,8 +571,11 @@ int runTradeoffCommand(int argc, char** argv) {
                                 probe->mask(scene, proxies, diagonal, seed, Projection::Shot);
                             Result<std::vector<uint8_t>> n =
                                 probe->mask(scene, proxies, diagonal, seed, Projection::Normal);
+                            Result<std::vector<uint8_t>> p =
+                                probe->mask(scene, proxies, diagonal, seed, Projection::Shot, probeSize);
                             if (m) r.iou = iou(referenceMask, m.value());
                             if (n) r.iouNormal = iou(referenceNormalMask, n.value());
+                            if (p) r.iouProbed = iou(referenceMask, p.value());
                             if (args.has("--iou-breakdown")) {
                                 Result<IouBreakdown> b =
                                     probe->breakdown(scene, proxies, diagonal, seed, referenceMask);
@@ -601,11 +627,11 @@ int runTradeoffCommand(int argc, char** argv) {
         };
         table.push_back({"three.js", "0", std::to_string(input.mesh.triangleCount()), "0", "-",
                          fixed(get("bvh_build_s"), 3), fixed(get("per_decal_ns"), 0), "-", "0", "0", "0", "0",
-                         "0", "0", "-", "-", "0"});
+                         "0", "0", "-", "-", "-", "0"});
     }
     std::printf("\n");
     printTable({"backend", "tol%", "tris", "build s", "reload s", "bvh s", "spawn ns", "batch ns", "d50%",
-                "d99%", "dmax%", "off99%", "n99 deg", "disagree%", "IoU", "IoU-n", "h%"},
+                "d99%", "dmax%", "off99%", "n99 deg", "disagree%", "IoU", "IoU-n", "IoU-p", "h%"},
                table);
     printBreakdowns(rows);
 

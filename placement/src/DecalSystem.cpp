@@ -8,6 +8,7 @@
 #include "DecalSystemState.hpp"
 #include "DenseIndexSet.hpp"
 #include "SkinAnchors.hpp"
+#include "spatter/core/DecalRefit.hpp"
 #include "spatter/core/Random.hpp"
 #include "spatter/placement/ObjectIds.hpp"
 
@@ -738,6 +739,83 @@ std::optional<WorldDecal> DecalSystem::worldBox(DecalHandle handle) const {
 
 WorldDecal DecalSystem::worldBox(const Decal& decal) const {
     return impl_->toWorld(decal);
+}
+
+std::optional<DecalAxisLine> DecalSystem::axisLine(DecalHandle handle) const {
+    const Decal* d = get(handle);
+    if (!d) return std::nullopt;
+    const CollisionObject* o = impl_->world.object(d->object);
+    if (!o) return std::nullopt;
+    const glm::dmat3 inv = glm::inverse(glm::dmat3(o->transform));
+    if (!(finite3(inv[0]) && finite3(inv[1]) && finite3(inv[2]))) return std::nullopt; // singular
+    const glm::dvec3 center(d->center), reach(d->boxToObject()[2]);
+    DecalAxisLine line;
+    line.from = glm::dvec3(o->transform * glm::dvec4(center + reach, 1.0));
+    line.to = glm::dvec3(o->transform * glm::dvec4(center - reach, 1.0));
+    return line;
+}
+
+Status DecalSystem::layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point, const glm::dvec3& normal) {
+    Impl& s = *impl_;
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    const Decal* found = get(handle);
+    if (!found) return fail("layOnDrawnSurface: stale or invalid handle");
+    const Decal& d = *found;
+    const DecalType& t = s.types[d.type];
+    const CollisionObject& o = s.object(d.object);
+    if (t.volumetric)
+        return fail("layOnDrawnSurface: a decal of volumetric type '" + t.name +
+                    "' keeps the proxy's hit, where its crater is clipped");
+    if (s.world.deforms(d.object))
+        return fail("layOnDrawnSurface: object '" + o.name +
+                    "' is skinned or morphed: its decals lie on the drawn surface already");
+    if (!finite3(point)) return fail("layOnDrawnSurface: point is not finite");
+    if (!finite3(normal)) return fail("layOnDrawnSurface: normal is not finite");
+    const double len2 = glm::dot(normal, normal);
+    if (!(len2 >= std::numeric_limits<double>::min()) || !std::isfinite(len2))
+        return fail("layOnDrawnSurface: normal is zero or cannot be normalised");
+    const glm::dmat3 m(o.transform);
+    const glm::dmat3 inv = glm::inverse(m);
+    if (!(finite3(inv[0]) && finite3(inv[1]) && finite3(inv[2])))
+        return fail("layOnDrawnSurface: the transform of object '" + o.name + "' is singular");
+
+    // To object space (normals by the transpose of the linear part), then the point to box units.
+    const glm::dvec3 local = inv * (point - glm::dvec3(o.transform[3]));
+    const glm::dvec3 localNormal = glm::transpose(m) * (normal / std::sqrt(len2));
+    const glm::dvec3 inBox(glm::inverse(glm::dmat4(d.boxToObject())) * glm::dvec4(local, 1.0));
+    constexpr double kBoxTolerance = 1e-3; // of the box's half extents
+    const double outside = std::max({std::fabs(inBox.x), std::fabs(inBox.y), std::fabs(inBox.z)});
+    if (!(outside <= 1.0 + kBoxTolerance))
+        return fail("layOnDrawnSurface: the point lies outside the decal's box (at " + formatNumber(inBox.x) +
+                    ", " + formatNumber(inBox.y) + ", " + formatNumber(inBox.z) + " in box units)");
+    const double localLength = glm::length(localNormal);
+    if (!(localLength > 0.0) || !std::isfinite(localLength))
+        return fail("layOnDrawnSurface: the normal cannot be carried to the object's space");
+    std::optional<Decal> laid =
+        relaidDecal(d, m, glm::vec3(local), glm::vec3(localNormal / localLength), 0.0f);
+    if (!laid)
+        return fail("layOnDrawnSurface: the normal is 89 degrees or more from the decal's, or the decal "
+                    "cannot be laid on it");
+
+    // The half-depth of a decal on a surface with no error bound (place with h = 0), world units, then
+    // in the object's space along the laid decal's normal.
+    const Frame f = d.frame(), g = laid->frame();
+    const glm::dvec2 worldSize(double(d.size.x) * glm::length(m * glm::dvec3(f.tangent)),
+                               double(d.size.y) * glm::length(m * glm::dvec3(f.bitangent)));
+    const double extent = std::max(worldSize.x, worldSize.y);
+    const float halfDepth = std::max(t.halfDepth, float(double(s.settings.depthMargin) * extent));
+    laid->halfDepth = float(double(halfDepth) * glm::length(glm::transpose(inv) * glm::dvec3(g.normal)));
+    const bool worldSound = extent <= double(kMaxWorldExtent) && halfDepth <= kMaxWorldExtent;
+    if (!soundBox(*laid) || !worldSound)
+        return fail("layOnDrawnSurface: the box of the decal laid again on '" + o.name +
+                    "' is degenerate in the object's or the world's space (size " +
+                    formatNumber(laid->size.x) + " x " + formatNumber(laid->size.y) + ", half-depth " +
+                    formatNumber(laid->halfDepth) + ")");
+
+    const uint32_t dense = s.slots[handle.slot].dense;
+    s.decals[dense] = *laid;
+    s.logChange(dense, DecalChangeKind::Changed);
+    return {};
 }
 
 const std::vector<Decal>& DecalSystem::decals() const {

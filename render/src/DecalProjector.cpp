@@ -20,6 +20,7 @@
 #include "ProjectorVariants.hpp"
 #include "ShaderProgram.hpp"
 #include "StageTimers.hpp"
+#include "SurfaceProbe.hpp"
 
 #include "spatter/core/Scene.hpp"
 
@@ -177,6 +178,7 @@ struct DecalProjector::Impl {
     GpuCulling culling;
     DepthPyramid pyramid;
     ComputeResolve resolve;
+    SurfaceProbe surfaceProbe;
     bool computeOnAuto = false; // DeferredResolve::Auto resolves in compute: not a software rasteriser
     int boxesSinceLeftOut = 0;  // draws Auto drew as boxes since a binning left decals out
     int drawsWithoutCopy = 0;   // draws and bins in a row that took no copy of the host's normals
@@ -801,6 +803,21 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     m.drawDecals(frame, options, camera, onGpu, vis, passes, stats);
     m.endPass(onGpu, stats);
     return stats;
+}
+
+Result<uint64_t> DecalProjector::findSurface(const HostFrame& frame, const std::vector<SurfaceLine>& lines) {
+    Impl& m = *impl_;
+    HostFrame read = frame; // what the search reads: the DBuffer path's checks leave albedo out
+    read.albedoTexture = 0;
+    read.roughness = {};
+    if (const std::string p = hostFrameProblem(read, ProjectorDraw{ProjectorPath::DBuffer}); !p.empty())
+        return fail("projector: " + p);
+    GlStateGuard guard;
+    return m.surfaceProbe.find(read, lines, m.nearest.get());
+}
+
+std::optional<std::vector<SurfacePoint>> DecalProjector::surfaceFound(uint64_t request, bool wait) {
+    return impl_->surfaceProbe.take(request, wait);
 }
 
 ProjectorResources DecalProjector::resources() const {

@@ -187,6 +187,7 @@ struct Renderer::Impl {
     GpuTimers timers;
     uint64_t frame = 0;
     bool rendered = false;
+    Camera lastCamera;               // of the last render
     glm::dvec2 depthProjection{0.0}; // A, B of the last frame's projection: view z = -B / (depth + A)
 
     // Per-frame counters.
@@ -937,6 +938,7 @@ Result<FrameStats> Renderer::render(const Camera& camera, const RenderOptions& o
     stats.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     ++m.frame;
     m.rendered = true;
+    m.lastCamera = camera;
     return stats;
 }
 
@@ -957,6 +959,16 @@ Result<Image> Renderer::readback() const {
     for (int y = 0; y < h; ++y) // GL row 0 is the bottom
         std::copy_n(&pixels[size_t(h - 1 - y) * row], row, &image.rgba[size_t(y) * row]);
     return image;
+}
+
+Result<uint64_t> Renderer::findSurface(const std::vector<SurfaceLine>& lines) {
+    Impl& m = *impl_;
+    if (!m.rendered) return fail("renderer: nothing rendered yet");
+    return m.projector->findSurface(m.hostFrame(m.lastCamera), lines);
+}
+
+std::optional<std::vector<SurfacePoint>> Renderer::surfaceFound(uint64_t request, bool wait) {
+    return impl_->projector->surfaceFound(request, wait);
 }
 
 Result<std::vector<float>> Renderer::readbackDepth() const {

@@ -18,17 +18,18 @@
 // - Same settings (seed), same types and same calls give bit-identical decals.
 // - Decal::center and Decal::frame are in the space of the decal's object (static objects too), so
 //   decals follow their object when it moves and go with it when it is removed.
-// - Mutations (registerType, spawn*, update, remove, setTransform, setPose, removeObject, and
-//   loadDecals of DecalPersistence.hpp) may be called from any number of threads at once: they take
-//   the system's lock and run one at a time, each seeing the world as the previous one left it (a
-//   spawn traces against the objects where they are while it holds the lock). Const calls take no
-//   lock: they may run concurrently with each other, but not with a mutation (decals() and get()
-//   return references into state that mutations change).
+// - Mutations (registerType, spawn*, update, remove, layOnDrawnSurface, setTransform, setPose,
+//   removeObject, and loadDecals of DecalPersistence.hpp) may be called from any number of threads
+//   at once: they take the system's lock and run one at a time, each seeing the world as the
+//   previous one left it (a spawn traces against the objects where they are while it holds the
+//   lock). Const calls take no lock: they may run concurrently with each other, but not with a
+//   mutation (decals() and get() return references into state that mutations change).
 //   version() and changesSince() are const calls like decals(): no lock, never during a mutation.
 // - Every change of decals() is logged (changesSince): a placement as Added; a removal by remove, an
 //   eviction, the end of a lifetime or fade in update, or removeObject as Removed, with the move that
-//   fills the hole; an opacity that update() changes (bit for bit) as Changed. The version is the
-//   number of changes logged since create(); a call that changes no decal logs nothing.
+//   fills the hole; an opacity that update() changes (bit for bit), and a decal that setPose moves or
+//   layOnDrawnSurface lays again, as Changed. The version is the number of changes logged since
+//   create(); a call that changes no decal logs nothing.
 
 #include "spatter/core/CraterClip.hpp"
 #include "spatter/core/Decal.hpp"
@@ -119,6 +120,11 @@ struct WorldDecal {
                                 // along the shot (DecalProjection.hpp)
 };
 
+// A decal's projection axis through its box, world space, from the face its shot came through (axisLine).
+struct DecalAxisLine {
+    glm::dvec3 from{0.0}, to{0.0};
+};
+
 class DecalSystem {
 public:
     // Takes ownership of `world`. Fails on settings out of the ranges documented in DecalSettings, and
@@ -200,6 +206,28 @@ public:
     // frame the decal's object-space one.
     std::optional<WorldDecal> worldBox(DecalHandle handle) const;
     WorldDecal worldBox(const Decal& decal) const;
+    // The line along a decal's projection axis through its box, world space: `from` on the box face the
+    // shot came through (the axis's positive end, centre + reach), `to` on the opposite face. What a
+    // renderer searches for the drawn surface (DecalProjector::findSurface) before layOnDrawnSurface.
+    // Empty for a stale handle or a decal whose object's transform is singular.
+    std::optional<DecalAxisLine> axisLine(DecalHandle handle) const;
+    // Lays a decal placed through a collision proxy again on the surface that is drawn, where a renderer
+    // found it: `point`, where the decal's axis line (axisLine) meets the drawn surface, and `normal`,
+    // that surface's normal there (world space; need not be unit). The decal becomes the one its shot
+    // would have placed on the render mesh there (relaidDecal, DecalRefit.hpp): centre on `point`, frame
+    // built on `normal` as placement builds one (the shot as hint, turned about the normal by the
+    // decal's own random rotation), projection axis kept (a decal along its normal stays along the new
+    // one), its box as deep as on a surface with no error bound: max(type.halfDepth, depthMargin *
+    // max(size)) in world units, as spawn gives a decal on a render mesh. Its ID, type, size, spawn
+    // time, opacity, object and area cell are kept. Logged as Changed (changesSince). Fails, changing
+    // nothing (no state, no random number, no log entry), naming the problem: a stale or invalid
+    // handle; a point or normal that is not finite, a zero normal; a point outside the decal's box (more
+    // than 1e-3 of the box's half extents outside it, in box units); a normal relaidDecal refuses (89
+    // degrees or more from the decal's); a decal of a volumetric type (its crater is clipped by the
+    // proxy around it) or on a skinned or morphed object (those decals are laid on the drawn surface at
+    // spawn already and follow it: CollisionWorld::deforms); an object whose transform is singular; a
+    // box that would not be sound (the size and half-depth checks of spawn).
+    Status layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point, const glm::dvec3& normal);
 
     // The live decals, contiguous, for the renderer. Order is deterministic but changes on removals.
     const std::vector<Decal>& decals() const;

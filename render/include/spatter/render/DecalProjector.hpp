@@ -306,6 +306,22 @@ struct ProjectorStats {
     ProjectorStageTimes stages; // with ProjectorSettings::stageTimers (frame -1 without)
 };
 
+// A line along which DecalProjector::findSurface looks for the surface the host drew (world space),
+// from `from` on: for a decal placed through a collision proxy, its axis line through its box
+// (DecalSystem::axisLine), from the side its shot came from.
+struct SurfaceLine {
+    glm::dvec3 from{0.0}, to{0.0};
+    uint8_t objectId = 0; // with the frame's object ID texture: the surface must carry this decal ID
+};
+
+// Where a SurfaceLine first meets the drawn surface (world space), as the host's depth gives it.
+struct SurfacePoint {
+    bool found = false;     // false: the camera does not see the line meet a surface (off screen,
+                            // hidden, behind the camera, another object's ID, or no surface along it)
+    glm::dvec3 point{0.0};  // on the line
+    glm::dvec3 normal{0.0}; // unit, facing the camera: from the depth of the pixels around the point
+};
+
 // GL objects of the projector that a host may read: the decal texture arrays, and the instance data
 // for its own debug drawing (decal box outlines). Valid until the next setDecals, addDecalTexture* or
 // draw. Layouts: glsl/decal_data.glsl (DecalBounds at binding 9, DecalBody at binding 3,
@@ -418,6 +434,23 @@ public:
     // It changes exactly the shader storage bindings and texture units `bindings` names (and binds
     // sampler 0 to those units): the one call that leaves GL state changed, for the host's next draws.
     void bindForward(const ForwardBindings& bindings = {}) const;
+
+    // Looks for the drawn surface along each line in the host's depth (on the GPU; the frame's depth,
+    // camera and object ID texture are read, nothing is written): the first point from a line's start
+    // where it passes from in front of the surface the depth holds to behind it, seen by the camera,
+    // where the depth is continuous across it (a jump of more than 8 pixels' size plus 5% of the line's
+    // length is the edge of something in front), and the normal the pixels around that point give (each
+    // step to a neighbour taken on the side nearer in depth). Call it after the host's geometry pass,
+    // as draw(). For decals placed through a collision proxy: the lines of the decals just spawned,
+    // then DecalSystem::layOnDrawnSurface with each point found, which lays them on the drawn surface
+    // rather than the proxy's (ACCURACY.md). Returns the request's number for surfaceFound. Fails,
+    // queuing nothing, on a frame that does not fit (the depth, object ID texture and camera checks of
+    // draw()) or a line that is not finite.
+    Result<uint64_t> findSurface(const HostFrame& frame, const std::vector<SurfaceLine>& lines);
+    // The points of a findSurface request, in its lines' order, once the GPU has finished it (waiting
+    // for it with `wait`, which stalls); empty while it has not, and for a request taken already or
+    // never made. The 16 newest requests wait to be taken; an older one is dropped.
+    std::optional<std::vector<SurfacePoint>> surfaceFound(uint64_t request, bool wait = false);
 
     // The checks draw() makes on `frame` (and `options`), without drawing: empty when it fits.
     std::string frameProblem(const HostFrame& frame, const ProjectorDraw& options = {}) const;

@@ -235,6 +235,11 @@ public:
     // The view depth of every pixel of the last render (distance from the eye along the view
     // direction, world units; 0 for the background), row 0 at the top, width * height values.
     Result<std::vector<float>> readbackDepth() const;
+    // Looks for the drawn surface along `lines` in the last render's depth, from its camera
+    // (DecalProjector::findSurface: object IDs checked where the scene has dynamic objects); the points
+    // come from surfaceFound. Fails before the first render and on a line that is not finite.
+    Result<uint64_t> findSurface(const std::vector<SurfaceLine>& lines);
+    std::optional<std::vector<SurfacePoint>> surfaceFound(uint64_t request, bool wait = false);
     // Copies the output image into the current default framebuffer (a window) of the given size.
     void present(int framebufferWidth, int framebufferHeight) const;
 

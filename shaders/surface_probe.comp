@@ -1,0 +1,154 @@
+// The drawn surface along lines (SurfaceProbe, DecalProjector::findSurface): for each line, the first
+// point from its start where it passes from in front of the surface the host's depth holds to behind
+// it, where the camera sees it, and the normal the depth of the pixels around that point gives. Lines
+// and results are in view space: the frame block's view is the identity here, so the projector's
+// "camera-relative world" is view space.
+#include "projector.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(binding = 0) uniform sampler2D s_depth;
+layout(binding = 2) uniform usampler2D s_ids;
+layout(location = 0) uniform uint u_lines;
+layout(location = 1) uniform ivec4 u_rect;   // the host's viewport: x, y, width, height
+layout(location = 2) uniform int u_checkIds; // 1: the surface a line meets must carry its object ID
+layout(location = 3) uniform float u_pixel;  // a pixel's height at view distance 1
+
+layout(std430, binding = 5) readonly buffer SurfaceLines {
+    vec4 lines[]; // two a line: from (w: its object's decal ID), to
+};
+layout(std430, binding = 6) writeonly buffer SurfacePoints {
+    vec4 points[]; // two a line: the point (w: 1 when found), the unit normal facing the camera
+};
+
+const int kMaxSteps = 1024; // samples along a line, about one a pixel
+const int kRefine = 16;     // halvings of the step in which the line passes behind the surface
+// A line passes behind the surface there when the depth jumps by at most this many pixels' size, plus
+// kJumpOfLength of the line's length, across the crossing; more is an edge of something in front.
+const float kJumpPixels = 8.0, kJumpOfLength = 0.05;
+
+const float kFar = 3.0e38;
+const int kUnknown = 0, kFront = 1, kBehind = 2;
+
+// Where view-space point `p` falls on the host's window, in pixels; false behind the camera.
+bool windowOf(vec3 p, out vec2 w) {
+    vec4 c = u_viewProj * vec4(p, 1.0);
+    if (!(c.w > 0.0)) return false;
+    w = (c.xy / c.w * 0.5 + 0.5) / u_viewport.zw + u_viewport.xy;
+    return true;
+}
+
+bool onViewport(ivec2 pixel) {
+    return all(greaterThanEqual(pixel, u_rect.xy)) && all(lessThan(pixel, u_rect.xy + u_rect.zw));
+}
+
+// The host's surface at `pixel` (view space); false for the background and off the viewport.
+bool surfaceAt(ivec2 pixel, out vec3 s) {
+    if (!onViewport(pixel)) return false;
+    float depth = texelFetch(s_depth, pixel, 0).r;
+    if (isBackground(depth)) return false;
+    s = hostPosition(vec2(pixel) + 0.5, depth);
+    return true;
+}
+
+// Whether `p` lies in front of the surface the camera sees through it (or before the background),
+// behind it, or neither can be told (behind the camera, off the viewport). `gap`: how far in front of
+// or behind that surface it lies, along the view direction (infinite before the background).
+int sideOf(vec3 p, out ivec2 pixel, out float gap) {
+    vec2 w;
+    gap = 0.0;
+    if (!windowOf(p, w)) return kUnknown;
+    pixel = ivec2(floor(w));
+    if (!onViewport(pixel)) return kUnknown;
+    vec3 s;
+    if (!surfaceAt(pixel, s)) {
+        gap = kFar;
+        return kFront;
+    }
+    gap = abs(p.z - s.z);
+    return p.z > s.z ? kFront : kBehind;
+}
+
+// The step from the surface at `pixel` (`s`) to the one beside it along `axis`, taken on the side
+// where the surface runs on straightest (the smaller second difference over two pixels), so that a
+// crease or an edge of something in front or behind stays out of it where the other side has none.
+bool stepAlong(ivec2 pixel, ivec2 axis, vec3 s, out vec3 step) {
+    vec3 a1, a2, b1, b2;
+    bool ahead = surfaceAt(pixel + axis, a1), behind = surfaceAt(pixel - axis, b1);
+    float bendAhead = ahead && surfaceAt(pixel + 2 * axis, a2) ? length(a2 - 2.0 * a1 + s) : kFar;
+    float bendBehind = behind && surfaceAt(pixel - 2 * axis, b2) ? length(s - 2.0 * b1 + b2) : kFar;
+    if (bendAhead == bendBehind) { // neither runs on over two pixels: the side nearer in depth
+        bendAhead = ahead ? abs(a1.z - s.z) : kFar;
+        bendBehind = behind ? abs(b1.z - s.z) : kFar;
+    }
+    if (ahead && bendAhead <= bendBehind) step = a1 - s;
+    else if (behind) step = s - b1;
+    return ahead || behind;
+}
+
+// The unit normal of the surface at `pixel` from the depth around it, facing the camera.
+bool normalAt(ivec2 pixel, out vec3 n) {
+    vec3 s, dx, dy;
+    if (!surfaceAt(pixel, s) || !stepAlong(pixel, ivec2(1, 0), s, dx) || !stepAlong(pixel, ivec2(0, 1), s, dy))
+        return false;
+    n = cross(dx, dy);
+    if (!(dot(n, n) > 0.0)) return false;
+    n = normalize(n);
+    if (dot(n, s) > 0.0) n = -n;
+    return true;
+}
+
+// Narrows the step [lo, hi] of the line from `a` to `b` in which it passes from in front of the surface
+// to behind it, and whether the depth is continuous across the crossing found (not an edge).
+bool refine(vec3 a, vec3 b, inout float lo, inout float hi, out ivec2 pixel) {
+    float gapLo = 0.0, gapHi = 0.0;
+    ivec2 p;
+    sideOf(mix(a, b, lo), p, gapLo);
+    sideOf(mix(a, b, hi), pixel, gapHi);
+    for (int i = 0; i < kRefine; ++i) {
+        float mid = 0.5 * (lo + hi), gap;
+        int side = sideOf(mix(a, b, mid), p, gap);
+        if (side == kUnknown) return false;
+        if (side == kFront) {
+            lo = mid;
+            gapLo = gap;
+        } else {
+            hi = mid;
+            gapHi = gap;
+            pixel = p;
+        }
+    }
+    vec3 at = mix(a, b, hi);
+    float jump = kJumpPixels * u_pixel * max(-at.z, 0.0) + kJumpOfLength * length(b - a);
+    return gapLo <= jump && gapHi <= jump;
+}
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= u_lines) return;
+    vec3 a = lines[2u * i].xyz, b = lines[2u * i + 1u].xyz;
+    uint id = uint(lines[2u * i].w);
+    points[2u * i] = vec4(0.0);
+    points[2u * i + 1u] = vec4(0.0);
+    vec2 wa, wb;
+    int steps = kMaxSteps;
+    if (windowOf(a, wa) && windowOf(b, wb)) steps = clamp(int(ceil(length(wb - wa))) + 1, 2, kMaxSteps);
+    ivec2 pixel;
+    float gap;
+    int before = sideOf(a, pixel, gap);
+    for (int k = 1; k <= steps; ++k) {
+        float t = float(k) / float(steps);
+        int side = sideOf(mix(a, b, t), pixel, gap);
+        if (before == kFront && side == kBehind) {
+            float lo = float(k - 1) / float(steps), hi = t;
+            vec3 n;
+            if (refine(a, b, lo, hi, pixel) && (u_checkIds == 0 || texelFetch(s_ids, pixel, 0).r == id) &&
+                normalAt(pixel, n)) {
+                points[2u * i] = vec4(mix(a, b, 0.5 * (lo + hi)), 1.0);
+                points[2u * i + 1u] = vec4(n, 0.0);
+                return;
+            }
+        }
+        before = side;
+    }
+}

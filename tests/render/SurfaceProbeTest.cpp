@@ -1,0 +1,239 @@
+// The drawn surface found in the depth buffer (DecalProjector::findSurface through the renderer): where
+// a line meets it and its normal there, nothing where the camera does not see the meet, and decals shot
+// through a coarse proxy laid again there as the render mesh would have placed them.
+
+#include "RenderTestSupport.hpp"
+#include "ShotDecals.hpp"
+
+#include "spatter/core/MeshBuilder.hpp"
+#include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/core/Random.hpp"
+#include "spatter/placement/DecalSystem.hpp"
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+
+using namespace spatter;
+using namespace spatter::test;
+
+namespace {
+
+constexpr double kTiltDeg = 10.0;
+
+// A floor 4 x 4 with its top face at y = 0 before it is turned kTiltDeg about X, and a post standing
+// on it at (0.6, 0.2) seen in front of the floor from the camera below.
+Scene tiltedFloor() {
+    Scene s;
+    s.source = "test:tilted floor";
+    const glm::dmat4 tilt = glm::rotate(glm::dmat4(1.0), glm::radians(kTiltDeg), glm::dvec3(1.0, 0.0, 0.0));
+    s.objects.push_back(makeSceneObject("floor", makeBox(glm::vec3(2.0f, 0.05f, 2.0f), 4),
+                                        tilt * glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.05, 0.0))));
+    s.objects.push_back(makeSceneObject("post", makeBox(glm::vec3(0.05f, 0.3f, 0.05f), 1),
+                                        tilt * glm::translate(glm::dmat4(1.0), glm::dvec3(0.6, 0.3, 0.2))));
+    return s;
+}
+
+glm::dvec3 floorNormal() {
+    const double a = glm::radians(kTiltDeg);
+    return {0.0, std::cos(a), std::sin(a)};
+}
+
+// Where the vertical line through (x, z) meets the floor's top plane (through the origin).
+glm::dvec3 onFloor(double x, double z) {
+    const glm::dvec3 n = floorNormal();
+    return {x, -(n.z * z) / n.y, z};
+}
+
+SurfaceLine vertical(double x, double z) {
+    const glm::dvec3 p = onFloor(x, z);
+    return {p + glm::dvec3(0.0, 0.2, 0.0), p - glm::dvec3(0.0, 0.2, 0.0)};
+}
+
+Camera aboveTheFloor() {
+    return lookAt({0.0, 2.0, 2.5}, {0.0, 0.0, 0.0});
+}
+
+// The renderer after one frame of the tilted floor, from aboveTheFloor() at w x h.
+Result<Renderer> renderedFloor(int w, int h) {
+    Result<Renderer> r = makeRenderer(w, h);
+    if (!r) return r;
+    if (Status s = r->setScene(tiltedFloor()); !s) return fail(s.error());
+    renderView(r.value(), aboveTheFloor(), View::Final);
+    return r;
+}
+
+std::vector<SurfacePoint> found(Renderer& r, const std::vector<SurfaceLine>& lines) {
+    Result<uint64_t> request = r.findSurface(lines);
+    EXPECT_TRUE(request.ok()) << request.error();
+    if (!request) return {};
+    std::optional<std::vector<SurfacePoint>> points = r.surfaceFound(request.value(), true);
+    EXPECT_TRUE(points.has_value());
+    return points.value_or(std::vector<SurfacePoint>{});
+}
+
+// A ball of radius 1 at the origin, drawn finely.
+Scene ball() {
+    Scene s;
+    s.source = "test:ball";
+    s.objects.push_back(makeSceneObject("ball", makeSphere(1.0f, 48, 96)));
+    return s;
+}
+
+// The decals of `shots` placed by a system over `scene` (through `proxies` when given), one paint type
+// along the shot, and the results of their spawns.
+struct ShotSystem {
+    std::optional<DecalSystem> system;
+    std::vector<SpawnResult> results;
+};
+ShotSystem shoot(const Scene& scene, const std::vector<Ray>& shots,
+                 const std::vector<std::optional<Proxy>>& proxies = {}) {
+    ShotSystem out;
+    Result<CollisionWorld> world = CollisionWorld::build(scene, proxies);
+    EXPECT_TRUE(world.ok()) << world.error();
+    if (!world) return out;
+    Result<DecalSystem> sys = DecalSystem::create(std::move(world.value()));
+    EXPECT_TRUE(sys.ok()) << sys.error();
+    if (!sys) return out;
+    DecalType t = paintType();
+    t.size = glm::vec2(0.25f);
+    EXPECT_TRUE(sys->registerType(t).ok());
+    sys->spawnBatch(shots, 0, out.results);
+    out.system.emplace(std::move(sys).value());
+    return out;
+}
+
+std::vector<uint8_t> coverageOf(Renderer& r, const Camera& cam, const std::vector<Decal>& decals) {
+    r.setDecals(decals);
+    return whiteMask(renderView(r, cam, View::Coverage));
+}
+
+} // namespace
+
+TEST(SurfaceProbe, FindsWhereALineMeetsTheDrawnSurfaceAndItsNormal) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = renderedFloor(320, 240);
+    ASSERT_TRUE(r.ok()) << r.error();
+    const std::vector<glm::dvec2> at = {{0.0, 0.0}, {-0.7, 0.3}, {0.5, -0.6}, {0.9, 0.8}};
+    std::vector<SurfaceLine> lines;
+    for (const glm::dvec2& p : at)
+        lines.push_back(vertical(p.x, p.y));
+    const std::vector<SurfacePoint> points = found(r.value(), lines);
+    ASSERT_EQ(points.size(), at.size());
+    for (size_t i = 0; i < at.size(); ++i) {
+        ASSERT_TRUE(points[i].found) << "line " << i;
+        // A pixel here is about 0.01 wide; the point lies on the line, near the plane.
+        EXPECT_LT(glm::length(points[i].point - onFloor(at[i].x, at[i].y)), 0.01) << "line " << i;
+        EXPECT_GT(glm::dot(points[i].normal, floorNormal()), std::cos(glm::radians(1.0))) << "line " << i;
+    }
+}
+
+TEST(SurfaceProbe, FindsNothingWhereTheCameraDoesNotSeeTheMeet) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = renderedFloor(320, 240);
+    ASSERT_TRUE(r.ok()) << r.error();
+    // The floor behind the post: the camera's ray through the post's centre, met with the floor's plane.
+    const glm::dvec3 eye = aboveTheFloor().eye, post(tiltedFloor().objects[1].transform[3]);
+    const glm::dvec3 behindPost =
+        eye + (post - eye) * (-glm::dot(floorNormal(), eye) / glm::dot(floorNormal(), post - eye));
+    const std::vector<SurfaceLine> lines = {
+        vertical(0.0, 0.0), // seen: the control
+        {onFloor(0.0, 0.0) + glm::dvec3(0.0, 0.3, 0.0),
+         onFloor(0.0, 0.0) + glm::dvec3(0.0, 0.1, 0.0)}, // above it
+        vertical(30.0, 0.0),                             // off screen
+        {{0.0, 2.2, 3.0}, {0.0, 2.2, 2.8}},              // behind the camera
+        {behindPost + glm::dvec3(0.0, 0.05, 0.0), behindPost - glm::dvec3(0.0, 0.05, 0.0)}, // hidden
+    };
+    const std::vector<SurfacePoint> points = found(r.value(), lines);
+    ASSERT_EQ(points.size(), lines.size());
+    EXPECT_TRUE(points[0].found);
+    for (size_t i = 1; i < lines.size(); ++i)
+        EXPECT_FALSE(points[i].found) << "line " << i;
+}
+
+TEST(SurfaceProbe, RefusesLinesThatAreNotFiniteAndFramesBeforeTheFirstRender) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> fresh = makeRenderer(64, 48);
+    ASSERT_TRUE(fresh.ok()) << fresh.error();
+    const Result<uint64_t> early = fresh->findSurface({vertical(0.0, 0.0)});
+    ASSERT_FALSE(early.ok());
+    EXPECT_NE(early.error().find("nothing rendered"), std::string::npos) << early.error();
+
+    Result<Renderer> r = renderedFloor(64, 48);
+    ASSERT_TRUE(r.ok()) << r.error();
+    const double nan = std::nan("");
+    const Result<uint64_t> bad = r->findSurface({vertical(0.0, 0.0), {{nan, 0.0, 0.0}, {0.0, 0.0, 0.0}}});
+    ASSERT_FALSE(bad.ok());
+    EXPECT_NE(bad.error().find("surface line 1"), std::string::npos) << bad.error();
+    EXPECT_FALSE(r->surfaceFound(12345, true).has_value()); // never made
+    const Result<uint64_t> good = r->findSurface({vertical(0.0, 0.0)});
+    ASSERT_TRUE(good.ok()) << good.error();
+    ASSERT_TRUE(r->surfaceFound(good.value(), true).has_value());
+    EXPECT_FALSE(r->surfaceFound(good.value(), true).has_value()); // taken already
+}
+
+TEST(SurfaceProbe, DecalsShotThroughACoarseProxyLaidOnTheDrawnSurfaceCoverWhatTheRenderMeshPlaces) {
+    SPATTER_REQUIRE_GL(gl);
+    const Scene scene = ball();
+    ProxySettings ps;
+    ps.tolerance = 0.03f; // of the diagonal: facets tilted several degrees against the ball
+    ps.backend = ProxyBackend::MeshOpt;
+    Result<Proxy> proxy = buildProxy(scene.objects[0].mesh, ps);
+    ASSERT_TRUE(proxy.ok()) << proxy.error();
+    ASSERT_LT(proxy->proxyTriangles, scene.objects[0].mesh.triangleCount() / 4);
+    // Shots from the camera's side, within 50 degrees of it, at random points of the ball it sees.
+    const Camera cam = lookAt({0.0, 0.6, 3.2}, {0.0, 0.0, 0.0});
+    Rng rng(7);
+    std::vector<Ray> shots;
+    for (int i = 0; i < 40; ++i) {
+        const glm::dvec3 aim =
+            glm::normalize(glm::dvec3(rng.uniform(-0.6f, 0.6f), rng.uniform(-0.5f, 0.7f), 1.0));
+        Ray ray;
+        ray.origin = aim * 3.0 + glm::dvec3(rng.uniform(-0.8f, 0.8f), rng.uniform(-0.8f, 0.8f), 0.0);
+        ray.direction = aim * 0.999 - ray.origin;
+        shots.push_back(ray);
+    }
+    ShotSystem onRender = shoot(scene, shots), throughProxy = shoot(scene, shots, {proxy.value()});
+    ASSERT_TRUE(onRender.system && throughProxy.system);
+    ASSERT_GT(onRender.system->decals().size(), 30u);
+
+    Result<Renderer> r = makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    ASSERT_TRUE(r->setScene(scene).ok());
+    DecalType t = paintType();
+    t.size = glm::vec2(0.25f);
+    r->setDecalTypes({t});
+    const std::vector<uint8_t> reference = coverageOf(r.value(), cam, onRender.system->decals());
+    const double before = iou(reference, coverageOf(r.value(), cam, throughProxy.system->decals()));
+
+    // A frame at four times the size finds each decal's axis line in its depth.
+    Result<Renderer> probe = makeRenderer(4 * kW, 4 * kH);
+    ASSERT_TRUE(probe.ok()) << probe.error();
+    ASSERT_TRUE(probe->setScene(scene).ok());
+    renderView(probe.value(), cam, View::Final);
+    std::vector<SurfaceLine> lines;
+    std::vector<DecalHandle> handles;
+    for (const SpawnResult& s : throughProxy.results)
+        if (s.placed()) {
+            const std::optional<DecalAxisLine> line = throughProxy.system->axisLine(s.handle);
+            ASSERT_TRUE(line.has_value());
+            lines.push_back({line->from, line->to, 0});
+            handles.push_back(s.handle);
+        }
+    const std::vector<SurfacePoint> points = found(probe.value(), lines);
+    ASSERT_EQ(points.size(), lines.size());
+    size_t laid = 0;
+    for (size_t i = 0; i < points.size(); ++i)
+        if (points[i].found) {
+            const Status s =
+                throughProxy.system->layOnDrawnSurface(handles[i], points[i].point, points[i].normal);
+            EXPECT_TRUE(s.ok()) << s.error();
+            laid += s.ok() ? 1 : 0;
+        }
+    EXPECT_GT(laid, 3 * lines.size() / 4);
+    const double after = iou(reference, coverageOf(r.value(), cam, throughProxy.system->decals()));
+    EXPECT_GT(after, before + 0.02) << "before " << before;
+    EXPECT_GT(after, 0.97) << "before " << before;
+}
