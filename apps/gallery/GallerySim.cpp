@@ -210,6 +210,7 @@ Status GallerySim::useProxies(ProxySet set) {
     Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), decalSettings);
     if (!system) return fail(system.error());
     system_.emplace(std::move(system).value());
+    ++systemNumber_;
     proxyMeshes_ = std::move(meshes);
     if (Status s = registerTypes(); !s) return s;
     for (const Rail& rail : rails_)
@@ -283,9 +284,14 @@ Status GallerySim::save(const std::string& path) const {
     return saveDecalsToFile(*system_, path);
 }
 
+Status GallerySim::layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point, const glm::dvec3& normal) {
+    return system_->layOnDrawnSurface(handle, point, normal);
+}
+
 Result<DecalLoadReport> GallerySim::load(const std::string& path) {
     Result<DecalLoadReport> r = loadDecalsFromFile(*system_, path);
     if (r) {
+        ++systemNumber_;
         time_ = system_->time();
         pose();
     }

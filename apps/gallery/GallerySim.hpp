@@ -70,6 +70,12 @@ public:
     // Fires one shot and counts it.
     SpawnResult shoot(const Ray& ray, ShotKind kind);
 
+    // Lays a decal on the drawn surface where a renderer found it (DecalSystem::layOnDrawnSurface).
+    Status layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point, const glm::dvec3& normal);
+    // Counts the decal systems this gallery has had (new proxies, a load): a handle is good only with
+    // the number it was given under.
+    uint64_t systemNumber() const { return systemNumber_; }
+
     // Writes the decal system's state to `path` (DecalPersistence.hpp).
     Status save(const std::string& path) const;
     // Loads a state that save() wrote; on failure nothing changes. The clock takes the saved time, and
@@ -126,6 +132,7 @@ private:
     float tolerancePercent_ = 0.0f;
     double proxySeconds_ = 0.0;
     double time_ = 0.0;
+    uint64_t systemNumber_ = 0;
 };
 
 } // namespace spatter::gallery

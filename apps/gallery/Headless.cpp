@@ -4,6 +4,7 @@
 #include "GallerySim.hpp"
 #include "GalleryView.hpp"
 #include "SkinTracking.hpp"
+#include "SurfaceLaying.hpp"
 #include "Tracking.hpp"
 
 #include "spatter/render/GlContext.hpp"
@@ -184,6 +185,7 @@ int runHeadless(const GalleryOptions& options) {
     int frames = 0;
     double gpuMs = 0.0;
     std::string glRenderer;
+    SurfaceLaying laying; // the shots' decals laid on the drawn surface a frame after they land
     auto renderFrame = [&]() -> Status {
         syncRenderer(renderer.value(), sim.value());
         Result<FrameStats> stats = renderer->render(camera, View::Final);
@@ -191,14 +193,15 @@ int runHeadless(const GalleryOptions& options) {
         ++frames;
         gpuMs += stats->gpu.totalMs();
         glRenderer = stats->glRenderer;
-        return {};
+        laying.lay(renderer.value(), sim.value(), false);
+        return laying.search(renderer.value(), sim.value());
     };
 
     Script script(rng);
     for (int shot = 0; shot < options.shots; ++shot) {
         sim->advance(kShotInterval);
         const auto [ray, kind] = script.next(sim.value(), camera, aspect);
-        sim->shoot(ray, kind);
+        laying.placed(sim->shoot(ray, kind), sim.value());
         if ((shot + 1) % frameEvery == 0)
             if (Status s = renderFrame(); !s) {
                 std::cerr << "spatter-gallery: " << s.error() << "\n";
@@ -208,6 +211,7 @@ int runHeadless(const GalleryOptions& options) {
 
     Result<nlohmann::ordered_json> tracked = trackTargetDecal(sim.value(), renderer.value(), camera);
     Result<nlohmann::ordered_json> skinned = trackSkinnedDecal(sim.value(), renderer.value(), camera);
+    laying.lay(renderer.value(), sim.value(), true);
     if (Status s = renderFrame(); !s) {
         std::cerr << "spatter-gallery: " << s.error() << "\n";
         return 1;
@@ -239,6 +243,7 @@ int runHeadless(const GalleryOptions& options) {
     out["evicted"] = st.evicted;
     out["on_moving_targets"] = sim->counters().onMovingTargets;
     out["on_skinned_targets"] = sim->counters().onSkinnedTargets;
+    out["laid_on_drawn_surface"] = laying.laid();
     out["alive"] = st.alive;
     out["frames"] = frames;
     out["placement_us_per_shot"] =

@@ -2,6 +2,7 @@
 
 #include "GallerySim.hpp"
 #include "GalleryView.hpp"
+#include "SurfaceLaying.hpp"
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -217,6 +218,7 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
     const std::string quickFile =
         options.savePath.empty() ? options.outDir + "/quick.save" : options.savePath;
     Trigger bullet{0.1}, paint{0.25};
+    SurfaceLaying laying; // the shots' decals laid on the drawn surface a frame after they land
     Hud hud;
     hud.tolerance = options.tolerancePercent;
     FrameStats frame;
@@ -268,6 +270,7 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
         auto fire = [&](ShotKind kind) {
             const auto t0 = std::chrono::steady_clock::now();
             const SpawnResult r = sim->shoot(rayThrough(camera, aspect, 0.0, 0.0), kind);
+            laying.placed(r, sim.value());
             hud.lastPlacementUs =
                 1e6 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             hud.lastResult = r.placed() ? "placed" : toString(r.status);
@@ -296,6 +299,8 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
                 renderer->resize(fbw, fbh);
             syncRenderer(renderer.value(), sim.value());
             if (Result<FrameStats> st = renderer->render(camera, hud.options); st) frame = st.value();
+            laying.lay(renderer.value(), sim.value(), false);
+            if (Status s = laying.search(renderer.value(), sim.value()); !s) hud.status = s.error();
             renderer->present(fbw, fbh);
         }
 

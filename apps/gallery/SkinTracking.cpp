@@ -21,7 +21,7 @@ bool deforms(const SceneObject& o) {
 }
 
 // A point of an object's render surface: a triangle and barycentric coordinates.
-struct SurfacePoint {
+struct SkinPoint {
     uint32_t triangle = 0;
     glm::dvec3 bary{0.0};
 };
@@ -32,13 +32,13 @@ Mesh posedMesh(const GallerySim& sim, uint32_t object) {
                          posedPositions(sim.scene(), object, *sim.evaluator()));
 }
 
-Result<SurfacePoint> nearestPoint(const Mesh& mesh, const glm::dvec3& local) {
+Result<SkinPoint> nearestPoint(const Mesh& mesh, const glm::dvec3& local) {
     Result<ClosestPointQuery> query = ClosestPointQuery::create(mesh);
     if (!query) return fail(query.error());
     const std::optional<ClosestPoint> c = query->closest(local);
     if (!c) return fail("the skinned target has no surface");
     const uint32_t* k = &mesh.indices[3 * size_t(c->triangle)];
-    return SurfacePoint{c->triangle,
+    return SkinPoint{c->triangle,
                         barycentric(c->point, glm::dvec3(mesh.positions[k[0]]),
                                     glm::dvec3(mesh.positions[k[1]]), glm::dvec3(mesh.positions[k[2]]))};
 }
@@ -49,7 +49,7 @@ struct SeenPoint {
     double cosine = 0.0;
 };
 
-SeenPoint seenPoint(const GallerySim& sim, uint32_t object, const SurfacePoint& p, const glm::dvec3& eye) {
+SeenPoint seenPoint(const GallerySim& sim, uint32_t object, const SkinPoint& p, const glm::dvec3& eye) {
     const Mesh m = posedMesh(sim, object);
     const uint32_t* k = &m.indices[3 * size_t(p.triangle)];
     glm::dvec3 c[3];
@@ -91,7 +91,7 @@ Result<nlohmann::ordered_json> trackSkinnedDecal(GallerySim& sim, Renderer& rend
     const uint16_t type = followed->type;
     const glm::vec2 worldSize = sim.decals().worldBox(*followed).size;
     const double size = double(std::max(worldSize.x, worldSize.y));
-    Result<SurfacePoint> placedOn = nearestPoint(posedMesh(sim, object), glm::dvec3(followed->center));
+    Result<SkinPoint> placedOn = nearestPoint(posedMesh(sim, object), glm::dvec3(followed->center));
     if (!placedOn) return fail(placedOn.error());
     Result<uint16_t> marker = addMarkerType(renderer, sim.types(), type);
     if (!marker) return fail(marker.error());
