@@ -12,6 +12,7 @@
 #include "SkinnedBench.hpp"
 #include "SkipBench.hpp"
 #include "StressReport.hpp"
+#include "SurfaceBench.hpp"
 #include "Tradeoff.hpp"
 #include "VolumetricBench.hpp"
 
@@ -54,6 +55,8 @@ const Command kCommands[] = {
      spatter::bench::runSkinnedCommand},
     {"characters", "the frame cost of decals on animated characters against none (GPU, --json FILE)",
      spatter::bench::runCharactersCommand},
+    {"surface", "searching the drawn surface along decals' axis lines: time against the frame (--json FILE)",
+     spatter::bench::runSurfaceCommand},
 };
 
 void usage(std::FILE* out) {

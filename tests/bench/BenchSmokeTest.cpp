@@ -264,6 +264,21 @@ TEST(BenchSmoke, RenderQuickTimesTheDecalPass) {
     }
 }
 
+TEST(BenchSmoke, SurfaceQuickTimesTheSearchAndFindsEveryLineOnTheFloor) {
+    SPATTER_REQUIRE_TOOL_GL();
+    const std::string dir = test::scratchDir("bench-surface");
+    ASSERT_EQ(runBench("surface --quick --json " + dir + "/s.json", dir + "/log"), 0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/s.json");
+    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << readAll(dir + "/s.json");
+    ASSERT_EQ(j["rows"].size(), 4u);
+    EXPECT_GT(j["frame_gpu_ms"].get<double>(), 0.0);
+    for (const auto& row : j["rows"]) {
+        EXPECT_EQ(row["found"], row["lines"]) << "every line crosses the floor in view";
+        EXPECT_GT(row["ms"].get<double>(), 0.0);
+    }
+}
+
 TEST(BenchSmoke, CharactersQuickTimesTheFrameWithAndWithoutTheirDecals) {
     SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("bench-characters");
