@@ -12,7 +12,7 @@ layout(binding = 2) uniform usampler2D s_ids;
 layout(location = 0) uniform uint u_lines;
 layout(location = 1) uniform ivec4 u_rect;   // the host's viewport: x, y, width, height
 layout(location = 2) uniform int u_checkIds; // 1: the surface a line meets must carry its object ID
-layout(location = 3) uniform float u_pixel;  // a pixel's height at view distance 1
+layout(location = 3) uniform vec2 u_pixel;   // a pixel's height at view z: u_pixel.x * z + u_pixel.y
 
 layout(std430, binding = 5) readonly buffer SurfaceLines {
     vec4 lines[]; // two a line: from (w: its object's decal ID), to
@@ -119,7 +119,7 @@ bool refine(vec3 a, vec3 b, inout float lo, inout float hi, out ivec2 pixel) {
         }
     }
     vec3 at = mix(a, b, hi);
-    float jump = kJumpPixels * u_pixel * max(-at.z, 0.0) + kJumpOfLength * length(b - a);
+    float jump = kJumpPixels * abs(u_pixel.x * at.z + u_pixel.y) + kJumpOfLength * length(b - a);
     return gapLo <= jump && gapHi <= jump;
 }
 

@@ -755,6 +755,41 @@ std::optional<DecalAxisLine> DecalSystem::axisLine(DecalHandle handle) const {
     return line;
 }
 
+namespace {
+
+// Why a decal of type `t` on `o` cannot be laid on the drawn surface at `point` facing `normal`
+// (world space), or empty.
+std::string drawnSurfaceRefusal(const DecalType& t, const CollisionObject& o, bool deforms,
+                                const glm::dvec3& point, const glm::dvec3& normal) {
+    if (t.volumetric)
+        return "a decal of volumetric type '" + t.name +
+               "' keeps the proxy's hit, where its crater is clipped";
+    if (deforms)
+        return "object '" + o.name + "' is skinned or morphed: its decals lie on the drawn surface already";
+    if (!finite3(point)) return "point is not finite";
+    if (!finite3(normal)) return "normal is not finite";
+    const double len2 = glm::dot(normal, normal);
+    if (!(len2 >= std::numeric_limits<double>::min()) || !std::isfinite(len2))
+        return "normal is zero or cannot be normalised";
+    const glm::dmat3 inv = glm::inverse(glm::dmat3(o.transform));
+    if (!(finite3(inv[0]) && finite3(inv[1]) && finite3(inv[2])))
+        return "the transform of object '" + o.name + "' is singular";
+    return {};
+}
+
+// Where object-space `local` lies in the box of `d`, in box units, or empty when outside it by more
+// than a thousandth of its half extents.
+std::string outsideBox(const Decal& d, const glm::dvec3& local) {
+    const glm::dvec3 inBox(glm::inverse(glm::dmat4(d.boxToObject())) * glm::dvec4(local, 1.0));
+    constexpr double kBoxTolerance = 1e-3; // of the box's half extents
+    const double outside = std::max({std::fabs(inBox.x), std::fabs(inBox.y), std::fabs(inBox.z)});
+    if (outside <= 1.0 + kBoxTolerance) return {};
+    return "the point lies outside the decal's box (at " + formatNumber(inBox.x) + ", " +
+           formatNumber(inBox.y) + ", " + formatNumber(inBox.z) + " in box units)";
+}
+
+} // namespace
+
 Status DecalSystem::layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point, const glm::dvec3& normal) {
     Impl& s = *impl_;
     const std::lock_guard<std::mutex> lock(s.mutex);
@@ -763,31 +798,13 @@ Status DecalSystem::layOnDrawnSurface(DecalHandle handle, const glm::dvec3& poin
     const Decal& d = *found;
     const DecalType& t = s.types[d.type];
     const CollisionObject& o = s.object(d.object);
-    if (t.volumetric)
-        return fail("layOnDrawnSurface: a decal of volumetric type '" + t.name +
-                    "' keeps the proxy's hit, where its crater is clipped");
-    if (s.world.deforms(d.object))
-        return fail("layOnDrawnSurface: object '" + o.name +
-                    "' is skinned or morphed: its decals lie on the drawn surface already");
-    if (!finite3(point)) return fail("layOnDrawnSurface: point is not finite");
-    if (!finite3(normal)) return fail("layOnDrawnSurface: normal is not finite");
-    const double len2 = glm::dot(normal, normal);
-    if (!(len2 >= std::numeric_limits<double>::min()) || !std::isfinite(len2))
-        return fail("layOnDrawnSurface: normal is zero or cannot be normalised");
-    const glm::dmat3 m(o.transform);
-    const glm::dmat3 inv = glm::inverse(m);
-    if (!(finite3(inv[0]) && finite3(inv[1]) && finite3(inv[2])))
-        return fail("layOnDrawnSurface: the transform of object '" + o.name + "' is singular");
-
-    // To object space (normals by the transpose of the linear part), then the point to box units.
+    if (std::string why = drawnSurfaceRefusal(t, o, s.world.deforms(d.object), point, normal); !why.empty())
+        return fail("layOnDrawnSurface: " + why);
+    // To object space (normals by the transpose of the linear part).
+    const glm::dmat3 m(o.transform), inv = glm::inverse(m);
     const glm::dvec3 local = inv * (point - glm::dvec3(o.transform[3]));
-    const glm::dvec3 localNormal = glm::transpose(m) * (normal / std::sqrt(len2));
-    const glm::dvec3 inBox(glm::inverse(glm::dmat4(d.boxToObject())) * glm::dvec4(local, 1.0));
-    constexpr double kBoxTolerance = 1e-3; // of the box's half extents
-    const double outside = std::max({std::fabs(inBox.x), std::fabs(inBox.y), std::fabs(inBox.z)});
-    if (!(outside <= 1.0 + kBoxTolerance))
-        return fail("layOnDrawnSurface: the point lies outside the decal's box (at " + formatNumber(inBox.x) +
-                    ", " + formatNumber(inBox.y) + ", " + formatNumber(inBox.z) + " in box units)");
+    const glm::dvec3 localNormal = glm::transpose(m) * glm::normalize(normal);
+    if (std::string why = outsideBox(d, local); !why.empty()) return fail("layOnDrawnSurface: " + why);
     const double localLength = glm::length(localNormal);
     if (!(localLength > 0.0) || !std::isfinite(localLength))
         return fail("layOnDrawnSurface: the normal cannot be carried to the object's space");
@@ -796,22 +813,19 @@ Status DecalSystem::layOnDrawnSurface(DecalHandle handle, const glm::dvec3& poin
     if (!laid)
         return fail("layOnDrawnSurface: the normal is 89 degrees or more from the decal's, or the decal "
                     "cannot be laid on it");
-
     // The half-depth of a decal on a surface with no error bound (place with h = 0), world units, then
     // in the object's space along the laid decal's normal.
-    const Frame f = d.frame(), g = laid->frame();
-    const glm::dvec2 worldSize(double(d.size.x) * glm::length(m * glm::dvec3(f.tangent)),
-                               double(d.size.y) * glm::length(m * glm::dvec3(f.bitangent)));
-    const double extent = std::max(worldSize.x, worldSize.y);
+    const Frame f = d.frame();
+    const double extent = std::max(double(d.size.x) * glm::length(m * glm::dvec3(f.tangent)),
+                                   double(d.size.y) * glm::length(m * glm::dvec3(f.bitangent)));
     const float halfDepth = std::max(t.halfDepth, float(double(s.settings.depthMargin) * extent));
-    laid->halfDepth = float(double(halfDepth) * glm::length(glm::transpose(inv) * glm::dvec3(g.normal)));
-    const bool worldSound = extent <= double(kMaxWorldExtent) && halfDepth <= kMaxWorldExtent;
-    if (!soundBox(*laid) || !worldSound)
+    laid->halfDepth =
+        float(double(halfDepth) * glm::length(glm::transpose(inv) * glm::dvec3(laid->frame().normal)));
+    if (!soundBox(*laid) || !(extent <= double(kMaxWorldExtent) && halfDepth <= kMaxWorldExtent))
         return fail("layOnDrawnSurface: the box of the decal laid again on '" + o.name +
                     "' is degenerate in the object's or the world's space (size " +
                     formatNumber(laid->size.x) + " x " + formatNumber(laid->size.y) + ", half-depth " +
                     formatNumber(laid->halfDepth) + ")");
-
     const uint32_t dense = s.slots[handle.slot].dense;
     s.decals[dense] = *laid;
     s.logChange(dense, DecalChangeKind::Changed);

@@ -70,11 +70,6 @@ Result<uint64_t> SurfaceProbe::find(const HostFrame& frame, const std::vector<Su
     }
     if (Status s = prepare(frame); !s) return fail(s.error());
     gpuLines.resize(std::max<size_t>(gpuLines.size(), 2));
-    const ProjectorFrameGpu block = viewSpaceFrame(frame);
-    glNamedBufferSubData(frameBlock_.get(), 0, sizeof block, &block);
-    GlBuffer lineBuffer = createBuffer();
-    glNamedBufferStorage(lineBuffer.get(), GLsizeiptr(gpuLines.size() * sizeof(glm::vec4)), gpuLines.data(),
-                         0);
     Request r;
     r.number = ++requests_;
     r.lines = lines.size();
@@ -82,25 +77,37 @@ Result<uint64_t> SurfaceProbe::find(const HostFrame& frame, const std::vector<Su
     glNamedBufferStorage(r.points.get(), GLsizeiptr(gpuLines.size() * sizeof(glm::vec4)), nullptr, 0);
     r.viewToWorld = glm::inverse(frame.view);
     r.normalToWorld = glm::transpose(glm::dmat3(frame.view)); // normals pull back by the transpose
-
-    glUseProgram(programs_[convention(frame.depth)].get());
-    glBindBufferBase(GL_UNIFORM_BUFFER, kProjectorFrameBlock, frameBlock_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLinesBuffer, lineBuffer.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPointsBuffer, r.points.get());
-    glBindTextureUnit(kDepthUnit, frame.depth.texture);
-    glBindSampler(kDepthUnit, sampler);
-    glBindTextureUnit(kIdUnit, frame.objectIdTexture);
-    glBindSampler(kIdUnit, sampler);
-    glUniform1ui(0, GLuint(lines.size()));
-    glUniform4i(1, frame.x, frame.y, frame.width, frame.height);
-    glUniform1i(2, frame.objectIdTexture != 0 ? 1 : 0);
-    glUniform1f(3, float(2.0 / (std::abs(frame.projection[1][1]) * double(frame.height))));
-    glDispatchCompute(GLuint((lines.size() + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    dispatch(frame, gpuLines, r.lines, r.points.get(), sampler);
     r.fence.reset(glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0));
     pending_.push_back(std::move(r));
     if (pending_.size() > kMaxPending) pending_.pop_front();
     return pending_.back().number;
+}
+
+void SurfaceProbe::dispatch(const HostFrame& frame, const std::vector<glm::vec4>& gpuLines, size_t lines,
+                            GLuint points, GLuint sampler) {
+    const ProjectorFrameGpu block = viewSpaceFrame(frame);
+    glNamedBufferSubData(frameBlock_.get(), 0, sizeof block, &block);
+    GlBuffer lineBuffer = createBuffer(); // deleted once the dispatch is done with it
+    glNamedBufferStorage(lineBuffer.get(), GLsizeiptr(gpuLines.size() * sizeof(glm::vec4)), gpuLines.data(),
+                         0);
+    glUseProgram(programs_[convention(frame.depth)].get());
+    glBindBufferBase(GL_UNIFORM_BUFFER, kProjectorFrameBlock, frameBlock_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLinesBuffer, lineBuffer.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPointsBuffer, points);
+    glBindTextureUnit(kDepthUnit, frame.depth.texture);
+    glBindSampler(kDepthUnit, sampler);
+    glBindTextureUnit(kIdUnit, frame.objectIdTexture);
+    glBindSampler(kIdUnit, sampler);
+    glUniform1ui(0, GLuint(lines));
+    glUniform4i(1, frame.x, frame.y, frame.width, frame.height);
+    glUniform1i(2, frame.objectIdTexture != 0 ? 1 : 0);
+    // A pixel's height in view units at view z: the clip w there (z * P[2][3] + P[3][3]) over P[1][1],
+    // times the 2 / height of a pixel in normalised device units.
+    const double perW = 2.0 / (std::abs(frame.projection[1][1]) * double(frame.height));
+    glUniform2f(3, float(frame.projection[2][3] * perW), float(frame.projection[3][3] * perW));
+    glDispatchCompute(GLuint((lines + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 std::vector<SurfacePoint> SurfaceProbe::read(const Request& r) const {

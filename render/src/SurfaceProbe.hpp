@@ -44,6 +44,10 @@ private:
         glm::dmat3 normalToWorld{1.0};
     };
     Status prepare(const HostFrame& frame);
+    // Runs the search of the first `lines` lines of `gpuLines` (view space, two entries a line, at least
+    // two entries) into the buffer `points`.
+    void dispatch(const HostFrame& frame, const std::vector<glm::vec4>& gpuLines, size_t lines, GLuint points,
+                  GLuint sampler);
     std::vector<SurfacePoint> read(const Request& r) const;
 
     GlProgram programs_[5]; // window depth (standard or reversed Z, clip 0..1 or -1..1), linear view distance
