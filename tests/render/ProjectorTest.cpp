@@ -242,6 +242,11 @@ TEST(Projector, LeavesEveryListedGlStateAsItFoundIt) {
     EXPECT_EQ(glStateSnapshot(), before) << "after binning for the forward path";
     ASSERT_TRUE(h->projector.addDecalTexture(makeBuiltinDecalTexture(DecalTexture::Blood, 32).albedo).ok());
     EXPECT_EQ(glStateSnapshot(), before) << "after addDecalTexture";
+    Result<uint64_t> search =
+        h->projector.findSurface(h->host.frame(h->wall.camera, true), {{{0.0, 1.0, 0.3}, {0.0, 1.0, -0.3}}});
+    ASSERT_TRUE(search.ok()) << search.error();
+    ASSERT_TRUE(h->projector.surfaceFound(search.value(), true).has_value());
+    EXPECT_EQ(glStateSnapshot(), before) << "after a search of the drawn surface";
     HostFrame bad = h->host.frame(h->wall.camera, true);
     bad.projection = glm::dmat4(0.0);
     EXPECT_FALSE(h->projector.draw(bad).ok());

@@ -2,6 +2,7 @@
 // a line meets it and its normal there, nothing where the camera does not see the meet, and decals shot
 // through a coarse proxy laid again there as the render mesh would have placed them.
 
+#include "HostedWall.hpp"
 #include "RenderTestSupport.hpp"
 #include "ShotDecals.hpp"
 
@@ -236,4 +237,38 @@ TEST(SurfaceProbe, DecalsShotThroughACoarseProxyLaidOnTheDrawnSurfaceCoverWhatTh
     const double after = iou(reference, coverageOf(r.value(), cam, throughProxy.system->decals()));
     EXPECT_GT(after, before + 0.02) << "before " << before;
     EXPECT_GT(after, 0.97) << "before " << before;
+}
+
+TEST(SurfaceProbe, FindsTheSurfaceInAForeignHostsDepthAndKeepsToTheLinesObject) {
+    SPATTER_REQUIRE_GL(gl);
+    // Standard Z in GL's default clip depth, and an object ID target: the wall (ID 0) at z = 0 and
+    // the crate (ID 7) in front of it, its front face at z = 0.8 around (0.8, 0.8).
+    std::optional<HostedWall> h = HostedWall::make();
+    ASSERT_TRUE(h);
+    const HostFrame frame = h->host.frame(h->wall.camera, true);
+    const std::vector<SurfaceLine> lines = {
+        {{-0.6, 1.0, 0.3}, {-0.6, 1.0, -0.3}, 0}, // the wall
+        {{0.8, 0.8, 1.1}, {0.8, 0.8, 0.6}, 7},    // the crate
+        {{0.8, 0.8, 1.1}, {0.8, 0.8, 0.6}, 0},    // the crate, asked for the wall's ID
+        {{0.8, 0.8, 0.3}, {0.8, 0.8, -0.3}, 0},   // the wall behind the crate: hidden
+    };
+    Result<uint64_t> request = h->projector.findSurface(frame, lines);
+    ASSERT_TRUE(request.ok()) << request.error();
+    const std::optional<std::vector<SurfacePoint>> points = h->projector.surfaceFound(request.value(), true);
+    ASSERT_TRUE(points.has_value());
+    ASSERT_EQ(points->size(), lines.size());
+    ASSERT_TRUE((*points)[0].found);
+    EXPECT_LT(glm::length((*points)[0].point - glm::dvec3(-0.6, 1.0, 0.0)), 0.01);
+    EXPECT_GT((*points)[0].normal.z, 0.9999);
+    ASSERT_TRUE((*points)[1].found);
+    EXPECT_NEAR((*points)[1].point.z, 0.8, 0.01);
+    EXPECT_GT((*points)[1].normal.z, 0.9999);
+    EXPECT_FALSE((*points)[2].found);
+    EXPECT_FALSE((*points)[3].found);
+
+    HostFrame noDepth = frame;
+    noDepth.depth.texture = 0;
+    const Result<uint64_t> refused = h->projector.findSurface(noDepth, lines);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().find("HostFrame.depth.texture"), std::string::npos) << refused.error();
 }
