@@ -58,6 +58,8 @@ struct Hud {
     RenderOptions options;
     bool wrapAround = true;
     bool volumetricBullets = true;
+    bool layOnDrawnSurface = true; // new flat decals laid on the drawn surface a frame after their shot
+    uint64_t laid = 0;             // decals laid so far
     float tolerance = 0.5f;
     double lastPlacementUs = 0.0;
     std::string lastResult;
@@ -129,6 +131,9 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
         renderer.setDecalTypes(sim.types());
     }
     ImGui::Checkbox("volumetric bullet holes", &hud.volumetricBullets);
+    ImGui::Checkbox("lay new decals on the drawn surface", &hud.layOnDrawnSurface);
+    ImGui::SameLine();
+    ImGui::Text("(%llu laid)", (unsigned long long)hud.laid);
     ImGui::SliderFloat("proxy tolerance %", &hud.tolerance, 0.0f, 5.0f, "%.2f");
     if (hud.rebuild.valid()) {
         ImGui::ProgressBar(hud.rebuildProgress.load(), ImVec2(-1.0f, 0.0f), "building proxies");
@@ -270,7 +275,7 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
         auto fire = [&](ShotKind kind) {
             const auto t0 = std::chrono::steady_clock::now();
             const SpawnResult r = sim->shoot(rayThrough(camera, aspect, 0.0, 0.0), kind);
-            laying.placed(r, sim.value());
+            if (hud.layOnDrawnSurface) laying.placed(r, sim.value());
             hud.lastPlacementUs =
                 1e6 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             hud.lastResult = r.placed() ? "placed" : toString(r.status);
@@ -301,6 +306,7 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
             if (Result<FrameStats> st = renderer->render(camera, hud.options); st) frame = st.value();
             laying.lay(renderer.value(), sim.value(), false);
             if (Status s = laying.search(renderer.value(), sim.value()); !s) hud.status = s.error();
+            hud.laid = laying.laid();
             renderer->present(fbw, fbh);
         }
 
