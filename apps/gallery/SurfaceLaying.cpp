@@ -19,8 +19,11 @@ Status SurfaceLaying::search(Renderer& renderer, const GallerySim& sim) {
         const std::optional<DecalAxisLine> line = decals.axisLine(h);
         if (!line) continue;
         const Decal& d = *decals.get(h);
-        // Craters keep the proxy's hit and decals on skinned targets lie on the drawn surface already.
-        if (decals.type(d.type)->volumetric || decals.world().deforms(d.object)) continue;
+        // Craters keep the proxy's hit, decals on skinned targets lie on the drawn surface already, and
+        // those on a texture-space object are in its texture once splatted.
+        if (decals.type(d.type)->volumetric || decals.world().deforms(d.object) ||
+            renderer.objectDecalMode(d.object) == DecalMode::TextureSpace)
+            continue;
         lines.push_back({line->from, line->to, d.objectId});
         s.handles.push_back(h);
         s.transforms.push_back(decals.world().object(d.object)->transform);

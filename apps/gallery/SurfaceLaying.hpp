@@ -3,8 +3,9 @@
 // frame, the axis lines of the decals placed since the frame before are searched in its depth
 // (Renderer::findSurface); once the GPU has answered, each decal whose line meets the drawn surface
 // is laid there (DecalSystem::layOnDrawnSurface), carried from where that frame drew its object to
-// where the object is now. Searches made before the decal system was replaced (new proxies, a load)
-// are dropped: their handles name decals of the system before.
+// where the object is now. Craters, decals on skinned targets and decals splatted into a texture-space
+// object's texture are left as they are. Searches made before the decal system was replaced (new proxies, a
+// load) are dropped: their handles name decals of the system before.
 
 #include "GallerySim.hpp"
 
