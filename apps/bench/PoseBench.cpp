@@ -59,7 +59,7 @@ SceneCounts counts(const Scene& scene) {
         c.joints += s.joints.size();
     c.channels = scene.animation.animations[0].channels.size();
     for (const SceneObject& o : scene.objects)
-        if (o.skin != -1 || !o.morphTargets.empty()) c.deformingVertices += o.mesh.vertexCount();
+        if (o.deforms()) c.deformingVertices += o.mesh.vertexCount();
     return c;
 }
 
@@ -114,7 +114,7 @@ int runPoseCommand(int argc, char** argv) {
     rows.emplace_back("posed positions", perFrame(runs, std::max<size_t>(1, frames / 20), [&](size_t i) {
                           evaluator.evaluate(0, timeOf(i));
                           for (size_t o = 0; o < scene.objects.size(); ++o)
-                              if (scene.objects[o].skin != -1 || !scene.objects[o].morphTargets.empty())
+                              if (scene.objects[o].deforms())
                                   sink += posedPositions(scene, o, evaluator)[0].x;
                       }));
     if (!std::isfinite(sink)) std::printf("(posed positions are not finite)\n");

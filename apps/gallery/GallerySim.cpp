@@ -72,11 +72,6 @@ static std::vector<std::pair<ShotKind, DecalType>> galleryTypes() {
     return types;
 }
 
-// Whether the object's render mesh deforms with the pose (skinned or morphed) while it moves.
-static bool deforms(const SceneObject& o) {
-    return o.dynamic && (o.skin >= 0 || !o.morphTargets.empty());
-}
-
 bool isBanner(const SceneObject& object) {
     return object.name.rfind("banner_", 0) == 0;
 }
@@ -231,7 +226,7 @@ void GallerySim::pose() {
     for (uint32_t object : animated_) {
         const SceneObject& o = scene_->objects[object];
         if (!o.dynamic || !o.receivesDecals) continue;
-        if (deforms(o))
+        if (o.deforms())
             system_->setPose(object, evaluator_->objectTransform(object),
                              o.skin >= 0 ? evaluator_->jointMatrices(size_t(o.skin)) : noJoints,
                              evaluator_->morphWeights(object));
@@ -275,7 +270,7 @@ SpawnResult GallerySim::shoot(const Ray& ray, ShotKind kind) {
     if (result.placed()) {
         const Decal* decal = system_->get(result.handle);
         if (decal && scene_->objects[decal->object].dynamic) ++counters_.onMovingTargets;
-        if (decal && deforms(scene_->objects[decal->object])) ++counters_.onSkinnedTargets;
+        if (decal && system_->world().deforms(decal->object)) ++counters_.onSkinnedTargets;
     }
     return result;
 }

@@ -16,10 +16,6 @@ namespace {
 constexpr int kFrames = 30;
 constexpr double kFrameSeconds = 1.0 / 30.0;
 
-bool deforms(const SceneObject& o) {
-    return o.skin >= 0 || !o.morphTargets.empty();
-}
-
 // A point of an object's render surface: a triangle and barycentric coordinates.
 struct SkinPoint {
     uint32_t triangle = 0;
@@ -39,8 +35,8 @@ Result<SkinPoint> nearestPoint(const Mesh& mesh, const glm::dvec3& local) {
     if (!c) return fail("the skinned target has no surface");
     const uint32_t* k = &mesh.indices[3 * size_t(c->triangle)];
     return SkinPoint{c->triangle,
-                        barycentric(c->point, glm::dvec3(mesh.positions[k[0]]),
-                                    glm::dvec3(mesh.positions[k[1]]), glm::dvec3(mesh.positions[k[2]]))};
+                     barycentric(c->point, glm::dvec3(mesh.positions[k[0]]), glm::dvec3(mesh.positions[k[1]]),
+                                 glm::dvec3(mesh.positions[k[2]]))};
 }
 
 // A surface point as the sim's pose puts it: in the world, and how squarely it faces `eye`.
@@ -64,7 +60,7 @@ SeenPoint seenPoint(const GallerySim& sim, uint32_t object, const SkinPoint& p, 
 const Decal* newestOnSkin(const GallerySim& sim) {
     const Decal* found = nullptr;
     for (const Decal& d : sim.decals().decals())
-        if (deforms(sim.scene().objects[d.object]) && !sim.types()[d.type].volumetric && d.opacity >= 1.0f &&
+        if (sim.scene().objects[d.object].deforms() && !sim.types()[d.type].volumetric && d.opacity >= 1.0f &&
             (!found || d.spawnTime > found->spawnTime))
             found = &d;
     return found;

@@ -150,8 +150,7 @@ Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, co
         return fail("deforming proxy: object " + std::to_string(object) + " out of range");
     const SceneObject& o = scene.objects[object];
     const std::string name = "deforming proxy of '" + o.name + "': ";
-    if (o.skin == -1 && o.morphTargets.empty())
-        return fail(name + "the object is neither skinned nor morphed");
+    if (!o.deforms()) return fail(name + "the object is neither skinned nor morphed");
     Result<Proxy> rest = buildProxy(o.mesh, settings);
     if (!rest) return fail(name + rest.error());
     if (rest->source == ProxySource::OwnMesh) { // the render mesh moves exactly as it is drawn
@@ -229,7 +228,7 @@ Result<Proxy> buildObjectProxy(const Scene& scene, size_t object, const ProxySet
     if (object >= scene.objects.size())
         return fail("object proxy: object " + std::to_string(object) + " out of range");
     const SceneObject& o = scene.objects[object];
-    if (!o.dynamic || (o.skin == -1 && o.morphTargets.empty()))
+    if (!o.dynamic || !o.deforms())
         return buildProxy(o.mesh, settings, o.collider ? &*o.collider : nullptr, progress);
     return objectDeformingProxy(scene, object, settings);
 }

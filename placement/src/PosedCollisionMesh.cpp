@@ -69,7 +69,7 @@ void linkRings(PosedCollisionMesh::Drawn& drawn) {
 Result<std::optional<PosedCollisionMesh>> posedCollisionMesh(const Scene& scene, size_t object,
                                                              const Mesh& collision) {
     const SceneObject& so = scene.objects[object];
-    if (so.skin == -1 && so.morphTargets.empty()) return std::optional<PosedCollisionMesh>();
+    if (!so.deforms()) return std::optional<PosedCollisionMesh>();
     PosedCollisionMesh out;
     out.rest = collision.positions;
     if (so.skin != -1) out.jointCount = scene.animation.skins[size_t(so.skin)].joints.size();

@@ -622,7 +622,7 @@ Status Renderer::setScene(const Scene& scene) {
     m.deformations.assign(n, Deformation{});
     std::vector<uint8_t> deforming(n);
     for (size_t i = 0; i < n; ++i)
-        deforming[i] = scene.objects[i].skin >= 0 || !scene.objects[i].morphTargets.empty() ? 1 : 0;
+        deforming[i] = scene.objects[i].deforms() ? 1 : 0;
     m.routing.reset(deforming);
     m.textureSpace.reset(n);
     for (size_t i = 0; i < n; ++i) {

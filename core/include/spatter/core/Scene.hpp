@@ -43,6 +43,9 @@ struct SceneObject {
     int skin = -1;                         // index into Scene::animation.skins; -1: not skinned
     SkinWeights skinWeights;               // joint influences of `mesh`'s vertices when skinned
     std::vector<MorphTarget> morphTargets; // of `mesh`; the weights are its node's
+
+    // Skinned or morphed: its surface changes shape with the pose.
+    bool deforms() const { return skin >= 0 || !morphTargets.empty(); }
 };
 
 // An object of `mesh` placed by `transform`, static or dynamic, receiving decals.
