@@ -41,19 +41,19 @@
 //   objectIdTexture        clipping to the decal's object: without it a decal on a moving target
 //                          also shows on whatever lies behind it inside its box
 //
-// GL state: every call that touches GL (create, setDecals, addDecalTexture*, draw, bin) leaves the GL
-// state exactly as it found it, as Dear ImGui's OpenGL 3 backend does: it saves and restores the
-// bound draw and read framebuffers, viewport, program, vertex array, active texture unit and the
-// 2D and 2D-array textures and samplers of units 0-7, the uniform buffer bindings 0-1 and shader
-// storage bindings 0-10 (with their ranges), image units 0-2 and the generic uniform, shader storage, array,
-// pixel unpack, draw indirect and dispatch indirect buffer bindings, blending (enable per draw buffer 0-3,
-// equations, functions), colour masks of draw buffers 0-3, depth test, function and mask, stencil test,
-// scissor test, face culling and cull mode, front face, clip control, GL_FRAMEBUFFER_SRGB, the unpack
-// alignment, and polygon mode, rasterizer discard, colour logic op, depth clamp and clip distances 0-7 (which
-// it switches off for its draws, whatever the host left on). What it changes are the contents of the textures
-// it writes (draw) and its own GL objects. bindForward alone changes bindings on purpose: those its
-// ForwardBindings name, for the host's forward pass. It needs the host's context current on the calling
-// thread, and that context must outlive the projector.
+// GL state: every call that touches GL (create, setDecals, addDecalTexture*, draw, bin, findSurface) leaves
+// the GL state exactly as it found it, as Dear ImGui's OpenGL 3 backend does: it saves and restores the bound
+// draw and read framebuffers, viewport, program, vertex array, active texture unit and the 2D and 2D-array
+// textures and samplers of units 0-7, the uniform buffer bindings 0-1 and shader storage bindings 0-10 (with
+// their ranges), image units 0-2 and the generic uniform, shader storage, array, pixel unpack, draw indirect
+// and dispatch indirect buffer bindings, blending (enable per draw buffer 0-3, equations, functions), colour
+// masks of draw buffers 0-3, depth test, function and mask, stencil test, scissor test, face culling and cull
+// mode, front face, clip control, GL_FRAMEBUFFER_SRGB, the unpack alignment, and polygon mode, rasterizer
+// discard, colour logic op, depth clamp and clip distances 0-7 (which it switches off for its draws, whatever
+// the host left on). What it changes are the contents of the textures it writes (draw) and its own GL
+// objects. bindForward alone changes bindings on purpose: those its ForwardBindings name, for the host's
+// forward pass. It needs the host's context current on the calling thread, and that context must outlive the
+// projector.
 //
 // Bad input changes nothing: a HostFrame with a missing required texture, an unsupported format,
 // mismatched sizes, a viewport outside the textures or a camera that cannot be inverted fails with
