@@ -65,8 +65,11 @@ Result<uint64_t> SurfaceProbe::find(const HostFrame& frame, const std::vector<Su
         const SurfaceLine& l = lines[i];
         if (!finite(l.from) || !finite(l.to))
             return fail("projector: surface line " + std::to_string(i) + " is not finite");
-        gpuLines.emplace_back(glm::vec3(frame.view * glm::dvec4(l.from, 1.0)), float(l.objectId));
-        gpuLines.emplace_back(glm::vec3(frame.view * glm::dvec4(l.to, 1.0)), 0.0f);
+        glm::vec3 from(frame.view * glm::dvec4(l.from, 1.0)), to(frame.view * glm::dvec4(l.to, 1.0));
+        if (!finite(glm::dvec3(from)) || !finite(glm::dvec3(to)))
+            from = to = glm::vec3(0.0f); // past float's range: a point at the eye, which meets nothing
+        gpuLines.emplace_back(from, float(l.objectId));
+        gpuLines.emplace_back(to, 0.0f);
     }
     if (Status s = prepare(frame); !s) return fail(s.error());
     gpuLines.resize(std::max<size_t>(gpuLines.size(), 2));

@@ -272,3 +272,30 @@ TEST(SurfaceProbe, FindsTheSurfaceInAForeignHostsDepthAndKeepsToTheLinesObject) 
     ASSERT_FALSE(refused.ok());
     EXPECT_NE(refused.error().find("HostFrame.depth.texture"), std::string::npos) << refused.error();
 }
+
+TEST(SurfaceProbe, EmptyDegenerateAndAbsurdLinesFindNothingAndNeverBreakTheSearch) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = renderedFloor(64, 48);
+    ASSERT_TRUE(r.ok()) << r.error();
+    EXPECT_TRUE(found(r.value(), {}).empty());
+    const glm::dvec3 p = onFloor(0.0, 0.0);
+    const std::vector<SurfaceLine> lines = {
+        {p, p},                                                         // a point
+        {{1e30, 1e30, 1e30}, {-1e30, -1e30, -1e30}},                    // past float's range in view space
+        {{0.0, -1e6, 0.0}, {0.0, -2e6, 0.0}},                           // far under the floor
+        {p + glm::dvec3(0.0, 0.2, 0.0), p - glm::dvec3(0.0, 0.2, 0.0)}, // the control
+    };
+    const std::vector<SurfacePoint> points = found(r.value(), lines);
+    ASSERT_EQ(points.size(), lines.size());
+    for (size_t i = 0; i < points.size(); ++i)
+        if (points[i].found) {
+            EXPECT_TRUE(std::isfinite(points[i].point.x) && std::isfinite(points[i].point.y) &&
+                        std::isfinite(points[i].point.z))
+                << "line " << i;
+            EXPECT_NEAR(glm::length(points[i].normal), 1.0, 1e-6) << "line " << i;
+        }
+    EXPECT_FALSE(points[0].found);
+    EXPECT_FALSE(points[1].found);
+    EXPECT_FALSE(points[2].found);
+    EXPECT_TRUE(points[3].found);
+}

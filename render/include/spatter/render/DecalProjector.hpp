@@ -443,7 +443,8 @@ public:
     // step to a neighbour taken on the side nearer in depth). Call it after the host's geometry pass,
     // as draw(). For decals placed through a collision proxy: the lines of the decals just spawned,
     // then DecalSystem::layOnDrawnSurface with each point found, which lays them on the drawn surface
-    // rather than the proxy's (ACCURACY.md). Returns the request's number for surfaceFound. Fails,
+    // rather than the proxy's (ACCURACY.md). A line whose ends lie past float's range from the camera
+    // meets nothing. Returns the request's number for surfaceFound. Fails,
     // queuing nothing, on a frame that does not fit (the depth, object ID texture and camera checks of
     // draw()) or a line that is not finite.
     Result<uint64_t> findSurface(const HostFrame& frame, const std::vector<SurfaceLine>& lines);
