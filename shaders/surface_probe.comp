@@ -69,31 +69,30 @@ int sideOf(vec3 p, out ivec2 pixel, out float gap) {
     return p.z > s.z ? kFront : kBehind;
 }
 
-// The step from the surface at `pixel` (`s`) to the one beside it along `axis`, taken on the side
-// where the surface runs on straightest (the smaller second difference over two pixels), so that a
-// crease or an edge of something in front or behind stays out of it where the other side has none.
-bool stepAlong(ivec2 pixel, ivec2 axis, vec3 s, out vec3 step) {
-    vec3 a1, a2, b1, b2;
-    bool ahead = surfaceAt(pixel + axis, a1), behind = surfaceAt(pixel - axis, b1);
-    float bendAhead = ahead && surfaceAt(pixel + 2 * axis, a2) ? length(a2 - 2.0 * a1 + s) : kFar;
-    float bendBehind = behind && surfaceAt(pixel - 2 * axis, b2) ? length(s - 2.0 * b1 + b2) : kFar;
-    if (bendAhead == bendBehind) { // neither runs on over two pixels: the side nearer in depth
-        bendAhead = ahead ? abs(a1.z - s.z) : kFar;
-        bendBehind = behind ? abs(b1.z - s.z) : kFar;
-    }
-    if (ahead && bendAhead <= bendBehind) step = a1 - s;
-    else if (behind) step = s - b1;
-    return ahead || behind;
-}
-
-// The unit normal of the surface at `pixel` from the depth around it, facing the camera.
+// The unit normal of the surface at `pixel` from the depth around it, facing the camera: of the four
+// quadrants around the pixel, the one whose pixels lie flattest on the plane of its two steps (a
+// triangle's pixels are coplanar; a crease or an edge beside the pixel bends the others).
 bool normalAt(ivec2 pixel, out vec3 n) {
-    vec3 s, dx, dy;
-    if (!surfaceAt(pixel, s) || !stepAlong(pixel, ivec2(1, 0), s, dx) || !stepAlong(pixel, ivec2(0, 1), s, dy))
-        return false;
-    n = cross(dx, dy);
-    if (!(dot(n, n) > 0.0)) return false;
-    n = normalize(n);
+    vec3 s;
+    if (!surfaceAt(pixel, s)) return false;
+    float best = kFar;
+    for (int q = 0; q < 4; ++q) {
+        ivec2 dx = ivec2((q & 1) == 0 ? 1 : -1, 0), dy = ivec2(0, (q & 2) == 0 ? 1 : -1);
+        vec3 x1, y1, d, x2, y2;
+        if (!surfaceAt(pixel + dx, x1) || !surfaceAt(pixel + dy, y1)) continue;
+        vec3 c = cross(x1 - s, y1 - s);
+        if (!(dot(c, c) > 0.0)) continue;
+        c = normalize(c);
+        float bend = 0.0;
+        bend += surfaceAt(pixel + dx + dy, d) ? abs(dot(c, d - s)) : kFar;
+        bend += surfaceAt(pixel + 2 * dx, x2) ? abs(dot(c, x2 - s)) : kFar;
+        bend += surfaceAt(pixel + 2 * dy, y2) ? abs(dot(c, y2 - s)) : kFar;
+        if (bend < best) {
+            best = bend;
+            n = c;
+        }
+    }
+    if (best == kFar) return false;
     if (dot(n, s) > 0.0) n = -n;
     return true;
 }

@@ -439,8 +439,9 @@ public:
     // camera and object ID texture are read, nothing is written): the first point from a line's start
     // where it passes from in front of the surface the depth holds to behind it, seen by the camera,
     // where the depth is continuous across it (a jump of more than 8 pixels' size plus 5% of the line's
-    // length is the edge of something in front), and the normal the pixels around that point give (each
-    // step to a neighbour taken on the side nearer in depth). Call it after the host's geometry pass,
+    // length is the edge of something in front), and the normal the pixels around that point give (the
+    // steps to its neighbours in the quadrant whose pixels lie flattest on their plane, so that a crease
+    // or an edge beside it stays out). Call it after the host's geometry pass,
     // as draw(). For decals placed through a collision proxy: the lines of the decals just spawned,
     // then DecalSystem::layOnDrawnSurface with each point found, which lays them on the drawn surface
     // rather than the proxy's (ACCURACY.md). A line whose ends lie past float's range from the camera
