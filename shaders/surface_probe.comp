@@ -27,7 +27,7 @@ const int kRefine = 16;     // halvings of the step in which the line passes beh
 // kJumpOfLength of the line's length, across the crossing; more is an edge of something in front.
 const float kJumpPixels = 8.0, kJumpOfLength = 0.05;
 
-const float kFar = 3.0e38;
+const float kFar = 3.0e38, kMissing = 1.0e30;
 const int kUnknown = 0, kFront = 1, kBehind = 2;
 
 // Where view-space point `p` falls on the host's window, in pixels; false behind the camera.
@@ -83,10 +83,10 @@ bool normalAt(ivec2 pixel, out vec3 n) {
         vec3 c = cross(x1 - s, y1 - s);
         if (!(dot(c, c) > 0.0)) continue;
         c = normalize(c);
-        float bend = 0.0;
-        bend += surfaceAt(pixel + dx + dy, d) ? abs(dot(c, d - s)) : kFar;
-        bend += surfaceAt(pixel + 2 * dx, x2) ? abs(dot(c, x2 - s)) : kFar;
-        bend += surfaceAt(pixel + 2 * dy, y2) ? abs(dot(c, y2 - s)) : kFar;
+        float bend = 0.0; // a pixel with no surface counts as bent far out, but less than no quadrant
+        bend += surfaceAt(pixel + dx + dy, d) ? abs(dot(c, d - s)) : kMissing;
+        bend += surfaceAt(pixel + 2 * dx, x2) ? abs(dot(c, x2 - s)) : kMissing;
+        bend += surfaceAt(pixel + 2 * dy, y2) ? abs(dot(c, y2 - s)) : kMissing;
         if (bend < best) {
             best = bend;
             n = c;
