@@ -11,7 +11,7 @@ Result<size_t> layOnDrawnSurface(DecalSystem& system, const std::vector<SpawnRes
         const std::optional<DecalAxisLine> line = r.placed() ? system.axisLine(r.handle) : std::nullopt;
         if (!line) continue;
         handles.push_back(r.handle);
-        lines.push_back({line->from, line->to, system.get(r.handle)->objectId});
+        lines.push_back({line->from, line->to, line->objectId});
     }
     if (Status s = renderer.resize(probeSize.x, probeSize.y); !s) return fail(s.error());
     renderer.setDecals({});

@@ -149,23 +149,26 @@ struct ShotCoverage {
     }
 
     // The coverage mask of the decals the shots place through `proxies` (empty: the render mesh),
-    // projected along `projection`; with `probeSize`, laid again on the drawn surface as the camera's
-    // depth at that size finds it (DrawnSurface.hpp).
+    // projected along `projection`; with `laid`, also the mask of the same decals laid again on the
+    // drawn surface as the camera's depth at `probeSize` finds it (DrawnSurface.hpp).
     Result<std::vector<uint8_t>> mask(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
                                       double diagonal, uint64_t seed, Projection projection,
-                                      std::optional<glm::ivec2> probeSize = std::nullopt) {
+                                      glm::ivec2 probeSize = {}, std::vector<uint8_t>* laid = nullptr) {
         DecalType t = probe.type();
         t.projection = projection;
         Result<DecalSystem> sys = coverageSystem(CollisionWorld::build(scene, proxies), t, diagonal, seed);
         if (!sys) return fail(sys.error());
         std::vector<SpawnResult> results;
         sys->spawnBatch(shots, 0, results);
-        if (probeSize)
-            if (Result<size_t> laid =
-                    layOnDrawnSurface(sys.value(), results, probe.renderer(), camera, *probeSize);
-                !laid)
-                return fail(laid.error());
-        return probe.mask(camera, sys->decals());
+        Result<std::vector<uint8_t>> placed = probe.mask(camera, sys->decals());
+        if (!placed || !laid) return placed;
+        if (Result<size_t> n = layOnDrawnSurface(sys.value(), results, probe.renderer(), camera, probeSize);
+            !n)
+            return fail(n.error());
+        Result<std::vector<uint8_t>> after = probe.mask(camera, sys->decals());
+        if (!after) return fail(after.error());
+        *laid = std::move(after).value();
+        return placed;
     }
 
     // Where the IoU along the shot is lost (IouBreakdown.hpp), against `reference`.
@@ -567,15 +570,14 @@ int runTradeoffCommand(int argc, char** argv) {
                             r.placed = t->placed;
                         }
                         if (probe) {
-                            Result<std::vector<uint8_t>> m =
-                                probe->mask(scene, proxies, diagonal, seed, Projection::Shot);
+                            std::vector<uint8_t> laid;
+                            Result<std::vector<uint8_t>> m = probe->mask(scene, proxies, diagonal, seed,
+                                                                         Projection::Shot, probeSize, &laid);
                             Result<std::vector<uint8_t>> n =
                                 probe->mask(scene, proxies, diagonal, seed, Projection::Normal);
-                            Result<std::vector<uint8_t>> p =
-                                probe->mask(scene, proxies, diagonal, seed, Projection::Shot, probeSize);
                             if (m) r.iou = iou(referenceMask, m.value());
+                            if (m) r.iouProbed = iou(referenceMask, laid);
                             if (n) r.iouNormal = iou(referenceNormalMask, n.value());
-                            if (p) r.iouProbed = iou(referenceMask, p.value());
                             if (args.has("--iou-breakdown")) {
                                 Result<IouBreakdown> b =
                                     probe->breakdown(scene, proxies, diagonal, seed, referenceMask);

@@ -24,7 +24,7 @@ Status SurfaceLaying::search(Renderer& renderer, const GallerySim& sim) {
         if (decals.type(d.type)->volumetric || decals.world().deforms(d.object) ||
             renderer.objectDecalMode(d.object) == DecalMode::TextureSpace)
             continue;
-        lines.push_back({line->from, line->to, d.objectId});
+        lines.push_back({line->from, line->to, line->objectId});
         s.handles.push_back(h);
         s.transforms.push_back(decals.world().object(d.object)->transform);
     }

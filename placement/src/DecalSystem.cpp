@@ -752,6 +752,7 @@ std::optional<DecalAxisLine> DecalSystem::axisLine(DecalHandle handle) const {
     DecalAxisLine line;
     line.from = glm::dvec3(o->transform * glm::dvec4(center + reach, 1.0));
     line.to = glm::dvec3(o->transform * glm::dvec4(center - reach, 1.0));
+    line.objectId = d->objectId;
     return line;
 }
 
@@ -815,9 +816,8 @@ Status DecalSystem::layOnDrawnSurface(DecalHandle handle, const glm::dvec3& poin
                     "cannot be laid on it");
     // The half-depth of a decal on a surface with no error bound (place with h = 0), world units, then
     // in the object's space along the laid decal's normal.
-    const Frame f = d.frame();
-    const double extent = std::max(double(d.size.x) * glm::length(m * glm::dvec3(f.tangent)),
-                                   double(d.size.y) * glm::length(m * glm::dvec3(f.bitangent)));
+    const glm::vec2 worldSize = s.toWorld(d).size;
+    const double extent = double(std::max(worldSize.x, worldSize.y));
     const float halfDepth = std::max(t.halfDepth, float(double(s.settings.depthMargin) * extent));
     laid->halfDepth =
         float(double(halfDepth) * glm::length(glm::transpose(inv) * glm::dvec3(laid->frame().normal)));

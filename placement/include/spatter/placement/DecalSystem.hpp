@@ -123,6 +123,7 @@ struct WorldDecal {
 // A decal's projection axis through its box, world space, from the face its shot came through (axisLine).
 struct DecalAxisLine {
     glm::dvec3 from{0.0}, to{0.0};
+    uint8_t objectId = 0; // the decal's object decal ID: the surface it is laid on carries it
 };
 
 class DecalSystem {
