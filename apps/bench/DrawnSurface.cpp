@@ -23,10 +23,12 @@ Result<size_t> layOnDrawnSurface(DecalSystem& system, const std::vector<SpawnRes
     if (!request) return fail(request.error());
     if (!points) return fail("the surface search gave no result");
     size_t laid = 0;
-    for (size_t i = 0; i < handles.size(); ++i)
-        if ((*points)[i].found &&
-            system.layOnDrawnSurface(handles[i], (*points)[i].point, (*points)[i].normal))
-            ++laid;
+    for (size_t i = 0; i < handles.size(); ++i) {
+        if (!(*points)[i].found) continue;
+        const Result<DrawnSurfaceLaying> r =
+            system.layOnDrawnSurface(handles[i], (*points)[i].point, (*points)[i].normal);
+        if (r && r.value() == DrawnSurfaceLaying::Laid) ++laid;
+    }
     return laid;
 }
 

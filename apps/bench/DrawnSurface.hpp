@@ -17,7 +17,7 @@ namespace spatter::bench {
 
 // Lays the decals of `placed` (the results of their spawns in `system`) on the surface `renderer`
 // draws from `camera` at `probeSize` pixels, then gives the renderer its size back. Returns how many
-// were laid again.
+// were laid again (those whose shot meets the drawn surface too steeply for their type are removed).
 Result<size_t> layOnDrawnSurface(DecalSystem& system, const std::vector<SpawnResult>& placed,
                                  Renderer& renderer, const Camera& camera, glm::ivec2 probeSize);
 

@@ -115,9 +115,10 @@ std::optional<glm::dvec3> depthNormal(const ProbeView& view, const glm::dvec3& p
 // decal is laid again there (relaidDecal) with the drawn triangle's normal or, by `view`, the depth
 // buffer's, its box `halfDepth` deep; it stays as it is where the normal cannot take it, or, with a
 // camera, where the camera does not see the meet. Nothing where the line meets no drawn surface in the
-// box: the pass would drop the decal.
+// box (the pass would drop the decal), nor where its shot meets the drawn surface more than
+// `maxAngleDeg` from its normal (DecalSystem::layOnDrawnSurface removes such a decal).
 std::optional<Decal> onDrawnSurface(const Decal& d, const CollisionWorld& drawn, const glm::dmat4& toWorld,
-                                    float halfDepth, const ProbeView& view) {
+                                    float halfDepth, float maxAngleDeg, const ProbeView& view) {
     const glm::dvec3 reach(d.boxToObject()[2]);
     Ray line;
     line.origin = glm::dvec3(toWorld * glm::dvec4(glm::dvec3(d.center) + reach, 1.0));
@@ -135,21 +136,25 @@ std::optional<Decal> onDrawnSurface(const Decal& d, const CollisionWorld& drawn,
         if (!seen) return d;
         normal = glm::transpose(glm::dmat3(toWorld)) * *seen; // world normals to object space
     }
-    return relaidDecal(d, glm::dmat3(toWorld), glm::vec3(hit->localPosition), glm::vec3(normal), halfDepth)
-        .value_or(d);
+    const std::optional<Decal> laid =
+        relaidDecal(d, glm::dmat3(toWorld), glm::vec3(hit->localPosition), glm::vec3(normal), halfDepth);
+    if (!laid) return d;
+    const std::optional<double> angle = laidShotAngleDeg(d, *laid, glm::dmat3(toWorld));
+    if (angle && *angle > double(maxAngleDeg)) return std::nullopt;
+    return laid;
 }
 
 // The proxy-placed decals as a decal pass reading the drawn surface would draw them (onDrawnSurface),
 // each as shallow as the render-placed decal of its shot where there is one.
 std::vector<Decal> drawnProbe(const ShotDecals& decals, const CollisionWorld& drawn, const Scene& scene,
-                              const ProbeView& view) {
+                              float maxAngleDeg, const ProbeView& view) {
     std::vector<Decal> out;
     for (size_t i = 0; i < decals.proxy.size(); ++i) {
         if (!decals.proxy[i]) continue;
         const Decal& d = *decals.proxy[i];
         const float halfDepth = decals.render[i] ? decals.render[i]->halfDepth : d.halfDepth;
         if (std::optional<Decal> probed =
-                onDrawnSurface(d, drawn, scene.objects[d.object].transform, halfDepth, view))
+                onDrawnSurface(d, drawn, scene.objects[d.object].transform, halfDepth, maxAngleDeg, view))
             out.push_back(*probed);
     }
     return out;
@@ -218,7 +223,9 @@ Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, co
         {"seen", "drawn_probe_seen", ProbeView{&camera, width, height, false}},
         {"depth normal", "drawn_probe_depth_normal", ProbeView{&camera, width, height, true}}};
     for (const auto& [column, key, view] : views)
-        if (Status st = add(column, key, drawnProbe(decals, render.value().world(), scene, view)); !st)
+        if (Status st =
+                add(column, key, drawnProbe(decals, render.value().world(), scene, type.maxAngleDeg, view));
+            !st)
             return fail(st.error());
     Result<std::vector<Decal>> faced = nearestFaceFrames(decals, scene);
     if (!faced) return fail(faced.error());

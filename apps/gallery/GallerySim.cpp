@@ -279,7 +279,8 @@ Status GallerySim::save(const std::string& path) const {
     return saveDecalsToFile(*system_, path);
 }
 
-Status GallerySim::layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point, const glm::dvec3& normal) {
+Result<DrawnSurfaceLaying> GallerySim::layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point,
+                                                         const glm::dvec3& normal) {
     return system_->layOnDrawnSurface(handle, point, normal);
 }
 

@@ -71,7 +71,8 @@ public:
     SpawnResult shoot(const Ray& ray, ShotKind kind);
 
     // Lays a decal on the drawn surface where a renderer found it (DecalSystem::layOnDrawnSurface).
-    Status layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point, const glm::dvec3& normal);
+    Result<DrawnSurfaceLaying> layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point,
+                                                 const glm::dvec3& normal);
     // Counts the decal systems this gallery has had (new proxies, a load): a handle is good only with
     // the number it was given under.
     uint64_t systemNumber() const { return systemNumber_; }

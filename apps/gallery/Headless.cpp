@@ -244,6 +244,7 @@ int runHeadless(const GalleryOptions& options) {
     out["on_moving_targets"] = sim->counters().onMovingTargets;
     out["on_skinned_targets"] = sim->counters().onSkinnedTargets;
     out["laid_on_drawn_surface"] = laying.laid();
+    out["removed_on_drawn_surface"] = laying.removed();
     out["alive"] = st.alive;
     out["frames"] = frames;
     out["placement_us_per_shot"] =

@@ -58,8 +58,8 @@ struct Hud {
     RenderOptions options;
     bool wrapAround = true;
     bool volumetricBullets = true;
-    bool layOnDrawnSurface = true; // new flat decals laid on the drawn surface a frame after their shot
-    uint64_t laid = 0;             // decals laid so far
+    bool layOnDrawnSurface = true;  // new flat decals laid on the drawn surface a frame after their shot
+    uint64_t laid = 0, removed = 0; // decals laid and removed (shot too steep) so far
     float tolerance = 0.5f;
     double lastPlacementUs = 0.0;
     std::string lastResult;
@@ -133,7 +133,7 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
     ImGui::Checkbox("volumetric bullet holes", &hud.volumetricBullets);
     ImGui::Checkbox("lay new decals on the drawn surface", &hud.layOnDrawnSurface);
     ImGui::SameLine();
-    ImGui::Text("(%llu laid)", (unsigned long long)hud.laid);
+    ImGui::Text("(%llu laid, %llu removed)", (unsigned long long)hud.laid, (unsigned long long)hud.removed);
     ImGui::SliderFloat("proxy tolerance %", &hud.tolerance, 0.0f, 5.0f, "%.2f");
     if (hud.rebuild.valid()) {
         ImGui::ProgressBar(hud.rebuildProgress.load(), ImVec2(-1.0f, 0.0f), "building proxies");
@@ -307,6 +307,7 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
             laying.lay(renderer.value(), sim.value(), false);
             if (Status s = laying.search(renderer.value(), sim.value()); !s) hud.status = s.error();
             hud.laid = laying.laid();
+            hud.removed = laying.removed();
             renderer->present(fbw, fbh);
         }
 

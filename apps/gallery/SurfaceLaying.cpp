@@ -51,7 +51,8 @@ void SurfaceLaying::lay(Renderer& renderer, GallerySim& sim, bool wait) {
             const glm::dmat4 move = now * glm::inverse(s.transforms[i]);
             const glm::dvec3 point(move * glm::dvec4(p.point, 1.0));
             const glm::dvec3 normal = glm::transpose(glm::inverse(glm::dmat3(move))) * p.normal;
-            if (sim.layOnDrawnSurface(s.handles[i], point, normal)) ++laid_;
+            const Result<DrawnSurfaceLaying> laid = sim.layOnDrawnSurface(s.handles[i], point, normal);
+            if (laid) ++(laid.value() == DrawnSurfaceLaying::Laid ? laid_ : removed_);
         }
         searches_.pop_front();
     }

@@ -2,7 +2,8 @@
 // SurfaceLaying: the gallery's decals laid on the drawn surface a frame after their shots. After a
 // frame, the axis lines of the decals placed since the frame before are searched in its depth
 // (Renderer::findSurface); once the GPU has answered, each decal whose line meets the drawn surface
-// is laid there (DecalSystem::layOnDrawnSurface), carried from where that frame drew its object to
+// is laid there (DecalSystem::layOnDrawnSurface; removed where the shot meets it too steeply for its
+// type), carried from where that frame drew its object to
 // where the object is now. Craters, decals on skinned targets and decals splatted into a texture-space
 // object's texture are left as they are. Searches made before the decal system was replaced (new proxies, a
 // load) are dropped: their handles name decals of the system before.
@@ -27,6 +28,8 @@ public:
     // Lays the decals of the searches the GPU has answered (all of them, waiting, with `wait`).
     void lay(Renderer& renderer, GallerySim& sim, bool wait);
     uint64_t laid() const { return laid_; } // decals laid on the drawn surface so far
+    // Decals removed so far because their shot meets the drawn surface too steeply for their type.
+    uint64_t removed() const { return removed_; }
 
 private:
     struct Search {
@@ -38,7 +41,7 @@ private:
     std::vector<DecalHandle> fresh_;
     uint64_t freshSystem_ = 0; // the system fresh_'s handles belong to
     std::deque<Search> searches_;
-    uint64_t laid_ = 0;
+    uint64_t laid_ = 0, removed_ = 0;
 };
 
 } // namespace spatter::gallery

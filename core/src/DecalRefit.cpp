@@ -2,6 +2,7 @@
 
 #include "spatter/core/Frame.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
 
@@ -71,6 +72,15 @@ std::optional<Decal> relaidDecal(const Decal& d, const glm::dmat3& toWorld, cons
     if (d.slant != 0) out.setProjectionAxis(d.projectionAxis()); // along its normal: the new one
     out.halfDepth = halfDepth;
     return out;
+}
+
+std::optional<double> laidShotAngleDeg(const Decal& d, const Decal& laid, const glm::dmat3& toWorld) {
+    if (d.slant == 0) return std::nullopt;
+    const glm::dvec3 shot = glm::normalize(toWorld * glm::dvec3(d.projectionAxis()));
+    const glm::dvec3 n =
+        glm::normalize(glm::transpose(glm::inverse(toWorld)) * glm::dvec3(laid.frame().normal));
+    constexpr double kDegrees = 57.295779513082320876798;
+    return std::acos(std::clamp(glm::dot(shot, n), -1.0, 1.0)) * kDegrees;
 }
 
 } // namespace spatter

@@ -791,7 +791,8 @@ std::string outsideBox(const Decal& d, const glm::dvec3& local) {
 
 } // namespace
 
-Status DecalSystem::layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point, const glm::dvec3& normal) {
+Result<DrawnSurfaceLaying> DecalSystem::layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point,
+                                                          const glm::dvec3& normal) {
     Impl& s = *impl_;
     const std::lock_guard<std::mutex> lock(s.mutex);
     const Decal* found = get(handle);
@@ -827,9 +828,14 @@ Status DecalSystem::layOnDrawnSurface(DecalHandle handle, const glm::dvec3& poin
                     formatNumber(laid->size.x) + " x " + formatNumber(laid->size.y) + ", half-depth " +
                     formatNumber(laid->halfDepth) + ")");
     const uint32_t dense = s.slots[handle.slot].dense;
+    if (const std::optional<double> angle = laidShotAngleDeg(d, *laid, m); angle && *angle > t.maxAngleDeg) {
+        s.stats.removed++;
+        s.removeDense(dense);
+        return DrawnSurfaceLaying::Removed;
+    }
     s.decals[dense] = *laid;
     s.logChange(dense, DecalChangeKind::Changed);
-    return {};
+    return DrawnSurfaceLaying::Laid;
 }
 
 const std::vector<Decal>& DecalSystem::decals() const {

@@ -52,16 +52,18 @@ TEST(Gallery, HeadlessRunWritesConsistentStatsAndAPicture) {
     const std::string dir = test::scratchDir("gallery-headless");
     const json j = runHeadless(dir, 100, 1);
     ASSERT_TRUE(j.is_object());
-    for (const char* key : {"shots", "placed", "rejected", "evicted", "on_moving_targets",
-                            "laid_on_drawn_surface", "alive", "frames", "placement_us_per_shot",
-                            "gpu_ms_per_frame", "render_triangles", "proxy_triangles", "error_bound"})
+    for (const char* key :
+         {"shots", "placed", "rejected", "evicted", "on_moving_targets", "laid_on_drawn_surface",
+          "removed_on_drawn_surface", "alive", "frames", "placement_us_per_shot", "gpu_ms_per_frame",
+          "render_triangles", "proxy_triangles", "error_bound"})
         EXPECT_TRUE(j.contains(key)) << key;
     EXPECT_EQ(j["shots"].get<int>(), 100);
     EXPECT_EQ(j["placed"].get<int>() + j["rejected"].get<int>(), j["shots"].get<int>());
     EXPECT_GT(j["on_moving_targets"].get<int>(), 0);
     // The shots come from the camera: most flat decals' meets with the drawn surface are in view.
     EXPECT_GT(j["laid_on_drawn_surface"].get<int>(), 0);
-    EXPECT_LE(j["laid_on_drawn_surface"].get<int>(), j["placed"].get<int>());
+    EXPECT_LE(j["laid_on_drawn_surface"].get<int>() + j["removed_on_drawn_surface"].get<int>(),
+              j["placed"].get<int>());
     EXPECT_GT(j["evicted"].get<int>(), 0) << "bursts of automatic fire fill area cells";
     EXPECT_LE(j["alive"].get<int>(), j["placed"].get<int>());
     EXPECT_GT(j["frames"].get<int>(), 1);
@@ -112,7 +114,7 @@ TEST(Gallery, SameSeedGivesTheSameSession) {
     const json ja = runHeadless(a, 40, 5), jb = runHeadless(b, 40, 5);
     ASSERT_TRUE(ja.is_object() && jb.is_object());
     for (const char* key : {"placed", "rejected", "evicted", "on_moving_targets", "laid_on_drawn_surface",
-                            "alive", "proxy_triangles"})
+                            "removed_on_drawn_surface", "alive", "proxy_triangles"})
         EXPECT_EQ(ja[key], jb[key]) << key;
     EXPECT_EQ(ja["tracked_decal"]["decal_id"], jb["tracked_decal"]["decal_id"]);
 }

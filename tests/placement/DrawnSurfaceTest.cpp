@@ -58,6 +58,16 @@ glm::dvec3 drawnFloorNormal() {
     return 2.5 * glm::transpose(glm::inverse(glm::dmat3(turnedTransform()))) * glm::dvec3(0.0, 1.0, 0.0);
 }
 
+// The shot at the floor's object-space point `target` from `degrees` off the floor's normal in the world
+// of turnedTransform(), turned about that normal by `azimuth`.
+Ray worldShotAtDrawnFloor(const glm::dvec3& target, double degrees, double azimuth) {
+    const glm::dvec3 n = glm::normalize(drawnFloorNormal());
+    const glm::dvec3 u = glm::normalize(glm::cross(n, glm::dvec3(1.0, 0.0, 0.0))), v = glm::cross(n, u);
+    const glm::dvec3 s = shotFrom(degrees, azimuth);
+    const glm::dvec3 back = s.x * u + s.y * n + s.z * v;
+    return ray(glm::dvec3(turnedTransform() * glm::dvec4(target, 1.0)) + 3.0 * back, -back);
+}
+
 // `point` (world space) in the unit box of `d`, a decal on an object of turnedTransform().
 glm::dvec3 worldPointInBox(const Decal& d, const glm::dvec3& point) {
     return inBox(d, glm::dvec3(glm::inverse(turnedTransform()) * glm::dvec4(point, 1.0)));
@@ -85,9 +95,10 @@ TEST(DrawnSurface, ADecalLaidOnTheDrawnSurfaceIsTheOneTheShotPlacesOnTheRenderMe
                 const Decal before = *tilted.get(a.handle), drawn = *onFloor.get(b.handle);
                 const std::optional<DecalAxisLine> line = tilted.axisLine(a.handle);
                 ASSERT_TRUE(line.has_value()) << where;
-                const Status laid =
+                const Result<DrawnSurfaceLaying> laid =
                     tilted.layOnDrawnSurface(a.handle, whereAxisMeetsFloor(*line), drawnFloorNormal());
                 ASSERT_TRUE(laid.ok()) << laid.error() << where;
+                EXPECT_EQ(laid.value(), DrawnSurfaceLaying::Laid) << where;
                 const Decal d = *tilted.get(a.handle);
                 EXPECT_LT(glm::length(d.center - drawn.center), 1e-5f) << where;
                 const Frame f = d.frame(), g = drawn.frame();
@@ -165,7 +176,8 @@ TEST(DrawnSurface, ADecalOnAnObjectScaledToNothingHasNoAxisLineAndIsNotLaid) {
     EXPECT_FALSE(s.axisLine(r.handle).has_value());
     const std::vector<Decal> decals = s.decals();
     const uint64_t version = s.version();
-    const Status st = s.layOnDrawnSurface(r.handle, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0));
+    const Result<DrawnSurfaceLaying> st =
+        s.layOnDrawnSurface(r.handle, glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0));
     ASSERT_FALSE(st.ok());
     EXPECT_NE(st.error().find("singular"), std::string::npos) << st.error();
     EXPECT_TRUE(sameDecals(s.decals(), decals));
@@ -187,9 +199,10 @@ TEST(DrawnSurface, LayingADecalLogsOneChangeInPlace) {
     const uint64_t version = s.version();
     const DecalStats stats = s.stats();
     const uint32_t index = uint32_t(s.get(handles[1]) - s.decals().data());
-    const Status st =
+    const Result<DrawnSurfaceLaying> st =
         s.layOnDrawnSurface(handles[1], whereAxisMeetsFloor(*s.axisLine(handles[1])), drawnFloorNormal());
     ASSERT_TRUE(st.ok()) << st.error();
+    EXPECT_EQ(st.value(), DrawnSurfaceLaying::Laid);
     EXPECT_EQ(s.version(), version + 1);
     const DecalChanges changes = s.changesSince(version);
     ASSERT_TRUE(changes.complete);
@@ -255,7 +268,7 @@ TEST(DrawnSurface, ARefusedLayingChangesNothingAndNamesTheProblem) {
     const uint64_t version = s.version();
     const DecalStats stats = s.stats();
     for (const Refusal& r : refusals) {
-        const Status st = s.layOnDrawnSurface(r.handle, r.point, r.normal);
+        const Result<DrawnSurfaceLaying> st = s.layOnDrawnSurface(r.handle, r.point, r.normal);
         ASSERT_FALSE(st.ok()) << r.what;
         EXPECT_NE(st.error().find(r.named), std::string::npos) << r.what << ": " << st.error();
         EXPECT_TRUE(sameDecals(s.decals(), decals)) << r.what;
@@ -270,6 +283,46 @@ TEST(DrawnSurface, ARefusedLayingChangesNothingAndNamesTheProblem) {
     EXPECT_EQ(s.get(next.handle)->id, twin.get(twinNext.handle)->id) << "no random number was drawn";
 }
 
+// A shot that meets the drawn floor more steeply than its type allows would have placed nothing there
+// (spawn on the floor refuses it as grazing): laid on the floor, the decal it placed on a collider
+// tilted against the floor is removed, as remove() removes it. The same shot's decal of a type projected
+// along its normal keeps no shot and is laid.
+TEST(DrawnSurface, ADecalWhoseShotMeetsTheDrawnSurfaceTooSteeplyIsRemoved) {
+    int removed = 0;
+    for (double azimuth = 0.0; azimuth < 6.28; azimuth += 0.4) {
+        const std::string where = "azimuth " + std::to_string(azimuth);
+        DecalSystem s = floorSystemTracedBy(FloorTrace::TiltedCollider),
+                    onFloor = floorSystemTracedBy(FloorTrace::Floor);
+        DecalType steep = plainType(), alongNormal = plainType("along normal");
+        steep.maxAngleDeg = alongNormal.maxAngleDeg = 50.0f;
+        alongNormal.projection = Projection::Normal;
+        const uint16_t t = addType(s, steep), n = addType(s, alongNormal);
+        const Ray shot = worldShotAtDrawnFloor({0.2, 0.0, 0.1}, 52.0, azimuth);
+        const SpawnResult a = s.spawn(shot, t), b = s.spawn(shot, n);
+        const SpawnResult drawn = onFloor.spawn(shot, addType(onFloor, steep));
+        if (!a.placed() || drawn.status != SpawnStatus::GrazingAngle) continue;
+        ASSERT_TRUE(b.placed()) << b.reason << where;
+        const uint64_t version = s.version();
+        const DecalStats stats = s.stats();
+        const Result<DrawnSurfaceLaying> gone =
+            s.layOnDrawnSurface(a.handle, whereAxisMeetsFloor(*s.axisLine(a.handle)), drawnFloorNormal());
+        ASSERT_TRUE(gone.ok()) << gone.error() << where;
+        EXPECT_EQ(gone.value(), DrawnSurfaceLaying::Removed) << where;
+        EXPECT_EQ(s.get(a.handle), nullptr) << where;
+        EXPECT_EQ(s.stats().removed, stats.removed + 1) << where;
+        EXPECT_EQ(s.stats().alive, stats.alive - 1) << where;
+        const DecalChanges changes = s.changesSince(version);
+        ASSERT_EQ(changes.changes.size(), 1u) << where;
+        EXPECT_EQ(changes.changes[0].kind, DecalChangeKind::Removed) << where;
+        const Result<DrawnSurfaceLaying> kept =
+            s.layOnDrawnSurface(b.handle, whereAxisMeetsFloor(*s.axisLine(b.handle)), drawnFloorNormal());
+        ASSERT_TRUE(kept.ok()) << kept.error() << where;
+        EXPECT_EQ(kept.value(), DrawnSurfaceLaying::Laid) << where;
+        ++removed;
+    }
+    EXPECT_GT(removed, 0) << "no shot was placed on the collider and refused by the floor";
+}
+
 // A decal on a skinned object lies on the drawn surface from its spawn and follows it (setPose): it is
 // not laid again, and nothing changes.
 TEST(DrawnSurface, ADecalOnASkinnedObjectIsNotLaidAgain) {
@@ -280,7 +333,8 @@ TEST(DrawnSurface, ADecalOnASkinnedObjectIsNotLaidAgain) {
     const DecalAxisLine line = *s.axisLine(r.handle);
     const std::vector<Decal> decals = s.decals();
     const uint64_t version = s.version();
-    const Status st = s.layOnDrawnSurface(r.handle, 0.5 * (line.from + line.to), glm::dvec3(0.0, 0.0, 1.0));
+    const Result<DrawnSurfaceLaying> st =
+        s.layOnDrawnSurface(r.handle, 0.5 * (line.from + line.to), glm::dvec3(0.0, 0.0, 1.0));
     ASSERT_FALSE(st.ok());
     EXPECT_NE(st.error().find("skinned or morphed"), std::string::npos) << st.error();
     EXPECT_TRUE(sameDecals(s.decals(), decals));

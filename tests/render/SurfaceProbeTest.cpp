@@ -228,10 +228,10 @@ TEST(SurfaceProbe, DecalsShotThroughACoarseProxyLaidOnTheDrawnSurfaceCoverWhatTh
     size_t laid = 0;
     for (size_t i = 0; i < points.size(); ++i)
         if (points[i].found) {
-            const Status s =
+            const Result<DrawnSurfaceLaying> s =
                 throughProxy.system->layOnDrawnSurface(handles[i], points[i].point, points[i].normal);
             EXPECT_TRUE(s.ok()) << s.error();
-            laid += s.ok() ? 1 : 0;
+            laid += s.ok() && s.value() == DrawnSurfaceLaying::Laid ? 1 : 0;
         }
     EXPECT_GT(laid, 3 * lines.size() / 4);
     const double after = iou(reference, coverageOf(r.value(), cam, throughProxy.system->decals()));

@@ -28,4 +28,9 @@ namespace spatter {
 std::optional<Decal> relaidDecal(const Decal& d, const glm::dmat3& toWorld, const glm::vec3& point,
                                  const glm::vec3& normal, float halfDepth);
 
+// The angle in degrees, world space, between the shot of `d` (its projection axis) and the normal of
+// `laid`, d laid again (relaidDecal): what placement tests against DecalType::maxAngleDeg on the surface
+// a shot hits. Empty for a decal along its normal (slant 0), whose shot the record does not keep.
+std::optional<double> laidShotAngleDeg(const Decal& d, const Decal& laid, const glm::dmat3& toWorld);
+
 } // namespace spatter

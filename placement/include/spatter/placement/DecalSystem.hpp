@@ -126,6 +126,12 @@ struct DecalAxisLine {
     uint8_t objectId = 0; // the decal's object decal ID: the surface it is laid on carries it
 };
 
+// What DecalSystem::layOnDrawnSurface did with a decal.
+enum class DrawnSurfaceLaying : uint8_t {
+    Laid,    // laid again where the renderer found the drawn surface
+    Removed, // removed: its shot meets the drawn surface there more steeply than its type allows
+};
+
 class DecalSystem {
 public:
     // Takes ownership of `world`. Fails on settings out of the ranges documented in DecalSettings, and
@@ -220,15 +226,21 @@ public:
     // decal's own random rotation), projection axis kept (a decal along its normal stays along the new
     // one), its box as deep as on a surface with no error bound: max(type.halfDepth, depthMargin *
     // max(size)) in world units, as spawn gives a decal on a render mesh. Its ID, type, size, spawn
-    // time, opacity, object and area cell are kept. Logged as Changed (changesSince). Fails, changing
-    // nothing (no state, no random number, no log entry), naming the problem: a stale or invalid
-    // handle; a point or normal that is not finite, a zero normal; a point outside the decal's box (more
-    // than 1e-3 of the box's half extents outside it, in box units); a normal relaidDecal refuses (89
+    // time, opacity, object and area cell are kept. Logged as Changed (changesSince); gives Laid.
+    // Where the decal is projected along its shot and the shot meets the drawn surface more than the
+    // type's maxAngleDeg from its normal, the shot would have placed nothing on the render mesh
+    // (SpawnStatus::GrazingAngle), and a decal laid there would stretch along it: the decal is removed
+    // as remove() removes it (logged as Removed, counted in stats().removed); gives Removed. A decal
+    // along its normal, whose shot the record does not keep, is always laid. Fails, changing nothing
+    // (no state, no random number, no log entry), naming the problem: a stale or invalid handle; a
+    // point or normal that is not finite, a zero normal; a point outside the decal's box (more than
+    // 1e-3 of the box's half extents outside it, in box units); a normal relaidDecal refuses (89
     // degrees or more from the decal's); a decal of a volumetric type (its crater is clipped by the
     // proxy around it) or on a skinned or morphed object (those decals are laid on the drawn surface at
     // spawn already and follow it: CollisionWorld::deforms); an object whose transform is singular; a
     // box that would not be sound (the size and half-depth checks of spawn).
-    Status layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point, const glm::dvec3& normal);
+    Result<DrawnSurfaceLaying> layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point,
+                                                 const glm::dvec3& normal);
 
     // The live decals, contiguous, for the renderer. Order is deterministic but changes on removals.
     const std::vector<Decal>& decals() const;
