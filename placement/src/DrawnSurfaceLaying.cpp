@@ -1,0 +1,106 @@
+// DecalSystem's calls that lay a decal placed through a collision proxy again on the surface that is
+// drawn: the line a renderer searches (axisLine) and the laying (layOnDrawnSurface).
+#include "DecalSystemImpl.hpp"
+
+#include "spatter/core/DecalRefit.hpp"
+
+namespace spatter {
+
+std::optional<DecalAxisLine> DecalSystem::axisLine(DecalHandle handle) const {
+    const Decal* d = get(handle);
+    if (!d) return std::nullopt;
+    const CollisionObject* o = impl_->world.object(d->object);
+    if (!o) return std::nullopt;
+    const glm::dmat3 inv = glm::inverse(glm::dmat3(o->transform));
+    if (!(finite3(inv[0]) && finite3(inv[1]) && finite3(inv[2]))) return std::nullopt; // singular
+    const glm::dvec3 center(d->center), reach(d->boxToObject()[2]);
+    DecalAxisLine line;
+    line.from = glm::dvec3(o->transform * glm::dvec4(center + reach, 1.0));
+    line.to = glm::dvec3(o->transform * glm::dvec4(center - reach, 1.0));
+    line.objectId = d->objectId;
+    return line;
+}
+
+namespace {
+
+// Why a decal of type `t` on `o` cannot be laid on the drawn surface at `point` facing `normal`
+// (world space), or empty.
+std::string drawnSurfaceRefusal(const DecalType& t, const CollisionObject& o, bool deforms,
+                                const glm::dvec3& point, const glm::dvec3& normal) {
+    if (t.volumetric)
+        return "a decal of volumetric type '" + t.name +
+               "' keeps the proxy's hit, where its crater is clipped";
+    if (deforms)
+        return "object '" + o.name + "' is skinned or morphed: its decals lie on the drawn surface already";
+    if (!finite3(point)) return "point is not finite";
+    if (!finite3(normal)) return "normal is not finite";
+    const double len2 = glm::dot(normal, normal);
+    if (!(len2 >= std::numeric_limits<double>::min()) || !std::isfinite(len2))
+        return "normal is zero or cannot be normalised";
+    const glm::dmat3 inv = glm::inverse(glm::dmat3(o.transform));
+    if (!(finite3(inv[0]) && finite3(inv[1]) && finite3(inv[2])))
+        return "the transform of object '" + o.name + "' is singular";
+    return {};
+}
+
+// Where object-space `local` lies in the box of `d`, in box units, or empty when outside it by more
+// than a thousandth of its half extents.
+std::string outsideBox(const Decal& d, const glm::dvec3& local) {
+    const glm::dvec3 inBox(glm::inverse(glm::dmat4(d.boxToObject())) * glm::dvec4(local, 1.0));
+    constexpr double kBoxTolerance = 1e-3; // of the box's half extents
+    const double outside = std::max({std::fabs(inBox.x), std::fabs(inBox.y), std::fabs(inBox.z)});
+    if (outside <= 1.0 + kBoxTolerance) return {};
+    return "the point lies outside the decal's box (at " + formatNumber(inBox.x) + ", " +
+           formatNumber(inBox.y) + ", " + formatNumber(inBox.z) + " in box units)";
+}
+
+} // namespace
+
+Result<DrawnSurfaceLaying> DecalSystem::layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point,
+                                                          const glm::dvec3& normal) {
+    Impl& s = *impl_;
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    const Decal* found = get(handle);
+    if (!found) return fail("layOnDrawnSurface: stale or invalid handle");
+    const Decal& d = *found;
+    const DecalType& t = s.types[d.type];
+    const CollisionObject& o = s.object(d.object);
+    if (std::string why = drawnSurfaceRefusal(t, o, s.world.deforms(d.object), point, normal); !why.empty())
+        return fail("layOnDrawnSurface: " + why);
+    // To object space (normals by the transpose of the linear part).
+    const glm::dmat3 m(o.transform), inv = glm::inverse(m);
+    const glm::dvec3 local = inv * (point - glm::dvec3(o.transform[3]));
+    const glm::dvec3 localNormal = glm::transpose(m) * glm::normalize(normal);
+    if (std::string why = outsideBox(d, local); !why.empty()) return fail("layOnDrawnSurface: " + why);
+    const double localLength = glm::length(localNormal);
+    if (!(localLength > 0.0) || !std::isfinite(localLength))
+        return fail("layOnDrawnSurface: the normal cannot be carried to the object's space");
+    std::optional<Decal> laid =
+        relaidDecal(d, m, glm::vec3(local), glm::vec3(localNormal / localLength), 0.0f);
+    if (!laid)
+        return fail("layOnDrawnSurface: the normal is 89 degrees or more from the decal's, or the decal "
+                    "cannot be laid on it");
+    // The half-depth of a decal on a surface with no error bound (place with h = 0), world units, then
+    // in the object's space along the laid decal's normal.
+    const glm::vec2 worldSize = s.toWorld(d).size;
+    const double extent = double(std::max(worldSize.x, worldSize.y));
+    const float halfDepth = std::max(t.halfDepth, float(double(s.settings.depthMargin) * extent));
+    laid->halfDepth =
+        float(double(halfDepth) * glm::length(glm::transpose(inv) * glm::dvec3(laid->frame().normal)));
+    if (!soundBox(*laid) || !(extent <= double(kMaxWorldExtent) && halfDepth <= kMaxWorldExtent))
+        return fail("layOnDrawnSurface: the box of the decal laid again on '" + o.name +
+                    "' is degenerate in the object's or the world's space (size " +
+                    formatNumber(laid->size.x) + " x " + formatNumber(laid->size.y) + ", half-depth " +
+                    formatNumber(laid->halfDepth) + ")");
+    const uint32_t dense = s.slots[handle.slot].dense;
+    if (const std::optional<double> angle = laidShotAngleDeg(d, *laid, m); angle && *angle > t.maxAngleDeg) {
+        s.stats.removed++;
+        s.removeDense(dense);
+        return DrawnSurfaceLaying::Removed;
+    }
+    s.decals[dense] = *laid;
+    s.logChange(dense, DecalChangeKind::Changed);
+    return DrawnSurfaceLaying::Laid;
+}
+
+} // namespace spatter
