@@ -15,7 +15,7 @@ layout(location = 2) uniform int u_checkIds; // 1: the surface a line meets must
 layout(location = 3) uniform vec2 u_pixel;   // a pixel's height at view z: u_pixel.x * z + u_pixel.y
 
 layout(std430, binding = 5) readonly buffer SurfaceLines {
-    vec4 lines[]; // two a line: from (w: its object's decal ID), to
+    vec4 lines[]; // two a line: from (w: its object's decal ID, or kAnyObject), to
 };
 layout(std430, binding = 6) writeonly buffer SurfacePoints {
     vec4 points[]; // two a line: the point (w: 1 when found), the unit normal facing the camera
@@ -28,6 +28,7 @@ const int kRefine = 16;     // halvings of the step in which the line passes beh
 const float kJumpPixels = 8.0, kJumpOfLength = 0.05;
 
 const float kFar = 3.0e38, kMissing = 1.0e30;
+const uint kAnyObject = 256u; // a line's ID that the surface of any object matches
 const int kUnknown = 0, kFront = 1, kBehind = 2;
 
 // Where view-space point `p` falls on the host's window, in pixels; false behind the camera.
@@ -141,7 +142,8 @@ void main() {
         if (before == kFront && side == kBehind) {
             float lo = float(k - 1) / float(steps), hi = t;
             vec3 n;
-            if (refine(a, b, lo, hi, pixel) && (u_checkIds == 0 || texelFetch(s_ids, pixel, 0).r == id) &&
+            if (refine(a, b, lo, hi, pixel) &&
+                (u_checkIds == 0 || id == kAnyObject || texelFetch(s_ids, pixel, 0).r == id) &&
                 normalAt(pixel, n)) {
                 points[2u * i] = vec4(mix(a, b, 0.5 * (lo + hi)), 1.0);
                 points[2u * i + 1u] = vec4(n, 0.0);

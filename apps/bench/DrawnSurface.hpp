@@ -15,10 +15,19 @@
 
 namespace spatter::bench {
 
-// Lays the decals of `placed` (the results of their spawns in `system`) on the surface `renderer`
-// draws from `camera` at `probeSize` pixels, then gives the renderer its size back. Returns how many
-// were laid again (those whose shot meets the drawn surface too steeply for their type are removed).
-Result<size_t> layOnDrawnSurface(DecalSystem& system, const std::vector<SpawnResult>& placed,
-                                 Renderer& renderer, const Camera& camera, glm::ivec2 probeSize);
+// What layOnDrawnSurface did with the decals of a batch of shots.
+struct DrawnSurfaceCounts {
+    size_t laid = 0;    // laid again where their axis meets the drawn surface
+    size_t removed = 0; // removed there: their shot meets it too steeply for their type
+    size_t spawned = 0; // of shots that met no proxy, placed where the shot meets the drawn surface
+};
+
+// Lays the decals of `placed` (the results of spawning `shots` in `system`, type 0) on the surface
+// `renderer` draws from `camera` at `probeSize` pixels, and places the decals of the shots that met
+// no collision surface where they meet it within `shotReach` of their origin
+// (DecalSystem::spawnOnDrawnSurface); then gives the renderer its size back.
+Result<DrawnSurfaceCounts> layOnDrawnSurface(DecalSystem& system, const std::vector<Ray>& shots,
+                                             const std::vector<SpawnResult>& placed, Renderer& renderer,
+                                             const Camera& camera, glm::ivec2 probeSize, double shotReach);
 
 } // namespace spatter::bench

@@ -145,16 +145,24 @@ std::optional<Decal> onDrawnSurface(const Decal& d, const CollisionWorld& drawn,
 }
 
 // The proxy-placed decals as a decal pass reading the drawn surface would draw them (onDrawnSurface),
-// each as shallow as the render-placed decal of its shot where there is one.
+// each as shallow as the render-placed decal of its shot where there is one; and for each shot that
+// met no proxy, the decal placed where it meets the drawn surface (DecalSystem::spawnOnDrawnSurface):
+// the render mesh's, where a camera, if any, sees it.
 std::vector<Decal> drawnProbe(const ShotDecals& decals, const CollisionWorld& drawn, const Scene& scene,
                               float maxAngleDeg, const ProbeView& view) {
     std::vector<Decal> out;
     for (size_t i = 0; i < decals.proxy.size(); ++i) {
-        if (!decals.proxy[i]) continue;
-        const Decal& d = *decals.proxy[i];
+        // A shot that met no proxy: its decal where the shot meets the drawn surface
+        // (DecalSystem::spawnOnDrawnSurface), the render mesh's, laid as the others on what is seen.
+        const std::optional<Decal>& placed = decals.proxy[i] ? decals.proxy[i] : decals.render[i];
+        if (!placed) continue;
+        const Decal& d = *placed;
+        const glm::dmat4& toWorld = scene.objects[d.object].transform;
+        if (!decals.proxy[i] && view.camera &&
+            !seenFrom(view.camera->eye, glm::dvec3(toWorld * glm::dvec4(glm::dvec3(d.center), 1.0)), drawn))
+            continue;
         const float halfDepth = decals.render[i] ? decals.render[i]->halfDepth : d.halfDepth;
-        if (std::optional<Decal> probed =
-                onDrawnSurface(d, drawn, scene.objects[d.object].transform, halfDepth, maxAngleDeg, view))
+        if (std::optional<Decal> probed = onDrawnSurface(d, drawn, toWorld, halfDepth, maxAngleDeg, view))
             out.push_back(*probed);
     }
     return out;

@@ -162,7 +162,8 @@ struct ShotCoverage {
         sys->spawnBatch(shots, 0, results);
         Result<std::vector<uint8_t>> placed = probe.mask(camera, sys->decals());
         if (!placed || !laid) return placed;
-        if (Result<size_t> n = layOnDrawnSurface(sys.value(), results, probe.renderer(), camera, probeSize);
+        if (Result<DrawnSurfaceCounts> n =
+                layOnDrawnSurface(sys.value(), shots, results, probe.renderer(), camera, probeSize, diagonal);
             !n)
             return fail(n.error());
         Result<std::vector<uint8_t>> after = probe.mask(camera, sys->decals());

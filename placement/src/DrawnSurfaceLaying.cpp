@@ -1,5 +1,7 @@
-// DecalSystem's calls that lay a decal placed through a collision proxy again on the surface that is
-// drawn: the line a renderer searches (axisLine) and the laying (layOnDrawnSurface).
+// DecalSystem's calls that lay decals on the surface that is drawn, where a renderer found it: the
+// line a renderer searches for a decal placed through a collision proxy (axisLine), the laying of that
+// decal (layOnDrawnSurface), and the decal of a shot that met no collision surface
+// (spawnOnDrawnSurface).
 #include "DecalSystemImpl.hpp"
 
 #include "spatter/core/DecalRefit.hpp"
@@ -101,6 +103,93 @@ Result<DrawnSurfaceLaying> DecalSystem::layOnDrawnSurface(DecalHandle handle, co
     s.decals[dense] = *laid;
     s.logChange(dense, DecalChangeKind::Changed);
     return DrawnSurfaceLaying::Laid;
+}
+
+namespace {
+
+// The largest error bound of `world`'s objects, world units.
+double largestWorldBound(const CollisionWorld& world) {
+    double h = 0.0;
+    for (uint32_t i = 0; i < world.objectCount(); ++i)
+        h = std::max(h, world.worldErrorBound(i));
+    return h;
+}
+
+// Whether `point` (world space) lies within `margin` of object `i`'s world bounds.
+bool nearBounds(const CollisionWorld& world, uint32_t i, const glm::dvec3& point, double margin) {
+    const DBounds b = world.worldBounds(i);
+    return !b.empty() && glm::all(glm::greaterThanEqual(point, b.min - margin)) &&
+           glm::all(glm::lessThanEqual(point, b.max + margin));
+}
+
+// The object whose drawn surface `point` (world space, facing unit `normal`) can lie on, given that
+// every object's drawn surface lies within its world error bound h of its collision surface: the one
+// whose collision surface a probe along the normal meets within 2 h + `slack` of the point; else, where
+// the probe meets none (beside an open edge of a proxy, which the drawn surface overhangs), the only
+// object in the world whose bounds, grown by 2 h + `slack`, hold the point. Nothing otherwise.
+std::optional<uint32_t> receiverNear(const CollisionWorld& world, const glm::dvec3& point,
+                                     const glm::dvec3& normal, double slack) {
+    const double reach = 2.0 * largestWorldBound(world) + slack;
+    Ray probe;
+    probe.origin = point + normal * reach;
+    probe.direction = -normal;
+    probe.tnear = 0.0;
+    probe.tfar = 2.0 * reach;
+    const std::optional<Hit> hit = world.intersect(probe);
+    if (hit && std::fabs(hit->t - reach) <= 2.0 * world.worldErrorBound(hit->object) + slack)
+        return hit->object;
+    std::optional<uint32_t> only;
+    for (uint32_t i = 0; i < world.objectCount(); ++i) {
+        if (!world.object(i)->inWorld || !nearBounds(world, i, point, 2.0 * world.worldErrorBound(i) + slack))
+            continue;
+        if (only) return std::nullopt; // more than one: which one's surface it is cannot be told
+        only = i;
+    }
+    return only;
+}
+
+} // namespace
+
+SpawnResult DecalSystem::spawnOnDrawnSurface(const Ray& shot, const glm::dvec3& point,
+                                             const glm::dvec3& normal, uint16_t type) {
+    Impl& s = *impl_;
+    const std::lock_guard<std::mutex> lock(s.mutex);
+    if (type >= s.types.size()) return s.reject(SpawnStatus::InvalidType, s.typeError(type));
+    if (const char* problem = rayProblem(shot)) return s.reject(SpawnStatus::InvalidRay, problem);
+    const DecalType& t = s.types[type];
+    const std::string where = "spawnOnDrawnSurface: ";
+    if (t.volumetric)
+        return s.reject(SpawnStatus::InvalidArgument, where + "a decal of volumetric type '" + t.name +
+                                                          "' needs a proxy hit, where its crater is clipped");
+    if (!finite3(point)) return s.reject(SpawnStatus::InvalidArgument, where + "point is not finite");
+    const double len2 = glm::dot(normal, normal);
+    if (!finite3(normal) || !(len2 >= std::numeric_limits<double>::min()) || !std::isfinite(len2))
+        return s.reject(SpawnStatus::InvalidArgument,
+                        where + "normal is not finite, zero or cannot be normalised");
+    const glm::dvec3 dir = glm::normalize(shot.direction);
+    glm::dvec3 n = glm::normalize(normal);
+    if (glm::dot(n, dir) > 0.0) n = -n;
+    const double angle = std::acos(std::clamp(-glm::dot(dir, n), -1.0, 1.0)) * (180.0 / kPi);
+    if (angle > double(t.maxAngleDeg))
+        return s.reject(SpawnStatus::GrazingAngle, where + "the shot meets the drawn surface at " +
+                                                       formatNumber(angle) +
+                                                       " degrees from its normal (type '" + t.name +
+                                                       "' allows " + formatNumber(t.maxAngleDeg) + ")");
+    const double slack = 0.01 * double(std::max(t.size.x, t.size.y));
+    const std::optional<uint32_t> owner = receiverNear(s.world, point, n, slack);
+    if (!owner)
+        return s.reject(SpawnStatus::Missed, where + "no one collision surface lies within twice its error "
+                                                     "bound of the point");
+    const CollisionObject& o = s.object(*owner);
+    if (o.dynamic && !t.onDynamic)
+        return s.reject(SpawnStatus::NotReceiver, where + "decal type '" + t.name +
+                                                      "' may not land on dynamic object '" + o.name + "'");
+    if (s.world.deforms(*owner))
+        return s.reject(SpawnStatus::NotReceiver, where + "object '" + o.name +
+                                                      "' is skinned or morphed: its proxy holds it in every "
+                                                      "pose, so shots at it are placed by spawn");
+    const glm::dvec3 local(glm::inverse(o.transform) * glm::dvec4(point, 1.0));
+    return s.place(*owner, local, n, dir, type, true, false, nullptr, 0.0);
 }
 
 } // namespace spatter

@@ -13,6 +13,7 @@ namespace {
 
 constexpr GLuint kLinesBuffer = 5, kPointsBuffer = 6; // surface_probe.comp's storage bindings
 constexpr GLuint kDepthUnit = 0, kIdUnit = 2;
+constexpr float kAnyObject = 256.0f; // a line's ID that any object's surface matches (surface_probe.comp)
 
 int convention(const HostDepth& d) {
     if (d.encoding == DepthEncoding::LinearView) return 4;
@@ -68,7 +69,7 @@ Result<uint64_t> SurfaceProbe::find(const HostFrame& frame, const std::vector<Su
         glm::vec3 from(frame.view * glm::dvec4(l.from, 1.0)), to(frame.view * glm::dvec4(l.to, 1.0));
         if (!finite(glm::dvec3(from)) || !finite(glm::dvec3(to)))
             from = to = glm::vec3(0.0f); // past float's range: a point at the eye, which meets nothing
-        gpuLines.emplace_back(from, float(l.objectId));
+        gpuLines.emplace_back(from, l.anyObject ? kAnyObject : float(l.objectId));
         gpuLines.emplace_back(to, 0.0f);
     }
     if (Status s = prepare(frame); !s) return fail(s.error());

@@ -323,6 +323,104 @@ TEST(DrawnSurface, ADecalWhoseShotMeetsTheDrawnSurfaceTooSteeplyIsRemoved) {
     EXPECT_GT(removed, 0) << "no shot was placed on the collider and refused by the floor";
 }
 
+// The drawn floor y = 0 over [-2, 2]^2 of turnedTransform() traced through a proxy that covers only
+// [-1.5, 1.5]^2 of it (bound 0.5): shots at the floor's rim miss the proxy and meet what is drawn.
+DecalSystem floorSystemWithSmallProxy() {
+    Scene scene;
+    scene.source = "test:drawn floor, small proxy";
+    scene.objects.push_back(makeSceneObject("floor", tiltedPlane(0.0), turnedTransform()));
+    std::vector<std::optional<Proxy>> proxies;
+    proxies.push_back(makeProxy(makeGrid({-1.5f, 1.5f}, {-1.5f, 1.5f}), 0.5));
+    Result<DecalSystem> s = DecalSystem::create(buildWorld(scene, proxies));
+    EXPECT_TRUE(s.ok()) << s.error();
+    return std::move(s).value();
+}
+
+// The floor's world point of object-space `local`.
+glm::dvec3 floorPoint(const glm::dvec3& local) {
+    return glm::dvec3(turnedTransform() * glm::dvec4(local, 1.0));
+}
+
+// A shot that misses the proxy but meets the drawn floor, spawned where the floor was found, is the
+// decal the same shot places when the floor is the collision mesh: centre, frame, slant, size,
+// half-depth and ID.
+TEST(DrawnSurface, AShotThatMissesTheProxyIsPlacedWhereItMeetsTheDrawnSurface) {
+    for (double degrees : {0.0, 30.0, 60.0})
+        for (double azimuth : {0.4, 2.5}) {
+            const std::string where =
+                std::to_string(degrees) + " degrees, azimuth " + std::to_string(azimuth);
+            DecalSystem proxied = floorSystemWithSmallProxy(),
+                        onFloor = floorSystemTracedBy(FloorTrace::Floor);
+            const uint16_t t = addType(proxied, plainType()), u = addType(onFloor, plainType());
+            const glm::dvec3 target(1.8, 0.0, -1.7);
+            const Ray shot = worldShotAtDrawnFloor(target, degrees, azimuth);
+            ASSERT_EQ(proxied.spawn(shot, t).status, SpawnStatus::Missed) << where;
+            const SpawnResult drawn = onFloor.spawn(shot, u);
+            ASSERT_TRUE(drawn.placed()) << drawn.reason << where;
+            const SpawnResult r =
+                proxied.spawnOnDrawnSurface(shot, floorPoint(target), drawnFloorNormal(), t);
+            ASSERT_TRUE(r.placed()) << r.reason << where;
+            const Decal d = *proxied.get(r.handle), e = *onFloor.get(drawn.handle);
+            EXPECT_LT(glm::length(d.center - e.center), 1e-5f) << where;
+            const Frame f = d.frame(), g = e.frame();
+            EXPECT_LT(glm::length(f.normal - g.normal), 1e-5f) << where;
+            EXPECT_LT(glm::length(f.tangent - g.tangent), 1e-5f) << where;
+            EXPECT_EQ(d.slant, e.slant) << where;
+            EXPECT_LT(glm::length(d.size - e.size), 1e-5f * glm::length(e.size)) << where;
+            EXPECT_NEAR(d.halfDepth, e.halfDepth, 1e-6f * e.halfDepth) << where;
+            EXPECT_EQ(d.id, e.id) << where;
+            EXPECT_EQ(d.object, 0u) << where;
+        }
+}
+
+// Every refusal names its problem and leaves the decals, the change log and the random numbers as
+// they were.
+TEST(DrawnSurface, ASpawnOnTheDrawnSurfaceThatIsRefusedChangesNoDecal) {
+    DecalSystem s = floorSystemWithSmallProxy(), twin = floorSystemWithSmallProxy();
+    DecalType crater = plainType("crater");
+    crater.volumetric = true;
+    const uint16_t t = addType(s, plainType()), v = addType(s, crater);
+    addType(twin, plainType());
+    const glm::dvec3 target(1.8, 0.0, -1.7), point = floorPoint(target), up = drawnFloorNormal();
+    const Ray shot = worldShotAtDrawnFloor(target, 20.0, 1.0);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const glm::dvec3 across(glm::normalize(glm::cross(up, shot.direction)));
+    Ray zero = shot;
+    zero.direction = glm::dvec3(0.0);
+    struct Refusal {
+        const char* what;
+        Ray shot;
+        glm::dvec3 point, normal;
+        uint16_t type;
+        SpawnStatus status;
+        const char* named;
+    };
+    const Refusal refusals[] = {
+        {"unknown type", shot, point, up, 7, SpawnStatus::InvalidType, "no decal type"},
+        {"zero shot", zero, point, up, t, SpawnStatus::InvalidRay, ""},
+        {"volumetric type", shot, point, up, v, SpawnStatus::InvalidArgument, "volumetric"},
+        {"NaN point", shot, glm::dvec3(nan, 0.0, 0.0), up, t, SpawnStatus::InvalidArgument,
+         "point is not finite"},
+        {"zero normal", shot, point, glm::dvec3(0.0), t, SpawnStatus::InvalidArgument, "normal"},
+        {"normal across the shot", shot, point, across, t, SpawnStatus::GrazingAngle,
+         "degrees from its normal"},
+        {"point far from every surface", shot, point + 3.0 * glm::normalize(up), up, t, SpawnStatus::Missed,
+         "no one collision surface"},
+    };
+    const uint64_t version = s.version();
+    for (const Refusal& r : refusals) {
+        const SpawnResult res = s.spawnOnDrawnSurface(r.shot, r.point, r.normal, r.type);
+        EXPECT_EQ(res.status, r.status) << r.what << ": " << res.reason;
+        EXPECT_NE(res.reason.find(r.named), std::string::npos) << r.what << ": " << res.reason;
+        EXPECT_TRUE(s.decals().empty()) << r.what;
+        EXPECT_EQ(s.version(), version) << r.what;
+    }
+    const SpawnResult a = s.spawnOnDrawnSurface(shot, point, up, t),
+                      b = twin.spawnOnDrawnSurface(shot, point, up, 0);
+    ASSERT_TRUE(a.placed() && b.placed()) << a.reason << b.reason;
+    EXPECT_EQ(s.get(a.handle)->id, twin.get(b.handle)->id) << "no random number was drawn";
+}
+
 // A decal on a skinned object lies on the drawn surface from its spawn and follows it (setPose): it is
 // not laid again, and nothing changes.
 TEST(DrawnSurface, ADecalOnASkinnedObjectIsNotLaidAgain) {

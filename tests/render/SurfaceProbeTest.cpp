@@ -239,7 +239,7 @@ TEST(SurfaceProbe, DecalsShotThroughACoarseProxyLaidOnTheDrawnSurfaceCoverWhatTh
     EXPECT_GT(after, 0.97) << "before " << before;
 }
 
-TEST(SurfaceProbe, FindsTheSurfaceInAForeignHostsDepthAndKeepsToTheLinesObject) {
+TEST(SurfaceProbe, FindsTheSurfaceInAForeignHostsDepthAndKeepsToTheLinesObjectUnlessAnyWillDo) {
     SPATTER_REQUIRE_GL(gl);
     // Standard Z in GL's default clip depth, and an object ID target: the wall (ID 0) at z = 0 and
     // the crate (ID 7) in front of it, its front face at z = 0.8 around (0.8, 0.8).
@@ -247,10 +247,11 @@ TEST(SurfaceProbe, FindsTheSurfaceInAForeignHostsDepthAndKeepsToTheLinesObject) 
     ASSERT_TRUE(h);
     const HostFrame frame = h->host.frame(h->wall.camera, true);
     const std::vector<SurfaceLine> lines = {
-        {{-0.6, 1.0, 0.3}, {-0.6, 1.0, -0.3}, 0}, // the wall
-        {{0.8, 0.8, 1.1}, {0.8, 0.8, 0.6}, 7},    // the crate
-        {{0.8, 0.8, 1.1}, {0.8, 0.8, 0.6}, 0},    // the crate, asked for the wall's ID
-        {{0.8, 0.8, 0.3}, {0.8, 0.8, -0.3}, 0},   // the wall behind the crate: hidden
+        {{-0.6, 1.0, 0.3}, {-0.6, 1.0, -0.3}, 0},    // the wall
+        {{0.8, 0.8, 1.1}, {0.8, 0.8, 0.6}, 7},       // the crate
+        {{0.8, 0.8, 1.1}, {0.8, 0.8, 0.6}, 0},       // the crate, asked for the wall's ID
+        {{0.8, 0.8, 0.3}, {0.8, 0.8, -0.3}, 0},      // the wall behind the crate: hidden
+        {{0.8, 0.8, 1.1}, {0.8, 0.8, 0.6}, 0, true}, // the crate, for a shot that met no proxy: any ID
     };
     Result<uint64_t> request = h->projector.findSurface(frame, lines);
     ASSERT_TRUE(request.ok()) << request.error();
@@ -265,6 +266,8 @@ TEST(SurfaceProbe, FindsTheSurfaceInAForeignHostsDepthAndKeepsToTheLinesObject) 
     EXPECT_GT((*points)[1].normal.z, 0.9999);
     EXPECT_FALSE((*points)[2].found);
     EXPECT_FALSE((*points)[3].found);
+    ASSERT_TRUE((*points)[4].found);
+    EXPECT_NEAR((*points)[4].point.z, 0.8, 0.01);
 
     HostFrame noDepth = frame;
     noDepth.depth.texture = 0;

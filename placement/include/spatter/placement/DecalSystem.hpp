@@ -241,6 +241,25 @@ public:
     // box that would not be sound (the size and half-depth checks of spawn).
     Result<DrawnSurfaceLaying> layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point,
                                                  const glm::dvec3& normal);
+    // Places the decal of a shot that met no collision surface (spawn gave Missed) where a renderer
+    // found the shot meeting the drawn surface: `point` on it and `normal`, that surface's normal there
+    // (world space; need not be unit, turned to face the shot). A proxy lies within its error bound h
+    // of the drawn surface, so near an object's outline a shot can pass the proxy and still meet what
+    // is drawn. The decal is the one the shot would have placed on the render mesh there: on the object
+    // whose collision surface a probe along the normal meets within twice its world error bound of the
+    // point (plus a hundredth of the type's size), or, where the probe meets none (beside an open edge
+    // of a proxy), on the only object whose world bounds grown by as much hold the point; centred on
+    // `point`, its frame built on the normal
+    // with the shot as hint and turned by a random angle as spawn builds one, projected as its type
+    // asks, its box as deep as on a surface with no error bound. Checked, counted and logged as spawn
+    // does (InvalidType, InvalidRay, GrazingAngle from the shot and `normal`, NotReceiver, AreaLimit,
+    // InvalidArgument for a point or normal that is not finite or a zero normal); Missed when no
+    // object is found so; NotReceiver on a skinned or morphed object (its proxy is
+    // bound over its poses: shoot it again) and InvalidArgument for a volumetric type, whose crater
+    // is clipped by the proxy around a proxy hit. Any refusal changes no decal and draws no random
+    // number.
+    SpawnResult spawnOnDrawnSurface(const Ray& shot, const glm::dvec3& point, const glm::dvec3& normal,
+                                    uint16_t type);
 
     // The live decals, contiguous, for the renderer. Order is deterministic but changes on removals.
     const std::vector<Decal>& decals() const;

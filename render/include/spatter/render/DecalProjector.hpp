@@ -308,10 +308,12 @@ struct ProjectorStats {
 
 // A line along which DecalProjector::findSurface looks for the surface the host drew (world space),
 // from `from` on: for a decal placed through a collision proxy, its axis line through its box
-// (DecalSystem::axisLine), from the side its shot came from.
+// (DecalSystem::axisLine), from the side its shot came from; for a shot that met no collision surface,
+// the shot (DecalSystem::spawnOnDrawnSurface), with `anyObject`.
 struct SurfaceLine {
     glm::dvec3 from{0.0}, to{0.0};
     uint8_t objectId = 0; // with the frame's object ID texture: the surface must carry this decal ID
+    bool anyObject = false; // the surface may carry any object ID (objectId is not checked)
 };
 
 // Where a SurfaceLine first meets the drawn surface (world space), as the host's depth gives it.
