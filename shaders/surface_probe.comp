@@ -18,7 +18,8 @@ layout(std430, binding = 5) readonly buffer SurfaceLines {
     vec4 lines[]; // two a line: from (w: its object's decal ID, or kAnyObject), to
 };
 layout(std430, binding = 6) writeonly buffer SurfacePoints {
-    vec4 points[]; // two a line: the point (w: 1 when found), the unit normal facing the camera
+    vec4 points[]; // two a line: the point (w: 1 when found), the unit normal facing the camera (w: the
+                   // object decal ID there, 0 without an ID texture)
 };
 
 const int kMaxSteps = 1024; // samples along a line, about one a pixel
@@ -142,12 +143,13 @@ void main() {
         if (before == kFront && side == kBehind) {
             float lo = float(k - 1) / float(steps), hi = t;
             vec3 n;
-            if (refine(a, b, lo, hi, pixel) &&
-                (u_checkIds == 0 || id == kAnyObject || texelFetch(s_ids, pixel, 0).r == id) &&
-                normalAt(pixel, n)) {
-                points[2u * i] = vec4(mix(a, b, 0.5 * (lo + hi)), 1.0);
-                points[2u * i + 1u] = vec4(n, 0.0);
-                return;
+            if (refine(a, b, lo, hi, pixel)) {
+                uint seen = u_checkIds != 0 ? texelFetch(s_ids, pixel, 0).r : 0u;
+                if ((u_checkIds == 0 || id == kAnyObject || seen == id) && normalAt(pixel, n)) {
+                    points[2u * i] = vec4(mix(a, b, 0.5 * (lo + hi)), 1.0);
+                    points[2u * i + 1u] = vec4(n, float(seen));
+                    return;
+                }
             }
         }
         before = side;

@@ -260,18 +260,28 @@ void GallerySim::advance(double dt) {
     system_->update(dt);
 }
 
-SpawnResult GallerySim::shoot(const Ray& ray, ShotKind kind) {
+GallerySim::Shot GallerySim::shoot(const Ray& ray, ShotKind kind) {
     const std::vector<uint16_t>& candidates = typeOf_[int(kind)];
-    const uint16_t type = candidates[rng_.below(uint32_t(candidates.size()))];
+    Shot shot{ray, candidates[rng_.below(uint32_t(candidates.size()))], {}};
     const Clock::time_point start = Clock::now();
-    SpawnResult result = system_->spawn(ray, type);
+    shot.result = system_->spawn(ray, shot.type);
     counters_.placementSeconds += std::chrono::duration<double>(Clock::now() - start).count();
     ++counters_.shots;
-    if (result.placed()) {
-        const Decal* decal = system_->get(result.handle);
-        if (decal && scene_->objects[decal->object].dynamic) ++counters_.onMovingTargets;
-        if (decal && system_->world().deforms(decal->object)) ++counters_.onSkinnedTargets;
-    }
+    countPlaced(shot.result);
+    return shot;
+}
+
+void GallerySim::countPlaced(const SpawnResult& result) {
+    if (!result.placed()) return;
+    const Decal* decal = system_->get(result.handle);
+    if (decal && scene_->objects[decal->object].dynamic) ++counters_.onMovingTargets;
+    if (decal && system_->world().deforms(decal->object)) ++counters_.onSkinnedTargets;
+}
+
+SpawnResult GallerySim::spawnOnDrawnSurface(const Shot& shot, const glm::dvec3& point,
+                                            const glm::dvec3& normal) {
+    SpawnResult result = system_->spawnOnDrawnSurface(shot.ray, point, normal, shot.type);
+    countPlaced(result);
     return result;
 }
 

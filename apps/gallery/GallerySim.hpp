@@ -67,12 +67,21 @@ public:
     // Advances the clock: targets move along their rails, the scene's first animation plays
     // (looping, from GalleryOptions::startTime), decals age.
     void advance(double dt);
+    // A shot fired: its ray, the decal type it fired and what it gave.
+    struct Shot {
+        Ray ray;
+        uint16_t type = 0;
+        SpawnResult result;
+    };
     // Fires one shot and counts it.
-    SpawnResult shoot(const Ray& ray, ShotKind kind);
+    Shot shoot(const Ray& ray, ShotKind kind);
 
     // Lays a decal on the drawn surface where a renderer found it (DecalSystem::layOnDrawnSurface).
     Result<DrawnSurfaceLaying> layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point,
                                                  const glm::dvec3& normal);
+    // Places the decal of a shot that met no collision surface where a renderer found it meeting the
+    // drawn surface (DecalSystem::spawnOnDrawnSurface), and counts it as the shots' decals are counted.
+    SpawnResult spawnOnDrawnSurface(const Shot& shot, const glm::dvec3& point, const glm::dvec3& normal);
     // Counts the decal systems this gallery has had (new proxies, a load): a handle is good only with
     // the number it was given under.
     uint64_t systemNumber() const { return systemNumber_; }
@@ -117,6 +126,8 @@ private:
     Status registerTypes();
     // Poses the animation at the clock's time and moves its dynamic receivers in the decal system.
     void pose();
+    // Counts a placed decal on a moving or a skinned target.
+    void countPlaced(const SpawnResult& result);
 
     GalleryOptions options_;
     std::unique_ptr<Scene> scene_; // on the heap: the evaluator keeps a reference to it

@@ -201,7 +201,7 @@ int runHeadless(const GalleryOptions& options) {
     for (int shot = 0; shot < options.shots; ++shot) {
         sim->advance(kShotInterval);
         const auto [ray, kind] = script.next(sim.value(), camera, aspect);
-        laying.placed(sim->shoot(ray, kind), sim.value());
+        laying.shot(sim->shoot(ray, kind), sim.value());
         if ((shot + 1) % frameEvery == 0)
             if (Status s = renderFrame(); !s) {
                 std::cerr << "spatter-gallery: " << s.error() << "\n";
@@ -245,6 +245,7 @@ int runHeadless(const GalleryOptions& options) {
     out["on_skinned_targets"] = sim->counters().onSkinnedTargets;
     out["laid_on_drawn_surface"] = laying.laid();
     out["removed_on_drawn_surface"] = laying.removed();
+    out["missed_placed_on_drawn_surface"] = laying.spawned();
     out["alive"] = st.alive;
     out["frames"] = frames;
     out["placement_us_per_shot"] =

@@ -58,8 +58,9 @@ struct Hud {
     RenderOptions options;
     bool wrapAround = true;
     bool volumetricBullets = true;
-    bool layOnDrawnSurface = true;  // new flat decals laid on the drawn surface a frame after their shot
-    uint64_t laid = 0, removed = 0; // decals laid and removed (shot too steep) so far
+    bool layOnDrawnSurface = true; // new flat decals laid on the drawn surface a frame after their shot
+    uint64_t laid = 0, removed = 0, spawned = 0; // decals laid, removed (shot too steep), placed for
+                                                 // shots that met no proxy, so far
     float tolerance = 0.5f;
     double lastPlacementUs = 0.0;
     std::string lastResult;
@@ -133,7 +134,8 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
     ImGui::Checkbox("volumetric bullet holes", &hud.volumetricBullets);
     ImGui::Checkbox("lay new decals on the drawn surface", &hud.layOnDrawnSurface);
     ImGui::SameLine();
-    ImGui::Text("(%llu laid, %llu removed)", (unsigned long long)hud.laid, (unsigned long long)hud.removed);
+    ImGui::Text("(%llu laid, %llu removed, %llu missed shots placed)", (unsigned long long)hud.laid,
+                (unsigned long long)hud.removed, (unsigned long long)hud.spawned);
     ImGui::SliderFloat("proxy tolerance %", &hud.tolerance, 0.0f, 5.0f, "%.2f");
     if (hud.rebuild.valid()) {
         ImGui::ProgressBar(hud.rebuildProgress.load(), ImVec2(-1.0f, 0.0f), "building proxies");
@@ -274,8 +276,9 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
         const bool shooting = captured && !ImGui::GetIO().WantCaptureMouse;
         auto fire = [&](ShotKind kind) {
             const auto t0 = std::chrono::steady_clock::now();
-            const SpawnResult r = sim->shoot(rayThrough(camera, aspect, 0.0, 0.0), kind);
-            if (hud.layOnDrawnSurface) laying.placed(r, sim.value());
+            const GallerySim::Shot shot = sim->shoot(rayThrough(camera, aspect, 0.0, 0.0), kind);
+            const SpawnResult& r = shot.result;
+            if (hud.layOnDrawnSurface) laying.shot(shot, sim.value());
             hud.lastPlacementUs =
                 1e6 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             hud.lastResult = r.placed() ? "placed" : toString(r.status);
@@ -308,6 +311,7 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
             if (Status s = laying.search(renderer.value(), sim.value()); !s) hud.status = s.error();
             hud.laid = laying.laid();
             hud.removed = laying.removed();
+            hud.spawned = laying.spawned();
             renderer->present(fbw, fbh);
         }
 

@@ -1,20 +1,61 @@
 #include "SurfaceLaying.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace spatter::gallery {
 
-void SurfaceLaying::placed(const SpawnResult& result, const GallerySim& sim) {
-    if (freshSystem_ != sim.systemNumber()) fresh_.clear();
+namespace {
+
+// The part of `ray` that can meet `world`'s surfaces: from its start to the farthest corner of the
+// objects' bounds (or its end, when nearer), any object's surface counting.
+SurfaceLine shotLine(const Ray& ray, const CollisionWorld& world) {
+    DBounds all;
+    for (uint32_t i = 0; i < world.objectCount(); ++i)
+        all.extend(world.worldBounds(i));
+    double reach = 0.0;
+    for (int corner = 0; corner < 8 && !all.empty(); ++corner) {
+        const glm::dvec3 c((corner & 1) ? all.max.x : all.min.x, (corner & 2) ? all.max.y : all.min.y,
+                           (corner & 4) ? all.max.z : all.min.z);
+        reach = std::max(reach, glm::length(c - ray.origin));
+    }
+    const glm::dvec3 dir = glm::normalize(ray.direction);
+    const double scale = glm::length(ray.direction); // tnear and tfar count in the direction's length
+    const double from = ray.tnear * scale, to = std::min(ray.tfar * scale, reach);
+    return {ray.origin + dir * from, ray.origin + dir * std::max(from, to), 0, true};
+}
+
+// The transform of every object of `sim`'s world.
+std::vector<glm::dmat4> objectTransforms(const GallerySim& sim) {
+    const CollisionWorld& world = sim.decals().world();
+    std::vector<glm::dmat4> out(world.objectCount());
+    for (uint32_t i = 0; i < world.objectCount(); ++i)
+        out[i] = world.object(i)->transform;
+    return out;
+}
+
+} // namespace
+
+void SurfaceLaying::shot(const GallerySim::Shot& shot, const GallerySim& sim) {
+    if (freshSystem_ != sim.systemNumber()) {
+        fresh_.clear();
+        freshMissed_.clear();
+    }
     freshSystem_ = sim.systemNumber();
-    if (result.placed()) fresh_.push_back(result.handle);
+    if (shot.result.placed())
+        fresh_.push_back(shot.result.handle);
+    else if (shot.result.status == SpawnStatus::Missed && !sim.decals().type(shot.type)->volumetric)
+        freshMissed_.push_back(shot);
 }
 
 Status SurfaceLaying::search(Renderer& renderer, const GallerySim& sim) {
     Search s;
     std::vector<SurfaceLine> lines;
     const DecalSystem& decals = sim.decals();
-    if (freshSystem_ != sim.systemNumber()) fresh_.clear();
+    if (freshSystem_ != sim.systemNumber()) {
+        fresh_.clear();
+        freshMissed_.clear();
+    }
     for (DecalHandle h : std::exchange(fresh_, {})) {
         const std::optional<DecalAxisLine> line = decals.axisLine(h);
         if (!line) continue;
@@ -26,15 +67,46 @@ Status SurfaceLaying::search(Renderer& renderer, const GallerySim& sim) {
             continue;
         lines.push_back({line->from, line->to, line->objectId});
         s.handles.push_back(h);
-        s.transforms.push_back(decals.world().object(d.object)->transform);
+    }
+    for (GallerySim::Shot& shot : std::exchange(freshMissed_, {})) {
+        lines.push_back(shotLine(shot.ray, decals.world()));
+        s.missed.push_back(std::move(shot));
     }
     if (lines.empty()) return {};
     Result<uint64_t> request = renderer.findSurface(lines);
     if (!request) return fail(request.error());
     s.request = request.value();
     s.system = sim.systemNumber();
+    s.transforms = objectTransforms(sim);
     searches_.push_back(std::move(s));
     return {};
+}
+
+void SurfaceLaying::layDecal(const Search& s, size_t i, const SurfacePoint& p, GallerySim& sim) {
+    const Decal* d = sim.decals().get(s.handles[i]);
+    if (!d) return;
+    // From the object as the frame drew it to the object now (normals by the inverse transpose).
+    const glm::dmat4 move =
+        sim.decals().world().object(d->object)->transform * glm::inverse(s.transforms[d->object]);
+    const glm::dvec3 point(move * glm::dvec4(p.point, 1.0));
+    const glm::dvec3 normal = glm::transpose(glm::inverse(glm::dmat3(move))) * p.normal;
+    const Result<DrawnSurfaceLaying> laid = sim.layOnDrawnSurface(s.handles[i], point, normal);
+    if (laid) ++(laid.value() == DrawnSurfaceLaying::Laid ? laid_ : removed_);
+}
+
+void SurfaceLaying::spawnMissed(const Search& s, size_t i, const SurfacePoint& p, GallerySim& sim) {
+    // Carried with the moving target whose ID the frame showed there; static surfaces (ID 0) stay.
+    glm::dvec3 point = p.point, normal = p.normal;
+    const std::vector<uint8_t> ids = sim.decals().objectIds();
+    const auto object = std::find(ids.begin(), ids.end(), p.objectId);
+    if (p.objectId != 0 && object != ids.end()) {
+        const size_t k = size_t(object - ids.begin());
+        const glm::dmat4 move =
+            sim.decals().world().object(uint32_t(k))->transform * glm::inverse(s.transforms[k]);
+        point = glm::dvec3(move * glm::dvec4(point, 1.0));
+        normal = glm::transpose(glm::inverse(glm::dmat3(move))) * normal;
+    }
+    if (sim.spawnOnDrawnSurface(s.missed[i], point, normal).placed()) ++spawned_;
 }
 
 void SurfaceLaying::lay(Renderer& renderer, GallerySim& sim, bool wait) {
@@ -42,17 +114,13 @@ void SurfaceLaying::lay(Renderer& renderer, GallerySim& sim, bool wait) {
         const Search& s = searches_.front();
         const std::optional<std::vector<SurfacePoint>> points = renderer.surfaceFound(s.request, wait);
         if (!points && !wait && s.system == sim.systemNumber()) return; // not answered yet
-        for (size_t i = 0; points && s.system == sim.systemNumber() && i < s.handles.size(); ++i) {
+        for (size_t i = 0; points && s.system == sim.systemNumber() && i < points->size(); ++i) {
             const SurfacePoint& p = (*points)[i];
-            const Decal* d = sim.decals().get(s.handles[i]);
-            if (!p.found || !d) continue;
-            // From the object as the frame drew it to the object now (normals by the inverse transpose).
-            const glm::dmat4 now = sim.decals().world().object(d->object)->transform;
-            const glm::dmat4 move = now * glm::inverse(s.transforms[i]);
-            const glm::dvec3 point(move * glm::dvec4(p.point, 1.0));
-            const glm::dvec3 normal = glm::transpose(glm::inverse(glm::dmat3(move))) * p.normal;
-            const Result<DrawnSurfaceLaying> laid = sim.layOnDrawnSurface(s.handles[i], point, normal);
-            if (laid) ++(laid.value() == DrawnSurfaceLaying::Laid ? laid_ : removed_);
+            if (!p.found) continue;
+            if (i < s.handles.size())
+                layDecal(s, i, p, sim);
+            else
+                spawnMissed(s, i - s.handles.size(), p, sim);
         }
         searches_.pop_front();
     }

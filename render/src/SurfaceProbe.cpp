@@ -3,6 +3,7 @@
 #include "ProjectorLayouts.hpp"
 #include "ProjectorVariants.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <type_traits>
@@ -126,6 +127,7 @@ std::vector<SurfacePoint> SurfaceProbe::read(const Request& r) const {
         out[i].found = true;
         out[i].point = glm::dvec3(r.viewToWorld * glm::dvec4(glm::dvec3(p), 1.0));
         out[i].normal = glm::normalize(normal);
+        out[i].objectId = uint8_t(std::clamp(n.w, 0.0f, 255.0f));
     }
     return out;
 }

@@ -268,6 +268,8 @@ TEST(SurfaceProbe, FindsTheSurfaceInAForeignHostsDepthAndKeepsToTheLinesObjectUn
     EXPECT_FALSE((*points)[3].found);
     ASSERT_TRUE((*points)[4].found);
     EXPECT_NEAR((*points)[4].point.z, 0.8, 0.01);
+    EXPECT_EQ((*points)[4].objectId, 7) << "the crate's ID, read where the line met it";
+    EXPECT_EQ((*points)[0].objectId, 0) << "the wall's";
 
     HostFrame noDepth = frame;
     noDepth.depth.texture = 0;

@@ -322,6 +322,8 @@ struct SurfacePoint {
                             // hidden, behind the camera, another object's ID, or no surface along it)
     glm::dvec3 point{0.0};  // on the line
     glm::dvec3 normal{0.0}; // unit, facing the camera: from the depth of the pixels around the point
+    uint8_t objectId = 0;   // the object decal ID of the surface there, where the frame has an ID
+                            // texture (0 otherwise)
 };
 
 // GL objects of the projector that a host may read: the decal texture arrays, and the instance data
