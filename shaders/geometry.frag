@@ -16,12 +16,14 @@ layout(binding = 3) uniform sampler2D s_decalLayerNormal;
 in vec3 v_normal;
 in vec2 v_uv;
 in vec4 v_tangent;
+in vec3 v_position;
 
 layout(location = 0) out vec4 o_albedo;
 layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_material;
 layout(location = 3) out uint o_id;
 layout(location = 4) out vec4 o_coverage;
+layout(location = 5) out vec4 o_faceNormal; // the triangle's own normal, from the position's slopes
 
 void main() {
     ObjectData o = objects[u_object];
@@ -69,4 +71,6 @@ void main() {
     o_material = vec4(clamp(m.params.x, 0.02, 1.0), clamp(m.params.y, 0.0, 1.0), 0.0, 0.0);
     o_id = o.info.x;
     o_coverage = vec4(decalCoverage); // texture-space decals; the decal pass adds the projected ones
+    vec3 face = cross(dFdx(v_position), dFdy(v_position));
+    o_faceNormal = vec4(dot(face, face) > 0.0 ? encodeNormal(normalize(face)) : vec2(0.0), 0.0, 0.0);
 }

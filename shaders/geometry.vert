@@ -15,6 +15,7 @@ layout(location = 2) uniform uint u_posed; // 1: skin and morph with the pose bu
 out vec3 v_normal;
 out vec2 v_uv;
 out vec4 v_tangent;
+out vec3 v_position; // relative to the eye
 
 void main() {
     ObjectData o = objects[u_object];
@@ -28,12 +29,14 @@ void main() {
     v_uv = a_uv;
     if (u_posed != 0u && po.skin.y != 0u) {
         mat4 skin = skinMatrix(po, vertex);
-        gl_Position = u_viewProj * (skin * vec4(p, 1.0));
+        v_position = (skin * vec4(p, 1.0)).xyz;
+        gl_Position = u_viewProj * vec4(v_position, 1.0);
         v_normal = safeNormalize(normalTransform(mat3(skin)) * n); // joints may scale unevenly
         v_tangent = vec4(mat3(skin) * t, a_tangent.w);
         return;
     }
-    gl_Position = u_viewProj * (o.model * vec4(p, 1.0));
+    v_position = (o.model * vec4(p, 1.0)).xyz;
+    gl_Position = u_viewProj * vec4(v_position, 1.0);
     v_normal = mat3(o.normalMatrix) * n;
     v_tangent = vec4(mat3(o.model) * t, a_tangent.w);
 }

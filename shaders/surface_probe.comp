@@ -9,6 +9,10 @@ layout(local_size_x = 64) in;
 
 layout(binding = 0) uniform sampler2D s_depth;
 layout(binding = 2) uniform usampler2D s_ids;
+#if defined(FACE_NORMALS)
+layout(binding = 3) uniform sampler2D s_faceNormals; // each pixel's triangle face normal, the host's encoding
+layout(location = 4) uniform mat3 u_faceToView;      // decoded face normals to view space
+#endif
 layout(location = 0) uniform uint u_lines;
 layout(location = 1) uniform ivec4 u_rect;   // the host's viewport: x, y, width, height
 layout(location = 2) uniform int u_checkIds; // 1: the surface a line meets must carry its object ID
@@ -74,7 +78,7 @@ int sideOf(vec3 p, out ivec2 pixel, out float gap) {
 // The unit normal of the surface at `pixel` from the depth around it, facing the camera: of the four
 // quadrants around the pixel, the one whose pixels lie flattest on the plane of its two steps (a
 // triangle's pixels are coplanar; a crease or an edge beside the pixel bends the others).
-bool normalAt(ivec2 pixel, out vec3 n) {
+bool depthNormalAt(ivec2 pixel, out vec3 n) {
     vec3 s;
     if (!surfaceAt(pixel, s)) return false;
     float best = kFar;
@@ -98,6 +102,45 @@ bool normalAt(ivec2 pixel, out vec3 n) {
     if (dot(n, s) > 0.0) n = -n;
     return true;
 }
+
+// The unit normal of the surface at `pixel`, facing the camera: the host's face normal there where it
+// gives one, else the depth's.
+bool normalAt(ivec2 pixel, out vec3 n) {
+#if defined(FACE_NORMALS)
+    vec3 s;
+    if (!surfaceAt(pixel, s)) return false;
+    vec4 texel = texelFetch(s_faceNormals, pixel, 0);
+    if (any(notEqual(texel.xyz, vec3(0.0)))) {
+        n = u_faceToView * decodeHostNormal(texel);
+        if (dot(n, n) > 0.0) {
+            n = normalize(n);
+            if (dot(n, s) > 0.0) n = -n;
+            return true;
+        }
+    }
+#endif
+    return depthNormalAt(pixel, n);
+}
+
+#if defined(FACE_NORMALS)
+// Where the line from `a` to `b` meets the plane of the triangle seen at `pixel` (through its surface
+// point there, normal `n`, which is then that of the pixel the meet falls in): the meet within the
+// triangle rather than within the pixel's depth, where it lies within two pixels of `p`, the meet the
+// depth gave; else `p`.
+vec3 onFacePlane(vec3 a, vec3 b, vec3 p, inout ivec2 pixel, inout vec3 n) {
+    vec3 s, d = b - a, m;
+    if (!surfaceAt(pixel, s) || abs(dot(n, d)) < 1e-6 * length(d)) return p;
+    vec3 q = a + d * (dot(n, s - a) / dot(n, d));
+    float reach = 2.0 * abs(u_pixel.x * p.z + u_pixel.y);
+    if (!(length(q - p) <= reach)) return p;
+    vec2 w;
+    if (windowOf(q, w) && ivec2(floor(w)) != pixel && normalAt(ivec2(floor(w)), m)) {
+        pixel = ivec2(floor(w));
+        n = m;
+    }
+    return q;
+}
+#endif
 
 // Narrows the step [lo, hi] of the line from `a` to `b` in which it passes from in front of the surface
 // to behind it, and whether the depth is continuous across the crossing found (not an edge).
@@ -146,7 +189,11 @@ void main() {
             if (refine(a, b, lo, hi, pixel)) {
                 uint seen = u_checkIds != 0 ? texelFetch(s_ids, pixel, 0).r : 0u;
                 if ((u_checkIds == 0 || id == kAnyObject || seen == id) && normalAt(pixel, n)) {
-                    points[2u * i] = vec4(mix(a, b, 0.5 * (lo + hi)), 1.0);
+                    vec3 p = mix(a, b, 0.5 * (lo + hi));
+#if defined(FACE_NORMALS)
+                    p = onFacePlane(a, b, p, pixel, n);
+#endif
+                    points[2u * i] = vec4(p, 1.0);
                     points[2u * i + 1u] = vec4(n, float(seen));
                     return;
                 }

@@ -29,14 +29,15 @@ DecalType coverageType(double size) {
     return t;
 }
 
-Result<CoverageProbe> CoverageProbe::create(const Scene& scene, int width, int height,
-                                            const DecalType& type) {
+Result<CoverageProbe> CoverageProbe::create(const Scene& scene, int width, int height, const DecalType& type,
+                                            bool faceNormals) {
     Result<GlContext> gl = GlContext::createHeadless();
     if (!gl) return fail(gl.error());
     auto context = std::make_unique<GlContext>(std::move(gl).value());
     RendererSettings rs;
     rs.width = width;
     rs.height = height;
+    rs.faceNormals = faceNormals;
     Result<Renderer> renderer = Renderer::create(*context, rs);
     if (!renderer) return fail(renderer.error());
     if (Status s = renderer->setScene(scene); !s) return fail(s.error());

@@ -35,8 +35,10 @@ DecalType coverageType(double size);
 class CoverageProbe {
 public:
     // A headless context and a width x height renderer of `scene`, drawing decals of `type` (the
-    // decal type 0 of every system whose decals it draws). Fails without an OpenGL context.
-    static Result<CoverageProbe> create(const Scene& scene, int width, int height, const DecalType& type);
+    // decal type 0 of every system whose decals it draws), with a face normal target when
+    // `faceNormals` (RendererSettings::faceNormals). Fails without an OpenGL context.
+    static Result<CoverageProbe> create(const Scene& scene, int width, int height, const DecalType& type,
+                                        bool faceNormals = false);
 
     const std::string& glRenderer() const { return context_->info().renderer; }
     const DecalType& type() const { return type_; }

@@ -32,7 +32,8 @@ const char* kTradeoffUsage =
     R"(usage: spatter-bench tradeoff MESH|SCENE [--subdivide N] [--backends LIST] [--tolerances LIST]
                               [--rays N] [--batch-size N] [--passes N] [--cap-seconds S]
                               [--openmesh-max-triangles N] [--coverage-decals N] [--size WxH]
-                              [--probe-size WxH] [--camera SPEC] [--no-render] [--no-peer] [--peer-seconds S]
+                              [--probe-size WxH] [--probe-normals face|depth] [--camera SPEC] [--no-render]
+                              [--no-peer] [--peer-seconds S]
                               [--seed N] [--quick] [--json FILE]
 
 Run time against error. The receivers of MESH|SCENE (anything loadScene reads, or a file in the
@@ -54,7 +55,9 @@ then one proxy per backend and tolerance. Columns:
   IoU-n     the same, both projected along the normal
   IoU-p     IoU along the shot with each proxy-placed decal laid again on the drawn surface where a
             frame from the camera finds its axis line meets it in the depth buffer
-            (Renderer::findSurface, DecalSystem::layOnDrawnSurface), at --probe-size
+            (Renderer::findSurface, DecalSystem::layOnDrawnSurface; removed where its shot meets it
+            too steeply for its type), and each shot that met no proxy placed where the frame finds
+            it meeting the drawn surface (DecalSystem::spawnOnDrawnSurface), at --probe-size
   (--iou-breakdown: IoU again with fields of each proxy-placed decal taken from the decal the same
   shot places on the render mesh: its centre, its frame, frame and slant, all three, all three and
   the half-depth; centre and half-depth alone (what a decal pass that found the drawn surface along
@@ -83,6 +86,9 @@ and rays) is run when node and npm are available and reported beside the rows.
 --size WxH         coverage image size (default 640x480)
 --probe-size WxH   size of the frame whose depth IoU-p's decals are laid on (default 1440x1080: the
                    coverage camera at 1080 rows)
+--probe-normals N  the normals of the surface IoU-p's search finds: face (the default: the frame's
+                   face normal target, RendererSettings::faceNormals) or depth (from the depth of
+                   the pixels around each point)
 --camera SPEC      "eye=x,y,z;target=x,y,z[;up=..;fov=..]" (default: outside the bounds, looking in)
 --no-render        no OpenGL context: IoU not measured
 --iou-breakdown    where the IoU along the shot is lost (above; a table after the rows)
@@ -94,7 +100,8 @@ and rays) is run when node and npm are available and reported beside the rows.
                    "iou_breakdown": {"centre",
                    "frame", "frame_slant", "centre_frame_slant", "all", "centre_depth",
                    "all_placed_by_both", "drawn_probe", "drawn_probe_seen",
-                   "drawn_probe_depth_normal", "nearest_face_frame"}, ...}], "peers": [...], ...}
+                   "drawn_probe_depth_normal", "nearest_face_frame"}, ...}], "probe_size",
+                   "probe_normals", "peers": [...], ...}
 )";
 
 constexpr double kRadToDeg = 57.295779513082320876;
@@ -124,9 +131,9 @@ struct ShotCoverage {
     // the ray shows on screen.
     static Result<ShotCoverage> create(const Scene& scene, const CollisionWorld& renderWorld, int width,
                                        int height, const Camera& camera, size_t decals, double diagonal,
-                                       uint64_t seed) {
+                                       uint64_t seed, bool faceNormals) {
         Result<CoverageProbe> probe =
-            CoverageProbe::create(scene, width, height, coverageType(0.04 * diagonal));
+            CoverageProbe::create(scene, width, height, coverageType(0.04 * diagonal), faceNormals);
         if (!probe) return fail(probe.error());
         ShotCoverage c{std::move(probe).value(), camera, {}};
         Rng rng(seed);
@@ -341,7 +348,7 @@ int runTradeoffCommand(int argc, char** argv) {
         commandArgs(argc, argv, kTradeoffCommand, kTradeoffUsage,
                     {"--subdivide", "--backends", "--tolerances", "--rays", "--batch-size", "--passes",
                      "--cap-seconds", "--openmesh-max-triangles", "--coverage-decals", "--size",
-                     "--probe-size", "--camera", "--peer-seconds", "--seed", "--json"},
+                     "--probe-size", "--probe-normals", "--camera", "--peer-seconds", "--seed", "--json"},
                     {"--no-render", "--no-peer", "--quick", "--iou-breakdown"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
@@ -400,6 +407,10 @@ int runTradeoffCommand(int argc, char** argv) {
     if (args.has("--probe-size") &&
         std::sscanf(args.value("--probe-size").c_str(), "%dx%d", &probeSize.x, &probeSize.y) != 2)
         errors.push_back("--probe-size must be WxH");
+    const std::string probeNormals = args.has("--probe-normals") ? args.value("--probe-normals") : "face";
+    if (probeNormals != "face" && probeNormals != "depth")
+        errors.push_back("--probe-normals must be face or depth");
+    const bool faceNormals = probeNormals == "face";
     if (!errors.empty()) return usageError(kTradeoffCommand, errors.front());
     if (subdivide > 4)
         return usageError(kTradeoffCommand, "--subdivide at most 4 (each step makes 4 times the triangles)");
@@ -471,7 +482,7 @@ int runTradeoffCommand(int argc, char** argv) {
             camera = c.value();
         }
         Result<ShotCoverage> p = ShotCoverage::create(scene, renderWorld.value(), width, height, camera,
-                                                      coverageDecals, diagonal, seed + 7);
+                                                      coverageDecals, diagonal, seed + 7, faceNormals);
         if (p) {
             probe.emplace(std::move(p).value());
             Result<std::vector<uint8_t>> m = probe->mask(scene, {}, diagonal, seed, Projection::Shot);
@@ -654,6 +665,8 @@ int runTradeoffCommand(int argc, char** argv) {
         j["passes"] = passes;
         j["cap_seconds"] = cap;
         j["decal_size_rel"] = 0.02;
+        j["probe_size"] = {probeSize.x, probeSize.y};
+        j["probe_normals"] = probeNormals;
         j["rows"] = Json::array();
         for (const TradeoffRow& r : rows)
             j["rows"].push_back(tradeoffRowJson(r));

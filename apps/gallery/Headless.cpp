@@ -168,6 +168,7 @@ int runHeadless(const GalleryOptions& options) {
     settings.width = options.width ? options.width : 960;
     settings.height = options.height ? options.height : 540;
     settings.waitForTimers = true;
+    settings.faceNormals = true; // the normals of the surface the shots' decals are laid on
     Result<Renderer> renderer = Renderer::create(gl.value(), settings);
     if (!renderer) {
         std::cerr << "spatter-gallery: " << renderer.error() << "\n";

@@ -189,6 +189,7 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
     RendererSettings settings;
     settings.width = std::max(fbw, 16);
     settings.height = std::max(fbh, 16);
+    settings.faceNormals = true; // the normals of the surface the shots' decals are laid on
     Result<Renderer> renderer = Renderer::create(context, settings);
     if (!renderer) {
         std::cerr << "spatter-gallery: " << renderer.error() << "\n";

@@ -26,7 +26,7 @@ Status checkComplete(GLuint fbo, const char* what) {
 
 } // namespace
 
-Status GBuffer::create(int width, int height, bool withIds) {
+Status GBuffer::create(int width, int height, bool withIds, bool withFaces) {
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxSize);
     if (width <= 0 || height <= 0 || width > maxSize || height > maxSize)
@@ -40,6 +40,7 @@ Status GBuffer::create(int width, int height, bool withIds) {
     material_ = makeTarget(GL_RG8, width, height);
     ids_ = withIds ? makeTarget(GL_R8UI, width, height) : GlTexture();
     coverage_ = makeTarget(GL_R8, width, height);
+    faces_ = withFaces ? makeTarget(GL_RG16F, width, height) : GlTexture();
     depth_ = makeTarget(GL_DEPTH32F_STENCIL8, width, height);
     output_ = makeTarget(GL_RGBA8, width, height);
 
@@ -49,6 +50,7 @@ Status GBuffer::create(int width, int height, bool withIds) {
     glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT2, material_.get(), 0);
     if (ids_) glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT3, ids_.get(), 0);
     glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT4, coverage_.get(), 0);
+    if (faces_) glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT5, faces_.get(), 0);
     glNamedFramebufferTexture(fbo_.get(), GL_DEPTH_STENCIL_ATTACHMENT, depth_.get(), 0);
     if (Status s = checkComplete(fbo_.get(), "G-buffer"); !s) return s;
 

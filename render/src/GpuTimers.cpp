@@ -9,19 +9,26 @@ void GpuTimers::create() {
             glCreateQueries(GL_TIME_ELAPSED, 1, &n);
             q = GlQuery(n);
         }
-    // llvmpipe measures the first timed interval of a context from an arbitrary origin (minutes);
-    // one timed clear of a scratch target here keeps that out of the frame times.
-    GlTexture target = createTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(target.get(), 1, GL_RGBA8, 1, 1);
-    GlFramebuffer fbo = createFramebuffer();
-    glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, target.get(), 0);
-    const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    GLuint warm = slots_[0].queries[0].get();
-    glBeginQuery(GL_TIME_ELAPSED, warm);
-    glClearNamedFramebufferfv(fbo.get(), GL_COLOR, 0, zero);
-    glEndQuery(GL_TIME_ELAPSED);
+    GLuint warm = 0;
+    glCreateQueries(GL_TIME_ELAPSED, 1, &warm);
+    warmQuery_ = GlQuery(warm);
+    warmTarget_ = createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(warmTarget_.get(), 1, GL_RGBA8, 1, 1);
+    warmFbo_ = createFramebuffer();
+    glNamedFramebufferTexture(warmFbo_.get(), GL_COLOR_ATTACHMENT0, warmTarget_.get(), 0);
+    warmUp();
     GLuint64 discard = 0;
-    glGetQueryObjectui64v(warm, GL_QUERY_RESULT, &discard);
+    glGetQueryObjectui64v(warmQuery_.get(), GL_QUERY_RESULT, &discard);
+}
+
+// llvmpipe measures the first timed interval of a context, and the first after a compute dispatch
+// outside any timed interval (untimedWork), from an arbitrary origin (hours); a timed clear of a
+// scratch target takes that interval: once here, and ahead of the next frame's passes after such work.
+void GpuTimers::warmUp() {
+    const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glBeginQuery(GL_TIME_ELAPSED, warmQuery_.get());
+    glClearNamedFramebufferfv(warmFbo_.get(), GL_COLOR, 0, zero);
+    glEndQuery(GL_TIME_ELAPSED);
 }
 
 void GpuTimers::read(Slot& slot) {
@@ -52,6 +59,8 @@ void GpuTimers::beginFrame(uint64_t frame) {
     if (slot.frame >= 0) read(slot);
     slot.used.fill(false);
     slot.frame = int64_t(frame);
+    if (untimedWork_) warmUp();
+    untimedWork_ = false;
 }
 
 void GpuTimers::begin(GpuPass pass) {

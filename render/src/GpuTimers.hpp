@@ -22,6 +22,8 @@ public:
     void end();
     // Ends the frame and returns the newest complete results (frame -1 while there are none).
     GpuPassTimes endFrame(bool wait);
+    // Says that GPU work ran outside the frame's timed passes (a compute dispatch between frames).
+    void untimedWork() { untimedWork_ = true; }
 
 private:
     static constexpr int kRing = 4;
@@ -32,8 +34,14 @@ private:
         int64_t frame = -1; // frame whose queries are in flight, -1 when read or unused
     };
     void read(Slot& slot);
+    // A timed clear of a 1 x 1 scratch target, whose time is not read (see create and beginFrame).
+    void warmUp();
 
     std::array<Slot, kRing> slots_;
+    GlQuery warmQuery_;
+    GlTexture warmTarget_;
+    GlFramebuffer warmFbo_;
+    bool untimedWork_ = false;
     int current_ = 0;
     bool active_ = false;
     GpuPassTimes latest_;

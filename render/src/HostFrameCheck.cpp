@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
+#include <utility>
 
 namespace spatter::render_detail {
 
@@ -122,6 +123,20 @@ std::string cameraProblem(const HostFrame& f, const std::string& frame) {
     return {};
 }
 
+// Why `texture`, named `name`, cannot hold normals in the encoding of `f.normals`, or empty.
+std::string normalTextureProblem(GLuint texture, const char* name, const HostFrame& f) {
+    const bool oct = f.normals.encoding == NormalEncoding::OctahedralWorld;
+    const bool isSigned = oct || f.normals.encoding == NormalEncoding::WorldSigned;
+    return checkTexture(
+        texture, name, f,
+        [oct, isSigned](const FormatFacts& k) {
+            return k.renderable && !k.integer && k.channels >= (oct ? 2 : 3) && (!isSigned || k.isSigned);
+        },
+        oct        ? "a signed two-channel format (RG16F, RG16_SNORM)"
+        : isSigned ? "a signed format of three or more channels (RGBA16F)"
+                   : "a colour format of three or more channels (RGBA8, RGB10_A2)");
+}
+
 } // namespace
 
 FormatFacts formatFacts(GLenum internalFormat) {
@@ -149,19 +164,10 @@ std::string hostFrameProblem(const HostFrame& f, const ProjectorDraw& options) {
         },
         window ? "a depth format, or a float or normalised colour format" : "a float format (R32F, R16F)");
     if (!p.empty()) return p;
-    if (f.normals.texture != 0) {
-        const bool oct = f.normals.encoding == NormalEncoding::OctahedralWorld;
-        const bool isSigned = oct || f.normals.encoding == NormalEncoding::WorldSigned;
-        p = checkTexture(
-            f.normals.texture, "HostFrame.normals.texture", f,
-            [oct, isSigned](const FormatFacts& k) {
-                return k.renderable && !k.integer && k.channels >= (oct ? 2 : 3) && (!isSigned || k.isSigned);
-            },
-            oct        ? "a signed two-channel format (RG16F, RG16_SNORM)"
-            : isSigned ? "a signed format of three or more channels (RGBA16F)"
-                       : "a colour format of three or more channels (RGBA8, RGB10_A2)");
-        if (!p.empty()) return p;
-    }
+    for (const auto& [texture, name] : {std::pair{f.normals.texture, "HostFrame.normals.texture"},
+                                        std::pair{f.faceNormalTexture, "HostFrame.faceNormalTexture"}})
+        if (texture != 0)
+            if (p = normalTextureProblem(texture, name, f); !p.empty()) return p;
     const bool coverage = options.coverageTexture != 0;
     if (coverage) {
         p = checkTexture(

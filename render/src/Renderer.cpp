@@ -216,6 +216,8 @@ struct Renderer::Impl {
     }
 
     GLuint idTexture() const { return gbuffer.hasIds() ? gbuffer.ids() : zeroIds.get(); }
+    // The draw buffer of the face normal target, where the G-buffer has one.
+    GLenum faceBuffer() const { return gbuffer.hasFaceNormals() ? GL_COLOR_ATTACHMENT5 : GL_NONE; }
 
     // State every pass starts from.
     void baseState(GLuint framebuffer) const {
@@ -326,10 +328,11 @@ struct Renderer::Impl {
     // texture-space decals' coverage).
     void geometryPass(bool coverage) {
         baseState(gbuffer.framebuffer());
-        const GLenum all[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                               GLenum(gbuffer.hasIds() ? GL_COLOR_ATTACHMENT3 : GL_NONE),
-                               GL_COLOR_ATTACHMENT4};
-        glDrawBuffers(5, all);
+        const GLenum all[6] = {
+            GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+            GL_COLOR_ATTACHMENT2, GLenum(gbuffer.hasIds() ? GL_COLOR_ATTACHMENT3 : GL_NONE),
+            GL_COLOR_ATTACHMENT4, faceBuffer()};
+        glDrawBuffers(6, all);
         const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
         const GLuint zeroU[4] = {0, 0, 0, 0};
         glClearBufferfv(GL_COLOR, 0, zero);
@@ -337,13 +340,17 @@ struct Renderer::Impl {
         glClearBufferfv(GL_COLOR, 2, zero);
         if (gbuffer.hasIds()) glClearBufferuiv(GL_COLOR, 3, zeroU);
         glClearBufferfv(GL_COLOR, 4, zero);
+        if (gbuffer.hasFaceNormals()) glClearBufferfv(GL_COLOR, 5, zero);
         glDepthMask(GL_TRUE);
         glClearBufferfi(GL_DEPTH_STENCIL, 0, 0.0f, 0); // reversed-Z: 0 is infinitely far
 
-        const GLenum geometry[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+        const GLenum geometry[6] = {GL_COLOR_ATTACHMENT0,
+                                    GL_COLOR_ATTACHMENT1,
+                                    GL_COLOR_ATTACHMENT2,
                                     GLenum(gbuffer.hasIds() ? GL_COLOR_ATTACHMENT3 : GL_NONE),
-                                    GLenum(coverage ? GL_COLOR_ATTACHMENT4 : GL_NONE)};
-        glDrawBuffers(5, geometry);
+                                    GLenum(coverage ? GL_COLOR_ATTACHMENT4 : GL_NONE),
+                                    faceBuffer()};
+        glDrawBuffers(6, geometry);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);
         glEnable(GL_FRAMEBUFFER_SRGB);
@@ -369,16 +376,20 @@ struct Renderer::Impl {
         f.albedoTexture = gbuffer.albedo();
         f.roughness = {gbuffer.material(), 0};
         f.objectIdTexture = gbuffer.hasIds() ? gbuffer.ids() : 0;
+        f.faceNormalTexture = gbuffer.faceNormals();
         return f;
     }
 
     // Pass 3: objects that take no decals, over whatever the decals wrote.
     void latePass(bool coverage) {
         baseState(gbuffer.framebuffer());
-        const GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+        const GLenum buffers[6] = {GL_COLOR_ATTACHMENT0,
+                                   GL_COLOR_ATTACHMENT1,
+                                   GL_COLOR_ATTACHMENT2,
                                    GLenum(gbuffer.hasIds() ? GL_COLOR_ATTACHMENT3 : GL_NONE),
-                                   GLenum(coverage ? GL_COLOR_ATTACHMENT4 : GL_NONE)};
-        glDrawBuffers(5, buffers);
+                                   GLenum(coverage ? GL_COLOR_ATTACHMENT4 : GL_NONE),
+                                   faceBuffer()};
+        glDrawBuffers(6, buffers);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);
         glDepthMask(GL_TRUE);
@@ -569,7 +580,7 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
     impl->lightingProgram = std::move(lighting.value());
     impl->viewProgram = std::move(view.value());
 
-    if (Status s = impl->gbuffer.create(settings.width, settings.height, false); !s)
+    if (Status s = impl->gbuffer.create(settings.width, settings.height, false, settings.faceNormals); !s)
         return fail("renderer: " + s.error());
     ProjectorSettings projector;
     projector.wrapMaxAngleDeg = settings.wrapMaxAngleDeg;
@@ -638,7 +649,9 @@ Status Renderer::setScene(const Scene& scene) {
     m.objectIds.assign(n, 0);
     m.resetPose(scene);
     if (m.hasDynamic != m.gbuffer.hasIds())
-        if (Status s = m.gbuffer.create(m.gbuffer.width(), m.gbuffer.height(), m.hasDynamic); !s)
+        if (Status s = m.gbuffer.create(m.gbuffer.width(), m.gbuffer.height(), m.hasDynamic,
+                                        m.gbuffer.hasFaceNormals());
+            !s)
             return fail("renderer: " + s.error());
     if (n > m.objectCapacity || m.objectCapacity == 0) {
         m.objectCapacity = std::max<size_t>(n, 1);
@@ -799,7 +812,8 @@ Status Renderer::resize(int width, int height) {
     s.width = width;
     s.height = height;
     if (Status v = validateSettings(s); !v) return v;
-    if (Status c = impl_->gbuffer.create(width, height, impl_->hasDynamic); !c)
+    if (Status c = impl_->gbuffer.create(width, height, impl_->hasDynamic, impl_->gbuffer.hasFaceNormals());
+        !c)
         return fail("renderer: " + c.error());
     impl_->settings = s;
     return {};
@@ -964,6 +978,7 @@ Result<Image> Renderer::readback() const {
 Result<uint64_t> Renderer::findSurface(const std::vector<SurfaceLine>& lines) {
     Impl& m = *impl_;
     if (!m.rendered) return fail("renderer: nothing rendered yet");
+    m.timers.untimedWork();
     return m.projector->findSurface(m.hostFrame(m.lastCamera), lines);
 }
 

@@ -13,7 +13,7 @@ namespace spatter::render_detail {
 namespace {
 
 constexpr GLuint kLinesBuffer = 5, kPointsBuffer = 6; // surface_probe.comp's storage bindings
-constexpr GLuint kDepthUnit = 0, kIdUnit = 2;
+constexpr GLuint kDepthUnit = 0, kIdUnit = 2, kFaceUnit = 3;
 constexpr float kAnyObject = 256.0f; // a line's ID that any object's surface matches (surface_probe.comp)
 
 int convention(const HostDepth& d) {
@@ -21,11 +21,20 @@ int convention(const HostDepth& d) {
     return (d.reversedZ ? 1 : 0) + (d.clip == ClipDepth::MinusOneToOne ? 2 : 0);
 }
 
-std::vector<std::string> conventionDefines(int c) {
-    if (c == 4) return {"DEPTH_LINEAR"};
+// The face normals' variant: 0 without them, else their encoding + 1.
+int faceVariant(const HostFrame& f) {
+    return f.faceNormalTexture == 0 ? 0 : 1 + int(f.normals.encoding);
+}
+
+std::vector<std::string> conventionDefines(int c, int face) {
     std::vector<std::string> defines;
-    if ((c & 1) == 0) defines.push_back("STANDARD_Z");
-    if (c & 2) defines.push_back("CLIP_MINUS_ONE");
+    if (c == 4) defines.push_back("DEPTH_LINEAR");
+    if (c != 4 && (c & 1) == 0) defines.push_back("STANDARD_Z");
+    if (c != 4 && (c & 2)) defines.push_back("CLIP_MINUS_ONE");
+    if (face != 0) defines.push_back("FACE_NORMALS");
+    constexpr const char* kEncodings[] = {nullptr, "NORMAL_WORLD_SIGNED", "NORMAL_WORLD_UNORM",
+                                          "NORMAL_VIEW_UNORM"};
+    if (face > 1) defines.push_back(kEncodings[face - 1]);
     return defines;
 }
 
@@ -47,15 +56,15 @@ ProjectorFrameGpu viewSpaceFrame(const HostFrame& f) {
 } // namespace
 
 Status SurfaceProbe::prepare(const HostFrame& frame) {
-    const int c = convention(frame.depth);
+    const int c = convention(frame.depth), face = faceVariant(frame);
     if (!frameBlock_) {
         frameBlock_ = createBuffer();
         glNamedBufferStorage(frameBlock_.get(), sizeof(ProjectorFrameGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
     }
-    if (programs_[c]) return {};
-    Result<GlProgram> p = projectorComputeProgram("surface_probe.comp", conventionDefines(c));
+    if (programs_[c][face]) return {};
+    Result<GlProgram> p = projectorComputeProgram("surface_probe.comp", conventionDefines(c, face));
     if (!p) return fail(p.error());
-    programs_[c] = std::move(p.value());
+    programs_[c][face] = std::move(p.value());
     return {};
 }
 
@@ -89,6 +98,15 @@ Result<uint64_t> SurfaceProbe::find(const HostFrame& frame, const std::vector<Su
     return pending_.back().number;
 }
 
+void SurfaceProbe::bindFaceNormals(const HostFrame& frame, GLuint sampler) {
+    glBindTextureUnit(kFaceUnit, frame.faceNormalTexture);
+    glBindSampler(kFaceUnit, sampler);
+    // Face normals decode to world space but for view-space encodings; the search runs in view space.
+    const bool inView = frame.normals.encoding == NormalEncoding::ViewUnorm;
+    const glm::mat3 faceToView = inView ? glm::mat3(1.0f) : glm::mat3(glm::dmat3(frame.view));
+    glUniformMatrix3fv(4, 1, GL_FALSE, &faceToView[0][0]);
+}
+
 void SurfaceProbe::dispatch(const HostFrame& frame, const std::vector<glm::vec4>& gpuLines, size_t lines,
                             GLuint points, GLuint sampler) {
     const ProjectorFrameGpu block = viewSpaceFrame(frame);
@@ -96,7 +114,7 @@ void SurfaceProbe::dispatch(const HostFrame& frame, const std::vector<glm::vec4>
     GlBuffer lineBuffer = createBuffer(); // deleted once the dispatch is done with it
     glNamedBufferStorage(lineBuffer.get(), GLsizeiptr(gpuLines.size() * sizeof(glm::vec4)), gpuLines.data(),
                          0);
-    glUseProgram(programs_[convention(frame.depth)].get());
+    glUseProgram(programs_[convention(frame.depth)][faceVariant(frame)].get());
     glBindBufferBase(GL_UNIFORM_BUFFER, kProjectorFrameBlock, frameBlock_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLinesBuffer, lineBuffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPointsBuffer, points);
@@ -104,6 +122,7 @@ void SurfaceProbe::dispatch(const HostFrame& frame, const std::vector<glm::vec4>
     glBindSampler(kDepthUnit, sampler);
     glBindTextureUnit(kIdUnit, frame.objectIdTexture);
     glBindSampler(kIdUnit, sampler);
+    if (frame.faceNormalTexture != 0) bindFaceNormals(frame, sampler);
     glUniform1ui(0, GLuint(lines));
     glUniform4i(1, frame.x, frame.y, frame.width, frame.height);
     glUniform1i(2, frame.objectIdTexture != 0 ? 1 : 0);

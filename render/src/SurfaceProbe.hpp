@@ -44,14 +44,18 @@ private:
         glm::dmat3 normalToWorld{1.0};
     };
     Status prepare(const HostFrame& frame);
+    // Binds the frame's face normal texture and the matrix that takes its normals to view space.
+    void bindFaceNormals(const HostFrame& frame, GLuint sampler);
     // Runs the search of the first `lines` lines of `gpuLines` (view space, two entries a line, at least
     // two entries) into the buffer `points`.
     void dispatch(const HostFrame& frame, const std::vector<glm::vec4>& gpuLines, size_t lines, GLuint points,
                   GLuint sampler);
     std::vector<SurfacePoint> read(const Request& r) const;
 
-    GlProgram programs_[5]; // window depth (standard or reversed Z, clip 0..1 or -1..1), linear view distance
-    GlBuffer frameBlock_;   // the projector's frame block, with view space as its "world"
+    // By depth convention (window depth: standard or reversed Z, clip 0..1 or -1..1; linear view
+    // distance) and face normals (none, or their encoding: NormalEncoding + 1).
+    GlProgram programs_[5][5];
+    GlBuffer frameBlock_; // the projector's frame block, with view space as its "world"
     std::deque<Request> pending_;
     uint64_t requests_ = 0;
 };

@@ -304,3 +304,51 @@ TEST(SurfaceProbe, EmptyDegenerateAndAbsurdLinesFindNothingAndNeverBreakTheSearc
     EXPECT_FALSE(points[2].found);
     EXPECT_TRUE(points[3].found);
 }
+
+// With the renderer's face normal target, the normal found is the normal of the triangle the line
+// meets (what placement takes on a render mesh), and the point lies on that triangle, but where the
+// meet lies within a pixel of the triangle's edge; from the depth alone, a faceted ball's pixels give
+// normals bent across its edges.
+TEST(SurfaceProbe, AFaceNormalTargetGivesTheNormalOfTheTriangleTheLineMeets) {
+    SPATTER_REQUIRE_GL(gl);
+    Scene scene;
+    scene.source = "test:faceted ball";
+    scene.objects.push_back(makeSceneObject("ball", makeSphere(1.0f, 8, 16)));
+    Result<CollisionWorld> world = CollisionWorld::build(scene);
+    ASSERT_TRUE(world.ok()) << world.error();
+    const Camera cam = lookAt({0.0, 1.0, 4.0}, {0.0, 0.0, 0.0});
+    std::vector<SurfaceLine> lines;
+    std::vector<Hit> hits;
+    Rng rng(11);
+    while (lines.size() < 200) {
+        Ray r;
+        r.origin = cam.eye + glm::dvec3(rng.uniform(-0.8f, 0.8f), rng.uniform(-0.8f, 0.8f), 0.0);
+        r.direction = glm::dvec3(rng.uniform(-0.5f, 0.5f), rng.uniform(-0.5f, 0.5f), 0.0) - r.origin;
+        const std::optional<Hit> h = world->intersect(r);
+        if (!h) continue;
+        const glm::dvec3 along = 0.2 * glm::normalize(r.direction);
+        lines.push_back({h->position - along, h->position + along});
+        hits.push_back(*h);
+    }
+    size_t exact[2] = {0, 0}, seen[2] = {0, 0};
+    for (bool faces : {true, false}) {
+        RendererSettings settings;
+        settings.faceNormals = faces;
+        Result<Renderer> r = makeRenderer(4 * kW, 4 * kH, settings);
+        ASSERT_TRUE(r.ok()) << r.error();
+        ASSERT_TRUE(r->setScene(scene).ok());
+        renderView(r.value(), cam, View::Final);
+        const std::vector<SurfacePoint> points = found(r.value(), lines);
+        ASSERT_EQ(points.size(), lines.size());
+        for (size_t i = 0; i < points.size(); ++i) {
+            if (!points[i].found) continue;
+            ++seen[faces];
+            const double deg =
+                glm::degrees(std::acos(std::min(1.0, glm::dot(points[i].normal, hits[i].normal))));
+            if (deg < 0.1 && glm::length(points[i].point - hits[i].position) < 1e-3) ++exact[faces];
+        }
+        EXPECT_GT(seen[faces], 190u);
+    }
+    EXPECT_GT(exact[1], 9 * seen[1] / 10) << "the triangle's own normal and plane";
+    EXPECT_LT(exact[0] + 20, exact[1]) << "the depth's normal bends across the ball's edges";
+}

@@ -151,6 +151,10 @@ struct HostFrame {
     // Unsigned integer texture (R8UI, R16UI or R32UI) of the objects' 8-bit decal IDs, 0 for static
     // geometry; 0: no ID clipping.
     uint32_t objectIdTexture = 0;
+    // Read by findSurface only: each pixel's triangle face normal (the geometric normal, neither
+    // interpolated nor normal-mapped; either side), in the encoding and formats of `normals`; 0: the
+    // normals findSurface gives come from the depth around each point.
+    uint32_t faceNormalTexture = 0;
 };
 
 // How draw() blends the decals into the host's G-buffer.
@@ -312,7 +316,7 @@ struct ProjectorStats {
 // the shot (DecalSystem::spawnOnDrawnSurface), with `anyObject`.
 struct SurfaceLine {
     glm::dvec3 from{0.0}, to{0.0};
-    uint8_t objectId = 0; // with the frame's object ID texture: the surface must carry this decal ID
+    uint8_t objectId = 0;   // with the frame's object ID texture: the surface must carry this decal ID
     bool anyObject = false; // the surface may carry any object ID (objectId is not checked)
 };
 

@@ -114,6 +114,11 @@ struct RendererSettings {
     bool occlusionCulling = true;                            // ProjectorSettings::occlusionCulling
     bool decalStageTimers = false;                           // ProjectorSettings::stageTimers
     DeferredResolve deferredResolve = DeferredResolve::Auto; // ProjectorSettings::deferredResolve
+    // A G-buffer target of each pixel's triangle face normal (4 bytes a pixel, written by the geometry
+    // passes), from which findSurface takes the normals of what it finds (HostFrame::faceNormalTexture):
+    // the normal placement takes on a render mesh, where the depth around a point gives its pixels'.
+    // A crater's inner wall keeps the face normal of the surface it is cut into.
+    bool faceNormals = false;
     LightSettings light;
 };
 
