@@ -351,6 +351,10 @@ TEST(Projector, RejectsHostFramesThatDoNotFitNamingTheFieldAndDrawsNothing) {
              f.normals = {x.rgba8, NormalEncoding::WorldSigned};
          }},
         {"HostFrame.objectIdTexture", [](HostFrame& f, const Textures& x) { f.objectIdTexture = x.rgba8; }},
+        {"HostFrame.faceNormalTexture",
+         [](HostFrame& f, const Textures& x) { f.faceNormalTexture = x.r32f; }},
+        {"HostFrame.faceNormalTexture",
+         [](HostFrame& f, const Textures& x) { f.faceNormalTexture = x.narrow; }},
         {"HostFrame.roughness.channel", [](HostFrame& f, const Textures&) { f.roughness.channel = 4; }},
         {"HostFrame.roughness.texture",
          [](HostFrame& f, const Textures&) { f.roughness.texture = f.albedoTexture; }},

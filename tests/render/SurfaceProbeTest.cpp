@@ -271,6 +271,28 @@ TEST(SurfaceProbe, FindsTheSurfaceInAForeignHostsDepthAndKeepsToTheLinesObjectUn
     EXPECT_EQ((*points)[4].objectId, 7) << "the crate's ID, read where the line met it";
     EXPECT_EQ((*points)[0].objectId, 0) << "the wall's";
 
+    // A face normal texture in the host's encoding (world, n * 0.5 + 0.5) holding +Z everywhere: the
+    // wall's and the crate's front faces.
+    GLuint faces = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &faces);
+    glTextureStorage2D(faces, 1, GL_RGB10_A2, kWallWidth, kWallHeight);
+    const float up[4] = {0.5f, 0.5f, 1.0f, 1.0f};
+    glClearTexImage(faces, 0, GL_RGBA, GL_FLOAT, up);
+    HostFrame withFaces = frame;
+    withFaces.faceNormalTexture = faces;
+    Result<uint64_t> faced = h->projector.findSurface(withFaces, {lines[0], lines[1]});
+    ASSERT_TRUE(faced.ok()) << faced.error();
+    const std::optional<std::vector<SurfacePoint>> facePoints =
+        h->projector.surfaceFound(faced.value(), true);
+    ASSERT_TRUE(facePoints.has_value() && facePoints->size() == 2);
+    for (const SurfacePoint& p : *facePoints) {
+        ASSERT_TRUE(p.found);
+        EXPECT_GT(p.normal.z, 0.99999);
+    }
+    EXPECT_LT(glm::length((*facePoints)[0].point - glm::dvec3(-0.6, 1.0, 0.0)), 1e-4);
+    EXPECT_NEAR((*facePoints)[1].point.z, 0.8, 1e-4);
+    glDeleteTextures(1, &faces);
+
     HostFrame noDepth = frame;
     noDepth.depth.texture = 0;
     const Result<uint64_t> refused = h->projector.findSurface(noDepth, lines);
