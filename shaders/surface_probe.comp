@@ -103,20 +103,46 @@ bool depthNormalAt(ivec2 pixel, out vec3 n) {
     return true;
 }
 
-// The unit normal of the surface at `pixel`, facing the camera: the host's face normal there where it
-// gives one, else the depth's.
-bool normalAt(ivec2 pixel, out vec3 n) {
 #if defined(FACE_NORMALS)
+const float kCosCrease = 0.8660; // cos 30 degrees: neighbouring faces farther apart meet at a crease
+
+// The host's face normal at `pixel` (unit, facing the camera); false where it holds none.
+bool faceNormalAt(ivec2 pixel, out vec3 n) {
     vec3 s;
     if (!surfaceAt(pixel, s)) return false;
     vec4 texel = texelFetch(s_faceNormals, pixel, 0);
-    if (any(notEqual(texel.xyz, vec3(0.0)))) {
-        n = u_faceToView * decodeHostNormal(texel);
-        if (dot(n, n) > 0.0) {
-            n = normalize(n);
-            if (dot(n, s) > 0.0) n = -n;
-            return true;
-        }
+    if (all(equal(texel.xyz, vec3(0.0)))) return false;
+    n = u_faceToView * decodeHostNormal(texel);
+    if (!(dot(n, n) > 0.0)) return false;
+    n = normalize(n);
+    if (dot(n, s) > 0.0) n = -n;
+    return true;
+}
+
+// Whether the face at `pixel` turns from `n` by more than a crease's angle.
+bool creased(ivec2 pixel, vec3 n) {
+    vec3 m;
+    return faceNormalAt(pixel, m) && dot(m, n) < kCosCrease;
+}
+
+// Whether a face beside `pixel` turns from `n` by more than a crease's angle: the meet may lie on
+// that face within the pixel, whose centre shows the other. (No array of steps: an indexed local
+// array can cost a driver local memory for every invocation.)
+bool besideACrease(ivec2 pixel, vec3 n) {
+    return creased(pixel + ivec2(1, 0), n) || creased(pixel - ivec2(1, 0), n) ||
+           creased(pixel + ivec2(0, 1), n) || creased(pixel - ivec2(0, 1), n);
+}
+#endif
+
+// The unit normal of the surface at `pixel`, facing the camera, and whether it is the host's face
+// normal: that where it gives one away from creases, else the depth's (whose flattest quadrant keeps
+// to the meet's side of a crease).
+bool normalAt(ivec2 pixel, out vec3 n, out bool face) {
+    face = false;
+#if defined(FACE_NORMALS)
+    if (faceNormalAt(pixel, n) && !besideACrease(pixel, n)) {
+        face = true;
+        return true;
     }
 #endif
     return depthNormalAt(pixel, n);
@@ -134,7 +160,7 @@ vec3 onFacePlane(vec3 a, vec3 b, vec3 p, inout ivec2 pixel, inout vec3 n) {
     float reach = 2.0 * abs(u_pixel.x * p.z + u_pixel.y);
     if (!(length(q - p) <= reach)) return p;
     vec2 w;
-    if (windowOf(q, w) && ivec2(floor(w)) != pixel && normalAt(ivec2(floor(w)), m)) {
+    if (windowOf(q, w) && ivec2(floor(w)) != pixel && faceNormalAt(ivec2(floor(w)), m)) {
         pixel = ivec2(floor(w));
         n = m;
     }
@@ -186,12 +212,13 @@ void main() {
         if (before == kFront && side == kBehind) {
             float lo = float(k - 1) / float(steps), hi = t;
             vec3 n;
+            bool face;
             if (refine(a, b, lo, hi, pixel)) {
                 uint seen = u_checkIds != 0 ? texelFetch(s_ids, pixel, 0).r : 0u;
-                if ((u_checkIds == 0 || id == kAnyObject || seen == id) && normalAt(pixel, n)) {
+                if ((u_checkIds == 0 || id == kAnyObject || seen == id) && normalAt(pixel, n, face)) {
                     vec3 p = mix(a, b, 0.5 * (lo + hi));
 #if defined(FACE_NORMALS)
-                    p = onFacePlane(a, b, p, pixel, n);
+                    if (face) p = onFacePlane(a, b, p, pixel, n);
 #endif
                     points[2u * i] = vec4(p, 1.0);
                     points[2u * i + 1u] = vec4(n, float(seen));
