@@ -7,6 +7,7 @@
 
 layout(location = 0) uniform uint u_object;
 layout(location = 1) uniform uint u_material;
+layout(location = 3) uniform uint u_faceNormals; // 1: the G-buffer has the face normal target
 
 layout(binding = 0) uniform sampler2D s_baseColor;
 layout(binding = 1) uniform sampler2D s_normalMap;
@@ -71,6 +72,8 @@ void main() {
     o_material = vec4(clamp(m.params.x, 0.02, 1.0), clamp(m.params.y, 0.0, 1.0), 0.0, 0.0);
     o_id = o.info.x;
     o_coverage = vec4(decalCoverage); // texture-space decals; the decal pass adds the projected ones
-    vec3 face = cross(dFdx(v_position), dFdy(v_position));
-    o_faceNormal = vec4(dot(face, face) > 0.0 ? encodeNormal(normalize(face)) : vec2(0.0), 0.0, 0.0);
+    if (u_faceNormals != 0u) {
+        vec3 face = cross(dFdx(v_position), dFdy(v_position));
+        o_faceNormal = vec4(dot(face, face) > 0.0 ? encodeNormal(normalize(face)) : vec2(0.0), 0.0, 0.0);
+    }
 }

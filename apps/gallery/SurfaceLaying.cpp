@@ -7,12 +7,17 @@ namespace spatter::gallery {
 
 namespace {
 
-// The part of `ray` that can meet `world`'s surfaces: from its start to the farthest corner of the
-// objects' bounds (or its end, when nearer), any object's surface counting.
-SurfaceLine shotLine(const Ray& ray, const CollisionWorld& world) {
+// The bounds of every object of `world`.
+DBounds worldBounds(const CollisionWorld& world) {
     DBounds all;
     for (uint32_t i = 0; i < world.objectCount(); ++i)
         all.extend(world.worldBounds(i));
+    return all;
+}
+
+// The part of `ray` that can meet the surfaces within `all`: from its start to the farthest corner of
+// `all` (or its end, when nearer), any object's surface counting.
+SurfaceLine shotLine(const Ray& ray, const DBounds& all) {
     double reach = 0.0;
     for (int corner = 0; corner < 8 && !all.empty(); ++corner) {
         const glm::dvec3 c((corner & 1) ? all.max.x : all.min.x, (corner & 2) ? all.max.y : all.min.y,
@@ -23,6 +28,15 @@ SurfaceLine shotLine(const Ray& ray, const CollisionWorld& world) {
     const double scale = glm::length(ray.direction); // tnear and tfar count in the direction's length
     const double from = ray.tnear * scale, to = std::min(ray.tfar * scale, reach);
     return {ray.origin + dir * from, ray.origin + dir * std::max(from, to), 0, true};
+}
+
+// `p` carried with an object from transform `then`, where the frame drew it, to `now` (normals by the
+// inverse transpose).
+SurfacePoint carried(SurfacePoint p, const glm::dmat4& then, const glm::dmat4& now) {
+    const glm::dmat4 move = now * glm::inverse(then);
+    p.point = glm::dvec3(move * glm::dvec4(p.point, 1.0));
+    p.normal = glm::transpose(glm::inverse(glm::dmat3(move))) * p.normal;
+    return p;
 }
 
 // The transform of every object of `sim`'s world.
@@ -68,8 +82,9 @@ Status SurfaceLaying::search(Renderer& renderer, const GallerySim& sim) {
         lines.push_back({line->from, line->to, line->objectId});
         s.handles.push_back(h);
     }
+    const DBounds all = freshMissed_.empty() ? DBounds{} : worldBounds(decals.world());
     for (GallerySim::Shot& shot : std::exchange(freshMissed_, {})) {
-        lines.push_back(shotLine(shot.ray, decals.world()));
+        lines.push_back(shotLine(shot.ray, all));
         s.missed.push_back(std::move(shot));
     }
     if (lines.empty()) return {};
@@ -85,28 +100,22 @@ Status SurfaceLaying::search(Renderer& renderer, const GallerySim& sim) {
 void SurfaceLaying::layDecal(const Search& s, size_t i, const SurfacePoint& p, GallerySim& sim) {
     const Decal* d = sim.decals().get(s.handles[i]);
     if (!d) return;
-    // From the object as the frame drew it to the object now (normals by the inverse transpose).
-    const glm::dmat4 move =
-        sim.decals().world().object(d->object)->transform * glm::inverse(s.transforms[d->object]);
-    const glm::dvec3 point(move * glm::dvec4(p.point, 1.0));
-    const glm::dvec3 normal = glm::transpose(glm::inverse(glm::dmat3(move))) * p.normal;
-    const Result<DrawnSurfaceLaying> laid = sim.layOnDrawnSurface(s.handles[i], point, normal);
+    const SurfacePoint now =
+        carried(p, s.transforms[d->object], sim.decals().world().object(d->object)->transform);
+    const Result<DrawnSurfaceLaying> laid = sim.layOnDrawnSurface(s.handles[i], now.point, now.normal);
     if (laid) ++(laid.value() == DrawnSurfaceLaying::Laid ? laid_ : removed_);
 }
 
 void SurfaceLaying::spawnMissed(const Search& s, size_t i, const SurfacePoint& p, GallerySim& sim) {
     // Carried with the moving target whose ID the frame showed there; static surfaces (ID 0) stay.
-    glm::dvec3 point = p.point, normal = p.normal;
+    SurfacePoint now = p;
     const std::vector<uint8_t> ids = sim.decals().objectIds();
     const auto object = std::find(ids.begin(), ids.end(), p.objectId);
     if (p.objectId != 0 && object != ids.end()) {
-        const size_t k = size_t(object - ids.begin());
-        const glm::dmat4 move =
-            sim.decals().world().object(uint32_t(k))->transform * glm::inverse(s.transforms[k]);
-        point = glm::dvec3(move * glm::dvec4(point, 1.0));
-        normal = glm::transpose(glm::inverse(glm::dmat3(move))) * normal;
+        const uint32_t k = uint32_t(object - ids.begin());
+        now = carried(p, s.transforms[k], sim.decals().world().object(k)->transform);
     }
-    if (sim.spawnOnDrawnSurface(s.missed[i], point, normal).placed()) ++spawned_;
+    if (sim.spawnOnDrawnSurface(s.missed[i], now.point, now.normal).placed()) ++spawned_;
 }
 
 void SurfaceLaying::lay(Renderer& renderer, GallerySim& sim, bool wait) {

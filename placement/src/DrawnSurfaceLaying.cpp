@@ -25,6 +25,15 @@ std::optional<DecalAxisLine> DecalSystem::axisLine(DecalHandle handle) const {
 
 namespace {
 
+// Why `normal` cannot be a surface's normal (not finite, zero or too small to normalise), or null.
+const char* normalProblem(const glm::dvec3& normal) {
+    if (!finite3(normal)) return "normal is not finite";
+    const double len2 = glm::dot(normal, normal);
+    if (!(len2 >= std::numeric_limits<double>::min()) || !std::isfinite(len2))
+        return "normal is zero or cannot be normalised";
+    return nullptr;
+}
+
 // Why a decal of type `t` on `o` cannot be laid on the drawn surface at `point` facing `normal`
 // (world space), or empty.
 std::string drawnSurfaceRefusal(const DecalType& t, const CollisionObject& o, bool deforms,
@@ -35,10 +44,7 @@ std::string drawnSurfaceRefusal(const DecalType& t, const CollisionObject& o, bo
     if (deforms)
         return "object '" + o.name + "' is skinned or morphed: its decals lie on the drawn surface already";
     if (!finite3(point)) return "point is not finite";
-    if (!finite3(normal)) return "normal is not finite";
-    const double len2 = glm::dot(normal, normal);
-    if (!(len2 >= std::numeric_limits<double>::min()) || !std::isfinite(len2))
-        return "normal is zero or cannot be normalised";
+    if (const char* problem = normalProblem(normal)) return problem;
     const glm::dmat3 inv = glm::inverse(glm::dmat3(o.transform));
     if (!(finite3(inv[0]) && finite3(inv[1]) && finite3(inv[2])))
         return "the transform of object '" + o.name + "' is singular";
@@ -162,10 +168,8 @@ SpawnResult DecalSystem::spawnOnDrawnSurface(const Ray& shot, const glm::dvec3& 
         return s.reject(SpawnStatus::InvalidArgument, where + "a decal of volumetric type '" + t.name +
                                                           "' needs a proxy hit, where its crater is clipped");
     if (!finite3(point)) return s.reject(SpawnStatus::InvalidArgument, where + "point is not finite");
-    const double len2 = glm::dot(normal, normal);
-    if (!finite3(normal) || !(len2 >= std::numeric_limits<double>::min()) || !std::isfinite(len2))
-        return s.reject(SpawnStatus::InvalidArgument,
-                        where + "normal is not finite, zero or cannot be normalised");
+    if (const char* problem = normalProblem(normal))
+        return s.reject(SpawnStatus::InvalidArgument, where + problem);
     const glm::dvec3 dir = glm::normalize(shot.direction);
     glm::dvec3 n = glm::normalize(normal);
     if (glm::dot(n, dir) > 0.0) n = -n;

@@ -303,6 +303,7 @@ struct Renderer::Impl {
         glUseProgram(geometryProgram.get());
         bindPoseBuffers();
         glUniform1ui(2, posed ? 1u : 0u);
+        glUniform1ui(3, gbuffer.hasFaceNormals() ? 1u : 0u);
         for (size_t i = 0; i < scene.objectCount(); ++i) {
             if ((receivers[i] != 0) != receiversPass) continue;
             const GpuMesh& mesh = scene.mesh(i);
