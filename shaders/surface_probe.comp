@@ -1,6 +1,8 @@
 // The drawn surface along lines (SurfaceProbe, DecalProjector::findSurface): for each line, the first
 // point from its start where it passes from in front of the surface the host's depth holds to behind
-// it, where the camera sees it, and the normal the depth of the pixels around that point gives. Lines
+// it (or, for a line that starts behind it, from behind to in front), where the camera sees it, and
+// the normal there: the host's face normal where the frame has them, else the one the depth of the
+// pixels around that point gives. Lines
 // and results are in view space: the frame block's view is the identity here, so the projector's
 // "camera-relative world" is view space.
 #include "projector.glsl"
@@ -104,7 +106,7 @@ bool depthNormalAt(ivec2 pixel, out vec3 n) {
 }
 
 #if defined(FACE_NORMALS)
-const float kCosCrease = 0.8660; // cos 30 degrees: neighbouring faces farther apart meet at a crease
+const float kCosSameFace = 0.99996; // cos 0.5 degrees: faces nearer are one, blurred by the encoding
 
 // The host's face normal at `pixel` (unit, facing the camera); false where it holds none.
 bool faceNormalAt(ivec2 pixel, out vec3 n) {
@@ -118,29 +120,14 @@ bool faceNormalAt(ivec2 pixel, out vec3 n) {
     if (dot(n, s) > 0.0) n = -n;
     return true;
 }
-
-// Whether the face at `pixel` turns from `n` by more than a crease's angle.
-bool creased(ivec2 pixel, vec3 n) {
-    vec3 m;
-    return faceNormalAt(pixel, m) && dot(m, n) < kCosCrease;
-}
-
-// Whether a face beside `pixel` turns from `n` by more than a crease's angle: the meet may lie on
-// that face within the pixel, whose centre shows the other. (No array of steps: an indexed local
-// array can cost a driver local memory for every invocation.)
-bool besideACrease(ivec2 pixel, vec3 n) {
-    return creased(pixel + ivec2(1, 0), n) || creased(pixel - ivec2(1, 0), n) ||
-           creased(pixel + ivec2(0, 1), n) || creased(pixel - ivec2(0, 1), n);
-}
 #endif
 
 // The unit normal of the surface at `pixel`, facing the camera, and whether it is the host's face
-// normal: that where it gives one away from creases, else the depth's (whose flattest quadrant keeps
-// to the meet's side of a crease).
+// normal: that where it gives one, else the depth's.
 bool normalAt(ivec2 pixel, out vec3 n, out bool face) {
     face = false;
 #if defined(FACE_NORMALS)
-    if (faceNormalAt(pixel, n) && !besideACrease(pixel, n)) {
+    if (faceNormalAt(pixel, n)) {
         face = true;
         return true;
     }
@@ -149,28 +136,57 @@ bool normalAt(ivec2 pixel, out vec3 n, out bool face) {
 }
 
 #if defined(FACE_NORMALS)
-// Where the line from `a` to `b` meets the plane of the triangle seen at `pixel` (through its surface
-// point there, normal `n`, which is then that of the pixel the meet falls in): the meet within the
-// triangle rather than within the pixel's depth, where it lies within two pixels of `p`, the meet the
-// depth gave; else `p`.
-vec3 onFacePlane(vec3 a, vec3 b, vec3 p, inout ivec2 pixel, inout vec3 n) {
-    vec3 s, d = b - a, m;
-    if (!surfaceAt(pixel, s) || abs(dot(n, d)) < 1e-6 * length(d)) return p;
-    vec3 q = a + d * (dot(n, s - a) / dot(n, d));
-    float reach = 2.0 * abs(u_pixel.x * p.z + u_pixel.y);
-    if (!(length(q - p) <= reach)) return p;
+// Where the line from `a` along `d` crosses the plane through `s` with normal `n`, as a multiple of `d`;
+// false where it runs along the plane.
+bool crossing(vec3 a, vec3 d, vec3 n, vec3 s, out float t) {
+    float along = dot(n, d);
+    if (abs(along) < 1e-6 * length(d)) return false;
+    t = dot(n, s - a) / along;
+    return true;
+}
+
+// Whether `q` falls on the window within the 3 x 3 pixels around `pixel`.
+bool around(vec3 q, ivec2 pixel) {
     vec2 w;
-    if (windowOf(q, w) && ivec2(floor(w)) != pixel && faceNormalAt(ivec2(floor(w)), m)) {
-        pixel = ivec2(floor(w));
-        n = m;
+    return windowOf(q, w) && all(lessThanEqual(abs(w - vec2(pixel) - 0.5), vec2(1.5)));
+}
+
+// Where the line from `a` to `b` meets the drawn triangles around `pixel`, in which the depth gave the
+// meet `p`, and the normal `n` there (on entry the face normal at `pixel`). A pixel shows one
+// triangle, so within a pixel of an edge the meet may lie on the triangle beside it: the planes of the
+// triangles that the 3 x 3 pixels around show are tried, each within the depth's continuity of the
+// meet and crossing the line within those pixels. Across a convex edge the surface lies behind both
+// planes, so a line `entering` it (from in front) meets it at the later of the two crossings and one
+// leaving it (from behind) at the earlier; across a concave edge the surface lies behind either plane,
+// and the other way round. `p` where the pixel's own plane crosses the line outside those pixels.
+vec3 onDrawnFace(vec3 a, vec3 b, bool entering, vec3 p, ivec2 pixel, inout vec3 n) {
+    vec3 d = b - a, s;
+    float t, jump = kJumpPixels * abs(u_pixel.x * p.z + u_pixel.y) + kJumpOfLength * length(d);
+    if (!surfaceAt(pixel, s) || !crossing(a, d, n, s, t) || !around(a + d * t, pixel)) return p;
+    for (int y = -1; y <= 1; ++y) {
+        for (int x = -1; x <= 1; ++x) {
+            vec3 m, r;
+            float u;
+            ivec2 at = pixel + ivec2(x, y);
+            if (at == pixel || !faceNormalAt(at, m) || dot(m, n) > kCosSameFace || !surfaceAt(at, r) ||
+                !(abs(r.z - s.z) <= jump) || !crossing(a, d, m, r, u) || !around(a + d * u, pixel))
+                continue;
+            bool convex = dot(n - m, r - s) < 0.0;
+            if (convex == entering ? u > t : u < t) {
+                t = u;
+                n = m;
+                s = r;
+            }
+        }
     }
-    return q;
+    return a + d * t;
 }
 #endif
 
-// Narrows the step [lo, hi] of the line from `a` to `b` in which it passes from in front of the surface
-// to behind it, and whether the depth is continuous across the crossing found (not an edge).
-bool refine(vec3 a, vec3 b, inout float lo, inout float hi, out ivec2 pixel) {
+// Narrows the step [lo, hi] of the line from `a` to `b` in which it passes from side `from` of the
+// surface (in front of it or behind it) to the other, and whether the depth is continuous across the
+// crossing found (not an edge).
+bool refine(vec3 a, vec3 b, int from, inout float lo, inout float hi, out ivec2 pixel) {
     float gapLo = 0.0, gapHi = 0.0;
     ivec2 p;
     sideOf(mix(a, b, lo), p, gapLo);
@@ -179,7 +195,7 @@ bool refine(vec3 a, vec3 b, inout float lo, inout float hi, out ivec2 pixel) {
         float mid = 0.5 * (lo + hi), gap;
         int side = sideOf(mix(a, b, mid), p, gap);
         if (side == kUnknown) return false;
-        if (side == kFront) {
+        if (side == from) {
             lo = mid;
             gapLo = gap;
         } else {
@@ -209,16 +225,16 @@ void main() {
     for (int k = 1; k <= steps; ++k) {
         float t = float(k) / float(steps);
         int side = sideOf(mix(a, b, t), pixel, gap);
-        if (before == kFront && side == kBehind) {
+        if (before != kUnknown && side != kUnknown && side != before) {
             float lo = float(k - 1) / float(steps), hi = t;
             vec3 n;
             bool face;
-            if (refine(a, b, lo, hi, pixel)) {
+            if (refine(a, b, before, lo, hi, pixel)) {
                 uint seen = u_checkIds != 0 ? texelFetch(s_ids, pixel, 0).r : 0u;
                 if ((u_checkIds == 0 || id == kAnyObject || seen == id) && normalAt(pixel, n, face)) {
                     vec3 p = mix(a, b, 0.5 * (lo + hi));
 #if defined(FACE_NORMALS)
-                    if (face) p = onFacePlane(a, b, p, pixel, n);
+                    if (face) p = onDrawnFace(a, b, before == kFront, p, pixel, n);
 #endif
                     points[2u * i] = vec4(p, 1.0);
                     points[2u * i + 1u] = vec4(n, float(seen));

@@ -5,7 +5,7 @@ namespace spatter::bench {
 namespace {
 
 // What one search found for one shot: its decal laid again (or removed), or a decal placed where the
-// shot that met no proxy meets the drawn surface.
+// shot that the proxy refused meets the drawn surface.
 void takePoint(DecalSystem& system, const SpawnResult& placed, const Ray& shot, const SurfacePoint& p,
                DrawnSurfaceCounts& counts) {
     if (!p.found) return;
@@ -27,7 +27,7 @@ Result<DrawnSurfaceCounts> layOnDrawnSurface(DecalSystem& system, const std::vec
     std::vector<SurfaceLine> lines;
     for (size_t i = 0; i < placed.size(); ++i) {
         const SpawnResult& r = placed[i];
-        if (r.status == SpawnStatus::Missed) {
+        if (r.refusedByCollisionSurface()) {
             const glm::dvec3 dir = glm::normalize(shots[i].direction);
             lines.push_back({shots[i].origin, shots[i].origin + dir * shotReach, 0, true});
             which.push_back(i);

@@ -19,12 +19,14 @@ namespace spatter::bench {
 struct DrawnSurfaceCounts {
     size_t laid = 0;    // laid again where their axis meets the drawn surface
     size_t removed = 0; // removed there: their shot meets it too steeply for their type
-    size_t spawned = 0; // of shots that met no proxy, placed where the shot meets the drawn surface
+    size_t spawned = 0; // of shots the proxy refused (missed or grazed), placed where the shot meets
+                        // the drawn surface
 };
 
 // Lays the decals of `placed` (the results of spawning `shots` in `system`, type 0) on the surface
-// `renderer` draws from `camera` at `probeSize` pixels, and places the decals of the shots that met
-// no collision surface where they meet it within `shotReach` of their origin
+// `renderer` draws from `camera` at `probeSize` pixels, and places the decals of the shots that the
+// collision surface refused (SpawnResult::refusedByCollisionSurface) where they meet it within
+// `shotReach` of their origin
 // (DecalSystem::spawnOnDrawnSurface); then gives the renderer its size back.
 Result<DrawnSurfaceCounts> layOnDrawnSurface(DecalSystem& system, const std::vector<Ray>& shots,
                                              const std::vector<SpawnResult>& placed, Renderer& renderer,

@@ -146,13 +146,13 @@ std::optional<Decal> onDrawnSurface(const Decal& d, const CollisionWorld& drawn,
 
 // The proxy-placed decals as a decal pass reading the drawn surface would draw them (onDrawnSurface),
 // each as shallow as the render-placed decal of its shot where there is one; and for each shot that
-// met no proxy, the decal placed where it meets the drawn surface (DecalSystem::spawnOnDrawnSurface):
+// the proxy refused, the decal placed where it meets the drawn surface (DecalSystem::spawnOnDrawnSurface):
 // the render mesh's, where a camera, if any, sees it.
 std::vector<Decal> drawnProbe(const ShotDecals& decals, const CollisionWorld& drawn, const Scene& scene,
                               float maxAngleDeg, const ProbeView& view) {
     std::vector<Decal> out;
     for (size_t i = 0; i < decals.proxy.size(); ++i) {
-        // A shot that met no proxy: its decal where the shot meets the drawn surface
+        // A shot that the proxy refused: its decal where the shot meets the drawn surface
         // (DecalSystem::spawnOnDrawnSurface), the render mesh's, laid as the others on what is seen.
         const std::optional<Decal>& placed = decals.proxy[i] ? decals.proxy[i] : decals.render[i];
         if (!placed) continue;

@@ -79,8 +79,8 @@ public:
     // Lays a decal on the drawn surface where a renderer found it (DecalSystem::layOnDrawnSurface).
     Result<DrawnSurfaceLaying> layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point,
                                                  const glm::dvec3& normal);
-    // Places the decal of a shot that met no collision surface where a renderer found it meeting the
-    // drawn surface (DecalSystem::spawnOnDrawnSurface), and counts it as the shots' decals are counted.
+    // Places the decal of a shot that the collision surface refused where a renderer found it meeting
+    // the drawn surface (DecalSystem::spawnOnDrawnSurface), and counts it as the shots' decals are counted.
     SpawnResult spawnOnDrawnSurface(const Shot& shot, const glm::dvec3& point, const glm::dvec3& normal);
     // Counts the decal systems this gallery has had (new proxies, a load): a handle is good only with
     // the number it was given under.

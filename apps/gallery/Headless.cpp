@@ -246,7 +246,7 @@ int runHeadless(const GalleryOptions& options) {
     out["on_skinned_targets"] = sim->counters().onSkinnedTargets;
     out["laid_on_drawn_surface"] = laying.laid();
     out["removed_on_drawn_surface"] = laying.removed();
-    out["missed_placed_on_drawn_surface"] = laying.spawned();
+    out["refused_placed_on_drawn_surface"] = laying.spawned();
     out["alive"] = st.alive;
     out["frames"] = frames;
     out["placement_us_per_shot"] =

@@ -60,7 +60,7 @@ struct Hud {
     bool volumetricBullets = true;
     bool layOnDrawnSurface = true; // new flat decals laid on the drawn surface a frame after their shot
     uint64_t laid = 0, removed = 0, spawned = 0; // decals laid, removed (shot too steep), placed for
-                                                 // shots that met no proxy, so far
+                                                 // shots the proxy refused, so far
     float tolerance = 0.5f;
     double lastPlacementUs = 0.0;
     std::string lastResult;
@@ -134,7 +134,7 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
     ImGui::Checkbox("volumetric bullet holes", &hud.volumetricBullets);
     ImGui::Checkbox("lay new decals on the drawn surface", &hud.layOnDrawnSurface);
     ImGui::SameLine();
-    ImGui::Text("(%llu laid, %llu removed, %llu missed shots placed)", (unsigned long long)hud.laid,
+    ImGui::Text("(%llu laid, %llu removed, %llu refused shots placed)", (unsigned long long)hud.laid,
                 (unsigned long long)hud.removed, (unsigned long long)hud.spawned);
     ImGui::SliderFloat("proxy tolerance %", &hud.tolerance, 0.0f, 5.0f, "%.2f");
     if (hud.rebuild.valid()) {

@@ -53,13 +53,13 @@ std::vector<glm::dmat4> objectTransforms(const GallerySim& sim) {
 void SurfaceLaying::shot(const GallerySim::Shot& shot, const GallerySim& sim) {
     if (freshSystem_ != sim.systemNumber()) {
         fresh_.clear();
-        freshMissed_.clear();
+        freshRefused_.clear();
     }
     freshSystem_ = sim.systemNumber();
     if (shot.result.placed())
         fresh_.push_back(shot.result.handle);
-    else if (shot.result.status == SpawnStatus::Missed && !sim.decals().type(shot.type)->volumetric)
-        freshMissed_.push_back(shot);
+    else if (shot.result.refusedByCollisionSurface() && !sim.decals().type(shot.type)->volumetric)
+        freshRefused_.push_back(shot);
 }
 
 Status SurfaceLaying::search(Renderer& renderer, const GallerySim& sim) {
@@ -68,7 +68,7 @@ Status SurfaceLaying::search(Renderer& renderer, const GallerySim& sim) {
     const DecalSystem& decals = sim.decals();
     if (freshSystem_ != sim.systemNumber()) {
         fresh_.clear();
-        freshMissed_.clear();
+        freshRefused_.clear();
     }
     for (DecalHandle h : std::exchange(fresh_, {})) {
         const std::optional<DecalAxisLine> line = decals.axisLine(h);
@@ -82,10 +82,10 @@ Status SurfaceLaying::search(Renderer& renderer, const GallerySim& sim) {
         lines.push_back({line->from, line->to, line->objectId});
         s.handles.push_back(h);
     }
-    const DBounds all = freshMissed_.empty() ? DBounds{} : worldBounds(decals.world());
-    for (GallerySim::Shot& shot : std::exchange(freshMissed_, {})) {
+    const DBounds all = freshRefused_.empty() ? DBounds{} : worldBounds(decals.world());
+    for (GallerySim::Shot& shot : std::exchange(freshRefused_, {})) {
         lines.push_back(shotLine(shot.ray, all));
-        s.missed.push_back(std::move(shot));
+        s.refused.push_back(std::move(shot));
     }
     if (lines.empty()) return {};
     Result<uint64_t> request = renderer.findSurface(lines);
@@ -106,7 +106,7 @@ void SurfaceLaying::layDecal(const Search& s, size_t i, const SurfacePoint& p, G
     if (laid) ++(laid.value() == DrawnSurfaceLaying::Laid ? laid_ : removed_);
 }
 
-void SurfaceLaying::spawnMissed(const Search& s, size_t i, const SurfacePoint& p, GallerySim& sim) {
+void SurfaceLaying::spawnRefused(const Search& s, size_t i, const SurfacePoint& p, GallerySim& sim) {
     // Carried with the moving target whose ID the frame showed there; static surfaces (ID 0) stay.
     SurfacePoint now = p;
     const std::vector<uint8_t> ids = sim.decals().objectIds();
@@ -115,7 +115,7 @@ void SurfaceLaying::spawnMissed(const Search& s, size_t i, const SurfacePoint& p
         const uint32_t k = uint32_t(object - ids.begin());
         now = carried(p, s.transforms[k], sim.decals().world().object(k)->transform);
     }
-    if (sim.spawnOnDrawnSurface(s.missed[i], now.point, now.normal).placed()) ++spawned_;
+    if (sim.spawnOnDrawnSurface(s.refused[i], now.point, now.normal).placed()) ++spawned_;
 }
 
 void SurfaceLaying::lay(Renderer& renderer, GallerySim& sim, bool wait) {
@@ -129,7 +129,7 @@ void SurfaceLaying::lay(Renderer& renderer, GallerySim& sim, bool wait) {
             if (i < s.handles.size())
                 layDecal(s, i, p, sim);
             else
-                spawnMissed(s, i - s.handles.size(), p, sim);
+                spawnRefused(s, i - s.handles.size(), p, sim);
         }
         searches_.pop_front();
     }

@@ -1,6 +1,6 @@
 // DecalSystem's calls that lay decals on the surface that is drawn, where a renderer found it: the
 // line a renderer searches for a decal placed through a collision proxy (axisLine), the laying of that
-// decal (layOnDrawnSurface), and the decal of a shot that met no collision surface
+// decal (layOnDrawnSurface), and the decal of a shot that the collision surface refused
 // (spawnOnDrawnSurface).
 #include "DecalSystemImpl.hpp"
 

@@ -54,15 +54,15 @@ TEST(Gallery, HeadlessRunWritesConsistentStatsAndAPicture) {
     ASSERT_TRUE(j.is_object());
     for (const char* key :
          {"shots", "placed", "rejected", "evicted", "on_moving_targets", "laid_on_drawn_surface",
-          "removed_on_drawn_surface", "missed_placed_on_drawn_surface", "alive", "frames",
+          "removed_on_drawn_surface", "refused_placed_on_drawn_surface", "alive", "frames",
           "placement_us_per_shot", "gpu_ms_per_frame", "render_triangles", "proxy_triangles", "error_bound"})
         EXPECT_TRUE(j.contains(key)) << key;
     EXPECT_EQ(j["shots"].get<int>(), 100);
     // A shot that met no proxy is counted as missed, and its decal, where it met the drawn surface, as
     // placed too.
-    const int missedPlaced = j["missed_placed_on_drawn_surface"].get<int>();
-    EXPECT_EQ(j["placed"].get<int>() + j["rejected"].get<int>(), j["shots"].get<int>() + missedPlaced);
-    EXPECT_LE(missedPlaced, j["rejected"].get<int>());
+    const int refusedPlaced = j["refused_placed_on_drawn_surface"].get<int>();
+    EXPECT_EQ(j["placed"].get<int>() + j["rejected"].get<int>(), j["shots"].get<int>() + refusedPlaced);
+    EXPECT_LE(refusedPlaced, j["rejected"].get<int>());
     EXPECT_GT(j["on_moving_targets"].get<int>(), 0);
     // The shots come from the camera: most flat decals' meets with the drawn surface are in view.
     EXPECT_GT(j["laid_on_drawn_surface"].get<int>(), 0);
@@ -119,7 +119,7 @@ TEST(Gallery, SameSeedGivesTheSameSession) {
     ASSERT_TRUE(ja.is_object() && jb.is_object());
     for (const char* key :
          {"placed", "rejected", "evicted", "on_moving_targets", "laid_on_drawn_surface",
-          "removed_on_drawn_surface", "missed_placed_on_drawn_surface", "alive", "proxy_triangles"})
+          "removed_on_drawn_surface", "refused_placed_on_drawn_surface", "alive", "proxy_triangles"})
         EXPECT_EQ(ja[key], jb[key]) << key;
     EXPECT_EQ(ja["tracked_decal"]["decal_id"], jb["tracked_decal"]["decal_id"]);
 }

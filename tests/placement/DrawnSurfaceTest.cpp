@@ -373,6 +373,36 @@ TEST(DrawnSurface, AShotThatMissesTheProxyIsPlacedWhereItMeetsTheDrawnSurface) {
         }
 }
 
+// A shot that a proxy tilted 6 degrees against the drawn floor refuses as grazing, but that meets the
+// floor within its type's angle, spawned where it meets the floor, is the decal the same shot places
+// when the floor is the collision mesh.
+TEST(DrawnSurface, AShotThatGrazesTheProxyButNotTheDrawnSurfaceIsPlacedWhereItMeetsIt) {
+    int placed = 0;
+    for (double azimuth = 0.0; azimuth < 6.28; azimuth += 0.4) {
+        const std::string where = "azimuth " + std::to_string(azimuth);
+        DecalSystem proxied = floorSystemTracedBy(FloorTrace::TiltedProxy),
+                    onFloor = floorSystemTracedBy(FloorTrace::Floor);
+        DecalType steep = plainType();
+        steep.maxAngleDeg = 50.0f;
+        const uint16_t t = addType(proxied, steep), u = addType(onFloor, steep);
+        const glm::dvec3 target(0.2, 0.0, 0.1);
+        const Ray shot = worldShotAtDrawnFloor(target, 48.0, azimuth);
+        const SpawnResult refused = proxied.spawn(shot, t), drawn = onFloor.spawn(shot, u);
+        ASSERT_TRUE(drawn.placed()) << drawn.reason << where;
+        if (refused.status != SpawnStatus::GrazingAngle) continue;
+        EXPECT_TRUE(refused.refusedByCollisionSurface()) << where;
+        const SpawnResult r = proxied.spawnOnDrawnSurface(shot, floorPoint(target), drawnFloorNormal(), t);
+        ASSERT_TRUE(r.placed()) << r.reason << where;
+        const Decal d = *proxied.get(r.handle), e = *onFloor.get(drawn.handle);
+        EXPECT_LT(glm::length(d.center - e.center), 1e-5f) << where;
+        EXPECT_LT(glm::length(d.frame().normal - e.frame().normal), 1e-5f) << where;
+        EXPECT_LT(glm::length(d.frame().tangent - e.frame().tangent), 1e-5f) << where;
+        EXPECT_EQ(d.slant, e.slant) << where;
+        ++placed;
+    }
+    EXPECT_GT(placed, 0) << "no shot was refused as grazing by the proxy and taken by the floor";
+}
+
 // Every refusal names its problem and leaves the decals, the change log and the random numbers as
 // they were.
 TEST(DrawnSurface, ASpawnOnTheDrawnSurfaceThatIsRefusedChangesNoDecal) {

@@ -374,3 +374,80 @@ TEST(SurfaceProbe, AFaceNormalTargetGivesTheNormalOfTheTriangleTheLineMeets) {
     EXPECT_GT(exact[1], 9 * seen[1] / 10) << "the triangle's own normal and plane";
     EXPECT_LT(exact[0] + 20, exact[1]) << "the depth's normal bends across the ball's edges";
 }
+
+namespace {
+
+// A roof 2 wide along X from z = -1 to 1: two slopes meeting at x's axis lifted by `rise` (a ridge,
+// a convex edge) or lowered by it (a valley, a concave one).
+Scene roof(float rise) {
+    Mesh m;
+    m.positions = {{-1.0f, 0.0f, 1.0f}, {1.0f, 0.0f, 1.0f},   {1.0f, rise, 0.0f},
+                   {-1.0f, rise, 0.0f}, {-1.0f, 0.0f, -1.0f}, {1.0f, 0.0f, -1.0f}};
+    m.indices = {0, 1, 2, 0, 2, 3, 3, 2, 5, 3, 5, 4};
+    computeNormals(m);
+    Scene s;
+    s.source = "test:roof";
+    s.objects.push_back(makeSceneObject("roof", std::move(m)));
+    return s;
+}
+
+} // namespace
+
+// A pixel shows one triangle; a line that meets the other triangle within a pixel of their edge takes
+// that triangle's normal and plane, across a ridge and across a valley (where the line enters the
+// surface at the later and at the earlier of the two planes' crossings).
+TEST(SurfaceProbe, AMeetWithinAPixelOfAnEdgeTakesTheTriangleTheLineMeets) {
+    SPATTER_REQUIRE_GL(gl);
+    for (float rise : {0.5f, -0.5f}) {
+        const Scene scene = roof(rise);
+        Result<CollisionWorld> world = CollisionWorld::build(scene);
+        ASSERT_TRUE(world.ok()) << world.error();
+        RendererSettings settings;
+        settings.faceNormals = true;
+        Result<Renderer> r = makeRenderer(320, 240, settings);
+        ASSERT_TRUE(r.ok()) << r.error();
+        ASSERT_TRUE(r->setScene(scene).ok());
+        renderView(r.value(), lookAt({0.0, 3.0, 1.0}, {0.0, 0.0, 0.0}), View::Final); // both slopes in view
+        // Vertical lines through points within about two pixels (0.01 each here) of the edge.
+        std::vector<SurfaceLine> lines;
+        std::vector<Hit> hits;
+        Rng rng(5);
+        while (lines.size() < 200) {
+            const double x = rng.uniform(-0.5f, 0.5f), z = rng.uniform(-0.02f, 0.02f);
+            const glm::dvec3 p(x, double(rise) * (1.0 - std::abs(z)), z), up(0.0, 0.2, 0.0);
+            const std::optional<Hit> h = world->intersect(Ray{p + up, -2.0 * up, 0.0, 1.0});
+            ASSERT_TRUE(h.has_value());
+            lines.push_back({p + up, p - up});
+            hits.push_back(*h);
+        }
+        const std::vector<SurfacePoint> points = found(r.value(), lines);
+        ASSERT_EQ(points.size(), lines.size());
+        size_t exact = 0;
+        for (size_t i = 0; i < points.size(); ++i) {
+            ASSERT_TRUE(points[i].found) << "rise " << rise << ", line " << i;
+            const double deg =
+                glm::degrees(std::acos(std::min(1.0, glm::dot(points[i].normal, hits[i].normal))));
+            if (deg < 0.5 && glm::length(points[i].point - hits[i].position) < 1e-3) ++exact;
+        }
+        EXPECT_GE(exact, 196u) << "rise " << rise;
+    }
+}
+
+// A line that starts behind the surface the camera sees (a shot from beneath the floor) finds where it
+// comes out through it.
+TEST(SurfaceProbe, FindsWhereALineFromBehindTheSurfaceComesOutThroughIt) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = renderedFloor(320, 240);
+    ASSERT_TRUE(r.ok()) << r.error();
+    const std::vector<glm::dvec2> at = {{0.0, 0.0}, {-0.7, 0.3}, {0.5, -0.6}};
+    std::vector<SurfaceLine> lines;
+    for (const glm::dvec2& p : at)
+        lines.push_back({vertical(p.x, p.y).to, vertical(p.x, p.y).from});
+    const std::vector<SurfacePoint> points = found(r.value(), lines);
+    ASSERT_EQ(points.size(), at.size());
+    for (size_t i = 0; i < at.size(); ++i) {
+        ASSERT_TRUE(points[i].found) << "line " << i;
+        EXPECT_LT(glm::length(points[i].point - onFloor(at[i].x, at[i].y)), 0.01) << "line " << i;
+        EXPECT_GT(glm::dot(points[i].normal, floorNormal()), std::cos(glm::radians(1.0))) << "line " << i;
+    }
+}

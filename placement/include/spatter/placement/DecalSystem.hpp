@@ -241,11 +241,13 @@ public:
     // box that would not be sound (the size and half-depth checks of spawn).
     Result<DrawnSurfaceLaying> layOnDrawnSurface(DecalHandle handle, const glm::dvec3& point,
                                                  const glm::dvec3& normal);
-    // Places the decal of a shot that met no collision surface (spawn gave Missed) where a renderer
-    // found the shot meeting the drawn surface: `point` on it and `normal`, that surface's normal there
-    // (world space; need not be unit, turned to face the shot). A proxy lies within its error bound h
-    // of the drawn surface, so near an object's outline a shot can pass the proxy and still meet what
-    // is drawn. The decal is the one the shot would have placed on the render mesh there: on the object
+    // Places the decal of a shot that the collision surface refused (spawn gave Missed or GrazingAngle:
+    // SpawnResult::refusedByCollisionSurface) where a renderer found the shot meeting the drawn surface:
+    // `point` on it and `normal`, that surface's normal there (world space; need not be unit, turned to
+    // face the shot). A proxy lies within its error bound h of the drawn surface, so near an object's
+    // outline a shot can pass the proxy and still meet what is drawn, and a proxy facet tilted against
+    // the drawn surface can graze a shot that meets the drawn surface within the type's angle. The
+    // decal is the one the shot would have placed on the render mesh there: on the object
     // whose collision surface a probe along the normal meets within twice its world error bound of the
     // point (plus a hundredth of the type's size), or, where the probe meets none (beside an open edge
     // of a proxy), on the only object whose world bounds grown by as much hold the point; centred on

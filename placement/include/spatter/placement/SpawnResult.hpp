@@ -43,6 +43,15 @@ struct SpawnResult {
     std::string reason; // empty when placed; otherwise says why, with the numbers involved
 
     bool placed() const { return status == SpawnStatus::Placed; }
+    // Whether the collision surface refused a shot that the drawn surface may still take: it met no
+    // collision surface (Missed) or met one too steeply (GrazingAngle). A proxy lies within its error
+    // bound of the drawn surface, not on it: a shot can pass beside it and meet what is drawn, and a
+    // proxy facet tilted against the drawn surface can take a shot as grazing that meets the drawn
+    // surface within the type's angle. DecalSystem::spawnOnDrawnSurface places such a shot's decal where
+    // a renderer finds the shot meeting the drawn surface.
+    bool refusedByCollisionSurface() const {
+        return status == SpawnStatus::Missed || status == SpawnStatus::GrazingAngle;
+    }
 };
 
 } // namespace spatter

@@ -312,8 +312,9 @@ struct ProjectorStats {
 
 // A line along which DecalProjector::findSurface looks for the surface the host drew (world space),
 // from `from` on: for a decal placed through a collision proxy, its axis line through its box
-// (DecalSystem::axisLine), from the side its shot came from; for a shot that met no collision surface,
-// the shot (DecalSystem::spawnOnDrawnSurface), with `anyObject`.
+// (DecalSystem::axisLine), from the side its shot came from; for a shot that the collision surface
+// refused (met none, or met it too steeply), the shot (DecalSystem::spawnOnDrawnSurface), with
+// `anyObject`.
 struct SurfaceLine {
     glm::dvec3 from{0.0}, to{0.0};
     uint8_t objectId = 0;   // with the frame's object ID texture: the surface must carry this decal ID
@@ -325,7 +326,8 @@ struct SurfacePoint {
     bool found = false;     // false: the camera does not see the line meet a surface (off screen,
                             // hidden, behind the camera, another object's ID, or no surface along it)
     glm::dvec3 point{0.0};  // on the line
-    glm::dvec3 normal{0.0}; // unit, facing the camera: from the depth of the pixels around the point
+    glm::dvec3 normal{0.0}; // unit, facing the camera: the face normal texture's triangle normal, or
+                            // without one, from the depth of the pixels around the point
     uint8_t objectId = 0;   // the object decal ID of the surface there, where the frame has an ID
                             // texture (0 otherwise)
 };
@@ -444,12 +446,17 @@ public:
     void bindForward(const ForwardBindings& bindings = {}) const;
 
     // Looks for the drawn surface along each line in the host's depth (on the GPU; the frame's depth,
-    // camera and object ID texture are read, nothing is written): the first point from a line's start
-    // where it passes from in front of the surface the depth holds to behind it, seen by the camera,
-    // where the depth is continuous across it (a jump of more than 8 pixels' size plus 5% of the line's
-    // length is the edge of something in front), and the normal the pixels around that point give (the
-    // steps to its neighbours in the quadrant whose pixels lie flattest on their plane, so that a crease
-    // or an edge beside it stays out). Call it after the host's geometry pass,
+    // camera, object ID and face normal textures are read, nothing is written): the first point from a
+    // line's start where it passes from in front of the surface the depth holds to behind it (or, for a
+    // line that starts behind it, from behind it to in front), seen by the camera, where the depth is
+    // continuous across it (a jump of more than 8 pixels' size plus 5% of the line's length is the edge
+    // of something in front), and the normal there. With a face normal texture that is the normal of
+    // the triangle the line meets and the point lies on its plane (a meet within a pixel of an edge
+    // takes the triangle beside the one the pixel shows where the line meets that one: of the planes the
+    // 3 x 3 pixels around show, the later crossing across a convex edge for a line from in front, the
+    // earlier across a concave one); without, the normal the pixels around the point give (the steps to
+    // its neighbours in the quadrant whose pixels lie flattest on their plane, so that a crease or an
+    // edge beside it stays out). Call it after the host's geometry pass,
     // as draw(). For decals placed through a collision proxy: the lines of the decals just spawned,
     // then DecalSystem::layOnDrawnSurface with each point found, which lays them on the drawn surface
     // rather than the proxy's (ACCURACY.md). A line whose ends lie past float's range from the camera
