@@ -30,9 +30,10 @@ layout(std430, binding = 6) writeonly buffer SurfacePoints {
 
 const int kMaxSteps = 1024; // samples along a line, about one a pixel
 const int kRefine = 16;     // halvings of the step in which the line passes behind the surface
-// A line passes behind the surface there when the depth jumps by at most this many pixels' size, plus
-// kJumpOfLength of the line's length, across the crossing; more is an edge of something in front.
-const float kJumpPixels = 8.0, kJumpOfLength = 0.05;
+// A line passes behind the surface there when the depth jumps by at most this many pixels' size across
+// the crossing (a surface seen up to about 83 degrees from its normal); more is an edge of something
+// in front. Not scaled by the line's length: a shot searched from its origin passes many edges.
+const float kJumpPixels = 8.0;
 
 const float kFar = 3.0e38, kMissing = 1.0e30;
 const uint kAnyObject = 256u; // a line's ID that the surface of any object matches
@@ -161,7 +162,7 @@ bool around(vec3 q, ivec2 pixel) {
 // and the other way round. `p` where the pixel's own plane crosses the line outside those pixels.
 vec3 onDrawnFace(vec3 a, vec3 b, bool entering, vec3 p, ivec2 pixel, inout vec3 n) {
     vec3 d = b - a, s;
-    float t, jump = kJumpPixels * abs(u_pixel.x * p.z + u_pixel.y) + kJumpOfLength * length(d);
+    float t, jump = kJumpPixels * abs(u_pixel.x * p.z + u_pixel.y);
     if (!surfaceAt(pixel, s) || !crossing(a, d, n, s, t) || !around(a + d * t, pixel)) return p;
     for (int y = -1; y <= 1; ++y) {
         for (int x = -1; x <= 1; ++x) {
@@ -205,7 +206,7 @@ bool refine(vec3 a, vec3 b, int from, inout float lo, inout float hi, out ivec2 
         }
     }
     vec3 at = mix(a, b, hi);
-    float jump = kJumpPixels * abs(u_pixel.x * at.z + u_pixel.y) + kJumpOfLength * length(b - a);
+    float jump = kJumpPixels * abs(u_pixel.x * at.z + u_pixel.y);
     return gapLo <= jump && gapHi <= jump;
 }
 

@@ -56,9 +56,11 @@ then one proxy per backend and tolerance. Columns:
   IoU-p     IoU along the shot with each proxy-placed decal laid again on the drawn surface where a
             frame from the camera finds its axis line meets it in the depth buffer
             (Renderer::findSurface, DecalSystem::layOnDrawnSurface; removed where its shot meets it
-            too steeply for its type), and each shot that the proxy refused (met none, or met it
-            too steeply) placed where the frame finds it meeting the drawn surface
-            (DecalSystem::spawnOnDrawnSurface), at --probe-size
+            too steeply for its type; replaced by the shot's decal where the shot, searched from
+            its origin, meets the drawn surface before the box: DecalSystem::replaceOnDrawnSurface),
+            and each shot that the proxy refused (met none, or met it too steeply) placed where the
+            frame finds it meeting the drawn surface (DecalSystem::spawnOnDrawnSurface), at
+            --probe-size
   (--iou-breakdown: IoU again with fields of each proxy-placed decal taken from the decal the same
   shot places on the render mesh: its centre, its frame, frame and slant, all three, all three and
   the half-depth; centre and half-depth alone (what a decal pass that found the drawn surface along

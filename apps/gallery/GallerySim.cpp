@@ -285,6 +285,13 @@ SpawnResult GallerySim::spawnOnDrawnSurface(const Shot& shot, const glm::dvec3& 
     return result;
 }
 
+SpawnResult GallerySim::replaceOnDrawnSurface(const Shot& shot, const glm::dvec3& point,
+                                              const glm::dvec3& normal) {
+    SpawnResult result = system_->replaceOnDrawnSurface(shot.result.handle, shot.ray, point, normal);
+    countPlaced(result);
+    return result;
+}
+
 Status GallerySim::save(const std::string& path) const {
     return saveDecalsToFile(*system_, path);
 }

@@ -82,6 +82,9 @@ public:
     // Places the decal of a shot that the collision surface refused where a renderer found it meeting
     // the drawn surface (DecalSystem::spawnOnDrawnSurface), and counts it as the shots' decals are counted.
     SpawnResult spawnOnDrawnSurface(const Shot& shot, const glm::dvec3& point, const glm::dvec3& normal);
+    // Replaces the decal of `shot` by the one the shot places where it met the drawn surface before
+    // the decal's box (DecalSystem::replaceOnDrawnSurface), counted as the shots' decals are counted.
+    SpawnResult replaceOnDrawnSurface(const Shot& shot, const glm::dvec3& point, const glm::dvec3& normal);
     // Counts the decal systems this gallery has had (new proxies, a load): a handle is good only with
     // the number it was given under.
     uint64_t systemNumber() const { return systemNumber_; }

@@ -247,6 +247,7 @@ int runHeadless(const GalleryOptions& options) {
     out["laid_on_drawn_surface"] = laying.laid();
     out["removed_on_drawn_surface"] = laying.removed();
     out["refused_placed_on_drawn_surface"] = laying.spawned();
+    out["replaced_on_drawn_surface"] = laying.replaced();
     out["alive"] = st.alive;
     out["frames"] = frames;
     out["placement_us_per_shot"] =

@@ -61,6 +61,7 @@ struct Hud {
     bool layOnDrawnSurface = true; // new flat decals laid on the drawn surface a frame after their shot
     uint64_t laid = 0, removed = 0, spawned = 0; // decals laid, removed (shot too steep), placed for
                                                  // shots the proxy refused, so far
+    uint64_t replaced = 0;                       // decals whose shot met the drawn surface before their box
     float tolerance = 0.5f;
     double lastPlacementUs = 0.0;
     std::string lastResult;
@@ -134,7 +135,8 @@ void drawHud(Hud& hud, GallerySim& sim, Renderer& renderer, const FrameStats& fr
     ImGui::Checkbox("volumetric bullet holes", &hud.volumetricBullets);
     ImGui::Checkbox("lay new decals on the drawn surface", &hud.layOnDrawnSurface);
     ImGui::SameLine();
-    ImGui::Text("(%llu laid, %llu removed, %llu refused shots placed)", (unsigned long long)hud.laid,
+    ImGui::Text("(%llu laid, %llu replaced, %llu removed, %llu refused shots placed)",
+                (unsigned long long)hud.laid, (unsigned long long)hud.replaced,
                 (unsigned long long)hud.removed, (unsigned long long)hud.spawned);
     ImGui::SliderFloat("proxy tolerance %", &hud.tolerance, 0.0f, 5.0f, "%.2f");
     if (hud.rebuild.valid()) {
@@ -312,6 +314,7 @@ int runInteractive(const GalleryOptions& options, GlContext& context) {
             if (Status s = laying.search(renderer.value(), sim.value()); !s) hud.status = s.error();
             hud.laid = laying.laid();
             hud.removed = laying.removed();
+            hud.replaced = laying.replaced();
             hud.spawned = laying.spawned();
             renderer->present(fbw, fbh);
         }

@@ -51,41 +51,50 @@ std::vector<glm::dmat4> objectTransforms(const GallerySim& sim) {
 } // namespace
 
 void SurfaceLaying::shot(const GallerySim::Shot& shot, const GallerySim& sim) {
-    if (freshSystem_ != sim.systemNumber()) {
-        fresh_.clear();
-        freshRefused_.clear();
-    }
+    if (freshSystem_ != sim.systemNumber()) fresh_.clear();
     freshSystem_ = sim.systemNumber();
-    if (shot.result.placed())
-        fresh_.push_back(shot.result.handle);
-    else if (shot.result.refusedByCollisionSurface() && !sim.decals().type(shot.type)->volumetric)
-        freshRefused_.push_back(shot);
+    if (shot.result.placed() ||
+        (shot.result.refusedByCollisionSurface() && !sim.decals().type(shot.type)->volumetric))
+        fresh_.push_back(shot);
+}
+
+bool SurfaceLaying::addDecalLines(const GallerySim::Shot& shot, const GallerySim& sim,
+                                  const Renderer& renderer, std::vector<SurfaceLine>& lines,
+                                  Searched& searched) const {
+    const DecalSystem& decals = sim.decals();
+    const std::optional<DecalAxisLine> line = decals.axisLine(shot.result.handle);
+    if (!line) return false;
+    const Decal& d = *decals.get(shot.result.handle);
+    // Craters keep the proxy's hit, decals on skinned targets lie on the drawn surface already, and
+    // those on a texture-space object are in its texture once splatted.
+    if (decals.type(d.type)->volumetric || decals.world().deforms(d.object) ||
+        renderer.objectDecalMode(d.object) == DecalMode::TextureSpace)
+        return false;
+    searched.box = lines.size();
+    lines.push_back({line->from, line->to, line->objectId});
+    if (line->alongShot) {
+        searched.beforeBox = lines.size();
+        lines.push_back({shot.ray.origin, line->from, 0, true});
+    }
+    return true;
 }
 
 Status SurfaceLaying::search(Renderer& renderer, const GallerySim& sim) {
+    if (freshSystem_ != sim.systemNumber()) fresh_.clear();
     Search s;
     std::vector<SurfaceLine> lines;
-    const DecalSystem& decals = sim.decals();
-    if (freshSystem_ != sim.systemNumber()) {
-        fresh_.clear();
-        freshRefused_.clear();
-    }
-    for (DecalHandle h : std::exchange(fresh_, {})) {
-        const std::optional<DecalAxisLine> line = decals.axisLine(h);
-        if (!line) continue;
-        const Decal& d = *decals.get(h);
-        // Craters keep the proxy's hit, decals on skinned targets lie on the drawn surface already, and
-        // those on a texture-space object are in its texture once splatted.
-        if (decals.type(d.type)->volumetric || decals.world().deforms(d.object) ||
-            renderer.objectDecalMode(d.object) == DecalMode::TextureSpace)
+    const bool anyRefused = std::any_of(fresh_.begin(), fresh_.end(),
+                                        [](const GallerySim::Shot& f) { return !f.result.placed(); });
+    const DBounds all = anyRefused ? worldBounds(sim.decals().world()) : DBounds{};
+    for (GallerySim::Shot& shot : std::exchange(fresh_, {})) {
+        Searched searched{shot};
+        if (!shot.result.placed()) {
+            searched.refused = lines.size();
+            lines.push_back(shotLine(shot.ray, all));
+        } else if (!addDecalLines(shot, sim, renderer, lines, searched)) {
             continue;
-        lines.push_back({line->from, line->to, line->objectId});
-        s.handles.push_back(h);
-    }
-    const DBounds all = freshRefused_.empty() ? DBounds{} : worldBounds(decals.world());
-    for (GallerySim::Shot& shot : std::exchange(freshRefused_, {})) {
-        lines.push_back(shotLine(shot.ray, all));
-        s.refused.push_back(std::move(shot));
+        }
+        s.shots.push_back(std::move(searched));
     }
     if (lines.empty()) return {};
     Result<uint64_t> request = renderer.findSurface(lines);
@@ -97,25 +106,41 @@ Status SurfaceLaying::search(Renderer& renderer, const GallerySim& sim) {
     return {};
 }
 
-void SurfaceLaying::layDecal(const Search& s, size_t i, const SurfacePoint& p, GallerySim& sim) {
-    const Decal* d = sim.decals().get(s.handles[i]);
+void SurfaceLaying::layDecal(const Search& s, DecalHandle h, const SurfacePoint& p, GallerySim& sim) {
+    const Decal* d = sim.decals().get(h);
     if (!d) return;
     const SurfacePoint now =
         carried(p, s.transforms[d->object], sim.decals().world().object(d->object)->transform);
-    const Result<DrawnSurfaceLaying> laid = sim.layOnDrawnSurface(s.handles[i], now.point, now.normal);
+    const Result<DrawnSurfaceLaying> laid = sim.layOnDrawnSurface(h, now.point, now.normal);
     if (laid) ++(laid.value() == DrawnSurfaceLaying::Laid ? laid_ : removed_);
 }
 
-void SurfaceLaying::spawnRefused(const Search& s, size_t i, const SurfacePoint& p, GallerySim& sim) {
-    // Carried with the moving target whose ID the frame showed there; static surfaces (ID 0) stay.
-    SurfacePoint now = p;
+SurfacePoint SurfaceLaying::withItsTarget(const Search& s, const SurfacePoint& p,
+                                          const GallerySim& sim) const {
     const std::vector<uint8_t> ids = sim.decals().objectIds();
     const auto object = std::find(ids.begin(), ids.end(), p.objectId);
-    if (p.objectId != 0 && object != ids.end()) {
-        const uint32_t k = uint32_t(object - ids.begin());
-        now = carried(p, s.transforms[k], sim.decals().world().object(k)->transform);
+    if (p.objectId == 0 || object == ids.end()) return p;
+    const uint32_t k = uint32_t(object - ids.begin());
+    return carried(p, s.transforms[k], sim.decals().world().object(k)->transform);
+}
+
+void SurfaceLaying::take(const Search& s, const Searched& shot, const std::vector<SurfacePoint>& points,
+                         GallerySim& sim) {
+    auto found = [&](size_t line) { return line != kNoLine && points[line].found; };
+    if (found(shot.refused)) {
+        const SurfacePoint now = withItsTarget(s, points[shot.refused], sim);
+        if (sim.spawnOnDrawnSurface(shot.shot, now.point, now.normal).placed()) ++spawned_;
+        return;
     }
-    if (sim.spawnOnDrawnSurface(s.refused[i], now.point, now.normal).placed()) ++spawned_;
+    if (found(shot.beforeBox)) {
+        const SurfacePoint now = withItsTarget(s, points[shot.beforeBox], sim);
+        const SpawnResult r = sim.replaceOnDrawnSurface(shot.shot, now.point, now.normal);
+        if (r.placed() || r.status == SpawnStatus::GrazingAngle) {
+            ++(r.placed() ? replaced_ : removed_);
+            return;
+        }
+    }
+    if (found(shot.box)) layDecal(s, shot.shot.result.handle, points[shot.box], sim);
 }
 
 void SurfaceLaying::lay(Renderer& renderer, GallerySim& sim, bool wait) {
@@ -123,14 +148,8 @@ void SurfaceLaying::lay(Renderer& renderer, GallerySim& sim, bool wait) {
         const Search& s = searches_.front();
         const std::optional<std::vector<SurfacePoint>> points = renderer.surfaceFound(s.request, wait);
         if (!points && !wait && s.system == sim.systemNumber()) return; // not answered yet
-        for (size_t i = 0; points && s.system == sim.systemNumber() && i < points->size(); ++i) {
-            const SurfacePoint& p = (*points)[i];
-            if (!p.found) continue;
-            if (i < s.handles.size())
-                layDecal(s, i, p, sim);
-            else
-                spawnRefused(s, i - s.handles.size(), p, sim);
-        }
+        for (size_t i = 0; points && s.system == sim.systemNumber() && i < s.shots.size(); ++i)
+            take(s, s.shots[i], *points, sim);
         searches_.pop_front();
     }
 }

@@ -101,6 +101,11 @@ struct DecalSystem::Impl {
         : world(std::move(w)), settings(s), rng(s.seed),
           limits(world.objectCount(), s.budget, s.maxPerCell, s.maxPerObject) {}
 
+    // DecalSystem::spawnOnDrawnSurface with the lock held (DrawnSurfaceLaying.cpp); `caller` names the
+    // call in the reasons given.
+    SpawnResult spawnOnDrawnSurface(const char* caller, const Ray& shot, const glm::dvec3& point,
+                                    const glm::dvec3& normal, uint16_t type);
+
     SpawnResult reject(SpawnStatus status, std::string reason) {
         stats.rejected[size_t(status)]++;
         SpawnResult r;

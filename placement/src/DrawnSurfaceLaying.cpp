@@ -20,6 +20,7 @@ std::optional<DecalAxisLine> DecalSystem::axisLine(DecalHandle handle) const {
     line.from = glm::dvec3(o->transform * glm::dvec4(center + reach, 1.0));
     line.to = glm::dvec3(o->transform * glm::dvec4(center - reach, 1.0));
     line.objectId = d->objectId;
+    line.alongShot = d->slant != 0;
     return line;
 }
 
@@ -158,42 +159,70 @@ std::optional<uint32_t> receiverNear(const CollisionWorld& world, const glm::dve
 
 SpawnResult DecalSystem::spawnOnDrawnSurface(const Ray& shot, const glm::dvec3& point,
                                              const glm::dvec3& normal, uint16_t type) {
+    const std::lock_guard<std::mutex> lock(impl_->mutex);
+    return impl_->spawnOnDrawnSurface("spawnOnDrawnSurface", shot, point, normal, type);
+}
+
+SpawnResult DecalSystem::replaceOnDrawnSurface(DecalHandle handle, const Ray& shot, const glm::dvec3& point,
+                                               const glm::dvec3& normal) {
     Impl& s = *impl_;
     const std::lock_guard<std::mutex> lock(s.mutex);
-    if (type >= s.types.size()) return s.reject(SpawnStatus::InvalidType, s.typeError(type));
-    if (const char* problem = rayProblem(shot)) return s.reject(SpawnStatus::InvalidRay, problem);
-    const DecalType& t = s.types[type];
-    const std::string where = "spawnOnDrawnSurface: ";
+    const Decal* d = get(handle);
+    if (!d) {
+        SpawnResult stale;
+        stale.status = SpawnStatus::InvalidArgument;
+        stale.reason = "replaceOnDrawnSurface: stale or invalid handle";
+        return stale;
+    }
+    const std::array<uint64_t, kSpawnStatusCount> rejected = s.stats.rejected;
+    SpawnResult r = s.spawnOnDrawnSurface("replaceOnDrawnSurface", shot, point, normal, d->type);
+    s.stats.rejected = rejected; // the shot was counted when it was spawned
+    // The spawn may have evicted the decal under its area's limits: look its handle up again.
+    if ((r.placed() || r.status == SpawnStatus::GrazingAngle) && get(handle)) {
+        const uint32_t dense = s.slots[handle.slot].dense;
+        if (!s.fading(dense)) s.stats.removed++; // a fading decal is counted in evicted already
+        s.removeDense(dense);
+    }
+    return r;
+}
+
+SpawnResult DecalSystem::Impl::spawnOnDrawnSurface(const char* caller, const Ray& shot,
+                                                   const glm::dvec3& point, const glm::dvec3& normal,
+                                                   uint16_t type) {
+    if (type >= types.size()) return reject(SpawnStatus::InvalidType, typeError(type));
+    if (const char* problem = rayProblem(shot)) return reject(SpawnStatus::InvalidRay, problem);
+    const DecalType& t = types[type];
+    const std::string where = std::string(caller) + ": ";
     if (t.volumetric)
-        return s.reject(SpawnStatus::InvalidArgument, where + "a decal of volumetric type '" + t.name +
-                                                          "' needs a proxy hit, where its crater is clipped");
-    if (!finite3(point)) return s.reject(SpawnStatus::InvalidArgument, where + "point is not finite");
+        return reject(SpawnStatus::InvalidArgument, where + "a decal of volumetric type '" + t.name +
+                                                        "' needs a proxy hit, where its crater is clipped");
+    if (!finite3(point)) return reject(SpawnStatus::InvalidArgument, where + "point is not finite");
     if (const char* problem = normalProblem(normal))
-        return s.reject(SpawnStatus::InvalidArgument, where + problem);
+        return reject(SpawnStatus::InvalidArgument, where + problem);
     const glm::dvec3 dir = glm::normalize(shot.direction);
     glm::dvec3 n = glm::normalize(normal);
     if (glm::dot(n, dir) > 0.0) n = -n;
     const double angle = std::acos(std::clamp(-glm::dot(dir, n), -1.0, 1.0)) * (180.0 / kPi);
     if (angle > double(t.maxAngleDeg))
-        return s.reject(SpawnStatus::GrazingAngle, where + "the shot meets the drawn surface at " +
-                                                       formatNumber(angle) +
-                                                       " degrees from its normal (type '" + t.name +
-                                                       "' allows " + formatNumber(t.maxAngleDeg) + ")");
+        return reject(SpawnStatus::GrazingAngle, where + "the shot meets the drawn surface at " +
+                                                     formatNumber(angle) +
+                                                     " degrees from its normal (type '" + t.name +
+                                                     "' allows " + formatNumber(t.maxAngleDeg) + ")");
     const double slack = 0.01 * double(std::max(t.size.x, t.size.y));
-    const std::optional<uint32_t> owner = receiverNear(s.world, point, n, slack);
+    const std::optional<uint32_t> owner = receiverNear(world, point, n, slack);
     if (!owner)
-        return s.reject(SpawnStatus::Missed, where + "no one collision surface lies within twice its error "
-                                                     "bound of the point");
-    const CollisionObject& o = s.object(*owner);
+        return reject(SpawnStatus::Missed, where + "no one collision surface lies within twice its error "
+                                                   "bound of the point");
+    const CollisionObject& o = object(*owner);
     if (o.dynamic && !t.onDynamic)
-        return s.reject(SpawnStatus::NotReceiver, where + "decal type '" + t.name +
-                                                      "' may not land on dynamic object '" + o.name + "'");
-    if (s.world.deforms(*owner))
-        return s.reject(SpawnStatus::NotReceiver, where + "object '" + o.name +
-                                                      "' is skinned or morphed: its proxy holds it in every "
-                                                      "pose, so shots at it are placed by spawn");
+        return reject(SpawnStatus::NotReceiver,
+                      where + "decal type '" + t.name + "' may not land on dynamic object '" + o.name + "'");
+    if (world.deforms(*owner))
+        return reject(SpawnStatus::NotReceiver, where + "object '" + o.name +
+                                                    "' is skinned or morphed: its proxy holds it in every "
+                                                    "pose, so shots at it are placed by spawn");
     const glm::dvec3 local(glm::inverse(o.transform) * glm::dvec4(point, 1.0));
-    return s.place(*owner, local, n, dir, type, true, false, nullptr, 0.0);
+    return place(*owner, local, n, dir, type, true, false, nullptr, 0.0);
 }
 
 } // namespace spatter

@@ -134,10 +134,16 @@ TEST(DrawnSurface, ADecalLaidOnTheDrawnSurfaceIsTheOneTheShotPlacesOnTheRenderMe
 }
 
 // The axis line runs through the box from the centre of the face the shot came through (z = +1) to the
-// centre of the opposite face (z = -1), along the projection axis; a stale handle has none.
+// centre of the opposite face (z = -1), along the projection axis, which is the shot's for a decal
+// projected along it; a stale handle has none.
 TEST(DrawnSurface, TheAxisLineRunsThroughTheBoxFromTheSideTheShotCameFrom) {
     DecalSystem s = floorSystemTracedBy(FloorTrace::TiltedProxy);
     const uint16_t t = addType(s, plainType());
+    DecalType alongNormal = plainType("along normal");
+    alongNormal.projection = Projection::Normal;
+    const SpawnResult n = s.spawn(shotAtDrawnFloor({0.3, 0.0, 0.4}, 30.0, 1.0), addType(s, alongNormal));
+    ASSERT_TRUE(n.placed()) << n.reason;
+    EXPECT_FALSE(s.axisLine(n.handle)->alongShot);
     for (double degrees : {0.0, 30.0, 70.0}) {
         const std::string where = std::to_string(degrees) + " degrees";
         const Ray shot = shotAtDrawnFloor({-0.3, 0.0, 0.4}, degrees, 1.0);
@@ -149,6 +155,10 @@ TEST(DrawnSurface, TheAxisLineRunsThroughTheBoxFromTheSideTheShotCameFrom) {
         EXPECT_LT(glm::length(worldPointInBox(d, line->from) - glm::dvec3(0.0, 0.0, 1.0)), 1e-5) << where;
         EXPECT_LT(glm::length(worldPointInBox(d, line->to) - glm::dvec3(0.0, 0.0, -1.0)), 1e-5) << where;
         EXPECT_LT(glm::dot(line->from - line->to, shot.direction), 0.0) << where;
+        EXPECT_EQ(line->alongShot, d.slant != 0) << where;
+        if (degrees > 0.0) {
+            EXPECT_TRUE(line->alongShot) << where;
+        }
         const WorldDecal w = s.worldBox(d);
         EXPECT_LT(glm::length(glm::normalize(line->from - line->to) - glm::dvec3(w.projection)), 1e-5)
             << where;
@@ -401,6 +411,71 @@ TEST(DrawnSurface, AShotThatGrazesTheProxyButNotTheDrawnSurfaceIsPlacedWhereItMe
         ++placed;
     }
     EXPECT_GT(placed, 0) << "no shot was refused as grazing by the proxy and taken by the floor";
+}
+
+// A decal whose shot met the drawn surface before its box (a drawn feature that the proxy let the shot
+// pass) gives way to the decal the shot places there: the one the same shot places when the drawn
+// surface is the collision mesh, logged as one placement and one removal.
+TEST(DrawnSurface, ADecalWhoseShotMetTheDrawnSurfaceBeforeItsBoxGivesWayToTheShotsDecalThere) {
+    DecalSystem proxied = floorSystemTracedBy(FloorTrace::TiltedProxy),
+                onFloor = floorSystemTracedBy(FloorTrace::Floor);
+    const uint16_t t = addType(proxied, plainType()), u = addType(onFloor, plainType());
+    const glm::dvec3 target(0.2, 0.0, 0.1);
+    const Ray shot = worldShotAtDrawnFloor(target, 30.0, 0.7);
+    const SpawnResult old = proxied.spawn(shot, t), drawn = onFloor.spawn(shot, u);
+    ASSERT_TRUE(old.placed() && drawn.placed()) << old.reason << drawn.reason;
+    const uint64_t version = proxied.version();
+    const DecalStats stats = proxied.stats();
+    // Nudged along the shot, as a search from its origin finds it.
+    const glm::dvec3 met = floorPoint(target);
+    const SpawnResult r = proxied.replaceOnDrawnSurface(old.handle, shot, met, drawnFloorNormal());
+    ASSERT_TRUE(r.placed()) << r.reason;
+    EXPECT_EQ(proxied.get(old.handle), nullptr);
+    const Decal d = *proxied.get(r.handle), e = *onFloor.get(drawn.handle);
+    EXPECT_LT(glm::length(d.center - e.center), 1e-5f);
+    EXPECT_LT(glm::length(d.frame().normal - e.frame().normal), 1e-5f);
+    // Its own random turn: the axis, packed relative to the frame, agrees to the packing's precision.
+    EXPECT_LT(glm::length(d.projectionAxis() - e.projectionAxis()), 1e-3f);
+    EXPECT_EQ(proxied.stats().placed, stats.placed + 1);
+    EXPECT_EQ(proxied.stats().removed, stats.removed + 1);
+    EXPECT_EQ(proxied.stats().alive, stats.alive);
+    const DecalChanges changes = proxied.changesSince(version);
+    ASSERT_EQ(changes.changes.size(), 2u);
+    EXPECT_EQ(changes.changes[0].kind, DecalChangeKind::Added);
+    EXPECT_EQ(changes.changes[1].kind, DecalChangeKind::Removed);
+}
+
+// Where the shot met the drawn surface before the box more steeply than the type allows, the render
+// mesh would have placed nothing: the decal is removed and the call says GrazingAngle. A stale handle
+// and a refusal of the spawn (a point no collision surface lies near) change nothing, stats included.
+TEST(DrawnSurface, ADecalWhoseShotMetTheDrawnSurfaceBeforeItsBoxTooSteeplyIsRemoved) {
+    DecalSystem s = floorSystemWithSmallProxy();
+    const uint16_t t = addType(s, plainType());
+    const glm::dvec3 target(0.2, 0.0, 0.1), up = drawnFloorNormal();
+    const Ray shot = worldShotAtDrawnFloor(target, 30.0, 0.7);
+    const SpawnResult a = s.spawn(shot, t),
+                      b = s.spawn(worldShotAtDrawnFloor({-0.4, 0.0, 0.3}, 20.0, 2.0), t);
+    ASSERT_TRUE(a.placed() && b.placed()) << a.reason << b.reason;
+    const std::vector<Decal> decals = s.decals();
+    const uint64_t version = s.version();
+    const DecalStats stats = s.stats();
+    const SpawnResult stale = s.replaceOnDrawnSurface(DecalHandle{1000, 1}, shot, floorPoint(target), up);
+    EXPECT_EQ(stale.status, SpawnStatus::InvalidArgument);
+    EXPECT_NE(stale.reason.find("stale or invalid handle"), std::string::npos) << stale.reason;
+    const SpawnResult far = s.replaceOnDrawnSurface(a.handle, shot, floorPoint(target) + 3.0 * up, up);
+    EXPECT_EQ(far.status, SpawnStatus::Missed) << far.reason;
+    EXPECT_TRUE(sameDecals(s.decals(), decals));
+    EXPECT_EQ(s.version(), version);
+    EXPECT_TRUE(s.stats() == stats) << "a refused replacement counts nothing";
+    // Met at a wall standing across the shot's path, edge-on to it.
+    const glm::dvec3 edgeOn = glm::normalize(glm::cross(up, shot.direction));
+    const SpawnResult gone = s.replaceOnDrawnSurface(a.handle, shot, floorPoint(target), edgeOn);
+    EXPECT_EQ(gone.status, SpawnStatus::GrazingAngle) << gone.reason;
+    EXPECT_EQ(s.get(a.handle), nullptr);
+    EXPECT_NE(s.get(b.handle), nullptr);
+    EXPECT_EQ(s.stats().removed, stats.removed + 1);
+    EXPECT_EQ(s.stats().alive, stats.alive - 1);
+    EXPECT_EQ(s.stats().rejectedTotal(), stats.rejectedTotal());
 }
 
 // Every refusal names its problem and leaves the decals, the change log and the random numbers as

@@ -123,7 +123,8 @@ struct WorldDecal {
 // A decal's projection axis through its box, world space, from the face its shot came through (axisLine).
 struct DecalAxisLine {
     glm::dvec3 from{0.0}, to{0.0};
-    uint8_t objectId = 0; // the decal's object decal ID: the surface it is laid on carries it
+    uint8_t objectId = 0;   // the decal's object decal ID: the surface it is laid on carries it
+    bool alongShot = false; // the axis is the decal's shot: the shot ran from its origin to `from`
 };
 
 // What DecalSystem::layOnDrawnSurface did with a decal.
@@ -262,6 +263,19 @@ public:
     // number.
     SpawnResult spawnOnDrawnSurface(const Ray& shot, const glm::dvec3& point, const glm::dvec3& normal,
                                     uint16_t type);
+    // For a decal projected along its shot (DecalAxisLine::alongShot) whose shot, searched from its
+    // origin to the box's face it came through, met the drawn surface before the box: a drawn feature
+    // that the proxy, within its error bound of it, let the shot pass. The render mesh would have
+    // placed the shot's decal there, so the decal gives way to the one spawnOnDrawnSurface places for
+    // `shot` at `point`, facing `normal` (of the decal's type; counted in stats().placed and logged as
+    // Added, the decal removed as remove() removes it); where the shot meets the drawn surface there
+    // more than the type's maxAngleDeg from its normal, the render mesh would have placed nothing, and
+    // the decal is removed (the result then says GrazingAngle). Gives spawnOnDrawnSurface's result:
+    // the decal is gone when it is placed or GrazingAngle. Any other refusal changes nothing: a stale
+    // or invalid handle (InvalidArgument), and the other refusals of spawnOnDrawnSurface (Missed where
+    // no object can be told). No refusal counts in stats().rejected: the shot was counted when spawned.
+    SpawnResult replaceOnDrawnSurface(DecalHandle handle, const Ray& shot, const glm::dvec3& point,
+                                      const glm::dvec3& normal);
 
     // The live decals, contiguous, for the renderer. Order is deterministic but changes on removals.
     const std::vector<Decal>& decals() const;

@@ -449,8 +449,8 @@ public:
     // camera, object ID and face normal textures are read, nothing is written): the first point from a
     // line's start where it passes from in front of the surface the depth holds to behind it (or, for a
     // line that starts behind it, from behind it to in front), seen by the camera, where the depth is
-    // continuous across it (a jump of more than 8 pixels' size plus 5% of the line's length is the edge
-    // of something in front), and the normal there. With a face normal texture that is the normal of
+    // continuous across it (a jump of more than 8 pixels' size is the edge of something in front), and
+    // the normal there. With a face normal texture that is the normal of
     // the triangle the line meets and the point lies on its plane (a meet within a pixel of an edge
     // takes the triangle beside the one the pixel shows where the line meets that one: of the planes the
     // 3 x 3 pixels around show, the later crossing across a convex edge for a line from in front, the
