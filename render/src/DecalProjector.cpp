@@ -489,9 +489,12 @@ struct DecalProjector::Impl {
         stats.normalCopy = normalCopyName(copy);
         const bool depthTest = attachDepth(f);
         bindInputs(f);
-        if (copy == NormalCopyMode::InPlace) {
-            glTextureBarrier(); // the decals read the host's normals in place: its last writes must show
-        } else if (copy != NormalCopyMode::None) {
+        // The boxes read the host's depth while it is attached for their depth test (and, in place,
+        // the normals they write): a feedback loop, in which the host's last writes to them show only
+        // after a texture barrier (without one, llvmpipe's boxes read depth that craters had just
+        // written as it stood before, or not, by the timing of its flushes).
+        if (depthTest || copy == NormalCopyMode::InPlace) glTextureBarrier();
+        if (copy != NormalCopyMode::None && copy != NormalCopyMode::InPlace) {
             stats.drawCalls += copyNormals(f, vis, boxes, copy, depthTest);
             glBindTextureUnit(1, normalCopy.texture());
         }
