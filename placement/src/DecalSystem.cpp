@@ -239,9 +239,7 @@ bool DecalSystem::remove(DecalHandle handle) {
     Impl& s = *impl_;
     const std::lock_guard<std::mutex> lock(s.mutex);
     if (!get(handle)) return false;
-    const uint32_t dense = s.slots[handle.slot].dense;
-    if (!s.fading(dense)) s.stats.removed++; // a fading decal is counted in evicted already
-    s.removeDense(dense);
+    s.removeCounted(s.slots[handle.slot].dense);
     return true;
 }
 
@@ -314,8 +312,7 @@ Status DecalSystem::removeObject(uint32_t object) {
     if (Status st = s.world.removeObject(object); !st) return st;
     for (size_t i = s.decals.size(); i-- > 0;) {
         if (s.decals[i].object != object) continue;
-        if (!s.fading(uint32_t(i))) s.stats.removed++; // a fading decal is counted in evicted already
-        s.removeDense(uint32_t(i));
+        s.removeCounted(uint32_t(i));
     }
     return {};
 }

@@ -81,8 +81,7 @@ void DecalSystemAccess::restore(DecalSystem& system, DecalSystemState&& st, cons
     relink(s, st, plan.keepObject);
     for (size_t i = s.decals.size(); i-- > 0;) { // as removeObject does
         if (plan.keepObject[s.decals[i].object]) continue;
-        if (!s.fading(uint32_t(i))) s.stats.removed++;
-        s.removeDense(uint32_t(i));
+        s.removeCounted(uint32_t(i));
     }
 }
 

@@ -155,6 +155,12 @@ struct DecalSystem::Impl {
         return !fadingSince.empty() && fadingSince.count(slotOf[dense]) != 0;
     }
 
+    // Removes a decal as remove() does, counted in stats.removed (a fading one is in evicted already).
+    void removeCounted(uint32_t dense) {
+        if (!fading(dense)) stats.removed++;
+        removeDense(dense);
+    }
+
     void removeDense(uint32_t dense) {
         const uint32_t slot = slotOf[dense];
         if (!fadingSince.empty() && fadingSince.erase(slot) != 0) stats.fading--;

@@ -103,8 +103,7 @@ Result<DrawnSurfaceLaying> DecalSystem::layOnDrawnSurface(DecalHandle handle, co
                     formatNumber(laid->halfDepth) + ")");
     const uint32_t dense = s.slots[handle.slot].dense;
     if (const std::optional<double> angle = laidShotAngleDeg(d, *laid, m); angle && *angle > t.maxAngleDeg) {
-        s.stats.removed++;
-        s.removeDense(dense);
+        s.removeCounted(dense);
         return DrawnSurfaceLaying::Removed;
     }
     s.decals[dense] = *laid;
@@ -178,11 +177,8 @@ SpawnResult DecalSystem::replaceOnDrawnSurface(DecalHandle handle, const Ray& sh
     SpawnResult r = s.spawnOnDrawnSurface("replaceOnDrawnSurface", shot, point, normal, d->type);
     s.stats.rejected = rejected; // the shot was counted when it was spawned
     // The spawn may have evicted the decal under its area's limits: look its handle up again.
-    if ((r.placed() || r.status == SpawnStatus::GrazingAngle) && get(handle)) {
-        const uint32_t dense = s.slots[handle.slot].dense;
-        if (!s.fading(dense)) s.stats.removed++; // a fading decal is counted in evicted already
-        s.removeDense(dense);
-    }
+    if ((r.placed() || r.status == SpawnStatus::GrazingAngle) && get(handle))
+        s.removeCounted(s.slots[handle.slot].dense);
     return r;
 }
 
