@@ -16,25 +16,18 @@ constexpr GLuint kLinesBuffer = 5, kPointsBuffer = 6; // surface_probe.comp's st
 constexpr GLuint kDepthUnit = 0, kIdUnit = 2, kFaceUnit = 3;
 constexpr float kAnyObject = 256.0f; // a line's ID that any object's surface matches (surface_probe.comp)
 
-int convention(const HostDepth& d) {
-    if (d.encoding == DepthEncoding::LinearView) return 4;
-    return (d.reversedZ ? 1 : 0) + (d.clip == ClipDepth::MinusOneToOne ? 2 : 0);
+// The search's variant: the host's depth conventions and, where the frame has face normals, the
+// encoding they share with its normals (the projector's convention bits, the face normal texture
+// taking the normals' place; kVariantNoNormals without one).
+uint32_t probeBits(const HostFrame& f) {
+    HostFrame faces = f;
+    faces.normals.texture = f.faceNormalTexture;
+    return conventionBits(faces);
 }
 
-// The face normals' variant: 0 without them, else their encoding + 1.
-int faceVariant(const HostFrame& f) {
-    return f.faceNormalTexture == 0 ? 0 : 1 + int(f.normals.encoding);
-}
-
-std::vector<std::string> conventionDefines(int c, int face) {
-    std::vector<std::string> defines;
-    if (c == 4) defines.push_back("DEPTH_LINEAR");
-    if (c != 4 && (c & 1) == 0) defines.push_back("STANDARD_Z");
-    if (c != 4 && (c & 2)) defines.push_back("CLIP_MINUS_ONE");
-    if (face != 0) defines.push_back("FACE_NORMALS");
-    constexpr const char* kEncodings[] = {nullptr, "NORMAL_WORLD_SIGNED", "NORMAL_WORLD_UNORM",
-                                          "NORMAL_VIEW_UNORM"};
-    if (face > 1) defines.push_back(kEncodings[face - 1]);
+std::vector<std::string> probeDefines(uint32_t bits) {
+    std::vector<std::string> defines = variantDefines(bits);
+    if (!(bits & kVariantNoNormals)) defines.push_back("FACE_NORMALS");
     return defines;
 }
 
@@ -56,15 +49,15 @@ ProjectorFrameGpu viewSpaceFrame(const HostFrame& f) {
 } // namespace
 
 Status SurfaceProbe::prepare(const HostFrame& frame) {
-    const int c = convention(frame.depth), face = faceVariant(frame);
+    const uint32_t bits = probeBits(frame);
     if (!frameBlock_) {
         frameBlock_ = createBuffer();
         glNamedBufferStorage(frameBlock_.get(), sizeof(ProjectorFrameGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);
     }
-    if (programs_[c][face]) return {};
-    Result<GlProgram> p = projectorComputeProgram("surface_probe.comp", conventionDefines(c, face));
+    if (programs_.count(bits)) return {};
+    Result<GlProgram> p = projectorComputeProgram("surface_probe.comp", probeDefines(bits));
     if (!p) return fail(p.error());
-    programs_[c][face] = std::move(p.value());
+    programs_.emplace(bits, std::move(p.value()));
     return {};
 }
 
@@ -114,7 +107,7 @@ void SurfaceProbe::dispatch(const HostFrame& frame, const std::vector<glm::vec4>
     GlBuffer lineBuffer = createBuffer(); // deleted once the dispatch is done with it
     glNamedBufferStorage(lineBuffer.get(), GLsizeiptr(gpuLines.size() * sizeof(glm::vec4)), gpuLines.data(),
                          0);
-    glUseProgram(programs_[convention(frame.depth)][faceVariant(frame)].get());
+    glUseProgram(programs_.at(probeBits(frame)).get());
     glBindBufferBase(GL_UNIFORM_BUFFER, kProjectorFrameBlock, frameBlock_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLinesBuffer, lineBuffer.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPointsBuffer, points);

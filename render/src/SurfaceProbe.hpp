@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -52,9 +53,8 @@ private:
                   GLuint sampler);
     std::vector<SurfacePoint> read(const Request& r) const;
 
-    // By depth convention (window depth: standard or reversed Z, clip 0..1 or -1..1; linear view
-    // distance) and face normals (none, or their encoding: NormalEncoding + 1).
-    GlProgram programs_[5][5];
+    // By variant bits: the host's depth conventions and the face normals' encoding (ProjectorVariants).
+    std::map<uint32_t, GlProgram> programs_;
     GlBuffer frameBlock_; // the projector's frame block, with view space as its "world"
     std::deque<Request> pending_;
     uint64_t requests_ = 0;
