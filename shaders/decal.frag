@@ -91,6 +91,9 @@ void main() {
 #endif
 
     bool keep = surface && all(lessThanEqual(abs(box), vec3(1.0))) && all(lessThanEqual(abs(uv), vec2(1.0)));
+#ifndef COVERAGE
+    keep = keep && spatterInCutout(tc, v_info.w);
+#endif
 #ifdef IDS
     keep = keep && texelFetch(s_ids, pixel, 0).r == v_info.x;
 #endif
@@ -111,6 +114,7 @@ void main() {
     vec3 layer = vec3(tc, float(v_info.y));
     vec4 tex = textureGrad(s_decalAlbedo, layer, tcdx, tcdy);
     float alpha = clamp(tex.a * v_tint.a * fade, 0.0, 1.0);
+    if (alpha <= 0.0) discard; // clear: every blend would keep what is there
 #ifdef ROUGHNESS_ALPHA
     float weight = (flags & SPATTER_DECAL_ROUGHNESS) != 0u ? alpha : 0.0;
     o_roughness = vec4(0.0, 0.0, 0.0, v_params.y * weight);

@@ -11,7 +11,7 @@ flat out vec4 v_bitangent;     // w: half height
 flat out vec4 v_normal;        // xyz: world unit decal normal; w: half depth
 flat out vec3 v_axis;          // world unit axis the box is projected along (depth_axis.glsl)
 flat out vec4 v_tint;
-flat out uvec4 v_info;         // x: object decal ID, y: texture layer, z: SPATTER_DECAL_* flags
+flat out uvec4 v_info;         // x: object decal ID, y: texture layer, z: SPATTER_DECAL_* flags, w: cutout
 flat out vec2 v_params;        // x: cosine of the largest accepted angle, y: roughness
 
 void main() {
@@ -24,6 +24,9 @@ void main() {
     // own space (it maps onto itself) turns it back.
     bool mirrored = ((d.info.z & SPATTER_DECAL_MIRRORED) != 0u) != (o.info.y != 0u);
     if (mirrored) c.x = -c.x;
+#ifndef COVERAGE
+    c = shownCorner(d, c); // coverage is the whole box's
+#endif
 
     vec4 local = vec4(c, 1.0);
     vec3 objectPos = vec3(dot(d.boxToObject[0], local), dot(d.boxToObject[1], local), dot(d.boxToObject[2], local));
@@ -36,6 +39,6 @@ void main() {
     v_normal = w.normal;
     v_axis = spatterDepthAxis(w.worldToBox[0].xyz, w.worldToBox[1].xyz, w.normal.xyz);
     v_tint = d.tint;
-    v_info = uvec4(o.info.x, d.info.y, d.info.z, 0u);
+    v_info = uvec4(o.info.x, d.info.y, d.info.z, d.info.w);
     v_params = d.params.xy;
 }

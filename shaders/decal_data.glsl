@@ -63,7 +63,8 @@ DecalRecord decalRecord(uint index) {
 struct DecalTypeRecord {
     vec4 tint;   // rgb; a: alpha
     uvec4 info;  // x: texture layer; y: SPATTER_DECAL_* flags; z: 1 when decals of the type can be drawn,
-                 // 2 when the host draws them itself (DecalProjector::setHostDrawn), 0 otherwise
+                 // 2 when the host draws them itself (DecalProjector::setHostDrawn), 0 otherwise;
+                 // w: the layer's cutout (spatterInCutout)
     vec4 params; // x: cosine of the largest accepted angle; y: roughness written
 };
 
@@ -83,7 +84,7 @@ struct DecalData {
     vec4 bitangent;      // w: half height
     vec4 normal;         // w: half depth
     vec4 tint;           // rgb tint; a: tint alpha * opacity
-    uvec3 info;          // x: object index, y: texture layer, z: SPATTER_DECAL_* flags
+    uvec4 info;          // x: object index, y: texture layer, z: SPATTER_DECAL_* flags, w: cutout
     vec4 params;         // x: cosine of the largest accepted angle; y: roughness written
 };
 
@@ -141,14 +142,24 @@ DecalData unpackDecal(DecalRecord r) {
     d.bitangent = vec4(frame[1], h.y);
     d.normal = vec4(frame[2], h.z);
     d.tint = vec4(t.tint.rgb, t.tint.a * float(r.info.y >> 24) / 255.0);
-    d.info = uvec3(r.info.x, t.info.x,
-                   t.info.y | (mirrored ? SPATTER_DECAL_MIRRORED : 0u) | (r.info.z != 0u ? SPATTER_DECAL_SLANTED : 0u));
+    d.info = uvec4(r.info.x, t.info.x,
+                   t.info.y | (mirrored ? SPATTER_DECAL_MIRRORED : 0u) | (r.info.z != 0u ? SPATTER_DECAL_SLANTED : 0u),
+                   t.info.w);
     d.params = t.params;
     return d;
 }
 
 DecalData decalData(uint index) {
     return unpackDecal(decalRecord(index));
+}
+
+// Corner `c` (of the unit box [-1, 1]^3) of the part of decal `d`'s box that can show: the box over
+// its texture's cutout, or the whole box for a wrap-around decal, whose texture coordinates are pushed
+// off the box's.
+vec3 shownCorner(DecalData d, vec3 c) {
+    if ((d.info.z & SPATTER_DECAL_WRAP) != 0u) return c;
+    vec4 cut = spatterCutout(d.info.w) * 2.0 - 1.0;
+    return vec3(mix(cut.xy, cut.zw, c.xy * 0.5 + 0.5), c.z);
 }
 
 // Octahedral normal encoding (Cigolle et al. 2014): unit vector <-> [-1, 1]^2.

@@ -95,6 +95,7 @@ bool blendDecal(SpatterForwardDecal d, vec3 box, vec3 p, vec3 dpdx, vec3 dpdy, v
     SpatterDecalLook look;
     if (!spatterDecalLook(d, box, dpdx, dpdy, id, n, look)) return false;
     float alpha = look.colour.a;
+    if (alpha <= 0.0) return true; // clear: every mix below would keep what is there
     t.albedo = mix(t.albedo, look.colour.rgb, alpha);
 #ifdef NORMAL_MAP
     if ((d.info.z & SPATTER_DECAL_NORMAL_MAP) != 0u) {

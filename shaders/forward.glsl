@@ -55,7 +55,8 @@ vec3 spatterBoxPosition(uint index, vec3 position) {
 // What decal `d` gives the point at `box` (the shaded point in its unit box; `n` its surface normal,
 // `dpdx`, `dpdy` its position's screen derivatives) when the point belongs to the object with decal ID
 // `objectId`, faces the decal within its angle and, for wrap-around types, its wrapped footprint lies
-// inside the decal's rectangle: its colour and alpha, and where its textures are read; false otherwise.
+// inside the decal's rectangle: its colour and alpha (zero outside the texture's cutout, where the
+// texture is not read), and where its textures are read; false otherwise.
 struct SpatterDecalLook {
     vec4 colour; // rgb: texture x tint; a: texture alpha x tint alpha x depth fade, in [0, 1]
     vec3 layer;  // texture coordinates and array layer
@@ -83,7 +84,9 @@ bool spatterDecalLook(SpatterForwardDecal d, vec3 box, vec3 dpdx, vec3 dpdy, uin
     look.tcdx = 0.5 * vec2(dot(d.worldToBox[0].xyz, dpdx), dot(d.worldToBox[1].xyz, dpdx));
     look.tcdy = 0.5 * vec2(dot(d.worldToBox[0].xyz, dpdy), dot(d.worldToBox[1].xyz, dpdy));
     look.layer = vec3(uv * 0.5 + 0.5, float(d.info.y));
-    vec4 tex = textureGrad(spatterDecalAlbedo, look.layer, look.tcdx, look.tcdy);
+    vec4 tex = spatterInCutout(look.layer.xy, d.info.w)
+                   ? textureGrad(spatterDecalAlbedo, look.layer, look.tcdx, look.tcdy)
+                   : vec4(0.0);
     look.colour = vec4(tex.rgb * d.tint.rgb, clamp(tex.a * d.tint.a * fade, 0.0, 1.0));
     return true;
 }
@@ -99,6 +102,7 @@ bool spatterApplyDecal(SpatterForwardDecal d, vec3 box, vec3 position, vec3 dpdx
     SpatterDecalLook look;
     if (!spatterDecalLook(d, box, dpdx, dpdy, objectId, n, look)) return false;
     float alpha = look.colour.a;
+    if (alpha <= 0.0) return true; // clear: every mix below would keep what is there
     s.albedo = mix(s.albedo, look.colour.rgb, alpha);
     if ((d.info.z & SPATTER_DECAL_NORMAL_MAP) != 0u)
         s.normal = mix(s.normal, spatterDecalNormalMap(d, spatterDecalDetail(look), position, dpdx, dpdy, n), alpha);

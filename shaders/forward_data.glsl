@@ -26,7 +26,8 @@ struct SpatterForwardDecal {
     vec4 bitangent;     // w: half height
     vec4 normal;        // xyz: world unit decal normal; w: half depth
     vec4 tint;          // rgb tint; a: tint alpha * opacity
-    uvec4 info;         // x: object decal ID, y: texture layer, z: SPATTER_DECAL_* flags
+    uvec4 info;         // x: object decal ID, y: texture layer, z: SPATTER_DECAL_* flags, w: the
+                        // texture layer's cutout (spatterInCutout)
     vec4 params;        // x: cosine of the largest accepted angle, y: roughness written
     vec4 axis;          // xyz: world unit axis the box is projected along (depth_axis.glsl)
 };

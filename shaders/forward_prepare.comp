@@ -76,7 +76,7 @@ void main() {
     f.bitangent = w.bitangent;
     f.normal = w.normal;
     f.tint = d.tint;
-    f.info = uvec4(o.info.x, d.info.y, d.info.z, 0u);
+    f.info = uvec4(o.info.x, d.info.y, d.info.z, d.info.w);
     f.params = d.params;
     f.axis = vec4(spatterDepthAxis(w.worldToBox[0].xyz, w.worldToBox[1].xyz, w.normal.xyz), 0.0);
     spatterForwardDecals[i] = f;

@@ -7,10 +7,10 @@
 
 namespace spatter::render_detail {
 
-void DecalBatch::configure(float wrapMaxAngleDeg, int layerCount) {
-    if (wrapMaxAngleDeg == wrapMaxAngleDeg_ && layerCount == layerCount_) return;
+void DecalBatch::configure(float wrapMaxAngleDeg, std::vector<glm::vec4> cutouts) {
+    if (wrapMaxAngleDeg == wrapMaxAngleDeg_ && cutouts == cutouts_) return;
     wrapMaxAngleDeg_ = wrapMaxAngleDeg;
-    layerCount_ = layerCount;
+    cutouts_ = std::move(cutouts);
     rebuildTypes();
 }
 
@@ -30,7 +30,7 @@ void DecalBatch::rebuildTypes() {
     std::vector<int> priorities;
     for (size_t i = 0; i < types_.size(); ++i) {
         const DecalType& t = types_[i];
-        typeRecords_.push_back(buildDecalType(t, wrapMaxAngleDeg_, layerCount_));
+        typeRecords_.push_back(buildDecalType(t, wrapMaxAngleDeg_, cutouts_));
         if (i < hostTypes_.size() && hostTypes_[i] != 0) typeRecords_.back().info.z = 2; // the host's
         priorities.push_back(t.priority);
     }

@@ -55,8 +55,9 @@ struct StagedRecords {
 
 class DecalBatch {
 public:
-    // Settings that shape the type records.
-    void configure(float wrapMaxAngleDeg, int layerCount);
+    // Settings that shape the type records: the wrap-around angle and the texture layers' cutouts
+    // (DecalCutout.hpp, one per layer).
+    void configure(float wrapMaxAngleDeg, std::vector<glm::vec4> cutouts);
     void setTypes(std::vector<DecalType> types);
     // Types and objects (nonzero entries) whose decals the host draws itself: kept, not drawn. Their
     // type records say so (info.z 2); objects are told to the shaders by the host (ProjectorObjectGpu).
@@ -120,7 +121,7 @@ private:
     void updateMirror(const std::vector<Decal>& decals);
 
     float wrapMaxAngleDeg_ = 120.0f;
-    int layerCount_ = 0;
+    std::vector<glm::vec4> cutouts_;
     size_t objectCount_ = 0;
     size_t mirrorLimit_ = std::numeric_limits<size_t>::max();
     std::vector<DecalType> types_;

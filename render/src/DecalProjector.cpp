@@ -637,7 +637,7 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
         softwareRasteriser() ? std::numeric_limits<size_t>::max() : ProjectorSettings::kGpuCullingInViewFrom);
     if (Status s = impl->textures.create(settings.decalTextureSize); !s)
         return fail("projector: " + s.error());
-    impl->batch.configure(settings.wrapMaxAngleDeg, impl->textures.layers());
+    impl->batch.configure(settings.wrapMaxAngleDeg, impl->textures.cutouts());
     impl->buffers.create();
     impl->boxVao = createVertexArray();
     impl->cubeIndices = createBuffer();
@@ -698,7 +698,7 @@ Result<int> DecalProjector::addDecalTexture(const Image& albedo, const Image& no
     GlStateGuard guard;
     Result<int> layer = impl_->textures.add(albedo, normalMap);
     if (layer) {
-        impl_->batch.configure(impl_->settings.wrapMaxAngleDeg, impl_->textures.layers());
+        impl_->batch.configure(impl_->settings.wrapMaxAngleDeg, impl_->textures.cutouts());
         impl_->buffers.typesChanged();
     }
     return layer;
@@ -719,6 +719,10 @@ Result<int> DecalProjector::addDecalTextureFile(const std::string& albedoPath,
 
 int DecalProjector::decalTextureLayers() const {
     return impl_->textures.layers();
+}
+
+std::vector<glm::vec4> DecalProjector::decalTextureCutouts() const {
+    return impl_->textures.cutouts();
 }
 
 std::string DecalProjector::frameProblem(const HostFrame& frame, const ProjectorDraw& options) const {

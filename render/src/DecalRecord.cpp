@@ -1,5 +1,7 @@
 #include "DecalRecord.hpp"
 
+#include "DecalCutout.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -40,11 +42,12 @@ bool buildDecalRecord(const Decal& d, DecalRecordGpu& out) {
     return true;
 }
 
-DecalTypeGpu buildDecalType(const DecalType& type, float wrapMaxAngleDeg, int layerCount) {
+DecalTypeGpu buildDecalType(const DecalType& type, float wrapMaxAngleDeg,
+                            const std::vector<glm::vec4>& cutouts) {
     DecalTypeGpu g{};
-    const bool drawable = type.texture >= 0 && type.texture < layerCount && finite(glm::vec3(type.tint)) &&
-                          std::isfinite(type.tint.w) && std::isfinite(type.maxAngleDeg) &&
-                          std::isfinite(type.roughness);
+    const bool drawable = type.texture >= 0 && size_t(type.texture) < cutouts.size() &&
+                          finite(glm::vec3(type.tint)) && std::isfinite(type.tint.w) &&
+                          std::isfinite(type.maxAngleDeg) && std::isfinite(type.roughness);
     if (!drawable) return g;
     uint32_t flags = 0;
     if (type.wrapAround) flags |= kDecalWrap;
@@ -55,7 +58,7 @@ DecalTypeGpu buildDecalType(const DecalType& type, float wrapMaxAngleDeg, int la
     double angle = std::clamp(double(type.maxAngleDeg), 0.0, 180.0);
     if (type.wrapAround) angle = std::max(angle, std::clamp(double(wrapMaxAngleDeg), 0.0, 180.0));
     g.tint = type.tint;
-    g.info = glm::uvec4(uint32_t(type.texture), flags, 1u, 0u);
+    g.info = glm::uvec4(uint32_t(type.texture), flags, 1u, packCutout(cutouts[size_t(type.texture)]));
     g.params =
         glm::vec4(float(std::cos(angle * kPi / 180.0)), std::clamp(type.roughness, 0.0f, 1.0f), 0.0f, 0.0f);
     return g;

@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include <vector>
+
 namespace spatter::render_detail {
 
 // The record of `d`; false (and a record with a zero box but its object and type) when its box is degenerate,
@@ -17,9 +19,10 @@ namespace spatter::render_detail {
 // float. The record keeps the decal's packed frame as it is: the shaders unpack it.
 bool buildDecalRecord(const Decal& d, DecalRecordGpu& out);
 
-// The type as the shaders read it; info.z is 0 when decals of the type cannot be drawn (a texture
-// layer outside [0, layerCount), a tint, angle or roughness that is not finite).
-DecalTypeGpu buildDecalType(const DecalType& t, float wrapMaxAngleDeg, int layerCount);
+// The type as the shaders read it, with its layer's cutout (`cutouts`: one per texture layer); info.z is 0
+// when decals of the type cannot be drawn (a texture layer outside the cutouts, a tint, angle or
+// roughness that is not finite).
+DecalTypeGpu buildDecalType(const DecalType& t, float wrapMaxAngleDeg, const std::vector<glm::vec4>& cutouts);
 
 // The unit box -> object space transform of a drawable record (the inverse of its rows), in double.
 glm::dmat4 recordBoxToObject(const DecalRecordGpu& r);

@@ -1,5 +1,7 @@
 #include "DecalTextureArray.hpp"
 
+#include "DecalCutout.hpp"
+
 #include "spatter/render/DecalTextures.hpp"
 
 #include <algorithm>
@@ -56,8 +58,10 @@ Status DecalTextureArray::create(int size) {
     size_ = size;
     albedo_.clear();
     normal_.clear();
+    cutouts_.clear();
     for (int k = 0; k < int(DecalTexture::Count); ++k) {
         DecalTextureImages im = makeBuiltinDecalTexture(DecalTexture(k), size);
+        cutouts_.push_back(decalCutout(im.albedo));
         albedo_.push_back(std::move(im.albedo));
         normal_.push_back(std::move(im.normal));
     }
@@ -76,6 +80,7 @@ Result<int> DecalTextureArray::add(const Image& albedo, const Image& normal) {
         if (!r) return fail("decal normal map: " + r.error());
         n = std::move(r.value());
     }
+    cutouts_.push_back(decalCutout(a.value()));
     albedo_.push_back(std::move(a.value()));
     normal_.push_back(std::move(n));
     upload();

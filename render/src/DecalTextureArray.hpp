@@ -2,8 +2,11 @@
 // DecalTextureArray: the decal textures as two 2D array textures of equal size and layer count:
 // albedo (sRGB, straight alpha) and tangent-space normal maps. Layers 0..3 are the built-in
 // procedural decals (DecalTexture); added images become further layers, resized to the layer size.
+// Each layer has its cutout (DecalCutout.hpp).
 
 #include "GlObjects.hpp"
+
+#include <glm/vec4.hpp>
 
 #include "spatter/core/Image.hpp"
 #include "spatter/core/Result.hpp"
@@ -20,6 +23,7 @@ public:
     Result<int> add(const Image& albedo, const Image& normal);
 
     int layers() const { return int(albedo_.size()); }
+    const std::vector<glm::vec4>& cutouts() const { return cutouts_; } // one per layer
     GLuint albedoTexture() const { return albedoTex_.get(); }
     GLuint normalTexture() const { return normalTex_.get(); }
 
@@ -29,6 +33,7 @@ private:
     int size_ = 0;
     std::vector<Image> albedo_; // layer images, rows flipped so that row 0 is the +y edge at the top
     std::vector<Image> normal_;
+    std::vector<glm::vec4> cutouts_;
     GlTexture albedoTex_, normalTex_;
 };
 

@@ -106,7 +106,8 @@ constexpr uint32_t kMaxProjectorObjects = (1u << 24) - 1;
 struct alignas(16) DecalTypeGpu {
     glm::vec4 tint;   // rgb; a: alpha
     glm::uvec4 info;  // x: texture layer; y: DecalFlag bits; z: 1 when decals of the type can be drawn,
-                      // 2 when the host draws them itself (DecalProjector::setHostDrawn), 0 otherwise
+                      // 2 when the host draws them itself (DecalProjector::setHostDrawn), 0 otherwise;
+                      // w: the layer's cutout (DecalCutout.hpp, packCutout)
     glm::vec4 params; // x: cosine of the largest accepted angle; y: roughness written
 };
 static_assert(sizeof(DecalTypeGpu) == 48, "DecalTypeGpu must match DecalTypeRecord (std430)");

@@ -360,7 +360,7 @@ struct Renderer::Impl {
 
     // After the projector added a decal texture layer: the splats' instances see it too.
     Result<int> layerAdded(Result<int> layer) {
-        if (layer) splatBatch.configure(settings.wrapMaxAngleDeg, projector->decalTextureLayers());
+        if (layer) splatBatch.configure(settings.wrapMaxAngleDeg, projector->decalTextureCutouts());
         return layer;
     }
 
@@ -597,7 +597,7 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
     Result<DecalProjector> p = DecalProjector::create(projector);
     if (!p) return fail("renderer: " + p.error());
     impl->projector.emplace(std::move(p).value());
-    impl->splatBatch.configure(settings.wrapMaxAngleDeg, impl->projector->decalTextureLayers());
+    impl->splatBatch.configure(settings.wrapMaxAngleDeg, impl->projector->decalTextureCutouts());
 
     impl->frameBuffer = createBuffer();
     glNamedBufferStorage(impl->frameBuffer.get(), sizeof(FrameGpu), nullptr, GL_DYNAMIC_STORAGE_BIT);

@@ -426,6 +426,13 @@ public:
     // The same from image files (PNG, JPEG, ...); `normalMapPath` may be empty.
     Result<int> addDecalTextureFile(const std::string& albedoPath, const std::string& normalMapPath = "");
     int decalTextureLayers() const;
+    // Each layer's cutout: the rectangle in texture coordinates (min u, min v, max u, max v; v = 0 at
+    // the image's bottom row) outside which the layer shows nothing. It is where the albedo's alpha
+    // is not zero at full resolution, widened by a sixteenth of the layer's size; the shaders take
+    // the alpha as zero outside it at every mip level, and boxes are drawn over it alone. Empty (min
+    // above max) for a layer with no visible texel. Types carry it to the shaders in
+    // DecalTypeRecord::info.w (decal_data.glsl).
+    std::vector<glm::vec4> decalTextureCutouts() const;
 
     // Projects the decals into the host's frame (G-buffer blend: albedo, normals and roughness are
     // blended into the host's textures; DBuffer: into the projector's decal buffers), or writes their
