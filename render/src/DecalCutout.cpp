@@ -21,6 +21,8 @@ uint32_t byteOf(float t) {
 
 glm::vec4 decalCutout(const Image& albedo) {
     const int w = albedo.width, h = albedo.height;
+    if (albedo.empty() || albedo.rgba.size() < size_t(w) * size_t(h) * 4)
+        return glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);
     int x0 = w, x1 = -1, y0 = h, y1 = -1;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)

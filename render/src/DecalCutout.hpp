@@ -17,7 +17,8 @@ constexpr float kCutoutMargin = 1.0f / 16.0f;
 
 // The cutout of an albedo image (row 0 at the top, as Image keeps it) in texture coordinates: min u,
 // min v, max u, max v, with v = 0 at the image's bottom row as the layers are uploaded, on a grid of
-// 1/255 rounded outward. An image with no visible texel gives an empty cutout (min above max).
+// 1/255 rounded outward. An image with no visible texel (or without its pixels) gives an empty cutout
+// (min above max).
 glm::vec4 decalCutout(const Image& albedo);
 
 // The cutout as four 8-bit fractions (GLSL unpackUnorm4x8 gives it back exactly).
