@@ -30,11 +30,16 @@ layout(std430, binding = 10) writeonly buffer TileReadback {
 };
 
 // The tiles of the box's screen rectangle (x0, y0, x1, y1, inclusive), a pixel wider on each side for
-// the float rounding of the box test; every tile when a corner lies behind the eye.
+// the float rounding of the box test; every tile when a corner lies behind the eye. SHOWN_ONLY (the
+// compute resolve): the rectangle of the part of the box that can show (shownCorner).
 uvec4 tileRect(DecalData d, ProjectorObject o) {
     vec2 lo = vec2(1e30), hi = vec2(-1e30);
     for (int c = 0; c < 8; ++c) {
-        vec4 local = vec4((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0, 1.0);
+        vec3 corner = vec3((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0, (c & 4) != 0 ? 1.0 : -1.0);
+#ifdef SHOWN_ONLY
+        corner = shownCorner(d, corner);
+#endif
+        vec4 local = vec4(corner, 1.0);
         vec3 p = vec3(dot(d.boxToObject[0], local), dot(d.boxToObject[1], local), dot(d.boxToObject[2], local));
         vec4 clip = u_viewProj * (o.model * vec4(p, 1.0));
         if (!(clip.w > 1e-6)) return uvec4(0u, 0u, uvec2(spatterTileGrid.zw) - 1u);

@@ -410,8 +410,9 @@ struct DecalProjector::Impl {
     // `vis` culled on the CPU. Adds the bytes sent and the calls made to `stats`. Needs
     // forward.prepare() and, on the GPU, culling.prepare(). Returns whether the tiles' runs are short
     // (ForwardBins::shortRuns; only those of a GPU binning, whose runs are sized by the fullest tile).
+    // `shownOnly`: the GPU bins each decal by the part of its box that can show (ForwardBins::binCulled).
     bool binVisible(const ForwardFrame& frame, const FrameCamera& camera, bool onGpu,
-                    const DecalVisibility& vis, ProjectorStats& stats) {
+                    const DecalVisibility& vis, ProjectorStats& stats, bool shownOnly) {
         ForwardGridGpu head{};
         head.info.y = settings.normalFrame == DecalNormalFrame::DepthDerivatives ? 1 : 0;
         head.params.x = settings.fadeStart;
@@ -430,8 +431,9 @@ struct DecalProjector::Impl {
             const size_t inFrustum = stats.drawn + culling.occludedCount();
             const size_t capacity = std::min(batch.size(), std::max<size_t>(4096, 2 * inFrustum));
             const uint32_t run = tileRun();
-            stats.bytesUploaded += forward.binCulled(frame, settings.forwardTileSize, head, culling.draws(),
-                                                     capacity, run, uint32_t(settings.forwardTileCapacity));
+            stats.bytesUploaded +=
+                forward.binCulled(frame, settings.forwardTileSize, head, culling.draws(), capacity, run,
+                                  uint32_t(settings.forwardTileCapacity), shownOnly);
             markStage(PassStage::Binned);
             stats.drawCalls += 5;
             return ForwardBins::shortRuns(run);
@@ -539,7 +541,7 @@ struct DecalProjector::Impl {
         stats.variant = join(defines) + (defines.empty() ? "" : " ") + "COMPUTE";
         GlStateGuard guard;
         beginPass(f, camera);
-        const bool shortRuns = binVisible(forwardFrame(f), camera, onGpu, vis, stats);
+        const bool shortRuns = binVisible(forwardFrame(f), camera, onGpu, vis, stats, true);
         bindInputs(f);
         forward.bind(ForwardBindings{});
         // Runs sized for a fullest tile of a few decals: most pixels of a tile lie in none of them.
@@ -749,7 +751,7 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
 
     GlStateGuard guard;
     m.beginPass(host, camera);
-    m.binVisible(frame, camera, onGpu, vis, stats);
+    m.binVisible(frame, camera, onGpu, vis, stats, false);
     m.endPass(onGpu, stats);
     return stats;
 }

@@ -41,12 +41,16 @@ Status ForwardBins::prepare() {
     if (!sort) return fail(sort.error());
     Result<GlProgram> prepareCulled = projectorComputeProgram("forward_prepare.comp", {"FORWARD_CULLED"});
     if (!prepareCulled) return fail(prepareCulled.error());
+    Result<GlProgram> prepareShown =
+        projectorComputeProgram("forward_prepare.comp", {"FORWARD_CULLED", "SHOWN_ONLY"});
+    if (!prepareShown) return fail(prepareShown.error());
     Result<GlProgram> sortCulled = projectorComputeProgram("forward_sort.comp", {"FORWARD_CULLED"});
     if (!sortCulled) return fail(sortCulled.error());
     Result<GlProgram> sortCulledByTile =
         projectorComputeProgram("forward_sort.comp", {"FORWARD_CULLED", "SORT_BY_TILE"});
     if (!sortCulledByTile) return fail(sortCulledByTile.error());
     prepareCulled_ = std::move(prepareCulled.value());
+    prepareShown_ = std::move(prepareShown.value());
     sortCulled_ = std::move(sortCulled.value());
     sortCulledByTile_ = std::move(sortCulledByTile.value());
     prepare_ = std::move(prepare.value());
@@ -112,7 +116,7 @@ size_t ForwardBins::bin(const ForwardFrame& frame, const DecalVisibility& vis, i
 }
 
 size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGridGpu head, GLuint draws,
-                              size_t capacity, uint32_t tileCapacity, uint32_t mostPerTile) {
+                              size_t capacity, uint32_t tileCapacity, uint32_t mostPerTile, bool shownOnly) {
     const glm::ivec2 tiles = grid(frame, tileSize, head);
     const uint32_t tileCount = uint32_t(tiles.x) * uint32_t(tiles.y);
     reserveBuffer(tiles_, tilesCapacity_, sizeof(ForwardGridGpu) + tileCount * sizeof(glm::uvec2), 4096);
@@ -133,7 +137,7 @@ size_t ForwardBins::binCulled(const ForwardFrame& frame, int tileSize, ForwardGr
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.tiles, tiles_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.items, items_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTileReadbackBinding, tileInfo_.target());
-    glUseProgram(prepareCulled_.get());
+    glUseProgram(shownOnly ? prepareShown_.get() : prepareCulled_.get());
     glUniform1ui(0, uint32_t(capacity));
     glUniform1ui(1, tileCapacity);
     glDispatchCompute(groups(uint32_t(capacity)), 1, 1); // invocations past the visible count return at once

@@ -42,10 +42,12 @@ public:
     // count is the list's length), with no count on the CPU: up to `capacity` visible decals are binned
     // (the rest are left out), each tile's run holds up to `tileCapacity` of them (a tile with more, up
     // to `mostPerTile`, gets a run over every decal binned; past that the rest are left out), and two
-    // passes do it (the rectangles found and the runs filled at once, then sorted). Returns the bytes
-    // sent.
+    // passes do it (the rectangles found and the runs filled at once, then sorted). `shownOnly`: each
+    // decal goes into the tiles of the part of its box that can show (its texture's cutout: the
+    // compute resolve), not of its whole box (the forward path, whose count of decals that pass a
+    // pixel is its coverage). Returns the bytes sent.
     size_t binCulled(const ForwardFrame& frame, int tileSize, ForwardGridGpu head, GLuint draws,
-                     size_t capacity, uint32_t tileCapacity, uint32_t mostPerTile);
+                     size_t capacity, uint32_t tileCapacity, uint32_t mostPerTile, bool shownOnly);
     void bind(const ForwardBindings& b) const;
     // Marks the last binCulled's left-out flag and fullest tile, which its passes write into the
     // read-back buffer, as ready to read (leftOut and fullestTile read them), once a binning: at the
@@ -81,7 +83,7 @@ private:
     // The grid of `frame`'s tiles, the head's grid filled in.
     glm::ivec2 grid(const ForwardFrame& frame, int tileSize, ForwardGridGpu& head) const;
 
-    GlProgram prepare_, scan_, fill_, sort_, prepareCulled_, sortCulled_, sortCulledByTile_;
+    GlProgram prepare_, scan_, fill_, sort_, prepareCulled_, prepareShown_, sortCulled_, sortCulledByTile_;
     GlBuffer decals_, tiles_, items_, rects_, counts_;
     size_t decalsCapacity_ = 0, tilesCapacity_ = 0, itemsCapacity_ = 0, rectsCapacity_ = 0,
            countsCapacity_ = 0;

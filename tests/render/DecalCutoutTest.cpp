@@ -1,7 +1,7 @@
 // Decal texture cutouts (DecalProjector::decalTextureCutouts): each layer's rectangle of visible
 // texels, widened by a sixteenth of the layer, outside which its decals show nothing. Boxes are drawn
-// over it alone; the compute resolve and the forward path bin whole boxes and test each pixel, and
-// draw the same.
+// over it alone; the compute resolve bins the boxes over it where the GPU culls (whole boxes where the
+// CPU does), the forward path whole boxes, both testing each pixel, and all draw the same.
 
 #include "HostedWall.hpp"
 #include "RenderTestSupport.hpp"
@@ -45,14 +45,16 @@ std::optional<glm::vec4> cutoutOf(DecalProjector& projector, const Image& albedo
     return cutouts.at(size_t(layer.value()));
 }
 
-enum class CutoutPath { Boxes, Compute, Forward };
+enum class CutoutPath { Boxes, Compute, ComputeGpuCulled, Forward };
 
 // Two decals on the wall, one turned, with the red block's layer, drawn through `path`: the host's
 // albedo.
 Image drawRedBlock(CutoutPath path) {
     ProjectorSettings settings;
     settings.decalTextureSize = kSize;
-    if (path == CutoutPath::Compute) settings.deferredResolve = DeferredResolve::Compute;
+    if (path == CutoutPath::Compute || path == CutoutPath::ComputeGpuCulled)
+        settings.deferredResolve = DeferredResolve::Compute;
+    if (path == CutoutPath::ComputeGpuCulled) settings.gpuCullingFrom = 0; // binned by the cutout
     std::optional<test::HostedWall> h = test::HostedWall::make(settings);
     if (!h) return {};
     // The top left of the texture: towards -u and +v.
@@ -127,7 +129,7 @@ TEST(DecalCutout, AnOffCentreTextureDrawsTheSameAsBoxesByTheComputeResolveAndFor
     const std::vector<uint8_t> boxes = redMask(drawRedBlock(CutoutPath::Boxes));
     const size_t red = test::countSet(boxes);
     EXPECT_GT(red, 40u) << "the red corners are drawn";
-    for (const CutoutPath path : {CutoutPath::Compute, CutoutPath::Forward}) {
+    for (const CutoutPath path : {CutoutPath::Compute, CutoutPath::ComputeGpuCulled, CutoutPath::Forward}) {
         const std::vector<uint8_t> other = redMask(drawRedBlock(path));
         ASSERT_EQ(other.size(), boxes.size());
         size_t differ = 0;
