@@ -6,11 +6,10 @@
 
 #include "GlObjects.hpp"
 
-#include <glm/vec4.hpp>
-
 #include "spatter/core/Image.hpp"
 #include "spatter/core/Result.hpp"
 
+#include <glm/vec4.hpp>
 #include <vector>
 
 namespace spatter::render_detail {
