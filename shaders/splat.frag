@@ -50,8 +50,8 @@ void main() {
     vec3 axis = (flags & SPATTER_DECAL_SLANTED) != 0u
                     ? spatterDepthAxis(d.objectToBox[0].xyz, d.objectToBox[1].xyz, d.normal.xyz)
                     : d.normal.xyz;
-    bool keep = all(lessThanEqual(abs(box), vec3(1.0))) && all(lessThanEqual(abs(uv), vec2(1.0))) && spatterInCutout(tc, d.info.w) &&
-                spatterWithinAngle(n, d.normal.xyz, axis, flags, d.params.x);
+    bool keep = all(lessThanEqual(abs(box), vec3(1.0))) && all(lessThanEqual(abs(uv), vec2(1.0))) &&
+                spatterInCutout(tc, d.info.w) && spatterWithinAngle(n, d.normal.xyz, axis, flags, d.params.x);
     if (!keep) discard;
 
     float fade = 1.0;

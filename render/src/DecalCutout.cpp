@@ -13,6 +13,9 @@ float onGrid(float t, bool up) {
     return std::clamp(steps, 0.0f, 255.0f) / 255.0f;
 }
 
+// Min above max: nothing shows.
+constexpr glm::vec4 kEmptyCutout(1.0f, 1.0f, 0.0f, 0.0f);
+
 uint32_t byteOf(float t) {
     return uint32_t(std::lround(std::clamp(t, 0.0f, 1.0f) * 255.0f));
 }
@@ -21,8 +24,7 @@ uint32_t byteOf(float t) {
 
 glm::vec4 decalCutout(const Image& albedo) {
     const int w = albedo.width, h = albedo.height;
-    if (albedo.empty() || albedo.rgba.size() < size_t(w) * size_t(h) * 4)
-        return glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);
+    if (albedo.empty() || albedo.rgba.size() < size_t(w) * size_t(h) * 4) return kEmptyCutout;
     int x0 = w, x1 = -1, y0 = h, y1 = -1;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
@@ -32,7 +34,7 @@ glm::vec4 decalCutout(const Image& albedo) {
                 y0 = std::min(y0, y);
                 y1 = std::max(y1, y);
             }
-    if (x1 < 0) return glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);
+    if (x1 < 0) return kEmptyCutout;
     // Texel edges in texture coordinates (v from the bottom row), widened by the margin.
     const float m = kCutoutMargin;
     const float u0 = float(x0) / float(w) - m, u1 = float(x1 + 1) / float(w) + m;
