@@ -1,11 +1,13 @@
-// GPU culling, pass 1 of 3 (GpuCulling): one invocation per place of the draw order. It counts the
+// GPU culling, pass 2 (GpuCulling): the places of the groups cull_groups.comp listed, a work group
+// each, dispatched indirectly by their count, or of every group where most were listed in an
+// earlier frame (u_every: no indirect dispatch to wait for), an invocation a place. It counts the
 // decals the host draws itself and those that cannot be drawn, culls the boxes whose bounding sphere
 // lies outside the view's side planes (from each decal's 16-byte bounds alone: no body to read, no
-// frame to unpack, no corners: most of a large world), and lists the other places as candidates for
-// the exact test (cull_exact.comp), in the visible list's buffer, which the last pass overwrites. The
-// exact test leaves each candidate's decal index in its slot, so that past the visible count the
-// buffer holds decal indices, as a reader with an earlier count (the renderer's box overlay)
-// expects. It also clears its group's class bits and count for the passes after it.
+// frame to unpack, no corners), and lists the other places as candidates for the exact test
+// (cull_exact.comp), in the visible list's buffer, which the last pass overwrites. The exact test
+// leaves each candidate's decal index in its slot, so that past the visible count the buffer holds
+// decal indices, as a reader with an earlier count (the renderer's box overlay) expects. It also
+// clears its group's class bits for the passes after it.
 #include "projector.glsl"
 #include "cull_layout.glsl"
 
@@ -14,6 +16,8 @@ layout(location = 0) uniform uint u_count; // places
 // 1 when a type is not drawn by the projector (the host draws it, or it cannot be drawn) or a decal
 // may name a type that does not exist: then the test reads each decal's type from its body.
 layout(location = 1) uniform uint u_checkTypes;
+layout(location = 2) uniform uint u_groups; // of the draw order
+layout(location = 3) uniform uint u_every;  // 1: work group w tests group w
 
 layout(std430, binding = 0) writeonly buffer Classes {
     uint classBits[]; // bit k of word w: place 32 w + k is visible (set by cull_exact.comp)
@@ -75,11 +79,12 @@ uint classify(uint i) {
 }
 
 void main() {
-    uint t = gl_LocalInvocationIndex, group = gl_WorkGroupID.x;
+    uint t = gl_LocalInvocationIndex, w = gl_WorkGroupID.x;
+    uint group = u_every != 0u ? w : groupData[listStart(u_groups) + w];
     if (t == 0u) sCandidates = 0u;
     if (t < 2u) sCounts[t] = 0u;
     barrier();
-    uint place = gl_GlobalInvocationID.x;
+    uint place = group * kGroupPlaces + t;
     uint entry = place < u_count ? drawOrder[place] : 0xffffffffu; // an empty place
     uint c = entry != 0xffffffffu ? classify(entry) : kCulled;
     uint rank = 0u;
@@ -90,8 +95,6 @@ void main() {
         if (sCandidates != 0u) sFirst = atomicAdd(candidateCount, sCandidates);
         if (sCounts[0] != 0u) atomicAdd(invalidCount, sCounts[0]);
         if (sCounts[1] != 0u) atomicAdd(hostDrawnCount, sCounts[1]);
-        groupData[group] = 0u;
-        if (group % kBlockGroups == 0u) groupData[gl_NumWorkGroups.x + group / kBlockGroups] = 0u;
     }
     if (t < kGroupPlaces / 32u) classBits[group * (kGroupPlaces / 32u) + t] = 0u;
     barrier();

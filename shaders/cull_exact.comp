@@ -1,4 +1,4 @@
-// GPU culling, pass 2 of 3 (GpuCulling): invocations striding over the candidates cull.comp listed
+// GPU culling, pass 3 (GpuCulling): invocations striding over the candidates cull.comp listed
 // (work groups the CPU dispatches directly, sized by an earlier frame's counts, so that it need not
 // read this frame's). It tests each box corner by corner against the view, as DecalBatch::cull does
 // on the CPU, with margins that keep float rounding from culling a box the CPU would keep, and, with

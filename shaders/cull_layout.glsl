@@ -1,15 +1,20 @@
-// The buffers the three GPU culling passes share (GpuCulling; cull.comp, cull_exact.comp,
+// The buffers the GPU culling passes share (GpuCulling; cull_groups.comp, cull.comp, cull_exact.comp,
 // cull_scatter.comp). A place is an entry of the draw order; a group, 256 consecutive places.
 
 layout(std430, binding = 2) coherent buffer GroupData {
     // [0, groups): the visible places of each group; from groups on, the visible places of each block
     // of kBlockGroups groups, so that a group's first place in the visible list sums at most a block's
-    // groups and the blocks before it, not every group before it
+    // groups and the blocks before it, not every group before it; from listStart() on, the groups
+    // whose places are tested one by one (cull_groups.comp lists them, testedGroups of them)
     uint groupData[];
 };
 
 struct DrawElementsIndirect {
     uint count, instanceCount, firstIndex, baseVertex, baseInstance;
+};
+
+struct DispatchIndirect {
+    uint groupsX, groupsY, groupsZ;
 };
 
 layout(std430, binding = 5) coherent buffer Counters {
@@ -18,6 +23,7 @@ layout(std430, binding = 5) coherent buffer Counters {
     uint invalidCount;         // decals that cannot be drawn: their box, type or object
     uint hostDrawnCount;       // decals of a type or on an object the host draws itself
     uint candidateCount;       // places cull.comp left to cull_exact.comp
+    DispatchIndirect tested;   // x: the groups cull_groups.comp left to cull.comp, a work group each
 };
 
 layout(std430, binding = 6) readonly buffer DrawOrder {
@@ -26,3 +32,8 @@ layout(std430, binding = 6) readonly buffer DrawOrder {
 
 const uint kGroupPlaces = 256u;
 const uint kBlockGroups = 256u;
+
+// Where the list of the groups tested by place starts in groupData, for `groups` groups.
+uint listStart(uint groups) {
+    return groups + (groups + kBlockGroups - 1u) / kBlockGroups;
+}

@@ -1,13 +1,13 @@
-// GPU culling, pass 3 of 3 (GpuCulling): for each group of the draw order with a visible place, its
+// GPU culling, the last pass (GpuCulling): for each group of the draw order with a visible place, its
 // first place in the visible list, the visible places of the groups before it (those of the blocks
 // before its block, and of its block's groups before it), and its visible decals' indices written
 // there in draw order: an invocation per 32-place word of the group's class bits, from the word's
 // first place in the list (the visible places of the words before it) on. Dispatched directly, at a
-// number of work groups the CPU sizes by an earlier frame's visible count (a software rasteriser pays
-// for every work group): work group w looks at groups w, w + W, w + 2 W, ... (W work groups), an
-// invocation a group, 64 at a time, and writes those that have a visible place one after the other,
-// so that groups in view side by side go to different work groups. The first work group also writes
-// the counts the CPU reads back.
+// number of work groups the CPU sizes by an earlier frame's counts (a software rasteriser pays for
+// every work group): work group w looks at the groups cull_groups.comp listed (only they can hold a
+// visible place) w, w + W, w + 2 W, ... (W work groups), an invocation a group, 64 at a time, and
+// writes those that have a visible place one after the other, so that groups in view side by side go
+// to different work groups. The first work group also writes the counts the CPU reads back.
 #include "cull_layout.glsl"
 
 layout(local_size_x = 64) in;
@@ -17,7 +17,7 @@ layout(std430, binding = 0) readonly buffer Classes {
     uint classBits[];
 };
 layout(std430, binding = 1) writeonly buffer Readback {
-    uint readback[4]; // the visible, occluded, invalid and host-drawn counts (GpuCulling::counts_)
+    uint readback[5]; // the visible, occluded, invalid and host-drawn counts, the groups tested by place
 };
 layout(std430, binding = 7) writeonly buffer VisibleOut {
     uint visibleOut[];
@@ -52,15 +52,16 @@ void writeGroup(uint group, uint t) {
 void main() {
     uint t = gl_LocalInvocationIndex, w = gl_NumWorkGroups.x;
     if (gl_WorkGroupID.x == 0u && t == 0u)
-        readback = uint[4](draw.instanceCount, occludedCount, invalidCount, hostDrawnCount);
-    for (uint first = gl_WorkGroupID.x; first < u_groups; first += 64u * w) {
+        readback = uint[5](draw.instanceCount, occludedCount, invalidCount, hostDrawnCount, tested.groupsX);
+    uint listed = tested.groupsX, start = listStart(u_groups);
+    for (uint first = gl_WorkGroupID.x; first < listed; first += 64u * w) {
         if (t == 0u) sFound = 0u;
         barrier();
-        uint group = first + t * w;
-        if (group < u_groups && groupData[group] != 0u) sGroups[atomicAdd(sFound, 1u)] = group;
+        uint k = first + t * w, group = k < listed ? groupData[start + k] : 0u;
+        if (k < listed && groupData[group] != 0u) sGroups[atomicAdd(sFound, 1u)] = group;
         barrier();
         uint found = sFound;
-        for (uint k = 0u; k < found; ++k)
-            writeGroup(sGroups[k], t);
+        for (uint i = 0u; i < found; ++i)
+            writeGroup(sGroups[i], t);
     }
 }

@@ -221,7 +221,8 @@ struct DecalProjector::Impl {
 
     // Sends changed decal records and the visible list culled on the CPU; returns the bytes sent.
     size_t uploadDecals(const DecalVisibility& vis, size_t& uploads) {
-        return buffers.uploadRecords(batch, uploads) + buffers.uploadVisible(vis.visible);
+        return buffers.uploadRecords(batch, uploads, culling.groupBounds()) +
+               buffers.uploadVisible(vis.visible);
     }
 
     // Takes the copy of the host's normals that the decals read (NormalCopy.hpp); returns the draws
@@ -400,6 +401,7 @@ struct DecalProjector::Impl {
         stats.drawn = culling.visibleCount(wait);
         stats.invalid = culling.invalidCount();
         stats.hostDrawn = culling.hostDrawnCount();
+        stats.groupsTested = culling.testedGroupCount();
         const size_t counted = stats.invalid + stats.hostDrawn + stats.drawn;
         stats.culled =
             batch.size() > counted ? batch.size() - counted : 0; // counts of an earlier draw may exceed
@@ -418,7 +420,8 @@ struct DecalProjector::Impl {
         head.params.x = settings.fadeStart;
         if (onGpu) {
             stats.bytesUploaded +=
-                buffers.uploadRecords(batch, stats.instanceUploads) + buffers.uploadDrawOrder(batch, culling);
+                buffers.uploadRecords(batch, stats.instanceUploads, culling.groupBounds()) +
+                buffers.uploadDrawOrder(batch, culling);
             cullOnGpu(camera.cull, nullptr, false, stats); // waitForTimers: read after the pass
             // Before the GPU has given any count, the binning waits for this one's here (once: the
             // first binning's buffers are sized by it, not guessed), as waitForTimers does.
@@ -474,7 +477,7 @@ struct DecalProjector::Impl {
     // normals, then the boxes, and the roughness pass.
     void drawDecals(const HostFrame& f, const ProjectorDraw& o, const FrameCamera& camera, bool onGpu,
                     const DecalVisibility& vis, const Passes& passes, ProjectorStats& stats) {
-        stats.bytesUploaded = buffers.uploadRecords(batch, stats.instanceUploads);
+        stats.bytesUploaded = buffers.uploadRecords(batch, stats.instanceUploads, culling.groupBounds());
         BoxDraws boxes = cpuDraws(vis);
         if (onGpu) {
             stats.bytesUploaded += buffers.uploadDrawOrder(batch, culling);
@@ -858,7 +861,7 @@ Result<std::string> DecalProjector::hostShader(const std::string& name) {
 ProjectorMemory DecalProjector::memory() const {
     const Impl& m = *impl_;
     ProjectorMemory r;
-    r.cpuBytes = m.batch.cpuBytes();
+    r.cpuBytes = m.batch.cpuBytes() + m.culling.cpuBytes();
     r.gpuScreenBytes = m.forward.gpuBytes() + m.pyramid.gpuBytes() + m.normalCopy.gpuBytes();
     r.gpuBufferBytes = m.buffers.gpuBytes() + m.culling.gpuBytes() + r.gpuScreenBytes;
     return r;

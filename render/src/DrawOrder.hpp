@@ -47,6 +47,10 @@ public:
                writes_.capacity() * sizeof(glm::uvec2) + regions_.capacity() * sizeof(Region);
     }
     size_t decalCount() const { return pos_.size(); }
+    // Decal `index`'s entry; kEmpty for one not placed yet or past the decals.
+    uint32_t entryOf(size_t index) const {
+        return index < pos_.size() && !(pos_[index] & kPending) ? pos_[index] : kEmpty;
+    }
     // What the GPU's copy needs since the last call: every entry (entries()) after a new layout or when
     // `all`, else the changed entries as runs of entries() (SparseRuns.hpp) while mirrored, or as
     // writes (entry, value), the last of each entry, while not.

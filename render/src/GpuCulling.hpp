@@ -1,19 +1,21 @@
 #pragma once
 // GpuCulling: the visible list of a draw built on the GPU, for decal counts where culling every box
-// on the CPU each frame would cost more than the draw (ProjectorSettings::gpuCullingFrom). Three
+// on the CPU each frame would cost more than the draw (ProjectorSettings::gpuCullingFrom). Four
 // compute passes over the projector's decal instances and objects (bound at their binding points,
-// objects relative to this frame's eye): every place of the draw order (DrawOrder.hpp) through a
-// bounding-sphere test that needs no unpacked frame (cull.comp); the few left through the corner
-// test DecalBatch::cull makes and the occlusion test (cull_exact.comp); then, for each group of 256
-// places with a visible one, its visible indices into the visible list in draw order
-// (cull_scatter.comp). The draw's instance count goes into an indirect draw buffer; the boxes are
-// then drawn by their far faces (the GPU does not tell which may hold the eye). A pass over every
-// place is what a large world costs, so only the first pass makes one, and it reads no more of a
-// record than its box's centre, size and object.
+// objects relative to this frame's eye): every group of 256 places of the draw order (DrawOrder.hpp)
+// through a test of its box (GroupBounds: a group out of view is culled whole, none of its decals
+// read); the places of the other groups through a bounding-sphere test that needs no unpacked frame
+// (cull.comp); the few left through the corner test DecalBatch::cull makes and the occlusion test
+// (cull_exact.comp); then, for each group with a visible place, its visible indices into the visible
+// list in draw order (cull_scatter.comp). The draw's instance count goes into an indirect draw
+// buffer; the boxes are then drawn by their far faces (the GPU does not tell which may hold the eye).
+// What a large world costs is its groups, and the places of the groups in view or spread over it;
+// the test by place reads no more of a record than its box's centre, size and object.
 
 #include "DrawOrder.hpp"
 #include "GlObjects.hpp"
 #include "GpuReadback.hpp"
+#include "GroupBounds.hpp"
 
 #include "spatter/core/Result.hpp"
 
@@ -75,15 +77,25 @@ public:
     uint32_t occludedCount() const { return counts_.values()[1]; }
     uint32_t invalidCount() const { return counts_.values()[2]; }
     uint32_t hostDrawnCount() const { return counts_.values()[3]; }
+    // The groups of 256 places whose decals were tested one by one, the others culled whole.
+    uint32_t testedGroupCount() const { return counts_.values()[4]; }
+    // The groups' bounds, to mark those whose decals change (ProjectorBuffers::uploadRecords).
+    GroupBounds& groupBounds() { return groupBounds_; }
 
-    // Bytes of the GPU buffers it holds.
-    size_t gpuBytes() const { return classesCapacity_ + groupsCapacity_ + orderCapacity_ + writesCapacity_; }
+    // Bytes of its own allocations (the groups' marks), and of the GPU buffers it holds.
+    size_t cpuBytes() const { return groupBounds_.cpuBytes(); }
+    size_t gpuBytes() const {
+        return classesCapacity_ + groupsCapacity_ + orderCapacity_ + writesCapacity_ +
+               groupBounds_.gpuBytes();
+    }
 
 private:
     // Grows the buffers for this run and `visible` for `decals` indices; returns the groups of 256
     // places of the draw order.
     uint32_t reserve(size_t decals, GlBuffer& visible, size_t& visibleCapacity);
     void bind(const GlBuffer& visible) const;
+    // Whether the test by place takes every group (most were listed in the latest count read back).
+    bool testsEveryGroup(uint32_t groups) const;
     // The work groups of the corner test and of the scatter, sized by the latest counts read back.
     uint32_t exactGroups() const;
     uint32_t scatterGroups(uint32_t groups) const;
@@ -94,8 +106,10 @@ private:
     GlProgram classify_, exact_, scatter_, write_;
     GlBuffer classes_, groups_, counters_, order_, writes_;
     size_t classesCapacity_ = 0, groupsCapacity_ = 0, orderCapacity_ = 0, writesCapacity_ = 0;
-    uint32_t entries_ = 0;  // of the draw order
-    GpuReadback counts_{4}; // the visible, occluded, invalid and host-drawn counts of a run
+    uint32_t entries_ = 0; // of the draw order
+    GroupBounds groupBounds_;
+    // The visible, occluded, invalid and host-drawn counts of a run, and the groups tested by place.
+    GpuReadback counts_{5};
 };
 
 } // namespace spatter::render_detail

@@ -55,8 +55,10 @@ size_t ProjectorBuffers::uploadTypes(const DecalBatch& batch) {
     return typeBytes_;
 }
 
-size_t ProjectorBuffers::uploadRecords(DecalBatch& batch, size_t& uploads) {
+size_t ProjectorBuffers::uploadRecords(DecalBatch& batch, size_t& uploads, GroupBounds& groups) {
     size_t bytes = uploadTypes(batch), end = batch.size();
+    if (bytes > 0) groups.markAll(); // which decals the projector draws may have changed
+    groups.markDecals(batch.order(), batch.staged());
     for (const StagedRecords& run : batch.staged())
         end = std::max(end, run.begin + run.records.size());
     records_.reserve(std::max<size_t>(1, end), recordsOnGpu_);

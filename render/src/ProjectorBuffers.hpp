@@ -30,9 +30,9 @@ public:
     void uploadFrame(const HostFrame& f, const glm::dmat4& view, const glm::dmat4& viewProj, float fadeStart,
                      const std::vector<glm::dmat4>& transforms, const std::vector<uint8_t>& ids,
                      const DecalBatch& batch);
-    // Sends the decal records (and types) `batch` staged; returns the bytes sent and counts the
-    // uploads.
-    size_t uploadRecords(DecalBatch& batch, size_t& uploads);
+    // Sends the decal records (and types) `batch` staged, marking the groups of the draw order whose
+    // bounds they change in `groups`; returns the bytes sent and counts the uploads.
+    size_t uploadRecords(DecalBatch& batch, size_t& uploads, GroupBounds& groups);
     // Sends a visible list culled on the CPU; returns the bytes sent.
     size_t uploadVisible(const std::vector<uint32_t>& visible);
     // Sends the draw order's changes to `culling` (all of it when the CPU culled since); returns the

@@ -300,6 +300,9 @@ struct ProjectorStats {
     // boxes) or "boxes" (a draw of the boxes); otherwise "viewport".
     std::string normalCopy;
     bool gpuCulled = false; // the visible list was built on the GPU (ProjectorSettings::gpuCullingFrom)
+    // Culled on the GPU: the groups of 256 places of the draw order (spawn order within a priority)
+    // whose decals were tested one by one; the others held no decal or lay out of view whole.
+    size_t groupsTested = 0;
     // The latest binning culled on the GPU that the GPU has finished (this one's with waitForTimers), of
     // bin() or of the compute resolve, left decals out of screen tiles: a tile past forwardTileCapacity,
     // or more decals in view than twice an earlier count. DeferredResolve::Auto then draws boxes for a while.
@@ -364,10 +367,12 @@ struct ProjectorResources {
 struct ProjectorMemory {
     size_t cpuBytes = 0;       // each decal's place in the draw order, a validity bit per decal, the
                                // draw order's entries and the CPU copy of the records (until draw()
-                               // culls on the GPU) and records waiting for upload
-    size_t gpuBufferBytes = 0; // the decal records, types, objects, draw order, culling and forward
-                               // buffers, the visible list (capacities, grown ahead of need), and the
-                               // textures: the depth pyramid and the copy of the host's normals
+                               // culls on the GPU), records waiting for upload, and a bit per group
+                               // of 256 places whose culling bounds changed
+    size_t gpuBufferBytes = 0; // the decal records, types, objects, draw order, culling (with the
+                               // groups' bounds) and forward buffers, the visible list (capacities,
+                               // grown ahead of need), and the textures: the depth pyramid and the
+                               // copy of the host's normals
     size_t gpuScreenBytes = 0; // the part of gpuBufferBytes sized by the viewport and the decals in
                                // view, not by the decals held: the depth pyramid, the screen tiles
                                // and the normal copy

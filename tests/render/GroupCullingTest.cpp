@@ -1,0 +1,196 @@
+// The GPU culling culls a group of 256 places of the draw order whole when the box around its decals,
+// in their object's space, lies out of view: it draws what the CPU's culling draws, reads none of the
+// group's decals, writes a group's box again when its decals change, and follows an object that moves
+// its groups into view.
+
+#include "HostedWall.hpp"
+#include "RenderTestSupport.hpp"
+
+#include "spatter/core/DecalChanges.hpp"
+#include "spatter/core/Random.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <limits>
+#include <optional>
+
+using namespace spatter;
+using namespace spatter::test;
+
+namespace {
+
+constexpr size_t kGroupPlaces = 256;
+
+// A decal on the wall in view of the wall scene's camera, at random.
+Decal inView(Rng& rng) {
+    Decal d = WallScene::decalAt(0, {rng.uniform(-2.5f, 2.5f), rng.uniform(-1.5f, 1.5f), 0.05f});
+    d.size = glm::vec2(rng.uniform(0.1f, 0.4f));
+    return d;
+}
+
+// `before` decals in view, then `away` groups' worth 500 units to the right in the wall's space, then
+// `after` in view again.
+std::vector<Decal> wallDecals(size_t before, size_t away, size_t after, uint64_t seed) {
+    Rng rng(seed);
+    std::vector<Decal> decals;
+    for (size_t i = 0; i < before + away * kGroupPlaces + after; ++i) {
+        decals.push_back(inView(rng));
+        if (i >= before && i < before + away * kGroupPlaces) decals.back().center.x += 500.0f;
+    }
+    return decals;
+}
+
+struct Drawn {
+    std::vector<uint8_t> coverage;
+    ProjectorStats stats;
+};
+
+// The wall scene's projector culling on the GPU or on the CPU, the wall drawn by the host where
+// object 0 of the projector may be moved away from it.
+struct Culler {
+    HostedWall h;
+
+    static std::optional<Culler> make(bool onGpu) {
+        ProjectorSettings settings;
+        settings.gpuCullingFrom = onGpu ? 0 : std::numeric_limits<size_t>::max();
+        settings.waitForTimers = true;     // this draw's counts
+        settings.occlusionCulling = false; // the counts of the frustum alone, as the CPU's
+        std::optional<HostedWall> h = HostedWall::make(settings);
+        if (!h) return std::nullopt;
+        return Culler{std::move(*h)};
+    }
+
+    Drawn draw() {
+        ProjectorDraw options;
+        options.coverageTexture = h.host.coverageTexture();
+        h.host.clearCoverage();
+        Result<ProjectorStats> st = h.projector.draw(h.host.frame(h.wall.camera, true), options);
+        EXPECT_TRUE(st.ok()) << st.error();
+        if (!st) return {};
+        return {whiteMask(h.host.read(h.host.coverageTexture())), st.value()};
+    }
+
+    // Object 0 of the projector moved by `offset`, the host's wall where it is.
+    void moveWall(const glm::dvec3& offset) {
+        std::vector<glm::dmat4> transforms = h.wall.transforms;
+        transforms[0] = glm::translate(glm::dmat4(1.0), offset) * transforms[0];
+        EXPECT_TRUE(h.projector.setObjects(transforms, h.wall.ids).ok());
+    }
+};
+
+// The decals as a CPU-culling projector draws them, with object 0 moved by `offset`.
+Drawn cpuDrawn(const std::vector<Decal>& decals, const glm::dvec3& offset = glm::dvec3(0.0)) {
+    std::optional<Culler> cpu = Culler::make(false);
+    if (!cpu) return {};
+    cpu->h.projector.setDecals(decals);
+    cpu->moveWall(offset);
+    Drawn d = cpu->draw();
+    EXPECT_FALSE(d.stats.gpuCulled);
+    return d;
+}
+
+void expectSameCoverage(const Drawn& gpu, const Drawn& cpu) {
+    EXPECT_TRUE(gpu.stats.gpuCulled);
+    EXPECT_GT(countSet(cpu.coverage), 0u);
+    ASSERT_EQ(gpu.coverage.size(), cpu.coverage.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < gpu.coverage.size(); ++i)
+        differing += gpu.coverage[i] != cpu.coverage[i] ? 1 : 0;
+    EXPECT_EQ(differing, 0u) << "pixels whose coverage differs";
+    // The GPU's float tests keep margins: they may draw a box the CPU culls, never the reverse.
+    EXPECT_GE(gpu.stats.drawn, cpu.stats.drawn);
+    EXPECT_LE(gpu.stats.drawn, cpu.stats.drawn + 2);
+}
+
+} // namespace
+
+TEST(GroupCulling, CullsTheGroupsOutOfViewWholeAndDrawsWhatTheCpuDraws) {
+    SPATTER_REQUIRE_GL(gl);
+    const std::vector<Decal> decals = wallDecals(300, 12, 300, 3);
+    std::optional<Culler> gpu = Culler::make(true);
+    ASSERT_TRUE(gpu);
+    gpu->h.projector.setDecals(decals);
+    const Drawn drawn = gpu->draw();
+    std::printf("%zu drawn; %zu of %zu groups tested by place\n", drawn.stats.drawn, drawn.stats.groupsTested,
+                (decals.size() + kGroupPlaces - 1) / kGroupPlaces);
+    expectSameCoverage(drawn, cpuDrawn(decals));
+    // The groups holding a decal in view: two at each end, and the one shared where each end meets
+    // the decals away.
+    EXPECT_GE(drawn.stats.groupsTested, 4u);
+    EXPECT_LE(drawn.stats.groupsTested, 6u);
+}
+
+// Decals of groups culled whole move into view, are removed (the last decal moving into their
+// places) and are added: each group whose places or decals changed gets its box again, and the
+// frame draws what the CPU draws of the decals as they are now.
+TEST(GroupCulling, WritesAGroupsBoxAgainWhenItsDecalsChange) {
+    SPATTER_REQUIRE_GL(gl);
+    std::vector<Decal> decals = wallDecals(300, 12, 0, 5);
+    std::optional<Culler> gpu = Culler::make(true);
+    ASSERT_TRUE(gpu);
+    gpu->h.projector.setDecals(decals);
+    const size_t testedBefore = gpu->draw().stats.groupsTested;
+    Rng rng(9);
+    DecalChanges changes;
+    for (uint32_t i = 1000; i < 1010; ++i) { // a group away from the view: moved into it
+        decals[i].center.x -= 500.0f;
+        changes.changes.push_back({i, i, DecalChangeKind::Changed});
+    }
+    for (uint32_t i : {2000u, 2600u}) { // a decal away removed; the last, away too, takes its place
+        changes.changes.push_back({i, uint32_t(decals.size() - 1), DecalChangeKind::Removed});
+        decals[i] = decals.back();
+        decals.pop_back();
+    }
+    for (int k = 0; k < 5; ++k) { // added at the end of the draw order, in view
+        decals.push_back(inView(rng));
+        changes.changes.push_back({uint32_t(decals.size() - 1), uint32_t(decals.size() - 1)});
+    }
+    gpu->h.projector.updateDecals(decals, changes);
+    const Drawn after = gpu->draw();
+    std::printf("groups tested by place: %zu before the changes, %zu after\n", testedBefore,
+                after.stats.groupsTested);
+    expectSameCoverage(after, cpuDrawn(decals));
+    EXPECT_GT(after.stats.groupsTested, testedBefore);
+}
+
+// The boxes lie in their object's space: the wall's projector object moved 500 units to the left
+// brings the groups away into view and takes those in view out of it, with no decal changed.
+TEST(GroupCulling, FollowsAnObjectThatMovesItsGroupsIntoView) {
+    SPATTER_REQUIRE_GL(gl);
+    const std::vector<Decal> decals = wallDecals(300, 12, 0, 7);
+    const glm::dvec3 offset(-500.0, 0.0, 0.0);
+    std::optional<Culler> gpu = Culler::make(true);
+    ASSERT_TRUE(gpu);
+    gpu->h.projector.setDecals(decals);
+    const Drawn before = gpu->draw();
+    expectSameCoverage(before, cpuDrawn(decals));
+    gpu->moveWall(offset);
+    const Drawn moved = gpu->draw();
+    std::printf("groups tested by place: %zu, then %zu with the object moved\n", before.stats.groupsTested,
+                moved.stats.groupsTested);
+    expectSameCoverage(moved, cpuDrawn(decals, offset));
+    EXPECT_GE(moved.stats.groupsTested, 12u);
+    EXPECT_LE(before.stats.groupsTested, 3u);
+}
+
+// Decals in view spread through the draw order, every other one away: every group is tested by place,
+// so that after the first frame's count the test by place takes every group without the list; each
+// frame draws what the CPU draws.
+TEST(GroupCulling, DrawsWhatTheCpuDrawsWhenEveryGroupHoldsDecalsInView) {
+    SPATTER_REQUIRE_GL(gl);
+    std::vector<Decal> decals = wallDecals(3000, 0, 0, 11);
+    for (size_t i = 1; i < decals.size(); i += 2)
+        decals[i].center.x += 500.0f;
+    std::optional<Culler> gpu = Culler::make(true);
+    ASSERT_TRUE(gpu);
+    gpu->h.projector.setDecals(decals);
+    const Drawn cpu = cpuDrawn(decals);
+    for (int frame = 0; frame < 3; ++frame) {
+        SCOPED_TRACE(frame);
+        const Drawn drawn = gpu->draw();
+        expectSameCoverage(drawn, cpu);
+        EXPECT_EQ(drawn.stats.groupsTested, (decals.size() + kGroupPlaces - 1) / kGroupPlaces);
+    }
+}
