@@ -1,7 +1,8 @@
 // The GPU culling culls a group of 256 places of the draw order whole when the box around its decals,
-// in their object's space, lies out of view: it draws what the CPU's culling draws, reads none of the
-// group's decals, writes a group's box again when its decals change, and follows an object that moves
-// its groups into view.
+// in their object's space, lies out of view: it draws what the CPU's culling draws (far from the
+// origin too), reads none of the group's decals, writes a group's box again when its decals change,
+// follows an object that moves its groups into view, and counts the decals of an object the host
+// takes over.
 
 #include "HostedWall.hpp"
 #include "RenderTestSupport.hpp"
@@ -72,6 +73,17 @@ struct Culler {
         return {whiteMask(h.host.read(h.host.coverageTexture())), st.value()};
     }
 
+    // The whole scene and the camera moved by `offset`, the host's frame drawn again.
+    void moveWorld(const glm::dvec3& offset) {
+        const glm::dmat4 move = glm::translate(glm::dmat4(1.0), offset);
+        for (glm::dmat4& t : h.wall.transforms)
+            t = move * t;
+        h.wall.camera.eye += offset;
+        h.wall.camera.target += offset;
+        h.host.draw(h.wall.transforms, h.wall.ids, h.wall.camera);
+        EXPECT_TRUE(h.projector.setObjects(h.wall.transforms, h.wall.ids).ok());
+    }
+
     // Object 0 of the projector moved by `offset`, the host's wall where it is.
     void moveWall(const glm::dvec3& offset) {
         std::vector<glm::dmat4> transforms = h.wall.transforms;
@@ -80,12 +92,15 @@ struct Culler {
     }
 };
 
-// The decals as a CPU-culling projector draws them, with object 0 moved by `offset`.
-Drawn cpuDrawn(const std::vector<Decal>& decals, const glm::dvec3& offset = glm::dvec3(0.0)) {
+// The decals as a CPU-culling projector draws them, with the scene moved by `world` and then object 0
+// by `wall`.
+Drawn cpuDrawn(const std::vector<Decal>& decals, const glm::dvec3& wall = glm::dvec3(0.0),
+               const glm::dvec3& world = glm::dvec3(0.0)) {
     std::optional<Culler> cpu = Culler::make(false);
     if (!cpu) return {};
     cpu->h.projector.setDecals(decals);
-    cpu->moveWall(offset);
+    cpu->moveWorld(world);
+    cpu->moveWall(wall);
     Drawn d = cpu->draw();
     EXPECT_FALSE(d.stats.gpuCulled);
     return d;
@@ -119,6 +134,22 @@ TEST(GroupCulling, CullsTheGroupsOutOfViewWholeAndDrawsWhatTheCpuDraws) {
     // The groups holding a decal in view: two at each end, and the one shared where each end meets
     // the decals away.
     EXPECT_GE(drawn.stats.groupsTested, 4u);
+    EXPECT_LE(drawn.stats.groupsTested, 6u);
+}
+
+// A million units from the world's origin, the scene and the camera with it: the groups away are
+// still culled whole, their boxes and the view meeting relative to the eye.
+TEST(GroupCulling, CullsTheGroupsOutOfViewWholeFarFromTheOrigin) {
+    SPATTER_REQUIRE_GL(gl);
+    const std::vector<Decal> decals = wallDecals(300, 12, 300, 13);
+    const glm::dvec3 far(1.0e6, -2.0e5, 3.0e6);
+    std::optional<Culler> gpu = Culler::make(true);
+    ASSERT_TRUE(gpu);
+    gpu->moveWorld(far);
+    gpu->h.projector.setDecals(decals);
+    const Drawn drawn = gpu->draw();
+    std::printf("%zu drawn; %zu groups tested by place\n", drawn.stats.drawn, drawn.stats.groupsTested);
+    expectSameCoverage(drawn, cpuDrawn(decals, glm::dvec3(0.0), far));
     EXPECT_LE(drawn.stats.groupsTested, 6u);
 }
 
@@ -193,4 +224,24 @@ TEST(GroupCulling, DrawsWhatTheCpuDrawsWhenEveryGroupHoldsDecalsInView) {
         expectSameCoverage(drawn, cpu);
         EXPECT_EQ(drawn.stats.groupsTested, (decals.size() + kGroupPlaces - 1) / kGroupPlaces);
     }
+}
+
+// The host takes over the wall's decals after its groups away were culled whole: every decal is
+// counted the host's, as the CPU counts them, none drawn; and back again.
+TEST(GroupCulling, CountsTheDecalsOfAnObjectTheHostTakesOverInGroupsOutOfView) {
+    SPATTER_REQUIRE_GL(gl);
+    const std::vector<Decal> decals = wallDecals(300, 12, 0, 17);
+    std::optional<Culler> gpu = Culler::make(true);
+    ASSERT_TRUE(gpu);
+    gpu->h.projector.setDecals(decals);
+    const Drawn before = gpu->draw();
+    gpu->h.projector.setHostDrawn({}, {1, 0});
+    const Drawn taken = gpu->draw();
+    EXPECT_EQ(taken.stats.hostDrawn, decals.size());
+    EXPECT_EQ(taken.stats.drawn, 0u);
+    gpu->h.projector.setHostDrawn({}, {});
+    const Drawn back = gpu->draw();
+    EXPECT_EQ(back.stats.hostDrawn, 0u);
+    EXPECT_EQ(back.coverage, before.coverage);
+    expectSameCoverage(back, cpuDrawn(decals));
 }
