@@ -1,8 +1,10 @@
 // GPU culling, the groups' bounds (GroupBounds): one work group per group of 256 places of the draw
 // order whose places or decals changed since its bounds were written (all of them after a new
-// layout). Each invocation reads one place's decal; the group's box in its object's space holds every
-// decal's bounding sphere, rounded outward. A group whose decals lie on several objects, or holds one
-// the culling must count (the host's, or one that cannot be drawn), is left to the test by place.
+// layout). Each invocation reads one place's decal and takes the box of its object (the first free
+// one for an object the group has no box for yet), which holds every such decal's bounding sphere
+// in the object's space, rounded outward. A group whose decals lie on more objects than it has
+// boxes, or holds one the culling must count (the host's, or one that cannot be drawn), is left to
+// the test by place.
 #include "projector.glsl"
 #include "cull_layout.glsl"
 #include "cull_group_bounds.glsl"
@@ -15,8 +17,8 @@ layout(std430, binding = 0) readonly buffer Listed {
     uint listedGroups[];
 };
 
-shared uint sLow[3], sHigh[3]; // the box as ordered keys (key())
-shared uint sObjectLow, sObjectHigh, sDecals, sByPlace;
+shared uint sLow[kGroupBoxes * 3u], sHigh[kGroupBoxes * 3u]; // the boxes as ordered keys (key())
+shared uint sObjects[kGroupBoxes], sByPlace;
 
 // A float as an unsigned key in the same order.
 uint key(float f) {
@@ -37,50 +39,59 @@ bool plainDecal(uint i, uint object, float radius, vec3 center) {
     return drawable && finite && radius > 0.0 && float(object) < u_params.y;
 }
 
+// The box of `object`, taken if the group has none for it yet; kGroupBoxes when every box is taken.
+uint boxOf(uint object) {
+    for (uint k = 0u; k < kGroupBoxes; ++k) {
+        uint held = atomicCompSwap(sObjects[k], 0xffffffffu, object);
+        if (held == 0xffffffffu || held == object) return k;
+    }
+    return kGroupBoxes;
+}
+
 void addDecal(uint i) {
     DecalBounds b = decalBounds[i];
     uint object = b.objectRadius & 0xffffu;
     if (u_params.y > 65536.0) object = decalObject(b.objectRadius, decalBodies[i].look);
     float radius = uintBitsToFloat(b.objectRadius & 0xffff0000u);
-    atomicAdd(sDecals, 1u);
-    if (!plainDecal(i, object, radius, b.center)) {
+    uint k = plainDecal(i, object, radius, b.center) ? boxOf(object) : kGroupBoxes;
+    if (k == kGroupBoxes) {
         atomicOr(sByPlace, 1u);
         return;
     }
-    atomicMin(sObjectLow, object);
-    atomicMax(sObjectHigh, object);
-    for (int k = 0; k < 3; ++k) {
-        atomicMin(sLow[k], key(b.center[k] - radius));
-        atomicMax(sHigh[k], key(b.center[k] + radius));
+    for (uint a = 0u; a < 3u; ++a) {
+        atomicMin(sLow[k * 3u + a], key(b.center[a] - radius));
+        atomicMax(sHigh[k * 3u + a], key(b.center[a] + radius));
     }
+}
+
+// Box `k` of the group from the shared keys, rounded outward: the sums above and the halving each
+// round by half a unit in the last place.
+GroupBox groupBox(uint k) {
+    GroupBox g;
+    g.object = sObjects[k];
+    g.state = sByPlace != 0u ? (k == 0u ? kBoxByPlace : kBoxUnused)
+              : g.object == 0xffffffffu ? kBoxUnused : kBoxUsed;
+    vec3 low = vec3(unkey(sLow[k * 3u]), unkey(sLow[k * 3u + 1u]), unkey(sLow[k * 3u + 2u]));
+    vec3 high = vec3(unkey(sHigh[k * 3u]), unkey(sHigh[k * 3u + 1u]), unkey(sHigh[k * 3u + 2u]));
+    g.center = 0.5 * (low + high);
+    g.extent = 0.5 * (high - low) * 1.00001 + 2e-6 * max(abs(low), abs(high));
+    if (g.state != kBoxUsed) g.center = g.extent = vec3(0.0);
+    return g;
 }
 
 void main() {
     uint t = gl_LocalInvocationIndex;
     uint group = u_listed != 0u ? listedGroups[gl_WorkGroupID.x] : gl_WorkGroupID.x;
-    if (t < 3u) {
+    if (t < kGroupBoxes * 3u) {
         sLow[t] = 0xffffffffu;
         sHigh[t] = 0u;
     }
-    if (t == 0u) {
-        sObjectLow = 0xffffffffu;
-        sObjectHigh = sDecals = sByPlace = 0u;
-    }
+    if (t < kGroupBoxes) sObjects[t] = 0xffffffffu;
+    if (t == 0u) sByPlace = 0u;
     barrier();
     uint place = group * kGroupPlaces + t;
     uint entry = place < u_count ? drawOrder[place] : 0xffffffffu;
     if (entry != 0xffffffffu) addDecal(entry);
     barrier();
-    if (t != 0u) return;
-    GroupBound g;
-    g.object = sObjectLow;
-    g.state = sDecals == 0u ? kGroupEmpty : sByPlace != 0u || sObjectLow != sObjectHigh ? kGroupByPlace
-                                                                                         : kGroupPlain;
-    vec3 low = vec3(unkey(sLow[0]), unkey(sLow[1]), unkey(sLow[2]));
-    vec3 high = vec3(unkey(sHigh[0]), unkey(sHigh[1]), unkey(sHigh[2]));
-    // Rounded outward: the sums above and the halving each round by half a unit in the last place.
-    g.center = 0.5 * (low + high);
-    g.extent = 0.5 * (high - low) * 1.00001 + 2e-6 * max(abs(low), abs(high));
-    if (g.state != kGroupPlain) g.center = g.extent = vec3(0.0);
-    groupBounds[group] = g;
+    if (t < kGroupBoxes) groupBoxes[group * kGroupBoxes + t] = groupBox(t);
 }

@@ -1,8 +1,8 @@
 // GPU culling, the first pass (GpuCulling): one invocation per group of 256 places of the draw order.
-// A group whose decals all lie on one object, drawable by the projector, is culled whole when its box
-// (GroupBounds) lies outside one of the view's side planes, with margins for rounding, or when its
-// object collapsed; every other group with a decal is listed for the test by place (cull.comp). It
-// clears each group's visible count, and each block's, for the passes after it.
+// A group whose decals, all drawable by the projector, lie on at most kGroupBoxes objects is culled
+// whole when each of its boxes (GroupBounds) lies outside one of the view's side planes, with margins
+// for rounding, or its object collapsed; every other group with a decal is listed for the test by
+// place (cull.comp). It clears each group's visible count, and each block's, for the passes after it.
 #include "projector.glsl"
 #include "cull_layout.glsl"
 #include "cull_group_bounds.glsl"
@@ -14,7 +14,7 @@ shared uint sListed, sFirst;
 
 // Whether the group's box, in its object's space, lies wholly outside one of the view's four side
 // planes: its centre relative to the eye and the half extents of a box around its image there.
-bool boxOutside(GroupBound g, ProjectorObject o) {
+bool boxOutside(GroupBox g, ProjectorObject o) {
     vec4 c = vec4((o.model * vec4(g.center, 1.0)).xyz, 1.0);
     mat3 m = mat3(o.model);
     vec3 extent = mat3(abs(m[0]), abs(m[1]), abs(m[2])) * g.extent;
@@ -32,12 +32,16 @@ bool boxOutside(GroupBound g, ProjectorObject o) {
 
 // Whether the group's places need the test by place.
 bool byPlace(uint group) {
-    GroupBound g = groupBounds[group];
-    if (g.state == kGroupEmpty) return false;
-    if (g.state != kGroupPlain || !(float(g.object) < u_params.y)) return true;
-    ProjectorObject o = objects[g.object];
-    if (o.info.w != 0u) return true; // the host draws its decals: counted by place
-    return o.info.z == 0u && !boxOutside(g, o);
+    for (uint k = 0u; k < kGroupBoxes; ++k) {
+        GroupBox g = groupBoxes[group * kGroupBoxes + k];
+        if (g.state == kBoxByPlace) return true;
+        if (g.state != kBoxUsed) continue;
+        if (!(float(g.object) < u_params.y)) return true;
+        ProjectorObject o = objects[g.object];
+        if (o.info.w != 0u) return true; // the host draws its decals: counted by place
+        if (o.info.z == 0u && !boxOutside(g, o)) return true;
+    }
+    return false;
 }
 
 void main() {

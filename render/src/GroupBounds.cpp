@@ -9,7 +9,7 @@ namespace spatter::render_detail {
 
 namespace {
 
-constexpr size_t kGroupBoundBytes = 32; // GroupBound
+constexpr size_t kGroupBoundsBytes = 4 * 32; // kGroupBoxes GroupBox records (cull_group_bounds.glsl)
 constexpr GLuint kListedBinding = 0, kBoundsBinding = 10;
 constexpr uint32_t kTestGroupSize = 64; // cull_groups.comp's local size
 
@@ -63,7 +63,13 @@ void GroupBounds::write(uint32_t places, uint32_t groups) {
 }
 
 void GroupBounds::cull(uint32_t places, uint32_t groups, bool dispatchesList) {
-    if (reserveBuffer(bounds_, boundsCapacity_, size_t(groups) * kGroupBoundBytes, 4096)) all_ = true;
+    // Sized exactly: the groups change with a new layout alone, which writes every group's bounds.
+    const size_t bytes = size_t(groups) * kGroupBoundsBytes;
+    if (bytes > boundsCapacity_ || !bounds_) {
+        bounds_ = dynamicBuffer(bytes);
+        boundsCapacity_ = bytes;
+        all_ = true;
+    }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBoundsBinding, bounds_.get());
     write(places, groups);
     glUseProgram(test_.get());

@@ -1,13 +1,13 @@
 #pragma once
-// GroupBounds: for each group of 256 places of the draw order, a box in one object's space holding
-// every decal of the group (shaders/cull_group_bounds.glsl), so that the GPU culling's first pass
-// (cull_groups.comp) culls a group out of view whole, reading none of its decals: a world of a million
-// decals with a few hundred groups in view costs its culling a pass over 3,907 groups, not a million
-// places. A box is in its object's space, so it holds while the object moves; it is written again on
-// the GPU (cull_bounds.comp) only for the groups whose places or decals changed, which the CPU marks
-// as the draw order and the decal records change. It pays where decals spawned together lie together,
-// as a player's shots do; a group spread over the world, or over several objects, is tested by place
-// as before.
+// GroupBounds: for each group of 256 places of the draw order, up to four boxes, each in the space of
+// one object the group's decals lie on, holding its decals there (shaders/cull_group_bounds.glsl),
+// so that the GPU culling's first pass (cull_groups.comp) culls a group out of view whole, reading
+// none of its decals: a world of a million decals with a few hundred groups in view costs its culling
+// a pass over 3,907 groups, not a million places. The boxes are in their objects' spaces, so they
+// hold while the objects move; they are written again on the GPU (cull_bounds.comp) only for the
+// groups whose places or decals changed, which the CPU marks as the draw order and the decal records
+// change. It pays where decals spawned together lie together, as a player's shots do; a group spread
+// over the world, or over more than four objects, is tested by place as before.
 
 #include "DecalBatch.hpp"
 #include "DrawOrder.hpp"

@@ -84,23 +84,23 @@ struct Culler {
         EXPECT_TRUE(h.projector.setObjects(h.wall.transforms, h.wall.ids).ok());
     }
 
-    // Object 0 of the projector moved by `offset`, the host's wall where it is.
-    void moveWall(const glm::dvec3& offset) {
+    // The projector's object `object` moved by `offset`, the host's where it is.
+    void moveObject(size_t object, const glm::dvec3& offset) {
         std::vector<glm::dmat4> transforms = h.wall.transforms;
-        transforms[0] = glm::translate(glm::dmat4(1.0), offset) * transforms[0];
+        transforms[object] = glm::translate(glm::dmat4(1.0), offset) * transforms[object];
         EXPECT_TRUE(h.projector.setObjects(transforms, h.wall.ids).ok());
     }
 };
 
-// The decals as a CPU-culling projector draws them, with the scene moved by `world` and then object 0
-// by `wall`.
-Drawn cpuDrawn(const std::vector<Decal>& decals, const glm::dvec3& wall = glm::dvec3(0.0),
-               const glm::dvec3& world = glm::dvec3(0.0)) {
+// The decals as a CPU-culling projector draws them, with the scene moved by `world` and then the
+// projector's object `object` by `offset`.
+Drawn cpuDrawn(const std::vector<Decal>& decals, size_t object = 0,
+               const glm::dvec3& offset = glm::dvec3(0.0), const glm::dvec3& world = glm::dvec3(0.0)) {
     std::optional<Culler> cpu = Culler::make(false);
     if (!cpu) return {};
     cpu->h.projector.setDecals(decals);
     cpu->moveWorld(world);
-    cpu->moveWall(wall);
+    cpu->moveObject(object, offset);
     Drawn d = cpu->draw();
     EXPECT_FALSE(d.stats.gpuCulled);
     return d;
@@ -149,7 +149,7 @@ TEST(GroupCulling, CullsTheGroupsOutOfViewWholeFarFromTheOrigin) {
     gpu->h.projector.setDecals(decals);
     const Drawn drawn = gpu->draw();
     std::printf("%zu drawn; %zu groups tested by place\n", drawn.stats.drawn, drawn.stats.groupsTested);
-    expectSameCoverage(drawn, cpuDrawn(decals, glm::dvec3(0.0), far));
+    expectSameCoverage(drawn, cpuDrawn(decals, 0, glm::dvec3(0.0), far));
     EXPECT_LE(drawn.stats.groupsTested, 6u);
 }
 
@@ -197,11 +197,11 @@ TEST(GroupCulling, FollowsAnObjectThatMovesItsGroupsIntoView) {
     gpu->h.projector.setDecals(decals);
     const Drawn before = gpu->draw();
     expectSameCoverage(before, cpuDrawn(decals));
-    gpu->moveWall(offset);
+    gpu->moveObject(0, offset);
     const Drawn moved = gpu->draw();
     std::printf("groups tested by place: %zu, then %zu with the object moved\n", before.stats.groupsTested,
                 moved.stats.groupsTested);
-    expectSameCoverage(moved, cpuDrawn(decals, offset));
+    expectSameCoverage(moved, cpuDrawn(decals, 0, offset));
     EXPECT_GE(moved.stats.groupsTested, 12u);
     EXPECT_LE(before.stats.groupsTested, 3u);
 }
@@ -244,4 +244,36 @@ TEST(GroupCulling, CountsTheDecalsOfAnObjectTheHostTakesOverInGroupsOutOfView) {
     EXPECT_EQ(back.stats.hostDrawn, 0u);
     EXPECT_EQ(back.coverage, before.coverage);
     expectSameCoverage(back, cpuDrawn(decals));
+}
+
+// Decals on the wall and on the crate in turn, in view and 500 units away in each object's space:
+// a group holds a box for each of its two objects and is culled whole when both lie out of view.
+// The crate's projector object then moves its decals away into view (and those in view away): drawn
+// as the CPU draws them.
+TEST(GroupCulling, CullsGroupsOfDecalsOnSeveralObjectsByABoxForEach) {
+    SPATTER_REQUIRE_GL(gl);
+    Rng rng(19);
+    std::vector<Decal> decals;
+    for (size_t i = 0; i < 13 * kGroupPlaces; ++i) {
+        const bool away = i >= 2 * kGroupPlaces;
+        Decal d = i % 2 == 0
+                      ? inView(rng)
+                      : WallScene::decalAt(1, {rng.uniform(-0.2f, 0.2f), rng.uniform(-0.2f, 0.2f), 0.3f});
+        if (i % 2 == 1) d.size = glm::vec2(0.2f);
+        if (away) d.center.x += 500.0f;
+        decals.push_back(d);
+    }
+    const glm::dvec3 offset(-500.0, 0.0, 0.0);
+    std::optional<Culler> gpu = Culler::make(true);
+    ASSERT_TRUE(gpu);
+    gpu->h.projector.setDecals(decals);
+    const Drawn before = gpu->draw();
+    expectSameCoverage(before, cpuDrawn(decals));
+    gpu->moveObject(1, offset);
+    const Drawn moved = gpu->draw();
+    std::printf("groups tested by place: %zu, then %zu with the crate moved\n", before.stats.groupsTested,
+                moved.stats.groupsTested);
+    expectSameCoverage(moved, cpuDrawn(decals, 1, offset));
+    EXPECT_LE(before.stats.groupsTested, 2u);
+    EXPECT_GE(moved.stats.groupsTested, 11u);
 }
