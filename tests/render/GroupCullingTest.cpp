@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <limits>
 #include <optional>
+#include <utility>
 
 using namespace spatter;
 using namespace spatter::test;
@@ -119,6 +120,24 @@ void expectSameCoverage(const Drawn& gpu, const Drawn& cpu) {
     EXPECT_LE(gpu.stats.drawn, cpu.stats.drawn + 2);
 }
 
+// The GPU's frames before and after the projector's object `object` moves by `offset`, each drawing
+// what the CPU draws.
+std::pair<Drawn, Drawn> drawnAroundAMove(const std::vector<Decal>& decals, size_t object,
+                                         const glm::dvec3& offset) {
+    std::optional<Culler> gpu = Culler::make(true);
+    EXPECT_TRUE(gpu);
+    if (!gpu) return {};
+    gpu->h.projector.setDecals(decals);
+    const Drawn before = gpu->draw();
+    expectSameCoverage(before, cpuDrawn(decals));
+    gpu->moveObject(object, offset);
+    const Drawn moved = gpu->draw();
+    std::printf("groups tested by place: %zu, then %zu with object %zu moved\n", before.stats.groupsTested,
+                moved.stats.groupsTested, object);
+    expectSameCoverage(moved, cpuDrawn(decals, object, offset));
+    return {before, moved};
+}
+
 } // namespace
 
 TEST(GroupCulling, CullsTheGroupsOutOfViewWholeAndDrawsWhatTheCpuDraws) {
@@ -191,17 +210,7 @@ TEST(GroupCulling, WritesAGroupsBoxAgainWhenItsDecalsChange) {
 TEST(GroupCulling, FollowsAnObjectThatMovesItsGroupsIntoView) {
     SPATTER_REQUIRE_GL(gl);
     const std::vector<Decal> decals = wallDecals(300, 12, 0, 7);
-    const glm::dvec3 offset(-500.0, 0.0, 0.0);
-    std::optional<Culler> gpu = Culler::make(true);
-    ASSERT_TRUE(gpu);
-    gpu->h.projector.setDecals(decals);
-    const Drawn before = gpu->draw();
-    expectSameCoverage(before, cpuDrawn(decals));
-    gpu->moveObject(0, offset);
-    const Drawn moved = gpu->draw();
-    std::printf("groups tested by place: %zu, then %zu with the object moved\n", before.stats.groupsTested,
-                moved.stats.groupsTested);
-    expectSameCoverage(moved, cpuDrawn(decals, 0, offset));
+    const auto [before, moved] = drawnAroundAMove(decals, 0, glm::dvec3(-500.0, 0.0, 0.0));
     EXPECT_GE(moved.stats.groupsTested, 12u);
     EXPECT_LE(before.stats.groupsTested, 3u);
 }
@@ -263,17 +272,7 @@ TEST(GroupCulling, CullsGroupsOfDecalsOnSeveralObjectsByABoxForEach) {
         if (away) d.center.x += 500.0f;
         decals.push_back(d);
     }
-    const glm::dvec3 offset(-500.0, 0.0, 0.0);
-    std::optional<Culler> gpu = Culler::make(true);
-    ASSERT_TRUE(gpu);
-    gpu->h.projector.setDecals(decals);
-    const Drawn before = gpu->draw();
-    expectSameCoverage(before, cpuDrawn(decals));
-    gpu->moveObject(1, offset);
-    const Drawn moved = gpu->draw();
-    std::printf("groups tested by place: %zu, then %zu with the crate moved\n", before.stats.groupsTested,
-                moved.stats.groupsTested);
-    expectSameCoverage(moved, cpuDrawn(decals, 1, offset));
+    const auto [before, moved] = drawnAroundAMove(decals, 1, glm::dvec3(-500.0, 0.0, 0.0));
     EXPECT_LE(before.stats.groupsTested, 2u);
     EXPECT_GE(moved.stats.groupsTested, 11u);
 }
