@@ -12,7 +12,7 @@ layout(location = 0) uniform uint u_groups;
 
 shared uint sListed, sFirst;
 
-// Whether the group's box, in its object's space, lies wholly outside one of the view's four side
+// Whether box `g`, in its object's space, lies wholly outside one of the view's four side
 // planes: its centre relative to the eye and the half extents of a box around its image there.
 bool boxOutside(GroupBox g, ProjectorObject o) {
     vec4 c = vec4((o.model * vec4(g.center, 1.0)).xyz, 1.0);
