@@ -10,6 +10,7 @@
 // clears its group's class bits for the passes after it.
 #include "projector.glsl"
 #include "cull_layout.glsl"
+#include "cull_decal.glsl"
 
 layout(local_size_x = 256) in;
 layout(location = 0) uniform uint u_count; // places
@@ -60,8 +61,7 @@ bool sphereOutside(DecalBounds b, float radius, ProjectorObject o) {
 
 uint classify(uint i) {
     DecalBounds b = decalBounds[i];
-    uint object = b.objectRadius & 0xffffu; // the whole index where there are at most 65,536 objects
-    if (u_params.y > 65536.0) object = decalObject(b.objectRadius, decalBodies[i].look);
+    uint object = boundsObject(i, b);
     bool objectKnown = float(object) < u_params.y, hostType = false, typeDrawable = true;
     if (u_checkTypes != 0u) { // otherwise every type is drawn by the projector and every decal has one
         uint type = decalBodies[i].look & 0xffffu;
@@ -71,7 +71,7 @@ uint classify(uint i) {
     }
     // The host's decals, valid or not (it counts its invalid ones), then those that cannot be drawn.
     if (hostType || (objectKnown && objects[object].info.w != 0u)) return kHostDrawn;
-    float radius = uintBitsToFloat(b.objectRadius & 0xffff0000u);
+    float radius = boundsRadius(b);
     if (!(radius > 0.0) || !typeDrawable || !objectKnown) return kInvalid;
     ProjectorObject o = objects[object];
     if (o.info.z != 0u || sphereOutside(b, radius, o)) return kCulled; // a collapsed object, or out of view

@@ -7,6 +7,7 @@
 // the test by place.
 #include "projector.glsl"
 #include "cull_layout.glsl"
+#include "cull_decal.glsl"
 #include "cull_group_bounds.glsl"
 
 layout(local_size_x = 256) in;
@@ -50,9 +51,8 @@ uint boxOf(uint object) {
 
 void addDecal(uint i) {
     DecalBounds b = decalBounds[i];
-    uint object = b.objectRadius & 0xffffu;
-    if (u_params.y > 65536.0) object = decalObject(b.objectRadius, decalBodies[i].look);
-    float radius = uintBitsToFloat(b.objectRadius & 0xffff0000u);
+    uint object = boundsObject(i, b);
+    float radius = boundsRadius(b);
     uint k = plainDecal(i, object, radius, b.center) ? boxOf(object) : kGroupBoxes;
     if (k == kGroupBoxes) {
         atomicOr(sByPlace, 1u);

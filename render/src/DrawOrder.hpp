@@ -47,6 +47,8 @@ public:
                writes_.capacity() * sizeof(glm::uvec2) + regions_.capacity() * sizeof(Region);
     }
     size_t decalCount() const { return pos_.size(); }
+    // Whether the layout is new since the last takeChanged (every entry changed).
+    bool relaid() const { return relaid_; }
     // Decal `index`'s entry; kEmpty for one not placed yet or past the decals.
     uint32_t entryOf(size_t index) const {
         return index < pos_.size() && !(pos_[index] & kPending) ? pos_[index] : kEmpty;

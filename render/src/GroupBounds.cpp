@@ -35,6 +35,7 @@ void GroupBounds::markEntries(size_t begin, size_t end) {
 }
 
 void GroupBounds::markDecals(const DrawOrder& order, const std::vector<StagedRecords>& staged) {
+    if (order.relaid()) all_ = true; // every group: no need to look the decals up
     for (const StagedRecords& run : staged)
         for (size_t i = run.begin; i < run.begin + run.records.size() && !all_; ++i) {
             const uint32_t entry = order.entryOf(i);
