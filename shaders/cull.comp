@@ -1,16 +1,18 @@
-// GPU culling, pass 2 (GpuCulling): the places of the groups cull_groups.comp listed, a work group
-// each, dispatched indirectly by their count, or of every group where most were listed in an
-// earlier frame (u_every: no indirect dispatch to wait for), an invocation a place. It counts the
-// decals the host draws itself and those that cannot be drawn, culls the boxes whose bounding sphere
-// lies outside the view's side planes (from each decal's 16-byte bounds alone: no body to read, no
-// frame to unpack, no corners), and lists the other places as candidates for the exact test
-// (cull_exact.comp), in the visible list's buffer, which the last pass overwrites. The exact test
-// leaves each candidate's decal index in its slot, so that past the visible count the buffer holds
-// decal indices, as a reader with an earlier count (the renderer's box overlay) expects. It also
-// clears its group's class bits for the passes after it.
+// GPU culling, pass 2 (GpuCulling): the places of the groups cull_groups.comp listed, a work group each,
+// dispatched indirectly by their count, or of every group where most were listed in an earlier frame
+// (u_every: no pass before it, no indirect dispatch to wait for; each work group culls its group whole as
+// cull_groups.comp would, or counts it tested), an invocation a place. It counts the decals the host draws
+// itself and those that cannot be drawn, culls the boxes whose bounding sphere lies outside the view's side
+// planes (from each decal's 16-byte bounds alone: no body to read, no frame to unpack, no corners), and lists
+// the other places as candidates for the exact test (cull_exact.comp), in the visible list's buffer, which
+// the last pass overwrites. The exact test leaves each candidate's decal index in its slot, so that past the
+// visible count the buffer holds decal indices, as a reader with an earlier count (the renderer's box
+// overlay) expects. It also clears its group's class bits for the passes after it.
 #include "projector.glsl"
 #include "cull_layout.glsl"
 #include "cull_decal.glsl"
+#include "cull_group_bounds.glsl"
+#include "cull_group_test.glsl"
 
 layout(local_size_x = 256) in;
 layout(location = 0) uniform uint u_count; // places
@@ -28,6 +30,7 @@ layout(std430, binding = 7) writeonly buffer Candidates {
 };
 
 shared uint sCandidates, sFirst;
+shared bool sTested; // the group needs the test by place
 shared uint sCounts[2]; // the work group's invalid and host-drawn decals
 
 const uint kCulled = 0u, kCandidate = 1u, kInvalid = 2u, kHostDrawn = 3u;
@@ -78,15 +81,28 @@ uint classify(uint i) {
     return kCandidate;
 }
 
+// With u_every, what cull_groups.comp does for the group: clears its visible count (and its
+// block's), and tells whether it needs the test by place (the scatter then looks at every group).
+bool testsGroup(uint group) {
+    if (u_every == 0u) return true; // listed
+    groupData[group] = 0u;
+    if (group % kBlockGroups == 0u) groupData[u_groups + group / kBlockGroups] = 0u;
+    return byPlace(group);
+}
+
 void main() {
     uint t = gl_LocalInvocationIndex, w = gl_WorkGroupID.x;
     uint group = u_every != 0u ? w : groupData[listStart(u_groups) + w];
-    if (t == 0u) sCandidates = 0u;
+    if (t == 0u) {
+        sCandidates = 0u;
+        sTested = testsGroup(group);
+    }
     if (t < 2u) sCounts[t] = 0u;
-    barrier();
     uint place = group * kGroupPlaces + t;
     uint entry = place < u_count ? drawOrder[place] : 0xffffffffu; // an empty place
-    uint c = entry != 0xffffffffu ? classify(entry) : kCulled;
+    uint c = entry != 0xffffffffu ? classify(entry) : kCulled;  // while the group is tested
+    barrier();
+    if (!sTested) return; // culled whole: its places are not candidates, its count stays 0
     uint rank = 0u;
     if (c == kCandidate) rank = atomicAdd(sCandidates, 1u);
     else if (c != kCulled) atomicAdd(sCounts[c - kInvalid], 1u);
@@ -95,6 +111,7 @@ void main() {
         if (sCandidates != 0u) sFirst = atomicAdd(candidateCount, sCandidates);
         if (sCounts[0] != 0u) atomicAdd(invalidCount, sCounts[0]);
         if (sCounts[1] != 0u) atomicAdd(hostDrawnCount, sCounts[1]);
+        if (u_every != 0u) atomicAdd(tested.groupsX, 1u); // the count read back
     }
     if (t < kGroupPlaces / 32u) classBits[group * (kGroupPlaces / 32u) + t] = 0u;
     barrier();

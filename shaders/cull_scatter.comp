@@ -5,13 +5,15 @@
 // first place in the list (the visible places of the words before it) on. Dispatched directly, at a
 // number of work groups the CPU sizes by an earlier frame's counts (a software rasteriser pays for
 // every work group): work group w looks at the groups cull_groups.comp listed (only they can hold a
-// visible place) w, w + W, w + 2 W, ... (W work groups), an invocation a group, 64 at a time, and
+// visible place; every group where cull.comp tested every group) w, w + W, w + 2 W, ... (W work
+// groups), an invocation a group, 64 at a time, and
 // writes those that have a visible place one after the other, so that groups in view side by side go
 // to different work groups. The first work group also writes the counts the CPU reads back.
 #include "cull_layout.glsl"
 
 layout(local_size_x = 64) in;
 layout(location = 0) uniform uint u_groups;
+layout(location = 1) uniform uint u_every; // 1: cull.comp tested every group, listing none
 
 layout(std430, binding = 0) readonly buffer Classes {
     uint classBits[];
@@ -53,11 +55,11 @@ void main() {
     uint t = gl_LocalInvocationIndex, w = gl_NumWorkGroups.x;
     if (gl_WorkGroupID.x == 0u && t == 0u)
         readback = uint[5](draw.instanceCount, occludedCount, invalidCount, hostDrawnCount, tested.groupsX);
-    uint listed = tested.groupsX, start = listStart(u_groups);
+    uint listed = u_every != 0u ? u_groups : tested.groupsX, start = listStart(u_groups);
     for (uint first = gl_WorkGroupID.x; first < listed; first += 64u * w) {
         if (t == 0u) sFound = 0u;
         barrier();
-        uint k = first + t * w, group = k < listed ? groupData[start + k] : 0u;
+        uint k = first + t * w, group = k >= listed ? 0u : u_every != 0u ? k : groupData[start + k];
         if (k < listed && groupData[group] != 0u) sGroups[atomicAdd(sFound, 1u)] = group;
         barrier();
         uint found = sFound;

@@ -21,20 +21,21 @@ constexpr GLuint kClassesBinding = 0, kReadbackBinding = 1, kGroupsBinding = 2, 
 // indirect dispatch of the test by place (no group yet).
 constexpr std::array<uint32_t, 12> kCountersAtStart = {36, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1};
 constexpr GLintptr kTestedDispatchOffset = 9 * sizeof(uint32_t);
-// The test by place is dispatched indirectly, a work group for each group the first pass listed (on
-// llvmpipe, work groups looping over the listed groups, whose bodies hold barriers, took 3 to 10
-// times as long by wall time), unless the latest count read back listed more than half the groups: then it
-// tests every group, dispatched directly, and no command barrier waits for the list (the decals in view
-// spread through the draw order). The corner test and the scatter are dispatched directly, not indirectly at
-// this run's counts: an indirect dispatch needs a command barrier, which costs a GPU more than work groups
-// that find no work. A software rasteriser pays for every work group, so they are sized by the latest counts
-// read back, with room to spare; their invocations stride over the work, so a run whose counts outgrow an
-// earlier one's is still whole, only slower. The corner test takes 2,048 work groups of 64 at most (512 made
-// the rows with 100,000 decals in view 3 to 4 us slower on an H200), and twice the boxes in the frustum,
-// which its candidates hardly exceed, plus a margin; the scatter takes a work group for each group tested by
-// place at most, and half the visible decals plus a margin (a work group writes the groups it finds with a
-// visible one one after the other, two on average where every visible decal has a group of its own; decals in
-// view side by side share groups).
+// The test by place is dispatched indirectly, a work group for each group the first pass listed (on llvmpipe,
+// work groups looping over the listed groups, whose bodies hold barriers, took 3 to 10 times as long by wall
+// time), unless the latest count read back listed more than half the groups: then it tests every group,
+// dispatched directly, each work group culling its group whole or counting it tested, and neither the first
+// pass nor a command barrier comes before it (the decals in view spread through the draw order, or most of a
+// smaller world in view: 10,000 decals all in view take 4% less on an H200). The corner test and the scatter
+// are dispatched directly, not indirectly at this run's counts: an indirect dispatch needs a command barrier,
+// which costs a GPU more than work groups that find no work. A software rasteriser pays for every work group,
+// so they are sized by the latest counts read back, with room to spare; their invocations stride over the
+// work, so a run whose counts outgrow an earlier one's is still whole, only slower. The corner test takes
+// 2,048 work groups of 64 at most (512 made the rows with 100,000 decals in view 3 to 4 us slower on an
+// H200), and twice the boxes in the frustum, which its candidates hardly exceed, plus a margin; the scatter
+// takes a work group for each group tested by place at most, and half the visible decals plus a margin (a
+// work group writes the groups it finds with a visible one one after the other, two on average where every
+// visible decal has a group of its own; decals in view side by side share groups).
 constexpr uint32_t kExactGroupsMost = 2048, kExactGroupsMargin = 64, kScatterGroupsMargin = 16;
 constexpr uint64_t kExactGroupSize = 64; // cull_exact.comp's local size
 
@@ -133,7 +134,8 @@ void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& 
     glNamedBufferSubData(counters_.get(), 0, GLsizeiptr(sizeof kCountersAtStart), kCountersAtStart.data());
     bind(visible);
     const bool every = testsEveryGroup(groups);
-    groupBounds_.cull(entries_, groups, !every);
+    groupBounds_.update(entries_, groups);
+    if (!every) groupBounds_.list(groups);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClassesBinding, classes_.get()); // where it listed groups
     glUseProgram(classify_.get());
     glUniform1ui(0, entries_);
@@ -161,6 +163,7 @@ void GpuCulling::run(const CullRun& what, const Occlusion& occlusion, GlBuffer& 
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kReadbackBinding, counts_.target());
     glUseProgram(scatter_.get());
     glUniform1ui(0, groups);
+    glUniform1ui(1, every ? 1u : 0u);
     glDispatchCompute(scatterGroups(groups), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }

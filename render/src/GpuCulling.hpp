@@ -1,16 +1,16 @@
 #pragma once
-// GpuCulling: the visible list of a draw built on the GPU, for decal counts where culling every box
-// on the CPU each frame would cost more than the draw (ProjectorSettings::gpuCullingFrom). Four
-// compute passes over the projector's decal instances and objects (bound at their binding points,
-// objects relative to this frame's eye): every group of 256 places of the draw order (DrawOrder.hpp)
-// through a test of its box (GroupBounds: a group out of view is culled whole, none of its decals
-// read); the places of the other groups through a bounding-sphere test that needs no unpacked frame
-// (cull.comp); the few left through the corner test DecalBatch::cull makes and the occlusion test
-// (cull_exact.comp); then, for each group with a visible place, its visible indices into the visible
-// list in draw order (cull_scatter.comp). The draw's instance count goes into an indirect draw
-// buffer; the boxes are then drawn by their far faces (the GPU does not tell which may hold the eye).
-// What a large world costs is its groups, and the places of the groups in view or spread over it;
-// the test by place reads no more of a record than its box's centre, size and object.
+// GpuCulling: the visible list of a draw built on the GPU, for decal counts where culling every box on the
+// CPU each frame would cost more than the draw (ProjectorSettings::gpuCullingFrom). Four compute passes (or
+// three) over the projector's decal instances and objects (bound at their binding points, objects relative to
+// this frame's eye): every group of 256 places of the draw order (DrawOrder.hpp) through a test of its box
+// (GroupBounds: a group out of view is culled whole, none of its decals read; where most groups were left in
+// the latest count, the next pass tests each group's boxes itself instead); the places of the other groups
+// through a bounding-sphere test that needs no unpacked frame (cull.comp); the few left through the corner
+// test DecalBatch::cull makes and the occlusion test (cull_exact.comp); then, for each group with a visible
+// place, its visible indices into the visible list in draw order (cull_scatter.comp). The draw's instance
+// count goes into an indirect draw buffer; the boxes are then drawn by their far faces (the GPU does not tell
+// which may hold the eye). What a large world costs is its groups, and the places of the groups in view or
+// spread over it; the test by place reads no more of a record than its box's centre, size and object.
 
 #include "DrawOrder.hpp"
 #include "GlObjects.hpp"

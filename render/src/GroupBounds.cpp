@@ -63,7 +63,7 @@ void GroupBounds::write(uint32_t places, uint32_t groups) {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-void GroupBounds::cull(uint32_t places, uint32_t groups, bool dispatchesList) {
+void GroupBounds::update(uint32_t places, uint32_t groups) {
     // Sized exactly: the groups change with a new layout alone, which writes every group's bounds.
     const size_t bytes = size_t(groups) * kGroupBoundsBytes;
     if (bytes > boundsCapacity_ || !bounds_) {
@@ -73,10 +73,13 @@ void GroupBounds::cull(uint32_t places, uint32_t groups, bool dispatchesList) {
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBoundsBinding, bounds_.get());
     write(places, groups);
+}
+
+void GroupBounds::list(uint32_t groups) {
     glUseProgram(test_.get());
     glUniform1ui(0, groups);
     glDispatchCompute((groups + kTestGroupSize - 1) / kTestGroupSize, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | (dispatchesList ? GL_COMMAND_BARRIER_BIT : 0));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
 } // namespace spatter::render_detail

@@ -37,10 +37,11 @@ public:
     void markDecals(const DrawOrder& order, const std::vector<StagedRecords>& staged);
 
     // Writes the marked groups' boxes from the draw order and decal records bound at their binding
-    // points (`places` entries, `groups` groups), then tests each group against the view of the frame
-    // block, clearing the groups' visible counts and listing those to test by place (cull_groups.comp),
-    // their count as an indirect dispatch when `dispatchesList`.
-    void cull(uint32_t places, uint32_t groups, bool dispatchesList);
+    // points (`places` entries, `groups` groups) and leaves the boxes bound for the passes after it.
+    void update(uint32_t places, uint32_t groups);
+    // Tests each group against the view of the frame block, clearing the groups' visible counts and
+    // listing those to test by place, their count as an indirect dispatch (cull_groups.comp).
+    void list(uint32_t groups);
 
     // Bytes of the GPU buffers it holds, and of its own allocations.
     size_t gpuBytes() const { return boundsCapacity_ + listCapacity_; }

@@ -235,6 +235,34 @@ TEST(GroupCulling, DrawsWhatTheCpuDrawsWhenEveryGroupHoldsDecalsInView) {
     }
 }
 
+// The wall's projector object moved 500 units to the left brings the groups away into view: the
+// frames after the first test every group without the list, each culling its group whole or listing
+// it itself. Moved back, most groups leave the view: that frame, which still tests every group, and the
+// next, which takes the list again, test the few groups in view and draw what the CPU draws.
+TEST(GroupCulling, TestsTheFewGroupsInViewAfterFramesThatTestedEveryGroup) {
+    SPATTER_REQUIRE_GL(gl);
+    const std::vector<Decal> decals = wallDecals(300, 12, 0, 23);
+    const glm::dvec3 left(-500.0, 0.0, 0.0);
+    std::optional<Culler> gpu = Culler::make(true);
+    ASSERT_TRUE(gpu);
+    gpu->h.projector.setDecals(decals);
+    gpu->moveObject(0, left);
+    const Drawn cpuLeft = cpuDrawn(decals, 0, left);
+    for (int frame = 0; frame < 2; ++frame) {
+        const Drawn drawn = gpu->draw();
+        expectSameCoverage(drawn, cpuLeft);
+        EXPECT_GE(drawn.stats.groupsTested, 12u);
+    }
+    gpu->moveObject(0, glm::dvec3(0.0));
+    const Drawn cpuBack = cpuDrawn(decals);
+    for (int frame = 0; frame < 2; ++frame) {
+        SCOPED_TRACE(frame);
+        const Drawn drawn = gpu->draw();
+        expectSameCoverage(drawn, cpuBack);
+        EXPECT_LE(drawn.stats.groupsTested, 3u);
+    }
+}
+
 // The host takes over the wall's decals after its groups away were culled whole: every decal is
 // counted the host's, as the CPU counts them, none drawn; and back again.
 TEST(GroupCulling, CountsTheDecalsOfAnObjectTheHostTakesOverInGroupsOutOfView) {
