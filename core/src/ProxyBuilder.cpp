@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <future>
 #include <limits>
 #include <memory>
@@ -412,6 +413,7 @@ struct Judged {
     double measured = 0.0; // the largest distance measured
     bool within = false;
     bool removedNothing = false;
+    bool repeated = false; // the triangles of the coarsest run judged within: not judged again
 };
 
 // The quick judgement of a run: the larger of two sampled lower bounds, proxy to render first (where
@@ -513,7 +515,10 @@ struct SearchContext {
     std::vector<std::string>& notes;
 };
 
-Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge) {
+// `withinTriangles`: the triangles of the coarsest run judged within so far (SIZE_MAX: none). A coarser
+// target that keeps as many gains nothing over that run (mostly it is the same proxy: meshoptimizer's
+// collapses run in order of error) and is not judged.
+Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge, size_t withinTriangles) {
     const Mesh* input = &k.meshoptInput;
     for (const CoarseInput& level : k.coarse)
         if (target >= level.target) input = &level.mesh;
@@ -524,6 +529,10 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge) {
     j.candidate = std::move(c).value();
     if (k.withinBudget && j.candidate.mesh.triangleCount() >= k.surfaceTriangles) { // as good as the render
         j.removedNothing = j.within = true;
+        return j;
+    }
+    if (j.candidate.mesh.triangleCount() == withinTriangles) {
+        j.repeated = true;
         return j;
     }
     Result<const HausdorffSurface*> render = k.render.get();
@@ -548,18 +557,18 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge) {
 Status bisect(const SearchContext& k, Judge judge, double target, Bracket& bracket, uint32_t maxRuns,
               SearchOutcome& out, std::vector<Candidate>& accepted, std::optional<Candidate>& finest) {
     for (uint32_t runs = 1; out.runs < maxRuns && !bracket.closed(); ++runs) {
-        Result<Judged> j = runAndJudge(k, target, judge);
+        Result<Judged> j =
+            runAndJudge(k, target, judge, accepted.empty() ? SIZE_MAX : accepted.back().mesh.triangleCount());
         if (!j) return fail(j.error());
         ++out.runs;
         k.progress.nextRun();
         Candidate& c = j->candidate;
         const bool budgetLimited = c.budgetLimited;
+        if (j->repeated) return {}; // converged: a coarser target gives the same proxy
         if (j->removedNothing) {
             out.removedNothing = accepted.empty();
             bracket.lo = target;
         } else if (j->within) {
-            if (!accepted.empty() && accepted.back().mesh.triangleCount() == c.mesh.triangleCount())
-                return {}; // converged: a coarser target gives the same proxy
             bracket.lo = target;
             out.removedNothing = false;
             accepted.push_back(std::move(c));
