@@ -559,8 +559,10 @@ struct DecalProjector::Impl {
 
     // The start of a draw's or a bin's GPU work: its timer, and the frame's block and objects sent.
     void beginPass(const HostFrame& f, const FrameCamera& camera) {
-        timers.beginFrame(draws);
-        timers.begin(GpuPass::Decals);
+        if (settings.passTimer) {
+            timers.beginFrame(draws);
+            timers.begin(GpuPass::Decals);
+        }
         if (settings.stageTimers) stages.beginFrame(draws);
         buffers.uploadFrame(f, camera.view, camera.viewProj, settings.fadeStart, transforms, ids, batch);
     }
@@ -576,13 +578,14 @@ struct DecalProjector::Impl {
         markStage(PassStage::Drawn);
         culling.readBack(); // the counts the next draws size and choose by
         forward.readBack();
-        timers.end();
+        if (settings.passTimer) timers.end();
         if (settings.stageTimers) stats.stages = stages.endFrame(settings.waitForTimers);
         // This draw's counts once the pass is queued: waiting between the culling and the boxes would
         // leave the GPU idle inside the pass.
         if (gpuCounts && settings.waitForTimers) takeGpuCounts(true, stats);
         stats.tilesLeftOut = forward.leftOut(settings.waitForTimers);
-        const GpuPassTimes times = timers.endFrame(settings.waitForTimers);
+        const GpuPassTimes times =
+            settings.passTimer ? timers.endFrame(settings.waitForTimers) : GpuPassTimes{};
         stats.gpuMs = times.decalsMs;
         stats.gpuFrame = times.frame;
         ++draws;
@@ -658,7 +661,7 @@ Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings)
     const uint8_t zero = 0;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTextureSubImage2D(impl->zeroIds.get(), 0, 0, 0, 1, 1, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
-    impl->timers.create();
+    if (settings.passTimer) impl->timers.create();
     if (settings.stageTimers) impl->stages.create();
     return DecalProjector(std::move(impl));
 }

@@ -294,6 +294,30 @@ TEST(Projector, BlendsIntoTheHostsTargetsAndClipsByObjectId) {
     EXPECT_GT(withoutIds, withIds);
 }
 
+// Without its pass timer (ProjectorSettings::passTimer off) the projector blends the same albedo and
+// reports no GPU time, where the timed one reports this draw's (waitForTimers).
+TEST(Projector, BlendsTheSameWithoutItsPassTimerAndReportsNoGpuTime) {
+    SPATTER_REQUIRE_GL(gl);
+    ProjectorSettings timed;
+    timed.waitForTimers = true;
+    ProjectorSettings untimed = timed;
+    untimed.passTimer = false;
+    std::vector<Image> albedo;
+    for (const ProjectorSettings& settings : {timed, untimed}) {
+        std::optional<test::HostedWall> h = test::HostedWall::make(settings);
+        ASSERT_TRUE(h);
+        for (int draw = 0; draw < 2; ++draw) {
+            Result<ProjectorStats> st = h->projector.draw(h->host.frame(h->wall.camera, true));
+            ASSERT_TRUE(st.ok()) << st.error();
+            EXPECT_EQ(st->drawn, 2u);
+            EXPECT_EQ(st->gpuFrame, settings.passTimer ? int64_t(draw) : int64_t(-1));
+            EXPECT_TRUE(settings.passTimer || st->gpuMs == 0.0) << st->gpuMs;
+        }
+        albedo.push_back(h->host.read(h->host.albedoTexture()));
+    }
+    EXPECT_EQ(test::differingPixels(albedo[0], albedo[1]), 0u);
+}
+
 // A decal clips to the decal ID the host gives its object (setObjects), not to the one it carries:
 // the crate's decal covers the same pixels whatever its own ID says, and once the crate's ID changes
 // in the host's frame and in setObjects alike it follows.
