@@ -64,6 +64,13 @@ struct Culler {
         return Culler{std::move(*h)};
     }
 
+    // A culler on the GPU holding `decals`; nothing when it cannot be made.
+    static std::optional<Culler> holding(const std::vector<Decal>& decals) {
+        std::optional<Culler> c = make(true);
+        if (c) c->h.projector.setDecals(decals);
+        return c;
+    }
+
     Drawn draw() {
         ProjectorDraw options;
         options.coverageTexture = h.host.coverageTexture();
@@ -124,10 +131,9 @@ void expectSameCoverage(const Drawn& gpu, const Drawn& cpu) {
 // what the CPU draws.
 std::pair<Drawn, Drawn> drawnAroundAMove(const std::vector<Decal>& decals, size_t object,
                                          const glm::dvec3& offset) {
-    std::optional<Culler> gpu = Culler::make(true);
+    std::optional<Culler> gpu = Culler::holding(decals);
     EXPECT_TRUE(gpu);
     if (!gpu) return {};
-    gpu->h.projector.setDecals(decals);
     const Drawn before = gpu->draw();
     expectSameCoverage(before, cpuDrawn(decals));
     gpu->moveObject(object, offset);
@@ -143,9 +149,8 @@ std::pair<Drawn, Drawn> drawnAroundAMove(const std::vector<Decal>& decals, size_
 TEST(GroupCulling, CullsTheGroupsOutOfViewWholeAndDrawsWhatTheCpuDraws) {
     SPATTER_REQUIRE_GL(gl);
     const std::vector<Decal> decals = wallDecals(300, 12, 300, 3);
-    std::optional<Culler> gpu = Culler::make(true);
+    std::optional<Culler> gpu = Culler::holding(decals);
     ASSERT_TRUE(gpu);
-    gpu->h.projector.setDecals(decals);
     const Drawn drawn = gpu->draw();
     std::printf("%zu drawn; %zu of %zu groups tested by place\n", drawn.stats.drawn, drawn.stats.groupsTested,
                 (decals.size() + kGroupPlaces - 1) / kGroupPlaces);
@@ -178,9 +183,8 @@ TEST(GroupCulling, CullsTheGroupsOutOfViewWholeFarFromTheOrigin) {
 TEST(GroupCulling, WritesAGroupsBoxAgainWhenItsDecalsChange) {
     SPATTER_REQUIRE_GL(gl);
     std::vector<Decal> decals = wallDecals(300, 12, 0, 5);
-    std::optional<Culler> gpu = Culler::make(true);
+    std::optional<Culler> gpu = Culler::holding(decals);
     ASSERT_TRUE(gpu);
-    gpu->h.projector.setDecals(decals);
     const size_t testedBefore = gpu->draw().stats.groupsTested;
     Rng rng(9);
     DecalChanges changes;
@@ -223,9 +227,8 @@ TEST(GroupCulling, DrawsWhatTheCpuDrawsWhenEveryGroupHoldsDecalsInView) {
     std::vector<Decal> decals = wallDecals(3000, 0, 0, 11);
     for (size_t i = 1; i < decals.size(); i += 2)
         decals[i].center.x += 500.0f;
-    std::optional<Culler> gpu = Culler::make(true);
+    std::optional<Culler> gpu = Culler::holding(decals);
     ASSERT_TRUE(gpu);
-    gpu->h.projector.setDecals(decals);
     const Drawn cpu = cpuDrawn(decals);
     for (int frame = 0; frame < 3; ++frame) {
         SCOPED_TRACE(frame);
@@ -243,9 +246,8 @@ TEST(GroupCulling, TestsTheFewGroupsInViewAfterFramesThatTestedEveryGroup) {
     SPATTER_REQUIRE_GL(gl);
     const std::vector<Decal> decals = wallDecals(300, 12, 0, 23);
     const glm::dvec3 left(-500.0, 0.0, 0.0);
-    std::optional<Culler> gpu = Culler::make(true);
+    std::optional<Culler> gpu = Culler::holding(decals);
     ASSERT_TRUE(gpu);
-    gpu->h.projector.setDecals(decals);
     gpu->moveObject(0, left);
     const Drawn cpuLeft = cpuDrawn(decals, 0, left);
     for (int frame = 0; frame < 2; ++frame) {
@@ -268,9 +270,8 @@ TEST(GroupCulling, TestsTheFewGroupsInViewAfterFramesThatTestedEveryGroup) {
 TEST(GroupCulling, CountsTheDecalsOfAnObjectTheHostTakesOverInGroupsOutOfView) {
     SPATTER_REQUIRE_GL(gl);
     const std::vector<Decal> decals = wallDecals(300, 12, 0, 17);
-    std::optional<Culler> gpu = Culler::make(true);
+    std::optional<Culler> gpu = Culler::holding(decals);
     ASSERT_TRUE(gpu);
-    gpu->h.projector.setDecals(decals);
     const Drawn before = gpu->draw();
     gpu->h.projector.setHostDrawn({}, {1, 0});
     const Drawn taken = gpu->draw();
