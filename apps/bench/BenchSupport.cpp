@@ -411,13 +411,19 @@ Status writeJson(const Json& j, const std::string& path) {
     return {};
 }
 
-std::string scratchDirectory(const std::string& name) {
+ScratchDirectory::ScratchDirectory(const std::string& name) {
     std::error_code ec;
     const fs::path dir =
         fs::temp_directory_path(ec) / ("spatter-bench-" + std::to_string(getpid()) + "-" + name);
+    path_ = dir.string();
     fs::remove_all(dir, ec);
     fs::create_directories(dir, ec);
-    return dir.string();
+    if (ec) error_ = "cannot create " + path_ + ": " + ec.message();
+}
+
+ScratchDirectory::~ScratchDirectory() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
 }
 
 } // namespace spatter::bench

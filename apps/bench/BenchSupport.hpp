@@ -164,7 +164,21 @@ Json number(double v);
 // Writes `j` (indented) to `path`. Fails naming the file.
 Status writeJson(const Json& j, const std::string& path);
 
-// A fresh directory under the system temp directory (unique per process and name).
-std::string scratchDirectory(const std::string& name);
+// A fresh directory under the system temp directory (unique per process and name), removed with
+// everything in it when this object goes.
+class ScratchDirectory {
+public:
+    explicit ScratchDirectory(const std::string& name);
+    ~ScratchDirectory();
+    ScratchDirectory(const ScratchDirectory&) = delete;
+    ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+
+    const std::string& path() const { return path_; }
+    // Empty when the directory could not be made.
+    const std::string& error() const { return error_; }
+
+private:
+    std::string path_, error_;
+};
 
 } // namespace spatter::bench

@@ -265,7 +265,8 @@ int runLoadCommand(int argc, char** argv) {
         return usageError(kLoadCommand, "--grid must be from 2 to 4096 and --repeat positive");
 
     const Grid grid = wavyGrid(n);
-    const std::string dir = scratchDirectory("load");
+    const ScratchDirectory scratch("load");
+    const std::string& dir = scratch.path();
     struct File {
         std::string name, path;
         int speed; // Draco's encoder speed; -1: uncompressed, -2: meshopt

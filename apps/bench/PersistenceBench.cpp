@@ -133,7 +133,8 @@ int runPersistenceCommand(int argc, char** argv) {
     DecalSystem& src = source.value();
     DecalSystem& dst = target.value();
     std::vector<uint8_t> bytes;
-    const std::string path = scratchDirectory("persistence") + "/decals.save";
+    const ScratchDirectory scratch("persistence");
+    const std::string path = scratch.path() + "/decals.save";
     std::vector<std::pair<std::string, Result<double>>> rows;
     rows.emplace_back("save", timed(runs, [&] {
                           bytes = saveDecals(src);
@@ -143,7 +144,6 @@ int runPersistenceCommand(int argc, char** argv) {
                       timed(runs, [&] { return loaded(loadDecals(dst, bytes.data(), bytes.size())); }));
     rows.emplace_back("save file", timed(runs, [&] { return saveDecalsToFile(src, path); }));
     rows.emplace_back("load file", timed(runs, [&] { return loaded(loadDecalsFromFile(dst, path)); }));
-    std::remove(path.c_str());
     for (const auto& [name, t] : rows)
         if (!t) {
             std::fprintf(stderr, "spatter-bench persistence: %s: %s\n", name.c_str(), t.error().c_str());

@@ -237,9 +237,10 @@ void cpuSkips(bool quick, std::vector<Skip>& out) {
         if (!in) {
             s.error = in.error();
         } else {
+            const ScratchDirectory cache("skip-cache");
             ProxySettings ps;
             ps.backend = ProxyBackend::MeshOpt;
-            ps.cacheDirectory = scratchDirectory("skip-cache");
+            ps.cacheDirectory = cache.path();
             Result<Proxy> first = buildProxy(in->mesh, ps);
             Result<Proxy> again = buildProxy(in->mesh, ps);
             ProxySettings none = ps;

@@ -1,5 +1,6 @@
 #include "StressReport.hpp"
 
+#include "BenchSupport.hpp"
 #include "StressCase.hpp"
 
 #include "spatter/render/GlContext.hpp"
@@ -16,7 +17,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace spatter::bench {
@@ -190,12 +190,9 @@ int runStressCommand(int argc, char** argv) {
     } else {
         config.glError = "--no-gpu";
     }
-    const fs::path scratch = fs::temp_directory_path() / ("spatter-bench-stress-" + std::to_string(getpid()));
-    std::error_code ec;
-    fs::remove_all(scratch, ec);
-    fs::create_directories(scratch, ec);
-    if (ec) return usageError("cannot create " + scratch.string() + ": " + ec.message());
-    config.scratchDir = scratch.string();
+    const ScratchDirectory scratch("stress");
+    if (!scratch.error().empty()) return usageError(scratch.error());
+    config.scratchDir = scratch.path();
 
     std::printf("spatter-bench stress: %s size, seed %llu\n", config.full ? "full" : "CI",
                 static_cast<unsigned long long>(config.seed));
@@ -224,7 +221,6 @@ int runStressCommand(int argc, char** argv) {
         allPass = allPass && r.pass();
         report["cases"].push_back(toJson(r));
     }
-    fs::remove_all(scratch, ec);
     report["pass"] = allPass;
     if (!jsonPath.empty()) {
         std::ofstream out(jsonPath);

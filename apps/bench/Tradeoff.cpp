@@ -451,7 +451,8 @@ int runTradeoffCommand(int argc, char** argv) {
     DecalType type;
     type.name = "tradeoff";
     type.size = glm::vec2(float(0.02 * diagonal));
-    const std::string work = scratchDirectory("tradeoff");
+    const ScratchDirectory scratch("tradeoff");
+    const std::string& work = scratch.path();
 
     // The render mesh: the reference of every error column.
     Result<ClosestPointQuery> renderQuery = ClosestPointQuery::create(input.mesh);

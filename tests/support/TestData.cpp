@@ -4,7 +4,9 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <mutex>
 #include <unistd.h>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -26,11 +28,41 @@ std::string sharedDataPath(const std::string& relative) {
     return fs::exists(p, ec) ? p.lexically_normal().string() : std::string();
 }
 
+namespace {
+
+// The scratch directories this process made: removed when it exits after every test passed, kept
+// (their names carry the process id) for a look at what a failing test wrote.
+class ScratchRegistry {
+public:
+    void add(const fs::path& dir) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        dirs_.push_back(dir);
+    }
+    ~ScratchRegistry() {
+        if (!::testing::UnitTest::GetInstance()->Passed()) return;
+        std::error_code ec;
+        for (const fs::path& dir : dirs_)
+            fs::remove_all(dir, ec);
+    }
+
+private:
+    std::mutex mutex_;
+    std::vector<fs::path> dirs_;
+};
+
+ScratchRegistry& scratchRegistry() {
+    static ScratchRegistry registry;
+    return registry;
+}
+
+} // namespace
+
 std::string scratchDir(const std::string& name) {
     fs::path p = fs::temp_directory_path() / ("spatter-test-" + name + "-" + std::to_string(getpid()));
     std::error_code ec;
     fs::remove_all(p, ec);
     fs::create_directories(p);
+    scratchRegistry().add(p);
     return p.string();
 }
 

@@ -12,7 +12,8 @@ std::string sharedDataDir();
 // skipped with a message, except under CI=true, where it fails: there the data must be present.
 std::string sharedDataPath(const std::string& relative);
 
-// A fresh empty directory under the system temp dir for files a test writes (unique per process).
+// A fresh empty directory under the system temp dir for files a test writes (unique per process),
+// removed when the process exits with every test passed.
 std::string scratchDir(const std::string& name);
 // scratchDir of `prefix` followed by the running test's name.
 std::string scratchForTest(const std::string& prefix);
