@@ -29,12 +29,14 @@ constexpr size_t kStartSamples = 1024, kStartChunk = 64;
 constexpr size_t kSubtreesPerWorker = 32;
 // Subtrees walked first, per thread: those with the farthest starting samples (walkAll).
 constexpr size_t kFarthestFirstPerWorker = 2;
-// How far outside an edge of B the overlay bound cuts a piece, relative to the largest coordinates of
-// both meshes: above the rounding of a corner that lies on the edge (a proxy's vertex is often one of
-// the render mesh's), so that such a corner starts no sliver of a part.
+// How far outside an edge of B the overlay bound clips a part, relative to the largest coordinates of
+// both meshes: above the rounding of the parts' corners, so that neighbouring parts overlap (and a
+// proxy corner lying on an edge, as one of the render mesh's vertices does, belongs to both sides).
 constexpr double kOverlayEps = 1e-12;
-// The overlay's cost model (measured on the shared meshes): about four of its steps per triangle of B
-// under a piece, and four steps cost about one exact distance query.
+// The overlay's cost model: it pays where it likely costs less than cutting, counting four steps per
+// triangle of B under a piece and four steps as one exact distance query (it visits about one triangle
+// per triangle under the piece; counting one to four steps per triangle gave the same build times on
+// the shared meshes and the gallery).
 constexpr double kStepsPerTriangle = 4.0, kStepsPerQuery = 4.0;
 // B's mean triangle area, as a fraction of the acceptance level squared, below which no piece is
 // laid over B: pieces are then bounded by Lipschitz long before they cover enough of B's triangles

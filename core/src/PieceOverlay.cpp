@@ -12,60 +12,42 @@ namespace spatter::detail {
 
 namespace {
 
-// Corners a part may have: three of the piece, and at most one more per cut it went through.
-constexpr int kMaxCorners = 10;
-// Parts bounded or passed on before overlayBound gives up (a piece over more triangles is cut by the
-// caller first).
-constexpr int kMaxSteps = 512;
+// Corners a part may have: a triangle cut by three planes has at most six.
+constexpr int kMaxCorners = 6;
+// Triangles visited before overlayBound gives up (the caller then cuts the piece).
+constexpr size_t kMaxVisits = 1 << 14;
 // The cosine of the largest angle between the piece's normal and a triangle it is laid over: a
 // triangle seen more edge-on, or from behind (a fold of the mesh under the piece), ends the overlay.
 constexpr double kMinFacing = 0.1;
 
-// A convex part of the piece and the triangle it is to be laid over.
+// A convex part of the piece: its corners in order around it.
 struct Part {
     std::array<glm::dvec3, kMaxCorners> corner;
     int count = 0;
-    uint32_t triangle = 0;
-
-    bool add(const glm::dvec3& p) {
-        if (count == kMaxCorners) return false;
-        corner[size_t(count++)] = p;
-        return true;
-    }
 };
 
-// Cuts `part` by the plane dot(s, x - o) = -eps (s unit): `in` is the part where dot(s, x - o) >=
-// -eps, `out` where it is <= -eps, each crossing point given to both. False when a part would have
-// more than kMaxCorners corners.
-bool cut(const Part& part, const glm::dvec3& s, const glm::dvec3& o, double eps, Part& in, Part& out) {
+// Clips `part` to the side dot(s, x - o) >= -eps of a plane (s unit). False when the result would
+// have more than kMaxCorners corners.
+bool clip(Part& part, const glm::dvec3& s, const glm::dvec3& o, double eps) {
     double d[kMaxCorners];
-    bool anyIn = false, anyOut = false;
+    bool anyOut = false;
     for (int i = 0; i < part.count; ++i) {
         d[i] = glm::dot(s, part.corner[size_t(i)] - o) + eps;
-        anyIn = anyIn || d[i] > 0.0;
         anyOut = anyOut || d[i] < 0.0;
     }
-    in.count = out.count = 0;
-    if (!anyOut) {
-        in = part;
-        return true;
-    }
-    if (!anyIn) {
-        out = part;
-        return true;
-    }
-    bool ok = true;
+    if (!anyOut) return true;
+    Part in;
     for (int i = 0; i < part.count; ++i) {
         const int j = (i + 1) % part.count;
         const glm::dvec3& a = part.corner[size_t(i)];
-        if (d[i] >= 0.0) ok = in.add(a) && ok;
-        if (d[i] <= 0.0) ok = out.add(a) && ok;
-        if ((d[i] < 0.0 && d[j] > 0.0) || (d[i] > 0.0 && d[j] < 0.0)) {
-            const glm::dvec3 x = a + (part.corner[size_t(j)] - a) * (d[i] / (d[i] - d[j]));
-            ok = in.add(x) && out.add(x) && ok;
-        }
+        const bool crosses = (d[i] < 0.0 && d[j] > 0.0) || (d[i] > 0.0 && d[j] < 0.0);
+        if (in.count + (d[i] >= 0.0) + crosses > kMaxCorners) return false;
+        if (d[i] >= 0.0) in.corner[size_t(in.count++)] = a;
+        if (crosses)
+            in.corner[size_t(in.count++)] = a + (part.corner[size_t(j)] - a) * (d[i] / (d[i] - d[j]));
     }
-    return ok;
+    part = in;
+    return true;
 }
 
 // The unit normal of t's side plane through its edge k (corner k to k + 1) and along `n`, pointing
@@ -85,10 +67,65 @@ std::array<glm::dvec3, 3> cornersOf(const OverlayMesh& mesh, uint32_t t) {
     return {mesh.positions[c[0]], mesh.positions[c[1]], mesh.positions[c[2]]};
 }
 
+// The corner of mesh triangle u that is neither a nor b (u shares the edge ab).
+glm::dvec3 apex(const OverlayMesh& mesh, uint32_t u, const glm::dvec3& a, const glm::dvec3& b) {
+    const std::array<glm::dvec3, 3> c = cornersOf(mesh, u);
+    for (const glm::dvec3& p : c)
+        if (p != a && p != b) return p;
+    return c[0];
+}
+
 // Whether the triangle `t` faces along n, steeply enough for its part of a piece to be well defined.
 bool facesAlong(const std::array<glm::dvec3, 3>& t, const glm::dvec3& n) {
     const glm::dvec3 facing = glm::cross(t[1] - t[0], t[2] - t[0]);
     return glm::dot(facing, n) > kMinFacing * glm::length(facing);
+}
+
+// The triangles one overlay visits, breadth first, each queued once.
+class Visits {
+public:
+    // Starts a new overlay over a mesh of `triangles` triangles.
+    void start(size_t triangles) {
+        if (queuedIn_.size() != triangles || ++call_ == 0) {
+            queuedIn_.assign(triangles, 0);
+            call_ = 1;
+        }
+        queue_.clear();
+    }
+    void push(uint32_t t) {
+        if (queuedIn_[t] == call_) return;
+        queuedIn_[t] = call_;
+        queue_.push_back(t);
+    }
+    size_t size() const { return queue_.size(); }
+    uint32_t operator[](size_t i) const { return queue_[i]; }
+
+private:
+    std::vector<uint32_t> queuedIn_; // the call that last queued each triangle
+    std::vector<uint32_t> queue_;
+    uint32_t call_ = 0;
+};
+
+// The part of the piece over triangle t: the piece clipped by t's side planes (each eps outside its
+// edge), and those planes. False where t is seen edge-on.
+bool partOver(const Part& piece, const std::array<glm::dvec3, 3>& t, const glm::dvec3& n, double eps,
+              Part& part, glm::dvec3 side[3]) {
+    part = piece;
+    for (int k = 0; k < 3 && part.count >= 3; ++k)
+        if (!sidePlane(t, k, n, side[k]) || !clip(part, side[k], t[k], eps)) return false;
+    return true;
+}
+
+// Whether the overlay goes on across edge k of t (side plane s through t[k]): where the part over t
+// reaches the edge and the piece reaches past it by more than eps (a piece with an edge along it,
+// as on a crease of the mesh, does not).
+bool goesOn(const Part& part, const Part& piece, const glm::dvec3& s, const glm::dvec3& o, double eps) {
+    bool reaches = false, past = false;
+    for (int c = 0; c < part.count && !reaches; ++c)
+        reaches = glm::dot(s, part.corner[size_t(c)] - o) <= eps;
+    for (int c = 0; c < piece.count && !past; ++c)
+        past = glm::dot(s, piece.corner[size_t(c)] - o) < -eps;
+    return reaches && past;
 }
 
 } // namespace
@@ -141,43 +178,43 @@ double overlayBound(const std::array<glm::dvec3, 3>& piece, const std::array<uin
     const double length = glm::length(n);
     if (!(length > 0.0)) return cap;
     n /= length;
+    const size_t triangles = mesh.neighbours.across.size() / 3;
     for (uint32_t t : near) // a piece whose corners lie over a fold of the mesh: no overlay
-        if (size_t(t) >= mesh.neighbours.across.size() / 3 || !facesAlong(cornersOf(mesh, t), n)) return cap;
-    const uint32_t start = near[0];
-    thread_local std::vector<Part> waiting; // parts still to lay, each with its triangle
-    waiting.assign(1, Part());
-    waiting[0].corner[0] = piece[0];
-    waiting[0].corner[1] = piece[1];
-    waiting[0].corner[2] = piece[2];
-    waiting[0].count = 3;
-    waiting[0].triangle = start;
+        if (size_t(t) >= triangles || !facesAlong(cornersOf(mesh, t), n)) return cap;
+    const Part whole{{piece[0], piece[1], piece[2]}, 3};
+    thread_local Visits visits;
+    visits.start(triangles);
+    for (uint32_t t : near)
+        visits.push(t);
     double bound = 0.0;
-    Part in, out;
-    for (int steps = 0; !waiting.empty(); ++steps) {
-        if (steps == kMaxSteps) return cap;
-        Part remaining = waiting.back();
-        waiting.pop_back();
-        const uint32_t t = remaining.triangle;
+    bool laid = false;
+    for (size_t i = 0; i < visits.size(); ++i) {
+        const uint32_t t = visits[i];
         const std::array<glm::dvec3, 3> corners = cornersOf(mesh, t);
-        if (!facesAlong(corners, n)) return cap;
-        for (int k = 0; k < 3 && remaining.count >= 3; ++k) {
-            glm::dvec3 s;
-            if (!sidePlane(corners, k, n, s) || !cut(remaining, s, corners[k], eps, in, out)) return cap;
-            if (out.count >= 3) {
-                out.triangle = mesh.neighbours.across[3 * size_t(t) + size_t(k)];
-                if (out.triangle == EdgeNeighbours::kNoTriangle) return cap;
-                waiting.push_back(out);
-            }
-            remaining = in;
-        }
-        for (int i = 0; i < remaining.count && remaining.count >= 3; ++i) {
-            const glm::dvec3& p = remaining.corner[size_t(i)];
+        Part part;
+        glm::dvec3 side[3];
+        if (i == kMaxVisits || !facesAlong(corners, n) || !partOver(whole, corners, n, eps, part, side))
+            return cap;
+        if (part.count < 3) continue;
+        laid = true;
+        for (int c = 0; c < part.count; ++c) {
+            const glm::dvec3& p = part.corner[size_t(c)];
             bound =
                 std::max(bound, glm::length(p - closestOnTriangle(p, corners[0], corners[1], corners[2])));
-            if (bound >= cap) return cap;
+        }
+        if (bound >= cap) return cap;
+        for (int k = 0; k < 3; ++k) {
+            if (!goesOn(part, whole, side[k], corners[k], eps)) continue;
+            const uint32_t u = mesh.neighbours.across[3 * size_t(t) + size_t(k)];
+            // Past a border, or onto a triangle on t's side of the edge (folded over it): the parts
+            // would not cover the piece.
+            if (u == EdgeNeighbours::kNoTriangle ||
+                !(glm::dot(side[k], apex(mesh, u, corners[k], corners[(k + 1) % 3]) - corners[k]) < 0.0))
+                return cap;
+            visits.push(u);
         }
     }
-    return bound;
+    return laid ? bound : cap;
 }
 
 } // namespace spatter::detail

@@ -3,17 +3,23 @@
 // piece lying over many triangles of the other mesh at once.
 //
 // For a triangle t, d_t (the distance to t) is convex, so on any convex region its largest value is
-// taken at a corner of the region; and d_B <= d_t for every triangle t of B. So any partition of a
-// piece P into convex parts, each paired with one triangle of B, bounds sup over P of d_B by the
-// largest d_t over the parts' corners. overlayBound makes such a partition by laying P over B along
-// P's normal n: the part of P above triangle t is P cut by t's three side planes (each through an
-// edge of t and along n, so that it crosses P's plane at right angles), and the part beyond an edge
-// goes on to the triangle across that edge. Each cut computes its crossing points once and gives
-// them to both sides, so the parts cover P exactly (up to the rounding of those points, which the
-// certifier's rounding allowance covers); a cut is made eps outside the edge, so that a corner lying
-// on an edge (a proxy's vertex is often one of the render mesh's) starts no sliver. Where the parts
-// would run past a border of B, past a triangle seen edge-on along n, or past a budget of steps,
-// there is no bound (the caller's cap) and the caller cuts P instead.
+// taken at a corner of the region; and d_B <= d_t for every triangle t of B. So any convex parts
+// that together cover a piece P, each paired with one triangle of B, bound sup over P of d_B by the
+// largest d_t over the parts' corners. overlayBound lays P over B along P's normal n: the part of P
+// over triangle t is P clipped by t's three side planes (each through an edge of t and along n, so
+// that it crosses P's plane at right angles, and moved eps outside the edge, so that neighbouring
+// parts overlap by more than the rounding of their corners). It visits B's triangles breadth first
+// from those closest to P's corners, going on across an edge of t wherever t's part reaches that
+// edge and P reaches past its line; each triangle is visited once, so the work is about one visit per
+// triangle under P. The parts cover P: a point of P outside them would be separated from them by an
+// edge that the walk reached with P reaching past it, and the triangle across lies on the far side of
+// that edge (around a vertex, the triangles of its fan follow one another around it). That needs
+// every visited triangle to face along n and each next one to lie on the far side of the edge it was
+// reached across (not folded back over the one before, which a mesh wound inconsistently would not
+// show by its facing); where that fails, where the walk would run past a border of B, or past a
+// budget of visits, there is no bound (the caller's cap) and the caller cuts P instead. A point of P
+// past an edge's line by at most eps, where the walk does not go on, lies within eps of a part, so
+// its distance is at most eps more, which the certifier's rounding allowance covers.
 
 #include <array>
 #include <cstdint>
@@ -41,11 +47,11 @@ struct OverlayMesh {
     const EdgeNeighbours& neighbours;
 };
 
-// An upper bound of sup over the triangle `piece` of the distance to `mesh`, laid over it from mesh
-// triangle `start` (see the top of this file); `cap` when there is none or it is at least `cap`.
-// `eps`: how far outside an edge its cut is made (absolute, >= 0). `near`: the mesh triangles
-// closest to the piece's corners; the overlay starts from the first, and gives up at once where one
-// of them does not face along the piece's normal (a fold of the mesh under the piece).
+// An upper bound of sup over the triangle `piece` of the distance to `mesh`, laid over it (see the
+// top of this file); `cap` when there is none or it is at least `cap`. `eps`: how far outside an edge
+// a part is clipped (absolute, >= 0). `near`: the mesh triangles closest to the piece's corners; the
+// overlay starts from them, and gives up at once where one of them does not face along the piece's
+// normal (a fold of the mesh under the piece).
 double overlayBound(const std::array<glm::dvec3, 3>& piece, const std::array<uint32_t, 3>& near,
                     const OverlayMesh& mesh, double eps, double cap);
 
