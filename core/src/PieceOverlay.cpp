@@ -14,7 +14,7 @@ namespace {
 
 // Corners a part may have: a triangle cut by three planes has at most six.
 constexpr int kMaxCorners = 6;
-// Triangles visited before overlayBound gives up (the caller then cuts the piece).
+// Triangles an overlay may visit before it gives up (the caller then cuts the piece).
 constexpr size_t kMaxVisits = 1 << 14;
 // The cosine of the largest angle between the piece's normal and a triangle it is laid over: a
 // triangle seen more edge-on, or from behind (a fold of the mesh under the piece), ends the overlay.
@@ -81,27 +81,37 @@ bool facesAlong(const std::array<glm::dvec3, 3>& t, const glm::dvec3& n) {
     return glm::dot(facing, n) > kMinFacing * glm::length(facing);
 }
 
-// The triangles one overlay visits, breadth first, each queued once.
+// The triangles one overlay visits, breadth first, each queued once, at most kMaxVisits. Which were
+// queued is kept in a table of its own size, stamped by the overlay that wrote each slot, so that
+// neither the size of the mesh nor switching between meshes costs anything.
 class Visits {
 public:
-    // Starts a new overlay over a mesh of `triangles` triangles.
-    void start(size_t triangles) {
-        if (queuedIn_.size() != triangles || ++call_ == 0) {
-            queuedIn_.assign(triangles, 0);
+    void start() {
+        if (++call_ == 0) { // the stamps wrapped around: none may pass for this overlay's
+            slots_.assign(kSlots, Slot());
             call_ = 1;
         }
         queue_.clear();
     }
-    void push(uint32_t t) {
-        if (queuedIn_[t] == call_) return;
-        queuedIn_[t] = call_;
+    // Queues t unless it was queued; false when that would pass kMaxVisits.
+    bool push(uint32_t t) {
+        size_t i = (t * 2654435761u) & (kSlots - 1);
+        for (; slots_[i].call == call_; i = (i + 1) & (kSlots - 1))
+            if (slots_[i].triangle == t) return true;
+        if (queue_.size() == kMaxVisits) return false;
+        slots_[i] = {t, call_};
         queue_.push_back(t);
+        return true;
     }
     size_t size() const { return queue_.size(); }
     uint32_t operator[](size_t i) const { return queue_[i]; }
 
 private:
-    std::vector<uint32_t> queuedIn_; // the call that last queued each triangle
+    static constexpr size_t kSlots = 2 * kMaxVisits; // a power of two, at most half full
+    struct Slot {
+        uint32_t triangle = 0, call = 0;
+    };
+    std::vector<Slot> slots_ = std::vector<Slot>(kSlots);
     std::vector<uint32_t> queue_;
     uint32_t call_ = 0;
 };
@@ -183,7 +193,7 @@ double overlayBound(const std::array<glm::dvec3, 3>& piece, const std::array<uin
         if (size_t(t) >= triangles || !facesAlong(cornersOf(mesh, t), n)) return cap;
     const Part whole{{piece[0], piece[1], piece[2]}, 3};
     thread_local Visits visits;
-    visits.start(triangles);
+    visits.start();
     for (uint32_t t : near)
         visits.push(t);
     double bound = 0.0;
@@ -193,8 +203,7 @@ double overlayBound(const std::array<glm::dvec3, 3>& piece, const std::array<uin
         const std::array<glm::dvec3, 3> corners = cornersOf(mesh, t);
         Part part;
         glm::dvec3 side[3];
-        if (i == kMaxVisits || !facesAlong(corners, n) || !partOver(whole, corners, n, eps, part, side))
-            return cap;
+        if (!facesAlong(corners, n) || !partOver(whole, corners, n, eps, part, side)) return cap;
         if (part.count < 3) continue;
         laid = true;
         for (int c = 0; c < part.count; ++c) {
@@ -211,7 +220,7 @@ double overlayBound(const std::array<glm::dvec3, 3>& piece, const std::array<uin
             if (u == EdgeNeighbours::kNoTriangle ||
                 !(glm::dot(side[k], apex(mesh, u, corners[k], corners[(k + 1) % 3]) - corners[k]) < 0.0))
                 return cap;
-            visits.push(u);
+            if (!visits.push(u)) return cap;
         }
     }
     return laid ? bound : cap;
