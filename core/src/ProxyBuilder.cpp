@@ -66,7 +66,8 @@ constexpr double kSearchStep = 1.5, kSearchStepMax = 4.0;
 // coarse triangle hides its largest distance inside, and of the render mesh. A run whose sampled
 // distance is at most kLikelyFraction of the tolerance is taken as likely within and certified at the
 // end; one between that and the tolerance is certified at once (the samples often miss the last few
-// percent of the distance).
+// percent of the distance), unless a run certified within already sampled as far (the distance is then
+// a feature the runs share, which that certificate saw).
 constexpr size_t kSampledProxyTriangles = 8192, kSampledRenderTriangles = 1024;
 constexpr double kLikelyFraction = 0.9;
 // Where a certificate's measured distance comes within its margin of the tolerance, the margin
@@ -288,6 +289,7 @@ struct Candidate {
     std::shared_ptr<const HausdorffSurface> surface;
     HausdorffResult proxyToRender, renderToProxy;
     bool certified = false; // the two results above are the certificate's
+    double sampled = 0.0;   // the largest distance its sampled judgement measured (Judge::Sampled)
     double bound() const { return std::max(proxyToRender.upper, renderToProxy.upper); }
     double lower() const { return std::max(proxyToRender.lower, renderToProxy.lower); }
     bool within(double tolerance) const {
@@ -515,10 +517,19 @@ struct SearchContext {
     std::vector<std::string>& notes;
 };
 
-// `withinTriangles`: the triangles of the coarsest run judged within so far (SIZE_MAX: none). A coarser
-// target that keeps as many gains nothing over that run (mostly it is the same proxy: meshoptimizer's
-// collapses run in order of error) and is not judged.
-Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge, size_t withinTriangles) {
+// The largest sampled distance of the runs in `accepted` certified within (-1 when none is).
+double certifiedSampled(const std::vector<Candidate>& accepted, double tolerance) {
+    double largest = -1.0;
+    for (const Candidate& c : accepted)
+        if (c.certified && c.within(tolerance)) largest = std::max(largest, c.sampled);
+    return largest;
+}
+
+// `accepted`: the runs judged within so far, the coarsest last. A coarser target that keeps as many
+// triangles as that one gains nothing over it (mostly it is the same proxy: meshoptimizer's collapses
+// run in order of error) and is not judged.
+Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
+                           const std::vector<Candidate>& accepted) {
     const Mesh* input = &k.meshoptInput;
     for (const CoarseInput& level : k.coarse)
         if (target >= level.target) input = &level.mesh;
@@ -531,7 +542,7 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge, s
         j.removedNothing = j.within = true;
         return j;
     }
-    if (j.candidate.mesh.triangleCount() == withinTriangles) {
+    if (!accepted.empty() && j.candidate.mesh.triangleCount() == accepted.back().mesh.triangleCount()) {
         j.repeated = true;
         return j;
     }
@@ -543,7 +554,10 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge, s
             !st)
             return fail(st.error());
         j.within = j.measured <= k.tolerance;
-        if (!j.within || j.measured <= kLikelyFraction * k.tolerance) return j;
+        j.candidate.sampled = j.measured;
+        if (!j.within || j.measured <= kLikelyFraction * k.tolerance ||
+            j.measured <= certifiedSampled(accepted, k.tolerance))
+            return j;
     }
     if (Status st = certify(j.candidate, *render.value(), k.certifying, k.progress.stage(0.2, 0.8)); !st)
         return fail(st.error());
@@ -557,8 +571,7 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge, s
 Status bisect(const SearchContext& k, Judge judge, double target, Bracket& bracket, uint32_t maxRuns,
               SearchOutcome& out, std::vector<Candidate>& accepted, std::optional<Candidate>& finest) {
     for (uint32_t runs = 1; out.runs < maxRuns && !bracket.closed(); ++runs) {
-        Result<Judged> j =
-            runAndJudge(k, target, judge, accepted.empty() ? SIZE_MAX : accepted.back().mesh.triangleCount());
+        Result<Judged> j = runAndJudge(k, target, judge, accepted);
         if (!j) return fail(j.error());
         ++out.runs;
         k.progress.nextRun();
