@@ -1,9 +1,10 @@
-// Random pairs of meshes made to trouble the certifier: strips folded back and forth and flattened
-// tubes (wound to face up, so that only their geometry shows the folds), steps, holes, turned
-// triangles, crossing sheets, seams along every edge, turned and moved off the origin. Each pair is
-// bounded both ways against a dense estimate. (Every draw of the generator is a statement of its own,
-// so that the pairs do not depend on the compiler's order of evaluating arguments.)
+// Random meshes made to trouble the certifier and the proxy search: strips folded back and forth and
+// flattened tubes (wound to face up, so that only their geometry shows the folds), steps, holes,
+// turned triangles, crossing sheets, seams along every edge, turned and moved off the origin. Their
+// bounds are checked against dense estimates. (Every draw of the generator is a statement of its own,
+// so that the meshes do not depend on the compiler's order of evaluating arguments.)
 #include "spatter/core/HausdorffBound.hpp"
+#include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/Random.hpp"
 
 #include "ReferenceGeometry.hpp"
@@ -205,4 +206,33 @@ TEST(HausdorffRandom, BoundsStayAboveTheDistancesAttainedOverFoldsStepsHolesAndS
                 << which << ": within " << s.tolerance << ", dense " << dense;
         }
     }
+}
+
+// Proxies of such meshes, built as the builder's search builds them, at tolerances from 0.3% to 3% of
+// the diagonal: the proxy's h is never below the dense estimate of the two-sided distance, and a
+// proxy that meets the tolerance is within it by the dense estimate too.
+TEST(ProxyBuilder, ProxiesOfFoldedSteppedHoledAndSeamedMeshesHoldTheirBound) {
+    uint32_t met = 0;
+    for (uint64_t seed = 0; seed < 24; ++seed) {
+        Rng rng(seed + 1000);
+        Mesh render = troublesome(rng);
+        Mesh unused = coarseSheet(rng);
+        place(rng, render, unused);
+        ProxySettings settings;
+        settings.tolerance = rng.uniform(0.003f, 0.03f);
+        settings.smallMeshTriangles = 0; // simplify every mesh, however small
+        Result<Proxy> proxy = buildProxy(render, settings);
+        const std::string which = "seed " + std::to_string(seed);
+        ASSERT_TRUE(proxy) << which << ": " << proxy.error();
+        if (proxy->source != ProxySource::Simplified) continue;
+        const double dense = std::max(denseOneSided(proxy->mesh, render, 20000, seed),
+                                      denseOneSided(render, proxy->mesh, 20000, seed));
+        EXPECT_GE(proxy->errorBound, dense) << which;
+        if (proxy->toleranceMet) {
+            EXPECT_LE(dense, proxy->tolerance) << which;
+            ++met;
+        }
+        EXPECT_LE(proxy->proxyTriangles, proxy->inputTriangles) << which;
+    }
+    EXPECT_GE(met, 20u); // simplified and certified: the checks above are not vacuous
 }
