@@ -1,5 +1,5 @@
 #pragma once
-// Internal to core: the simplifiers buildProxy runs (ProxyBuilder.cpp), each giving a mesh of the
+// Internal to core: the simplifiers the proxy search runs (ProxySearch.cpp), each giving a mesh of the
 // referenced vertices only, which the builder then welds, splits at creases and certifies.
 
 #include "spatter/core/Mesh.hpp"
