@@ -3,6 +3,7 @@
 // turned triangles, crossing sheets, seams along every edge, turned and moved off the origin. Their
 // bounds are checked against dense estimates. (Every draw of the generator is a statement of its own,
 // so that the meshes do not depend on the compiler's order of evaluating arguments.)
+#include "spatter/core/DrawnNormals.hpp"
 #include "spatter/core/HausdorffBound.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/Random.hpp"
@@ -13,6 +14,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 using namespace spatter;
@@ -210,7 +212,8 @@ TEST(HausdorffRandom, BoundsStayAboveTheDistancesAttainedOverFoldsStepsHolesAndS
 
 // Proxies of such meshes, built as the builder's search builds them, at tolerances from 0.3% to 3% of
 // the diagonal: the proxy's h is never below the dense estimate of the two-sided distance, and a
-// proxy that meets the tolerance is within it by the dense estimate too.
+// proxy that meets the tolerance is within it by the dense estimate too; its table of drawn normals
+// fits it and holds unit normals.
 TEST(ProxyBuilder, ProxiesOfFoldedSteppedHoledAndSeamedMeshesHoldTheirBound) {
     uint32_t met = 0;
     for (uint64_t seed = 0; seed < 24; ++seed) {
@@ -233,6 +236,13 @@ TEST(ProxyBuilder, ProxiesOfFoldedSteppedHoledAndSeamedMeshesHoldTheirBound) {
             ++met;
         }
         EXPECT_LE(proxy->proxyTriangles, proxy->inputTriangles) << which;
+        ASSERT_TRUE(proxy->drawnNormals.fits(proxy->mesh.triangleCount())) << which;
+        for (uint32_t t = 0; t < proxy->mesh.triangleCount(); ++t) {
+            const std::optional<glm::dvec3> n = proxy->drawnNormals.at(t, glm::dvec3(1.0 / 3.0));
+            if (n) {
+                EXPECT_NEAR(glm::length(*n), 1.0, 1e-3) << which << ", triangle " << t;
+            }
+        }
     }
     EXPECT_GE(met, 20u); // simplified and certified: the checks above are not vacuous
 }
