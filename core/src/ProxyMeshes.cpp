@@ -1,6 +1,7 @@
 #include "ProxyMeshes.hpp"
 
 #include "Pi.hpp"
+#include "SurfaceGeometry.hpp"
 
 #include <meshoptimizer.h>
 
@@ -11,17 +12,6 @@
 #include <vector>
 
 namespace spatter::detail {
-
-namespace {
-
-bool isSurfaceTriangle(const std::vector<glm::vec3>& positions, uint32_t a, uint32_t b, uint32_t c) {
-    if (a == b || b == c || c == a) return false;
-    const glm::dvec3 pa(positions[a]);
-    const glm::dvec3 n = glm::cross(glm::dvec3(positions[b]) - pa, glm::dvec3(positions[c]) - pa);
-    return n.x != 0.0 || n.y != 0.0 || n.z != 0.0;
-}
-
-} // namespace
 
 size_t surfaceTriangleCount(const Mesh& m) {
     size_t n = 0;

@@ -52,18 +52,23 @@ inline glm::dvec3 corner(const Mesh& mesh, size_t triangle, int k) {
     return glm::dvec3(mesh.positions[mesh.indices[3 * triangle + size_t(k)]]);
 }
 
-// Triangles with three distinct indices and a non-zero cross product: the drawn surface.
+// Whether the triangle (a, b, c) of `positions` is part of the drawn surface: three distinct indices
+// and a non-zero cross product.
+inline bool isSurfaceTriangle(const std::vector<glm::vec3>& positions, uint32_t a, uint32_t b, uint32_t c) {
+    if (a == b || b == c || c == a) return false;
+    const glm::dvec3 pa(positions[a]);
+    const glm::dvec3 n = glm::cross(glm::dvec3(positions[b]) - pa, glm::dvec3(positions[c]) - pa);
+    return n.x != 0.0 || n.y != 0.0 || n.z != 0.0;
+}
+
+// The triangles of the drawn surface (isSurfaceTriangle).
 inline std::vector<uint32_t> surfaceTriangles(const Mesh& mesh) {
     std::vector<uint32_t> out;
     out.reserve(mesh.triangleCount());
-    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-        const uint32_t i0 = mesh.indices[3 * t], i1 = mesh.indices[3 * t + 1], i2 = mesh.indices[3 * t + 2];
-        if (i0 == i1 || i1 == i2 || i2 == i0) continue;
-        const glm::dvec3 a = corner(mesh, t, 0);
-        const glm::dvec3 n = glm::cross(corner(mesh, t, 1) - a, corner(mesh, t, 2) - a);
-        if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0) continue;
-        out.push_back(uint32_t(t));
-    }
+    for (size_t t = 0; t < mesh.triangleCount(); ++t)
+        if (isSurfaceTriangle(mesh.positions, mesh.indices[3 * t], mesh.indices[3 * t + 1],
+                              mesh.indices[3 * t + 2]))
+            out.push_back(uint32_t(t));
     return out;
 }
 

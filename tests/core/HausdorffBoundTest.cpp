@@ -325,16 +325,6 @@ template <class Height> Mesh grid(uint32_t n, float x0, float size, Height z) {
     return m;
 }
 
-// `m` with every triangle on vertices of its own (a seam along every edge, as a mesh split by UVs).
-Mesh unshared(const Mesh& m) {
-    Mesh out;
-    for (uint32_t i : m.indices) {
-        out.indices.push_back(uint32_t(out.positions.size()));
-        out.positions.push_back(m.positions[i]);
-    }
-    return out;
-}
-
 // A one-sided bound and a dense estimate of the same distance.
 struct BoundAndEstimate {
     double lower = 0.0, dense = 0.0;

@@ -126,22 +126,19 @@ Mesh shape(Rng& rng) {
 
 // A shape with holes, turned triangles and, at random, a seam along every edge.
 Mesh troublesome(Rng& rng) {
-    const Mesh m = shape(rng);
+    Mesh out = shape(rng);
     const float holes = rng.below(2) ? rng.uniform(0.0f, 0.1f) : 0.0f,
                 turns = rng.below(2) ? rng.uniform(0.0f, 0.3f) : 0.0f;
     const bool seams = rng.uniform() < 0.3f;
-    Mesh out;
-    out.positions = seams ? std::vector<glm::vec3>() : m.positions;
-    for (size_t t = 0; t < m.triangleCount(); ++t) {
-        uint32_t c[3] = {m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]};
+    std::vector<uint32_t> kept;
+    for (size_t t = 0; t < out.triangleCount(); ++t) {
+        uint32_t c[3] = {out.indices[3 * t], out.indices[3 * t + 1], out.indices[3 * t + 2]};
         if (rng.uniform() < holes) continue;
         if (rng.uniform() < turns) std::swap(c[1], c[2]);
-        for (uint32_t v : c) {
-            if (seams) out.positions.push_back(m.positions[v]);
-            out.indices.push_back(seams ? uint32_t(out.positions.size() - 1) : v);
-        }
+        kept.insert(kept.end(), {c[0], c[1], c[2]});
     }
-    return out;
+    out.indices = std::move(kept);
+    return seams ? unshared(out) : out;
 }
 
 // A coarse tilted sheet of a few cells over about the unit square, short of the shapes' open ends at

@@ -51,6 +51,15 @@ Mesh box(float h) {
     return m;
 }
 
+Mesh unshared(const Mesh& m) {
+    Mesh out;
+    for (uint32_t i : m.indices) {
+        out.indices.push_back(uint32_t(out.positions.size()));
+        out.positions.push_back(m.positions[i]);
+    }
+    return out;
+}
+
 double segmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
     const glm::dvec3 d = b - a;
     const double len2 = glm::dot(d, d);

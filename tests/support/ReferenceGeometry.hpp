@@ -19,6 +19,9 @@ Mesh latLongSphere(float radius, uint32_t stacks, uint32_t slices, float bump = 
 // The axis-aligned box [-h, h]^3: 8 vertices, 12 triangles facing out, with normals.
 Mesh box(float h);
 
+// `m` with every triangle on vertices of its own (a seam along every edge, as a mesh split by UVs).
+Mesh unshared(const Mesh& m);
+
 // Distance from `p` to the segment [a, b] (a point where a == b).
 double segmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b);
 
