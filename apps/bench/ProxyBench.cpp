@@ -5,6 +5,7 @@
 #include "spatter/core/HausdorffBound.hpp"
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/core/ProxyInstances.hpp"
 #include "spatter/core/SceneLoader.hpp"
 
 #include <meshoptimizer.h>
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -44,8 +46,9 @@ tolerance (% of the mesh's bounding diagonal):
   tris x    proxy triangles / anchor triangles (target: at most 1.3)
   time x    proxy seconds / meshopt seconds (target: at most 4)
 
-Then two more targets: builtin:gallery built cold (every receiver's proxy at 0.5%, uncached) within
-1.5 s, and 0.1% certified (toleranceMet) on every shared mesh.
+Then two more targets: builtin:gallery built cold (every receiver's proxy at 0.5%, uncached, one
+build for the objects that share a mesh, as the gallery builds them) within 1.5 s, and 0.1%
+certified (toleranceMet) on every shared mesh.
 
 --meshes LIST      comma-separated cases: shared files (stanford-bunny.obj, fandisk.obj,
                    rocker-arm.obj, gltf/DamagedHelmet/DamagedHelmet.glb, ...), 'gallery' (each
@@ -327,28 +330,38 @@ Json proxyRowJson(const ProxyRow& r) {
             {"error", r.error}};
 }
 
-// Every receiver of builtin:gallery at 0.5%, uncached, one after the other: the demo's cold start.
+// Every receiver of builtin:gallery at 0.5%, uncached, one after the other, one build for the objects
+// that share a mesh (proxySources): the demo's cold start, on one thread.
 Json galleryCold(bool& met) {
     Result<Scene> scene = loadScene("builtin:gallery");
     if (!scene) return {{"error", scene.error()}};
     const double start = now();
-    size_t input = 0, output = 0, certified = 0, objects = 0;
-    for (const SceneObject& o : scene->objects) {
+    const std::vector<size_t> sources = proxySources(scene.value());
+    std::vector<std::optional<Proxy>> proxies(scene->objects.size());
+    size_t input = 0, output = 0, certified = 0, objects = 0, built = 0;
+    for (size_t i = 0; i < scene->objects.size(); ++i) {
+        const SceneObject& o = scene->objects[i];
         if (!o.receivesDecals) continue;
-        Result<Proxy> p = buildAt(o.mesh, kGalleryTolerance);
-        if (!p) return {{"error", o.name + ": " + p.error()}};
-        input += p->inputTriangles;
-        output += p->proxyTriangles;
-        certified += p->toleranceMet ? 1 : 0;
+        if (sources[i] == i) {
+            Result<Proxy> p = buildAt(o.mesh, kGalleryTolerance);
+            if (!p) return {{"error", o.name + ": " + p.error()}};
+            proxies[i] = std::move(p).value();
+            ++built;
+        }
+        const Proxy& p = *proxies[sources[i]];
+        input += p.inputTriangles;
+        output += p.proxyTriangles;
+        certified += p.toleranceMet ? 1 : 0;
         ++objects;
     }
     const double seconds = now() - start;
     met = seconds <= kGalleryTargetSeconds;
-    std::printf("\nbuiltin:gallery cold at 0.5%%: %zu objects, %zu -> %zu triangles, %zu certified, %.3f s "
-                "(target %.1f s: %s)\n",
-                objects, input, output, certified, seconds, kGalleryTargetSeconds, yesNo(met).c_str());
+    std::printf("\nbuiltin:gallery cold at 0.5%%: %zu objects (%zu proxies built), %zu -> %zu triangles, %zu "
+                "certified, %.3f s (target %.1f s: %s)\n",
+                objects, built, input, output, certified, seconds, kGalleryTargetSeconds, yesNo(met).c_str());
     return {{"tolerance_pct", 100.0 * kGalleryTolerance},
             {"objects", objects},
+            {"built", built},
             {"input_triangles", input},
             {"proxy_triangles", output},
             {"certified", certified},

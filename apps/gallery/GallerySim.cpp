@@ -1,6 +1,7 @@
 #include "GallerySim.hpp"
 
 #include "spatter/core/DeformingProxy.hpp"
+#include "spatter/core/ProxyInstances.hpp"
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/core/SkinnedDummy.hpp"
 
@@ -148,16 +149,19 @@ Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<fl
     std::vector<std::string> errors(scene_->objects.size());
     std::atomic<size_t> next{0}, done{0};
     std::mutex say;
-    size_t receivers = 0, totalTriangles = 0;
+    // One build for the objects that share a mesh (the targets, the banners).
+    const std::vector<size_t> sources = proxySources(*scene_);
+    auto builds = [&](size_t i) { return scene_->objects[i].receivesDecals && sources[i] == i; };
+    size_t built = 0, totalTriangles = 0;
     std::atomic<size_t> doneTriangles{0};
-    for (const SceneObject& o : scene_->objects) {
-        receivers += o.receivesDecals ? 1 : 0;
-        totalTriangles += o.receivesDecals ? o.mesh.triangleCount() : 0;
+    for (size_t i = 0; i < scene_->objects.size(); ++i) {
+        built += builds(i) ? 1 : 0;
+        totalTriangles += builds(i) ? scene_->objects[i].mesh.triangleCount() : 0;
     }
     auto work = [&]() {
         for (size_t i = next++; i < scene_->objects.size(); i = next++) {
             const SceneObject& o = scene_->objects[i];
-            if (!o.receivesDecals) continue;
+            if (!builds(i)) continue;
             Result<Proxy> proxy = buildObjectProxy(*scene_, i, settings);
             const size_t finished = ++done;
             const size_t triangles = doneTriangles += o.mesh.triangleCount();
@@ -166,7 +170,7 @@ Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<fl
             if (proxy && !proxy->cached) { // a cold build: say how far it is
                 const std::lock_guard<std::mutex> lock(say);
                 std::fprintf(stderr, "spatter-gallery: proxies %3d%%: built %s (%zu of %zu, %.2f s)\n",
-                             int(100.0 * fraction), o.name.c_str(), finished, receivers, proxy->seconds);
+                             int(100.0 * fraction), o.name.c_str(), finished, built, proxy->seconds);
             }
             if (proxy)
                 set.proxies[i] = std::move(proxy).value();
@@ -182,6 +186,8 @@ Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<fl
         t.join();
     for (const std::string& e : errors)
         if (!e.empty()) return fail(e);
+    for (size_t i = 0; i < scene_->objects.size(); ++i)
+        if (sources[i] != i) set.proxies[i] = set.proxies[sources[i]];
     set.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return set;
 }

@@ -5,6 +5,7 @@
 #include "spatter/core/DeformingProxy.hpp"
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
+#include "spatter/core/ProxyInstances.hpp"
 #include "spatter/core/SceneEvaluator.hpp"
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/core/VertexDeformation.hpp"
@@ -95,7 +96,8 @@ Options:
                     scene and proxies with a type named "spatter-place"
   --summary         print one JSON object on stderr: rays, placed, missed, rejected by reason,
                     render_triangles, proxy_triangles, proxies_built, proxies_cached,
-                    proxy_seconds, trace_seconds, seconds
+                    proxies_shared (objects that took the proxy of an earlier object with the
+                    same mesh and collider), proxy_seconds, trace_seconds, seconds
   --help            this text
 
 An object whose transform single-precision ray tracing cannot use (singular or nearly so in float,
@@ -277,18 +279,26 @@ int main(int argc, char** argv) {
     scene->translate(translate);
 
     std::vector<std::optional<spatter::Proxy>> proxies;
-    size_t proxiesBuilt = 0, proxiesCached = 0;
+    size_t proxiesBuilt = 0, proxiesCached = 0, proxiesShared = 0;
     const Clock::time_point proxyStart = Clock::now();
     if (proxyMode != "render") {
         proxies.resize(scene->objects.size());
         const bool terminal = isatty(fileno(stderr)) != 0;
-        // Progress: the fraction of all the receivers' triangles whose proxies are built.
+        // One build for the objects that share a mesh; progress: the fraction of the triangles of
+        // the meshes built.
+        const std::vector<size_t> sources = spatter::proxySources(scene.value());
         double totalTriangles = 0.0, doneTriangles = 0.0;
-        for (const spatter::SceneObject& o : scene->objects)
-            totalTriangles += o.receivesDecals ? double(o.mesh.triangleCount()) : 0.0;
+        for (size_t i = 0; i < scene->objects.size(); ++i)
+            if (scene->objects[i].receivesDecals && sources[i] == i)
+                totalTriangles += double(scene->objects[i].mesh.triangleCount());
         for (size_t i = 0; i < scene->objects.size(); ++i) {
             const spatter::SceneObject& o = scene->objects[i];
             if (!o.receivesDecals) continue;
+            if (sources[i] != i) {
+                proxies[i] = proxies[sources[i]];
+                ++proxiesShared;
+                continue;
+            }
             // On a terminal: one line, rewritten in place, cleared when the builds are done.
             spatter::ProgressCallback progress;
             if (terminal)
@@ -454,6 +464,7 @@ int main(int argc, char** argv) {
         s["proxy_triangles"] = system->world().triangleCount();
         s["proxies_built"] = proxiesBuilt;
         s["proxies_cached"] = proxiesCached;
+        s["proxies_shared"] = proxiesShared;
         s["proxy_seconds"] = proxySeconds;
         s["trace_seconds"] = traceSeconds;
         s["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();

@@ -1,6 +1,8 @@
 // spatter-place --proxy TOL% [--cache DIR]: the same proxies as buildProxy with a tolerance relative
-// to each object's diagonal, and a cache that makes a second run build nothing.
+// to each object's diagonal, one build for the objects that share a mesh, and a cache that makes a
+// second run build nothing.
 
+#include "GltfBuilder.hpp"
 #include "PlaceToolRun.hpp"
 #include "TestData.hpp"
 
@@ -16,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -103,6 +106,46 @@ TEST(SpatterPlaceProxy, UsesTheBuildersBoundAndTheCacheMakesTheSecondRunBuildNot
     const int status = std::system(bad.c_str());
     ASSERT_TRUE(WIFEXITED(status));
     EXPECT_EQ(WEXITSTATUS(status), 2);
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+}
+
+// Two nodes of one mesh (one static, one dynamic) and a node of another: two builds, and the second
+// node takes the first one's proxy, bound and all.
+TEST(SpatterPlaceProxy, ObjectsThatShareAMeshShareOneBuild) {
+    if (!test::kPlaceTool) GTEST_SKIP() << "spatter-place is not built (SPATTER_BUILD_APPS=OFF)";
+    const std::string dir = test::scratchDir("accuracy-place-shared");
+    test::GltfBuilder g;
+    for (float bumps : {4.5f, 6.5f}) {
+        Mesh m = makeSphere(2.0f, 24, 48);
+        displace(m, [bumps](const glm::vec3& p, const glm::vec3&) { return 0.06f * std::sin(bumps * p.x); });
+        g.addMesh(m.positions, m.indices);
+    }
+    g.push("nodes", {{"name", "a"}, {"mesh", 0}});
+    g.push("nodes",
+           {{"name", "b"}, {"mesh", 0}, {"translation", {10, 0, 0}}, {"extras", {{"dynamic", true}}}});
+    g.push("nodes", {{"name", "c"}, {"mesh", 1}, {"translation", {-10, 0, 0}}});
+    g.doc["scenes"] = {{{"nodes", {0, 1, 2}}}};
+    g.doc["scene"] = 0;
+    const std::string scene = g.writeGltf(dir, "shared");
+    std::ofstream(dir + "/rays.txt") << "0.1 0.2 10 0 0 -1\n10.1 0.2 10 0 0 -1\n-9.9 0.2 10 0 0 -1\n";
+
+    const test::PlaceToolRun run = place(dir, scene, "");
+    ASSERT_EQ(run.status, 0) << run.records;
+    EXPECT_EQ(run.summary["proxies_built"], 2);
+    EXPECT_EQ(run.summary["proxies_shared"], 1);
+    std::map<std::string, double> bounds;
+    std::istringstream lines(run.records);
+    for (std::string line; std::getline(lines, line);) {
+        const nlohmann::json rec = nlohmann::json::parse(line, nullptr, false);
+        ASSERT_TRUE(rec.is_object()) << line;
+        ASSERT_EQ(rec["status"], "placed") << line;
+        bounds[rec["object"].get<std::string>()] = rec["proxy_error_bound"].get<double>();
+    }
+    ASSERT_EQ(bounds.size(), 3u);
+    EXPECT_GT(bounds["a"], 0.0);
+    EXPECT_EQ(bounds["b"], bounds["a"]);
+    EXPECT_NE(bounds["c"], bounds["a"]);
     std::error_code ec;
     std::filesystem::remove_all(dir, ec);
 }

@@ -4,6 +4,7 @@
 // written by the test and compared with the plain file's geometry.
 
 #include "spatter/core/Image.hpp"
+#include "spatter/core/ProxyInstances.hpp"
 #include "spatter/core/SceneLoader.hpp"
 
 #include "GltfBuilder.hpp"
@@ -243,6 +244,7 @@ TEST(GltfGeometry, EachInstanceBecomesAnObjectNamedAfterItsIndex) {
             for (int r = 0; r < 4; ++r)
                 EXPECT_NEAR(o.transform[c][r], expected[i][c][r], 1e-6);
     }
+    EXPECT_EQ(proxySources(scene), (std::vector<size_t>{0, 0, 0})); // one proxy for the three
 }
 
 TEST(GltfGeometry, InstanceRotationsInNormalizedShorts) {
