@@ -128,6 +128,37 @@ Result<FrameTimes> timeFrames(Renderer& renderer, const Camera& camera, const Re
     return t;
 }
 
+FrameTimes medianOverRounds(const std::vector<FrameTimes>& rounds) {
+    FrameTimes out;
+    if (rounds.empty()) return out;
+    auto over = [&](double FrameTimes::*field) {
+        std::vector<double> values;
+        for (const FrameTimes& r : rounds)
+            values.push_back(r.*field);
+        return median(values);
+    };
+    auto overStage = [&](double ProjectorStageTimes::*field) {
+        std::vector<double> values;
+        for (const FrameTimes& r : rounds)
+            values.push_back(r.decalStages.*field);
+        return median(values);
+    };
+    out.decalsMs = over(&FrameTimes::decalsMs);
+    out.geometryMs = over(&FrameTimes::geometryMs);
+    out.lightingMs = over(&FrameTimes::lightingMs);
+    out.totalMs = over(&FrameTimes::totalMs);
+    out.cpuMs = over(&FrameTimes::cpuMs);
+    out.decalStages = {overStage(&ProjectorStageTimes::cullMs), overStage(&ProjectorStageTimes::binMs),
+                       overStage(&ProjectorStageTimes::drawMs), overStage(&ProjectorStageTimes::readBackMs),
+                       rounds.back().decalStages.frame};
+    for (const FrameTimes& r : rounds) {
+        out.frames += r.frames;
+        out.capped = out.capped || r.capped;
+    }
+    out.last = rounds.back().last;
+    return out;
+}
+
 bool resolutionByName(const std::string& name, int& width, int& height) {
     if (name == "720p") {
         width = 1280;

@@ -57,6 +57,11 @@ struct FrameTimes {
 Result<FrameTimes> timeFrames(Renderer& renderer, const Camera& camera, const RenderOptions& options,
                               size_t warmup, size_t frames, double maxSeconds);
 
+// Times measured in several rounds as one: each figure the median of the rounds' figures (each a
+// median of its round's frames), the frames of all rounds, capped when a round was, the last round's
+// stats.
+FrameTimes medianOverRounds(const std::vector<FrameTimes>& rounds);
+
 // Resolutions by name: 720p, 1080p, 4k (16:9).
 bool resolutionByName(const std::string& name, int& width, int& height);
 

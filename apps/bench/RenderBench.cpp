@@ -26,7 +26,8 @@ namespace {
 const char* kRenderCommand = "render";
 
 const char* kRenderUsage =
-    R"(usage: spatter-bench render [--groups LIST] [--frames N] [--max-seconds S] [--quick] [--json FILE]
+    R"(usage: spatter-bench render [--groups LIST] [--frames N] [--rounds N] [--max-seconds S] [--quick]
+                            [--json FILE]
 
 GPU time of the decal pass (GL_TIME_ELAPSED, RendererSettings::waitForTimers; median of the frames)
 on a flat floor seen from above, with decals laid on it directly: a number in the world, a number
@@ -66,7 +67,11 @@ renderer's decal pass.
 
 --groups LIST     comma-separated groups (default all)
 --frames N        timed frames per row after one warm-up frame (default 7)
---max-seconds S   wall-time cap per row: fewer frames are timed when it is reached (default 20)
+--rounds N        measure the rows N times over, one row after the other each time, and take each
+                  figure's median over the rounds (each round's figure is the median of its frames):
+                  where the machine's speed drifts, as a software renderer's does with the load on
+                  its cores, every row then sees the same drift (default 1)
+--max-seconds S   wall-time cap per row and round: fewer frames are timed when it is reached (default 20)
 --forward-tile N  the forward path's tile size in pixels (ProjectorSettings::forwardTileSize, default 16)
 --resolve MODE    how the G-buffer blend is drawn (ProjectorSettings::deferredResolve): auto (default:
                   one compute pass on a GPU from 256 decals in view, boxes otherwise), boxes or compute
@@ -569,14 +574,34 @@ void printPaths(const std::vector<RenderRow>& rows, Json& targets) {
                table);
 }
 
+// A row measured in several rounds: the first round's, its figures the medians over the rounds (a
+// round that failed makes the row fail).
+RenderRow overRounds(const std::vector<RenderRow>& rounds) {
+    RenderRow out = rounds.front();
+    std::vector<FrameTimes> times;
+    std::vector<double> projector, pass, baseline;
+    for (const RenderRow& r : rounds) {
+        if (!r.error.empty()) return r;
+        times.push_back(r.times);
+        projector.push_back(r.path.projectorMs);
+        pass.push_back(r.path.hostPassMs);
+        baseline.push_back(r.path.baselineMs);
+    }
+    out.times = medianOverRounds(times);
+    out.path.projectorMs = median(projector);
+    out.path.hostPassMs = median(pass);
+    out.path.baselineMs = median(baseline);
+    return out;
+}
+
 } // namespace
 
 int runRenderCommand(int argc, char** argv) {
     int exitCode = 0;
-    const std::optional<Args> parsed =
-        commandArgs(argc, argv, kRenderCommand, kRenderUsage,
-                    {"--groups", "--frames", "--max-seconds", "--json", "--forward-tile", "--resolve"},
-                    {"--quick", "--stages"}, exitCode);
+    const std::optional<Args> parsed = commandArgs(
+        argc, argv, kRenderCommand, kRenderUsage,
+        {"--groups", "--frames", "--rounds", "--max-seconds", "--json", "--forward-tile", "--resolve"},
+        {"--quick", "--stages"}, exitCode);
     if (!parsed) return exitCode;
     const Args& args = *parsed;
     if (!args.positional.empty()) return usageError(kRenderCommand, "no positional arguments");
@@ -584,6 +609,9 @@ int runRenderCommand(int argc, char** argv) {
     Result<uint64_t> frames = parseCount(args.value("--frames", quick ? "2" : "7"), "--frames");
     Result<double> maxSeconds = parseNumber(args.value("--max-seconds", quick ? "3" : "20"), "--max-seconds");
     if (!frames) return usageError(kRenderCommand, frames.error());
+    Result<uint64_t> rounds = parseCount(args.value("--rounds", "1"), "--rounds");
+    if (!rounds || rounds.value() == 0 || rounds.value() > 100)
+        return usageError(kRenderCommand, "--rounds: a count from 1 to 100");
     if (!maxSeconds) return usageError(kRenderCommand, maxSeconds.error());
     Result<uint64_t> forwardTile = parseCount(args.value("--forward-tile", "16"), "--forward-tile");
     if (!forwardTile || forwardTile.value() > 64)
@@ -639,7 +667,8 @@ int runRenderCommand(int argc, char** argv) {
         if (it == perArea.end()) return 0.0;
         return it->second.first * double(c.visible) * c.size * c.size + it->second.second;
     };
-    for (const Config& c : configs(groups, quick)) {
+    // A row of this round: measured, skipped, or the same as a row of another group measured before.
+    auto measure = [&](const Config& c) {
         RenderRow row;
         auto it = done.find(c.key());
         if (it != done.end()) {
@@ -665,6 +694,18 @@ int runRenderCommand(int argc, char** argv) {
         std::fprintf(stderr, "  %s %s world %zu visible %zu size %g%% %s: %s\n", c.group.c_str(),
                      c.resolution.c_str(), c.world, c.visible, 100.0 * c.size, c.feature.c_str(),
                      row.error.empty() ? (fixed(row.times.decalsMs, 3) + " ms").c_str() : row.error.c_str());
+        return row;
+    };
+    const std::vector<Config> all = configs(groups, quick);
+    std::map<decltype(Config().key()), std::vector<RenderRow>> measured; // a row a round
+    for (uint64_t round = 0; round < rounds.value(); ++round, done.clear())
+        for (const Config& c : all) {
+            const RenderRow row = measure(c);
+            if (measured[c.key()].size() == round) measured[c.key()].push_back(row);
+        }
+    for (const Config& c : all) {
+        RenderRow row = overRounds(measured[c.key()]);
+        row.config = c;
         rows.push_back(row);
     }
 
@@ -736,6 +777,7 @@ int runRenderCommand(int argc, char** argv) {
         j["gl_version"] = info.version;
         j["gl_platform"] = info.platform;
         j["frames"] = frames.value();
+        j["rounds"] = rounds.value();
         j["max_seconds"] = maxSeconds.value();
         j["rows"] = Json::array();
         for (const RenderRow& r : rows)

@@ -264,6 +264,25 @@ TEST(BenchSmoke, RenderQuickTimesTheDecalPass) {
     }
 }
 
+// --rounds N measures every row N times over: each row's frames are those of all its rounds.
+TEST(BenchSmoke, RenderRoundsMeasureEveryRowInEachRound) {
+    SPATTER_REQUIRE_TOOL_GL();
+    const std::string dir = test::scratchDir("bench-render-rounds");
+    ASSERT_EQ(runBench("render --quick --groups count --frames 1 --rounds 2 --json " + dir + "/r.json",
+                       dir + "/log"),
+              0)
+        << readAll(dir + "/log");
+    const nlohmann::json j = readJson(dir + "/r.json");
+    ASSERT_TRUE(j.is_object() && j["rows"].is_array()) << readAll(dir + "/r.json");
+    EXPECT_EQ(j["rounds"], 2);
+    ASSERT_EQ(j["rows"].size(), 2u);
+    for (const auto& row : j["rows"]) {
+        EXPECT_EQ(row["frames"], 2) << row.dump();
+        EXPECT_GE(row["decal_ms"].get<double>(), 0.0);
+    }
+    EXPECT_EQ(runBench("render --quick --rounds 0", dir + "/log"), 2) << readAll(dir + "/log");
+}
+
 TEST(BenchSmoke, SurfaceQuickTimesTheSearchAndFindsEveryLineOnTheFloor) {
     SPATTER_REQUIRE_TOOL_GL();
     const std::string dir = test::scratchDir("bench-surface");
