@@ -5,6 +5,7 @@
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/core/SkinnedDummy.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -135,6 +136,26 @@ Status GallerySim::rebuildProxies(float tolerancePercent) {
     return useProxies(std::move(set).value());
 }
 
+namespace {
+
+// The objects whose proxies are built, one for the objects that share a mesh (the targets, the
+// banners), the longest builds first: a deforming object's, which measures the poses of its
+// animations (the dummy's takes about as long as the rest of the gallery on one core), then the
+// others by their triangles. The threads then finish together, none left alone on the last long build.
+std::vector<size_t> buildOrder(const Scene& scene, const std::vector<size_t>& sources) {
+    std::vector<size_t> order;
+    for (size_t i = 0; i < scene.objects.size(); ++i)
+        if (scene.objects[i].receivesDecals && sources[i] == i) order.push_back(i);
+    auto cost = [&](size_t i) {
+        const SceneObject& o = scene.objects[i];
+        return std::make_pair(o.dynamic && o.deforms(), o.mesh.triangleCount());
+    };
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cost(a) > cost(b); });
+    return order;
+}
+
+} // namespace
+
 Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<float>* progress) const {
     const Clock::time_point start = Clock::now();
     ProxySettings settings;
@@ -149,19 +170,16 @@ Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<fl
     std::vector<std::string> errors(scene_->objects.size());
     std::atomic<size_t> next{0}, done{0};
     std::mutex say;
-    // One build for the objects that share a mesh (the targets, the banners).
     const std::vector<size_t> sources = proxySources(*scene_);
-    auto builds = [&](size_t i) { return scene_->objects[i].receivesDecals && sources[i] == i; };
-    size_t built = 0, totalTriangles = 0;
+    const std::vector<size_t> order = buildOrder(*scene_, sources);
+    size_t totalTriangles = 0;
     std::atomic<size_t> doneTriangles{0};
-    for (size_t i = 0; i < scene_->objects.size(); ++i) {
-        built += builds(i) ? 1 : 0;
-        totalTriangles += builds(i) ? scene_->objects[i].mesh.triangleCount() : 0;
-    }
+    for (size_t i : order)
+        totalTriangles += scene_->objects[i].mesh.triangleCount();
     auto work = [&]() {
-        for (size_t i = next++; i < scene_->objects.size(); i = next++) {
+        for (size_t k = next++; k < order.size(); k = next++) {
+            const size_t i = order[k];
             const SceneObject& o = scene_->objects[i];
-            if (!builds(i)) continue;
             Result<Proxy> proxy = buildObjectProxy(*scene_, i, settings);
             const size_t finished = ++done;
             const size_t triangles = doneTriangles += o.mesh.triangleCount();
@@ -170,7 +188,7 @@ Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<fl
             if (proxy && !proxy->cached) { // a cold build: say how far it is
                 const std::lock_guard<std::mutex> lock(say);
                 std::fprintf(stderr, "spatter-gallery: proxies %3d%%: built %s (%zu of %zu, %.2f s)\n",
-                             int(100.0 * fraction), o.name.c_str(), finished, built, proxy->seconds);
+                             int(100.0 * fraction), o.name.c_str(), finished, order.size(), proxy->seconds);
             }
             if (proxy)
                 set.proxies[i] = std::move(proxy).value();
