@@ -148,7 +148,7 @@ std::vector<size_t> buildOrder(const Scene& scene, const std::vector<size_t>& so
         if (scene.objects[i].receivesDecals && sources[i] == i) order.push_back(i);
     auto cost = [&](size_t i) {
         const SceneObject& o = scene.objects[i];
-        return std::make_pair(o.dynamic && o.deforms(), o.mesh.triangleCount());
+        return std::make_pair(takesDeformingProxy(o), o.mesh.triangleCount());
     };
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cost(a) > cost(b); });
     return order;

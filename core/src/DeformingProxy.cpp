@@ -223,12 +223,16 @@ Result<Proxy> objectDeformingProxy(const Scene& scene, size_t object, const Prox
 
 } // namespace
 
+bool takesDeformingProxy(const SceneObject& o) {
+    return o.dynamic && o.deforms();
+}
+
 Result<Proxy> buildObjectProxy(const Scene& scene, size_t object, const ProxySettings& settings,
                                const ProgressCallback& progress) {
     if (object >= scene.objects.size())
         return fail("object proxy: object " + std::to_string(object) + " out of range");
     const SceneObject& o = scene.objects[object];
-    if (!o.dynamic || !o.deforms())
+    if (!takesDeformingProxy(o))
         return buildProxy(o.mesh, settings, o.collider ? &*o.collider : nullptr, progress);
     return objectDeformingProxy(scene, object, settings);
 }

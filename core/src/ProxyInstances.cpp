@@ -1,5 +1,7 @@
 #include "spatter/core/ProxyInstances.hpp"
 
+#include "spatter/core/DeformingProxy.hpp"
+
 #include <cstring>
 #include <map>
 #include <utility>
@@ -9,7 +11,7 @@ namespace spatter {
 namespace {
 
 bool takesSharedProxy(const SceneObject& o) {
-    return o.receivesDecals && !(o.dynamic && o.deforms());
+    return o.receivesDecals && !takesDeformingProxy(o);
 }
 
 template <class T> bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {

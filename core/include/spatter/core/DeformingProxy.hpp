@@ -39,6 +39,9 @@ struct DeformingProxy {
 Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, const ProxySettings& settings,
                                            int samples = 128);
 
+// Whether buildObjectProxy gives `o` a deforming proxy: a dynamic object that is skinned or morphed.
+bool takesDeformingProxy(const SceneObject& o);
+
 // The proxy of `scene.objects[object]`: buildDeformingProxy for a dynamic object that is skinned or
 // morphed (its bound holds over the animation; `progress` is not called), otherwise buildProxy of its
 // render mesh against its authored collider, if it has one. With settings.cacheDirectory a deforming
