@@ -140,8 +140,8 @@ namespace {
 
 // The objects whose proxies are built, one for the objects that share a mesh (the targets, the
 // banners), the longest builds first: a deforming object's, which measures the poses of its
-// animations (the dummy's takes about as long as the rest of the gallery on one core), then the
-// others by their triangles. The threads then finish together, none left alone on the last long build.
+// animations (in scene order the dummy's came last and took 0.42 s of a 0.8 s start while the other
+// threads had nothing left), then the others by their triangles. The threads then finish together.
 std::vector<size_t> buildOrder(const Scene& scene, const std::vector<size_t>& sources) {
     std::vector<size_t> order;
     for (size_t i = 0; i < scene.objects.size(); ++i)
