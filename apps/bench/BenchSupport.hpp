@@ -18,6 +18,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace spatter::bench {
@@ -73,6 +74,14 @@ double threadCpuNow();
 // Nearest-rank percentile (q in [0, 1]) of `values`; 0 for an empty sample.
 double percentile(std::vector<double> values, double q);
 double median(std::vector<double> values);
+// The median of get(item) over `items`.
+template <class T, class Get> double medianOf(const std::vector<T>& items, Get&& get) {
+    std::vector<double> values;
+    values.reserve(items.size());
+    for (const T& item : items)
+        values.push_back(get(item));
+    return median(std::move(values));
+}
 
 // ---- The machine -----------------------------------------------------------------------------
 

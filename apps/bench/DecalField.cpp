@@ -132,16 +132,10 @@ FrameTimes medianOverRounds(const std::vector<FrameTimes>& rounds) {
     FrameTimes out;
     if (rounds.empty()) return out;
     auto over = [&](double FrameTimes::*field) {
-        std::vector<double> values;
-        for (const FrameTimes& r : rounds)
-            values.push_back(r.*field);
-        return median(values);
+        return medianOf(rounds, [field](const FrameTimes& r) { return r.*field; });
     };
     auto overStage = [&](double ProjectorStageTimes::*field) {
-        std::vector<double> values;
-        for (const FrameTimes& r : rounds)
-            values.push_back(r.decalStages.*field);
-        return median(values);
+        return medianOf(rounds, [field](const FrameTimes& r) { return r.decalStages.*field; });
     };
     out.decalsMs = over(&FrameTimes::decalsMs);
     out.geometryMs = over(&FrameTimes::geometryMs);

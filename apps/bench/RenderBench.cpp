@@ -579,18 +579,17 @@ void printPaths(const std::vector<RenderRow>& rows, Json& targets) {
 RenderRow overRounds(const std::vector<RenderRow>& rounds) {
     RenderRow out = rounds.front();
     std::vector<FrameTimes> times;
-    std::vector<double> projector, pass, baseline;
     for (const RenderRow& r : rounds) {
         if (!r.error.empty()) return r;
         times.push_back(r.times);
-        projector.push_back(r.path.projectorMs);
-        pass.push_back(r.path.hostPassMs);
-        baseline.push_back(r.path.baselineMs);
     }
+    auto over = [&](double PathTimes::*field) {
+        return medianOf(rounds, [field](const RenderRow& r) { return r.path.*field; });
+    };
     out.times = medianOverRounds(times);
-    out.path.projectorMs = median(projector);
-    out.path.hostPassMs = median(pass);
-    out.path.baselineMs = median(baseline);
+    out.path.projectorMs = over(&PathTimes::projectorMs);
+    out.path.hostPassMs = over(&PathTimes::hostPassMs);
+    out.path.baselineMs = over(&PathTimes::baselineMs);
     return out;
 }
 
