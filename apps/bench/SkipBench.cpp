@@ -7,11 +7,13 @@
 #include "spatter/core/MeshBuilder.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/SceneLoader.hpp"
+#include "spatter/placement/CollisionWorld.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/render/GlContext.hpp"
 
 #include <cmath>
 #include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -46,6 +48,10 @@ What each skip of the design saves, measured with the skip on and forced off in 
   static-no-instances static receivers share one Embree scene; forced off by marking every receiver of
                       builtin:gallery dynamic, one instance each (CollisionWorld::build seconds, and
                       spawn ns per ray)
+  shared-instances    objects that place one mesh and collider many times take the first one's
+                      measured collider bound, and the dynamic ones its Embree scene; forced off by
+                      giving each copy's render mesh unused vertices of its own (CollisionWorld::build
+                      seconds; the gallery's crate with a box collider, 100 copies, half dynamic)
 
 --decals N  decals in view in the GPU rows (default 10000)   --frames N  timed frames (default 7)
 --no-gpu    skip the GPU rows                                --quick     smaller and shorter
@@ -211,6 +217,52 @@ template <class F> double fastest(size_t repeats, F&& f) {
     return best;
 }
 
+// `copies` placements of the gallery's crate, each with a box collider around it (as a level's props
+// come with UCX_ boxes), every second one dynamic; with `distinct`, each copy's render mesh gets
+// unused copies of a vertex of its own count, so that no two are the same input.
+Scene crateCopies(size_t copies, bool distinct) {
+    const Scene gallery = makeGalleryScene();
+    SceneObject crate;
+    for (const SceneObject& o : gallery.objects)
+        if (o.name.rfind("crate", 0) == 0) crate = o;
+    const Bounds b = crate.mesh.bounds();
+    Mesh collider = makeBox(0.5f * (b.max - b.min), 1);
+    for (glm::vec3& p : collider.positions)
+        p += 0.5f * (b.max + b.min);
+    Scene s;
+    s.source = "gallery crate copies";
+    s.materials = gallery.materials;
+    for (size_t i = 0; i < copies; ++i) {
+        SceneObject o = crate;
+        o.name = "crate_copy_" + std::to_string(i);
+        o.transform =
+            glm::translate(glm::dmat4(1.0), glm::dvec3(3.0 * double(i % 10), 0.0, 3.0 * double(i / 10)));
+        o.dynamic = i % 2 == 1;
+        o.collider = collider;
+        for (size_t k = 0; distinct && k <= i; ++k) {
+            o.mesh.positions.push_back(o.mesh.positions[0]);
+            o.mesh.normals.push_back(o.mesh.normals[0]);
+            if (!o.mesh.uvs.empty()) o.mesh.uvs.push_back(o.mesh.uvs[0]);
+            if (!o.mesh.tangents.empty()) o.mesh.tangents.push_back(o.mesh.tangents[0]);
+        }
+        s.objects.push_back(std::move(o));
+    }
+    return s;
+}
+
+Skip sharedInstancesSkip(bool quick) {
+    Skip s = makeSkip("shared-instances", "CollisionWorld::build s");
+    const size_t copies = quick ? 20 : 100;
+    const Scene shared = crateCopies(copies, false), distinct = crateCopies(copies, true);
+    const size_t repeats = quick ? 1 : 3;
+    s.on = fastest(repeats, [&] { CollisionWorld::build(shared); });
+    s.off = fastest(repeats, [&] { CollisionWorld::build(distinct); });
+    s.note = std::to_string(copies) + " copies of a crate of " +
+             std::to_string(shared.objects[0].mesh.triangleCount()) + " triangles with a box collider, " +
+             std::to_string(copies / 2) + " dynamic";
+    return s;
+}
+
 void cpuSkips(bool quick, std::vector<Skip>& out) {
     const size_t repeats = quick ? 1 : 3;
     {
@@ -300,6 +352,7 @@ void cpuSkips(bool quick, std::vector<Skip>& out) {
         out.push_back(build);
         out.push_back(spawn);
     }
+    out.push_back(sharedInstancesSkip(quick));
 }
 
 } // namespace

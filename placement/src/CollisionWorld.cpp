@@ -1,44 +1,19 @@
 #include "spatter/placement/CollisionWorld.hpp"
 
-#include "PosedCollisionMesh.hpp"
-#include "WatertightTriangles.hpp"
+#include "CollisionObjects.hpp"
 
-#include "spatter/core/DrawnNormals.hpp"
 #include "spatter/core/LinearStretch.hpp"
-#include "spatter/core/TrianglePieces.hpp"
 #include "spatter/placement/TraceTransform.hpp"
 
 #include <embree3/rtcore.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 namespace spatter {
 
 namespace {
-
-// A collision object: its triangles as Embree traces them (TracedTriangles: indices, the vertices
-// Embree sees and their reach), and what the world keeps besides.
-struct ObjectData : TracedTriangles {
-    CollisionObject info;
-    std::vector<glm::vec3> positions;          // collision mesh, object space
-    glm::dmat4 inverse{1.0};                   // of info.transform, kept with it
-    std::optional<PosedCollisionMesh> posable; // dynamic skinned or morphed objects: what setPose poses
-    std::optional<DrawnNormals> drawnNormals;  // proxies and colliders of objects that do not deform
-    std::vector<glm::dmat4> poseJoints;        // the joint matrices of the last setPose (empty: rest)
-    std::vector<double> poseMorphs;            // the morph weights of the last setPose
-    RTCScene scene = nullptr;                  // dynamic objects: their own object-space scene
-    unsigned geomId = kInvalidId; // static: geometry in the static scene; dynamic: instance in the top scene
-
-    // The barycentric coordinates of `local` (object space) in collision triangle `primitive` (in range).
-    glm::dvec3 barycentricOn(uint32_t primitive, const glm::dvec3& local) const {
-        const uint32_t* c = &indices[3 * size_t(primitive)];
-        return barycentric(local, glm::dvec3(positions[c[0]]), glm::dvec3(positions[c[1]]),
-                           glm::dvec3(positions[c[2]]));
-    }
-};
 
 const char* errorName(RTCError code) {
     switch (code) {
@@ -77,15 +52,6 @@ DBounds transformBounds(const Bounds& b, const glm::dmat4& m) {
         out.extend(glm::dvec3(m * glm::dvec4(p, 1.0)));
     }
     return out;
-}
-
-// Bounds of the vertices the triangles use: an unreferenced vertex is no part of the surface and
-// must not move the origin of the float frame (one far away would cost the geometry its precision).
-Bounds meshBounds(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices) {
-    Bounds b;
-    for (uint32_t i : indices)
-        b.extend(positions[i]);
-    return b;
 }
 
 // What a prepared ray needs to map Embree's answer back onto the caller's ray.
@@ -184,111 +150,6 @@ struct Packet {
     }
 };
 
-// CollisionObject::meshHash: FNV-1a over 32-bit little-endian words (a word at a time, so hashing a
-// mesh costs a fraction of building its BVH).
-uint64_t collisionMeshHash(const std::vector<glm::vec3>& positions, const std::vector<uint32_t>& indices,
-                           double errorBound) {
-    uint64_t h = 0xcbf29ce484222325ULL;
-    auto word = [&h](uint32_t w) {
-        h ^= w;
-        h *= 0x100000001b3ULL;
-    };
-    auto bits = [](float f) {
-        uint32_t u;
-        std::memcpy(&u, &f, 4);
-        return u;
-    };
-    word(uint32_t(positions.size()));
-    for (const glm::vec3& p : positions) {
-        word(bits(p.x));
-        word(bits(p.y));
-        word(bits(p.z));
-    }
-    word(uint32_t(indices.size()));
-    for (uint32_t i : indices)
-        word(i);
-    uint64_t e;
-    std::memcpy(&e, &errorBound, 8);
-    word(uint32_t(e));
-    word(uint32_t(e >> 32));
-    return h;
-}
-
-// Whether a collision mesh is the render mesh itself (a small mesh's own proxy): then no surface is
-// drawn under it but its own.
-bool sameSurface(const Mesh& collision, const Mesh& render) {
-    return &collision == &render ||
-           (collision.positions == render.positions && collision.indices == render.indices);
-}
-
-// What CollisionWorld::build asks of the proxy of object `name`.
-Status checkProxy(const Proxy& proxy, const std::string& name) {
-    const std::string what = "proxy of object '" + name + "'";
-    if (Status s = validateMesh(proxy.mesh); !s) return fail(what + ": " + s.error());
-    if (!std::isfinite(proxy.errorBound) || proxy.errorBound < 0.0)
-        return fail(what + " has an error bound that is not finite and >= 0");
-    const DrawnNormals& drawn = proxy.drawnNormals;
-    const size_t triangles = proxy.mesh.triangleCount();
-    if (!drawn.empty() && !drawn.fits(triangles))
-        return fail(what + " has " + std::to_string(drawn.packed().size()) + " drawn normals, not " +
-                    std::to_string(kPiecesPerTriangle) + " for each of its " + std::to_string(triangles) +
-                    " triangles");
-    return {};
-}
-
-// A receiver's collision mesh and its bound h: its proxy's, its collider's (measured here), or its
-// render mesh with h = 0.
-struct CollisionMesh {
-    const Mesh* mesh;
-    double h = 0.0;
-    DrawnNormals drawn; // which way the drawn surface faces under it, if known already
-};
-
-Result<CollisionMesh> collisionMeshOf(const SceneObject& so, const Proxy* proxy,
-                                      const WorldSettings& settings) {
-    if (proxy) return CollisionMesh{&proxy->mesh, proxy->errorBound, proxy->drawnNormals};
-    if (!settings.useColliders || !so.collider) return CollisionMesh{&so.mesh, 0.0, DrawnNormals()};
-    // Certified, and at most 1% of the render mesh's diagonal above the measured distance.
-    ProxySettings measure;
-    measure.tolerance = 0.05f;
-    measure.toleranceRelative = true;
-    measure.marginFraction = 0.2f;
-    Result<Proxy> measured = buildProxy(so.mesh, measure, &*so.collider);
-    if (!measured) return fail("collider of object '" + so.name + "': " + measured.error());
-    return CollisionMesh{&*so.collider, measured->errorBound, std::move(measured->drawnNormals)};
-}
-
-// Fills `od` for receiver `i` of `scene`: its collision mesh and bound, what poses it (dynamic skinned
-// or morphed objects) and, for a collision mesh standing in for a static render mesh, which way the
-// drawn surface faces under it.
-Status setCollisionMesh(const Scene& scene, size_t i, const Proxy* proxy, const WorldSettings& settings,
-                        ObjectData& od) {
-    const SceneObject& so = scene.objects[i];
-    Result<CollisionMesh> c = collisionMeshOf(so, proxy, settings);
-    if (!c) return fail(c.error());
-    const Mesh& mesh = *c->mesh;
-    od.info.inWorld = true;
-    od.info.errorBound = c->h;
-    od.positions = mesh.positions;
-    od.indices.assign(mesh.indices.begin(), mesh.indices.begin() + mesh.triangleCount() * 3);
-    od.info.triangles = mesh.triangleCount();
-    od.info.localBounds = meshBounds(od.positions, od.indices);
-    od.info.meshHash = collisionMeshHash(od.positions, od.indices, c->h);
-    if (so.dynamic) {
-        Result<std::optional<PosedCollisionMesh>> posable = posedCollisionMesh(scene, i, mesh);
-        if (!posable) return fail("object '" + so.name + "': " + posable.error());
-        od.posable = std::move(posable).value();
-    }
-    if (sameSurface(mesh, so.mesh) || od.posable) return {};
-    if (c->drawn.empty()) { // a proxy made elsewhere: found here, as buildProxy finds it
-        Result<DrawnNormals> normals = DrawnNormals::build(so.mesh, mesh, c->h);
-        if (!normals) return fail("object '" + so.name + "': " + normals.error());
-        c->drawn = std::move(normals).value();
-    }
-    od.drawnNormals = std::move(c->drawn);
-    return {};
-}
-
 } // namespace
 
 struct CollisionWorld::Impl {
@@ -380,26 +241,52 @@ struct CollisionWorld::Impl {
     // triangleBounds) are grown again and their scenes rebuilt.
     void regrowBoxes() {
         bool staticsChanged = false, changed = false;
+        std::vector<uint32_t> regrown; // the dynamic scenes regrown, by the object whose triangles they hold
         for (ObjectData& od : objects) {
             if (!od.info.traced || od.geomId == kInvalidId) continue;
             const double needed = reachOf(od, traceBounds);
-            if (needed <= od.reach) continue;
-            od.reach = 2.0 * needed;
+            TracedTriangles& traced = objects[od.tracedBy];
+            if (needed <= traced.reach) continue;
+            traced.reach = 2.0 * needed;
             changed = true;
             if (od.info.dynamic) {
                 rtcCommitGeometry(rtcGetGeometry(od.scene, 0));
                 rtcCommitScene(od.scene);
-                rtcCommitGeometry(rtcGetGeometry(top, od.geomId));
+                regrown.push_back(od.tracedBy);
             } else {
                 rtcCommitGeometry(rtcGetGeometry(statics, od.geomId));
                 staticsChanged = true;
             }
         }
+        if (!regrown.empty()) commitInstancesOf(regrown);
         if (staticsChanged) {
             rtcCommitScene(statics);
             rtcCommitGeometry(rtcGetGeometry(top, staticInstance));
         }
         if (changed) rtcCommitScene(top);
+    }
+
+    // Commits the instances of the dynamic scenes holding the triangles of objects `tracers`.
+    void commitInstancesOf(const std::vector<uint32_t>& tracers) {
+        for (const ObjectData& od : objects)
+            if (od.info.dynamic && od.geomId != kInvalidId &&
+                std::find(tracers.begin(), tracers.end(), od.tracedBy) != tracers.end())
+                rtcCommitGeometry(rtcGetGeometry(top, od.geomId));
+    }
+
+    // Dynamic objects that do not deform and have the same collision triangles (the same render mesh
+    // and collider, and the same proxy where one was given) trace one scene: the first one's.
+    void shareScenes() {
+        std::vector<uint32_t> first(objects.size(), kInvalidId); // by source
+        for (uint32_t i = 0; i < objects.size(); ++i) {
+            ObjectData& od = objects[i];
+            if (!od.info.inWorld || !od.info.dynamic || od.posable || od.info.triangles == 0) continue;
+            const uint32_t f = first[od.source];
+            if (f == kInvalidId)
+                first[od.source] = i;
+            else if (objects[f].positions == od.positions && objects[f].indices == od.indices)
+                od.tracedBy = f;
+        }
     }
 
     // Applies the rule of TraceTransform.hpp, with the frame's origin known, to every object in the
@@ -446,19 +333,25 @@ struct CollisionWorld::Impl {
         staticGeomToObject[od.geomId] = object;
     }
 
-    // A dynamic object's triangles into a scene of its own, instanced in the top scene.
+    // A dynamic object's triangles into a scene of its own, or the scene of the object it traces
+    // (shareScenes), instanced in the top scene.
     void attachDynamic(ObjectData& od, uint32_t object) {
-        od.scene = newScene();
-        // A posed mesh's hierarchy is refitted, not rebuilt: Embree refits a geometry of build
-        // quality REFIT in a two-level (LOW) scene flagged DYNAMIC, and rebuilds it otherwise.
-        if (od.posable) {
-            rtcSetSceneFlags(od.scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
-            rtcSetSceneBuildQuality(od.scene, RTC_BUILD_QUALITY_LOW);
+        if (od.tracedBy != object) {
+            od.scene = objects[od.tracedBy].scene;
+            rtcRetainScene(od.scene);
+        } else {
+            od.scene = newScene();
+            // A posed mesh's hierarchy is refitted, not rebuilt: Embree refits a geometry of build
+            // quality REFIT in a two-level (LOW) scene flagged DYNAMIC, and rebuilds it otherwise.
+            if (od.posable) {
+                rtcSetSceneFlags(od.scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
+                rtcSetSceneBuildQuality(od.scene, RTC_BUILD_QUALITY_LOW);
+            }
+            RTCGeometry g = triangleGeometry(od, nullptr);
+            rtcAttachGeometry(od.scene, g);
+            rtcReleaseGeometry(g);
+            rtcCommitScene(od.scene);
         }
-        RTCGeometry g = triangleGeometry(od, nullptr);
-        rtcAttachGeometry(od.scene, g);
-        rtcReleaseGeometry(g);
-        rtcCommitScene(od.scene);
         // An untraced object's instance holds the identity, which Embree can invert, and is
         // disabled until setTransform gives the object a usable transform.
         RTCGeometry inst = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
@@ -488,8 +381,11 @@ struct CollisionWorld::Impl {
             frame.extend(wb.max - origin);
         }
         if (frame.empty()) return;
-        for (ObjectData& od : objects)
-            if (od.info.traced) od.reach = 2.0 * reachOf(od, frame);
+        for (ObjectData& od : objects) {
+            if (!od.info.traced) continue;
+            TracedTriangles& traced = objects[od.tracedBy];
+            traced.reach = std::max(traced.reach, 2.0 * reachOf(od, frame));
+        }
     }
 
     // Normalises `ray`, clips it to the world bounds and moves it into the float frame. False when
@@ -681,28 +577,19 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         impl->packetWidth = 8;
 
     // Collision meshes, error bounds and the origin of the float frame.
-    impl->objects.resize(scene.objects.size());
+    if (Status s = fillObjects(scene, proxies, settings, impl->objects); !s)
+        return fail(where + ": " + s.error());
     DBounds staticBounds, allBounds;
-    for (size_t i = 0; i < scene.objects.size(); ++i) {
-        const SceneObject& so = scene.objects[i];
-        ObjectData& od = impl->objects[i];
-        od.info.name = so.name;
-        od.info.dynamic = so.dynamic;
-        od.info.transform = so.transform;
-        if (!so.receivesDecals) {
-            od.info.localBounds = so.mesh.bounds();
-            continue;
-        }
-        const Proxy* proxy = !proxies.empty() && proxies[i] ? &*proxies[i] : nullptr;
-        if (Status s = setCollisionMesh(scene, i, proxy, settings, od); !s)
-            return fail(where + ": " + s.error());
+    for (ObjectData& od : impl->objects) {
+        if (!od.info.inWorld) continue;
         // The frame's origin comes from the objects whose scale and condition the trace can use.
-        od.info.untraced = floatLinearProblem(so.transform);
+        od.info.untraced = floatLinearProblem(od.info.transform);
         if (!od.info.untraced.empty()) continue;
-        const DBounds wb = transformBounds(od.info.localBounds, so.transform);
+        const DBounds wb = transformBounds(od.info.localBounds, od.info.transform);
         allBounds.extend(wb);
-        if (!so.dynamic) staticBounds.extend(wb);
+        if (!od.info.dynamic) staticBounds.extend(wb);
     }
+    impl->shareScenes();
     if (!staticBounds.empty())
         impl->origin = staticBounds.center();
     else if (!allBounds.empty())

@@ -6,9 +6,10 @@
 // Layout: one Embree device; every scene ROBUST. The collision meshes of all static receivers are
 // one Embree scene (one geometry per object), stored in single precision relative to a
 // double-precision origin (the centre of the static bounds), so that far from the world origin the
-// geometry keeps float precision. Each dynamic receiver is an instance of its own object-space scene
-// with its object-to-world transform. The top-level scene holds the static scene (one instance) and
-// the dynamic instances, so moving an object only updates its instance and recommits the top level.
+// geometry keeps float precision. Each dynamic receiver is an instance of an object-space scene
+// with its object-to-world transform; dynamic receivers that do not deform and have the same collision
+// triangles share one scene. The top-level scene holds the static scene (one instance) and the dynamic
+// instances, so moving an object only updates its instance and recommits the top level.
 // Objects with receivesDecals == false are not in the world (shots pass through them).
 //
 // Transforms: Embree traces in single precision, so an object is traced only while its transform
@@ -115,10 +116,12 @@ class CollisionWorld {
 public:
     // Builds the world for `scene` (validated with validateScene first). `proxies` is empty or has
     // one entry per Scene object; a present entry (from buildProxy) replaces that object's collision
-    // mesh: its `mesh` (object space, validated with validateMesh) and `errorBound` (object-space
-    // units, finite and >= 0) are used, the other fields are not. Errors name the object. An object
-    // whose transform breaks the rule of TraceTransform.hpp is no error: it is built untraced and
-    // warnings() names it.
+    // mesh: its `mesh` (object space, validated with validateMesh), `errorBound` (object-space units,
+    // finite and >= 0) and `drawnNormals` (nine a triangle, or empty: then found here) are used, the
+    // other fields are not. Objects with the same render mesh and collider (proxySources), none given
+    // a proxy, take the first one's collision mesh and measured bound instead of measuring them
+    // again. Errors name the object. An object whose transform breaks the rule of TraceTransform.hpp
+    // is no error: it is built untraced and warnings() names it.
     static Result<CollisionWorld> build(const Scene& scene,
                                         const std::vector<std::optional<Proxy>>& proxies = {},
                                         const WorldSettings& settings = {});

@@ -1,0 +1,120 @@
+// The collision world's objects that place one mesh many times: they take the first one's collision
+// mesh, measured bound and drawn normals, and dynamic ones trace one Embree scene. Each is compared
+// with a world that measures and builds every object on its own (each render mesh given spare copies
+// of a vertex that no triangle uses: the same surface, not the same input bit for bit).
+
+#include "PlacementTestUtil.hpp"
+
+#include "spatter/core/MeshBuilder.hpp"
+#include "spatter/placement/CollisionWorld.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace spatter;
+using namespace spatter::test;
+
+namespace {
+
+// `scene` with object i's render mesh given i + 1 unused copies of its first vertex.
+Scene unshared(Scene scene) {
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        Mesh& m = scene.objects[i].mesh;
+        for (size_t k = 0; k <= i; ++k) {
+            m.positions.push_back(m.positions[0]);
+            m.normals.push_back(m.normals[0]);
+            if (!m.uvs.empty()) m.uvs.push_back(m.uvs[0]);
+            if (!m.tangents.empty()) m.tangents.push_back(m.tangents[0]);
+        }
+    }
+    return scene;
+}
+
+// A bumpy sphere with a coarse sphere as its authored collider, placed twice as static and three
+// times as dynamic objects, turned and scaled, over a static floor, and a dynamic box of its own.
+Scene bumpyInstances() {
+    Scene s;
+    s.source = "test:instances";
+    s.objects.push_back(makeSceneObject("floor", makeBox(glm::vec3(12.0f, 0.1f, 4.0f), 2),
+                                        glm::translate(glm::dmat4(1.0), glm::dvec3(5.0, -1.2, 0.0))));
+    Mesh bumpy = makeSphere(1.0f, 24, 48);
+    displace(bumpy, [](const glm::vec3& p, const glm::vec3&) {
+        return 0.06f * std::sin(7.0f * p.x) * std::cos(5.0f * p.y + 2.0f * p.z);
+    });
+    for (int i = 0; i < 5; ++i) {
+        glm::dmat4 t = glm::translate(glm::dmat4(1.0), glm::dvec3(2.5 * i, 0.0, 0.0));
+        t = glm::rotate(t, 0.4 * i, glm::normalize(glm::dvec3(0.3, 1.0, 0.2)));
+        t = glm::scale(t, glm::dvec3(0.8 + 0.1 * i));
+        SceneObject o = makeSceneObject("bumpy_" + std::to_string(i), bumpy, t, i >= 2);
+        o.collider = makeSphere(1.02f, 6, 12);
+        s.objects.push_back(std::move(o));
+    }
+    s.objects.push_back(makeSceneObject("box", makeBox(glm::vec3(0.7f), 2),
+                                        glm::translate(glm::dmat4(1.0), glm::dvec3(5.0, 2.5, 0.0)), true));
+    return s;
+}
+
+// Every ray of `rays` hits `a` as it hits `b`, bit for bit, and where the drawn surface's normal is
+// known it is the same; returns the hits.
+size_t sameHitsAndNormals(const CollisionWorld& a, const CollisionWorld& b, const std::vector<Ray>& rays) {
+    size_t hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const std::optional<Hit> ha = a.intersect(rays[i]), hb = b.intersect(rays[i]);
+        EXPECT_TRUE(sameHit(ha, hb)) << "ray " << i;
+        if (!ha || !hb) continue;
+        ++hits;
+        const std::optional<glm::dvec3> na = a.drawnNormalAt(ha->object, ha->primitive, ha->localPosition);
+        const std::optional<glm::dvec3> nb = b.drawnNormalAt(hb->object, hb->primitive, hb->localPosition);
+        EXPECT_EQ(na.has_value(), nb.has_value()) << "ray " << i;
+        if (na && nb) {
+            EXPECT_EQ(*na, *nb) << "ray " << i;
+        }
+    }
+    return hits;
+}
+
+// Rays at object `object` of `w` from every side.
+std::vector<Ray> raysAt(const CollisionWorld& w, uint32_t object, uint64_t seed) {
+    return rayFan(400, w.worldBounds(object).center(), 6.0, 1.2, seed);
+}
+
+} // namespace
+
+TEST(SharedCollision, InstancesOfAMeshAndColliderTraceAsIfEachWereMeasuredAlone) {
+    const Scene scene = bumpyInstances();
+    const CollisionWorld shared = buildWorld(scene);
+    const CollisionWorld alone = buildWorld(unshared(scene));
+    for (uint32_t i = 1; i <= 5; ++i) { // the bumpy spheres
+        EXPECT_GT(shared.object(i)->errorBound, 0.0) << i;
+        EXPECT_EQ(shared.object(i)->errorBound, alone.object(i)->errorBound) << i;
+        EXPECT_EQ(shared.object(i)->meshHash, shared.object(1)->meshHash) << i;
+        EXPECT_EQ(shared.object(i)->triangles, alone.object(i)->triangles) << i;
+        EXPECT_GT(sameHitsAndNormals(shared, alone, raysAt(shared, i, 40 + i)), 100u) << i;
+    }
+}
+
+TEST(SharedCollision, DynamicInstancesMoveAndLeaveTheirSharedSceneOneByOne) {
+    const Scene scene = bumpyInstances();
+    CollisionWorld shared = buildWorld(scene);
+    CollisionWorld alone = buildWorld(unshared(scene));
+    const std::vector<glm::dvec3> where = {shared.worldBounds(3).center(), shared.worldBounds(4).center(),
+                                           shared.worldBounds(5).center()};
+    // The first of the dynamic instances, whose triangles the others trace, goes far away (the
+    // world's boxes grow for the rays that reach it there); the second leaves; the third turns.
+    const glm::dmat4 far =
+        glm::translate(glm::dmat4(1.0), glm::dvec3(4e4, 300.0, -2e4)) * scene.objects[3].transform;
+    const glm::dmat4 turned = glm::rotate(scene.objects[5].transform, 0.9, glm::dvec3(0.0, 0.0, 1.0));
+    for (CollisionWorld* w : {&shared, &alone}) {
+        ASSERT_TRUE(w->setTransform(3, far).ok());
+        ASSERT_TRUE(w->removeObject(4).ok());
+        ASSERT_TRUE(w->setTransform(5, turned).ok());
+    }
+    EXPECT_GT(sameHitsAndNormals(shared, alone, raysAt(shared, 3, 7)), 100u);
+    EXPECT_GT(sameHitsAndNormals(shared, alone, raysAt(shared, 5, 8)), 100u);
+    for (size_t k = 0; k < where.size(); ++k)
+        sameHitsAndNormals(shared, alone, rayFan(300, where[k], 6.0, 1.2, 20 + k));
+    const std::optional<Hit> there =
+        shared.intersect(ray(where[1] + glm::dvec3(0.0, 0.0, 5.0), {0.0, 0.0, -1.0}));
+    EXPECT_TRUE(!there || there->object != 4u);
+}
