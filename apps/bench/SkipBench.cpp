@@ -49,9 +49,10 @@ What each skip of the design saves, measured with the skip on and forced off in 
                       builtin:gallery dynamic, one instance each (CollisionWorld::build seconds, and
                       spawn ns per ray)
   shared-instances    objects that place one mesh and collider many times take the first one's
-                      measured collider bound, and the dynamic ones its Embree scene; forced off by
-                      giving each copy's render mesh unused vertices of its own (CollisionWorld::build
-                      seconds; the gallery's crate with a box collider, 100 copies, half dynamic)
+                      measured collider bound and trace one Embree scene (the dynamic ones, and the
+                      static ones placed four times or more); forced off by giving each copy's render
+                      mesh unused vertices of its own (CollisionWorld::build seconds; the gallery's
+                      crate with a box collider, 100 copies, half dynamic)
 
 --decals N  decals in view in the GPU rows (default 10000)   --frames N  timed frames (default 7)
 --no-gpu    skip the GPU rows                                --quick     smaller and shorter

@@ -28,7 +28,7 @@
 namespace spatter {
 
 // A collision object: its triangles as Embree traces them (TracedTriangles: indices, the vertices
-// Embree sees and their reach), and what the world keeps besides. A dynamic object that shares
+// Embree sees and their reach), and what the world keeps besides. An instanced object that shares
 // another's scene traces that one's triangles (`tracedBy`), whose reach then covers both.
 struct ObjectData : TracedTriangles {
     CollisionObject info;
@@ -38,11 +38,12 @@ struct ObjectData : TracedTriangles {
     std::optional<DrawnNormals> drawnNormals;  // proxies and colliders of objects that do not deform
     std::vector<glm::dmat4> poseJoints;        // the joint matrices of the last setPose (empty: rest)
     std::vector<double> poseMorphs;            // the morph weights of the last setPose
-    RTCScene scene = nullptr;                  // dynamic objects: their object-space scene (a reference)
-    uint32_t source = 0; // the first object with the same render mesh and collider (proxySources)
+    bool instanced = false;   // traced as an instance of an object-space scene (CollisionWorld.cpp)
+    RTCScene scene = nullptr; // instanced objects: their object-space scene (a reference)
+    uint32_t source = 0;      // the first object with the same render mesh and collider (proxySources)
     uint32_t tracedBy =
         0; // dynamic objects: the object whose triangles their scene holds, or their own index
-    unsigned geomId = kInvalidId; // static: geometry in the static scene; dynamic: instance in the top scene
+    unsigned geomId = kInvalidId; // in the static scene, or the instance in the top scene
 
     // The barycentric coordinates of `local` (object space) in collision triangle `primitive` (in range).
     glm::dvec3 barycentricOn(uint32_t primitive, const glm::dvec3& local) const {

@@ -76,6 +76,11 @@ constexpr double kGroupAngleDeg = 15.0;
 constexpr double kPacketHalfAngleDeg = 3.0;
 constexpr unsigned kMinPacketLanes = 4;
 
+// Static objects whose collision triangles the world holds this many times or more are traced as
+// instances of one object-space scene rather than copied into the static scene: PLACEMENT.md gives
+// the measurements.
+constexpr uint32_t kInstancedCopies = 4;
+
 // The (unit) direction of a prepared ray.
 glm::dvec3 direction(const RTCRay& r) {
     return glm::dvec3(r.dir_x, r.dir_y, r.dir_z);
@@ -223,8 +228,8 @@ struct CollisionWorld::Impl {
     }
 
     // Largest |ray origin| in the space of od.traced for a traced ray starting inside `frame` (frame
-    // coordinates): the frame itself for static objects, object space for dynamic ones. With the rule
-    // of TraceTransform.hpp (objects within 2^32 of the origin, inverse norms at most 2^25) it stays
+    // coordinates): the frame itself for the static scene's objects, object space for instances. With the
+    // rule of TraceTransform.hpp (objects within 2^32 of the origin, inverse norms at most 2^25) it stays
     // below 2^59, inside Embree's range of +-1.844e18 (about 2^60.7) for instance-space origins.
     double reachOf(const ObjectData& od, const DBounds& frame) const {
         double r = 0.0;
@@ -232,7 +237,7 @@ struct CollisionWorld::Impl {
             const glm::dvec3 c((i & 1) ? frame.max.x : frame.min.x, (i & 2) ? frame.max.y : frame.min.y,
                                (i & 4) ? frame.max.z : frame.min.z);
             r = std::max(
-                r, glm::length(od.info.dynamic ? glm::dvec3(od.inverse * glm::dvec4(c + origin, 1.0)) : c));
+                r, glm::length(od.instanced ? glm::dvec3(od.inverse * glm::dvec4(c + origin, 1.0)) : c));
         }
         return r;
     }
@@ -241,7 +246,8 @@ struct CollisionWorld::Impl {
     // triangleBounds) are grown again and their scenes rebuilt.
     void regrowBoxes() {
         bool staticsChanged = false, changed = false;
-        std::vector<uint32_t> regrown; // the dynamic scenes regrown, by the object whose triangles they hold
+        std::vector<uint32_t>
+            regrown; // the instanced scenes regrown, by the object whose triangles they hold
         for (ObjectData& od : objects) {
             if (!od.info.traced || od.geomId == kInvalidId) continue;
             const double needed = reachOf(od, traceBounds);
@@ -249,7 +255,7 @@ struct CollisionWorld::Impl {
             if (needed <= traced.reach) continue;
             traced.reach = 2.0 * needed;
             changed = true;
-            if (od.info.dynamic) {
+            if (od.instanced) {
                 rtcCommitGeometry(rtcGetGeometry(od.scene, 0));
                 rtcCommitScene(od.scene);
                 regrown.push_back(od.tracedBy);
@@ -266,34 +272,46 @@ struct CollisionWorld::Impl {
         if (changed) rtcCommitScene(top);
     }
 
-    // Commits the instances of the dynamic scenes holding the triangles of objects `tracers`.
+    // Commits the instances of the scenes holding the triangles of objects `tracers`.
     void commitInstancesOf(const std::vector<uint32_t>& tracers) {
         for (const ObjectData& od : objects)
-            if (od.info.dynamic && od.geomId != kInvalidId &&
+            if (od.instanced && od.geomId != kInvalidId &&
                 std::find(tracers.begin(), tracers.end(), od.tracedBy) != tracers.end())
                 rtcCommitGeometry(rtcGetGeometry(top, od.geomId));
     }
 
-    // Dynamic objects that do not deform and have the same collision triangles (the same render mesh
-    // and collider, and the same proxy where one was given) trace one scene: the first one's.
-    void shareScenes() {
+    // Which objects are traced as instances of object-space scenes (the dynamic ones, and the static
+    // ones whose collision triangles the world holds kInstancedCopies times or more), and which of those
+    // share one scene: those that do not deform and have the same collision triangles (the same render
+    // mesh and collider, and the same proxy where one was given) trace the first one's.
+    void chooseInstances() {
+        std::vector<uint32_t> group(objects.size(), kInvalidId); // the first object of the same triangles
         std::vector<uint32_t> first(objects.size(), kInvalidId); // by source
+        std::vector<uint32_t> staticCopies(objects.size(), 0);   // by group
         for (uint32_t i = 0; i < objects.size(); ++i) {
             ObjectData& od = objects[i];
-            if (!od.info.inWorld || !od.info.dynamic || od.posable || od.info.triangles == 0) continue;
+            if (!od.info.inWorld || od.posable || od.info.triangles == 0) continue;
             const uint32_t f = first[od.source];
-            if (f == kInvalidId)
-                first[od.source] = i;
-            else if (objects[f].positions == od.positions && objects[f].indices == od.indices)
-                od.tracedBy = f;
+            if (f == kInvalidId) first[od.source] = i;
+            const bool same =
+                f != kInvalidId && objects[f].positions == od.positions && objects[f].indices == od.indices;
+            group[i] = same ? f : i;
+            if (!od.info.dynamic) ++staticCopies[group[i]];
+        }
+        std::vector<uint32_t> holder(objects.size(), kInvalidId); // by group: the first instanced
+        for (uint32_t i = 0; i < objects.size(); ++i) {
+            ObjectData& od = objects[i];
+            od.instanced =
+                od.info.dynamic || (group[i] != kInvalidId && staticCopies[group[i]] >= kInstancedCopies);
+            if (!od.instanced || group[i] == kInvalidId) continue;
+            if (holder[group[i]] == kInvalidId) holder[group[i]] = i;
+            od.tracedBy = holder[group[i]];
         }
     }
 
-    // Applies the rule of TraceTransform.hpp, with the frame's origin known, to every object in the
-    // world, and sizes the box growth of the traced ones for ray starts anywhere in the world, with
-    // room to spare (regrowBoxes).
     // Every collision object into Embree: the static ones as geometries of one scene (in the float
-    // frame), the dynamic ones as instances of their own scenes; then the top scene committed.
+    // frame), the instanced ones (chooseInstances) as instances of object-space scenes; then the top
+    // scene committed.
     void attachObjects() {
         top = newScene();
         rtcSetSceneFlags(top, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
@@ -304,8 +322,8 @@ struct CollisionWorld::Impl {
             ObjectData& od = objects[i];
             if (!od.info.inWorld || od.info.triangles == 0) continue;
             triangles += od.info.triangles;
-            if (od.info.dynamic) {
-                attachDynamic(od, uint32_t(i));
+            if (od.instanced) {
+                attachInstance(od, uint32_t(i));
             } else if (od.info.traced) {
                 attachStatic(od, uint32_t(i));
                 anyStatic = true;
@@ -333,9 +351,9 @@ struct CollisionWorld::Impl {
         staticGeomToObject[od.geomId] = object;
     }
 
-    // A dynamic object's triangles into a scene of its own, or the scene of the object it traces
-    // (shareScenes), instanced in the top scene.
-    void attachDynamic(ObjectData& od, uint32_t object) {
+    // An instanced object's triangles into a scene of its own, or the scene of the object it traces
+    // (chooseInstances), instanced in the top scene.
+    void attachInstance(ObjectData& od, uint32_t object) {
         if (od.tracedBy != object) {
             od.scene = objects[od.tracedBy].scene;
             rtcRetainScene(od.scene);
@@ -367,6 +385,9 @@ struct CollisionWorld::Impl {
         instanceToObject[od.geomId] = object;
     }
 
+    // Applies the rule of TraceTransform.hpp, with the frame's origin known, to every object in the
+    // world, and sizes the box growth of the traced ones for ray starts anywhere in the world, with
+    // room to spare (regrowBoxes).
     void decideTraced() {
         DBounds frame;
         for (ObjectData& od : objects) {
@@ -589,7 +610,7 @@ Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
         allBounds.extend(wb);
         if (!od.info.dynamic) staticBounds.extend(wb);
     }
-    impl->shareScenes();
+    impl->chooseInstances();
     if (!staticBounds.empty())
         impl->origin = staticBounds.center();
     else if (!allBounds.empty())
@@ -748,7 +769,7 @@ Status CollisionWorld::removeObject(uint32_t object) {
     od.info.untraced.clear();
     if (od.geomId != kInvalidId) {
         impl_->triangles -= od.info.triangles;
-        if (od.info.dynamic) {
+        if (od.instanced) {
             rtcDetachGeometry(impl_->top, od.geomId);
             rtcReleaseScene(od.scene);
             od.scene = nullptr;

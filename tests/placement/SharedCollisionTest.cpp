@@ -1,7 +1,8 @@
 // The collision world's objects that place one mesh many times: they take the first one's collision
-// mesh, measured bound and drawn normals, and dynamic ones trace one Embree scene. Each is compared
-// with a world that measures and builds every object on its own (each render mesh given spare copies
-// of a vertex that no triangle uses: the same surface, not the same input bit for bit).
+// mesh, measured bound and drawn normals, and dynamic ones, and static ones placed four times or more,
+// trace one Embree scene. Each is compared with a world that measures and builds every object on its
+// own (each render mesh given spare copies of a vertex that no triangle uses: the same surface, not
+// the same input bit for bit).
 
 #include "PlacementTestUtil.hpp"
 
@@ -117,4 +118,40 @@ TEST(SharedCollision, DynamicInstancesMoveAndLeaveTheirSharedSceneOneByOne) {
     const std::optional<Hit> there =
         shared.intersect(ray(where[1] + glm::dvec3(0.0, 0.0, 5.0), {0.0, 0.0, -1.0}));
     EXPECT_TRUE(!there || there->object != 4u);
+}
+
+TEST(SharedCollision, StaticCopiesTracedAsInstancesHitWhereTheStaticSceneDoes) {
+    Scene scene = bumpyInstances();
+    for (SceneObject& o : scene.objects)
+        o.dynamic = false;
+    const CollisionWorld instanced = buildWorld(scene), flat = buildWorld(unshared(scene));
+    for (uint32_t i = 1; i <= 5; ++i) { // the bumpy spheres
+        EXPECT_EQ(instanced.object(i)->errorBound, flat.object(i)->errorBound) << i;
+        const std::vector<Ray> rays = raysAt(instanced, i, 60 + i);
+        size_t hits = 0, samePrimitive = 0;
+        for (size_t r = 0; r < rays.size(); ++r) {
+            const std::optional<Hit> a = instanced.intersect(rays[r]), b = flat.intersect(rays[r]);
+            ASSERT_EQ(a.has_value(), b.has_value()) << "object " << i << ", ray " << r;
+            if (!a) continue;
+            ++hits;
+            EXPECT_EQ(a->object, b->object) << "object " << i << ", ray " << r;
+            // Rays near an edge may take the neighbouring triangle: they land on the same surface.
+            EXPECT_LT(glm::length(a->position - b->position), 1e-5) << "object " << i << ", ray " << r;
+            if (a->primitive != b->primitive) continue;
+            ++samePrimitive;
+            EXPECT_LT(glm::length(a->localPosition - b->localPosition), 1e-12)
+                << "object " << i << ", ray " << r;
+        }
+        EXPECT_GT(hits, 100u) << i;
+        EXPECT_GT(samePrimitive, hits * 99 / 100) << i;
+    }
+    // A copy taken out of the world lets rays through; the others stay.
+    CollisionWorld w = buildWorld(scene);
+    const Ray down = ray(w.worldBounds(2).center() + glm::dvec3(0.0, 5.0, 0.0), {0.0, -1.0, 0.0});
+    ASSERT_EQ(w.intersect(down)->object, 2u);
+    ASSERT_TRUE(w.removeObject(2).ok());
+    EXPECT_EQ(w.intersect(down)->object, 0u); // the floor under it
+    const Ray atAnother = ray(w.worldBounds(4).center() + glm::dvec3(0.0, 0.0, 5.0), {0.0, 0.0, -1.0});
+    EXPECT_EQ(w.intersect(atAnother)->object, 4u);
+    EXPECT_EQ(w.triangleCount(), flat.triangleCount() - flat.object(2)->triangles);
 }

@@ -3,12 +3,13 @@
 // contributes its collision mesh (a proxy, an authored collider or the render mesh) and the error
 // bound h within which that mesh stays of the render surface.
 //
-// Layout: one Embree device; every scene ROBUST. The collision meshes of all static receivers are
+// Layout: one Embree device; every scene ROBUST. The collision meshes of the static receivers are
 // one Embree scene (one geometry per object), stored in single precision relative to a
 // double-precision origin (the centre of the static bounds), so that far from the world origin the
-// geometry keeps float precision. Each dynamic receiver is an instance of an object-space scene
-// with its object-to-world transform; dynamic receivers that do not deform and have the same collision
-// triangles share one scene. The top-level scene holds the static scene (one instance) and the dynamic
+// geometry keeps float precision. Each dynamic receiver, and each static one whose collision
+// triangles the world holds four times or more, is an instance of an object-space scene with its
+// object-to-world transform; those that do not deform and have the same collision triangles share
+// one scene. The top-level scene holds the static scene (one instance) and the dynamic
 // instances, so moving an object only updates its instance and recommits the top level.
 // Objects with receivesDecals == false are not in the world (shots pass through them).
 //
