@@ -37,8 +37,8 @@ What each skip of the design saves, measured with the skip on and forced off in 
   shader-variants     the decal shader built for the features in use; forced off by one more visible
                       decal whose type uses wrap-around, a normal map and a fade (decal pass ms)
   decal-culling       boxes outside the view are not drawn (1,000,000 decals, N in view); forced off by
-                      putting the others in view under the floor, where every one is drawn and hidden
-                      (decal pass ms; render() CPU ms beside it)
+                      putting the others in view under the floor, with the occlusion test off, where
+                      every one is drawn and hidden (decal pass ms; render() CPU ms beside it)
   empty-decal-pass    no normal copy and no decal pass when no decal is in view; forced off by one
                       decal of about one pixel in view (GPU ms of all passes)
   small-mesh-proxy    a mesh under 512 triangles is its own proxy; forced off by smallMeshTriangles 0
@@ -95,9 +95,12 @@ public:
         rs.width = 1920;
         rs.height = 1080;
         rs.waitForTimers = true;
-        Result<Renderer> r = Renderer::create(*g.context_, rs);
-        if (!r) return fail(r.error());
-        g.renderer_.emplace(std::move(r).value());
+        for (bool occlusion : {true, false}) {
+            rs.occlusionCulling = occlusion;
+            Result<Renderer> r = Renderer::create(*g.context_, rs);
+            if (!r) return fail(r.error());
+            (occlusion ? g.renderer_ : g.unoccluded_).emplace(std::move(r).value());
+        }
         g.view_ = decalFieldView(16.0 / 9.0);
         g.frames_ = frames;
         return g;
@@ -105,10 +108,11 @@ public:
 
     const std::string& glRenderer() const { return context_->info().renderer; }
 
-    // GPU times of `decals` of `types` on the decal field (with a dynamic cube when `dynamicCube`).
+    // GPU times of `decals` of `types` on the decal field (with a dynamic cube when `dynamicCube`),
+    // with the occlusion test of the decal culling or without.
     Result<FrameTimes> frame(bool dynamicCube, const std::vector<DecalType>& types,
-                             const std::vector<Decal>& decals) {
-        Renderer& r = *renderer_;
+                             const std::vector<Decal>& decals, bool occlusion = true) {
+        Renderer& r = occlusion ? *renderer_ : *unoccluded_;
         if (Status s = r.setScene(decalFieldScene(view_, dynamicCube)); !s) return fail(s.error());
         if (dynamicCube)
             if (Status s = r.setObjectIds({0, 1}); !s) return fail(s.error());
@@ -122,7 +126,7 @@ public:
 private:
     GpuSkips() = default;
     std::unique_ptr<GlContext> context_;
-    std::optional<Renderer> renderer_;
+    std::optional<Renderer> renderer_, unoccluded_; // with the occlusion test, without
     DecalFieldView view_;
     size_t frames_ = 7;
 };
@@ -176,7 +180,8 @@ void gpuSkips(GpuSkips& g, size_t visible, bool quick, std::vector<Skip>& out) {
         Skip s = makeSkip("decal-culling", "decal pass GPU ms");
         std::vector<Decal> culled = decalField(v, world, visible, 0.015, 0, 1);
         const Result<FrameTimes> on = g.frame(false, {def}, culled);
-        // The same decals, those out of view moved into view under the floor: drawn, every pixel hidden.
+        // The same decals, those out of view moved into view under the floor, without the occlusion
+        // test (which would cull them there): drawn, every pixel hidden.
         std::vector<Decal> hidden = culled;
         Rng rng(3);
         for (size_t i = visible; i < hidden.size(); ++i) {
@@ -184,7 +189,7 @@ void gpuSkips(GpuSkips& g, size_t visible, bool quick, std::vector<Skip>& out) {
             hidden[i].center.z = float(v.halfHeight * 0.9 * double(rng.uniform(-1.0f, 1.0f)));
             hidden[i].center.y = -1.0f;
         }
-        const Result<FrameTimes> off = g.frame(false, {def}, hidden);
+        const Result<FrameTimes> off = g.frame(false, {def}, hidden, false);
         if (on && off)
             s.note = std::to_string(world) + " decals, " + std::to_string(on->last.decalsDrawn) + " / " +
                      std::to_string(off->last.decalsDrawn) + " drawn; render() CPU ms " +

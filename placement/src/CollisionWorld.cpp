@@ -246,8 +246,8 @@ struct CollisionWorld::Impl {
     // triangleBounds) are grown again and their scenes rebuilt.
     void regrowBoxes() {
         bool staticsChanged = false, changed = false;
-        std::vector<uint32_t>
-            regrown; // the instanced scenes regrown, by the object whose triangles they hold
+        // The instanced scenes regrown, by the object whose triangles they hold.
+        std::vector<uint32_t> regrown;
         for (ObjectData& od : objects) {
             if (!od.info.traced || od.geomId == kInvalidId) continue;
             const double needed = reachOf(od, traceBounds);
