@@ -99,16 +99,23 @@ Status setCollisionMesh(const Scene& scene, size_t i, const Proxy* proxy, const 
     return {};
 }
 
-// Takes the collision mesh, bound and drawn normals that `from` was given for the same input.
-void copyCollisionMesh(const ObjectData& from, ObjectData& od) {
+// Takes the collision mesh, bound and drawn normals that object `from` was given for the same input:
+// its description, and its mesh and drawn normals to read (ObjectData::shape).
+void shareCollisionMesh(const ObjectData& from, uint32_t fromIndex, ObjectData& od) {
     od.info.inWorld = true;
     od.info.errorBound = from.info.errorBound;
     od.info.triangles = from.info.triangles;
     od.info.localBounds = from.info.localBounds;
     od.info.meshHash = from.info.meshHash;
-    od.positions = from.positions;
-    od.indices = from.indices;
-    od.drawnNormals = from.drawnNormals;
+    od.shape = fromIndex;
+}
+
+// Whether an object given `a` and one given `b` (proxies, or nullptr for none) get the same collision
+// mesh, bound and drawn normals from the same render mesh and collider.
+bool sameCollisionInput(const Proxy* a, const Proxy* b) {
+    if (!a || !b) return !a && !b;
+    return a->mesh.positions == b->mesh.positions && a->mesh.indices == b->mesh.indices &&
+           a->errorBound == b->errorBound && a->drawnNormals.packed() == b->drawnNormals.packed();
 }
 
 } // namespace
@@ -146,13 +153,13 @@ Status fillObjects(const Scene& scene, const std::vector<std::optional<Proxy>>& 
         od.info.dynamic = so.dynamic;
         od.info.transform = so.transform;
         od.source = uint32_t(sources[i]);
-        od.tracedBy = uint32_t(i);
+        od.shape = od.tracedBy = uint32_t(i);
         if (!so.receivesDecals) {
             od.info.localBounds = so.mesh.bounds();
             continue;
         }
-        if (od.source != i && !proxyOf(i) && !proxyOf(od.source)) {
-            copyCollisionMesh(objects[od.source], od);
+        if (od.source != i && sameCollisionInput(proxyOf(i), proxyOf(od.source))) {
+            shareCollisionMesh(objects[od.source], od.source, od);
         } else if (Status s = setCollisionMesh(scene, i, proxyOf(i), settings, od); !s) {
             return s;
         }

@@ -41,8 +41,12 @@ struct ObjectData : TracedTriangles {
     bool instanced = false;   // traced as an instance of an object-space scene (CollisionWorld.cpp)
     RTCScene scene = nullptr; // instanced objects: their object-space scene (a reference)
     uint32_t source = 0;      // the first object with the same render mesh and collider (proxySources)
-    uint32_t tracedBy =
-        0; // dynamic objects: the object whose triangles their scene holds, or their own index
+    // The object whose `positions`, `indices` and `drawnNormals` are this one's collision mesh: its own
+    // index, or its source's where it took that one's (fillObjects): its own then stay empty, but for
+    // the indices of Embree geometry it holds.
+    uint32_t shape = 0;
+    // Instanced objects: the object whose triangles their scene holds, or their own index.
+    uint32_t tracedBy = 0;
     unsigned geomId = kInvalidId; // in the static scene, or the instance in the top scene
 
     // The barycentric coordinates of `local` (object space) in collision triangle `primitive` (in range).
@@ -65,7 +69,8 @@ Status checkProxy(const Proxy& proxy, const std::string& name);
 // object; its collider's, measured; or its render mesh's, 0), what poses it (dynamic skinned or
 // morphed objects) and, for a collision mesh standing in for a render mesh that does not deform, which
 // way the drawn surface faces under it. A receiver with the same render mesh and collider as an
-// earlier one (proxySources), neither given a proxy, takes that one's results. Errors name the object.
+// earlier one (proxySources), both given no proxy or equal ones, takes that one's results and reads its
+// collision mesh (ObjectData::shape). Errors name the object.
 Status fillObjects(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
                    const WorldSettings& settings, std::vector<ObjectData>& objects);
 

@@ -189,9 +189,11 @@ struct CollisionWorld::Impl {
     // The collision triangles of `od` as Embree user geometry (watertightHit), their vertices moved
     // into the float frame by `toFrame` (static objects) or left in object space (dynamic ones).
     RTCGeometry triangleGeometry(ObjectData& od, const glm::dmat4* toFrame) {
-        od.traced.resize(od.positions.size());
-        for (size_t i = 0; i < od.positions.size(); ++i) {
-            glm::dvec3 p(od.positions[i]);
+        const ObjectData& shape = objects[od.shape];
+        if (&shape != &od) od.indices = shape.indices;
+        od.traced.resize(shape.positions.size());
+        for (size_t i = 0; i < shape.positions.size(); ++i) {
+            glm::dvec3 p(shape.positions[i]);
             if (toFrame) p = glm::dvec3(*toFrame * glm::dvec4(p, 1.0)) - origin;
             od.traced[i] = glm::vec3(p);
         }
@@ -280,6 +282,12 @@ struct CollisionWorld::Impl {
                 rtcCommitGeometry(rtcGetGeometry(top, od.geomId));
     }
 
+    // Whether objects `a` and `b` have the same collision triangles.
+    bool sameTriangles(const ObjectData& a, const ObjectData& b) const {
+        const ObjectData &x = objects[a.shape], &y = objects[b.shape];
+        return &x == &y || (x.positions == y.positions && x.indices == y.indices);
+    }
+
     // Which objects are traced as instances of object-space scenes (the dynamic ones, and the static
     // ones whose collision triangles the world holds kInstancedCopies times or more), and which of those
     // share one scene: those that do not deform and have the same collision triangles (the same render
@@ -293,8 +301,7 @@ struct CollisionWorld::Impl {
             if (!od.info.inWorld || od.posable || od.info.triangles == 0) continue;
             const uint32_t f = first[od.source];
             if (f == kInvalidId) first[od.source] = i;
-            const bool same =
-                f != kInvalidId && objects[f].positions == od.positions && objects[f].indices == od.indices;
+            const bool same = f != kInvalidId && sameTriangles(objects[f], od);
             group[i] = same ? f : i;
             if (!od.info.dynamic) ++staticCopies[group[i]];
         }
@@ -528,9 +535,11 @@ struct CollisionWorld::Impl {
             object = instanceToObject[inst];
         }
         const ObjectData& od = objects[object];
-        if (size_t(rh.hit.primID) * 3 + 2 >= od.indices.size()) return std::nullopt;
-        const uint32_t* tri = &od.indices[size_t(rh.hit.primID) * 3];
-        const glm::dvec3 v0(od.positions[tri[0]]), v1(od.positions[tri[1]]), v2(od.positions[tri[2]]);
+        const ObjectData& shape = objects[od.shape];
+        if (size_t(rh.hit.primID) * 3 + 2 >= shape.indices.size()) return std::nullopt;
+        const uint32_t* tri = &shape.indices[size_t(rh.hit.primID) * 3];
+        const glm::dvec3 v0(shape.positions[tri[0]]), v1(shape.positions[tri[1]]),
+            v2(shape.positions[tri[2]]);
 
         const glm::dvec3 lo = glm::dvec3(od.inverse * glm::dvec4(ray.origin, 1.0));
         const glm::dvec3 ld = glm::dmat3(od.inverse) * ray.direction;
@@ -745,9 +754,10 @@ std::optional<glm::dvec3> CollisionWorld::drawnNormalAt(uint32_t object, uint32_
                                                         const glm::dvec3& localPosition) const {
     if (object >= impl_->objects.size()) return std::nullopt;
     const ObjectData& od = impl_->objects[object];
-    if (!od.drawnNormals || !od.info.inWorld || size_t(primitive) >= od.indices.size() / 3)
+    const ObjectData& shape = impl_->objects[od.shape];
+    if (!shape.drawnNormals || !od.info.inWorld || size_t(primitive) >= shape.indices.size() / 3)
         return std::nullopt;
-    return od.drawnNormals->at(primitive, od.barycentricOn(primitive, localPosition));
+    return shape.drawnNormals->at(primitive, shape.barycentricOn(primitive, localPosition));
 }
 
 std::optional<glm::dmat4> CollisionWorld::anchorFrame(uint32_t object, const SurfaceAnchor& anchor) const {

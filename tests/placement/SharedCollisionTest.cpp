@@ -7,6 +7,7 @@
 #include "PlacementTestUtil.hpp"
 
 #include "spatter/core/MeshBuilder.hpp"
+#include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/placement/CollisionWorld.hpp"
 
 #include <gtest/gtest.h>
@@ -92,6 +93,30 @@ TEST(SharedCollision, InstancesOfAMeshAndColliderTraceAsIfEachWereMeasuredAlone)
         EXPECT_EQ(shared.object(i)->meshHash, shared.object(1)->meshHash) << i;
         EXPECT_EQ(shared.object(i)->triangles, alone.object(i)->triangles) << i;
         EXPECT_GT(sameHitsAndNormals(shared, alone, raysAt(shared, i, 40 + i)), 100u) << i;
+    }
+}
+
+TEST(SharedCollision, InstancesGivenEqualProxiesTraceAsIfEachWereGivenItsOwn) {
+    const Scene scene = bumpyInstances();
+    ProxySettings ps;
+    ps.tolerance = 0.005f;
+    ps.smallMeshTriangles = 0;
+    Result<Proxy> built = buildProxy(scene.objects[1].mesh, ps);
+    ASSERT_TRUE(built.ok()) << built.error();
+    ps.tolerance = 0.03f;
+    Result<Proxy> coarser = buildProxy(scene.objects[1].mesh, ps);
+    ASSERT_TRUE(coarser.ok()) << coarser.error();
+    ASSERT_NE(coarser->mesh.triangleCount(), built->mesh.triangleCount());
+    // The bumpy spheres, each given a copy: the first three of one proxy, the last two of another.
+    std::vector<std::optional<Proxy>> proxies(scene.objects.size());
+    for (size_t i = 1; i <= 5; ++i)
+        proxies[i] = i <= 3 ? built.value() : coarser.value();
+    const CollisionWorld shared = buildWorld(scene, proxies);
+    const CollisionWorld alone = buildWorld(unshared(scene), proxies);
+    for (uint32_t i = 1; i <= 5; ++i) {
+        EXPECT_EQ(shared.object(i)->errorBound, proxies[i]->errorBound) << i;
+        EXPECT_EQ(shared.object(i)->triangles, proxies[i]->mesh.triangleCount()) << i;
+        EXPECT_GT(sameHitsAndNormals(shared, alone, raysAt(shared, i, 80 + i)), 100u) << i;
     }
 }
 

@@ -119,9 +119,9 @@ public:
     // one entry per Scene object; a present entry (from buildProxy) replaces that object's collision
     // mesh: its `mesh` (object space, validated with validateMesh), `errorBound` (object-space units,
     // finite and >= 0) and `drawnNormals` (nine a triangle, or empty: then found here) are used, the
-    // other fields are not. Objects with the same render mesh and collider (proxySources), none given
-    // a proxy, take the first one's collision mesh and measured bound instead of measuring them
-    // again. Errors name the object. An object whose transform breaks the rule of TraceTransform.hpp
+    // other fields are not. Objects with the same render mesh and collider (proxySources), given no
+    // proxy or equal ones, take the first one's collision mesh, measured bound and drawn normals
+    // instead of measuring and keeping them again. Errors name the object. An object whose transform breaks the rule of TraceTransform.hpp
     // is no error: it is built untraced and warnings() names it.
     static Result<CollisionWorld> build(const Scene& scene,
                                         const std::vector<std::optional<Proxy>>& proxies = {},
