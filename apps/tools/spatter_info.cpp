@@ -18,7 +18,7 @@ Loads SCENE and prints one JSON object on stdout:
    "animations": [{"name", "duration", "channels"}], "skins": [{"name", "joints"}],
    "extensions_used": [...], "extensions_required": [...],
    "objects_detail": [{"name", "triangles", "dynamic", "receives_decals", "has_collider",
-                       "traced", "skin", "morph_targets"}]}
+                       "traced", "instanced", "collision_mesh_of", "skin", "morph_targets"}]}
 Bounds are world-space, over every render mesh, in the rest pose. duration is in seconds; skin is
 the index into "skins" of the object's skin, or null; morph_targets counts the object's morph
 targets; the extensions are the glTF file's lists (empty for other formats). An object that an
@@ -26,7 +26,11 @@ animation moves or deforms is dynamic. traced is whether shots can hit the objec
 receives decals and its transform is one single-precision ray tracing can use (finite inverse,
 condition number at most 65536, scales within 2^-25..2^25, within 2^32 of the world's centre, not
 smaller than a few float steps there). For
-each receiver that is not traced a warning on stderr names it and says why.
+each receiver that is not traced a warning on stderr names it and says why. instanced is whether
+the collision world traces the object as an instance of an object-space scene (dynamic objects,
+and static ones whose mesh it holds four times or more) rather than in its static scene;
+collision_mesh_of is the index of the object whose collision mesh it uses: an earlier object placed
+with the same mesh, or its own index.
 
 SCENE is builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file.
 On a scene that cannot be loaded: a one-line error on stderr and exit code 1.
@@ -82,6 +86,8 @@ int main(int argc, char** argv) {
                           {"receives_decals", o.receivesDecals},
                           {"has_collider", o.collider.has_value()},
                           {"traced", world->object(i)->traced},
+                          {"instanced", world->object(i)->instanced},
+                          {"collision_mesh_of", world->object(i)->collisionMeshOf},
                           {"skin", o.skin == -1 ? nlohmann::ordered_json() : nlohmann::ordered_json(o.skin)},
                           {"morph_targets", o.morphTargets.size()}});
     }

@@ -107,7 +107,7 @@ void shareCollisionMesh(const ObjectData& from, uint32_t fromIndex, ObjectData& 
     od.info.triangles = from.info.triangles;
     od.info.localBounds = from.info.localBounds;
     od.info.meshHash = from.info.meshHash;
-    od.shape = fromIndex;
+    od.shape = od.info.collisionMeshOf = fromIndex;
 }
 
 // Whether an object given `a` and one given `b` (proxies, or nullptr for none) get the same collision
@@ -153,7 +153,7 @@ Status fillObjects(const Scene& scene, const std::vector<std::optional<Proxy>>& 
         od.info.dynamic = so.dynamic;
         od.info.transform = so.transform;
         od.source = uint32_t(sources[i]);
-        od.shape = od.tracedBy = uint32_t(i);
+        od.shape = od.tracedBy = od.info.collisionMeshOf = uint32_t(i);
         if (!so.receivesDecals) {
             od.info.localBounds = so.mesh.bounds();
             continue;

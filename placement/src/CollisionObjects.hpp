@@ -38,9 +38,8 @@ struct ObjectData : TracedTriangles {
     std::optional<DrawnNormals> drawnNormals;  // proxies and colliders of objects that do not deform
     std::vector<glm::dmat4> poseJoints;        // the joint matrices of the last setPose (empty: rest)
     std::vector<double> poseMorphs;            // the morph weights of the last setPose
-    bool instanced = false;   // traced as an instance of an object-space scene (CollisionWorld.cpp)
-    RTCScene scene = nullptr; // instanced objects: their object-space scene (a reference)
-    uint32_t source = 0;      // the first object with the same render mesh and collider (proxySources)
+    RTCScene scene = nullptr;                  // instanced objects: their object-space scene (a reference)
+    uint32_t source = 0; // the first object with the same render mesh and collider (proxySources)
     // The object whose `positions`, `indices` and `drawnNormals` are this one's collision mesh: its own
     // index, or its source's where it took that one's (fillObjects): its own then stay empty, but for
     // the indices of Embree geometry it holds.

@@ -239,7 +239,7 @@ struct CollisionWorld::Impl {
             const glm::dvec3 c((i & 1) ? frame.max.x : frame.min.x, (i & 2) ? frame.max.y : frame.min.y,
                                (i & 4) ? frame.max.z : frame.min.z);
             r = std::max(
-                r, glm::length(od.instanced ? glm::dvec3(od.inverse * glm::dvec4(c + origin, 1.0)) : c));
+                r, glm::length(od.info.instanced ? glm::dvec3(od.inverse * glm::dvec4(c + origin, 1.0)) : c));
         }
         return r;
     }
@@ -257,7 +257,7 @@ struct CollisionWorld::Impl {
             if (needed <= traced.reach) continue;
             traced.reach = 2.0 * needed;
             changed = true;
-            if (od.instanced) {
+            if (od.info.instanced) {
                 rtcCommitGeometry(rtcGetGeometry(od.scene, 0));
                 rtcCommitScene(od.scene);
                 regrown.push_back(od.tracedBy);
@@ -277,7 +277,7 @@ struct CollisionWorld::Impl {
     // Commits the instances of the scenes holding the triangles of objects `tracers`.
     void commitInstancesOf(const std::vector<uint32_t>& tracers) {
         for (const ObjectData& od : objects)
-            if (od.instanced && od.geomId != kInvalidId &&
+            if (od.info.instanced && od.geomId != kInvalidId &&
                 std::find(tracers.begin(), tracers.end(), od.tracedBy) != tracers.end())
                 rtcCommitGeometry(rtcGetGeometry(top, od.geomId));
     }
@@ -308,9 +308,9 @@ struct CollisionWorld::Impl {
         std::vector<uint32_t> holder(objects.size(), kInvalidId); // by group: the first instanced
         for (uint32_t i = 0; i < objects.size(); ++i) {
             ObjectData& od = objects[i];
-            od.instanced =
-                od.info.dynamic || (group[i] != kInvalidId && staticCopies[group[i]] >= kInstancedCopies);
-            if (!od.instanced || group[i] == kInvalidId) continue;
+            const bool copies = group[i] != kInvalidId && staticCopies[group[i]] >= kInstancedCopies;
+            od.info.instanced = od.info.inWorld && (od.info.dynamic || copies);
+            if (!od.info.instanced || group[i] == kInvalidId) continue;
             if (holder[group[i]] == kInvalidId) holder[group[i]] = i;
             od.tracedBy = holder[group[i]];
         }
@@ -329,7 +329,7 @@ struct CollisionWorld::Impl {
             ObjectData& od = objects[i];
             if (!od.info.inWorld || od.info.triangles == 0) continue;
             triangles += od.info.triangles;
-            if (od.instanced) {
+            if (od.info.instanced) {
                 attachInstance(od, uint32_t(i));
             } else if (od.info.traced) {
                 attachStatic(od, uint32_t(i));
@@ -779,7 +779,7 @@ Status CollisionWorld::removeObject(uint32_t object) {
     od.info.untraced.clear();
     if (od.geomId != kInvalidId) {
         impl_->triangles -= od.info.triangles;
-        if (od.instanced) {
+        if (od.info.instanced) {
             rtcDetachGeometry(impl_->top, od.geomId);
             rtcReleaseScene(od.scene);
             od.scene = nullptr;

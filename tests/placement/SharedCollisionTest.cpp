@@ -91,6 +91,9 @@ TEST(SharedCollision, InstancesOfAMeshAndColliderTraceAsIfEachWereMeasuredAlone)
         EXPECT_GT(shared.object(i)->errorBound, 0.0) << i;
         EXPECT_EQ(shared.object(i)->errorBound, alone.object(i)->errorBound) << i;
         EXPECT_EQ(shared.object(i)->meshHash, shared.object(1)->meshHash) << i;
+        EXPECT_EQ(shared.object(i)->collisionMeshOf, 1u) << i;
+        EXPECT_EQ(alone.object(i)->collisionMeshOf, i) << i;
+        EXPECT_EQ(shared.object(i)->instanced, i >= 3) << i; // two static copies stay in the static scene
         EXPECT_EQ(shared.object(i)->triangles, alone.object(i)->triangles) << i;
         EXPECT_GT(sameHitsAndNormals(shared, alone, raysAt(shared, i, 40 + i)), 100u) << i;
     }
@@ -152,6 +155,8 @@ TEST(SharedCollision, StaticCopiesTracedAsInstancesHitWhereTheStaticSceneDoes) {
     const CollisionWorld instanced = buildWorld(scene), flat = buildWorld(unshared(scene));
     for (uint32_t i = 1; i <= 5; ++i) { // the bumpy spheres
         EXPECT_EQ(instanced.object(i)->errorBound, flat.object(i)->errorBound) << i;
+        EXPECT_TRUE(instanced.object(i)->instanced) << i;
+        EXPECT_FALSE(flat.object(i)->instanced) << i;
         const std::vector<Ray> rays = raysAt(instanced, i, 60 + i);
         size_t hits = 0, samePrimitive = 0;
         for (size_t r = 0; r < rays.size(); ++r) {

@@ -76,6 +76,14 @@ struct CollisionObject {
     // error bound; 0 for an object built outside the world. A save of a decal system keys its objects
     // by it (DecalPersistence.hpp).
     uint64_t meshHash = 0;
+    // How the world traces it: as an instance of an object-space scene (dynamic objects, and static
+    // ones whose collision triangles the world holds four times or more) rather than in the static
+    // scene.
+    bool instanced = false;
+    // The object whose collision mesh (and measured bound) this one uses: an earlier object with the
+    // same render mesh and collider, given no proxy or an equal one, or this object's own index.
+    // Instanced objects with the same collision triangles that do not deform trace one Embree scene.
+    uint32_t collisionMeshOf = 0;
 };
 
 // One ray hit. Normals are unit, geometric (the hit triangle's face normal, the vector Embree reports
@@ -121,8 +129,8 @@ public:
     // finite and >= 0) and `drawnNormals` (nine a triangle, or empty: then found here) are used, the
     // other fields are not. Objects with the same render mesh and collider (proxySources), given no
     // proxy or equal ones, take the first one's collision mesh, measured bound and drawn normals
-    // instead of measuring and keeping them again. Errors name the object. An object whose transform breaks the rule of TraceTransform.hpp
-    // is no error: it is built untraced and warnings() names it.
+    // instead of measuring and keeping them again. Errors name the object. An object whose transform breaks
+    // the rule of TraceTransform.hpp is no error: it is built untraced and warnings() names it.
     static Result<CollisionWorld> build(const Scene& scene,
                                         const std::vector<std::optional<Proxy>>& proxies = {},
                                         const WorldSettings& settings = {});

@@ -1,0 +1,53 @@
+// spatter-info on builtin:gallery: one JSON object describing every object, and what the collision
+// world shares between the objects placed with one mesh.
+
+#include "PlaceToolRun.hpp"
+#include "TestData.hpp"
+
+#include "spatter/core/SceneLoader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <sys/wait.h>
+
+using namespace spatter;
+
+namespace {
+
+#ifdef SPATTER_INFO_TOOL
+const char* const kInfoTool = SPATTER_INFO_TOOL;
+#else
+const char* const kInfoTool = nullptr;
+#endif
+
+} // namespace
+
+TEST(SpatterInfo, DescribesEveryObjectAndTheCollisionMeshItUses) {
+    if (!kInfoTool) GTEST_SKIP() << "spatter-info is not built";
+    const std::string dir = test::scratchDir("info-gallery");
+    const std::string command =
+        std::string("'") + kInfoTool + "' builtin:gallery > '" + dir + "/out.json' 2> '" + dir + "/err.txt'";
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << test::readFile(dir + "/err.txt");
+    const nlohmann::json info = nlohmann::json::parse(test::readFile(dir + "/out.json"));
+    const Result<Scene> scene = loadScene("builtin:gallery");
+    ASSERT_TRUE(scene.ok()) << scene.error();
+    ASSERT_EQ(info["objects"], scene->objects.size());
+    const nlohmann::json& detail = info["objects_detail"];
+    ASSERT_EQ(detail.size(), scene->objects.size());
+    size_t shared = 0;
+    for (size_t i = 0; i < detail.size(); ++i) {
+        const SceneObject& o = scene->objects[i];
+        const nlohmann::json& d = detail[i];
+        EXPECT_EQ(d["name"], o.name);
+        EXPECT_EQ(d["instanced"], o.dynamic && o.receivesDecals) << o.name; // no static mesh four times
+        const size_t of = d["collision_mesh_of"];
+        ASSERT_LE(of, i) << o.name;
+        if (of == i) continue;
+        ++shared;
+        EXPECT_EQ(scene->objects[of].mesh.positions, o.mesh.positions) << o.name;
+        EXPECT_EQ(scene->objects[of].mesh.indices, o.mesh.indices) << o.name;
+    }
+    EXPECT_EQ(shared, 3u); // the second and third targets, the second banner
+}
