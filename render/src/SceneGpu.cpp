@@ -53,6 +53,65 @@ void appendMorphDeltas(const SceneObject& object, std::vector<glm::vec4>& out) {
         }
 }
 
+// One render mesh's vertices (interleaved, tangents computed where the mesh has none), indices and
+// submeshes on the GPU.
+GpuMesh uploadMesh(const Mesh& m, uint32_t defaultMaterial) {
+    std::vector<glm::vec4> tangents = m.tangents;
+    if (tangents.size() != m.positions.size()) {
+        Mesh copy = m;
+        computeTangents(copy);
+        tangents = std::move(copy.tangents);
+    }
+    std::vector<Vertex> vertices(m.positions.size());
+    for (size_t i = 0; i < vertices.size(); ++i) {
+        vertices[i].position = m.positions[i];
+        vertices[i].normal = i < m.normals.size() ? m.normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
+        vertices[i].uv = i < m.uvs.size() ? m.uvs[i] : glm::vec2(0.0f);
+        vertices[i].tangent = i < tangents.size() ? tangents[i] : glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+    }
+    GpuMesh g;
+    g.vao = createVertexArray();
+    g.vertices = createBuffer();
+    g.indices = createBuffer();
+    glNamedBufferStorage(g.vertices.get(), GLsizeiptr(std::max<size_t>(1, vertices.size()) * sizeof(Vertex)),
+                         vertices.empty() ? nullptr : vertices.data(),
+                         vertices.empty() ? GL_DYNAMIC_STORAGE_BIT : 0);
+    glNamedBufferStorage(
+        g.indices.get(), GLsizeiptr(std::max<size_t>(1, m.indices.size()) * sizeof(uint32_t)),
+        m.indices.empty() ? nullptr : m.indices.data(), m.indices.empty() ? GL_DYNAMIC_STORAGE_BIT : 0);
+    const GLuint vao = g.vao.get();
+    glVertexArrayVertexBuffer(vao, 0, g.vertices.get(), 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(vao, g.indices.get());
+    const GLuint offsets[4] = {offsetof(Vertex, position), offsetof(Vertex, normal), offsetof(Vertex, uv),
+                               offsetof(Vertex, tangent)};
+    const GLint sizes[4] = {3, 3, 2, 4};
+    for (GLuint a = 0; a < 4; ++a) {
+        glEnableVertexArrayAttrib(vao, a);
+        glVertexArrayAttribFormat(vao, a, sizes[a], GL_FLOAT, GL_FALSE, offsets[a]);
+        glVertexArrayAttribBinding(vao, a, 0);
+    }
+    if (m.submeshes.empty()) {
+        g.submeshes.push_back({0, uint32_t(m.indices.size()), defaultMaterial});
+    } else {
+        for (const Submesh& s : m.submeshes)
+            g.submeshes.push_back(
+                {s.firstIndex, s.indexCount, s.material < 0 ? defaultMaterial : uint32_t(s.material)});
+    }
+    g.triangles = m.triangleCount();
+    return g;
+}
+
+// Whether `a` and `b` draw the same: every attribute, index and submesh equal.
+bool sameMesh(const Mesh& a, const Mesh& b) {
+    auto sameSubmesh = [](const Submesh& x, const Submesh& y) {
+        return x.firstIndex == y.firstIndex && x.indexCount == y.indexCount && x.material == y.material;
+    };
+    return a.positions == b.positions && a.indices == b.indices && a.normals == b.normals && a.uvs == b.uvs &&
+           a.tangents == b.tangents &&
+           std::equal(a.submeshes.begin(), a.submeshes.end(), b.submeshes.begin(), b.submeshes.end(),
+                      sameSubmesh);
+}
+
 } // namespace
 
 void SceneGpu::uploadPose(const Scene& scene) {
@@ -90,56 +149,27 @@ void SceneGpu::uploadPose(const Scene& scene) {
 Status SceneGpu::upload(const Scene& scene) {
     if (Status s = validateScene(scene); !s) return fail("renderer: " + s.error());
     meshes_.clear();
+    meshOf_.clear();
     textures_.clear();
     baseTextures_.assign(scene.materials.size(), 0);
     normalTextures_.assign(scene.materials.size(), 0);
     const uint32_t defaultMaterial = uint32_t(scene.materials.size());
 
-    for (const SceneObject& o : scene.objects) {
-        const Mesh& m = o.mesh;
-        std::vector<glm::vec4> tangents = m.tangents;
-        if (tangents.size() != m.positions.size()) {
-            Mesh copy = m;
-            computeTangents(copy);
-            tangents = std::move(copy.tangents);
+    // Objects placed with the same mesh (a level's props, glTF instances) share its upload. The objects
+    // whose meshes were uploaded, by their meshes' sizes:
+    std::map<std::pair<size_t, size_t>, std::vector<size_t>> uploadedBySize;
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const Mesh& m = scene.objects[i].mesh;
+        std::vector<size_t>& same = uploadedBySize[{m.positions.size(), m.indices.size()}];
+        const auto it = std::find_if(same.begin(), same.end(),
+                                     [&](size_t j) { return sameMesh(scene.objects[j].mesh, m); });
+        if (it != same.end()) {
+            meshOf_.push_back(meshOf_[*it]);
+            continue;
         }
-        std::vector<Vertex> vertices(m.positions.size());
-        for (size_t i = 0; i < vertices.size(); ++i) {
-            vertices[i].position = m.positions[i];
-            vertices[i].normal = i < m.normals.size() ? m.normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
-            vertices[i].uv = i < m.uvs.size() ? m.uvs[i] : glm::vec2(0.0f);
-            vertices[i].tangent = i < tangents.size() ? tangents[i] : glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
-        }
-        GpuMesh g;
-        g.vao = createVertexArray();
-        g.vertices = createBuffer();
-        g.indices = createBuffer();
-        glNamedBufferStorage(
-            g.vertices.get(), GLsizeiptr(std::max<size_t>(1, vertices.size()) * sizeof(Vertex)),
-            vertices.empty() ? nullptr : vertices.data(), vertices.empty() ? GL_DYNAMIC_STORAGE_BIT : 0);
-        glNamedBufferStorage(
-            g.indices.get(), GLsizeiptr(std::max<size_t>(1, m.indices.size()) * sizeof(uint32_t)),
-            m.indices.empty() ? nullptr : m.indices.data(), m.indices.empty() ? GL_DYNAMIC_STORAGE_BIT : 0);
-        const GLuint vao = g.vao.get();
-        glVertexArrayVertexBuffer(vao, 0, g.vertices.get(), 0, sizeof(Vertex));
-        glVertexArrayElementBuffer(vao, g.indices.get());
-        const GLuint offsets[4] = {offsetof(Vertex, position), offsetof(Vertex, normal), offsetof(Vertex, uv),
-                                   offsetof(Vertex, tangent)};
-        const GLint sizes[4] = {3, 3, 2, 4};
-        for (GLuint a = 0; a < 4; ++a) {
-            glEnableVertexArrayAttrib(vao, a);
-            glVertexArrayAttribFormat(vao, a, sizes[a], GL_FLOAT, GL_FALSE, offsets[a]);
-            glVertexArrayAttribBinding(vao, a, 0);
-        }
-        if (m.submeshes.empty()) {
-            g.submeshes.push_back({0, uint32_t(m.indices.size()), defaultMaterial});
-        } else {
-            for (const Submesh& s : m.submeshes)
-                g.submeshes.push_back(
-                    {s.firstIndex, s.indexCount, s.material < 0 ? defaultMaterial : uint32_t(s.material)});
-        }
-        g.triangles = m.triangleCount();
-        meshes_.push_back(std::move(g));
+        same.push_back(i);
+        meshOf_.push_back(uint32_t(meshes_.size()));
+        meshes_.push_back(uploadMesh(m, defaultMaterial));
     }
 
     // Textures: one per (image, colour space) that some material uses.

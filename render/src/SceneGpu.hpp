@@ -32,8 +32,9 @@ public:
     // Uploads `scene` (validated with validateScene first); replaces what was there.
     Status upload(const Scene& scene);
 
-    size_t objectCount() const { return meshes_.size(); }
-    const GpuMesh& mesh(size_t object) const { return meshes_[object]; }
+    size_t objectCount() const { return meshOf_.size(); }
+    // Object `object`'s mesh; objects placed with the same mesh share one.
+    const GpuMesh& mesh(size_t object) const { return meshes_[meshOf_[object]]; }
     GLuint materialBuffer() const { return materialBuffer_.get(); }
     // Textures of material m (0 where it has none).
     GLuint baseColorTexture(uint32_t m) const { return m < baseTextures_.size() ? baseTextures_[m] : 0; }
@@ -53,7 +54,8 @@ public:
 private:
     void uploadPose(const Scene& scene);
 
-    std::vector<GpuMesh> meshes_;
+    std::vector<GpuMesh> meshes_;  // one per distinct mesh
+    std::vector<uint32_t> meshOf_; // per object: its mesh in meshes_
     GlBuffer materialBuffer_;
     std::vector<GlTexture> textures_;    // every image uploaded, sRGB and linear as needed
     std::vector<GLuint> baseTextures_;   // per material

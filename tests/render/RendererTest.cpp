@@ -229,3 +229,49 @@ TEST(Renderer, RendersTexturedSharedGltfScenes) {
     }
     EXPECT_EQ(gl.debugErrorCount(), 0u);
 }
+
+// Objects placed with one mesh share its upload: each still draws at its own transform and with its
+// own object ID, pixel for pixel as copies that differ by an unused vertex (distinct meshes) draw.
+TEST(Renderer, DrawsCopiesOfAMeshAsItDrawsDistinctMeshes) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    Scene copies;
+    Material orange;
+    orange.baseColorFactor = {0.8f, 0.3f, 0.05f, 1.0f};
+    copies.materials = {orange};
+    copies.objects.push_back(box("floor", {10.0f, 0.1f, 10.0f}, {0.0, -0.1, 0.0}));
+    for (int i = 0; i < 4; ++i) {
+        SceneObject o = box("crate_" + std::to_string(i), {0.3f, 0.3f, 0.3f}, {-1.2 + 0.8 * i, 0.3, -0.5 * i},
+                            0, i % 2 == 1);
+        o.transform = glm::rotate(o.transform, 0.4 * i, glm::dvec3(0.0, 1.0, 0.0));
+        copies.objects.push_back(std::move(o));
+    }
+    Scene distinct = copies;
+    for (size_t i = 1; i < distinct.objects.size(); ++i) {
+        Mesh& m = distinct.objects[i].mesh;
+        for (size_t k = 0; k < i; ++k) {
+            m.positions.push_back(m.positions[0]);
+            m.normals.push_back(m.normals[0]);
+            if (!m.uvs.empty()) m.uvs.push_back(m.uvs[0]);
+            if (!m.tangents.empty()) m.tangents.push_back(m.tangents[0]);
+        }
+    }
+    Camera cam;
+    cam.eye = {0.0, 1.5, 4.0};
+    cam.target = {0.0, 0.3, -0.5};
+    std::vector<Image> images[2];
+    for (int k = 0; k < 2; ++k) {
+        ASSERT_TRUE(r->setScene(k == 0 ? copies : distinct).ok());
+        ASSERT_TRUE(r->setObjectIds({0, 0, 7, 0, 9}).ok());
+        for (View v : {View::Final, View::Normal, View::Depth, View::Ids})
+            images[k].push_back(test::renderView(r.value(), cam, v));
+    }
+    for (size_t v = 0; v < images[0].size(); ++v)
+        EXPECT_EQ(images[0][v].rgba, images[1][v].rgba) << "view " << v;
+    size_t crates = 0; // the crates are in the picture
+    const Image& lit = images[0][0];
+    for (size_t i = 0; i < lit.rgba.size(); i += 4)
+        crates += lit.rgba[i] > 2 * lit.rgba[i + 2] + 40;
+    EXPECT_GT(crates, 200u);
+}
