@@ -5,6 +5,7 @@
 // the same input bit for bit).
 
 #include "PlacementTestUtil.hpp"
+#include "ReferenceGeometry.hpp"
 
 #include "spatter/core/MeshBuilder.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
@@ -21,15 +22,8 @@ namespace {
 
 // `scene` with object i's render mesh given i + 1 unused copies of its first vertex.
 Scene unshared(Scene scene) {
-    for (size_t i = 0; i < scene.objects.size(); ++i) {
-        Mesh& m = scene.objects[i].mesh;
-        for (size_t k = 0; k <= i; ++k) {
-            m.positions.push_back(m.positions[0]);
-            m.normals.push_back(m.normals[0]);
-            if (!m.uvs.empty()) m.uvs.push_back(m.uvs[0]);
-            if (!m.tangents.empty()) m.tangents.push_back(m.tangents[0]);
-        }
-    }
+    for (size_t i = 0; i < scene.objects.size(); ++i)
+        scene.objects[i].mesh = withUnusedVertices(std::move(scene.objects[i].mesh), i + 1);
     return scene;
 }
 

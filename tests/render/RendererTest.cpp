@@ -1,5 +1,6 @@
 #include "RenderTestSupport.hpp"
 
+#include "ReferenceGeometry.hpp"
 #include "TestData.hpp"
 
 #include "spatter/core/GalleryScene.hpp"
@@ -27,6 +28,16 @@ SceneObject box(const std::string& name, glm::vec3 half, glm::dvec3 position, in
     o.transform = glm::translate(glm::dmat4(1.0), position);
     o.dynamic = dynamic;
     return o;
+}
+
+// An orange material and a floor of it (or of the default material), top at y = 0.
+Scene orangeFloor(int floorMaterial) {
+    Scene scene;
+    Material orange;
+    orange.baseColorFactor = {0.8f, 0.3f, 0.05f, 1.0f};
+    scene.materials = {orange};
+    scene.objects.push_back(box("floor", {10.0f, 0.1f, 10.0f}, {0.0, -0.1, 0.0}, floorMaterial));
+    return scene;
 }
 
 const uint8_t* at(const Image& im, int x, int y) {
@@ -74,11 +85,7 @@ TEST(Renderer, ViewsShowWhatTheyName) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    Scene scene;
-    Material orange;
-    orange.baseColorFactor = {0.8f, 0.3f, 0.05f, 1.0f};
-    scene.materials = {orange};
-    scene.objects.push_back(box("floor", {10.0f, 0.1f, 10.0f}, {0.0, -0.1, 0.0}, 0));
+    Scene scene = orangeFloor(0);
     scene.objects.push_back(box("near", {0.3f, 0.3f, 0.3f}, {-0.8, 0.3, 1.0}, -1, true));
     scene.objects.push_back(box("far", {0.3f, 0.3f, 0.3f}, {0.8, 0.3, -3.0}));
     ASSERT_TRUE(r->setScene(scene).ok());
@@ -236,11 +243,7 @@ TEST(Renderer, DrawsCopiesOfAMeshAsItDrawsDistinctMeshes) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
-    Scene copies;
-    Material orange;
-    orange.baseColorFactor = {0.8f, 0.3f, 0.05f, 1.0f};
-    copies.materials = {orange};
-    copies.objects.push_back(box("floor", {10.0f, 0.1f, 10.0f}, {0.0, -0.1, 0.0}));
+    Scene copies = orangeFloor(-1);
     for (int i = 0; i < 4; ++i) {
         SceneObject o = box("crate_" + std::to_string(i), {0.3f, 0.3f, 0.3f}, {-1.2 + 0.8 * i, 0.3, -0.5 * i},
                             0, i % 2 == 1);
@@ -248,15 +251,8 @@ TEST(Renderer, DrawsCopiesOfAMeshAsItDrawsDistinctMeshes) {
         copies.objects.push_back(std::move(o));
     }
     Scene distinct = copies;
-    for (size_t i = 1; i < distinct.objects.size(); ++i) {
-        Mesh& m = distinct.objects[i].mesh;
-        for (size_t k = 0; k < i; ++k) {
-            m.positions.push_back(m.positions[0]);
-            m.normals.push_back(m.normals[0]);
-            if (!m.uvs.empty()) m.uvs.push_back(m.uvs[0]);
-            if (!m.tangents.empty()) m.tangents.push_back(m.tangents[0]);
-        }
-    }
+    for (size_t i = 1; i < distinct.objects.size(); ++i)
+        distinct.objects[i].mesh = withUnusedVertices(distinct.objects[i].mesh, i);
     Camera cam;
     cam.eye = {0.0, 1.5, 4.0};
     cam.target = {0.0, 0.3, -0.5};

@@ -51,6 +51,16 @@ Mesh box(float h) {
     return m;
 }
 
+Mesh withUnusedVertices(Mesh m, size_t count) {
+    for (size_t k = 0; k < count; ++k) {
+        m.positions.push_back(m.positions[0]);
+        if (!m.normals.empty()) m.normals.push_back(m.normals[0]);
+        if (!m.uvs.empty()) m.uvs.push_back(m.uvs[0]);
+        if (!m.tangents.empty()) m.tangents.push_back(m.tangents[0]);
+    }
+    return m;
+}
+
 Mesh unshared(const Mesh& m) {
     Mesh out;
     for (uint32_t i : m.indices) {

@@ -22,6 +22,11 @@ Mesh box(float h);
 // `m` with every triangle on vertices of its own (a seam along every edge, as a mesh split by UVs).
 Mesh unshared(const Mesh& m);
 
+// `m` with `count` more copies of its first vertex (every attribute) that no triangle uses: the same
+// surface, not the same mesh bit for bit, so that code sharing work between copies of a mesh treats
+// it as a mesh of its own.
+Mesh withUnusedVertices(Mesh m, size_t count);
+
 // Distance from `p` to the segment [a, b] (a point where a == b).
 double segmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b);
 
