@@ -51,8 +51,9 @@ What each skip of the design saves, measured with the skip on and forced off in 
   shared-instances    objects that place one mesh and collider many times take the first one's
                       measured collider bound and trace one Embree scene (the dynamic ones, and the
                       static ones placed four times or more); forced off by giving each copy's render
-                      mesh unused vertices of its own (CollisionWorld::build seconds; the gallery's
-                      crate with a box collider, 100 copies, half dynamic)
+                      mesh unused vertices of its own (100 copies of the gallery's crate, half dynamic:
+                      CollisionWorld::build seconds with a box collider each, intersect ns per ray
+                      without colliders)
 
 --decals N  decals in view in the GPU rows (default 10000)   --frames N  timed frames (default 7)
 --no-gpu    skip the GPU rows                                --quick     smaller and shorter
@@ -223,10 +224,10 @@ template <class F> double fastest(size_t repeats, F&& f) {
     return best;
 }
 
-// `copies` placements of the gallery's crate, each with a box collider around it (as a level's props
-// come with UCX_ boxes), every second one dynamic; with `distinct`, each copy's render mesh gets
-// unused copies of a vertex of its own count, so that no two are the same input.
-Scene crateCopies(size_t copies, bool distinct) {
+// `copies` placements of the gallery's crate, every second one dynamic, with `colliders` each with a
+// box collider around it (as a level's props come with UCX_ boxes); with `distinct`, each copy's
+// render mesh gets unused copies of a vertex of its own count, so that no two are the same input.
+Scene crateCopies(size_t copies, bool distinct, bool colliders) {
     const Scene gallery = makeGalleryScene();
     SceneObject crate;
     for (const SceneObject& o : gallery.objects)
@@ -244,7 +245,7 @@ Scene crateCopies(size_t copies, bool distinct) {
         o.transform =
             glm::translate(glm::dmat4(1.0), glm::dvec3(3.0 * double(i % 10), 0.0, 3.0 * double(i / 10)));
         o.dynamic = i % 2 == 1;
-        o.collider = collider;
+        if (colliders) o.collider = collider;
         for (size_t k = 0; distinct && k <= i; ++k) {
             o.mesh.positions.push_back(o.mesh.positions[0]);
             o.mesh.normals.push_back(o.mesh.normals[0]);
@@ -256,17 +257,50 @@ Scene crateCopies(size_t copies, bool distinct) {
     return s;
 }
 
-Skip sharedInstancesSkip(bool quick) {
-    Skip s = makeSkip("shared-instances", "CollisionWorld::build s");
+// The world of `scene`: its build time (fastest of `repeats`) and the thread CPU time of intersect per
+// ray of `rays`.
+struct WorldCost {
+    double seconds = 0.0, nsPerRay = 0.0;
+};
+
+WorldCost worldCost(const Scene& scene, const std::vector<Ray>& rays, size_t repeats) {
+    WorldCost c;
+    c.seconds = fastest(repeats, [&] { CollisionWorld::build(scene); });
+    const Result<CollisionWorld> world = CollisionWorld::build(scene);
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t p = 0; p < repeats && world; ++p) {
+        const double start = threadCpuNow();
+        for (const Ray& r : rays)
+            world->intersect(r);
+        best = std::min(best, threadCpuNow() - start);
+    }
+    c.nsPerRay = best * 1e9 / double(std::max<size_t>(1, rays.size()));
+    return c;
+}
+
+void sharedInstancesSkips(bool quick, std::vector<Skip>& out) {
+    Skip build = makeSkip("shared-instances", "CollisionWorld::build s");
+    Skip trace = makeSkip("shared-instances", "intersect ns per ray");
     const size_t copies = quick ? 20 : 100;
-    const Scene shared = crateCopies(copies, false), distinct = crateCopies(copies, true);
     const size_t repeats = quick ? 1 : 3;
-    s.on = fastest(repeats, [&] { CollisionWorld::build(shared); });
-    s.off = fastest(repeats, [&] { CollisionWorld::build(distinct); });
-    s.note = std::to_string(copies) + " copies of a crate of " +
-             std::to_string(shared.objects[0].mesh.triangleCount()) + " triangles with a box collider, " +
-             std::to_string(copies / 2) + " dynamic";
-    return s;
+    const std::string what = std::to_string(copies) + " copies of the gallery's crate, " +
+                             std::to_string(copies / 2) + " dynamic, ";
+    // With colliders, whose bounds are measured once: the build. The crates as their own collision
+    // meshes: the trace.
+    const WorldCost onBuild = worldCost(crateCopies(copies, false, true), {}, repeats);
+    const WorldCost offBuild = worldCost(crateCopies(copies, true, true), {}, repeats);
+    const Scene shared = crateCopies(copies, false, false), distinct = crateCopies(copies, true, false);
+    const std::vector<Ray> rays = scatteredRays(mergeReceivers(shared), quick ? 2000 : 20000, 9);
+    const WorldCost on = worldCost(shared, rays, repeats), off = worldCost(distinct, rays, repeats);
+    build.on = onBuild.seconds;
+    build.off = offBuild.seconds;
+    build.note = what + "each with a box collider";
+    trace.on = on.nsPerRay;
+    trace.off = off.nsPerRay;
+    trace.note = what + "their own collision meshes (" +
+                 std::to_string(shared.objects[0].mesh.triangleCount()) + " triangles)";
+    out.push_back(build);
+    out.push_back(trace);
 }
 
 void cpuSkips(bool quick, std::vector<Skip>& out) {
@@ -358,7 +392,7 @@ void cpuSkips(bool quick, std::vector<Skip>& out) {
         out.push_back(build);
         out.push_back(spawn);
     }
-    out.push_back(sharedInstancesSkip(quick));
+    sharedInstancesSkips(quick, out);
 }
 
 } // namespace
