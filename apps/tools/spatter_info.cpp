@@ -30,7 +30,7 @@ each receiver that is not traced a warning on stderr names it and says why. inst
 the collision world traces the object as an instance of an object-space scene (dynamic objects,
 and static ones whose mesh it holds four times or more) rather than in its static scene;
 collision_mesh_of is the index of the object whose collision mesh it uses: an earlier object placed
-with the same mesh, or its own index.
+with the same mesh and authored collider, or its own index.
 
 SCENE is builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file.
 On a scene that cannot be loaded: a one-line error on stderr and exit code 1.
