@@ -257,25 +257,18 @@ Scene crateCopies(size_t copies, bool distinct, bool colliders) {
     return s;
 }
 
-// The world of `scene`: its build time (fastest of `repeats`) and the thread CPU time of intersect per
-// ray of `rays`.
-struct WorldCost {
-    double seconds = 0.0, nsPerRay = 0.0;
-};
-
-WorldCost worldCost(const Scene& scene, const std::vector<Ray>& rays, size_t repeats) {
-    WorldCost c;
-    c.seconds = fastest(repeats, [&] { CollisionWorld::build(scene); });
+// The thread CPU time of intersect per ray of `rays` in the world of `scene`, fastest of `repeats`.
+double nsPerRay(const Scene& scene, const std::vector<Ray>& rays, size_t repeats) {
     const Result<CollisionWorld> world = CollisionWorld::build(scene);
+    if (!world || rays.empty()) return std::nan("");
     double best = std::numeric_limits<double>::infinity();
-    for (size_t p = 0; p < repeats && world; ++p) {
+    for (size_t p = 0; p < repeats; ++p) {
         const double start = threadCpuNow();
         for (const Ray& r : rays)
             world->intersect(r);
         best = std::min(best, threadCpuNow() - start);
     }
-    c.nsPerRay = best * 1e9 / double(std::max<size_t>(1, rays.size()));
-    return c;
+    return best * 1e9 / double(rays.size());
 }
 
 void sharedInstancesSkips(bool quick, std::vector<Skip>& out) {
@@ -287,16 +280,16 @@ void sharedInstancesSkips(bool quick, std::vector<Skip>& out) {
                              std::to_string(copies / 2) + " dynamic, ";
     // With colliders, whose bounds are measured once: the build. The crates as their own collision
     // meshes: the trace.
-    const WorldCost onBuild = worldCost(crateCopies(copies, false, true), {}, repeats);
-    const WorldCost offBuild = worldCost(crateCopies(copies, true, true), {}, repeats);
+    const auto buildSeconds = [repeats](const Scene& scene) {
+        return fastest(repeats, [&] { CollisionWorld::build(scene); });
+    };
+    build.on = buildSeconds(crateCopies(copies, false, true));
+    build.off = buildSeconds(crateCopies(copies, true, true));
+    build.note = what + "each with a box collider";
     const Scene shared = crateCopies(copies, false, false), distinct = crateCopies(copies, true, false);
     const std::vector<Ray> rays = scatteredRays(mergeReceivers(shared), quick ? 2000 : 20000, 9);
-    const WorldCost on = worldCost(shared, rays, repeats), off = worldCost(distinct, rays, repeats);
-    build.on = onBuild.seconds;
-    build.off = offBuild.seconds;
-    build.note = what + "each with a box collider";
-    trace.on = on.nsPerRay;
-    trace.off = off.nsPerRay;
+    trace.on = nsPerRay(shared, rays, repeats);
+    trace.off = nsPerRay(distinct, rays, repeats);
     trace.note = what + "their own collision meshes (" +
                  std::to_string(shared.objects[0].mesh.triangleCount()) + " triangles)";
     out.push_back(build);

@@ -100,14 +100,14 @@ Status setCollisionMesh(const Scene& scene, size_t i, const Proxy* proxy, const 
 }
 
 // Takes the collision mesh, bound and drawn normals that object `from` was given for the same input:
-// its description, and its mesh and drawn normals to read (ObjectData::shape).
+// its description, and its mesh and drawn normals to read (CollisionObject::collisionMeshOf).
 void shareCollisionMesh(const ObjectData& from, uint32_t fromIndex, ObjectData& od) {
     od.info.inWorld = true;
     od.info.errorBound = from.info.errorBound;
     od.info.triangles = from.info.triangles;
     od.info.localBounds = from.info.localBounds;
     od.info.meshHash = from.info.meshHash;
-    od.shape = od.info.collisionMeshOf = fromIndex;
+    od.info.collisionMeshOf = fromIndex;
 }
 
 // Whether an object given `a` and one given `b` (proxies, or nullptr for none) get the same collision
@@ -152,14 +152,14 @@ Status fillObjects(const Scene& scene, const std::vector<std::optional<Proxy>>& 
         od.info.name = so.name;
         od.info.dynamic = so.dynamic;
         od.info.transform = so.transform;
-        od.source = uint32_t(sources[i]);
-        od.shape = od.tracedBy = od.info.collisionMeshOf = uint32_t(i);
+        od.tracedBy = od.info.collisionMeshOf = uint32_t(i);
         if (!so.receivesDecals) {
             od.info.localBounds = so.mesh.bounds();
             continue;
         }
-        if (od.source != i && sameCollisionInput(proxyOf(i), proxyOf(od.source))) {
-            shareCollisionMesh(objects[od.source], od.source, od);
+        const size_t from = sources[i];
+        if (from != i && sameCollisionInput(proxyOf(i), proxyOf(from))) {
+            shareCollisionMesh(objects[from], uint32_t(from), od);
         } else if (Status s = setCollisionMesh(scene, i, proxyOf(i), settings, od); !s) {
             return s;
         }

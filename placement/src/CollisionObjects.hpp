@@ -39,14 +39,14 @@ struct ObjectData : TracedTriangles {
     std::vector<glm::dmat4> poseJoints;        // the joint matrices of the last setPose (empty: rest)
     std::vector<double> poseMorphs;            // the morph weights of the last setPose
     RTCScene scene = nullptr;                  // instanced objects: their object-space scene (a reference)
-    uint32_t source = 0; // the first object with the same render mesh and collider (proxySources)
-    // The object whose `positions`, `indices` and `drawnNormals` are this one's collision mesh: its own
-    // index, or its source's where it took that one's (fillObjects): its own then stay empty, but for
-    // the indices of Embree geometry it holds.
-    uint32_t shape = 0;
     // Instanced objects: the object whose triangles their scene holds, or their own index.
     uint32_t tracedBy = 0;
     unsigned geomId = kInvalidId; // in the static scene, or the instance in the top scene
+
+    // The object whose `positions`, `indices` and `drawnNormals` are this one's collision mesh
+    // (fillObjects): its own, or an earlier copy's, where its own stay empty but for the indices of
+    // Embree geometry it holds.
+    uint32_t shape() const { return info.collisionMeshOf; }
 
     // The barycentric coordinates of `local` (object space) in collision triangle `primitive` (in range).
     glm::dvec3 barycentricOn(uint32_t primitive, const glm::dvec3& local) const {
@@ -69,7 +69,7 @@ Status checkProxy(const Proxy& proxy, const std::string& name);
 // morphed objects) and, for a collision mesh standing in for a render mesh that does not deform, which
 // way the drawn surface faces under it. A receiver with the same render mesh and collider as an
 // earlier one (proxySources), both given no proxy or equal ones, takes that one's results and reads its
-// collision mesh (ObjectData::shape). Errors name the object.
+// collision mesh (ObjectData::shape()). Errors name the object.
 Status fillObjects(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
                    const WorldSettings& settings, std::vector<ObjectData>& objects);
 

@@ -189,7 +189,7 @@ struct CollisionWorld::Impl {
     // The collision triangles of `od` as Embree user geometry (watertightHit), their vertices moved
     // into the float frame by `toFrame` (static objects) or left in object space (dynamic ones).
     RTCGeometry triangleGeometry(ObjectData& od, const glm::dmat4* toFrame) {
-        const ObjectData& shape = objects[od.shape];
+        const ObjectData& shape = objects[od.shape()];
         if (&shape != &od) od.indices = shape.indices;
         od.traced.resize(shape.positions.size());
         for (size_t i = 0; i < shape.positions.size(); ++i) {
@@ -282,37 +282,22 @@ struct CollisionWorld::Impl {
                 rtcCommitGeometry(rtcGetGeometry(top, od.geomId));
     }
 
-    // Whether objects `a` and `b` have the same collision triangles.
-    bool sameTriangles(const ObjectData& a, const ObjectData& b) const {
-        const ObjectData &x = objects[a.shape], &y = objects[b.shape];
-        return &x == &y || (x.positions == y.positions && x.indices == y.indices);
-    }
-
     // Which objects are traced as instances of object-space scenes (the dynamic ones, and the static
-    // ones whose collision triangles the world holds kInstancedCopies times or more), and which of those
-    // share one scene: those that do not deform and have the same collision triangles (the same render
-    // mesh and collider, and the same proxy where one was given) trace the first one's.
+    // ones whose collision mesh the world holds kInstancedCopies times or more), and which of those
+    // share one scene: those that read one collision mesh (shape()) and do not deform trace the first
+    // one's.
     void chooseInstances() {
-        std::vector<uint32_t> group(objects.size(), kInvalidId); // the first object of the same triangles
-        std::vector<uint32_t> first(objects.size(), kInvalidId); // by source
-        std::vector<uint32_t> staticCopies(objects.size(), 0);   // by group
+        std::vector<uint32_t> staticCopies(objects.size(), 0); // by shape
+        for (const ObjectData& od : objects)
+            if (od.info.inWorld && !od.info.dynamic && od.info.triangles > 0) ++staticCopies[od.shape()];
+        std::vector<uint32_t> holder(objects.size(), kInvalidId); // by shape: the first instanced
         for (uint32_t i = 0; i < objects.size(); ++i) {
             ObjectData& od = objects[i];
-            if (!od.info.inWorld || od.posable || od.info.triangles == 0) continue;
-            const uint32_t f = first[od.source];
-            if (f == kInvalidId) first[od.source] = i;
-            const bool same = f != kInvalidId && sameTriangles(objects[f], od);
-            group[i] = same ? f : i;
-            if (!od.info.dynamic) ++staticCopies[group[i]];
-        }
-        std::vector<uint32_t> holder(objects.size(), kInvalidId); // by group: the first instanced
-        for (uint32_t i = 0; i < objects.size(); ++i) {
-            ObjectData& od = objects[i];
-            const bool copies = group[i] != kInvalidId && staticCopies[group[i]] >= kInstancedCopies;
+            const bool copies = od.info.triangles > 0 && staticCopies[od.shape()] >= kInstancedCopies;
             od.info.instanced = od.info.inWorld && (od.info.dynamic || copies);
-            if (!od.info.instanced || group[i] == kInvalidId) continue;
-            if (holder[group[i]] == kInvalidId) holder[group[i]] = i;
-            od.tracedBy = holder[group[i]];
+            if (!od.info.instanced || od.posable || od.info.triangles == 0) continue;
+            if (holder[od.shape()] == kInvalidId) holder[od.shape()] = i;
+            od.tracedBy = holder[od.shape()];
         }
     }
 
@@ -535,7 +520,7 @@ struct CollisionWorld::Impl {
             object = instanceToObject[inst];
         }
         const ObjectData& od = objects[object];
-        const ObjectData& shape = objects[od.shape];
+        const ObjectData& shape = objects[od.shape()];
         if (size_t(rh.hit.primID) * 3 + 2 >= shape.indices.size()) return std::nullopt;
         const uint32_t* tri = &shape.indices[size_t(rh.hit.primID) * 3];
         const glm::dvec3 v0(shape.positions[tri[0]]), v1(shape.positions[tri[1]]),
@@ -754,7 +739,7 @@ std::optional<glm::dvec3> CollisionWorld::drawnNormalAt(uint32_t object, uint32_
                                                         const glm::dvec3& localPosition) const {
     if (object >= impl_->objects.size()) return std::nullopt;
     const ObjectData& od = impl_->objects[object];
-    const ObjectData& shape = impl_->objects[od.shape];
+    const ObjectData& shape = impl_->objects[od.shape()];
     if (!shape.drawnNormals || !od.info.inWorld || size_t(primitive) >= shape.indices.size() / 3)
         return std::nullopt;
     return shape.drawnNormals->at(primitive, shape.barycentricOn(primitive, localPosition));

@@ -8,8 +8,8 @@
 // double-precision origin (the centre of the static bounds), so that far from the world origin the
 // geometry keeps float precision. Each dynamic receiver, and each static one whose collision
 // triangles the world holds four times or more, is an instance of an object-space scene with its
-// object-to-world transform; those that do not deform and have the same collision triangles share
-// one scene. The top-level scene holds the static scene (one instance) and the dynamic
+// object-to-world transform; those that do not deform and use one collision mesh (collisionMeshOf)
+// share one scene. The top-level scene holds the static scene (one instance) and the dynamic
 // instances, so moving an object only updates its instance and recommits the top level.
 // Objects with receivesDecals == false are not in the world (shots pass through them).
 //
@@ -82,7 +82,7 @@ struct CollisionObject {
     bool instanced = false;
     // The object whose collision mesh (and measured bound) this one uses: an earlier object with the
     // same render mesh and collider, given no proxy or an equal one, or this object's own index.
-    // Instanced objects with the same collision triangles that do not deform trace one Embree scene.
+    // Instanced objects that use one collision mesh and do not deform trace one Embree scene.
     uint32_t collisionMeshOf = 0;
 };
 
