@@ -75,6 +75,20 @@ std::vector<Ray> raysAt(const CollisionWorld& w, uint32_t object, uint64_t seed)
     return rayFan(400, w.worldBounds(object).center(), 6.0, 1.2, seed);
 }
 
+// A ray from in front of object `object` of `w` (+z) enters it, inside its own bounds: each object is
+// traced with its own triangles, whatever it shares.
+::testing::AssertionResult hitsFromTheFront(const CollisionWorld& w, uint32_t object) {
+    const DBounds b = w.worldBounds(object);
+    const std::optional<Hit> h = w.intersect(ray(b.center() + glm::dvec3(0.0, 0.0, 10.0), {0.0, 0.0, -1.0}));
+    if (!h || h->object != object) return ::testing::AssertionFailure() << "object " << object << " not hit";
+    if (!h->frontFace) return ::testing::AssertionFailure() << "object " << object << " entered from behind";
+    const glm::dvec3 pad(1e-6);
+    if (glm::any(glm::lessThan(h->position, b.min - pad)) ||
+        glm::any(glm::greaterThan(h->position, b.max + pad)))
+        return ::testing::AssertionFailure() << "object " << object << " hit outside its bounds";
+    return ::testing::AssertionSuccess();
+}
+
 } // namespace
 
 TEST(SharedCollision, InstancesOfAMeshAndColliderTraceAsIfEachWereMeasuredAlone) {
@@ -91,6 +105,8 @@ TEST(SharedCollision, InstancesOfAMeshAndColliderTraceAsIfEachWereMeasuredAlone)
         EXPECT_EQ(shared.object(i)->triangles, alone.object(i)->triangles) << i;
         EXPECT_GT(sameHitsAndNormals(shared, alone, raysAt(shared, i, 40 + i)), 100u) << i;
     }
+    for (uint32_t i = 1; i < shared.objectCount(); ++i) // the spheres and the box of its own
+        EXPECT_TRUE(hitsFromTheFront(shared, i));
 }
 
 TEST(SharedCollision, InstancesGivenEqualProxiesTraceAsIfEachWereGivenItsOwn) {
