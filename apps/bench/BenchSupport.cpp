@@ -177,11 +177,11 @@ Mesh mergeReceivers(const Scene& scene) {
     for (const SceneObject& o : scene.objects) {
         if (!o.receivesDecals) continue;
         const uint32_t base = uint32_t(out.positions.size());
-        for (const glm::vec3& p : o.mesh.positions)
+        for (const glm::vec3& p : o.mesh->positions)
             out.positions.push_back(glm::vec3(o.transform * glm::dvec4(glm::dvec3(p), 1.0)));
         const bool mirrored = glm::determinant(glm::dmat3(o.transform)) < 0.0;
-        for (size_t t = 0; t + 2 < o.mesh.indices.size(); t += 3) {
-            const uint32_t a = o.mesh.indices[t], b = o.mesh.indices[t + 1], c = o.mesh.indices[t + 2];
+        for (size_t t = 0; t + 2 < o.mesh->indices.size(); t += 3) {
+            const uint32_t a = o.mesh->indices[t], b = o.mesh->indices[t + 1], c = o.mesh->indices[t + 2];
             out.indices.insert(out.indices.end(),
                                {base + a, base + (mirrored ? c : b), base + (mirrored ? b : c)});
         }
@@ -225,7 +225,7 @@ Scene singleObjectScene(const Mesh& mesh, const std::string& name) {
     scene.source = name;
     SceneObject o;
     o.name = name;
-    o.mesh = mesh;
+    o.mesh = shareMesh(mesh);
     scene.objects.push_back(std::move(o));
     return scene;
 }

@@ -33,12 +33,12 @@ Scene decalFieldScene(const DecalFieldView& view, bool dynamicObject, bool roof)
     const float extent = float(200.0 * view.halfWidth);
     SceneObject floor;
     floor.name = "floor";
-    floor.mesh = makeGrid({-extent, extent}, {-extent, extent});
+    floor.mesh = shareMesh(makeGrid({-extent, extent}, {-extent, extent}));
     scene.objects.push_back(std::move(floor));
     if (dynamicObject) {
         SceneObject cube;
         cube.name = "cube";
-        cube.mesh = makeUnitCube();
+        cube.mesh = shareMesh(makeUnitCube());
         cube.dynamic = true;
         cube.transform[3] = glm::dvec4(0.8 * view.halfWidth, 0.5, 0.8 * view.halfHeight, 1.0);
         scene.objects.push_back(std::move(cube));
@@ -47,8 +47,8 @@ Scene decalFieldScene(const DecalFieldView& view, bool dynamicObject, bool roof)
         const double s = std::sqrt(0.9) * 0.8;
         SceneObject slab;
         slab.name = "roof";
-        slab.mesh = makeGrid({float(-s * view.halfWidth), float(s * view.halfWidth)},
-                             {float(-s * view.halfHeight), float(s * view.halfHeight)});
+        slab.mesh = shareMesh(makeGrid({float(-s * view.halfWidth), float(s * view.halfWidth)},
+                                       {float(-s * view.halfHeight), float(s * view.halfHeight)}));
         slab.transform[3] = glm::dvec4(0.0, 2.0, 0.0, 1.0);
         scene.objects.push_back(std::move(slab));
     }

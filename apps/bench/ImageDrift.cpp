@@ -90,7 +90,7 @@ public:
         double cosine = 0.0;
     };
     SeenPoint seen(const SurfaceAnchor& a) const {
-        const Mesh& mesh = in_.scene->objects[in_.object].mesh;
+        const Mesh& mesh = *in_.scene->objects[in_.object].mesh;
         const std::vector<glm::dvec3>& p = worldPositions();
         const uint32_t* c = cornersOf(mesh, a);
         const glm::dvec3 world = pointOf(mesh, p, a);
@@ -151,7 +151,7 @@ public:
         if (Status s = rig_.pose(in_.spawnTime); !s) return s;
         spawnTransform_ = rig_.evaluator().objectTransform(in_.object);
         spawnJoints_ = rig_.evaluator().jointMatrices(rig_.skin());
-        const Mesh& rest = in_.scene->objects[in_.object].mesh;
+        const Mesh& rest = *in_.scene->objects[in_.object].mesh;
         const std::vector<glm::dvec3>& p = rig_.worldPositions();
         Result<ClosestPointQuery> query = ClosestPointQuery::create(withPositions(rest, p));
         if (!query) return fail(query.error());

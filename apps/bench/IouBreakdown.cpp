@@ -177,7 +177,7 @@ Result<std::vector<Decal>> nearestFaceFrames(const ShotDecals& decals, const Sce
     for (const std::optional<Decal>& placed : decals.proxy) {
         if (!placed) continue;
         const Decal& d = *placed;
-        const Mesh& m = scene.objects[d.object].mesh;
+        const Mesh& m = *scene.objects[d.object].mesh;
         if (!queries[d.object]) {
             Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
             if (!q) return fail(q.error());

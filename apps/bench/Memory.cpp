@@ -299,7 +299,7 @@ int runMemoryCommand(int argc, char** argv) {
             square.source = "unit square";
             SceneObject so;
             so.name = "square";
-            so.mesh = makeGrid({0.0f, 1.0f}, {0.0f, 1.0f});
+            so.mesh = shareMesh(makeGrid({0.0f, 1.0f}, {0.0f, 1.0f}));
             square.objects.push_back(std::move(so));
             if (renderer->setScene(square)) {
                 Json ts = Json::object();

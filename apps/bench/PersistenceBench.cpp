@@ -49,9 +49,9 @@ plus a fixed part.
 // The floor of the worst case: a slab 1 cm thick, as wide as the field's floor, its top at y = 0.
 Scene slabFloor(const Scene& field) {
     Scene s = field;
-    const Bounds b = s.objects[0].mesh.bounds();
+    const Bounds b = s.objects[0].mesh->bounds();
     const glm::vec3 half(0.5f * (b.max.x - b.min.x), 0.005f, 0.5f * (b.max.z - b.min.z));
-    s.objects[0].mesh = makeBox(half, 1);
+    s.objects[0].mesh = shareMesh(makeBox(half, 1));
     s.objects[0].transform =
         glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, -0.005, 0.0)) * s.objects[0].transform;
     return s;

@@ -59,7 +59,7 @@ SceneCounts counts(const Scene& scene) {
         c.joints += s.joints.size();
     c.channels = scene.animation.animations[0].channels.size();
     for (const SceneObject& o : scene.objects)
-        if (o.deforms()) c.deformingVertices += o.mesh.vertexCount();
+        if (o.deforms()) c.deformingVertices += o.mesh->vertexCount();
     return c;
 }
 

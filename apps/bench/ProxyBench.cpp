@@ -287,7 +287,7 @@ Result<std::vector<Case>> loadCases(const std::vector<std::string>& specs, bool 
             const std::string only = spec.size() > 8 ? spec.substr(8) : "";
             for (const SceneObject& o : scene->objects)
                 if (o.receivesDecals && (only.empty() || o.name == only) && (!quick || taken++ < 4))
-                    cases.push_back({"gallery/" + o.name, o.mesh});
+                    cases.push_back({"gallery/" + o.name, *o.mesh});
             if (cases.empty()) return fail("builtin:gallery has no receiver '" + only + "'");
             continue;
         }
@@ -343,7 +343,7 @@ Json galleryCold(bool& met) {
         const SceneObject& o = scene->objects[i];
         if (!o.receivesDecals) continue;
         if (sources[i] == i) {
-            Result<Proxy> p = buildAt(o.mesh, kGalleryTolerance);
+            Result<Proxy> p = buildAt(*o.mesh, kGalleryTolerance);
             if (!p) return {{"error", o.name + ": " + p.error()}};
             proxies[i] = std::move(p).value();
             ++built;

@@ -282,7 +282,7 @@ Result<SpawnRow> measureSpawn(const SkinnedModel& m, const Proxy& proxy, const S
     ProxySettings settings;
     settings.tolerance = kProxyTolerance;
     settings.toleranceRelative = true;
-    Result<Proxy> own = buildProxy(twin.objects[0].mesh, settings);
+    Result<Proxy> own = buildProxy(*twin.objects[0].mesh, settings);
     if (!own) return fail(m.name + ": " + own.error());
     auto proxies = spawnPair(m, proxy, twin, own.value(), pose, rays, sizes);
     if (!proxies) return fail(proxies.error());
@@ -610,7 +610,7 @@ Json modelJson(const ModelReport& r) {
     const SceneObject& o = r.model->scene.objects[r.model->object];
     Json j;
     j["model"] = r.model->name;
-    j["render_triangles"] = o.mesh.triangleCount();
+    j["render_triangles"] = o.mesh->triangleCount();
     j["joints"] = r.model->scene.animation.skins[size_t(o.skin)].joints.size();
     j["duration_s"] = number(r.model->duration);
     j["decal_size"] = number(r.model->decalSize);
@@ -781,7 +781,7 @@ Json accuracySection(const std::vector<ModelReport>& reports, const CoverageCont
 
 // `triangles` null: not known (the rest proxy when the posed one was kept).
 Json boundRow(const ModelReport& r, const char* proxy, const PoseBound& b, const Json& triangles) {
-    const double diagonal = referencedDiagonal(r.model->scene.objects[r.model->object].mesh);
+    const double diagonal = referencedDiagonal(*r.model->scene.objects[r.model->object].mesh);
     return {{"model", r.model->name},
             {"proxy", proxy},
             {"triangles", triangles},

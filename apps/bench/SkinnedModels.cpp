@@ -62,7 +62,7 @@ std::vector<glm::dvec3> worldPositionsOf(const Scene& scene, uint32_t object,
 }
 
 Mesh meshAt(const SkinnedModel& m, const std::vector<glm::dvec3>& positions) {
-    return withPositions(m.scene.objects[m.object].mesh, positions);
+    return withPositions(*m.scene.objects[m.object].mesh, positions);
 }
 
 Result<SkinnedModel> loadSkinnedModel(const std::string& spec) {

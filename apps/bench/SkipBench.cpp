@@ -232,7 +232,7 @@ Scene crateCopies(size_t copies, bool distinct, bool colliders) {
     SceneObject crate;
     for (const SceneObject& o : gallery.objects)
         if (o.name.rfind("crate", 0) == 0) crate = o;
-    const Bounds b = crate.mesh.bounds();
+    const Bounds b = crate.mesh->bounds();
     Mesh collider = makeBox(0.5f * (b.max - b.min), 1);
     for (glm::vec3& p : collider.positions)
         p += 0.5f * (b.max + b.min);
@@ -246,11 +246,14 @@ Scene crateCopies(size_t copies, bool distinct, bool colliders) {
             glm::translate(glm::dmat4(1.0), glm::dvec3(3.0 * double(i % 10), 0.0, 3.0 * double(i / 10)));
         o.dynamic = i % 2 == 1;
         if (colliders) o.collider = collider;
-        for (size_t k = 0; distinct && k <= i; ++k) {
-            o.mesh.positions.push_back(o.mesh.positions[0]);
-            o.mesh.normals.push_back(o.mesh.normals[0]);
-            if (!o.mesh.uvs.empty()) o.mesh.uvs.push_back(o.mesh.uvs[0]);
-            if (!o.mesh.tangents.empty()) o.mesh.tangents.push_back(o.mesh.tangents[0]);
+        if (distinct) {
+            Mesh& m = o.editMesh();
+            for (size_t k = 0; k <= i; ++k) {
+                m.positions.push_back(m.positions[0]);
+                m.normals.push_back(m.normals[0]);
+                if (!m.uvs.empty()) m.uvs.push_back(m.uvs[0]);
+                if (!m.tangents.empty()) m.tangents.push_back(m.tangents[0]);
+            }
         }
         s.objects.push_back(std::move(o));
     }
@@ -291,7 +294,7 @@ void sharedInstancesSkips(bool quick, std::vector<Skip>& out) {
     trace.on = nsPerRay(shared, rays, repeats);
     trace.off = nsPerRay(distinct, rays, repeats);
     trace.note = what + "their own collision meshes (" +
-                 std::to_string(shared.objects[0].mesh.triangleCount()) + " triangles)";
+                 std::to_string(shared.objects[0].mesh->triangleCount()) + " triangles)";
     out.push_back(build);
     out.push_back(trace);
 }

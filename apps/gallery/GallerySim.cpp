@@ -103,7 +103,7 @@ Result<GallerySim> GallerySim::create(const GalleryOptions& options) {
         if (!o.dynamic || !o.receivesDecals) continue;
         sim.moving_.push_back(i);
         if (isBanner(o) || (o.node >= 0 && sim.evaluator_)) continue;
-        const Bounds b = o.mesh.bounds();
+        const Bounds b = o.mesh->bounds();
         Rail rail;
         rail.object = i;
         rail.base = o.transform;
@@ -148,7 +148,7 @@ std::vector<size_t> buildOrder(const Scene& scene, const std::vector<size_t>& so
         if (scene.objects[i].receivesDecals && sources[i] == i) order.push_back(i);
     auto cost = [&](size_t i) {
         const SceneObject& o = scene.objects[i];
-        return std::make_pair(takesDeformingProxy(o), o.mesh.triangleCount());
+        return std::make_pair(takesDeformingProxy(o), o.mesh->triangleCount());
     };
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cost(a) > cost(b); });
     return order;
@@ -175,14 +175,14 @@ Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<fl
     size_t totalTriangles = 0;
     std::atomic<size_t> doneTriangles{0};
     for (size_t i : order)
-        totalTriangles += scene_->objects[i].mesh.triangleCount();
+        totalTriangles += scene_->objects[i].mesh->triangleCount();
     auto work = [&]() {
         for (size_t k = next++; k < order.size(); k = next++) {
             const size_t i = order[k];
             const SceneObject& o = scene_->objects[i];
             Result<Proxy> proxy = buildObjectProxy(*scene_, i, settings);
             const size_t finished = ++done;
-            const size_t triangles = doneTriangles += o.mesh.triangleCount();
+            const size_t triangles = doneTriangles += o.mesh->triangleCount();
             const double fraction = double(triangles) / double(std::max<size_t>(totalTriangles, 1));
             if (progress) progress->store(float(fraction));
             if (proxy && !proxy->cached) { // a cold build: say how far it is

@@ -24,7 +24,7 @@ struct SkinPoint {
 
 // The object's render mesh in the pose the sim holds, in its object space.
 Mesh posedMesh(const GallerySim& sim, uint32_t object) {
-    return withPositions(sim.scene().objects[object].mesh,
+    return withPositions(*sim.scene().objects[object].mesh,
                          posedPositions(sim.scene(), object, *sim.evaluator()));
 }
 

@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
     for (uint32_t i = 0; i < scene->objects.size(); ++i) {
         const spatter::SceneObject& o = scene->objects[i];
         detail.push_back({{"name", o.name},
-                          {"triangles", o.mesh.triangleCount()},
+                          {"triangles", o.mesh->triangleCount()},
                           {"dynamic", o.dynamic},
                           {"receives_decals", o.receivesDecals},
                           {"has_collider", o.collider.has_value()},

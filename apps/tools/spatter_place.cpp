@@ -170,7 +170,7 @@ public:
 private:
     using Posed = std::pair<spatter::Mesh, std::shared_ptr<spatter::ClosestPointQuery>>;
     Posed posedMesh(uint32_t object) {
-        spatter::Mesh m = spatter::withPositions(scene_.objects[object].mesh,
+        spatter::Mesh m = spatter::withPositions(*scene_.objects[object].mesh,
                                                  spatter::posedPositions(scene_, object, evaluator_));
         auto query =
             std::make_shared<spatter::ClosestPointQuery>(spatter::ClosestPointQuery::create(m).value());
@@ -290,7 +290,7 @@ int main(int argc, char** argv) {
         double totalTriangles = 0.0, doneTriangles = 0.0;
         for (size_t i = 0; i < scene->objects.size(); ++i)
             if (scene->objects[i].receivesDecals && sources[i] == i)
-                totalTriangles += double(scene->objects[i].mesh.triangleCount());
+                totalTriangles += double(scene->objects[i].mesh->triangleCount());
         for (size_t i = 0; i < scene->objects.size(); ++i) {
             const spatter::SceneObject& o = scene->objects[i];
             if (!o.receivesDecals) continue;
@@ -304,7 +304,7 @@ int main(int argc, char** argv) {
             if (terminal)
                 progress = [&](float fraction, const char* stage) {
                     const double whole =
-                        (doneTriangles + double(fraction) * double(o.mesh.triangleCount())) / totalTriangles;
+                        (doneTriangles + double(fraction) * double(o.mesh->triangleCount())) / totalTriangles;
                     std::fprintf(stderr, "\rspatter-place: proxies %3d%% (%zu/%zu '%.40s': %s)\033[K",
                                  int(100.0 * whole), i + 1, scene->objects.size(), o.name.c_str(), stage);
                     return true;
@@ -316,7 +316,7 @@ int main(int argc, char** argv) {
                 std::cerr << "spatter-place: proxy of object '" << o.name << "': " << proxy.error() << "\n";
                 return 1;
             }
-            doneTriangles += double(o.mesh.triangleCount());
+            doneTriangles += double(o.mesh->triangleCount());
             proxiesBuilt += proxy->cached ? 0 : 1;
             proxiesCached += proxy->cached ? 1 : 0;
             proxies[i] = std::move(proxy).value();

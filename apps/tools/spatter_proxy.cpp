@@ -62,9 +62,9 @@ spatter::Mesh mergeWorld(const spatter::Scene& scene) {
     spatter::Mesh out;
     for (const spatter::SceneObject& o : scene.objects) {
         const uint32_t base = uint32_t(out.positions.size());
-        for (const glm::vec3& p : o.mesh.positions)
+        for (const glm::vec3& p : o.mesh->positions)
             out.positions.push_back(glm::vec3(o.transform * glm::dvec4(glm::dvec3(p), 1.0)));
-        for (uint32_t i : o.mesh.indices)
+        for (uint32_t i : o.mesh->indices)
             out.indices.push_back(base + i);
     }
     spatter::computeNormals(out);

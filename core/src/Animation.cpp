@@ -110,10 +110,10 @@ Status checkInfluences(const SceneObject& o, const Skin& skin) {
     const SkinWeights& w = o.skinWeights;
     const size_t stride = size_t(w.influences);
     if (w.influences <= 0) return fail("is skinned but has no joint influences");
-    if (w.joints.size() != o.mesh.vertexCount() * stride || w.weights.size() != w.joints.size())
+    if (w.joints.size() != o.mesh->vertexCount() * stride || w.weights.size() != w.joints.size())
         return fail("has joint influences for " + num(w.joints.size() / stride) + " vertices, its mesh has " +
-                    num(o.mesh.vertexCount()));
-    for (size_t v = 0; v < o.mesh.vertexCount(); ++v) {
+                    num(o.mesh->vertexCount()));
+    for (size_t v = 0; v < o.mesh->vertexCount(); ++v) {
         double sum = 0.0;
         for (size_t k = 0; k < stride; ++k) {
             const double weight = w.weights[v * stride + k];
@@ -132,7 +132,7 @@ Status checkInfluences(const SceneObject& o, const Skin& skin) {
 }
 
 Status checkTargets(const SceneObject& o, const SceneAnimation& a) {
-    const size_t n = o.mesh.vertexCount();
+    const size_t n = o.mesh->vertexCount();
     for (size_t t = 0; t < o.morphTargets.size(); ++t) {
         const MorphTarget& m = o.morphTargets[t];
         if (m.positions.size() != n || (!m.normals.empty() && m.normals.size() != n) ||

@@ -30,7 +30,7 @@ uint64_t deformingProxyCacheKey(const Scene& scene, size_t object, const ProxySe
     const SceneObject& o = scene.objects[object];
     detail::ValueHasher h;
     h.u32(kDeformingVersion);
-    h.u64(proxyCacheKey(o.mesh, settings, nullptr));
+    h.u64(proxyCacheKey(*o.mesh, settings, nullptr));
     h.u32(uint32_t(samples));
     h.u32(uint32_t(o.skinWeights.influences));
     h.each(o.skinWeights.joints, [&](uint16_t j) { h.u32(j); });
@@ -61,7 +61,7 @@ constexpr size_t kSampledTriangles = 4096;
 // `proxy` with the deformation transferred to it; its poses not measured yet.
 Result<PoseCandidate> candidate(const Scene& scene, size_t object, Proxy proxy) {
     const SceneObject& o = scene.objects[object];
-    Result<VertexDeformation> d = transferDeformation(o.mesh, deformationOf(o), proxy.mesh);
+    Result<VertexDeformation> d = transferDeformation(*o.mesh, deformationOf(o), proxy.mesh);
     if (!d) return fail(d.error());
     return PoseCandidate{std::move(proxy), std::move(d).value(), PoseBound{}};
 }
@@ -82,7 +82,7 @@ Status judge(const Scene& scene, size_t object, PoseCandidate& c, int samples) {
     const SceneObject& o = scene.objects[object];
     const double margin =
         0.1 *
-        std::max(c.proxy.errorBound, 1e-9 * double(glm::length(o.mesh.bounds().max - o.mesh.bounds().min)));
+        std::max(c.proxy.errorBound, 1e-9 * double(glm::length(o.mesh->bounds().max - o.mesh->bounds().min)));
     Result<PoseBound> b = boundOverPoses(scene, object, c.proxy.mesh, c.deformation, samples, margin);
     if (!b) return fail(b.error());
     c.poses = b.value();
@@ -116,11 +116,11 @@ Result<Proxy> simplifiedInPose(const Scene& scene, size_t object, int animation,
     const SceneObject& o = scene.objects[object];
     SceneEvaluator evaluator(scene);
     evaluator.evaluate(animation, t);
-    Mesh posed = withPositions(o.mesh, posedPositions(scene, object, evaluator));
+    Mesh posed = withPositions(*o.mesh, posedPositions(scene, object, evaluator));
     computeNormals(posed);
     Result<Proxy> proxy = buildProxy(posed, settings);
     if (!proxy) return fail(proxy.error());
-    Result<Mesh> rest = toRest(proxy->mesh, posed, o.mesh);
+    Result<Mesh> rest = toRest(proxy->mesh, posed, *o.mesh);
     if (!rest) return fail(rest.error());
     proxy->mesh = std::move(rest).value();
     return proxy;
@@ -151,7 +151,7 @@ Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, co
     const SceneObject& o = scene.objects[object];
     const std::string name = "deforming proxy of '" + o.name + "': ";
     if (!o.deforms()) return fail(name + "the object is neither skinned nor morphed");
-    Result<Proxy> rest = buildProxy(o.mesh, settings);
+    Result<Proxy> rest = buildProxy(*o.mesh, settings);
     if (!rest) return fail(name + rest.error());
     if (rest->source == ProxySource::OwnMesh) { // the render mesh moves exactly as it is drawn
         DeformingProxy own;
@@ -233,7 +233,7 @@ Result<Proxy> buildObjectProxy(const Scene& scene, size_t object, const ProxySet
         return fail("object proxy: object " + std::to_string(object) + " out of range");
     const SceneObject& o = scene.objects[object];
     if (!takesDeformingProxy(o))
-        return buildProxy(o.mesh, settings, o.collider ? &*o.collider : nullptr, progress);
+        return buildProxy(*o.mesh, settings, o.collider ? &*o.collider : nullptr, progress);
     return objectDeformingProxy(scene, object, settings);
 }
 

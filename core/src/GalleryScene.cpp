@@ -634,7 +634,7 @@ Scene makeGalleryScene(const GallerySettings& settings) {
     setMaterial(arch, Stone);
     scene.objects.push_back(makeSceneObject("arch", std::move(arch), translation(0.0, 0.0, -1.0)));
 
-    const Mesh target = makeTarget(res);
+    const std::shared_ptr<const Mesh> target = shareMesh(makeTarget(res)); // one mesh for every target
     for (int i = 0; i < targetCount; ++i) {
         const float x =
             targetCount == 1 ? 0.0f : -kTargetSpan + 2.0f * kTargetSpan * float(i) / float(targetCount - 1);
@@ -642,7 +642,7 @@ Scene makeGalleryScene(const GallerySettings& settings) {
             makeSceneObject("target_" + std::to_string(i), target, translation(x, 0.0, kTargetZ), true));
     }
 
-    const Mesh banner = makeBanner(res);
+    const std::shared_ptr<const Mesh> banner = shareMesh(makeBanner(res));
     for (int i = 0; i < std::clamp(settings.bannerCount, 0, 2); ++i)
         scene.objects.push_back(makeSceneObject("banner_" + std::to_string(i), banner,
                                                 translation(i == 0 ? -6.0 : 6.0, 3.4, -2.6), true));

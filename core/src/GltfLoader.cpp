@@ -562,7 +562,7 @@ Status checkRequiredExtensions(const tinygltf::Model& model) {
     return {};
 }
 
-// A node with a mesh, found while walking the hierarchy; meshes are copied only once the whole
+// A node with a mesh, found while walking the hierarchy; objects are made only once the whole
 // scene's size is known.
 struct Placement {
     size_t node;
@@ -581,7 +581,7 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
     Result<std::vector<int>> roots = sceneRoots(model, parent.value());
     if (!roots) return fail(roots.error());
 
-    std::vector<std::optional<Mesh>> meshes(model.meshes.size()); // converted on first use
+    std::vector<std::shared_ptr<const Mesh>> meshes(model.meshes.size()); // converted on first use
     std::vector<MeshDeformation> deformations(model.meshes.size());
     std::vector<Placement> drawn, colliders;
     struct Visit {
@@ -621,7 +621,7 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
             if (!meshes[m]) {
                 Result<Mesh> converted = convertMesh(model, m, deformations[m], scene.warnings);
                 if (!converted) return fail(converted.error());
-                meshes[m] = std::move(converted.value());
+                meshes[m] = shareMesh(std::move(converted.value()));
             }
             if (isColliderName(node.name)) {
                 if (visit.drawnAncestor == -1)
@@ -642,7 +642,8 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
     }
     if (drawn.empty()) return fail("the default scene has no triangle meshes");
 
-    // Instancing lets a small file describe a huge scene: bound the total before copying anything.
+    // Instancing lets a small file describe a huge scene: bound the total before making any object
+    // (each is traced, drawn and decaled on its own, whatever mesh it shares).
     size_t vertices = 0, indices = 0;
     for (const std::vector<Placement>* list : {&drawn, &colliders})
         for (const Placement& p : *list) {
@@ -659,7 +660,7 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
         const std::string& meshName = model.meshes[p.mesh].name;
         o.name = !node.name.empty() ? node.name : !meshName.empty() ? meshName : "node" + num(p.node);
         if (p.instance >= 0) o.name += "#" + std::to_string(p.instance);
-        o.mesh = *meshes[p.mesh]; // each instance its own copy: Scene holds meshes by value
+        o.mesh = meshes[p.mesh]; // shared by every node and instance that places it
         o.transform = p.world;
         o.dynamic = p.dynamic;
         o.receivesDecals = p.decals;

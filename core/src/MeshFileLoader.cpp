@@ -93,7 +93,7 @@ Result<Scene> loadMeshFile(const std::string& path) {
     scene.source = path;
     SceneObject object;
     object.name = std::filesystem::path(path).stem().string();
-    object.mesh = std::move(mesh);
+    object.mesh = shareMesh(std::move(mesh));
     scene.objects.push_back(std::move(object));
     return scene;
 }

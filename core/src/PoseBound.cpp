@@ -61,7 +61,7 @@ Result<Posed> posedAt(const Scene& scene, size_t object, const Mesh& collision,
     p.sample.collision = posePositions(
         collision.positions, deformation, o.skin == -1 ? none : evaluator.jointMatrices(size_t(o.skin)),
         evaluator.morphWeights(object), glm::inverse(evaluator.objectTransform(object)));
-    Result<HausdorffSurface> render = HausdorffSurface::create(withPositions(o.mesh, p.sample.render));
+    Result<HausdorffSurface> render = HausdorffSurface::create(withPositions(*o.mesh, p.sample.render));
     if (!render) return fail("render mesh: " + render.error());
     Result<HausdorffSurface> proxy = HausdorffSurface::create(withPositions(collision, p.sample.collision));
     if (!proxy) return fail("collision mesh: " + proxy.error());
@@ -168,7 +168,7 @@ Result<PoseBound> boundOverPoses(const Scene& scene, size_t object, const Mesh& 
         return fail(st.error());
     if (!(margin > 0.0) || !std::isfinite(margin))
         return fail("pose bound: the margin must be finite and > 0");
-    const Mesh& render = scene.objects[object].mesh;
+    const Mesh& render = *scene.objects[object].mesh;
     PoseBound out;
     Walk walk;
     Status st =

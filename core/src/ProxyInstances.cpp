@@ -24,7 +24,8 @@ bool sameInput(const Mesh& a, const Mesh& b) {
 
 bool sameInput(const SceneObject& a, const SceneObject& b) {
     if (a.collider.has_value() != b.collider.has_value()) return false;
-    return sameInput(a.mesh, b.mesh) && (!a.collider || sameInput(*a.collider, *b.collider));
+    return (a.mesh == b.mesh || sameInput(*a.mesh, *b.mesh)) &&
+           (!a.collider || sameInput(*a.collider, *b.collider));
 }
 
 } // namespace
@@ -37,7 +38,7 @@ std::vector<size_t> proxySources(const Scene& scene) {
         const SceneObject& o = scene.objects[i];
         source[i] = i;
         if (!takesSharedProxy(o)) continue;
-        std::vector<size_t>& same = sources[{o.mesh.positions.size(), o.mesh.indices.size()}];
+        std::vector<size_t>& same = sources[{o.mesh->positions.size(), o.mesh->indices.size()}];
         for (size_t j : same)
             if (sameInput(o, scene.objects[j])) {
                 source[i] = j;

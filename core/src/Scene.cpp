@@ -1,11 +1,23 @@
 #include "spatter/core/Scene.hpp"
 
 #include <cmath>
+#include <unordered_set>
 #include <utility>
 
 namespace spatter {
 
-SceneObject makeSceneObject(std::string name, Mesh mesh, const glm::dmat4& transform, bool dynamic) {
+Mesh& SceneObject::editMesh() {
+    auto own = std::make_shared<Mesh>(mesh ? *mesh : Mesh());
+    mesh = own;
+    return *own;
+}
+
+std::shared_ptr<const Mesh> shareMesh(Mesh mesh) {
+    return std::make_shared<const Mesh>(std::move(mesh));
+}
+
+SceneObject makeSceneObject(std::string name, std::shared_ptr<const Mesh> mesh, const glm::dmat4& transform,
+                            bool dynamic) {
     SceneObject o;
     o.name = std::move(name);
     o.mesh = std::move(mesh);
@@ -14,10 +26,14 @@ SceneObject makeSceneObject(std::string name, Mesh mesh, const glm::dmat4& trans
     return o;
 }
 
+SceneObject makeSceneObject(std::string name, Mesh mesh, const glm::dmat4& transform, bool dynamic) {
+    return makeSceneObject(std::move(name), shareMesh(std::move(mesh)), transform, dynamic);
+}
+
 size_t Scene::triangleCount() const {
     size_t n = 0;
     for (const SceneObject& o : objects)
-        n += o.mesh.triangleCount();
+        n += o.mesh ? o.mesh->triangleCount() : 0;
     return n;
 }
 
@@ -30,9 +46,11 @@ size_t Scene::dynamicObjectCount() const {
 
 DBounds Scene::worldBounds() const {
     DBounds b;
-    for (const SceneObject& o : objects)
-        for (const glm::vec3& p : o.mesh.positions)
+    for (const SceneObject& o : objects) {
+        if (!o.mesh) continue;
+        for (const glm::vec3& p : o.mesh->positions)
             b.extend(glm::dvec3(o.transform * glm::dvec4(glm::dvec3(p), 1.0)));
+    }
     return b;
 }
 
@@ -52,16 +70,19 @@ std::string transformProblem(const glm::dmat4& m) {
 
 Status validateScene(const Scene& scene) {
     if (Status s = validateAnimation(scene.animation); !s) return fail("animation data: " + s.error());
+    std::unordered_set<const Mesh*> checked; // a mesh that objects share is checked once
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& o = scene.objects[i];
         const std::string what = "object " + std::to_string(i) + " (" + o.name + ")";
-        if (Status s = validateMesh(o.mesh); !s) return fail(what + ": render mesh " + s.error());
+        if (!o.mesh) return fail(what + ": has no render mesh");
+        if (checked.insert(o.mesh.get()).second)
+            if (Status s = validateMesh(*o.mesh); !s) return fail(what + ": render mesh " + s.error());
         if (o.collider)
             if (Status s = validateMesh(*o.collider); !s) return fail(what + ": collider " + s.error());
         if (const std::string problem = transformProblem(o.transform); !problem.empty())
             return fail(what + ": " + problem);
         if (Status s = validateObjectAnimation(o, scene.animation); !s) return fail(what + " " + s.error());
-        for (const Submesh& sm : o.mesh.submeshes)
+        for (const Submesh& sm : o.mesh->submeshes)
             if (sm.material < -1 || sm.material >= int(scene.materials.size()))
                 return fail(what + ": submesh material " + std::to_string(sm.material) + " does not exist");
     }

@@ -187,7 +187,7 @@ const std::vector<double>& SceneEvaluator::morphWeights(size_t object) const {
 
 std::vector<glm::dvec3> posedPositions(const Scene& scene, size_t object, const SceneEvaluator& evaluator) {
     const SceneObject& o = scene.objects[object];
-    std::vector<glm::dvec3> out(o.mesh.positions.begin(), o.mesh.positions.end());
+    std::vector<glm::dvec3> out(o.mesh->positions.begin(), o.mesh->positions.end());
     const std::vector<double>& weights = evaluator.morphWeights(object);
     for (size_t t = 0; t < o.morphTargets.size(); ++t)
         for (size_t v = 0; v < out.size(); ++v)

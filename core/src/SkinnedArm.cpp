@@ -68,7 +68,7 @@ Scene makeSkinnedArm(const SkinnedArmSettings& s) {
     arm.node = 0;
     arm.skin = 0;
     arm.skinWeights.influences = 2;
-    for (const glm::vec3& p : arm.mesh.positions) {
+    for (const glm::vec3& p : arm.mesh->positions) {
         const double w = skinnedArmElbowWeight(p.y, s.length);
         arm.skinWeights.joints.insert(arm.skinWeights.joints.end(), {0, 1});
         arm.skinWeights.weights.insert(arm.skinWeights.weights.end(), {1.0 - w, w});

@@ -18,13 +18,14 @@ constexpr double kShoulderHeight = 1.42, kShoulderSide = 0.25, kUpperArm = 0.3, 
 
 // Appends `part` placed by `xf` and gives each of its vertices the weights `weigh(position in the
 // part's own space)` returns: (joint, weight) for two influences.
-template <class Weigh> void appendPart(SceneObject& o, const Mesh& part, const glm::mat4& xf, Weigh weigh) {
-    appendMesh(o.mesh, part, xf);
+template <class Weigh>
+void appendPart(Mesh& mesh, SkinWeights& weights, const Mesh& part, const glm::mat4& xf, Weigh weigh) {
+    appendMesh(mesh, part, xf);
     for (const glm::vec3& p : part.positions) {
         const std::array<std::pair<uint16_t, double>, 2> w = weigh(p);
         for (const auto& [joint, weight] : w) {
-            o.skinWeights.joints.push_back(joint);
-            o.skinWeights.weights.push_back(weight);
+            weights.joints.push_back(joint);
+            weights.weights.push_back(weight);
         }
     }
 }
@@ -40,11 +41,11 @@ Mesh bar(float radius, float length, int rings, int segments) {
 
 // An arm hanging from its shoulder: its bar turned upside down, the elbow's share blending in around
 // the elbow.
-void appendArm(SceneObject& o, double side, uint16_t shoulder, uint16_t elbow) {
+void appendArm(Mesh& mesh, SkinWeights& weights, double side, uint16_t shoulder, uint16_t elbow) {
     const glm::mat4 xf =
         glm::translate(glm::mat4(1.0f), glm::vec3(float(side), float(kShoulderHeight), 0.0f)) *
         glm::rotate(glm::mat4(1.0f), float(glm::pi<double>()), glm::vec3(0.0f, 0.0f, 1.0f));
-    appendPart(o, bar(0.05f, float(kArm), 24, 12), xf, [&](const glm::vec3& p) {
+    appendPart(mesh, weights, bar(0.05f, float(kArm), 24, 12), xf, [&](const glm::vec3& p) {
         const double t = std::clamp((double(p.y) - (kUpperArm - 0.08)) / 0.16, 0.0, 1.0);
         const double w = t * t * (3.0 - 2.0 * t);
         return std::array<std::pair<uint16_t, double>, 2>{{{shoulder, 1.0 - w}, {elbow, w}}};
@@ -53,19 +54,22 @@ void appendArm(SceneObject& o, double side, uint16_t shoulder, uint16_t elbow) {
 
 // Legs, torso and head ride the hips; the arms hang from the shoulders.
 void buildBody(SceneObject& o) {
+    Mesh mesh;
+    SkinWeights& weights = o.skinWeights;
     const auto rigid = [](const glm::vec3&) {
         return std::array<std::pair<uint16_t, double>, 2>{{{Hips, 1.0}, {Hips, 0.0}}};
     };
-    appendPart(o, bar(0.07f, 0.86f, 6, 12), glm::translate(glm::mat4(1.0f), glm::vec3(0.1f, 0.0f, 0.0f)),
-               rigid);
-    appendPart(o, bar(0.07f, 0.86f, 6, 12), glm::translate(glm::mat4(1.0f), glm::vec3(-0.1f, 0.0f, 0.0f)),
-               rigid);
-    appendPart(o, bar(0.18f, 0.62f, 10, 20), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.84f, 0.0f)),
-               rigid);
-    appendPart(o, makeSphere(0.11f, 8, 16), glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.6f, 0.0f)),
-               rigid);
-    appendArm(o, kShoulderSide, ShoulderL, ElbowL);
-    appendArm(o, -kShoulderSide, ShoulderR, ElbowR);
+    appendPart(mesh, weights, bar(0.07f, 0.86f, 6, 12),
+               glm::translate(glm::mat4(1.0f), glm::vec3(0.1f, 0.0f, 0.0f)), rigid);
+    appendPart(mesh, weights, bar(0.07f, 0.86f, 6, 12),
+               glm::translate(glm::mat4(1.0f), glm::vec3(-0.1f, 0.0f, 0.0f)), rigid);
+    appendPart(mesh, weights, bar(0.18f, 0.62f, 10, 20),
+               glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.84f, 0.0f)), rigid);
+    appendPart(mesh, weights, makeSphere(0.11f, 8, 16),
+               glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.6f, 0.0f)), rigid);
+    appendArm(mesh, weights, kShoulderSide, ShoulderL, ElbowL);
+    appendArm(mesh, weights, -kShoulderSide, ShoulderR, ElbowR);
+    o.mesh = shareMesh(std::move(mesh));
 }
 
 AnimationChannel turn(int node, const glm::dvec3& axis, const std::array<double, 5>& degrees, double period) {

@@ -57,13 +57,13 @@ struct CollisionMesh {
 Result<CollisionMesh> collisionMeshOf(const SceneObject& so, const Proxy* proxy,
                                       const WorldSettings& settings) {
     if (proxy) return CollisionMesh{&proxy->mesh, proxy->errorBound, proxy->drawnNormals};
-    if (!settings.useColliders || !so.collider) return CollisionMesh{&so.mesh, 0.0, DrawnNormals()};
+    if (!settings.useColliders || !so.collider) return CollisionMesh{so.mesh.get(), 0.0, DrawnNormals()};
     // Certified, and at most 1% of the render mesh's diagonal above the measured distance.
     ProxySettings measure;
     measure.tolerance = 0.05f;
     measure.toleranceRelative = true;
     measure.marginFraction = 0.2f;
-    Result<Proxy> measured = buildProxy(so.mesh, measure, &*so.collider);
+    Result<Proxy> measured = buildProxy(*so.mesh, measure, &*so.collider);
     if (!measured) return fail("collider of object '" + so.name + "': " + measured.error());
     return CollisionMesh{&*so.collider, measured->errorBound, std::move(measured->drawnNormals)};
 }
@@ -89,9 +89,9 @@ Status setCollisionMesh(const Scene& scene, size_t i, const Proxy* proxy, const 
         if (!posable) return fail("object '" + so.name + "': " + posable.error());
         od.posable = std::move(posable).value();
     }
-    if (sameSurface(mesh, so.mesh) || od.posable) return {};
+    if (sameSurface(mesh, *so.mesh) || od.posable) return {};
     if (c->drawn.empty()) { // a proxy made elsewhere: found here, as buildProxy finds it
-        Result<DrawnNormals> normals = DrawnNormals::build(so.mesh, mesh, c->h);
+        Result<DrawnNormals> normals = DrawnNormals::build(*so.mesh, mesh, c->h);
         if (!normals) return fail("object '" + so.name + "': " + normals.error());
         c->drawn = std::move(normals).value();
     }
@@ -154,7 +154,7 @@ Status fillObjects(const Scene& scene, const std::vector<std::optional<Proxy>>& 
         od.info.transform = so.transform;
         od.tracedBy = od.info.collisionMeshOf = uint32_t(i);
         if (!so.receivesDecals) {
-            od.info.localBounds = so.mesh.bounds();
+            od.info.localBounds = so.mesh->bounds();
             continue;
         }
         const size_t from = sources[i];

@@ -181,7 +181,7 @@ int findObject(const Scene& scene, const std::string& name, const glm::dvec3& po
         const SceneObject& o = scene.objects[i];
         if (o.name != name) continue;
         DBounds b;
-        for (const glm::vec3& p : o.mesh.positions)
+        for (const glm::vec3& p : o.mesh->positions)
             b.extend(glm::dvec3(o.transform * glm::dvec4(glm::dvec3(p), 1.0)));
         const double d = b.empty() ? 0.0 : glm::length(glm::clamp(position, b.min, b.max) - position);
         if (d < bestDistance) {

@@ -73,16 +73,17 @@ Result<std::optional<PosedCollisionMesh>> posedCollisionMesh(const Scene& scene,
     PosedCollisionMesh out;
     out.rest = collision.positions;
     if (so.skin != -1) out.jointCount = scene.animation.skins[size_t(so.skin)].joints.size();
-    if (&collision == &so.mesh) {
+    if (&collision == so.mesh.get()) {
         out.deformation = deformationOf(so);
         return std::optional<PosedCollisionMesh>(std::move(out));
     }
-    Result<VertexDeformation> moved = transferDeformation(so.mesh, deformationOf(so), collision);
+    Result<VertexDeformation> moved = transferDeformation(*so.mesh, deformationOf(so), collision);
     if (!moved) return fail(moved.error());
     out.deformation = std::move(moved).value();
     PosedCollisionMesh::Drawn drawn;
-    drawn.rest.positions = so.mesh.positions;
-    drawn.rest.indices.assign(so.mesh.indices.begin(), so.mesh.indices.begin() + so.mesh.triangleCount() * 3);
+    drawn.rest.positions = so.mesh->positions;
+    drawn.rest.indices.assign(so.mesh->indices.begin(),
+                              so.mesh->indices.begin() + so.mesh->triangleCount() * 3);
     drawn.deformation = deformationOf(so);
     linkRings(drawn);
     Result<ClosestPointQuery> query = ClosestPointQuery::create(drawn.rest);

@@ -7,7 +7,7 @@
 namespace spatter {
 
 std::optional<glm::dmat4> RecordPoses::frameAt(uint32_t object, const SurfaceAnchor& anchor, double t) {
-    const Mesh& mesh = scene_.objects[object].mesh;
+    const Mesh& mesh = *scene_.objects[object].mesh;
     if (size_t(anchor.triangle) >= mesh.triangleCount()) return std::nullopt;
     std::vector<glm::dvec3>& world = posed_[{object, t}];
     if (world.empty()) {

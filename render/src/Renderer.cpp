@@ -268,7 +268,7 @@ struct Renderer::Impl {
         for (size_t i = 0; i < n; ++i) {
             objectSkins[i] = s.objects[i].skinWeights.influences > 0 ? s.objects[i].skin : -1;
             morphCounts[i] = s.objects[i].morphTargets.size();
-            restBounds[i] = s.objects[i].mesh.bounds();
+            restBounds[i] = s.objects[i].mesh->bounds();
             deltaBounds[i] = morphBounds(s.objects[i]);
         }
         skinJoints.clear();
@@ -639,11 +639,11 @@ Status Renderer::setScene(const Scene& scene) {
     m.textureSpace.reset(n);
     for (size_t i = 0; i < n; ++i) {
         const SceneObject& o = scene.objects[i];
-        m.meshes[i] = o.mesh;
+        m.meshes[i] = *o.mesh;
         m.names[i] = o.name;
         m.transforms[i] = o.transform;
         m.receivers[i] = o.receivesDecals ? 1 : 0;
-        m.localBounds[i] = o.mesh.bounds();
+        m.localBounds[i] = o.mesh->bounds();
         m.hasDynamic = m.hasDynamic || o.dynamic;
         m.hasLate = m.hasLate || !o.receivesDecals;
     }

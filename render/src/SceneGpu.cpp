@@ -44,7 +44,7 @@ template <typename T> GlBuffer storageBuffer(const std::vector<T>& data) {
 // Morph deltas of `object` appended to `out`: per target, per vertex, its position, normal and
 // tangent deltas (zero where the target has none).
 void appendMorphDeltas(const SceneObject& object, std::vector<glm::vec4>& out) {
-    const size_t vertices = object.mesh.positions.size();
+    const size_t vertices = object.mesh->positions.size();
     for (const MorphTarget& t : object.morphTargets)
         for (size_t v = 0; v < vertices; ++v) {
             out.emplace_back(t.positions[v], 0.0f);
@@ -106,6 +106,7 @@ bool sameMesh(const Mesh& a, const Mesh& b) {
     auto sameSubmesh = [](const Submesh& x, const Submesh& y) {
         return x.firstIndex == y.firstIndex && x.indexCount == y.indexCount && x.material == y.material;
     };
+    if (&a == &b) return true; // one mesh that objects share
     return a.positions == b.positions && a.indices == b.indices && a.normals == b.normals && a.uvs == b.uvs &&
            a.tangents == b.tangents &&
            std::equal(a.submeshes.begin(), a.submeshes.end(), b.submeshes.begin(), b.submeshes.end(),
@@ -135,7 +136,7 @@ void SceneGpu::uploadPose(const Scene& scene) {
                 influences.push_back({o.skinWeights.joints[i], float(o.skinWeights.weights[i])});
         }
         p.morph = glm::uvec4(uint32_t(deltas.size()), uint32_t(o.morphTargets.size()), uint32_t(weightCount_),
-                             uint32_t(o.mesh.positions.size()));
+                             uint32_t(o.mesh->positions.size()));
         appendMorphDeltas(o, deltas);
         firstWeight_.push_back(uint32_t(weightCount_));
         weightCount_ += o.morphTargets.size();
@@ -159,10 +160,10 @@ Status SceneGpu::upload(const Scene& scene) {
     // whose meshes were uploaded, by their meshes' sizes:
     std::map<std::pair<size_t, size_t>, std::vector<size_t>> uploadedBySize;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
-        const Mesh& m = scene.objects[i].mesh;
+        const Mesh& m = *scene.objects[i].mesh;
         std::vector<size_t>& same = uploadedBySize[{m.positions.size(), m.indices.size()}];
         const auto it = std::find_if(same.begin(), same.end(),
-                                     [&](size_t j) { return sameMesh(scene.objects[j].mesh, m); });
+                                     [&](size_t j) { return sameMesh(*scene.objects[j].mesh, m); });
         if (it != same.end()) {
             meshOf_.push_back(meshOf_[*it]);
             continue;

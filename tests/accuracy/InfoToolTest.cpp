@@ -46,8 +46,8 @@ TEST(SpatterInfo, DescribesEveryObjectAndTheCollisionMeshItUses) {
         ASSERT_LE(of, i) << o.name;
         if (of == i) continue;
         ++shared;
-        EXPECT_EQ(scene->objects[of].mesh.positions, o.mesh.positions) << o.name;
-        EXPECT_EQ(scene->objects[of].mesh.indices, o.mesh.indices) << o.name;
+        EXPECT_EQ(scene->objects[of].mesh->positions, o.mesh->positions) << o.name;
+        EXPECT_EQ(scene->objects[of].mesh->indices, o.mesh->indices) << o.name;
     }
     EXPECT_EQ(shared, 3u); // the second and third targets, the second banner
 }

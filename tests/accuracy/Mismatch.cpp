@@ -60,7 +60,7 @@ std::vector<Ray> raysAt(const SceneObject& object, const DBounds& bounds, uint32
     std::vector<Ray> rays;
     const double radius = 0.5 * bounds.diagonal();
     if (!(radius > 0.0)) return rays;
-    const SurfaceSampler surface(object.mesh);
+    const SurfaceSampler surface(*object.mesh);
     const glm::dvec3 centre = bounds.center(), extent = bounds.extent();
     for (uint32_t k = 0; k < count; ++k) {
         const glm::dvec3 origin = centre + 1.5 * radius * randomUnit(rng);
@@ -172,7 +172,7 @@ Result<std::vector<ObjectMismatch>> measureMismatch(const Scene& scene,
         const SceneObject& o = scene.objects[i];
         const CollisionObject* co = proxyWorld.object(i);
         if (!co || !co->inWorld) continue;
-        Result<ClosestPointQuery> q = ClosestPointQuery::create(o.mesh);
+        Result<ClosestPointQuery> q = ClosestPointQuery::create(*o.mesh);
         if (!q) return fail(where + "object '" + o.name + "': " + q.error());
         render.push_back(std::move(q).value());
         slot[i] = out.size();
@@ -181,8 +181,8 @@ Result<std::vector<ObjectMismatch>> measureMismatch(const Scene& scene,
         m.name = o.name;
         m.object = i;
         m.errorBound = co->errorBound;
-        m.diagonal = referencedDiagonal(o.mesh);
-        m.renderTriangles = o.mesh.triangleCount();
+        m.diagonal = referencedDiagonal(*o.mesh);
+        m.renderTriangles = o.mesh->triangleCount();
         m.proxyTriangles = co->triangles;
         const DBounds bounds = renderWorld->worldBounds(i);
         worldDiagonal[i] = bounds.diagonal();

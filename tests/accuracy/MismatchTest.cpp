@@ -92,7 +92,7 @@ Result<Built> buildProxies(const Scene& scene, const ProxySettings& settings) {
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& o = scene.objects[i];
         if (!o.receivesDecals) continue;
-        Result<Proxy> p = buildProxy(o.mesh, settings, o.collider ? &*o.collider : nullptr);
+        Result<Proxy> p = buildProxy(*o.mesh, settings, o.collider ? &*o.collider : nullptr);
         if (!p) return fail("proxy of '" + o.name + "': " + p.error());
         b.facts[i] = ProxyFacts{kindOf(p.value()), p->toleranceMet};
         b.proxies[i] = std::move(p).value();
@@ -218,7 +218,7 @@ Scene bumpySphereScene() {
     s.source = "test:bumpy-sphere";
     SceneObject o;
     o.name = "sphere";
-    o.mesh = std::move(m);
+    o.mesh = shareMesh(std::move(m));
     s.objects.push_back(std::move(o));
     return s;
 }
@@ -252,7 +252,7 @@ TEST(Mismatch, FlagsProxyHitsAndDecalsWhenTheBoundIsUnderstated) {
 
 TEST(Mismatch, DisagreementsAndOffsetsAreZeroWhenTheRenderMeshIsItsOwnProxy) {
     Scene scene = bumpySphereScene();
-    scene.objects[0].mesh = makeSphere(1.0f, 12, 20); // 440 triangles: below the 512 threshold
+    scene.objects[0].mesh = shareMesh(makeSphere(1.0f, 12, 20)); // 440 triangles: below the 512 threshold
     ProxySettings s = caseSettings(0.02f);
     s.cacheDirectory.clear();
     Result<Built> built = buildProxies(scene, s);

@@ -57,7 +57,7 @@ TEST(SpatterPlaceProxy, UsesTheBuildersBoundAndTheCacheMakesTheSecondRunBuildNot
     ProxySettings settings;
     settings.tolerance = 0.01f;
     settings.toleranceRelative = true;
-    Result<Proxy> proxy = buildProxy(loaded->objects.at(0).mesh, settings);
+    Result<Proxy> proxy = buildProxy(*loaded->objects.at(0).mesh, settings);
     ASSERT_TRUE(proxy) << proxy.error();
     ASSERT_EQ(proxy->source, ProxySource::Simplified);
 

@@ -68,7 +68,7 @@ double largestMotion(const Scene& scene) {
             for (size_t v = 0; v < posed.size(); ++v) {
                 const glm::dvec3 world(evaluator.objectTransform(o) * glm::dvec4(posed[v], 1.0));
                 const glm::dvec3 before(object.transform *
-                                        glm::dvec4(glm::dvec3(object.mesh.positions[v]), 1.0));
+                                        glm::dvec4(glm::dvec3(object.mesh->positions[v]), 1.0));
                 largest = std::max(largest, glm::length(world - before));
             }
         }

@@ -63,7 +63,7 @@ TEST(DeformingProxyCache, AnotherAnimationOrSkinIsMeasuredAgain) {
     EXPECT_FALSE(lessBent->cached) << "the same mesh and skin, another animation";
 
     Scene reweighted = makeSkinnedArm();
-    for (size_t v = 0; v < reweighted.objects[0].mesh.positions.size(); ++v)
+    for (size_t v = 0; v < reweighted.objects[0].mesh->positions.size(); ++v)
         if (reweighted.objects[0].skinWeights.weights[2 * v + 1] !=
             reweighted.objects[0].skinWeights.weights[2 * v]) {
             std::swap(reweighted.objects[0].skinWeights.weights[2 * v],

@@ -48,9 +48,10 @@ bool identical(const Scene& a, const Scene& b) {
         if (x.name != y.name || x.dynamic != y.dynamic ||
             std::memcmp(&x.transform, &y.transform, sizeof(x.transform)) != 0)
             return false;
-        if (!sameBytes(x.mesh.positions, y.mesh.positions) || !sameBytes(x.mesh.normals, y.mesh.normals) ||
-            !sameBytes(x.mesh.uvs, y.mesh.uvs) || !sameBytes(x.mesh.tangents, y.mesh.tangents) ||
-            !sameBytes(x.mesh.indices, y.mesh.indices) || x.mesh.submeshes.size() != y.mesh.submeshes.size())
+        if (!sameBytes(x.mesh->positions, y.mesh->positions) ||
+            !sameBytes(x.mesh->normals, y.mesh->normals) || !sameBytes(x.mesh->uvs, y.mesh->uvs) ||
+            !sameBytes(x.mesh->tangents, y.mesh->tangents) || !sameBytes(x.mesh->indices, y.mesh->indices) ||
+            x.mesh->submeshes.size() != y.mesh->submeshes.size())
             return false;
     }
     return true;
@@ -58,7 +59,7 @@ bool identical(const Scene& a, const Scene& b) {
 
 DBounds worldBounds(const SceneObject& o) {
     DBounds b;
-    for (const glm::vec3& p : o.mesh.positions)
+    for (const glm::vec3& p : o.mesh->positions)
         b.extend(glm::dvec3(o.transform * glm::dvec4(glm::dvec3(p), 1.0)));
     return b;
 }
@@ -85,12 +86,12 @@ struct Hit {
 Hit castRay(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& dir) {
     Hit hit;
     for (const SceneObject& o : scene.objects) {
-        std::vector<glm::dvec3> world(o.mesh.positions.size());
+        std::vector<glm::dvec3> world(o.mesh->positions.size());
         for (size_t i = 0; i < world.size(); ++i)
-            world[i] = glm::dvec3(o.transform * glm::dvec4(glm::dvec3(o.mesh.positions[i]), 1.0));
-        for (size_t t = 0; t + 2 < o.mesh.indices.size(); t += 3) {
-            const glm::dvec3 a = world[o.mesh.indices[t]], b = world[o.mesh.indices[t + 1]],
-                             c = world[o.mesh.indices[t + 2]];
+            world[i] = glm::dvec3(o.transform * glm::dvec4(glm::dvec3(o.mesh->positions[i]), 1.0));
+        for (size_t t = 0; t + 2 < o.mesh->indices.size(); t += 3) {
+            const glm::dvec3 a = world[o.mesh->indices[t]], b = world[o.mesh->indices[t + 1]],
+                             c = world[o.mesh->indices[t + 2]];
             const glm::dvec3 e1 = b - a, e2 = c - a, pv = glm::cross(dir, e2);
             const double det = glm::dot(e1, pv);
             if (std::fabs(det) < 1e-14) continue;
@@ -127,7 +128,7 @@ TEST(GalleryScene, HasNamedStaticObjectsAndDynamicTargets) {
         EXPECT_EQ(o->dynamic,
                   std::string(name).rfind("target_", 0) == 0 || std::string(name).rfind("banner_", 0) == 0)
             << name;
-        EXPECT_GT(o->mesh.triangleCount(), 0u) << name;
+        EXPECT_GT(o->mesh->triangleCount(), 0u) << name;
         EXPECT_TRUE(o->receivesDecals) << name;
     }
     EXPECT_EQ(scene.dynamicObjectCount(), 5u);
@@ -166,7 +167,7 @@ TEST(GalleryScene, DefaultDetailIsDenseValidAndWellFormed) {
     EXPECT_LE(scene.triangleCount(), 150000u);
     ASSERT_TRUE(validateScene(scene).ok()) << validateScene(scene).error();
     for (const SceneObject& o : scene.objects) {
-        const Mesh& m = o.mesh;
+        const Mesh& m = *o.mesh;
         ASSERT_EQ(m.uvs.size(), m.vertexCount()) << o.name;
         ASSERT_EQ(m.tangents.size(), m.vertexCount()) << o.name;
         size_t badNormals = 0, badTangents = 0, zeroArea = 0;
@@ -195,7 +196,7 @@ TEST(GalleryScene, ClosedObjectsAreClosedAtEveryDetail) {
     for (const Scene* scene : {&coarseScene(), &defaultScene()})
         for (const SceneObject& o : scene->objects) {
             if (o.name == "floor" || o.name.rfind("banner_", 0) == 0) continue;
-            EXPECT_TRUE(closed(o.mesh)) << o.name;
+            EXPECT_TRUE(closed(*o.mesh)) << o.name;
         }
 }
 
@@ -234,8 +235,8 @@ TEST(GalleryScene, TargetsStandInFrontOfBackWallWithGap) {
         EXPECT_LT(b.max.x, wall.max.x) << o.name;
         EXPECT_LT(b.max.y, wall.max.y) << o.name;
         EXPECT_NE(o.transform[3], glm::dvec4(0.0, 0.0, 0.0, 1.0)) << o.name;
-        ASSERT_EQ(o.mesh.submeshes.size(), 3u) << o.name;
-        EXPECT_NE(o.mesh.submeshes[0].material, o.mesh.submeshes[1].material) << o.name;
+        ASSERT_EQ(o.mesh->submeshes.size(), 3u) << o.name;
+        EXPECT_NE(o.mesh->submeshes[0].material, o.mesh->submeshes[1].material) << o.name;
     }
     EXPECT_GE(targets, 2);
 }
@@ -260,7 +261,7 @@ TEST(GalleryScene, MaterialsAreDistinct) {
     ASSERT_GE(scene.materials.size(), 6u);
     std::set<int> used;
     for (const SceneObject& o : scene.objects)
-        for (const Submesh& s : o.mesh.submeshes)
+        for (const Submesh& s : o.mesh->submeshes)
             used.insert(s.material);
     EXPECT_GE(used.size(), 6u);
     EXPECT_EQ(used.count(-1), 0u);
@@ -296,7 +297,7 @@ TEST(GalleryScene, DetailAddsRelief) {
     const SceneObject* mediumWall = find(medium, "wall_back");
     ASSERT_NE(coarseWall, nullptr);
     ASSERT_NE(mediumWall, nullptr);
-    EXPECT_GT(mediumWall->mesh.triangleCount(), 10 * coarseWall->mesh.triangleCount());
+    EXPECT_GT(mediumWall->mesh->triangleCount(), 10 * coarseWall->mesh->triangleCount());
     // Mortar grooves: front-face vertices (away from the 2 cm bevel) more than 1 cm behind the face plane.
     auto grooved = [](const Mesh& wall) {
         size_t n = 0;
@@ -304,8 +305,8 @@ TEST(GalleryScene, DetailAddsRelief) {
             n += std::fabs(p.x) < 9.98f && std::fabs(p.y) < 2.03f && p.z < 0.19f && p.z > 0.1f;
         return n;
     };
-    EXPECT_EQ(grooved(coarseWall->mesh), 0u);
-    EXPECT_GT(grooved(mediumWall->mesh), 1000u);
+    EXPECT_EQ(grooved(*coarseWall->mesh), 0u);
+    EXPECT_GT(grooved(*mediumWall->mesh), 1000u);
     EXPECT_GT(medium.triangleCount(), coarseScene().triangleCount());
 }
 
@@ -313,7 +314,7 @@ TEST(GalleryScene, BannersHaveUvsThatCanCarryTextureSpaceDecals) {
     for (const char* name : {"banner_0", "banner_1"}) {
         const SceneObject* banner = find(defaultScene(), name);
         ASSERT_NE(banner, nullptr) << name;
-        Result<UvOverlapReport> report = findUvOverlaps(banner->mesh);
+        Result<UvOverlapReport> report = findUvOverlaps(*banner->mesh);
         ASSERT_TRUE(report.ok()) << report.error();
         EXPECT_TRUE(report->usable()) << name << ": " << report->summary();
         EXPECT_EQ(report->degenerate, 0u) << name;

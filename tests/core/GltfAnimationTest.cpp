@@ -182,7 +182,7 @@ TEST(GltfAnimation, SkinnedPositionsMatchTheReferenceWithEveryJointAndWeightType
     EXPECT_EQ(strip.skin, 0);
     EXPECT_EQ(strip.skinWeights.influences, 12); // three sets of four
     EXPECT_TRUE(strip.dynamic);
-    for (size_t v = 0; v < strip.mesh.vertexCount(); ++v) {
+    for (size_t v = 0; v < strip.mesh->vertexCount(); ++v) {
         double sum = 0.0;
         for (size_t k = 0; k < 12; ++k)
             sum += strip.skinWeights.weights[v * 12 + k];

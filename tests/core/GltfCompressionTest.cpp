@@ -254,7 +254,7 @@ void expectSameAsDecodedTwin(const std::vector<uint8_t>& bytes, const std::array
     Scene twin = loaded(decodedTwin(bytes, ids).writeGltf(dir, name + "-twin"));
     ASSERT_EQ(draco.objects.size(), 1u);
     ASSERT_EQ(twin.objects.size(), 1u);
-    const Mesh &a = draco.objects[0].mesh, &b = twin.objects[0].mesh;
+    const Mesh &a = *draco.objects[0].mesh, &b = *twin.objects[0].mesh;
     EXPECT_TRUE(sameBits(a.positions, b.positions));
     EXPECT_TRUE(sameBits(a.normals, b.normals));
     EXPECT_TRUE(sameBits(a.uvs, b.uvs));
@@ -274,7 +274,7 @@ TEST(GltfCompression, DracoGivesThePlainGeometryWithinTheQuantisationStep) {
         Scene scene = loaded(dracoScene(plain, bytes, ids).writeGltf(dir, "draco" + std::to_string(speed)));
         ASSERT_EQ(scene.objects.size(), 1u);
         // The positions span 4 units: a step of 4 / 2^14; normals and UVs likewise.
-        expectSameGeometry(scene.objects[0].mesh, plain, 4.0f / float(1 << bits.position),
+        expectSameGeometry(*scene.objects[0].mesh, plain, 4.0f / float(1 << bits.position),
                            4.0f / float(1 << bits.normal), 1.0f / float(1 << bits.uv));
     }
 }
@@ -288,7 +288,7 @@ TEST(GltfCompression, DracoInAGlbWithIndicesOfSixteenBits) {
     writeBytes(path, g.glbBytes());
     Scene scene = loaded(path);
     ASSERT_EQ(scene.objects.size(), 1u);
-    expectSameGeometry(scene.objects[0].mesh, plain, 4.0f / (1 << 14), 4.0f / (1 << 10), 1.0f / (1 << 12));
+    expectSameGeometry(*scene.objects[0].mesh, plain, 4.0f / (1 << 14), 4.0f / (1 << 10), 1.0f / (1 << 12));
 }
 
 // The loader dequantises positions, normals and UVs itself (libdraco skips that step): the floats
@@ -317,7 +317,7 @@ TEST(GltfCompression, DracoNormalisedIntegerUvsForAFloatAccessor) {
         Scene scene = loaded(
             dracoScene(plain, bytes, ids).writeGltf(scratchForTest("gltf-compression-"), name + "-plain"));
         ASSERT_EQ(scene.objects.size(), 1u);
-        expectSameGeometry(scene.objects[0].mesh, plain, 4.0f / (1 << 14), 4.0f / (1 << 10), 1.0f / 65535);
+        expectSameGeometry(*scene.objects[0].mesh, plain, 4.0f / (1 << 14), 4.0f / (1 << 10), 1.0f / 65535);
     }
 }
 
@@ -454,7 +454,7 @@ TEST(GltfCompression, MeshoptGivesThePlainGeometryInGltfAndGlb) {
             const std::vector<std::string> extensions = {"EXT_meshopt_compression", "KHR_mesh_quantization"};
             EXPECT_EQ(scene.extensionsUsed, extensions);
             EXPECT_EQ(scene.extensionsRequired, extensions);
-            const Mesh& mesh = scene.objects[0].mesh;
+            const Mesh& mesh = *scene.objects[0].mesh;
             // Positions and UVs are lossless; normals went through 16-bit octahedral encoding.
             EXPECT_EQ(mesh.positions, plain.positions);
             EXPECT_EQ(mesh.uvs, plain.uvs);
@@ -477,7 +477,7 @@ TEST(GltfCompression, MeshoptFallbackFileIsNeverRead) {
     buffers[0]["uri"] = "absent-fallback.bin";
     Scene scene = loaded(writeWithBuffers(g, scratchForTest("gltf-compression-"), "fallback-file", buffers));
     ASSERT_EQ(scene.objects.size(), 1u);
-    EXPECT_EQ(scene.objects[0].mesh.positions, plain.positions);
+    EXPECT_EQ(scene.objects[0].mesh->positions, plain.positions);
 }
 
 TEST(GltfCompression, RejectsTruncatedOrInconsistentMeshoptData) {

@@ -81,8 +81,8 @@ TEST(GltfGeometry, SparsePositionsAndIndicesReplaceTheElementsTheyName) {
     makeSparse(g, 1, {2}, bytesOf(std::vector<uint16_t>{2}));
     Scene scene = loaded(g.writeGltf(scratchForTest("gltf-geometry-"), "sparse"));
     ASSERT_EQ(scene.objects.size(), 1u);
-    EXPECT_EQ(scene.objects[0].mesh.positions, kQuad);
-    EXPECT_EQ(scene.objects[0].mesh.indices, kQuadIndices);
+    EXPECT_EQ(scene.objects[0].mesh->positions, kQuad);
+    EXPECT_EQ(scene.objects[0].mesh->indices, kQuadIndices);
 }
 
 TEST(GltfGeometry, AccessorWithoutBufferViewIsZerosUnderItsSparseValues) {
@@ -94,8 +94,8 @@ TEST(GltfGeometry, AccessorWithoutBufferViewIsZerosUnderItsSparseValues) {
     g.doc["accessors"][2].erase("bufferView");
     Scene scene = loaded(g.writeGltf(scratchForTest("gltf-geometry-"), "bufferless"));
     ASSERT_EQ(scene.objects.size(), 1u);
-    EXPECT_EQ(scene.objects[0].mesh.positions, kQuad);
-    EXPECT_EQ(scene.objects[0].mesh.uvs, std::vector<glm::vec2>(4, glm::vec2(0.0f)));
+    EXPECT_EQ(scene.objects[0].mesh->positions, kQuad);
+    EXPECT_EQ(scene.objects[0].mesh->uvs, std::vector<glm::vec2>(4, glm::vec2(0.0f)));
 }
 
 TEST(GltfGeometry, IndicesWithoutBufferViewComeFromTheirSparseValues) {
@@ -106,7 +106,7 @@ TEST(GltfGeometry, IndicesWithoutBufferViewComeFromTheirSparseValues) {
     makeSparse(g, 1, {1, 2, 4, 5}, bytesOf(std::vector<uint16_t>{1, 2, 2, 3}));
     Scene scene = loaded(g.writeGltf(scratchForTest("gltf-geometry-"), "sparse-indices"));
     ASSERT_EQ(scene.objects.size(), 1u);
-    EXPECT_EQ(scene.objects[0].mesh.indices, kQuadIndices);
+    EXPECT_EQ(scene.objects[0].mesh->indices, kQuadIndices);
 }
 
 TEST(GltfGeometry, SparseValuesInNormalizedShortsUnderMeshQuantization) {
@@ -123,7 +123,7 @@ TEST(GltfGeometry, SparseValuesInNormalizedShortsUnderMeshQuantization) {
     g.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
     Scene scene = loaded(g.writeGltf(scratchForTest("gltf-geometry-"), "sparse-short"));
     ASSERT_EQ(scene.objects.size(), 1u);
-    EXPECT_EQ(scene.objects[0].mesh.positions, kQuad);
+    EXPECT_EQ(scene.objects[0].mesh->positions, kQuad);
 }
 
 TEST(GltfGeometry, RejectsSparseIndicesOutOfRangeOrNotIncreasing) {
@@ -197,7 +197,7 @@ TEST(GltfGeometry, EveryVertexComponentTypeMatchesTheFloatQuadWithinItsStep) {
         Scene scene = loaded(g.writeGltf(dir, "q" + std::to_string(c.type) + (c.normalized ? "n" : "")));
         ASSERT_EQ(scene.objects.size(), 1u);
         for (size_t v = 0; v < 4; ++v)
-            expectNear(scene.objects[0].mesh.positions[v], kQuad[v], float(0.5 / c.scale));
+            expectNear(scene.objects[0].mesh->positions[v], kQuad[v], float(0.5 / c.scale));
     }
 }
 
@@ -226,7 +226,7 @@ GltfBuilder instancedQuad() {
 
 } // namespace
 
-TEST(GltfGeometry, EachInstanceBecomesAnObjectNamedAfterItsIndex) {
+TEST(GltfGeometry, EachInstanceBecomesAnObjectNamedAfterItsIndexSharingTheNodesMesh) {
     Scene scene = loaded(instancedQuad().writeGltf(scratchForTest("gltf-geometry-"), "instanced"));
     ASSERT_EQ(scene.objects.size(), 3u);
     const glm::dmat4 node = glm::translate(glm::dmat4(1.0), glm::dvec3(10, 0, 0));
@@ -238,13 +238,26 @@ TEST(GltfGeometry, EachInstanceBecomesAnObjectNamedAfterItsIndex) {
         SCOPED_TRACE(i);
         const SceneObject& o = scene.objects[i];
         EXPECT_EQ(o.name, "quad#" + std::to_string(i));
-        EXPECT_EQ(o.mesh.positions, kQuad);
+        EXPECT_EQ(o.mesh->positions, kQuad);
+        EXPECT_EQ(o.mesh, scene.objects[0].mesh); // the scene keeps the mesh once
         EXPECT_EQ(o.node, -1);
         for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 4; ++r)
                 EXPECT_NEAR(o.transform[c][r], expected[i][c][r], 1e-6);
     }
     EXPECT_EQ(proxySources(scene), (std::vector<size_t>{0, 0, 0})); // one proxy for the three
+}
+
+TEST(GltfGeometry, NodesOfOneMeshShareItAndInstancesOfTwoNodesShareTheirs) {
+    GltfBuilder g = instancedQuad();
+    g.push("nodes", {{"name", "plain"}, {"mesh", 0}, {"translation", {0, 0, 5}}});
+    g.doc["scenes"][0]["nodes"] = {0, 1};
+    Scene scene = loaded(g.writeGltf(scratchForTest("gltf-geometry-"), "shared"));
+    ASSERT_EQ(scene.objects.size(), 4u);
+    for (const SceneObject& o : scene.objects)
+        EXPECT_EQ(o.mesh, scene.objects[0].mesh) << o.name;
+    EXPECT_EQ(scene.objects[3].name, "plain");
+    EXPECT_EQ(scene.objects[3].transform[3], glm::dvec4(0, 0, 5, 1));
 }
 
 TEST(GltfGeometry, InstanceRotationsInNormalizedShorts) {
@@ -355,7 +368,7 @@ TEST(GltfGeometry, TextureTransformIsAppliedToTheUvs) {
     g.doc["extensionsRequired"] = {"KHR_texture_transform"};
     Scene scene = loaded(g.writeGltf(dir, "transform"));
     ASSERT_EQ(scene.objects.size(), 1u);
-    const std::vector<glm::vec2>& uvs = scene.objects[0].mesh.uvs;
+    const std::vector<glm::vec2>& uvs = scene.objects[0].mesh->uvs;
     ASSERT_EQ(uvs.size(), 4u);
     const double c = std::cos(rotation), s = std::sin(rotation);
     for (size_t i = 0; i < 4; ++i) {
@@ -388,8 +401,8 @@ TEST(GltfGeometry, TextureTransformTurnsTheTangentsWithTheUvs) {
         attributes["TANGENT"] = g.addAccessor(g.addView(tangents), kFloat, 4, "VEC4");
         Scene scene = loaded(g.writeGltf(dir, c.name));
         ASSERT_EQ(scene.objects.size(), 1u);
-        ASSERT_EQ(scene.objects[0].mesh.tangents.size(), 4u);
-        for (const glm::vec4& t : scene.objects[0].mesh.tangents) {
+        ASSERT_EQ(scene.objects[0].mesh->tangents.size(), 4u);
+        for (const glm::vec4& t : scene.objects[0].mesh->tangents) {
             EXPECT_NEAR(t.x, c.tangent.x, 1e-6);
             EXPECT_NEAR(t.y, c.tangent.y, 1e-6);
             EXPECT_NEAR(t.z, c.tangent.z, 1e-6);

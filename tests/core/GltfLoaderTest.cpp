@@ -54,7 +54,7 @@ GltfBuilder quadScene(int indexType = kUnsignedShort) {
 }
 
 glm::dvec3 worldPoint(const SceneObject& o, size_t vertex) {
-    return glm::dvec3(o.transform * glm::dvec4(glm::dvec3(o.mesh.positions[vertex]), 1.0));
+    return glm::dvec3(o.transform * glm::dvec4(glm::dvec3(o.mesh->positions[vertex]), 1.0));
 }
 
 void expectNear(const glm::dvec3& a, const glm::dvec3& b, double tol) {
@@ -74,13 +74,13 @@ TEST(GltfLoader, LoadsIndexedQuad) {
     const SceneObject& o = scene.objects[0];
     EXPECT_EQ(o.name, "quad");
     EXPECT_EQ(scene.source, path);
-    EXPECT_EQ(o.mesh.positions, kQuad);
-    EXPECT_EQ(o.mesh.indices, kQuadIndices);
-    ASSERT_EQ(o.mesh.submeshes.size(), 1u);
-    EXPECT_EQ(o.mesh.submeshes[0].indexCount, 6u);
-    EXPECT_EQ(o.mesh.submeshes[0].material, -1);
-    EXPECT_TRUE(o.mesh.uvs.empty());
-    EXPECT_TRUE(o.mesh.tangents.empty());
+    EXPECT_EQ(o.mesh->positions, kQuad);
+    EXPECT_EQ(o.mesh->indices, kQuadIndices);
+    ASSERT_EQ(o.mesh->submeshes.size(), 1u);
+    EXPECT_EQ(o.mesh->submeshes[0].indexCount, 6u);
+    EXPECT_EQ(o.mesh->submeshes[0].material, -1);
+    EXPECT_TRUE(o.mesh->uvs.empty());
+    EXPECT_TRUE(o.mesh->tangents.empty());
     EXPECT_FALSE(o.dynamic);
     EXPECT_TRUE(o.receivesDecals);
     EXPECT_FALSE(o.collider.has_value());
@@ -92,7 +92,7 @@ TEST(GltfLoader, ReadsEightSixteenAndThirtyTwoBitIndices) {
         SCOPED_TRACE(type);
         Scene scene = loaded(quadScene(type).writeGltf(dir, "quad" + std::to_string(type)));
         ASSERT_EQ(scene.objects.size(), 1u);
-        EXPECT_EQ(scene.objects[0].mesh.indices, kQuadIndices);
+        EXPECT_EQ(scene.objects[0].mesh->indices, kQuadIndices);
     }
 }
 
@@ -111,8 +111,8 @@ TEST(GltfLoader, LoadsNonIndexedTriangles) {
     g.doc["meshes"][0]["primitives"][0].erase("indices");
     Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "soup"));
     ASSERT_EQ(scene.objects.size(), 1u);
-    EXPECT_EQ(scene.objects[0].mesh.indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
-    EXPECT_EQ(scene.objects[0].mesh.positions, soup);
+    EXPECT_EQ(scene.objects[0].mesh->indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
+    EXPECT_EQ(scene.objects[0].mesh->positions, soup);
 }
 
 TEST(GltfLoader, ReadsInterleavedAttributesWithOffsets) {
@@ -135,7 +135,7 @@ TEST(GltfLoader, ReadsInterleavedAttributesWithOffsets) {
         {"POSITION", 0}, {"NORMAL", normal}, {"TEXCOORD_0", uv}, {"TANGENT", tangent}};
     Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "interleaved"));
     ASSERT_EQ(scene.objects.size(), 1u);
-    const Mesh& m = scene.objects[0].mesh;
+    const Mesh& m = *scene.objects[0].mesh;
     EXPECT_EQ(m.positions, kQuad);
     ASSERT_EQ(m.uvs.size(), 4u);
     ASSERT_EQ(m.tangents.size(), 4u);
@@ -154,7 +154,7 @@ TEST(GltfLoader, ReadsNormalizedIntegerUvs) {
     g.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = uv;
     Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "uv16"));
     ASSERT_EQ(scene.objects.size(), 1u);
-    const std::vector<glm::vec2>& got = scene.objects[0].mesh.uvs;
+    const std::vector<glm::vec2>& got = scene.objects[0].mesh->uvs;
     ASSERT_EQ(got.size(), 4u);
     EXPECT_EQ(got[0], glm::vec2(0, 0));
     EXPECT_EQ(got[2], glm::vec2(1, 1));
@@ -173,7 +173,7 @@ TEST(GltfLoader, ReadsNormalizedSignedBytePositionsUnderMeshQuantization) {
     g.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
     Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "quantized"));
     ASSERT_EQ(scene.objects.size(), 1u);
-    const std::vector<glm::vec3>& p = scene.objects[0].mesh.positions;
+    const std::vector<glm::vec3>& p = scene.objects[0].mesh->positions;
     EXPECT_EQ(p[1], glm::vec3(1, 0, 0));
     EXPECT_EQ(p[2], glm::vec3(-1, 1, 0)); // -128 clamps to -1
 }
@@ -295,7 +295,7 @@ TEST(GltfLoader, CollidersJoinTheirDrawnAncestorAndAreNotDrawn) {
     ASSERT_EQ(scene.objects.size(), 1u);
     const SceneObject& wall = scene.objects[0];
     EXPECT_EQ(wall.name, "wall");
-    EXPECT_EQ(wall.mesh.triangleCount(), 2u);
+    EXPECT_EQ(wall.mesh->triangleCount(), 2u);
     ASSERT_TRUE(wall.collider.has_value());
     const Mesh& c = *wall.collider;
     ASSERT_EQ(c.positions.size(), 8u);
@@ -320,8 +320,8 @@ TEST(GltfLoader, RejectsColliderWithoutDrawnAncestor) {
 TEST(GltfLoader, ComputesNormalsWhenAbsent) {
     Scene scene = loaded(quadScene().writeGltf(scratchForTest("gltf-"), "nonormals"));
     ASSERT_EQ(scene.objects.size(), 1u);
-    ASSERT_EQ(scene.objects[0].mesh.normals.size(), 4u);
-    for (const glm::vec3& n : scene.objects[0].mesh.normals)
+    ASSERT_EQ(scene.objects[0].mesh->normals.size(), 4u);
+    for (const glm::vec3& n : scene.objects[0].mesh->normals)
         EXPECT_EQ(n, glm::vec3(0, 0, 1));
 }
 
@@ -333,7 +333,7 @@ TEST(GltfLoader, RepairsNonFiniteAndZeroNormals) {
         g.addAccessor(g.addView(normals), kFloat, 4, "VEC3");
     Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "badnormals"));
     ASSERT_EQ(scene.objects.size(), 1u);
-    for (const glm::vec3& n : scene.objects[0].mesh.normals)
+    for (const glm::vec3& n : scene.objects[0].mesh->normals)
         EXPECT_EQ(n, glm::vec3(0, 0, 1));
 }
 
@@ -350,7 +350,7 @@ TEST(GltfLoader, ConvertsTriangleStripsAndFans) {
         g.doc["meshes"][0]["primitives"][0]["mode"] = mode;
         Scene scene = loaded(g.writeGltf(dir, "mode" + std::to_string(mode)));
         ASSERT_EQ(scene.objects.size(), 1u);
-        const Mesh& m = scene.objects[0].mesh;
+        const Mesh& m = *scene.objects[0].mesh;
         ASSERT_EQ(m.triangleCount(), 2u);
         for (const glm::vec3& n : m.normals)
             EXPECT_EQ(n, glm::vec3(0, 0, 1));
@@ -367,8 +367,8 @@ TEST(GltfLoader, SkipsPointAndLinePrimitives) {
     g.doc["scenes"][0]["nodes"] = {0, 1};
     Scene scene = loaded(g.writeGltf(scratchForTest("gltf-"), "lines"));
     ASSERT_EQ(scene.objects.size(), 1u); // the lines-only node draws nothing
-    EXPECT_EQ(scene.objects[0].mesh.submeshes.size(), 1u);
-    EXPECT_EQ(scene.objects[0].mesh.positions.size(), 4u);
+    EXPECT_EQ(scene.objects[0].mesh->submeshes.size(), 1u);
+    EXPECT_EQ(scene.objects[0].mesh->positions.size(), 4u);
 }
 
 TEST(GltfLoader, ReadsMaterialsAndTextures) {
@@ -406,7 +406,7 @@ TEST(GltfLoader, ReadsMaterialsAndTextures) {
         EXPECT_EQ(image.height, 1);
         EXPECT_EQ(image.rgba, pixels.rgba);
     }
-    EXPECT_EQ(scene.objects[0].mesh.submeshes[0].material, 0);
+    EXPECT_EQ(scene.objects[0].mesh->submeshes[0].material, 0);
 }
 
 TEST(GltfLoader, LoadsGlbAndGltfWithExternalBuffer) {
@@ -418,9 +418,9 @@ TEST(GltfLoader, LoadsGlbAndGltfWithExternalBuffer) {
     Scene fromBin = loaded(g.writeGltf(dir, "external", false));
     ASSERT_EQ(fromGlb.objects.size(), 1u);
     ASSERT_EQ(fromBin.objects.size(), 1u);
-    EXPECT_EQ(fromGlb.objects[0].mesh.positions, kQuad);
-    EXPECT_EQ(fromBin.objects[0].mesh.positions, kQuad);
-    EXPECT_EQ(fromGlb.objects[0].mesh.indices, kQuadIndices);
+    EXPECT_EQ(fromGlb.objects[0].mesh->positions, kQuad);
+    EXPECT_EQ(fromBin.objects[0].mesh->positions, kQuad);
+    EXPECT_EQ(fromGlb.objects[0].mesh->indices, kQuadIndices);
 }
 
 TEST(GltfLoader, AcceptsOptionalExtensionsItDoesNotKnow) {

@@ -223,7 +223,7 @@ TEST(HausdorffBound, NeverBelowTheDenseEstimateOnSharedMeshes) {
         SPATTER_REQUIRE_SHARED(path, file);
         Result<Scene> scene = loadScene(path);
         ASSERT_TRUE(scene) << scene.error();
-        const Mesh& render = scene->objects.at(0).mesh;
+        const Mesh& render = *scene->objects.at(0).mesh;
         const double diagonal = double(render.bounds().diagonal());
         const Mesh proxy = proxyOf(render, 0.004f);
         const HausdorffSurface r = surface(render), p = surface(proxy);
@@ -262,7 +262,7 @@ TEST(HausdorffBound, SampledLowerBoundStaysUnderTheCertifiedBound) {
     SPATTER_REQUIRE_SHARED(path, "meshes/fandisk.obj");
     Result<Scene> scene = loadScene(path);
     ASSERT_TRUE(scene) << scene.error();
-    const Mesh& render = scene->objects.at(0).mesh;
+    const Mesh& render = *scene->objects.at(0).mesh;
     const Mesh proxy = proxyOf(render, 0.01f);
     const HausdorffSurface r = surface(render), p = surface(proxy);
     HausdorffSettings s;

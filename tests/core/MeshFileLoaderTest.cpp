@@ -21,11 +21,11 @@ static void expectMesh(const std::string& path, size_t vertices, size_t triangle
     ASSERT_TRUE(scene.ok()) << scene.error();
     ASSERT_EQ(scene->objects.size(), 1u);
     const SceneObject& o = scene->objects[0];
-    EXPECT_EQ(o.mesh.vertexCount(), vertices);
-    EXPECT_EQ(o.mesh.triangleCount(), triangles);
+    EXPECT_EQ(o.mesh->vertexCount(), vertices);
+    EXPECT_EQ(o.mesh->triangleCount(), triangles);
     EXPECT_FALSE(o.dynamic);
     EXPECT_TRUE(o.receivesDecals);
-    EXPECT_TRUE(validateMesh(o.mesh).ok());
+    EXPECT_TRUE(validateMesh(*o.mesh).ok());
 }
 
 // Counts from ../shared/data/SOURCES.md.

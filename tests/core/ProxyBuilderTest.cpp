@@ -415,7 +415,7 @@ TEST(ProxyBuilder, FandiskAtHalfAPercentWithBothBackends) {
     SPATTER_REQUIRE_SHARED(path, "meshes/fandisk.obj");
     Result<Scene> scene = loadScene(path);
     ASSERT_TRUE(scene) << scene.error();
-    const Mesh& render = scene->objects.at(0).mesh;
+    const Mesh& render = *scene->objects.at(0).mesh;
     for (ProxyBackend backend : {ProxyBackend::MeshOpt, ProxyBackend::OpenMesh}) {
         ProxySettings s = settingsFor(backend, 0.005f);
         if (backend == ProxyBackend::OpenMesh) {
@@ -456,7 +456,7 @@ TEST(ProxyBuilder, TenthOfAPercentIsCertifiedWithAFractionOfTheTriangles) {
         SPATTER_REQUIRE_SHARED(path, file);
         Result<Scene> scene = loadScene(path);
         ASSERT_TRUE(scene) << scene.error();
-        const Mesh& render = scene->objects.at(0).mesh;
+        const Mesh& render = *scene->objects.at(0).mesh;
         Result<Proxy> fine = buildProxy(render, settingsFor(ProxyBackend::Auto, 0.001f));
         Result<Proxy> loose = buildProxy(render, settingsFor(ProxyBackend::Auto, 0.002f));
         ASSERT_TRUE(fine && loose) << file;

@@ -1,4 +1,5 @@
 #include "spatter/core/SceneLoader.hpp"
+#include "spatter/core/MeshBuilder.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -41,9 +42,10 @@ TEST(SceneLoader, ValidateSceneRejectsNonFiniteAndProjectiveTransformsButTakesSi
     Scene scene;
     SceneObject o;
     o.name = "flat";
-    o.mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-    o.mesh.indices = {0, 1, 2};
-    computeNormals(o.mesh);
+    Mesh& flat = o.editMesh();
+    flat.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    flat.indices = {0, 1, 2};
+    computeNormals(flat);
     o.transform = glm::dmat4(0.0);
     scene.objects.push_back(o);
     EXPECT_THAT(validateScene(scene).error(), HasSubstr("object 0 (flat): transform is not affine"));
@@ -57,10 +59,20 @@ TEST(SceneLoader, ValidateSceneRejectsNonFiniteAndProjectiveTransformsButTakesSi
 TEST(SceneLoader, ValidateSceneRejectsMissingMaterial) {
     Scene scene;
     SceneObject o;
-    o.mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-    o.mesh.indices = {0, 1, 2};
-    o.mesh.submeshes = {{0, 3, 4}};
-    computeNormals(o.mesh);
+    Mesh& m = o.editMesh();
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.indices = {0, 1, 2};
+    m.submeshes = {{0, 3, 4}};
+    computeNormals(m);
     scene.objects.push_back(o);
     EXPECT_THAT(validateScene(scene).error(), HasSubstr("material 4"));
+}
+
+TEST(SceneLoader, ValidateSceneRejectsAnObjectWithoutAMesh) {
+    Scene scene;
+    scene.objects.push_back(makeSceneObject("shared", makeBox(glm::vec3(1.0f), 1)));
+    scene.objects.push_back(makeSceneObject("copy", scene.objects[0].mesh));
+    EXPECT_TRUE(validateScene(scene).ok());
+    scene.objects[1].mesh.reset();
+    EXPECT_THAT(validateScene(scene).error(), HasSubstr("object 1 (copy): has no render mesh"));
 }

@@ -80,13 +80,13 @@ TEST(SharedGltf, DuckIsScaledDownByItsRootMatrix) {
         ASSERT_EQ(scene.objects.size(), 1u); // the camera node draws nothing
         expectBounds(scene, {-0.692985, 0.099294, -0.613282}, {0.961799, 1.639700, 0.539252});
         EXPECT_NEAR(scene.worldBounds().diagonal(), 2.537616, kTolerance);
-        const Bounds raw = scene.objects[0].mesh.bounds();
+        const Bounds raw = scene.objects[0].mesh->bounds();
         EXPECT_NEAR(raw.max.y, 163.97, 1e-3);
         ASSERT_EQ(scene.images.size(), 1u);
         expectDecoded(scene.images[0], 512, 512);
         ASSERT_EQ(scene.materials.size(), 1u);
         EXPECT_EQ(scene.materials[0].baseColorTexture, 0);
-        EXPECT_EQ(scene.objects[0].mesh.uvs.size(), scene.objects[0].mesh.positions.size());
+        EXPECT_EQ(scene.objects[0].mesh->uvs.size(), scene.objects[0].mesh->positions.size());
     }
 }
 
@@ -95,7 +95,7 @@ TEST(SharedGltf, DamagedHelmetDecodesItsEmbeddedJpegs) {
     Scene scene = loadShared(path);
     EXPECT_EQ(scene.triangleCount(), 15452u);
     ASSERT_EQ(scene.objects.size(), 1u);
-    EXPECT_EQ(scene.objects[0].mesh.vertexCount(), 14556u);
+    EXPECT_EQ(scene.objects[0].mesh->vertexCount(), 14556u);
     expectBounds(scene, {-0.947459, -0.900974, -1.187155}, {0.942495, 0.900995, 0.812845});
     ASSERT_EQ(scene.images.size(), 5u);
     for (const Image& image : scene.images)
@@ -131,7 +131,7 @@ TEST(SharedGltf, KenneyModelsLoadWithTheirExternalTexture) {
         ASSERT_EQ(scene.materials.size(), 1u);
         EXPECT_EQ(scene.materials[0].baseColorTexture, 0);
         ASSERT_EQ(scene.objects.size(), 1u);
-        const Mesh& mesh = scene.objects[0].mesh;
+        const Mesh& mesh = *scene.objects[0].mesh;
         EXPECT_EQ(mesh.uvs.size(), mesh.vertexCount());
         EXPECT_EQ(mesh.tangents.size(), mesh.vertexCount());
     }

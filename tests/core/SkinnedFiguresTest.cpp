@@ -19,7 +19,7 @@ double restAgainstPosed(const Scene& scene, uint32_t object, int animation, doub
     const SceneObject& o = scene.objects[object];
     double worst = 0.0;
     for (size_t v = 0; v < posed.size(); ++v) {
-        const glm::dvec3 rest(o.transform * glm::dvec4(glm::dvec3(o.mesh.positions[v]), 1.0));
+        const glm::dvec3 rest(o.transform * glm::dvec4(glm::dvec3(o.mesh->positions[v]), 1.0));
         const glm::dvec3 now(evaluator.objectTransform(object) * glm::dvec4(posed[v], 1.0));
         worst = std::max(worst, glm::length(rest - now));
     }
@@ -44,8 +44,8 @@ TEST(SkinnedFigures, DummyJoinsAGalleryAsAValidAnimatedTarget) {
     ASSERT_TRUE(validateScene(scene).ok()) << validateScene(scene).error();
     const SceneObject& o = scene.objects[dummy];
     EXPECT_TRUE(o.dynamic);
-    EXPECT_GT(o.mesh.triangleCount(), 1000u);
-    const Bounds b = o.mesh.bounds();
+    EXPECT_GT(o.mesh->triangleCount(), 1000u);
+    const Bounds b = o.mesh->bounds();
     EXPECT_NEAR(b.max.y - b.min.y, 1.71, 0.05);
     // At rest the skin puts every vertex where the mesh has it; half a swing later the arms have moved.
     EXPECT_LT(restAgainstPosed(scene, dummy, 0, 0.0), 1e-6);

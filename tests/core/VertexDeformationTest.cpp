@@ -87,7 +87,7 @@ TEST(VertexDeformation, PosingTheRenderMeshGivesTheEvaluatorsPose) {
     evaluator.evaluate(0, 0.7);
     const std::vector<glm::dvec3> want = posedPositions(arm, 0, evaluator);
     const std::vector<glm::dvec3> got =
-        posePositions(arm.objects[0].mesh.positions, deformationOf(arm.objects[0]),
+        posePositions(arm.objects[0].mesh->positions, deformationOf(arm.objects[0]),
                       evaluator.jointMatrices(0), {}, glm::inverse(evaluator.objectTransform(0)));
     ASSERT_EQ(got.size(), want.size());
     for (size_t v = 0; v < got.size(); ++v)
@@ -110,7 +110,7 @@ TEST(VertexDeformation, PoseProblemNamesWhatDoesNotFit) {
 TEST(PoseBound, RenderMeshAsItsOwnCollisionMeshIsWithinItsMotionAllowance) {
     const Scene arm = makeSkinnedArm();
     const SceneObject& o = arm.objects[0];
-    Result<PoseBound> b = boundOverPoses(arm, 0, o.mesh, deformationOf(o), 8, 1e-4);
+    Result<PoseBound> b = boundOverPoses(arm, 0, *o.mesh, deformationOf(o), 8, 1e-4);
     ASSERT_TRUE(b.ok()) << b.error();
     EXPECT_EQ(b->poses, 9u);
     EXPECT_LE(b->sampledMax, 1e-4 * 1.001) << "the same surface at every pose";
@@ -128,9 +128,9 @@ TEST(PoseBound, HoldsBetweenItsSampledPoses) {
     ProxySettings settings;
     settings.tolerance = 0.02f;
     settings.toleranceRelative = true;
-    Result<Proxy> proxy = buildProxy(o.mesh, settings);
+    Result<Proxy> proxy = buildProxy(*o.mesh, settings);
     ASSERT_TRUE(proxy.ok()) << proxy.error();
-    Result<VertexDeformation> d = transferDeformation(o.mesh, deformationOf(o), proxy->mesh);
+    Result<VertexDeformation> d = transferDeformation(*o.mesh, deformationOf(o), proxy->mesh);
     ASSERT_TRUE(d.ok()) << d.error();
     constexpr int kSamples = 3;
     Result<PoseBound> b = boundOverPoses(arm, 0, proxy->mesh, d.value(), kSamples, 1e-3);
@@ -141,7 +141,7 @@ TEST(PoseBound, HoldsBetweenItsSampledPoses) {
     for (int i = 0; i < kSamples; ++i)
         for (double f : {0.25, 0.5, 0.75}) {
             evaluator.evaluate(0, period * (i + f) / kSamples);
-            const Mesh render = withPositions(o.mesh, posedPositions(arm, 0, evaluator));
+            const Mesh render = withPositions(*o.mesh, posedPositions(arm, 0, evaluator));
             const Mesh posed = withPositions(
                 proxy->mesh,
                 posePositions(proxy->mesh.positions, d.value(), evaluator.jointMatrices(0),
@@ -176,7 +176,7 @@ TEST(PoseBound, SurfacesThatMoveTogetherAddNoMotion) {
     arm.animation.animations[0].channels = {slide};
     ASSERT_TRUE(validateScene(arm).ok());
     const SceneObject& o = arm.objects[0];
-    Result<PoseBound> b = boundOverPoses(arm, 0, o.mesh, deformationOf(o), 8, 1e-4);
+    Result<PoseBound> b = boundOverPoses(arm, 0, *o.mesh, deformationOf(o), 8, 1e-4);
     ASSERT_TRUE(b.ok()) << b.error();
     EXPECT_LT(b->motion, 1e-9) << "each interval moves every vertex 0.25 m the same way";
     EXPECT_LE(b->bound, b->sampledMax + 1e-9);
@@ -185,10 +185,10 @@ TEST(PoseBound, SurfacesThatMoveTogetherAddNoMotion) {
 TEST(PoseBound, RejectsBadArguments) {
     const Scene arm = makeSkinnedArm();
     const SceneObject& o = arm.objects[0];
-    EXPECT_FALSE(boundOverPoses(arm, 3, o.mesh, deformationOf(o), 8, 1e-4).ok());
-    EXPECT_FALSE(boundOverPoses(arm, 0, o.mesh, deformationOf(o), 0, 1e-4).ok());
-    EXPECT_FALSE(boundOverPoses(arm, 0, o.mesh, deformationOf(o), 8, 0.0).ok());
-    EXPECT_FALSE(boundOverPoses(arm, 0, o.mesh, VertexDeformation{}, 8, 1e-4).ok());
+    EXPECT_FALSE(boundOverPoses(arm, 3, *o.mesh, deformationOf(o), 8, 1e-4).ok());
+    EXPECT_FALSE(boundOverPoses(arm, 0, *o.mesh, deformationOf(o), 0, 1e-4).ok());
+    EXPECT_FALSE(boundOverPoses(arm, 0, *o.mesh, deformationOf(o), 8, 0.0).ok());
+    EXPECT_FALSE(boundOverPoses(arm, 0, *o.mesh, VertexDeformation{}, 8, 1e-4).ok());
 }
 
 TEST(DeformingProxy, HoldsItsBoundOverThePosesWhereARestProxyCutsAcrossTheBend) {
@@ -200,7 +200,7 @@ TEST(DeformingProxy, HoldsItsBoundOverThePosesWhereARestProxyCutsAcrossTheBend) 
     ASSERT_TRUE(p.ok()) << p.error();
     EXPECT_TRUE(p->simplifiedPosed);
     EXPECT_FALSE(p->restCertified) << "it certifies below the rest proxy's sampled distances";
-    EXPECT_LT(p->proxy.proxyTriangles, arm.objects[0].mesh.triangleCount() / 4);
+    EXPECT_LT(p->proxy.proxyTriangles, arm.objects[0].mesh->triangleCount() / 4);
     EXPECT_EQ(p->proxy.errorBound, p->poses.bound);
     EXPECT_TRUE(p->proxy.drawnNormals.empty()) << "they would face one pose's drawn surface";
     EXPECT_LT(p->poses.sampledMax, 2.0 * p->proxy.tolerance);

@@ -23,8 +23,8 @@ std::string gDir;
 bool sceneIsSound(const spatter::Scene& scene) {
     if (!spatter::validateScene(scene)) return false;
     for (const spatter::SceneObject& o : scene.objects) {
-        if (o.mesh.normals.size() != o.mesh.positions.size()) return false;
-        for (const glm::vec3& n : o.mesh.normals)
+        if (o.mesh->normals.size() != o.mesh->positions.size()) return false;
+        for (const glm::vec3& n : o.mesh->normals)
             if (!(std::fabs(glm::length(n) - 1.0f) < 1e-3f)) return false;
         if (o.collider && !spatter::validateMesh(*o.collider)) return false;
     }

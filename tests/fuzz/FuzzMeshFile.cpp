@@ -31,7 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         return 0;
     }
     if (!spatter::validateScene(scene.value()) || scene->objects.size() != 1) std::abort();
-    const spatter::Mesh& mesh = scene->objects[0].mesh;
+    const spatter::Mesh& mesh = *scene->objects[0].mesh;
     if (mesh.normals.size() != mesh.positions.size()) std::abort();
     for (const glm::vec3& n : mesh.normals)
         if (!(std::fabs(glm::length(n) - 1.0f) < 1e-3f)) std::abort();

@@ -267,7 +267,7 @@ TEST(CollisionWorld, CoincidentSurfacesResolveTheSameWayInEveryTraversal) {
 TEST(CollisionWorld, RaysThroughSharedEdgesAndVerticesAgreeInEveryTraversal) {
     const Scene s = boxScene();
     const CollisionWorld w = buildWorld(s);
-    const Mesh& m = s.objects[0].mesh;
+    const Mesh& m = *s.objects[0].mesh;
     std::vector<Ray> rays;
     std::vector<std::vector<uint32_t>> containing;
     // Points on the +Z face (z = 0.5) on grid lines, diagonals and vertices, shot straight and slanted.
@@ -361,7 +361,7 @@ TEST(CollisionWorld, BurstsAimedAtSharedVerticesAndEdgesNeverLeak) {
     // and at the midpoints of its edges all hit, in the batch as alone.
     const Scene s = sphereScene(40, 80);
     const CollisionWorld w = buildWorld(s);
-    const Mesh& m = s.objects[0].mesh;
+    const Mesh& m = *s.objects[0].mesh;
     size_t rays = 0;
     for (const double distance : {4.0, 50.0, 3e3})
         for (uint32_t centre = 0; centre < m.positions.size(); centre += 97) {

@@ -398,7 +398,7 @@ TEST_F(DecalPersistence, TakesAtMostADecalRecordPerDecalPlusAFixedPart) {
 
 TEST_F(DecalPersistence, ObjectWithAnotherMeshDropsItsDecals) {
     Scene scene = rangeScene(3);
-    scene.objects[2].mesh = makeBox(glm::vec3(0.5f), 2);
+    scene.objects[2].mesh = shareMesh(makeBox(glm::vec3(0.5f), 2));
     DecalSystem loaded = makeSystem(scene, settingsFor(LimitPolicy::FadeOldest));
     for (const DecalType& t : gameTypes())
         addType(loaded, t);

@@ -199,7 +199,7 @@ TEST(DecalRecords, RayFilesMeetASkinnedObjectAsItIsDrawnAtThePose) {
     SceneEvaluator evaluator(scene);
     evaluator.evaluate(0, t);
     scene.objects[0].transform = evaluator.objectTransform(0); // as spatter-render draws it
-    const Mesh& rest = scene.objects[0].mesh;
+    const Mesh& rest = *scene.objects[0].mesh;
     std::vector<glm::dvec3> posed = posedPositions(scene, 0, evaluator);
     for (glm::dvec3& p : posed)
         p = glm::dvec3(scene.objects[0].transform * glm::dvec4(p, 1.0));

@@ -239,18 +239,20 @@ struct RawEmbree {
         for (size_t i = 0; i < s.objects.size(); ++i) {
             const SceneObject& o = s.objects[i];
             RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-                g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), o.mesh.positions.size()));
-            for (size_t k = 0; k < o.mesh.positions.size(); ++k) {
+            auto* v =
+                static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                            3 * sizeof(float), o.mesh->positions.size()));
+            for (size_t k = 0; k < o.mesh->positions.size(); ++k) {
                 const glm::dvec3 p =
-                    glm::dvec3(o.transform * glm::dvec4(glm::dvec3(o.mesh.positions[k]), 1.0));
+                    glm::dvec3(o.transform * glm::dvec4(glm::dvec3(o.mesh->positions[k]), 1.0));
                 v[3 * k] = float(p.x);
                 v[3 * k + 1] = float(p.y);
                 v[3 * k + 2] = float(p.z);
             }
-            auto* ix = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), o.mesh.triangleCount()));
-            std::copy(o.mesh.indices.begin(), o.mesh.indices.end(), ix);
+            auto* ix = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0,
+                                                                      RTC_FORMAT_UINT3, 3 * sizeof(uint32_t),
+                                                                      o.mesh->triangleCount()));
+            std::copy(o.mesh->indices.begin(), o.mesh->indices.end(), ix);
             rtcCommitGeometry(g);
             const unsigned id = rtcAttachGeometry(scene, g);
             rtcReleaseGeometry(g);

@@ -32,7 +32,7 @@ Scene drawnPose(const Scene& arm, double t) {
     Scene posed;
     posed.source = "test:posed-arm";
     posed.objects.push_back(
-        makeSceneObject("arm", withPositions(arm.objects[0].mesh, posedPositions(arm, 0, evaluator)),
+        makeSceneObject("arm", withPositions(*arm.objects[0].mesh, posedPositions(arm, 0, evaluator)),
                         evaluator.objectTransform(0), true));
     return armOverFloor(posed);
 }
@@ -51,11 +51,11 @@ Status poseAt(CollisionWorld& world, const Scene& arm, double t) {
 std::vector<Ray> raysAt(const Scene& target) {
     std::vector<Ray> rays;
     const SceneObject& o = target.objects[0];
-    const size_t triangles = o.mesh.triangleCount();
+    const size_t triangles = o.mesh->triangleCount();
     for (size_t i = 0; i < triangles; i += 5) {
         glm::dvec3 c(0.0);
         for (int k = 0; k < 3; ++k)
-            c += glm::dvec3(o.mesh.positions[o.mesh.indices[3 * i + size_t(k)]]) / 3.0;
+            c += glm::dvec3(o.mesh->positions[o.mesh->indices[3 * i + size_t(k)]]) / 3.0;
         const glm::dvec3 p(o.transform * glm::dvec4(c, 1.0));
         const double a = 2.399963 * double(i), z = 1.0 - 2.0 * double(i) / double(triangles);
         const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
@@ -73,7 +73,7 @@ struct SurfaceHits {
 };
 
 SurfaceHits hitsAgainst(const CollisionWorld& world, const Scene& drawn) {
-    const ClosestPointQuery surface = ClosestPointQuery::create(drawn.objects[0].mesh).value();
+    const ClosestPointQuery surface = ClosestPointQuery::create(*drawn.objects[0].mesh).value();
     const glm::dmat4 toObject = glm::inverse(drawn.objects[0].transform);
     SurfaceHits out;
     for (const Ray& r : raysAt(drawn))

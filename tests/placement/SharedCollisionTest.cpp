@@ -23,7 +23,7 @@ namespace {
 // `scene` with object i's render mesh given i + 1 unused copies of its first vertex.
 Scene unshared(Scene scene) {
     for (size_t i = 0; i < scene.objects.size(); ++i)
-        scene.objects[i].mesh = withUnusedVertices(std::move(scene.objects[i].mesh), i + 1);
+        scene.objects[i].mesh = shareMesh(withUnusedVertices(*scene.objects[i].mesh, i + 1));
     return scene;
 }
 
@@ -114,10 +114,10 @@ TEST(SharedCollision, InstancesGivenEqualProxiesTraceAsIfEachWereGivenItsOwn) {
     ProxySettings ps;
     ps.tolerance = 0.005f;
     ps.smallMeshTriangles = 0;
-    Result<Proxy> built = buildProxy(scene.objects[1].mesh, ps);
+    Result<Proxy> built = buildProxy(*scene.objects[1].mesh, ps);
     ASSERT_TRUE(built.ok()) << built.error();
     ps.tolerance = 0.03f;
-    Result<Proxy> coarser = buildProxy(scene.objects[1].mesh, ps);
+    Result<Proxy> coarser = buildProxy(*scene.objects[1].mesh, ps);
     ASSERT_TRUE(coarser.ok()) << coarser.error();
     ASSERT_NE(coarser->mesh.triangleCount(), built->mesh.triangleCount());
     // The bumpy spheres, each given a copy: the first three of one proxy, the last two of another.

@@ -28,7 +28,7 @@ constexpr float kDecalSize = 0.05f;
 Mesh drawnMesh(const Scene& arm, double t) {
     SceneEvaluator evaluator(arm);
     evaluator.evaluate(0, t);
-    return withPositions(arm.objects[0].mesh, posedPositions(arm, 0, evaluator));
+    return withPositions(*arm.objects[0].mesh, posedPositions(arm, 0, evaluator));
 }
 
 Status poseAt(DecalSystem& system, const Scene& arm, double t) {
@@ -244,7 +244,7 @@ TEST(SkinnedDecals, PosingLogsEveryMovedDecalAsChanged) {
     const Scene arm = makeSkinnedArm();
     DecalSystem system = makeSystem(arm, roomy());
     const uint16_t type = addType(system, bulletHole());
-    for (const Ray& r : shotsAtForearm(arm.objects[0].mesh))
+    for (const Ray& r : shotsAtForearm(*arm.objects[0].mesh))
         system.spawn(r, type);
     ASSERT_GT(system.decals().size(), 10u);
     const std::vector<Decal> before = system.decals();
@@ -268,7 +268,7 @@ TEST(SkinnedDecals, RemovedDecalsNoLongerMoveAndBadPosesChangeNothing) {
     DecalSystem system = makeSystem(arm, roomy());
     const uint16_t type = addType(system, bulletHole());
     std::vector<DecalHandle> handles;
-    for (const Ray& r : shotsAtForearm(arm.objects[0].mesh))
+    for (const Ray& r : shotsAtForearm(*arm.objects[0].mesh))
         if (const SpawnResult s = system.spawn(r, type); s.placed()) handles.push_back(s.handle);
     ASSERT_GT(handles.size(), 10u);
     for (size_t i = 0; i < handles.size(); i += 2)

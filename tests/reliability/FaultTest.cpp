@@ -178,7 +178,7 @@ TEST(ProxyCacheFaults, SceneFileChangedOnDiskInvalidatesItsEntry) {
     auto buildFromFile = [&]() -> Result<Proxy> {
         Result<Scene> scene = loadScene(path);
         if (!scene) return fail(scene.error());
-        return buildProxy(scene->objects.at(0).mesh, s);
+        return buildProxy(*scene->objects.at(0).mesh, s);
     };
 
     writeText(path, objText(bumpySphere(0.05f)));
@@ -197,7 +197,7 @@ TEST(ProxyCacheFaults, SceneFileChangedOnDiskInvalidatesItsEntry) {
     EXPECT_NE(changed->mesh.positions, first->mesh.positions);
     Result<Scene> now = loadScene(path);
     ASSERT_TRUE(now) << now.error();
-    const Bounds nowBounds = now->objects[0].mesh.bounds(), proxyBounds = changed->mesh.bounds();
+    const Bounds nowBounds = now->objects[0].mesh->bounds(), proxyBounds = changed->mesh.bounds();
     for (int k = 0; k < 3; ++k) { // the proxy follows the new geometry, within its error bound
         EXPECT_NEAR(proxyBounds.min[k], nowBounds.min[k], changed->errorBound + 1e-4);
         EXPECT_NEAR(proxyBounds.max[k], nowBounds.max[k], changed->errorBound + 1e-4);

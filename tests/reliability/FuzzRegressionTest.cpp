@@ -34,7 +34,7 @@ Scene boxes() {
     s.source = "test:boxes";
     SceneObject still;
     still.name = "still";
-    still.mesh = makeBox(glm::vec3(0.5f), 1);
+    still.mesh = shareMesh(makeBox(glm::vec3(0.5f), 1));
     s.objects.push_back(still);
     SceneObject moving = still;
     moving.name = "moving";

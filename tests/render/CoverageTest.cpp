@@ -210,7 +210,7 @@ TEST(Coverage, DecalsPlacedThroughACoarseProxyCoverTheDrawnSurface) {
     std::vector<std::optional<Proxy>> proxies(scene.objects.size());
     size_t proxyTriangles = 0;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
-        Result<Proxy> p = buildProxy(scene.objects[i].mesh, ps);
+        Result<Proxy> p = buildProxy(*scene.objects[i].mesh, ps);
         ASSERT_TRUE(p.ok()) << p.error();
         proxyTriangles += p->proxyTriangles;
         proxies[i] = std::move(p.value());

@@ -22,7 +22,7 @@ SceneObject object(const std::string& name, const glm::vec3& halfExtents, const 
                    bool dynamic = false) {
     SceneObject o;
     o.name = name;
-    o.mesh = makeBox(halfExtents, 4);
+    o.mesh = shareMesh(makeBox(halfExtents, 4));
     o.transform = glm::translate(glm::dmat4(1.0), position);
     o.dynamic = dynamic;
     return o;
@@ -270,7 +270,7 @@ TEST(DecalPass, WrapAroundCoversBothFacesOfACorner) {
     Result<Renderer> r = test::makeRenderer(kW, kH);
     ASSERT_TRUE(r.ok()) << r.error();
     Scene scene = oneBox("cube", {0.5f, 0.5f, 0.5f}, {0.0, 0.0, 0.0});
-    scene.objects[0].mesh = flatBox({0.5f, 0.5f, 0.5f});
+    scene.objects[0].mesh = shareMesh(flatBox({0.5f, 0.5f, 0.5f}));
     ASSERT_TRUE(r->setScene(scene).ok());
     const Camera cam = test::lookAt({1.9, 0.5, 1.9}, {0.35, 0.0, 0.35});
     // Face classes from the normals before any decal: +X side face and +Z front face.

@@ -25,12 +25,12 @@ Scene wallAndTarget() {
     Scene s;
     SceneObject wall;
     wall.name = "wall";
-    wall.mesh = makeBox({2.0f, 1.5f, 0.1f}, 4);
+    wall.mesh = shareMesh(makeBox({2.0f, 1.5f, 0.1f}, 4));
     wall.transform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 1.5, -0.1));
     s.objects.push_back(wall);
     SceneObject target;
     target.name = "target";
-    target.mesh = makeBox({0.3f, 0.3f, 0.05f}, 2);
+    target.mesh = shareMesh(makeBox({0.3f, 0.3f, 0.05f}, 2));
     target.transform = glm::translate(glm::dmat4(1.0), glm::dvec3(-0.6, 1.5, 0.4));
     target.dynamic = true;
     s.objects.push_back(target);
@@ -120,7 +120,7 @@ TEST(Overlays, OffDrawNothingExtra) {
         p->setDecalTypes(types);
         p->setDecals({d});
     }
-    ASSERT_TRUE(r->setOverlayMeshes({scene.objects[0].mesh, scene.objects[1].mesh}).ok());
+    ASSERT_TRUE(r->setOverlayMeshes({*scene.objects[0].mesh, *scene.objects[1].mesh}).ok());
     const Camera cam = test::lookAt({0.5, 1.9, 3.0}, {0.0, 1.4, 0.0});
     for (View view : {View::Final, View::Albedo, View::Coverage}) {
         SCOPED_TRACE(toString(view));
@@ -146,7 +146,7 @@ TEST(Overlays, ProxyWireframeDrawsOverItsObjectAndFollowsItWhenItMoves) {
     ASSERT_TRUE(r->setObjectIds({0, 9}).ok());
     // Only the target has a wireframe: its render mesh, so every line lies on the drawn surface and
     // shows only through the depth bias.
-    ASSERT_TRUE(r->setOverlayMeshes({Mesh{}, scene.objects[1].mesh}).ok());
+    ASSERT_TRUE(r->setOverlayMeshes({Mesh{}, *scene.objects[1].mesh}).ok());
     const Camera cam = test::lookAt({0.3, 1.8, 3.0}, {0.0, 1.5, 0.0});
 
     std::vector<uint8_t> before;
@@ -184,7 +184,7 @@ TEST(Overlays, WireframeDrawsEachUniqueEdgeOnce) {
     Scene scene;
     SceneObject cube;
     cube.name = "cube";
-    cube.mesh = makeUnitCube();
+    cube.mesh = shareMesh(makeUnitCube());
     scene.objects.push_back(cube);
     ASSERT_TRUE(r->setScene(scene).ok());
     const Camera cam = test::lookAt({1.5, 1.2, 2.0}, {0.0, 0.0, 0.0});
@@ -209,7 +209,7 @@ TEST(Overlays, DecalBoxesAreDrawnWhereTheDecalIs) {
     Scene scene;
     SceneObject wall;
     wall.name = "wall";
-    wall.mesh = makeBox({3.0f, 3.0f, 0.1f}, 2);
+    wall.mesh = shareMesh(makeBox({3.0f, 3.0f, 0.1f}, 2));
     wall.transform = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 1.5, -0.1));
     scene.objects.push_back(wall);
     ASSERT_TRUE(r->setScene(scene).ok());
@@ -277,17 +277,17 @@ TEST(Overlays, RejectsBadMeshesAndDepthBias) {
     ASSERT_TRUE(r.ok()) << r.error();
     const Scene scene = wallAndTarget();
     ASSERT_TRUE(r->setScene(scene).ok());
-    ASSERT_TRUE(r->setOverlayMeshes({Mesh{}, scene.objects[1].mesh}).ok());
+    ASSERT_TRUE(r->setOverlayMeshes({Mesh{}, *scene.objects[1].mesh}).ok());
 
-    const Status tooFew = r->setOverlayMeshes({scene.objects[1].mesh});
+    const Status tooFew = r->setOverlayMeshes({*scene.objects[1].mesh});
     ASSERT_FALSE(tooFew.ok());
     EXPECT_NE(tooFew.error().find("1 overlay meshes for 2 objects"), std::string::npos) << tooFew.error();
-    Mesh broken = scene.objects[1].mesh;
+    Mesh broken = *scene.objects[1].mesh;
     broken.indices.back() = 100000;
     const Status outOfRange = r->setOverlayMeshes({Mesh{}, broken});
     ASSERT_FALSE(outOfRange.ok());
     EXPECT_NE(outOfRange.error().find("object 1"), std::string::npos) << outOfRange.error();
-    Mesh nan = scene.objects[1].mesh;
+    Mesh nan = *scene.objects[1].mesh;
     nan.positions[3].y = NAN;
     EXPECT_FALSE(r->setOverlayMeshes({nan, Mesh{}}).ok());
 

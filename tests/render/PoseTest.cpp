@@ -35,7 +35,7 @@ namespace {
 // transpose of the object's transform, the inverse of its normal matrix). Not normalised.
 std::vector<glm::dvec3> posedNormals(const Scene& scene, size_t object, const SceneEvaluator& evaluator) {
     const SceneObject& o = scene.objects[object];
-    std::vector<glm::dvec3> out(o.mesh.normals.begin(), o.mesh.normals.end());
+    std::vector<glm::dvec3> out(o.mesh->normals.begin(), o.mesh->normals.end());
     const std::vector<double>& weights = evaluator.morphWeights(object);
     for (size_t t = 0; t < o.morphTargets.size(); ++t)
         for (size_t v = 0; v < out.size() && v < o.morphTargets[t].normals.size(); ++v)
@@ -60,12 +60,13 @@ Scene cpuPosed(const Scene& scene, const SceneEvaluator& evaluator) {
     Scene out = scene;
     for (size_t i = 0; i < out.objects.size(); ++i) {
         SceneObject& o = out.objects[i];
+        Mesh& mesh = o.editMesh();
         const std::vector<glm::dvec3> posed = posedPositions(scene, i, evaluator);
         for (size_t v = 0; v < posed.size(); ++v)
-            o.mesh.positions[v] = glm::vec3(posed[v]);
+            mesh.positions[v] = glm::vec3(posed[v]);
         const std::vector<glm::dvec3> normals = posedNormals(scene, i, evaluator);
         for (size_t v = 0; v < normals.size(); ++v)
-            o.mesh.normals[v] = glm::vec3(glm::normalize(normals[v]));
+            mesh.normals[v] = glm::vec3(glm::normalize(normals[v]));
         o.transform = evaluator.objectTransform(i);
         o.node = o.skin = -1;
         o.skinWeights = {};
@@ -200,7 +201,7 @@ Scene bentBarAndMorphedBox(const glm::dvec3& offset) {
     bar.node = 2;
     bar.skin = 0;
     bar.skinWeights.influences = 4;
-    for (glm::vec3& p : bar.mesh.positions) {
+    for (glm::vec3& p : bar.editMesh().positions) {
         p.y += 1.0f;
         const double upper = std::clamp(double(p.y) - 0.5, 0.0, 1.0);
         bar.skinWeights.joints.insert(bar.skinWeights.joints.end(), {0, 1, 0, 1});
@@ -212,7 +213,7 @@ Scene bentBarAndMorphedBox(const glm::dvec3& offset) {
                                       glm::translate(glm::dmat4(1.0), a.nodes[3].translation));
     box.node = 3;
     MorphTarget target;
-    for (const glm::vec3& p : box.mesh.positions) {
+    for (const glm::vec3& p : box.mesh->positions) {
         target.positions.push_back(p.y > 0.0f ? glm::vec3(0.2f, 0.6f, 0.0f) : glm::vec3(0.0f));
         target.normals.push_back(p.y > 0.0f ? glm::vec3(-0.6f, 0.0f, 0.3f) : glm::vec3(0.0f));
     }

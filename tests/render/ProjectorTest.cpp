@@ -421,7 +421,7 @@ TEST(Projector, TheSameDecalsGiveTheSameAlbedoInEveryHost) {
     grey.baseColorFactor = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
     scene.materials = {grey};
     for (SceneObject& o : scene.objects)
-        o.mesh.submeshes = {{0, uint32_t(o.mesh.indices.size()), 0}};
+        o.editMesh().submeshes = {{0, uint32_t(o.mesh->indices.size()), 0}};
     Result<Renderer> r = test::makeRenderer(kWallWidth, kWallHeight);
     ASSERT_TRUE(r.ok()) << r.error();
     ASSERT_TRUE(r->setScene(scene).ok());

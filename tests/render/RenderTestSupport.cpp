@@ -122,7 +122,7 @@ std::vector<uint8_t> referenceCoverage(const Scene& scene, const CoverageInputs&
             if (!hit) continue;
             const SceneObject& obj = scene.objects[hit->object];
             if (!obj.receivesDecals) continue;
-            const Mesh& mesh = obj.mesh;
+            const Mesh& mesh = *obj.mesh;
             const uint32_t* tri = &mesh.indices[size_t(hit->primitive) * 3];
             const glm::dvec3 a(mesh.positions[tri[0]]), b(mesh.positions[tri[1]]), c(mesh.positions[tri[2]]);
             // Barycentric coordinates of the object-space hit.

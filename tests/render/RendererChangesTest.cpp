@@ -31,18 +31,16 @@ Scene slabAndSheetScene() {
     grey.name = "grey";
     grey.baseColorFactor = glm::vec4(0.3f, 0.3f, 0.3f, 1.0f);
     s.materials.push_back(grey);
-    SceneObject slab;
-    slab.name = "slab";
-    slab.mesh = makeBox(glm::vec3(1.0f, 0.2f, 1.0f), 2);
-    slab.transform = glm::translate(glm::dmat4(1.0), glm::dvec3(-1.0, -0.2, 0.0));
-    SceneObject sheet;
-    sheet.name = "sheet";
-    sheet.mesh = makeGrid(makeSamples(0.0f, 2.0f, 0.25f), makeSamples(-1.0f, 1.0f, 0.25f));
-    for (glm::vec2& uv : sheet.mesh.uvs)
+    Mesh box = makeBox(glm::vec3(1.0f, 0.2f, 1.0f), 2);
+    Mesh grid = makeGrid(makeSamples(0.0f, 2.0f, 0.25f), makeSamples(-1.0f, 1.0f, 0.25f));
+    for (glm::vec2& uv : grid.uvs)
         uv = {uv.x * 0.5f, uv.y * 0.5f + 0.5f};
-    computeTangents(sheet.mesh);
-    for (SceneObject* o : {&slab, &sheet})
-        o->mesh.submeshes = {{0, uint32_t(o->mesh.indices.size()), 0}};
+    computeTangents(grid);
+    for (Mesh* m : {&box, &grid})
+        m->submeshes = {{0, uint32_t(m->indices.size()), 0}};
+    SceneObject slab =
+        makeSceneObject("slab", std::move(box), glm::translate(glm::dmat4(1.0), glm::dvec3(-1.0, -0.2, 0.0)));
+    SceneObject sheet = makeSceneObject("sheet", std::move(grid));
     s.objects.push_back(std::move(slab));
     s.objects.push_back(std::move(sheet));
     return s;

@@ -23,8 +23,8 @@ SceneObject box(const std::string& name, glm::vec3 half, glm::dvec3 position, in
                 bool dynamic = false) {
     SceneObject o;
     o.name = name;
-    o.mesh = makeBox(half, 2);
-    if (material >= 0) o.mesh.submeshes = {Submesh{0, uint32_t(o.mesh.indices.size()), material}};
+    o.mesh = shareMesh(makeBox(half, 2));
+    if (material >= 0) o.editMesh().submeshes = {Submesh{0, uint32_t(o.mesh->indices.size()), material}};
     o.transform = glm::translate(glm::dmat4(1.0), position);
     o.dynamic = dynamic;
     return o;
@@ -146,7 +146,7 @@ TEST(Renderer, RejectsBadInputWithErrors) {
     good.objects.push_back(box("a", {1.0f, 1.0f, 1.0f}, {0.0, 0.0, 0.0}));
     ASSERT_TRUE(r->setScene(good).ok());
     Scene broken = good;
-    broken.objects[0].mesh.indices.push_back(999);
+    broken.objects[0].editMesh().indices.push_back(999);
     const Status s = r->setScene(broken);
     EXPECT_FALSE(s.ok());
     EXPECT_NE(s.error().find("object 0"), std::string::npos) << s.error();
@@ -252,7 +252,7 @@ TEST(Renderer, DrawsCopiesOfAMeshAsItDrawsDistinctMeshes) {
     }
     Scene distinct = copies;
     for (size_t i = 1; i < distinct.objects.size(); ++i)
-        distinct.objects[i].mesh = withUnusedVertices(distinct.objects[i].mesh, i);
+        distinct.objects[i].mesh = shareMesh(withUnusedVertices(*distinct.objects[i].mesh, i));
     Camera cam;
     cam.eye = {0.0, 1.5, 4.0};
     cam.target = {0.0, 0.3, -0.5};

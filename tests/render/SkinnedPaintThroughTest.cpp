@@ -27,7 +27,7 @@ Scene drawnDummy(const Scene& scene, const SceneEvaluator& evaluator) {
     Scene drawn;
     drawn.source = "test:drawn-dummy";
     drawn.objects.push_back(
-        makeSceneObject("dummy", withPositions(scene.objects[0].mesh, posedPositions(scene, 0, evaluator)),
+        makeSceneObject("dummy", withPositions(*scene.objects[0].mesh, posedPositions(scene, 0, evaluator)),
                         evaluator.objectTransform(0)));
     return drawn;
 }
@@ -56,7 +56,7 @@ Shown whatIsCovered(const std::vector<uint8_t>& mask, const Scene& scene, const 
             if (!hit) continue;
             bool body = true;
             for (int k = 0; k < 3; ++k) {
-                const uint32_t v = scene.objects[0].mesh.indices[3 * size_t(hit->primitive) + size_t(k)];
+                const uint32_t v = scene.objects[0].mesh->indices[3 * size_t(hit->primitive) + size_t(k)];
                 body = body && w.joints[2 * v] == 0 && w.weights[2 * v] >= 1.0;
             }
             ++(body ? shown.body : shown.arm);

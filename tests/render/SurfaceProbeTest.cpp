@@ -186,9 +186,9 @@ TEST(SurfaceProbe, DecalsShotThroughACoarseProxyLaidOnTheDrawnSurfaceCoverWhatTh
     ProxySettings ps;
     ps.tolerance = 0.03f; // of the diagonal: facets tilted several degrees against the ball
     ps.backend = ProxyBackend::MeshOpt;
-    Result<Proxy> proxy = buildProxy(scene.objects[0].mesh, ps);
+    Result<Proxy> proxy = buildProxy(*scene.objects[0].mesh, ps);
     ASSERT_TRUE(proxy.ok()) << proxy.error();
-    ASSERT_LT(proxy->proxyTriangles, scene.objects[0].mesh.triangleCount() / 4);
+    ASSERT_LT(proxy->proxyTriangles, scene.objects[0].mesh->triangleCount() / 4);
     // Shots from the camera's side, within 50 degrees of it, at random points of the ball it sees.
     const Camera cam = lookAt({0.0, 0.6, 3.2}, {0.0, 0.0, 0.0});
     Rng rng(7);

@@ -40,7 +40,7 @@ Scene sceneWith(Mesh mesh) {
     mesh.submeshes = {{0, uint32_t(mesh.indices.size()), 0}};
     SceneObject o;
     o.name = "sheet";
-    o.mesh = std::move(mesh);
+    o.mesh = shareMesh(std::move(mesh));
     o.dynamic = true;
     s.objects.push_back(std::move(o));
     return s;

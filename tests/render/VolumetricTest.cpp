@@ -26,7 +26,7 @@ constexpr float kRadius = 0.3f; // crater radius (half the decal size)
 SceneObject boxObject(const std::string& name, const glm::vec3& halfExtents, const glm::dvec3& position) {
     SceneObject o;
     o.name = name;
-    o.mesh = makeBox(halfExtents, 4);
+    o.mesh = shareMesh(makeBox(halfExtents, 4));
     o.transform = glm::translate(glm::dmat4(1.0), position);
     return o;
 }
@@ -37,14 +37,14 @@ Scene wallScene(bool redBehind) {
     s.materials[0].name = "grey";
     s.materials[0].baseColorFactor = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
     s.objects.push_back(boxObject("wall", {2.0f, 1.5f, 0.1f}, {0.0, 1.5, -0.1}));
-    s.objects[0].mesh.submeshes = {{0, uint32_t(s.objects[0].mesh.indices.size()), 0}};
+    s.objects[0].editMesh().submeshes = {{0, uint32_t(s.objects[0].mesh->indices.size()), 0}};
     if (redBehind) {
         Material red;
         red.name = "red";
         red.baseColorFactor = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
         s.materials.push_back(red);
         SceneObject back = boxObject("red", {2.5f, 2.0f, 0.05f}, {0.0, 1.5, -0.35});
-        back.mesh.submeshes = {{0, uint32_t(back.mesh.indices.size()), 1}};
+        back.editMesh().submeshes = {{0, uint32_t(back.mesh->indices.size()), 1}};
         s.objects.push_back(back);
     }
     return s;
@@ -202,7 +202,7 @@ TEST(VolumetricDecal, IdClippingKeepsTheHoleOffAnotherObject) {
     // crater's right half.
     SceneObject plate = boxObject("plate", {0.3f, 0.5f, 0.01f}, {0.3, 1.5, 0.02});
     plate.dynamic = true;
-    plate.mesh.submeshes = {{0, uint32_t(plate.mesh.indices.size()), 0}};
+    plate.editMesh().submeshes = {{0, uint32_t(plate.mesh->indices.size()), 0}};
     s.objects.push_back(plate);
     ASSERT_TRUE(r->setScene(s).ok());
     ASSERT_TRUE(r->setObjectIds({0, 7}).ok());
@@ -253,7 +253,7 @@ TEST(VolumetricDecal, CraterAtACornerLeavesTheAdjacentFloorAlone) {
     Scene s = wallScene(false);
     // A floor whose top face y = 0 meets the wall's front face along the line y = 0, z = 0.
     SceneObject floor = boxObject("floor", {2.0f, 0.1f, 1.5f}, {0.0, -0.1, 1.5});
-    floor.mesh.submeshes = {{0, uint32_t(floor.mesh.indices.size()), 0}};
+    floor.editMesh().submeshes = {{0, uint32_t(floor.mesh->indices.size()), 0}};
     s.objects.push_back(floor);
     ASSERT_TRUE(r->setScene(s).ok());
     r->setDecalTypes(types());
@@ -295,7 +295,7 @@ PillarShots pillarShots() {
     PillarShots out;
     out.scene = wallScene(false);
     out.scene.objects[0] = boxObject("pillar", {0.3f, 1.5f, 0.3f}, {0.0, 1.5, 0.0});
-    out.scene.objects[0].mesh.submeshes = {{0, uint32_t(out.scene.objects[0].mesh.indices.size()), 0}};
+    out.scene.objects[0].editMesh().submeshes = {{0, uint32_t(out.scene.objects[0].mesh->indices.size()), 0}};
     Result<DecalSystem> sys = DecalSystem::create(out.scene);
     EXPECT_TRUE(sys.ok()) << sys.error();
     DecalType t = types()[0];

@@ -180,7 +180,7 @@ void place(const std::string& what, const Scene& scene, const std::vector<std::o
     }
     const DecalType type = makeType("degenerate", 0.05f, 90.0f);
     const uint16_t ti = sys->registerType(type).value();
-    const Mesh& mesh = scene.objects[0].mesh;
+    const Mesh& mesh = *scene.objects[0].mesh;
     Rng rng(cfg.seed + 3);
     const size_t count = cfg.full ? 4000 : 300;
     for (size_t i = 0; i < count; ++i) {
@@ -241,8 +241,8 @@ void survey(const std::string& what, const Scene& scene, const StressConfig& cfg
         return;
     }
     for (const SceneObject& o : scene.objects) {
-        totals.normalsChecked += o.mesh.normals.size();
-        if (size_t bad = badNormals(o.mesh)) {
+        totals.normalsChecked += o.mesh->normals.size();
+        if (size_t bad = badNormals(*o.mesh)) {
             totals.badNormals += bad;
             r.failure(what + ": " + std::to_string(bad) + " bad normals in " + o.name);
         }
@@ -259,7 +259,7 @@ void survey(const std::string& what, const Scene& scene, const StressConfig& cfg
         const std::string name = what + " (" + proxyBackendName(backend) + " proxy)";
         for (size_t i = 0; i < scene.objects.size(); ++i) {
             totals.proxies++;
-            Result<Proxy> p = buildProxy(scene.objects[i].mesh, ps);
+            Result<Proxy> p = buildProxy(*scene.objects[i].mesh, ps);
             if (!p || !validateMesh(p->mesh) || !std::isfinite(p->errorBound) ||
                 p->mesh.triangleCount() == 0) {
                 totals.proxyFailures++;

@@ -37,15 +37,16 @@ std::vector<Ray> galleryShots(const Scene& scene, size_t count, uint64_t seed) {
     std::vector<Ray> rays;
     while (rays.size() < count) {
         const SceneObject& o = scene.objects[rng.below(uint32_t(scene.objects.size()))];
-        if (!o.receivesDecals || o.mesh.triangleCount() == 0) continue;
-        const size_t t = rng.below(uint32_t(o.mesh.triangleCount()));
+        if (!o.receivesDecals || o.mesh->triangleCount() == 0) continue;
+        const size_t t = rng.below(uint32_t(o.mesh->triangleCount()));
         double u = uniform(rng, 0.05, 0.9), v = uniform(rng, 0.05, 0.9);
         if (u + v > 0.95) {
             u = 0.95 - u;
             v = 0.95 - v;
         }
-        const glm::dvec3 p0(o.mesh.positions[o.mesh.indices[3 * t]]),
-            p1(o.mesh.positions[o.mesh.indices[3 * t + 1]]), p2(o.mesh.positions[o.mesh.indices[3 * t + 2]]);
+        const glm::dvec3 p0(o.mesh->positions[o.mesh->indices[3 * t]]),
+            p1(o.mesh->positions[o.mesh->indices[3 * t + 1]]),
+            p2(o.mesh->positions[o.mesh->indices[3 * t + 2]]);
         const glm::dvec3 aim(o.transform * glm::dvec4(p0 + u * (p1 - p0) + v * (p2 - p0), 1.0));
         Ray ray;
         ray.origin = glm::dvec3(uniform(rng, -6.0, 6.0), uniform(rng, 0.5, 2.5), uniform(rng, 1.5, 7.5));
@@ -68,7 +69,7 @@ std::map<std::string, double> objectSizes(const Scene& scene) {
     std::map<std::string, double> sizes;
     for (const SceneObject& o : scene.objects) {
         DBounds b;
-        for (const glm::vec3& p : o.mesh.positions)
+        for (const glm::vec3& p : o.mesh->positions)
             b.extend(glm::dvec3(o.transform * glm::dvec4(glm::dvec3(p), 1.0)));
         sizes[o.name] = b.diagonal();
     }

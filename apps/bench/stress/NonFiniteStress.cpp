@@ -329,14 +329,14 @@ void checkConstruction(StressResult& r, std::map<std::string, ApiTally>& tallies
     }
     // Scenes with a bad vertex, normal or transform, and bad proxies.
     const std::vector<std::pair<std::string, std::function<void(Scene&)>>> scenes = {
-        {"NaN vertex", [](Scene& s) { s.objects[0].mesh.positions[3].y = kNaNf; }},
-        {"+Inf vertex", [](Scene& s) { s.objects[1].mesh.positions[0].x = kInff; }},
-        {"-Inf vertex", [](Scene& s) { s.objects[0].mesh.positions[0].z = -kInff; }},
-        {"NaN normal", [](Scene& s) { s.objects[1].mesh.normals[2].x = kNaNf; }},
+        {"NaN vertex", [](Scene& s) { s.objects[0].editMesh().positions[3].y = kNaNf; }},
+        {"+Inf vertex", [](Scene& s) { s.objects[1].editMesh().positions[0].x = kInff; }},
+        {"-Inf vertex", [](Scene& s) { s.objects[0].editMesh().positions[0].z = -kInff; }},
+        {"NaN normal", [](Scene& s) { s.objects[1].editMesh().normals[2].x = kNaNf; }},
         {"NaN transform", [](Scene& s) { s.objects[0].transform[3][1] = kNaN; }},
         {"Inf transform", [](Scene& s) { s.objects[1].transform[0][0] = kInf; }},
         {"projective transform", [](Scene& s) { s.objects[1].transform[2][3] = 0.5; }},
-        {"index past the vertex count", [](Scene& s) { s.objects[0].mesh.indices[4] = 1000000; }},
+        {"index past the vertex count", [](Scene& s) { s.objects[0].editMesh().indices[4] = 1000000; }},
     };
     for (const auto& [what, change] : scenes) {
         Scene s = scene;
@@ -352,7 +352,7 @@ void checkConstruction(StressResult& r, std::map<std::string, ApiTally>& tallies
     for (const auto& [what, change] : proxies) {
         std::vector<std::optional<Proxy>> list(scene.objects.size());
         Proxy p;
-        p.mesh = scene.objects[1].mesh;
+        p.mesh = *scene.objects[1].mesh;
         change(p);
         list[1] = p;
         expectFailure("CollisionWorld::build", what, answer(CollisionWorld::build(scene, list)));
@@ -513,9 +513,9 @@ StressResult runNonFiniteRender(const StressConfig& cfg) {
            answer(renderer->setObjectTransform(99, glm::dmat4(1.0))));
 
     for (const auto& [what, change] : std::vector<std::pair<std::string, std::function<void(Scene&)>>>{
-             {"NaN vertex", [](Scene& s) { s.objects[0].mesh.positions[2].x = kNaNf; }},
-             {"Inf vertex", [](Scene& s) { s.objects[1].mesh.positions[2].y = kInff; }},
-             {"NaN normal", [](Scene& s) { s.objects[0].mesh.normals[0].z = kNaNf; }},
+             {"NaN vertex", [](Scene& s) { s.objects[0].editMesh().positions[2].x = kNaNf; }},
+             {"Inf vertex", [](Scene& s) { s.objects[1].editMesh().positions[2].y = kInff; }},
+             {"NaN normal", [](Scene& s) { s.objects[0].editMesh().normals[0].z = kNaNf; }},
              {"NaN transform", [](Scene& s) { s.objects[1].transform[3][2] = kNaN; }},
              {"projective transform", [](Scene& s) { s.objects[0].transform[2][3] = 0.5; }}}) {
         Scene s = scene;

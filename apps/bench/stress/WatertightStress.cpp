@@ -66,10 +66,10 @@ void objectTargets(const SceneObject& o, size_t stride, Rng& rng, std::vector<Ta
     const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(m)));
     auto world = [&](const glm::dvec3& p) { return glm::dvec3(m * glm::dvec4(p, 1.0)); };
     auto worldNormal = [&](const glm::dvec3& n) { return glm::normalize(normalMatrix * n); };
-    const std::vector<SharedEdge> edges = sharedEdges(o.mesh);
+    const std::vector<SharedEdge> edges = sharedEdges(*o.mesh);
     for (size_t i = 0; i < edges.size(); i += stride) {
         const SharedEdge& e = edges[i];
-        const glm::dvec3 a(o.mesh.positions[e.a]), b(o.mesh.positions[e.b]);
+        const glm::dvec3 a(o.mesh->positions[e.a]), b(o.mesh->positions[e.b]);
         // Points on the edge, away from its ends: near a vertex (within the float resolution of the
         // frame) the ray meets the whole fan, which the vertex targets test with their own directions.
         for (double s : {0.5, uniform(rng, 0.01, 0.99)}) {
@@ -80,10 +80,10 @@ void objectTargets(const SceneObject& o, size_t stride, Rng& rng, std::vector<Ta
             out.push_back(std::move(t));
         }
     }
-    const std::vector<InteriorVertex> verts = interiorVertices(o.mesh);
+    const std::vector<InteriorVertex> verts = interiorVertices(*o.mesh);
     for (size_t i = 0; i < verts.size(); i += stride) {
         Target t;
-        t.point = world(glm::dvec3(o.mesh.positions[verts[i].v]));
+        t.point = world(glm::dvec3(o.mesh->positions[verts[i].v]));
         for (const glm::dvec3& n : verts[i].normals)
             t.normals.push_back(worldNormal(n));
         t.what = o.name + " vertex " + std::to_string(verts[i].v);
@@ -242,7 +242,7 @@ StressResult runWatertight(const StressConfig& cfg) {
             std::vector<Target> targets;
             size_t closed = 0;
             for (const SceneObject& o : scene.objects) {
-                if (!closedMesh(o.mesh)) continue;
+                if (!closedMesh(*o.mesh)) continue;
                 closed++;
                 objectTargets(o, cfg.full ? 1 : 4, rng, targets);
             }

@@ -77,7 +77,7 @@ spatter::Result<SceneGpu> uploadScene(const Inputs& in) {
             if (!id) return spatter::fail(id.error());
             g.decalIds[i] = id.value();
         }
-        g.objects.push_back(upload(in.scene, o.mesh));
+        g.objects.push_back(upload(in.scene, *o.mesh));
         g.transforms.push_back(o.transform);
     }
     return g;

@@ -9,6 +9,7 @@
 #include "spatter/core/Mesh.hpp"
 
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,7 +33,10 @@ struct Material {
 
 struct SceneObject {
     std::string name;
-    Mesh mesh;                    // render mesh, object space
+    // Render mesh, object space; never null (validateScene). Objects placed with the same mesh share
+    // one (every node of a glTF mesh used more than once, every instance of EXT_mesh_gpu_instancing, a
+    // level's copies of a prop), so that a scene keeps each mesh once however often it is placed.
+    std::shared_ptr<const Mesh> mesh;
     glm::dmat4 transform{1.0};    // object to world
     bool dynamic = false;         // moves at run time: placed as an Embree instance, gets an object ID
     bool receivesDecals = true;   // false: not in the collision world, never decaled
@@ -46,11 +50,20 @@ struct SceneObject {
 
     // Skinned or morphed: its surface changes shape with the pose.
     bool deforms() const { return skin >= 0 || !morphTargets.empty(); }
+    // Gives this object a copy of its mesh of its own and returns it to be changed; the objects that
+    // shared the mesh keep it as it was.
+    Mesh& editMesh();
 };
+
+// `mesh` held for sharing between objects.
+std::shared_ptr<const Mesh> shareMesh(Mesh mesh);
 
 // An object of `mesh` placed by `transform`, static or dynamic, receiving decals.
 SceneObject makeSceneObject(std::string name, Mesh mesh, const glm::dmat4& transform = glm::dmat4(1.0),
                             bool dynamic = false);
+// The same with a mesh shared with other objects.
+SceneObject makeSceneObject(std::string name, std::shared_ptr<const Mesh> mesh,
+                            const glm::dmat4& transform = glm::dmat4(1.0), bool dynamic = false);
 
 struct Scene {
     std::string source; // path or builtin name it was made from

@@ -22,8 +22,8 @@ Result<Scene> loadScene(const std::string& source);
 // animation moves or deforms is dynamic without extras.
 // Sparse accessors and accessors without a buffer view are read wherever accessors are. Extensions:
 // KHR_mesh_quantization, KHR_draco_mesh_compression and EXT_meshopt_compression (decoded while
-// loading), EXT_mesh_gpu_instancing (one object per instance, named "node#i", each with its own copy
-// of the mesh and not animated), KHR_texture_transform (applied to the UVs), KHR_materials_unlit
+// loading), EXT_mesh_gpu_instancing (one object per instance, named "node#i", sharing the node's mesh
+// and not animated), KHR_texture_transform (applied to the UVs), KHR_materials_unlit
 // (Material::unlit). Images that cannot be decoded and that only an image extension uses
 // (KHR_texture_basisu and the like) become a 1x1 white image, with a line in Scene::warnings. Any
 // other required extension is an error that names it.
