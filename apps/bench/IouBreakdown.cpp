@@ -200,7 +200,7 @@ Result<std::vector<Decal>> nearestFaceFrames(const ShotDecals& decals, const Sce
 } // namespace
 
 Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, const Scene& scene,
-                                  const std::vector<std::optional<Proxy>>& proxies,
+                                  const std::vector<std::shared_ptr<const Proxy>>& proxies,
                                   const std::vector<Ray>& shots, const DecalType& type, double diagonal,
                                   uint64_t seed, const std::vector<uint8_t>& reference) {
     Result<DecalSystem> proxy = coverageSystem(CollisionWorld::build(scene, proxies), type, diagonal, seed);

@@ -46,7 +46,7 @@ using IouBreakdown = std::vector<IouVariant>;
 // The IoUs against `reference` (the render-placed decals' mask from `camera`) of the decals `shots`
 // place through `proxies` with decal type `type`, each variant drawn by `probe`.
 Result<IouBreakdown> iouBreakdown(CoverageProbe& probe, const Camera& camera, const Scene& scene,
-                                  const std::vector<std::optional<Proxy>>& proxies,
+                                  const std::vector<std::shared_ptr<const Proxy>>& proxies,
                                   const std::vector<Ray>& shots, const DecalType& type, double diagonal,
                                   uint64_t seed, const std::vector<uint8_t>& reference);
 

@@ -353,7 +353,7 @@ int runMemoryCommand(int argc, char** argv) {
     const size_t wh0 = heapBytes(), wr0 = residentBytes();
     std::optional<CollisionWorld> proxyWorld;
     {
-        Result<CollisionWorld> w = CollisionWorld::build(proxyScene, {proxy.value()});
+        Result<CollisionWorld> w = CollisionWorld::build(proxyScene, {shareProxy(proxy.value())});
         if (w) proxyWorld.emplace(std::move(w).value());
     }
     const size_t wh1 = heapBytes(), wr1 = residentBytes();

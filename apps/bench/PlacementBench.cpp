@@ -198,7 +198,7 @@ int runPlacementCommand(int argc, char** argv) {
         errorBound = proxy->errorBound;
     }
     const Scene scene = singleObjectScene(proxyMesh, input.name);
-    std::vector<std::optional<Proxy>> noProxies;
+    std::vector<std::shared_ptr<const Proxy>> noProxies;
 
     std::vector<RaySet> sets(3);
     sets[0].name = "scattered";

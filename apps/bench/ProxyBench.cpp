@@ -337,7 +337,7 @@ Json galleryCold(bool& met) {
     if (!scene) return {{"error", scene.error()}};
     const double start = now();
     const std::vector<size_t> sources = proxySources(scene.value());
-    std::vector<std::optional<Proxy>> proxies(scene->objects.size());
+    std::vector<std::shared_ptr<const Proxy>> proxies(scene->objects.size());
     size_t input = 0, output = 0, certified = 0, objects = 0, built = 0;
     for (size_t i = 0; i < scene->objects.size(); ++i) {
         const SceneObject& o = scene->objects[i];
@@ -345,7 +345,7 @@ Json galleryCold(bool& met) {
         if (sources[i] == i) {
             Result<Proxy> p = buildAt(*o.mesh, kGalleryTolerance);
             if (!p) return {{"error", o.name + ": " + p.error()}};
-            proxies[i] = std::move(p).value();
+            proxies[i] = shareProxy(std::move(p).value());
             ++built;
         }
         const Proxy& p = *proxies[sources[i]];

@@ -255,7 +255,8 @@ Result<std::pair<SpawnTiming, SpawnTiming>> spawnPair(const SkinnedModel& m,
         if (Status p = poseSystem(s.value(), m, pose); !p) return fail(p.error());
         return s;
     };
-    const std::vector<std::optional<Proxy>> twinProxies = {twinProxy};
+    const std::vector<std::shared_ptr<const Proxy>> twinProxies = {twinProxy ? shareProxy(*twinProxy)
+                                                                             : nullptr};
     const SystemMaker statik = [&] {
         return holeSystem(CollisionWorld::build(twin, twinProxies, oneThreadWorld()), m.decalSize,
                           rays.size());

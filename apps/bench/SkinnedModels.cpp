@@ -92,10 +92,10 @@ WorldSettings oneThreadWorld() {
 }
 
 Result<CollisionWorld> skinnedWorld(const SkinnedModel& m, const std::optional<Proxy>& proxy) {
-    std::vector<std::optional<Proxy>> proxies;
+    std::vector<std::shared_ptr<const Proxy>> proxies;
     if (proxy) {
         proxies.resize(m.scene.objects.size());
-        proxies[m.object] = proxy;
+        proxies[m.object] = shareProxy(*proxy);
     }
     return CollisionWorld::build(m.scene, proxies, oneThreadWorld());
 }

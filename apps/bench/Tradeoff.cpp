@@ -161,7 +161,8 @@ struct ShotCoverage {
     // The coverage mask of the decals the shots place through `proxies` (empty: the render mesh),
     // projected along `projection`; with `laid`, also the mask of the same decals laid again on the
     // drawn surface as the camera's depth at `probeSize` finds it (DrawnSurface.hpp).
-    Result<std::vector<uint8_t>> mask(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
+    Result<std::vector<uint8_t>> mask(const Scene& scene,
+                                      const std::vector<std::shared_ptr<const Proxy>>& proxies,
                                       double diagonal, uint64_t seed, Projection projection,
                                       glm::ivec2 probeSize = {}, std::vector<uint8_t>* laid = nullptr) {
         DecalType t = probe.type();
@@ -183,8 +184,9 @@ struct ShotCoverage {
     }
 
     // Where the IoU along the shot is lost (IouBreakdown.hpp), against `reference`.
-    Result<IouBreakdown> breakdown(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
-                                   double diagonal, uint64_t seed, const std::vector<uint8_t>& reference) {
+    Result<IouBreakdown> breakdown(const Scene& scene,
+                                   const std::vector<std::shared_ptr<const Proxy>>& proxies, double diagonal,
+                                   uint64_t seed, const std::vector<uint8_t>& reference) {
         DecalType t = probe.type();
         t.projection = Projection::Shot;
         return iouBreakdown(probe, camera, scene, proxies, shots, t, diagonal, seed, reference);
@@ -204,7 +206,7 @@ struct Timing {
 
 // Spawning every ray, one by one and in batches, on the collision world of `scene` with `proxies`:
 // the fastest of `passes` passes, thread CPU time per ray.
-Result<Timing> timePlacement(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
+Result<Timing> timePlacement(const Scene& scene, const std::vector<std::shared_ptr<const Proxy>>& proxies,
                              const std::vector<Ray>& rays, const DecalType& type, double diagonal,
                              size_t batchSize, size_t passes, uint64_t seed) {
     Timing t;
@@ -569,7 +571,7 @@ int runTradeoffCommand(int argc, char** argv) {
                     r.attempts = proxy->attempts;
                     Result<Proxy> again = buildProxy(input.mesh, ps);
                     if (again && again->cached) r.reloadS = again->seconds;
-                    const std::vector<std::optional<Proxy>> proxies{proxy.value()};
+                    const std::vector<std::shared_ptr<const Proxy>> proxies{shareProxy(proxy.value())};
                     start = now();
                     Result<CollisionWorld> world = CollisionWorld::build(scene, proxies);
                     r.bvhS = now() - start;

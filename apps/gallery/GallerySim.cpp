@@ -191,7 +191,7 @@ Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<fl
                              int(100.0 * fraction), o.name.c_str(), finished, order.size(), proxy->seconds);
             }
             if (proxy)
-                set.proxies[i] = std::move(proxy).value();
+                set.proxies[i] = shareProxy(std::move(proxy).value());
             else
                 errors[i] = "proxy of " + o.name + ": " + proxy.error();
         }

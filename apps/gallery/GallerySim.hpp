@@ -45,7 +45,8 @@ struct ShotCounters {
 
 // Proxies built at one tolerance, waiting to be used (GallerySim::buildProxies).
 struct ProxySet {
-    std::vector<std::optional<Proxy>> proxies; // per scene object; none for those that receive no decals
+    std::vector<std::shared_ptr<const Proxy>>
+        proxies; // per scene object; none for those that receive no decals
     float tolerancePercent = 0.0f;
     double seconds = 0.0;
 };

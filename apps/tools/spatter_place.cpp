@@ -278,7 +278,7 @@ int main(int argc, char** argv) {
         std::cerr << "spatter-place: warning: " << w << "\n";
     scene->translate(translate);
 
-    std::vector<std::optional<spatter::Proxy>> proxies;
+    std::vector<std::shared_ptr<const spatter::Proxy>> proxies;
     size_t proxiesBuilt = 0, proxiesCached = 0, proxiesShared = 0;
     const Clock::time_point proxyStart = Clock::now();
     if (proxyMode != "render") {
@@ -319,7 +319,7 @@ int main(int argc, char** argv) {
             doneTriangles += double(o.mesh->triangleCount());
             proxiesBuilt += proxy->cached ? 0 : 1;
             proxiesCached += proxy->cached ? 1 : 0;
-            proxies[i] = std::move(proxy).value();
+            proxies[i] = spatter::shareProxy(std::move(proxy).value());
         }
         if (terminal) std::fputs("\r\033[K", stderr);
     }

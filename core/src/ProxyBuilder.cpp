@@ -18,6 +18,10 @@
 
 namespace spatter {
 
+std::shared_ptr<const Proxy> shareProxy(Proxy proxy) {
+    return std::make_shared<const Proxy>(std::move(proxy));
+}
+
 const char* proxyBackendName(ProxyBackend backend) {
     switch (backend) {
     case ProxyBackend::Auto:

@@ -113,7 +113,8 @@ void shareCollisionMesh(const ObjectData& from, uint32_t fromIndex, ObjectData& 
 // Whether an object given `a` and one given `b` (proxies, or nullptr for none) get the same collision
 // mesh, bound and drawn normals from the same render mesh and collider.
 bool sameCollisionInput(const Proxy* a, const Proxy* b) {
-    if (!a || !b) return !a && !b;
+    if (a == b) return true; // one proxy that the objects share, or none
+    if (!a || !b) return false;
     return a->mesh.positions == b->mesh.positions && a->mesh.indices == b->mesh.indices &&
            a->errorBound == b->errorBound && a->drawnNormals.packed() == b->drawnNormals.packed();
 }
@@ -141,10 +142,10 @@ Status checkProxy(const Proxy& proxy, const std::string& name) {
     return {};
 }
 
-Status fillObjects(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
+Status fillObjects(const Scene& scene, const std::vector<std::shared_ptr<const Proxy>>& proxies,
                    const WorldSettings& settings, std::vector<ObjectData>& objects) {
     const std::vector<size_t> sources = proxySources(scene);
-    auto proxyOf = [&proxies](size_t i) { return !proxies.empty() && proxies[i] ? &*proxies[i] : nullptr; };
+    auto proxyOf = [&proxies](size_t i) { return proxies.empty() ? nullptr : proxies[i].get(); };
     objects.resize(scene.objects.size());
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& so = scene.objects[i];

@@ -70,7 +70,7 @@ Status checkProxy(const Proxy& proxy, const std::string& name);
 // way the drawn surface faces under it. A receiver with the same render mesh and collider as an
 // earlier one (proxySources), both given no proxy or equal ones, takes that one's results and reads its
 // collision mesh (ObjectData::shape()). Errors name the object.
-Status fillObjects(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
+Status fillObjects(const Scene& scene, const std::vector<std::shared_ptr<const Proxy>>& proxies,
                    const WorldSettings& settings, std::vector<ObjectData>& objects);
 
 } // namespace spatter

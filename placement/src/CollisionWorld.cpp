@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_set>
 
 namespace spatter {
 
@@ -566,15 +567,16 @@ CollisionWorld& CollisionWorld::operator=(CollisionWorld&&) noexcept = default;
 CollisionWorld::~CollisionWorld() = default;
 
 Result<CollisionWorld> CollisionWorld::build(const Scene& scene,
-                                             const std::vector<std::optional<Proxy>>& proxies,
+                                             const std::vector<std::shared_ptr<const Proxy>>& proxies,
                                              const WorldSettings& settings) {
     const std::string where = "collision world (" + scene.source + ")";
     if (Status s = validateScene(scene); !s) return fail(where + ": " + s.error());
     if (!proxies.empty() && proxies.size() != scene.objects.size())
         return fail(where + ": " + std::to_string(proxies.size()) + " proxies for " +
                     std::to_string(scene.objects.size()) + " objects");
+    std::unordered_set<const Proxy*> checked; // a proxy that objects share is checked once
     for (size_t i = 0; i < proxies.size(); ++i)
-        if (proxies[i])
+        if (proxies[i] && checked.insert(proxies[i].get()).second)
             if (Status s = checkProxy(*proxies[i], scene.objects[i].name); !s)
                 return fail(where + ": " + s.error());
     if (scene.objects.size() >= size_t(std::numeric_limits<uint32_t>::max()))

@@ -106,7 +106,7 @@ void boxCoordinates(const Decal& d, const glm::dvec3& point, double& depthUse, d
     lateralUse = std::max(std::fabs(b.x), std::fabs(b.y));
 }
 
-Result<DecalSystem> makeSystem(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
+Result<DecalSystem> makeSystem(const Scene& scene, const std::vector<std::shared_ptr<const Proxy>>& proxies,
                                const WorldSettings& worldSettings, uint64_t seed, float depthMargin) {
     Result<CollisionWorld> world = CollisionWorld::build(scene, proxies, worldSettings);
     if (!world) return fail("proxy world: " + world.error());
@@ -145,7 +145,7 @@ double referencedDiagonal(const Mesh& mesh) {
 }
 
 Result<std::vector<ObjectMismatch>> measureMismatch(const Scene& scene,
-                                                    const std::vector<std::optional<Proxy>>& proxies,
+                                                    const std::vector<std::shared_ptr<const Proxy>>& proxies,
                                                     const MismatchSettings& settings) {
     const std::string where = "mismatch of '" + scene.source + "': ";
     WorldSettings worldSettings;

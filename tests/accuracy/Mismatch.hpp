@@ -102,7 +102,7 @@ struct ObjectMismatch {
 // entry means the render mesh is the collision mesh, h = 0). Fails when a world or decal system
 // cannot be built; the message names the scene.
 Result<std::vector<ObjectMismatch>> measureMismatch(const Scene& scene,
-                                                    const std::vector<std::optional<Proxy>>& proxies,
+                                                    const std::vector<std::shared_ptr<const Proxy>>& proxies,
                                                     const MismatchSettings& settings = {});
 
 // Diagonal of the bounding box of the vertices referenced by `mesh.indices` (the diagonal that a

@@ -80,7 +80,7 @@ const char* kindOf(const Proxy& p) {
 }
 
 struct Built {
-    std::vector<std::optional<Proxy>> proxies;
+    std::vector<std::shared_ptr<const Proxy>> proxies;
     std::vector<ProxyFacts> facts;
 };
 
@@ -95,7 +95,7 @@ Result<Built> buildProxies(const Scene& scene, const ProxySettings& settings) {
         Result<Proxy> p = buildProxy(*o.mesh, settings, o.collider ? &*o.collider : nullptr);
         if (!p) return fail("proxy of '" + o.name + "': " + p.error());
         b.facts[i] = ProxyFacts{kindOf(p.value()), p->toleranceMet};
-        b.proxies[i] = std::move(p).value();
+        b.proxies[i] = shareProxy(std::move(p).value());
     }
     return b;
 }
@@ -179,7 +179,7 @@ TEST_P(ProxyVersusRender, ProxyHitsStayWithinHAndDecalBoxesHoldTheRenderSurface)
 
     expectGuarantees(m.value());
     bool allOwn = true;
-    for (const std::optional<Proxy>& p : built->proxies)
+    for (const std::shared_ptr<const Proxy>& p : built->proxies)
         allOwn = allOwn && (!p || p->source == ProxySource::OwnMesh);
     if (allOwn) expectIdenticalHits(m.value());
 
@@ -229,7 +229,7 @@ TEST(Mismatch, FlagsProxyHitsAndDecalsWhenTheBoundIsUnderstated) {
     s.cacheDirectory.clear();
     Result<Built> built = buildProxies(scene, s);
     ASSERT_TRUE(built) << built.error();
-    Proxy& proxy = *built->proxies[0];
+    Proxy proxy = *built->proxies[0];
     ASSERT_EQ(proxy.source, ProxySource::Simplified);
     ASSERT_GT(proxy.errorBound, 0.0);
 
@@ -243,6 +243,7 @@ TEST(Mismatch, FlagsProxyHitsAndDecalsWhenTheBoundIsUnderstated) {
     // Claiming a tenth of the real bound: the measurement must catch the proxy hits beyond it, and
     // tight decal boxes that miss the render surface.
     proxy.errorBound *= 0.1;
+    built->proxies[0] = shareProxy(proxy);
     Result<std::vector<ObjectMismatch>> understated = measureMismatch(scene, built->proxies, ms);
     ASSERT_TRUE(understated) << understated.error();
     EXPECT_GT(understated->at(0).hitsBeyondBound, 0u);

@@ -59,14 +59,14 @@ const Scene& scene() {
 }
 
 // The collision meshes: the arm's deforming proxy at 2% of its diagonal, the others' render meshes.
-const std::vector<std::optional<Proxy>>& proxies() {
-    static const std::vector<std::optional<Proxy>> p = [] {
+const std::vector<std::shared_ptr<const Proxy>>& proxies() {
+    static const std::vector<std::shared_ptr<const Proxy>> p = [] {
         ProxySettings settings;
         settings.tolerance = 0.02f;
         settings.toleranceRelative = true;
         Result<DeformingProxy> arm = buildDeformingProxy(scene(), 0, settings, 8);
         if (!arm) violated("the arm's deforming proxy does not build", 0);
-        std::vector<std::optional<Proxy>> out(scene().objects.size());
+        std::vector<std::shared_ptr<const Proxy>> out(scene().objects.size());
         out[0] = arm->proxy;
         return out;
     }();

@@ -517,8 +517,8 @@ TEST(CollisionWorld, UsesAuthoredCollidersWithAMeasuredBound) {
 
 TEST(CollisionWorld, ProxiesReplaceMeshesAndCarryTheirBound) {
     Scene s = rangeScene(1);
-    std::vector<std::optional<Proxy>> proxies(s.objects.size());
-    proxies[2] = makeProxy(makeSphere(0.8f, 8, 16), 0.125f);
+    std::vector<std::shared_ptr<const Proxy>> proxies(s.objects.size());
+    proxies[2] = shareProxy(makeProxy(makeSphere(0.8f, 8, 16), 0.125f));
     const CollisionWorld w = buildWorld(s, proxies);
     EXPECT_EQ(w.object(2)->errorBound, 0.125);
     EXPECT_EQ(w.object(2)->triangles, makeSphere(0.8f, 8, 16).triangleCount());
@@ -539,8 +539,8 @@ TEST(CollisionWorld, WorldErrorBoundCoversTheStretchOfAShear) {
     glm::dmat4 shear(1.0);
     shear[1][0] = 1.0;
     s.objects[2].transform = shear * s.objects[2].transform;
-    std::vector<std::optional<Proxy>> proxies(s.objects.size());
-    proxies[2] = makeProxy(makeSphere(0.8f, 8, 16), 0.125f);
+    std::vector<std::shared_ptr<const Proxy>> proxies(s.objects.size());
+    proxies[2] = shareProxy(makeProxy(makeSphere(0.8f, 8, 16), 0.125f));
     const CollisionWorld w = buildWorld(s, proxies);
     const glm::dmat3 m(s.objects[2].transform);
     glm::dvec3 v(1.0, 0.3, 0.2);
@@ -554,17 +554,18 @@ TEST(CollisionWorld, WorldErrorBoundCoversTheStretchOfAShear) {
 
 TEST(CollisionWorld, RejectsBadProxiesAndScenes) {
     const Scene s = rangeScene(1);
-    std::vector<std::optional<Proxy>> wrongCount(2);
+    std::vector<std::shared_ptr<const Proxy>> wrongCount(2);
     EXPECT_FALSE(CollisionWorld::build(s, wrongCount).ok());
 
-    std::vector<std::optional<Proxy>> proxies(s.objects.size());
-    proxies[1] = makeProxy(makeBox(glm::vec3(1.0f), 1), std::numeric_limits<float>::quiet_NaN());
+    std::vector<std::shared_ptr<const Proxy>> proxies(s.objects.size());
+    proxies[1] = shareProxy(makeProxy(makeBox(glm::vec3(1.0f), 1), std::numeric_limits<float>::quiet_NaN()));
     Result<CollisionWorld> w = CollisionWorld::build(s, proxies);
     ASSERT_FALSE(w.ok());
     EXPECT_NE(w.error().find("wall"), std::string::npos) << w.error();
 
-    proxies[1] = makeProxy(makeBox(glm::vec3(1.0f), 1), 0.0f);
-    proxies[1]->mesh.indices[4] = 9999;
+    Proxy badIndex = makeProxy(makeBox(glm::vec3(1.0f), 1), 0.0f);
+    badIndex.mesh.indices[4] = 9999;
+    proxies[1] = shareProxy(badIndex);
     w = CollisionWorld::build(s, proxies);
     ASSERT_FALSE(w.ok());
     EXPECT_NE(w.error().find("wall"), std::string::npos) << w.error();

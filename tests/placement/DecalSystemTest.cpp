@@ -135,8 +135,8 @@ TEST(DecalSystem, FramesOnASphereSweep) {
 
 TEST(DecalSystem, HalfDepthIsTheErrorBoundPlusAMarginOrTheOverride) {
     Scene scene = rangeScene(1);
-    std::vector<std::optional<Proxy>> proxies(scene.objects.size());
-    proxies[1] = makeProxy(makeBox(glm::vec3(10.0f, 2.0f, 0.1f), 1), 0.2f);
+    std::vector<std::shared_ptr<const Proxy>> proxies(scene.objects.size());
+    proxies[1] = shareProxy(makeProxy(makeBox(glm::vec3(10.0f, 2.0f, 0.1f), 1), 0.2f));
     Result<CollisionWorld> world = CollisionWorld::build(scene, proxies);
     ASSERT_TRUE(world.ok()) << world.error();
     DecalSettings settings;
@@ -181,7 +181,7 @@ TEST(DecalSystem, RenderSurfaceLiesInsideTheBoxOfASimplifiedProxy) {
     ASSERT_TRUE(proxy.ok()) << proxy.error();
     ASSERT_LT(proxy->mesh.triangleCount(), bumpy.triangleCount());
     ASSERT_GT(proxy->errorBound, 0.0);
-    std::vector<std::optional<Proxy>> proxies = {std::move(proxy).value()};
+    std::vector<std::shared_ptr<const Proxy>> proxies = {shareProxy(std::move(proxy).value())};
     Result<CollisionWorld> world = CollisionWorld::build(scene, proxies);
     ASSERT_TRUE(world.ok()) << world.error();
     const double h = world->worldErrorBound(0);

@@ -19,8 +19,8 @@ DecalSystem floorThroughProxy(Mesh proxy, double h, const glm::dmat4& transform,
     Scene scene;
     scene.source = "test:floor under a proxy";
     scene.objects.push_back(makeSceneObject("floor", makeGrid({-2.0f, 2.0f}, {-2.0f, 2.0f}), transform));
-    std::vector<std::optional<Proxy>> proxies;
-    if (!proxy.positions.empty()) proxies.push_back(makeProxy(std::move(proxy), h));
+    std::vector<std::shared_ptr<const Proxy>> proxies;
+    if (!proxy.positions.empty()) proxies.push_back(shareProxy(makeProxy(std::move(proxy), h)));
     Result<DecalSystem> s = DecalSystem::create(buildWorld(scene, proxies), settings);
     EXPECT_TRUE(s.ok()) << s.error();
     return std::move(s).value();
@@ -55,8 +55,8 @@ TEST(DrawnFacing, TheWorldKeepsTheDrawnSurfacesNormalUnderEachPartOfAProxyTriang
     Scene scene;
     scene.source = "test:roof";
     scene.objects.push_back(makeSceneObject("roof", roof));
-    std::vector<std::optional<Proxy>> proxies;
-    proxies.push_back(makeProxy(tiltedPlane(0.0, 0.6f), 0.6));
+    std::vector<std::shared_ptr<const Proxy>> proxies;
+    proxies.push_back(shareProxy(makeProxy(tiltedPlane(0.0, 0.6f), 0.6)));
     const CollisionWorld world = buildWorld(scene, proxies), drawn = buildWorld(scene);
     for (double x : {-1.7, -1.4, 1.4, 1.7})
         for (double z : {-1.5, 0.0, 1.5}) {
@@ -85,7 +85,7 @@ TEST(DrawnFacing, TheWorldTakesTheTableAProxyCarries) {
     const DrawnNormals::Packed carried = {int16_t(0.6 * 32767), int16_t(0.8 * 32767), 0};
     proxy.drawnNormals = DrawnNormals(
         std::vector<DrawnNormals::Packed>(proxy.mesh.triangleCount() * kPiecesPerTriangle, carried));
-    std::vector<std::optional<Proxy>> proxies{proxy};
+    std::vector<std::shared_ptr<const Proxy>> proxies{shareProxy(proxy)};
     const CollisionWorld world = buildWorld(scene, proxies);
     const std::optional<Hit> hit = world.intersect(ray({0.3, 3.0, -0.4}, {0.0, -1.0, 0.0}));
     ASSERT_TRUE(hit.has_value());
@@ -95,7 +95,8 @@ TEST(DrawnFacing, TheWorldTakesTheTableAProxyCarries) {
 
     std::vector<DrawnNormals::Packed> fewer = proxy.drawnNormals.packed();
     fewer.pop_back();
-    proxies[0]->drawnNormals = DrawnNormals(fewer);
+    proxy.drawnNormals = DrawnNormals(fewer);
+    proxies[0] = shareProxy(proxy);
     Result<CollisionWorld> refused = CollisionWorld::build(scene, proxies);
     ASSERT_FALSE(refused);
     EXPECT_NE(refused.error().find(

@@ -30,8 +30,8 @@ DecalSystem floorSystemTracedBy(FloorTrace trace) {
     scene.source = "test:drawn floor";
     scene.objects.push_back(makeSceneObject(
         "floor", tiltedPlane(trace == FloorTrace::TiltedCollider ? 6.0 : 0.0), turnedTransform()));
-    std::vector<std::optional<Proxy>> proxies;
-    if (trace == FloorTrace::TiltedProxy) proxies.push_back(makeProxy(tiltedPlane(6.0), 0.5));
+    std::vector<std::shared_ptr<const Proxy>> proxies;
+    if (trace == FloorTrace::TiltedProxy) proxies.push_back(shareProxy(makeProxy(tiltedPlane(6.0), 0.5)));
     Result<DecalSystem> s = DecalSystem::create(buildWorld(scene, proxies));
     EXPECT_TRUE(s.ok()) << s.error();
     return std::move(s).value();
@@ -339,8 +339,8 @@ DecalSystem floorSystemWithSmallProxy() {
     Scene scene;
     scene.source = "test:drawn floor, small proxy";
     scene.objects.push_back(makeSceneObject("floor", tiltedPlane(0.0), turnedTransform()));
-    std::vector<std::optional<Proxy>> proxies;
-    proxies.push_back(makeProxy(makeGrid({-1.5f, 1.5f}, {-1.5f, 1.5f}), 0.5));
+    std::vector<std::shared_ptr<const Proxy>> proxies;
+    proxies.push_back(shareProxy(makeProxy(makeGrid({-1.5f, 1.5f}, {-1.5f, 1.5f}), 0.5)));
     Result<DecalSystem> s = DecalSystem::create(buildWorld(scene, proxies));
     EXPECT_TRUE(s.ok()) << s.error();
     return std::move(s).value();

@@ -26,7 +26,8 @@ namespace spatter::test {
 
 constexpr double kPi = 3.14159265358979323846;
 
-inline CollisionWorld buildWorld(const Scene& scene, const std::vector<std::optional<Proxy>>& proxies = {},
+inline CollisionWorld buildWorld(const Scene& scene,
+                                 const std::vector<std::shared_ptr<const Proxy>>& proxies = {},
                                  const WorldSettings& settings = {}) {
     Result<CollisionWorld> w = CollisionWorld::build(scene, proxies, settings);
     EXPECT_TRUE(w.ok()) << w.error();

@@ -164,7 +164,7 @@ TEST(PosedCollision, DeformingProxyHitsStayWithinItsBoundOfTheDrawnSurface) {
     const Scene arm = makeSkinnedArm();
     Result<DeformingProxy> proxy = deformingProxy(arm, 0.02f, 32);
     ASSERT_TRUE(proxy.ok()) << proxy.error();
-    CollisionWorld world = buildWorld(arm, {std::optional<Proxy>(proxy->proxy)});
+    CollisionWorld world = buildWorld(arm, {shareProxy(proxy->proxy)});
     EXPECT_EQ(world.object(0)->errorBound, proxy->proxy.errorBound);
     for (double t : {0.0, 0.4, 1.0, 1.33, 1.9}) { // sampled poses and poses between samples
         ASSERT_TRUE(poseAt(world, arm, t).ok());
@@ -183,7 +183,7 @@ TEST(PosedCollision, ShotsThroughADeformingProxyAnchorWhereTheyMeetTheDrawnSurfa
     const Scene arm = makeSkinnedArm();
     Result<DeformingProxy> proxy = deformingProxy(arm, 0.02f, 32);
     ASSERT_TRUE(proxy.ok()) << proxy.error();
-    CollisionWorld world = buildWorld(arm, {std::optional<Proxy>(proxy->proxy)});
+    CollisionWorld world = buildWorld(arm, {shareProxy(proxy->proxy)});
     for (double t : {0.4, 1.0}) {
         ASSERT_TRUE(poseAt(world, arm, t).ok());
         const Scene drawn = drawnPose(arm, t);

@@ -121,15 +121,39 @@ TEST(SharedCollision, InstancesGivenEqualProxiesTraceAsIfEachWereGivenItsOwn) {
     ASSERT_TRUE(coarser.ok()) << coarser.error();
     ASSERT_NE(coarser->mesh.triangleCount(), built->mesh.triangleCount());
     // The bumpy spheres, each given a copy: the first three of one proxy, the last two of another.
-    std::vector<std::optional<Proxy>> proxies(scene.objects.size());
+    std::vector<std::shared_ptr<const Proxy>> proxies(scene.objects.size());
     for (size_t i = 1; i <= 5; ++i)
-        proxies[i] = i <= 3 ? built.value() : coarser.value();
+        proxies[i] = shareProxy(i <= 3 ? built.value() : coarser.value());
     const CollisionWorld shared = buildWorld(scene, proxies);
     const CollisionWorld alone = buildWorld(unshared(scene), proxies);
     for (uint32_t i = 1; i <= 5; ++i) {
         EXPECT_EQ(shared.object(i)->errorBound, proxies[i]->errorBound) << i;
         EXPECT_EQ(shared.object(i)->triangles, proxies[i]->mesh.triangleCount()) << i;
         EXPECT_GT(sameHitsAndNormals(shared, alone, raysAt(shared, i, 80 + i)), 100u) << i;
+    }
+}
+
+TEST(SharedCollision, InstancesGivenOneProxyTraceAsIfEachWereGivenACopy) {
+    const Scene scene = bumpyInstances();
+    ProxySettings ps;
+    ps.tolerance = 0.005f;
+    ps.smallMeshTriangles = 0;
+    Result<Proxy> built = buildProxy(*scene.objects[1].mesh, ps);
+    ASSERT_TRUE(built.ok()) << built.error();
+    // The bumpy spheres handed one entry, as proxySources hands it out, and each a copy of its own.
+    const std::shared_ptr<const Proxy> one = shareProxy(built.value());
+    std::vector<std::shared_ptr<const Proxy>> handed(scene.objects.size()), copies(scene.objects.size());
+    for (size_t i = 1; i <= 5; ++i) {
+        handed[i] = one;
+        copies[i] = shareProxy(built.value());
+    }
+    const CollisionWorld shared = buildWorld(scene, handed);
+    const CollisionWorld apart = buildWorld(unshared(scene), copies);
+    for (uint32_t i = 1; i <= 5; ++i) {
+        EXPECT_EQ(shared.object(i)->collisionMeshOf, 1u) << i;
+        EXPECT_EQ(shared.object(i)->errorBound, one->errorBound) << i;
+        EXPECT_EQ(shared.object(i)->triangles, one->mesh.triangleCount()) << i;
+        EXPECT_GT(sameHitsAndNormals(shared, apart, raysAt(shared, i, 90 + i)), 100u) << i;
     }
 }
 

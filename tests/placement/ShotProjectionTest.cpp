@@ -20,8 +20,8 @@ CollisionWorld offsetFloorWorld(float offset) {
     Mesh proxy = makeGrid({-2.0f, 2.0f}, {-2.0f, 2.0f});
     for (glm::vec3& p : proxy.positions)
         p.y = offset;
-    std::vector<std::optional<Proxy>> proxies;
-    proxies.push_back(makeProxy(std::move(proxy), std::fabs(double(offset))));
+    std::vector<std::shared_ptr<const Proxy>> proxies;
+    proxies.push_back(shareProxy(makeProxy(std::move(proxy), std::fabs(double(offset)))));
     Result<CollisionWorld> w = CollisionWorld::build(scene, proxies);
     EXPECT_TRUE(w.ok()) << w.error();
     return std::move(w).value();

@@ -150,7 +150,7 @@ TEST(SkinnedDecals, StayOnTheSkinOverADeformingProxy) {
     const Scene arm = makeSkinnedArm();
     Result<DeformingProxy> proxy = deformingProxy(arm, 0.005f, 16);
     ASSERT_TRUE(proxy.ok()) << proxy.error();
-    Result<CollisionWorld> world = CollisionWorld::build(arm, {std::optional<Proxy>(proxy->proxy)});
+    Result<CollisionWorld> world = CollisionWorld::build(arm, {shareProxy(proxy->proxy)});
     ASSERT_TRUE(world.ok()) << world.error();
     Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), roomy());
     ASSERT_TRUE(system.ok()) << system.error();
@@ -197,7 +197,7 @@ TEST(SkinnedDecals, DecalsOfSpawnAtAndSpawnAttachedStayOnTheSkinToo) {
         return out;
     };
     for (const Spawner& spawnAll : {at, attached}) {
-        Result<CollisionWorld> world = CollisionWorld::build(arm, {std::optional<Proxy>(proxy->proxy)});
+        Result<CollisionWorld> world = CollisionWorld::build(arm, {shareProxy(proxy->proxy)});
         ASSERT_TRUE(world.ok()) << world.error();
         Result<DecalSystem> system = DecalSystem::create(std::move(world).value(), roomy());
         ASSERT_TRUE(system.ok()) << system.error();

@@ -207,13 +207,13 @@ TEST(Coverage, DecalsPlacedThroughACoarseProxyCoverTheDrawnSurface) {
     ps.tolerance = 0.02f;
     ps.backend = ProxyBackend::MeshOpt;
     ps.marginFraction = 0.5f; // a looser (still certified) bound keeps the measurement quick
-    std::vector<std::optional<Proxy>> proxies(scene.objects.size());
+    std::vector<std::shared_ptr<const Proxy>> proxies(scene.objects.size());
     size_t proxyTriangles = 0;
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         Result<Proxy> p = buildProxy(*scene.objects[i].mesh, ps);
         ASSERT_TRUE(p.ok()) << p.error();
         proxyTriangles += p->proxyTriangles;
-        proxies[i] = std::move(p.value());
+        proxies[i] = shareProxy(std::move(p.value()));
     }
     ASSERT_LT(proxyTriangles * 3, scene.triangleCount()) << "the proxies are not coarse";
 

@@ -9,7 +9,7 @@
 namespace spatter::test {
 
 Placed shootFromCamera(const Scene& scene, const Camera& cam, const std::vector<DecalType>& types, int shots,
-                       uint64_t seed, const std::vector<std::optional<Proxy>>& proxies) {
+                       uint64_t seed, const std::vector<std::shared_ptr<const Proxy>>& proxies) {
     constexpr int kWidth = 160, kHeight = 120;
     Placed out;
     WorldSettings ws;

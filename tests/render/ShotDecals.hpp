@@ -20,7 +20,7 @@ struct Placed {
 // Shoots `shots` rays from `cam` through random pixels of a 160 x 120 view, cycling through `types`.
 // With `proxies`, the rays are traced against them instead of the render meshes.
 Placed shootFromCamera(const Scene& scene, const Camera& cam, const std::vector<DecalType>& types, int shots,
-                       uint64_t seed, const std::vector<std::optional<Proxy>>& proxies = {});
+                       uint64_t seed, const std::vector<std::shared_ptr<const Proxy>>& proxies = {});
 
 // A decal type of `size` with the built-in texture `tex`; a half-depth of 0 takes the decal system's.
 DecalType makeType(const char* name, glm::vec2 size, DecalTexture tex, bool wrap = false,

@@ -90,7 +90,7 @@ struct ShotSystem {
     std::vector<SpawnResult> results;
 };
 ShotSystem shoot(const Scene& scene, const std::vector<Ray>& shots,
-                 const std::vector<std::optional<Proxy>>& proxies = {}) {
+                 const std::vector<std::shared_ptr<const Proxy>>& proxies = {}) {
     ShotSystem out;
     Result<CollisionWorld> world = CollisionWorld::build(scene, proxies);
     EXPECT_TRUE(world.ok()) << world.error();
@@ -201,7 +201,8 @@ TEST(SurfaceProbe, DecalsShotThroughACoarseProxyLaidOnTheDrawnSurfaceCoverWhatTh
         ray.direction = aim * 0.999 - ray.origin;
         shots.push_back(ray);
     }
-    ShotSystem onRender = shoot(scene, shots), throughProxy = shoot(scene, shots, {proxy.value()});
+    ShotSystem onRender = shoot(scene, shots),
+               throughProxy = shoot(scene, shots, {shareProxy(proxy.value())});
     ASSERT_TRUE(onRender.system && throughProxy.system);
     ASSERT_GT(onRender.system->decals().size(), 30u);
 

@@ -165,8 +165,9 @@ struct Totals {
     DecalCheck check;
 };
 
-void place(const std::string& what, const Scene& scene, const std::vector<std::optional<Proxy>>& proxies,
-           bool exact, const StressConfig& cfg, Totals& totals, StressResult& r) {
+void place(const std::string& what, const Scene& scene,
+           const std::vector<std::shared_ptr<const Proxy>>& proxies, bool exact, const StressConfig& cfg,
+           Totals& totals, StressResult& r) {
     WorldSettings ws;
     ws.useColliders = false;
     Result<CollisionWorld> world = CollisionWorld::build(scene, proxies, ws);
@@ -255,7 +256,7 @@ void survey(const std::string& what, const Scene& scene, const StressConfig& cfg
         ps.smallMeshTriangles = 0;
         ps.tolerance = 0.01f;
         ps.maxAttempts = 2;
-        std::vector<std::optional<Proxy>> proxies(scene.objects.size());
+        std::vector<std::shared_ptr<const Proxy>> proxies(scene.objects.size());
         const std::string name = what + " (" + proxyBackendName(backend) + " proxy)";
         for (size_t i = 0; i < scene.objects.size(); ++i) {
             totals.proxies++;
@@ -271,7 +272,7 @@ void survey(const std::string& what, const Scene& scene, const StressConfig& cfg
                 totals.badNormals += bad;
                 r.failure(name + ": " + std::to_string(bad) + " bad normals");
             }
-            proxies[i] = std::move(p).value();
+            proxies[i] = shareProxy(std::move(p).value());
         }
         if (proxies[0]) place(name, scene, proxies, false, cfg, totals, r);
     }

@@ -350,11 +350,11 @@ void checkConstruction(StressResult& r, std::map<std::string, ApiTally>& tallies
         {"proxy with an Inf error bound", [](Proxy& p) { p.errorBound = kInf; }},
     };
     for (const auto& [what, change] : proxies) {
-        std::vector<std::optional<Proxy>> list(scene.objects.size());
+        std::vector<std::shared_ptr<const Proxy>> list(scene.objects.size());
         Proxy p;
         p.mesh = *scene.objects[1].mesh;
         change(p);
-        list[1] = p;
+        list[1] = shareProxy(p);
         expectFailure("CollisionWorld::build", what, answer(CollisionWorld::build(scene, list)));
     }
     // CollisionWorld::setTransform directly.

@@ -46,6 +46,7 @@
 #include "spatter/core/Result.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -139,5 +140,9 @@ ProxyBackend resolveProxyBackend(ProxyBackend requested, size_t triangles, doubl
 // "cancelled").
 Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& settings,
                          const Mesh* authoredCollider = nullptr, const ProgressCallback& progress = {});
+
+// `proxy` held for sharing: the objects placed with one mesh take one proxy (proxySources), and the
+// collision world takes an entry for each object (CollisionWorld::build).
+std::shared_ptr<const Proxy> shareProxy(Proxy proxy);
 
 } // namespace spatter

@@ -127,12 +127,13 @@ public:
     // one entry per Scene object; a present entry (from buildProxy) replaces that object's collision
     // mesh: its `mesh` (object space, validated with validateMesh), `errorBound` (object-space units,
     // finite and >= 0) and `drawnNormals` (nine a triangle, or empty: then found here) are used, the
-    // other fields are not. Objects with the same render mesh and collider (proxySources), given no
+    // other fields are not. Objects placed with one mesh take one proxy (proxySources): give them the
+    // same entry, as they share the mesh. Objects with the same render mesh and collider, given no
     // proxy or equal ones, take the first one's collision mesh, measured bound and drawn normals
     // instead of measuring and keeping them again. Errors name the object. An object whose transform breaks
     // the rule of TraceTransform.hpp is no error: it is built untraced and warnings() names it.
     static Result<CollisionWorld> build(const Scene& scene,
-                                        const std::vector<std::optional<Proxy>>& proxies = {},
+                                        const std::vector<std::shared_ptr<const Proxy>>& proxies = {},
                                         const WorldSettings& settings = {});
 
     CollisionWorld(CollisionWorld&&) noexcept;
