@@ -51,6 +51,14 @@ Scene bumpyInstances() {
     return s;
 }
 
+// The proxy of bumpyInstances' sphere at `tolerance` (a fraction of its diagonal).
+Result<Proxy> bumpyProxy(const Scene& scene, float tolerance) {
+    ProxySettings ps;
+    ps.tolerance = tolerance;
+    ps.smallMeshTriangles = 0;
+    return buildProxy(*scene.objects[1].mesh, ps);
+}
+
 // Every ray of `rays` hits `a` as it hits `b`, bit for bit, and where the drawn surface's normal is
 // known it is the same; returns the hits.
 size_t sameHitsAndNormals(const CollisionWorld& a, const CollisionWorld& b, const std::vector<Ray>& rays) {
@@ -111,13 +119,9 @@ TEST(SharedCollision, InstancesOfAMeshAndColliderTraceAsIfEachWereMeasuredAlone)
 
 TEST(SharedCollision, InstancesGivenEqualProxiesTraceAsIfEachWereGivenItsOwn) {
     const Scene scene = bumpyInstances();
-    ProxySettings ps;
-    ps.tolerance = 0.005f;
-    ps.smallMeshTriangles = 0;
-    Result<Proxy> built = buildProxy(*scene.objects[1].mesh, ps);
+    Result<Proxy> built = bumpyProxy(scene, 0.005f);
     ASSERT_TRUE(built.ok()) << built.error();
-    ps.tolerance = 0.03f;
-    Result<Proxy> coarser = buildProxy(*scene.objects[1].mesh, ps);
+    Result<Proxy> coarser = bumpyProxy(scene, 0.03f);
     ASSERT_TRUE(coarser.ok()) << coarser.error();
     ASSERT_NE(coarser->mesh.triangleCount(), built->mesh.triangleCount());
     // The bumpy spheres, each given a copy: the first three of one proxy, the last two of another.
@@ -135,10 +139,7 @@ TEST(SharedCollision, InstancesGivenEqualProxiesTraceAsIfEachWereGivenItsOwn) {
 
 TEST(SharedCollision, InstancesGivenOneProxyTraceAsIfEachWereGivenACopy) {
     const Scene scene = bumpyInstances();
-    ProxySettings ps;
-    ps.tolerance = 0.005f;
-    ps.smallMeshTriangles = 0;
-    Result<Proxy> built = buildProxy(*scene.objects[1].mesh, ps);
+    Result<Proxy> built = bumpyProxy(scene, 0.005f);
     ASSERT_TRUE(built.ok()) << built.error();
     // The bumpy spheres handed one entry, as proxySources hands it out, and each a copy of its own.
     const std::shared_ptr<const Proxy> one = shareProxy(built.value());
