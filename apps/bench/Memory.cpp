@@ -2,6 +2,7 @@
 
 #include "BenchSupport.hpp"
 #include "DecalField.hpp"
+#include "InstanceMemory.hpp"
 #include "RawEmbree.hpp"
 
 #include "spatter/core/MeshBuilder.hpp"
@@ -27,6 +28,9 @@ namespace spatter::bench {
 namespace {
 
 const char* kMemoryCommand = "memory";
+
+// Objects of the mesh in the rows of a mesh placed many times.
+constexpr size_t kPlacedCopies = 100;
 
 const char* kMemoryUsage =
     R"(usage: spatter-bench memory [MESH] [--decals N] [--no-gpu] [--quick] [--json FILE]
@@ -55,6 +59,9 @@ Bytes per decal and per object, measured:
                  collision world builds it (user geometry) and as Embree's own triangles (device
                  memory monitor); the collision world; one decal texture array layer; a
                  texture-space decal texture (FrameStats::textureSpaceBytes)
+  placed 100     MESH placed 100 times, static, with its proxy: the scene's and the proxy list's C
+  times          heap with the objects sharing the one mesh and proxy (kept once), against each given
+                 a copy, and the collision world built from them
 
 Target: at most 160 bytes per decal for 1,000,000 decals, decal system, renderer CPU and GPU together.
 
@@ -385,6 +392,7 @@ int runMemoryCommand(int argc, char** argv) {
         proxyJson["world_resident_bytes"] = double(wr1) - double(wr0);
     }
     objects["proxy"] = proxyJson;
+    objects["placed"] = instanceMemory(input->mesh, proxy.value(), kPlacedCopies);
     j["objects"] = objects;
 
     // ---- Targets ----
