@@ -57,8 +57,10 @@ const char* const kSupportedRequiredExtensions[] = {"KHR_mesh_quantization",   "
 
 constexpr uint32_t kGlbJsonChunk = 0x4E4F534A; // "JSON"
 
-// Upper bound on the vertices, and on the indices, of all objects and colliders of one scene.
+// Upper bounds on one scene: the vertices, and the indices, of its meshes (each counted once however
+// many objects share it) and of its colliders (each owner keeps its own); and its objects.
 constexpr size_t kMaxSceneElements = size_t(1) << 26;
+constexpr size_t kMaxSceneObjects = size_t(1) << 20;
 
 // tinygltf's messages are newline-terminated and may quote whole data URIs: join them into one line
 // and cut each data URI after its header.
@@ -635,6 +637,9 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
                 for (size_t i = 0; instances.value() && i < instances.value()->size(); ++i)
                     drawn.push_back({index, m, world * (*instances.value())[i], dynamic, decals, -1, int(i)});
                 if (drawnAncestor == int(drawn.size())) drawnAncestor = visit.drawnAncestor;
+                if (drawn.size() > kMaxSceneObjects)
+                    return fail("the default scene places more than " + num(kMaxSceneObjects) +
+                                " objects (the limit)");
             }
         }
         for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
@@ -642,17 +647,23 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
     }
     if (drawn.empty()) return fail("the default scene has no triangle meshes");
 
-    // Instancing lets a small file describe a huge scene: bound the total before making any object
-    // (each is traced, drawn and decaled on its own, whatever mesh it shares).
+    // Instancing lets a small file describe a huge scene: bound what it keeps before making any object.
     size_t vertices = 0, indices = 0;
-    for (const std::vector<Placement>* list : {&drawn, &colliders})
-        for (const Placement& p : *list) {
-            vertices += meshes[p.mesh]->vertexCount();
-            indices += meshes[p.mesh]->indices.size();
+    auto add = [&](size_t mesh) {
+        vertices += meshes[mesh]->vertexCount();
+        indices += meshes[mesh]->indices.size();
+    };
+    std::vector<bool> counted(meshes.size(), false); // a drawn mesh once, however many objects share it
+    for (const Placement& p : drawn)
+        if (!counted[p.mesh]) {
+            counted[p.mesh] = true;
+            add(p.mesh);
         }
+    for (const Placement& p : colliders)
+        add(p.mesh); // each owner keeps its own copy of a collider
     if (vertices > kMaxSceneElements || indices > kMaxSceneElements)
         return fail("the default scene has " + num(vertices) + " vertices and " + num(indices) +
-                    " indices in all, more than the limit of " + num(kMaxSceneElements));
+                    " indices in its meshes and colliders, more than the limit of " + num(kMaxSceneElements));
 
     for (const Placement& p : drawn) {
         SceneObject o;

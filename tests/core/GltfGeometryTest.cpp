@@ -310,6 +310,66 @@ TEST(GltfGeometry, RejectsBadInstanceAccessors) {
     }
 }
 
+namespace {
+
+// `nodes` nodes, each placing a grid of 33 x 33 vertices `copies` times by instancing, a row apart.
+GltfBuilder instancedGrids(size_t nodes, size_t copies) {
+    constexpr uint32_t kSide = 33;
+    std::vector<glm::vec3> positions;
+    std::vector<uint32_t> indices;
+    for (uint32_t y = 0; y < kSide; ++y)
+        for (uint32_t x = 0; x < kSide; ++x) {
+            positions.emplace_back(float(x) / kSide, float(y) / kSide, 0.0f);
+            if (x + 1 == kSide || y + 1 == kSide) continue;
+            const uint32_t i = y * kSide + x;
+            indices.insert(indices.end(), {i, i + 1, i + kSide, i + 1, i + kSide + 1, i + kSide});
+        }
+    std::vector<glm::vec3> offsets(copies);
+    for (size_t i = 0; i < copies; ++i)
+        offsets[i] = glm::vec3(float(i % 256), float(i / 256), 0.0f) * 1.5f;
+    GltfBuilder g;
+    g.addAccessor(g.addView(positions), kFloat, positions.size(), "VEC3");
+    g.addAccessor(g.addView(indices), kUnsignedInt, indices.size(), "SCALAR");
+    const int translation = g.addAccessor(g.addView(offsets), kFloat, copies, "VEC3");
+    g.push("meshes",
+           {{"name", "grid"}, {"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}});
+    g.doc["scenes"] = {{{"nodes", nlohmann::json::array()}}};
+    for (size_t n = 0; n < nodes; ++n) {
+        g.push("nodes", {{"name", "grids" + std::to_string(n)},
+                         {"mesh", 0},
+                         {"translation", {0, 0, n}},
+                         {"extensions",
+                          {{"EXT_mesh_gpu_instancing", {{"attributes", {{"TRANSLATION", translation}}}}}}}});
+        g.doc["scenes"][0]["nodes"].push_back(n);
+    }
+    g.doc["scene"] = 0;
+    g.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+    g.doc["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
+    return g;
+}
+
+} // namespace
+
+// The scene's bound counts a mesh once however many objects share it: 65,536 grids of 1,089 vertices
+// place more than 2^26 vertices, and load as one mesh.
+TEST(GltfGeometry, InstancesPlacingMoreVerticesThanTheSceneHoldsShareTheirMesh) {
+    Scene scene =
+        loaded(instancedGrids(1, 65536).writeGltf(scratchForTest("gltf-geometry-"), "grids", false));
+    ASSERT_EQ(scene.objects.size(), 65536u);
+    size_t placed = 0;
+    for (const SceneObject& o : scene.objects) {
+        ASSERT_EQ(o.mesh, scene.objects[0].mesh) << o.name;
+        placed += o.mesh->vertexCount();
+    }
+    EXPECT_GT(placed, size_t(1) << 26);
+}
+
+TEST(GltfGeometry, RejectsAFileThatPlacesMoreThanAMillionObjects) {
+    EXPECT_THAT(
+        rejection(instancedGrids(17, 65536).writeGltf(scratchForTest("gltf-geometry-"), "too-many", false)),
+        HasSubstr("places more than 1048576 objects"));
+}
+
 TEST(GltfGeometry, InstancesOfAnAnimatedNodeStayInTheRestPose) {
     GltfBuilder g = instancedQuad();
     const std::vector<float> times = {0, 1};

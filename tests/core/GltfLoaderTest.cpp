@@ -486,8 +486,10 @@ TEST(GltfLoader, RejectsAbsurdAccessorCountWithoutOverflow) {
                 HasSubstr("reads past the end of buffer view 0"));
 }
 
-TEST(GltfLoader, RejectsAbsurdInstancedSceneSize) {
-    // 1025 instances of a 65535-vertex mesh: 67.2 million vertices, over the 2^26 limit.
+namespace {
+
+// A node named `parent` with 1025 children, each placing one 65535-vertex mesh; `childName` names them.
+GltfBuilder crowd(const std::string& parent, const std::string& childName) {
     GltfBuilder g;
     const std::vector<glm::vec3> soup(65535, glm::vec3(0.0f));
     g.addAccessor(g.addView(soup), kFloat, soup.size(), "VEC3");
@@ -495,11 +497,27 @@ TEST(GltfLoader, RejectsAbsurdInstancedSceneSize) {
     json children = json::array();
     for (int i = 1; i <= 1025; ++i)
         children.push_back(i);
-    g.push("nodes", {{"name", "crowd"}, {"children", children}});
+    g.push("nodes", {{"name", parent}, {"mesh", 0}, {"children", children}});
     for (int i = 1; i <= 1025; ++i)
-        g.push("nodes", {{"mesh", 0}});
-    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "crowd", false)),
-                HasSubstr("more than the limit"));
+        g.push("nodes", {{"name", childName + std::to_string(i)}, {"mesh", 0}});
+    return g;
+}
+
+} // namespace
+
+TEST(GltfLoader, CountsAMeshPlacedByManyNodesOnceTowardsTheSceneBound) {
+    // 1026 placements of a 65535-vertex mesh: 67.2 million vertices placed, one mesh kept.
+    const Scene scene = loaded(crowd("crowd", "member").writeGltf(scratchForTest("gltf-"), "crowd", false));
+    ASSERT_EQ(scene.objects.size(), 1026u);
+    for (const SceneObject& o : scene.objects)
+        ASSERT_EQ(o.mesh, scene.objects[0].mesh) << o.name;
+}
+
+TEST(GltfLoader, RejectsAbsurdColliderTotal) {
+    // The same mesh as 1025 colliders of one owner, which keeps a copy of each: 67.2 million vertices,
+    // over the 2^26 limit.
+    EXPECT_THAT(rejection(crowd("crowd", "UCX_crowd").writeGltf(scratchForTest("gltf-"), "colliders", false)),
+                HasSubstr("more than the limit of 67108864"));
 }
 
 TEST(GltfLoader, RejectsBufferViewPastEndOfBuffer) {
