@@ -9,28 +9,30 @@
 #include <cstdio>
 #include <iostream>
 #include <string>
+#include <unordered_set>
 
 static const char* kUsage = R"(usage: spatter-info SCENE
 
 Loads SCENE and prints one JSON object on stdout:
-  {"objects": N, "triangles": T, "dynamic_objects": D,
+  {"objects": N, "meshes": M, "triangles": T, "dynamic_objects": D,
    "bounds": {"min": [x,y,z], "max": [x,y,z]},
    "animations": [{"name", "duration", "channels"}], "skins": [{"name", "joints"}],
    "extensions_used": [...], "extensions_required": [...],
    "objects_detail": [{"name", "triangles", "dynamic", "receives_decals", "has_collider",
                        "traced", "instanced", "collision_mesh_of", "skin", "morph_targets"}]}
-Bounds are world-space, over every render mesh, in the rest pose. duration is in seconds; skin is
-the index into "skins" of the object's skin, or null; morph_targets counts the object's morph
-targets; the extensions are the glTF file's lists (empty for other formats). An object that an
-animation moves or deforms is dynamic. traced is whether shots can hit the object: it
-receives decals and its transform is one single-precision ray tracing can use (finite inverse,
-condition number at most 65536, scales within 2^-25..2^25, within 2^32 of the world's centre, not
-smaller than a few float steps there). For
-each receiver that is not traced a warning on stderr names it and says why. instanced is whether
-the collision world traces the object as an instance of an object-space scene (dynamic objects,
-and static ones whose mesh it holds four times or more) rather than in its static scene;
-collision_mesh_of is the index of the object whose collision mesh it uses: an earlier object placed
-with the same mesh and authored collider, or its own index.
+meshes counts the render meshes the scene keeps: the objects placed with one mesh (every node and
+instance of a glTF mesh) share it. Bounds are world-space, over every render mesh, in the rest pose.
+duration is in seconds; skin is the index into "skins" of the object's skin, or null; morph_targets
+counts the object's morph targets; the extensions are the glTF file's lists (empty for other
+formats). An object that an animation moves or deforms is dynamic. traced is whether shots can hit
+the object: it receives decals and its transform is one single-precision ray tracing can use (finite
+inverse, condition number at most 65536, scales within 2^-25..2^25, within 2^32 of the world's
+centre, not smaller than a few float steps there). For each receiver that is not traced a warning on
+stderr names it and says why. instanced is whether the collision world traces the object as an
+instance of an object-space scene (dynamic objects, and static ones whose mesh it holds four times
+or more) rather than in its static scene; collision_mesh_of is the index of the object whose
+collision mesh it uses: an earlier object placed with the same mesh and authored collider, or its
+own index.
 
 SCENE is builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file.
 On a scene that cannot be loaded: a one-line error on stderr and exit code 1.
@@ -65,6 +67,10 @@ int main(int argc, char** argv) {
     const spatter::DBounds b = scene->worldBounds();
     nlohmann::ordered_json out;
     out["objects"] = scene->objects.size();
+    std::unordered_set<const spatter::Mesh*> meshes;
+    for (const spatter::SceneObject& o : scene->objects)
+        meshes.insert(o.mesh.get());
+    out["meshes"] = meshes.size();
     out["triangles"] = scene->triangleCount();
     out["dynamic_objects"] = scene->dynamicObjectCount();
     out["bounds"] = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};

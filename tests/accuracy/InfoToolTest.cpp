@@ -34,6 +34,7 @@ TEST(SpatterInfo, DescribesEveryObjectAndTheCollisionMeshItUses) {
     const Result<Scene> scene = loadScene("builtin:gallery");
     ASSERT_TRUE(scene.ok()) << scene.error();
     ASSERT_EQ(info["objects"], scene->objects.size());
+    EXPECT_EQ(info["meshes"], scene->objects.size() - 3); // the targets keep one mesh, the banners one
     const nlohmann::json& detail = info["objects_detail"];
     ASSERT_EQ(detail.size(), scene->objects.size());
     size_t shared = 0;
