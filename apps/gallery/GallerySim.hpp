@@ -45,8 +45,9 @@ struct ShotCounters {
 
 // Proxies built at one tolerance, waiting to be used (GallerySim::buildProxies).
 struct ProxySet {
-    std::vector<std::shared_ptr<const Proxy>>
-        proxies; // per scene object; none for those that receive no decals
+    // Per scene object (the objects placed with one mesh share its proxy); none for those that receive
+    // no decals.
+    std::vector<std::shared_ptr<const Proxy>> proxies;
     float tolerancePercent = 0.0f;
     double seconds = 0.0;
 };
