@@ -319,21 +319,7 @@ void PathHost::setScene(const Scene& scene) {
     m.clearMeshes();
     for (const SceneObject& o : scene.objects) {
         HostMesh g;
-        glCreateVertexArrays(1, &g.vao);
-        glCreateBuffers(3, g.buffers);
-        glNamedBufferStorage(g.buffers[0], GLsizeiptr(o.mesh->positions.size() * sizeof(glm::vec3)),
-                             o.mesh->positions.data(), 0);
-        glNamedBufferStorage(g.buffers[1], GLsizeiptr(o.mesh->normals.size() * sizeof(glm::vec3)),
-                             o.mesh->normals.data(), 0);
-        glNamedBufferStorage(g.buffers[2], GLsizeiptr(o.mesh->indices.size() * sizeof(uint32_t)),
-                             o.mesh->indices.data(), 0);
-        for (GLuint a = 0; a < 2; ++a) {
-            glVertexArrayVertexBuffer(g.vao, a, g.buffers[a], 0, sizeof(glm::vec3));
-            glVertexArrayAttribFormat(g.vao, a, 3, GL_FLOAT, GL_FALSE, 0);
-            glVertexArrayAttribBinding(g.vao, a, a);
-            glEnableVertexArrayAttrib(g.vao, a);
-        }
-        glVertexArrayElementBuffer(g.vao, g.buffers[2]);
+        g.vao = example::meshVertexArray(*o.mesh, g.buffers);
         g.indices = GLsizei(o.mesh->indices.size());
         g.transform = o.transform;
         m.meshes.push_back(g);

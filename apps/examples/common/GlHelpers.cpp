@@ -1,6 +1,7 @@
 #include "GlHelpers.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace example {
@@ -62,6 +63,26 @@ spatter::Image readImage(GLuint texture, int width, int height) {
     for (int y = 0; y < height; ++y)
         std::copy_n(&pixels[size_t(height - 1 - y) * row], row, &image.rgba[size_t(y) * row]);
     return image;
+}
+
+GLuint meshVertexArray(const spatter::Mesh& mesh, GLuint (&buffers)[3]) {
+    glCreateBuffers(3, buffers);
+    glNamedBufferStorage(buffers[0], GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)),
+                         mesh.positions.data(), 0);
+    glNamedBufferStorage(buffers[1], GLsizeiptr(mesh.normals.size() * sizeof(glm::vec3)), mesh.normals.data(),
+                         0);
+    glNamedBufferStorage(buffers[2], GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(),
+                         0);
+    GLuint vertexArray = 0;
+    glCreateVertexArrays(1, &vertexArray);
+    for (GLuint a = 0; a < 2; ++a) {
+        glVertexArrayVertexBuffer(vertexArray, a, buffers[a], 0, sizeof(glm::vec3));
+        glVertexArrayAttribFormat(vertexArray, a, 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vertexArray, a, a);
+        glEnableVertexArrayAttrib(vertexArray, a);
+    }
+    glVertexArrayElementBuffer(vertexArray, buffers[2]);
+    return vertexArray;
 }
 
 } // namespace example

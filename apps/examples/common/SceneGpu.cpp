@@ -1,5 +1,7 @@
 #include "SceneGpu.hpp"
 
+#include "GlHelpers.hpp"
+
 #include <array>
 
 namespace example {
@@ -30,21 +32,7 @@ ObjectGpu upload(const spatter::Scene& scene, const spatter::Mesh& mesh) {
     ObjectGpu g;
     if (mesh.indices.empty()) return g;
     GLuint buffers[3] = {0, 0, 0};
-    glCreateBuffers(3, buffers);
-    glNamedBufferStorage(buffers[0], GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)),
-                         mesh.positions.data(), 0);
-    glNamedBufferStorage(buffers[1], GLsizeiptr(mesh.normals.size() * sizeof(glm::vec3)), mesh.normals.data(),
-                         0);
-    glNamedBufferStorage(buffers[2], GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(),
-                         0);
-    glCreateVertexArrays(1, &g.vertexArray);
-    for (GLuint a = 0; a < 2; ++a) {
-        glVertexArrayVertexBuffer(g.vertexArray, a, buffers[a], 0, sizeof(glm::vec3));
-        glVertexArrayAttribFormat(g.vertexArray, a, 3, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(g.vertexArray, a, a);
-        glEnableVertexArrayAttrib(g.vertexArray, a);
-    }
-    glVertexArrayElementBuffer(g.vertexArray, buffers[2]);
+    g.vertexArray = meshVertexArray(mesh, buffers);
     if (mesh.submeshes.empty()) g.ranges.push_back({0, GLsizei(mesh.indices.size()), materialOf(scene, -1)});
     for (const spatter::Submesh& s : mesh.submeshes)
         g.ranges.push_back({GLsizei(s.firstIndex), GLsizei(s.indexCount), materialOf(scene, s.material)});
