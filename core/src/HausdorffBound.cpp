@@ -370,10 +370,13 @@ private:
             for (int j = i + 1; j < 3 && best > level(); ++j)
                 if (q.m[i].triangle != q.m[j].triangle)
                     best = std::min(best, pairBound(q, q.m[i].triangle, q.m[j].triangle, best));
+        // Capped just above the level: an overlay above it bounds nothing (the piece is cut), and
+        // the overlay tries its next direction.
         if (best > level() && overlayPays(q, farthest, radius))
-            best = detail::overlayBound({q.p[0], q.p[1], q.p[2]},
-                                        {q.m[0].triangle, q.m[1].triangle, q.m[2].triangle},
-                                        {b_.positions, b_.indices, b_.neighbours()}, overlayEps_, best);
+            best = detail::overlayBound(
+                {q.p[0], q.p[1], q.p[2]}, {q.m[0].triangle, q.m[1].triangle, q.m[2].triangle},
+                {b_.positions, b_.indices, b_.neighbours()}, overlayEps_,
+                std::min(best, std::nextafter(level(), std::numeric_limits<double>::infinity())));
         return best;
     }
 

@@ -16,9 +16,12 @@ namespace {
 constexpr int kMaxCorners = 6;
 // Triangles an overlay may visit before it gives up (the caller then cuts the piece).
 constexpr size_t kMaxVisits = 1 << 14;
-// The cosine of the largest angle between the piece's normal and a triangle it is laid over: a
-// triangle seen more edge-on, or from behind (a fold of the mesh under the piece), ends the overlay.
+// The cosine of the largest angle between the direction a piece is laid along and the normal of a
+// triangle it is laid over: a triangle seen more edge-on, or from behind (a fold of the mesh under
+// the piece), ends the overlay. Also the least |cosine| between that direction and the piece's normal.
 constexpr double kMinFacing = 0.1;
+// Directions an overlay tries (overlayDirections).
+constexpr int kDirections = 2;
 
 // A convex part of the piece: its corners in order around it.
 struct Part {
@@ -182,16 +185,11 @@ EdgeNeighbours edgeNeighbours(const std::vector<glm::dvec3>& positions, const st
     return out;
 }
 
-double overlayBound(const std::array<glm::dvec3, 3>& piece, const std::array<uint32_t, 3>& near,
-                    const OverlayMesh& mesh, double eps, double cap) {
-    glm::dvec3 n = glm::cross(piece[1] - piece[0], piece[2] - piece[0]);
-    const double length = glm::length(n);
-    if (!(length > 0.0)) return cap;
-    n /= length;
-    const size_t triangles = mesh.neighbours.across.size() / 3;
-    for (uint32_t t : near) // a piece whose corners lie over a fold of the mesh: no overlay
-        if (size_t(t) >= triangles || !facesAlong(cornersOf(mesh, t), n)) return cap;
-    const Part whole{{piece[0], piece[1], piece[2]}, 3};
+namespace {
+
+// The overlay along the unit direction `along` (see the top of PieceOverlay.hpp).
+double overlayAlong(const Part& whole, const std::array<uint32_t, 3>& near, const OverlayMesh& mesh,
+                    const glm::dvec3& along, double eps, double cap) {
     thread_local Visits visits;
     visits.start();
     for (uint32_t t : near)
@@ -203,7 +201,7 @@ double overlayBound(const std::array<glm::dvec3, 3>& piece, const std::array<uin
         const std::array<glm::dvec3, 3> corners = cornersOf(mesh, t);
         Part part;
         glm::dvec3 side[3];
-        if (!facesAlong(corners, n) || !partOver(whole, corners, n, eps, part, side)) return cap;
+        if (!facesAlong(corners, along) || !partOver(whole, corners, along, eps, part, side)) return cap;
         if (part.count < 3) continue;
         laid = true;
         for (int c = 0; c < part.count; ++c) {
@@ -224,6 +222,62 @@ double overlayBound(const std::array<glm::dvec3, 3>& piece, const std::array<uin
         }
     }
     return laid ? bound : cap;
+}
+
+// Whether the triangles `near` all face along d and a piece of unit normal n is not seen edge-on
+// along it.
+bool fitsDirection(const glm::dvec3& d, const glm::dvec3& n, const std::array<uint32_t, 3>& near,
+                   const OverlayMesh& mesh) {
+    if (!(std::abs(glm::dot(d, n)) > kMinFacing)) return false;
+    for (uint32_t t : near)
+        if (!facesAlong(cornersOf(mesh, t), d)) return false;
+    return true;
+}
+
+// The directions a piece of unit normal n is laid along, in the order tried (at most kDirections):
+// n where the triangles closest to its corners all face along it. Otherwise (a piece by a crease,
+// whose corner finds the far face closest, or over a sheet facing away from it) halfway between n
+// and the mean of those triangles' unit normals, which tilts the parts over the faces like n's the
+// least, then that mean; each where those triangles face along it.
+int overlayDirections(const glm::dvec3& n, const std::array<uint32_t, 3>& near, const OverlayMesh& mesh,
+                      glm::dvec3 (&out)[kDirections]) {
+    if (fitsDirection(n, n, near, mesh)) {
+        out[0] = n;
+        return 1;
+    }
+    glm::dvec3 mean(0.0);
+    for (uint32_t t : near) {
+        const std::array<glm::dvec3, 3> c = cornersOf(mesh, t);
+        const glm::dvec3 normal = glm::cross(c[1] - c[0], c[2] - c[0]);
+        const double length = glm::length(normal);
+        if (!(length > 0.0)) return 0;
+        mean += normal / length;
+    }
+    int count = 0;
+    for (const glm::dvec3& d : {n + mean / std::max(glm::length(mean), 1e-300), mean}) {
+        const double length = glm::length(d);
+        if (length > 1e-6 && fitsDirection(d / length, n, near, mesh)) out[count++] = d / length;
+    }
+    return count;
+}
+
+} // namespace
+
+double overlayBound(const std::array<glm::dvec3, 3>& piece, const std::array<uint32_t, 3>& near,
+                    const OverlayMesh& mesh, double eps, double cap) {
+    glm::dvec3 n = glm::cross(piece[1] - piece[0], piece[2] - piece[0]);
+    const double length = glm::length(n);
+    if (!(length > 0.0)) return cap;
+    n /= length;
+    const size_t triangles = mesh.neighbours.across.size() / 3;
+    for (uint32_t t : near)
+        if (size_t(t) >= triangles) return cap;
+    glm::dvec3 along[kDirections];
+    const int directions = overlayDirections(n, near, mesh, along);
+    double bound = cap;
+    for (int i = 0; i < directions && !(bound < cap); ++i)
+        bound = overlayAlong({{piece[0], piece[1], piece[2]}, 3}, near, mesh, along[i], eps, cap);
+    return bound;
 }
 
 } // namespace spatter::detail

@@ -325,6 +325,13 @@ template <class Height> Mesh grid(uint32_t n, float x0, float size, Height z) {
     return m;
 }
 
+// `m` with every triangle wound the other way.
+Mesh reversed(Mesh m) {
+    for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
+        std::swap(m.indices[t + 1], m.indices[t + 2]);
+    return m;
+}
+
 // A one-sided bound and a dense estimate of the same distance.
 struct BoundAndEstimate {
     double lower = 0.0, dense = 0.0;
@@ -436,4 +443,67 @@ TEST(HausdorffBound, PiecesOverFoldsWoundToFaceUpStayAboveTheDenseEstimate) {
     const Mesh tubes = flatTubesFacingUp({0.0f, 0.6f});
     const Mesh coarse = grid(1, 0.05f, 0.9f, [](float, float) { return 0.03f; });
     EXPECT_GT(expectBoundAboveDense(coarse, tubes, 3).dense, 0.09); // over the gap, 0.1 from either tube
+    // The square wound to face down (laid along the tubes' facing, opposite its own).
+    EXPECT_GT(expectBoundAboveDense(reversed(coarse), tubes, 4).dense, 0.09);
+}
+
+namespace {
+
+// A fine grid folded down at x = 1 like the edge of a box: a top z = 0 over [0, 1] x [0, 1] facing
+// up, and a side x = 1 down to z = -0.3 facing +x, 50 and 15 cells across, welded along the edge.
+Mesh boxEdge() {
+    Mesh m = grid(65, 0.0f, 1.3f, [](float, float) { return 0.0f; });
+    for (glm::vec3& p : m.positions)
+        if (p.x > 1.0f)
+            p = {1.0f, p.y * 1.0f / 1.3f, -(p.x - 1.0f)};
+        else
+            p.y *= 1.0f / 1.3f;
+    return m;
+}
+
+// Bounds `coarse` against `under` at a tolerance of 0.02: within, never below a dense estimate; the
+// queries it took.
+size_t expectWithinAndAboveDense(const Mesh& coarse, const Mesh& under, uint64_t seed) {
+    HausdorffSettings s;
+    s.margin = 1e-4;
+    s.tolerance = 0.02;
+    Result<HausdorffResult> h = boundOneSided(surface(coarse), surface(under), s);
+    EXPECT_TRUE(h) << h.error();
+    if (!h) return 0;
+    EXPECT_TRUE(h->within(s.tolerance));
+    EXPECT_GE(h->upper, denseOneSided(coarse, under, 50000, seed));
+    return h->queries;
+}
+
+} // namespace
+
+// A coarse square over the top of a box edge, reaching a little past the edge and below the top:
+// the corners past the edge find the side closest, which does not face along the square's normal.
+// The square is laid over both faces along the mean of their normals instead of being cut down to
+// the tolerance along the edge.
+TEST(HausdorffBound, PiecesByACreaseAreLaidOverBothFacesInsteadOfCut) {
+    Mesh coarse = square(0.0f, 1.0f);
+    coarse.positions = {
+        {0.1f, 0.1f, 0.01f}, {1.004f, 0.1f, -0.001f}, {1.004f, 0.9f, -0.001f}, {0.1f, 0.9f, 0.01f}};
+    const Mesh edge = boxEdge();
+    for (const Mesh& under : {edge, unshared(edge)}) {
+        const size_t queries = expectWithinAndAboveDense(coarse, under, 11);
+        std::printf("[ crease    ] %zu queries\n", queries);
+        EXPECT_LT(queries, 100u);
+    }
+}
+
+// A coarse square just under a thin slab, whose bottom sheet faces down, away from the square's
+// normal: the square is laid over that sheet along its facing instead of being cut.
+TEST(HausdorffBound, PiecesUnderASheetFacingAwayAreLaidOverIt) {
+    const Mesh top = grid(61, -0.01f, 1.02f, [](float, float) { return 0.004f; });
+    Mesh slab = top;
+    const Mesh bottom = reversed(grid(61, -0.01f, 1.02f, [](float, float) { return 0.0f; }));
+    for (uint32_t i : bottom.indices)
+        slab.indices.push_back(i + uint32_t(top.positions.size()));
+    slab.positions.insert(slab.positions.end(), bottom.positions.begin(), bottom.positions.end());
+    const Mesh coarse = grid(1, 0.1f, 0.8f, [](float, float) { return -0.01f; });
+    const size_t queries = expectWithinAndAboveDense(coarse, slab, 12);
+    std::printf("[ facing away ] %zu queries\n", queries);
+    EXPECT_LT(queries, 100u);
 }
