@@ -94,43 +94,46 @@ void fitBox(Impl& s, Node& n) {
         }
 }
 
+// A triangle's centroid and its index, split by the hierarchy (in place, without indirection).
+struct Centroid {
+    glm::dvec3 c;
+    uint32_t triangle;
+};
+
 // Median split on the longest axis of the centroids, until leaves of kLeafTriangles.
 void buildHierarchy(Impl& s) {
     s.nodes.clear();
     if (s.triangles.empty()) return;
-    std::vector<glm::dvec3> centroid(s.triangles.size());
+    std::vector<Centroid> order(s.triangles.size());
     for (size_t i = 0; i < s.triangles.size(); ++i)
-        centroid[i] = (s.positions[s.triangles[i][0]] + s.positions[s.triangles[i][1]] +
-                       s.positions[s.triangles[i][2]]) /
-                      3.0;
-    std::vector<uint32_t> order(s.triangles.size());
-    std::iota(order.begin(), order.end(), 0u);
+        order[i] = {(s.positions[s.triangles[i][0]] + s.positions[s.triangles[i][1]] +
+                     s.positions[s.triangles[i][2]]) /
+                        3.0,
+                    uint32_t(i)};
     s.nodes.reserve(2 * s.triangles.size() / kLeafTriangles + 1);
     s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), 0, uint32_t(order.size()), 0});
     for (size_t i = 0; i < s.nodes.size(); ++i) {
         const Node n = s.nodes[i];
         if (n.count <= kLeafTriangles) continue;
+        const auto first = order.begin() + n.first, last = first + n.count;
         glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
-        for (uint32_t k = n.first; k < n.first + n.count; ++k) {
-            lo = glm::min(lo, centroid[order[k]]);
-            hi = glm::max(hi, centroid[order[k]]);
+        for (auto it = first; it != last; ++it) {
+            lo = glm::min(lo, it->c);
+            hi = glm::max(hi, it->c);
         }
         const glm::dvec3 extent = hi - lo;
         const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
         const uint32_t half = n.count / 2;
-        std::nth_element(order.begin() + n.first, order.begin() + n.first + half,
-                         order.begin() + n.first + n.count, [&](uint32_t a, uint32_t b) {
-                             return centroid[a][axis] != centroid[b][axis]
-                                        ? centroid[a][axis] < centroid[b][axis]
-                                        : a < b;
-                         });
+        std::nth_element(first, first + half, last, [axis](const Centroid& a, const Centroid& b) {
+            return a.c[axis] != b.c[axis] ? a.c[axis] < b.c[axis] : a.triangle < b.triangle;
+        });
         s.nodes[i].child = uint32_t(s.nodes.size());
         s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), n.first, half, 0});
         s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), n.first + half, n.count - half, 0});
     }
     std::vector<std::array<uint32_t, 3>> sorted(order.size());
     for (size_t i = 0; i < order.size(); ++i)
-        sorted[i] = s.triangles[order[i]];
+        sorted[i] = s.triangles[order[i].triangle];
     s.triangles = std::move(sorted);
     // Leaves from their triangles, inner nodes from their children (which come after them).
     for (size_t i = s.nodes.size(); i-- > 0;) {

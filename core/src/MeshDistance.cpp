@@ -33,7 +33,7 @@ using detail::workerCount;
 // ClosestPointQuery
 
 struct ClosestPointQuery::Impl {
-    RTCDevice device = nullptr;
+    RTCDevice device = nullptr; // the shared one (sharedDevice), retained
     RTCScene scene = nullptr;
     std::vector<glm::dvec3> corners;   // three per surface triangle
     std::vector<uint32_t> triangleIds; // surface triangle -> mesh triangle
@@ -45,6 +45,14 @@ struct ClosestPointQuery::Impl {
 };
 
 namespace {
+
+// The Embree device of every closest-point structure, made at the first: a device costs more to
+// make than a small mesh's structure, and a proxy build makes several. Null when Embree cannot make
+// one. Each structure retains it; this reference lasts as long as the process.
+RTCDevice sharedDevice() {
+    static const RTCDevice device = rtcNewDevice(nullptr);
+    return device;
+}
 
 // How far p lies from the float point an Embree query is made at.
 double pointRounding(const glm::dvec3& p) {
@@ -138,8 +146,10 @@ Result<ClosestPointQuery> ClosestPointQuery::create(const Mesh& mesh) {
             impl->corners.push_back(corner(mesh, t, k));
     if (surface.empty()) return ClosestPointQuery(std::move(impl));
 
-    impl->device = rtcNewDevice(nullptr);
+    impl->device = sharedDevice();
     if (!impl->device) return fail("Embree could not create a device");
+    rtcRetainDevice(impl->device);
+    rtcGetDeviceError(impl->device); // this thread's earlier error, if any, is not this build's
     impl->scene = rtcNewScene(impl->device);
     // Built once per mesh and queried a few times per triangle: a quick build pays.
     rtcSetSceneBuildQuality(impl->scene, RTC_BUILD_QUALITY_LOW);
