@@ -198,7 +198,7 @@ public:
     double sample(const glm::dvec3& p) {
         ++queries;
         const double d = measure(p).distance;
-        see(d);
+        see(d, p);
         return d;
     }
 
@@ -221,8 +221,9 @@ public:
         }
     }
 
-    double lower;          // the acceptance's: the known lower bound and every distance measured
-    double measured = 0.0; // the largest distance this walker measured
+    double lower;                  // the acceptance's: the known lower bound and every distance measured
+    double measured = 0.0;         // the largest distance this walker measured
+    glm::dvec3 farthestPoint{0.0}; // where
     double upper = 0.0;
     size_t queries = 0;
 
@@ -238,9 +239,12 @@ private:
     }
     void accept(double bound) { upper = std::max(upper, bound); }
 
-    void see(double distance) {
+    void see(double distance, const glm::dvec3& p) {
         lower = std::max(lower, distance);
-        measured = std::max(measured, distance);
+        if (distance > measured) {
+            measured = distance;
+            farthestPoint = p;
+        }
         if (distance > s_.tolerance) exceeded_.store(true, std::memory_order_relaxed);
     }
 
@@ -252,7 +256,7 @@ private:
     Measured atVertex(uint32_t v) {
         const Measured m = cache_.get(
             v, [&] { return measure(a_.positions[v]); }, queries);
-        see(m.distance);
+        see(m.distance, a_.positions[v]);
         return m;
     }
 
@@ -403,7 +407,7 @@ private:
             const glm::dvec3 mid = 0.5 * (q.p[k] + q.p[k1]);
             const Measured m = measure(mid);
             ++queries;
-            see(m.distance);
+            see(m.distance, mid);
             Piece x = q, y = q;
             x.p[k1] = mid;
             x.m[k1] = m;
@@ -543,16 +547,19 @@ public:
     void walk(size_t i) {
         Walker w(a_, b_, s_, cache_, exceeded_, walkLower_);
         w.walk(roots_[i]);
-        parts_[i] = {w.measured, w.upper, false, w.queries};
+        parts_[i] = {w.measured, w.upper, false, w.queries, w.farthestPoint};
     }
     HausdorffResult result() const {
         HausdorffResult out;
+        auto take = [&out](double lower, const glm::dvec3& where) {
+            if (lower > out.lower) out.lower = lower, out.farthest = where;
+        };
         for (const Walker& w : starts_) {
-            out.lower = std::max(out.lower, w.measured);
+            take(w.measured, w.farthestPoint);
             out.queries += w.queries;
         }
         for (const HausdorffResult& r : parts_) {
-            out.lower = std::max(out.lower, r.lower);
+            take(r.lower, r.farthest);
             out.upper = std::max(out.upper, r.upper);
             out.queries += r.queries;
         }
@@ -710,7 +717,7 @@ Result<HausdorffResult> boundHausdorff(const HausdorffSurface& a, const Hausdorf
     Result<HausdorffResult> ba = boundOneSided(b, a, back, half(0.5f));
     if (!ba) return ba;
     HausdorffResult out = ba.value();
-    out.lower = std::max(out.lower, ab->lower);
+    if (ab->lower > out.lower) out.lower = ab->lower, out.farthest = ab->farthest;
     if (!out.exceeded) out.upper = std::max(out.upper, ab->upper);
     out.queries += ab->queries;
     return out;

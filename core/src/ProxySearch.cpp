@@ -30,6 +30,8 @@ constexpr double kSearchStep = 1.5, kSearchStepMax = 4.0;
 // a feature the runs share, which that certificate saw).
 constexpr size_t kSampledProxyTriangles = 8192, kSampledRenderTriangles = 1024;
 constexpr double kLikelyFraction = 0.9;
+// Points kept that showed earlier candidates beyond the tolerance (Witnesses).
+constexpr size_t kMaxWitnesses = 16;
 // Where a certificate's measured distance comes within its margin of the tolerance, the margin
 // shrinks to kRoomShare of the room left under it while that room is at least kMinRoom of the
 // tolerance (HausdorffSettings::roomShare), so that such a candidate is decided in one walk.
@@ -114,6 +116,64 @@ std::string directionError(const std::string& error, const char* which) {
     return error == "cancelled" ? error : std::string(which) + ": " + error;
 }
 
+// Points that showed earlier candidates beyond the tolerance, against which later candidates are
+// checked before they are judged: a certificate costs several runs, the check a query or two a
+// point. A candidate that bridges a groove of the render mesh, which the samples miss, is often
+// followed by others that bridge it too.
+class Witnesses {
+public:
+    // Keeps where c's certificate measured a distance above `tolerance`, each way.
+    void keep(const Candidate& c, double tolerance) {
+        if (c.renderToProxy.lower > tolerance) add({c.renderToProxy.farthest, true});
+        if (c.proxyToRender.lower > tolerance) add({c.proxyToRender.farthest, false});
+    }
+    // The largest distance the witnesses show on c (its surface prepared): a render point's
+    // distance to c, and, for a point of an earlier proxy too far from the render mesh, the
+    // distance to the render mesh of c's point closest to it. Each is a distance attained.
+    double largest(const Candidate& c, const HausdorffSurface& render) const {
+        double out = 0.0;
+        for (const Point& w : points_) {
+            const std::optional<ClosestPoint> onC = c.surface->query().closest(w.p);
+            if (!onC) continue;
+            if (w.onRender) {
+                out = std::max(out, onC->distance);
+            } else if (const std::optional<ClosestPoint> back = render.query().closest(onC->point)) {
+                out = std::max(out, back->distance);
+            }
+        }
+        return out;
+    }
+
+private:
+    struct Point {
+        glm::dvec3 p;
+        bool onRender;
+    };
+    void add(const Point& w) {
+        if (points_.size() < kMaxWitnesses) points_.push_back(w);
+    }
+    std::vector<Point> points_;
+};
+
+// Certifies c unless a witness shows it beyond the tolerance already (then its certificate is that
+// distance, exceeded); keeps the certificate's witnesses where it fails.
+Status certifyUnlessWitnessed(Candidate& c, const HausdorffSurface& render, const SearchContext& k,
+                              Witnesses& witnesses) {
+    if (!c.mesh.indices.empty()) {
+        if (Status st = prepare(c); !st) return st;
+        const double shown = witnesses.largest(c, render);
+        if (shown > k.tolerance) {
+            const HausdorffResult exceeded{shown, std::numeric_limits<double>::infinity(), true};
+            c.proxyToRender = c.renderToProxy = exceeded;
+            c.certified = true;
+            return {};
+        }
+    }
+    if (Status st = certify(c, render, k.certifying, k.progress.stage(0.2, 0.8)); !st) return st;
+    if (!c.within(k.tolerance)) witnesses.keep(c, k.tolerance);
+    return {};
+}
+
 // How a run of the search is judged: by a sampled lower bound of its distance (a quick "likely
 // within", certified afterwards) or by the certificate itself.
 enum class Judge { Sampled, Certified };
@@ -178,7 +238,7 @@ double certifiedSampled(const std::vector<Candidate>& accepted, double tolerance
 // triangles as that one gains nothing over it (mostly it is the same proxy: meshoptimizer's collapses
 // run in order of error) and is not judged.
 Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
-                           const std::vector<Candidate>& accepted) {
+                           const std::vector<Candidate>& accepted, Witnesses& witnesses) {
     const Mesh* input = &k.meshoptInput;
     for (const CoarseInput& level : k.coarse)
         if (target >= level.target) input = &level.mesh;
@@ -197,6 +257,13 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
     }
     Result<const HausdorffSurface*> render = k.render.get();
     if (!render) return fail(render.error());
+    if (!j.candidate.mesh.indices.empty()) {
+        if (Status st = prepare(j.candidate); !st) return fail(st.error());
+        if (const double shown = witnesses.largest(j.candidate, *render.value()); shown > k.tolerance) {
+            j.measured = shown;
+            return j;
+        }
+    }
     if (judge == Judge::Sampled) {
         if (Status st = judgeQuickly(j.candidate, *render.value(), k.tolerance, j.measured,
                                      k.progress.stage(0.2, 0.8));
@@ -208,7 +275,7 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
             j.measured <= certifiedSampled(accepted, k.tolerance))
             return j;
     }
-    if (Status st = certify(j.candidate, *render.value(), k.certifying, k.progress.stage(0.2, 0.8)); !st)
+    if (Status st = certifyUnlessWitnessed(j.candidate, *render.value(), k, witnesses); !st)
         return fail(st.error());
     j.measured = j.candidate.lower();
     j.within = j.candidate.within(k.tolerance);
@@ -218,9 +285,10 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
 // Bisects the target from `target` within `bracket` until it closes or the runs are spent. Candidates
 // judged within go to `accepted` (coarser ones later); the finest judged not within to `finest`.
 Status bisect(const SearchContext& k, Judge judge, double target, Bracket& bracket, uint32_t maxRuns,
-              SearchOutcome& out, std::vector<Candidate>& accepted, std::optional<Candidate>& finest) {
+              SearchOutcome& out, std::vector<Candidate>& accepted, std::optional<Candidate>& finest,
+              Witnesses& witnesses) {
     for (uint32_t runs = 1; out.runs < maxRuns && !bracket.closed(); ++runs) {
-        Result<Judged> j = runAndJudge(k, target, judge, accepted);
+        Result<Judged> j = runAndJudge(k, target, judge, accepted, witnesses);
         if (!j) return fail(j.error());
         ++out.runs;
         k.progress.nextRun();
@@ -291,9 +359,10 @@ Result<SearchOutcome> searchBackend(const SearchContext& k, uint32_t maxRuns) {
     SearchOutcome out;
     std::vector<Candidate> likely;
     std::optional<Candidate> finest; // the finest run not within, for when none is
+    Witnesses witnesses;
     Bracket bracket;
     if (Status st = bisect(k, Judge::Sampled, k.tolerance * kStartFraction[uint32_t(k.backend)], bracket,
-                           maxRuns, out, likely, finest);
+                           maxRuns, out, likely, finest, witnesses);
         !st)
         return fail(st.error());
     if (out.removedNothing) return out;
@@ -303,8 +372,7 @@ Result<SearchOutcome> searchBackend(const SearchContext& k, uint32_t maxRuns) {
     for (; !likely.empty(); likely.pop_back()) {
         Candidate& c = likely.back();
         if (!c.certified)
-            if (Status st = certify(c, *k.render.get().value(), k.certifying, k.progress.stage(0.2, 0.8));
-                !st)
+            if (Status st = certifyUnlessWitnessed(c, *k.render.get().value(), k, witnesses); !st)
                 return fail(st.error());
         if (c.within(k.tolerance)) {
             out.best = std::move(c);
@@ -327,8 +395,8 @@ Result<SearchOutcome> searchBackend(const SearchContext& k, uint32_t maxRuns) {
     }
     if (std::isfinite(rest.hi) && !rest.closed()) {
         const double target = rest.lo > 0.0 ? std::sqrt(rest.lo * rest.hi) : rest.hi / kSearchStep;
-        if (Status st =
-                bisect(k, Judge::Certified, target, rest, out.runs + moreRuns, out, certified, finest);
+        if (Status st = bisect(k, Judge::Certified, target, rest, out.runs + moreRuns, out, certified, finest,
+                               witnesses);
             !st)
             return fail(st.error());
     }

@@ -107,6 +107,26 @@ TEST(HausdorffBound, BumpOverASquareIsBoundedAndAnsweredEarly) {
     EXPECT_LE(yes->queries, h->queries);
 }
 
+// The bound says where it measured its largest distance: on the bump's top for the sharp bound, and
+// a point beyond the tolerance when it stops there (a point of the bumpy grid is its height above
+// the square away from it).
+TEST(HausdorffBound, ReportsAPointWhereItsLargestDistanceWasMeasured) {
+    const HausdorffSurface a = surface(bumpOverSquare(64, 0.002f)), b = surface(square(0.0f, 1.0f));
+    HausdorffSettings s;
+    s.margin = 1e-3;
+    Result<HausdorffResult> sharp = boundOneSided(a, b, s);
+    ASSERT_TRUE(sharp) << sharp.error();
+    EXPECT_NEAR(sharp->farthest.z, sharp->lower, 1e-12);
+    EXPECT_NEAR(sharp->farthest.x, 0.43, 0.02);
+    EXPECT_NEAR(sharp->farthest.y, 0.57, 0.02);
+    s.tolerance = 0.05;
+    Result<HausdorffResult> no = boundOneSided(a, b, s);
+    ASSERT_TRUE(no) << no.error();
+    EXPECT_TRUE(no->exceeded);
+    EXPECT_NEAR(no->farthest.z, no->lower, 1e-12);
+    EXPECT_GT(no->farthest.z, 0.05);
+}
+
 // A tolerance a little above the bump: the margin shrinks near it, so that the bound ends under the
 // tolerance in one walk rather than up to a margin above it, and stays a true bound.
 TEST(HausdorffBound, MarginShrinksNearTheToleranceSoThatACloseCaseIsDecided) {

@@ -43,6 +43,7 @@
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/Result.hpp"
 
+#include <glm/glm.hpp>
 #include <limits>
 #include <memory>
 
@@ -98,6 +99,9 @@ struct HausdorffResult {
     double upper = 0.0;
     bool exceeded = false; // a measured distance is above the tolerance: stopped early
     size_t queries = 0;    // points measured (exact closest-point queries, each point counted once)
+    // Where `lower` was measured (the origin while it is 0): a point of A for a one-sided bound; of
+    // either mesh for boundHausdorff. Where exceeded, a point farther than the tolerance.
+    glm::dvec3 farthest{0.0};
     // True when the distance is certified to be at most `tolerance`.
     bool within(double tolerance) const { return !exceeded && upper <= tolerance; }
 };
