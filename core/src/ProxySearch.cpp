@@ -155,20 +155,22 @@ private:
     std::vector<Point> points_;
 };
 
-// Certifies c unless a witness shows it beyond the tolerance already (then its certificate is that
-// distance, exceeded); keeps the certificate's witnesses where it fails.
-Status certifyUnlessWitnessed(Candidate& c, const HausdorffSurface& render, const SearchContext& k,
-                              Witnesses& witnesses) {
-    if (!c.mesh.indices.empty()) {
-        if (Status st = prepare(c); !st) return st;
-        const double shown = witnesses.largest(c, render);
-        if (shown > k.tolerance) {
-            const HausdorffResult exceeded{shown, std::numeric_limits<double>::infinity(), true};
-            c.proxyToRender = c.renderToProxy = exceeded;
-            c.certified = true;
-            return {};
-        }
-    }
+// Turns c down where a witness shows it beyond the tolerance: its certificate is then that
+// distance, exceeded. Whether it did.
+Result<bool> turnedDownByWitness(Candidate& c, const HausdorffSurface& render, double tolerance,
+                                 const Witnesses& witnesses) {
+    if (c.mesh.indices.empty()) return false;
+    if (Status st = prepare(c); !st) return fail(st.error());
+    const double shown = witnesses.largest(c, render);
+    if (!(shown > tolerance)) return false;
+    c.proxyToRender = c.renderToProxy = {shown, std::numeric_limits<double>::infinity(), true};
+    c.certified = true;
+    return true;
+}
+
+// Certifies c and keeps the certificate's witnesses where it fails.
+Status certifyKeepingWitnesses(Candidate& c, const HausdorffSurface& render, const SearchContext& k,
+                               Witnesses& witnesses) {
     if (Status st = certify(c, render, k.certifying, k.progress.stage(0.2, 0.8)); !st) return st;
     if (!c.within(k.tolerance)) witnesses.keep(c, k.tolerance);
     return {};
@@ -257,12 +259,11 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
     }
     Result<const HausdorffSurface*> render = k.render.get();
     if (!render) return fail(render.error());
-    if (!j.candidate.mesh.indices.empty()) {
-        if (Status st = prepare(j.candidate); !st) return fail(st.error());
-        if (const double shown = witnesses.largest(j.candidate, *render.value()); shown > k.tolerance) {
-            j.measured = shown;
-            return j;
-        }
+    Result<bool> down = turnedDownByWitness(j.candidate, *render.value(), k.tolerance, witnesses);
+    if (!down) return fail(down.error());
+    if (down.value()) {
+        j.measured = j.candidate.lower();
+        return j;
     }
     if (judge == Judge::Sampled) {
         if (Status st = judgeQuickly(j.candidate, *render.value(), k.tolerance, j.measured,
@@ -275,7 +276,7 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
             j.measured <= certifiedSampled(accepted, k.tolerance))
             return j;
     }
-    if (Status st = certifyUnlessWitnessed(j.candidate, *render.value(), k, witnesses); !st)
+    if (Status st = certifyKeepingWitnesses(j.candidate, *render.value(), k, witnesses); !st)
         return fail(st.error());
     j.measured = j.candidate.lower();
     j.within = j.candidate.within(k.tolerance);
@@ -371,9 +372,14 @@ Result<SearchOutcome> searchBackend(const SearchContext& k, uint32_t maxRuns) {
     size_t failedTriangles = 0;                                   // and its triangles
     for (; !likely.empty(); likely.pop_back()) {
         Candidate& c = likely.back();
-        if (!c.certified)
-            if (Status st = certifyUnlessWitnessed(c, *k.render.get().value(), k, witnesses); !st)
-                return fail(st.error());
+        if (!c.certified) {
+            const HausdorffSurface& render = *k.render.get().value();
+            Result<bool> down = turnedDownByWitness(c, render, k.tolerance, witnesses);
+            if (!down) return fail(down.error());
+            if (!down.value())
+                if (Status st = certifyKeepingWitnesses(c, render, k, witnesses); !st)
+                    return fail(st.error());
+        }
         if (c.within(k.tolerance)) {
             out.best = std::move(c);
             break;
