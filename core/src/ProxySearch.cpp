@@ -117,7 +117,7 @@ std::string directionError(const std::string& error, const char* which) {
 }
 
 // Points that showed earlier candidates beyond the tolerance, against which later candidates are
-// checked before they are judged: a certificate costs several runs, the check a query or two a
+// checked before they are certified: a certificate costs several runs, the check a query or two a
 // point. A candidate that bridges a groove of the render mesh, which the samples miss, is often
 // followed by others that bridge it too.
 class Witnesses {
@@ -168,9 +168,15 @@ Result<bool> turnedDownByWitness(Candidate& c, const HausdorffSurface& render, d
     return true;
 }
 
-// Certifies c and keeps the certificate's witnesses where it fails.
-Status certifyKeepingWitnesses(Candidate& c, const HausdorffSurface& render, const SearchContext& k,
-                               Witnesses& witnesses) {
+// Certifies c unless a witness shows it beyond the tolerance already; keeps the certificate's
+// witnesses where it fails. Either way the answer is exact, so the witnesses change what a decision
+// costs, never the decision (nor, since a certificate's witness depends on which thread found it,
+// the proxy).
+Status certifyUnlessWitnessed(Candidate& c, const HausdorffSurface& render, const SearchContext& k,
+                              Witnesses& witnesses) {
+    Result<bool> down = turnedDownByWitness(c, render, k.tolerance, witnesses);
+    if (!down) return fail(down.error());
+    if (down.value()) return {};
     if (Status st = certify(c, render, k.certifying, k.progress.stage(0.2, 0.8)); !st) return st;
     if (!c.within(k.tolerance)) witnesses.keep(c, k.tolerance);
     return {};
@@ -259,12 +265,6 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
     }
     Result<const HausdorffSurface*> render = k.render.get();
     if (!render) return fail(render.error());
-    Result<bool> down = turnedDownByWitness(j.candidate, *render.value(), k.tolerance, witnesses);
-    if (!down) return fail(down.error());
-    if (down.value()) {
-        j.measured = j.candidate.lower();
-        return j;
-    }
     if (judge == Judge::Sampled) {
         if (Status st = judgeQuickly(j.candidate, *render.value(), k.tolerance, j.measured,
                                      k.progress.stage(0.2, 0.8));
@@ -276,7 +276,7 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
             j.measured <= certifiedSampled(accepted, k.tolerance))
             return j;
     }
-    if (Status st = certifyKeepingWitnesses(j.candidate, *render.value(), k, witnesses); !st)
+    if (Status st = certifyUnlessWitnessed(j.candidate, *render.value(), k, witnesses); !st)
         return fail(st.error());
     j.measured = j.candidate.lower();
     j.within = j.candidate.within(k.tolerance);
@@ -372,14 +372,9 @@ Result<SearchOutcome> searchBackend(const SearchContext& k, uint32_t maxRuns) {
     size_t failedTriangles = 0;                                   // and its triangles
     for (; !likely.empty(); likely.pop_back()) {
         Candidate& c = likely.back();
-        if (!c.certified) {
-            const HausdorffSurface& render = *k.render.get().value();
-            Result<bool> down = turnedDownByWitness(c, render, k.tolerance, witnesses);
-            if (!down) return fail(down.error());
-            if (!down.value())
-                if (Status st = certifyKeepingWitnesses(c, render, k, witnesses); !st)
-                    return fail(st.error());
-        }
+        if (!c.certified)
+            if (Status st = certifyUnlessWitnessed(c, *k.render.get().value(), k, witnesses); !st)
+                return fail(st.error());
         if (c.within(k.tolerance)) {
             out.best = std::move(c);
             break;
