@@ -10,7 +10,6 @@
 #include <functional>
 #include <limits>
 #include <mutex>
-#include <numeric>
 #include <string>
 #include <vector>
 
@@ -223,7 +222,7 @@ public:
 
     double lower;                  // the acceptance's: the known lower bound and every distance measured
     double measured = 0.0;         // the largest distance this walker measured
-    glm::dvec3 farthestPoint{0.0}; // where
+    glm::dvec3 farthestPoint{0.0}; // where it was measured
     double upper = 0.0;
     size_t queries = 0;
 
