@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <iostream>
 #include <string>
-#include <unordered_set>
 
 static const char* kUsage = R"(usage: spatter-info SCENE
 
@@ -67,10 +66,7 @@ int main(int argc, char** argv) {
     const spatter::DBounds b = scene->worldBounds();
     nlohmann::ordered_json out;
     out["objects"] = scene->objects.size();
-    std::unordered_set<const spatter::Mesh*> meshes;
-    for (const spatter::SceneObject& o : scene->objects)
-        meshes.insert(o.mesh.get());
-    out["meshes"] = meshes.size();
+    out["meshes"] = scene->meshCount();
     out["triangles"] = scene->triangleCount();
     out["dynamic_objects"] = scene->dynamicObjectCount();
     out["bounds"] = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};

@@ -37,6 +37,13 @@ size_t Scene::triangleCount() const {
     return n;
 }
 
+size_t Scene::meshCount() const {
+    std::unordered_set<const Mesh*> meshes;
+    for (const SceneObject& o : objects)
+        if (o.mesh) meshes.insert(o.mesh.get());
+    return meshes.size();
+}
+
 size_t Scene::dynamicObjectCount() const {
     size_t n = 0;
     for (const SceneObject& o : objects)

@@ -78,6 +78,8 @@ struct Scene {
     std::vector<std::string> extensionsUsed, extensionsRequired;
 
     size_t triangleCount() const; // render triangles of all objects
+    // Render meshes the scene keeps: the objects placed with one mesh share it (counted once).
+    size_t meshCount() const;
     size_t dynamicObjectCount() const;
     DBounds worldBounds() const; // bounds of every render mesh, transformed to world space
     // Adds `offset` to every object's translation (used to test precision far from the origin).
