@@ -19,6 +19,9 @@ namespace {
 
 // Largest number of triangles in a leaf of the hierarchy.
 constexpr uint32_t kLeafTriangles = 4;
+// A node is split at the middle of its extent unless less than this fraction of its triangles would
+// go to one side (buildHierarchy).
+constexpr uint32_t kLeastSplit = 8;
 // A node of at most this many triangles is bounded over its triangles' corners (the convex hull of
 // its surface) instead of its box corners.
 constexpr uint32_t kHullTriangles = 16;
@@ -99,7 +102,25 @@ struct Centroid {
     uint32_t triangle;
 };
 
-// Median split on the longest axis of the centroids, until leaves of kLeafTriangles.
+// The number of the centroids in [first, last) that go to the first child: those below the middle of
+// their extent along `axis`, split in place in one pass; where fewer than 1 / kLeastSplit of them lie
+// on one side of it, the lower half by their order along the axis (so that the depth stays
+// logarithmic whatever the spacing of the triangles).
+uint32_t splitCentroids(std::vector<Centroid>::iterator first, std::vector<Centroid>::iterator last, int axis,
+                        double middle) {
+    const auto below = [axis, middle](const Centroid& a) { return a.c[axis] < middle; };
+    const uint32_t count = uint32_t(last - first);
+    const uint32_t split = uint32_t(std::partition(first, last, below) - first);
+    if (split >= count / kLeastSplit && count - split >= count / kLeastSplit && split > 0 && split < count)
+        return split;
+    std::nth_element(first, first + count / 2, last, [axis](const Centroid& a, const Centroid& b) {
+        return a.c[axis] != b.c[axis] ? a.c[axis] < b.c[axis] : a.triangle < b.triangle;
+    });
+    return count / 2;
+}
+
+// Split at the middle of the centroids' extent along its longest axis (a pass over the node, where a
+// median costs a selection), until leaves of kLeafTriangles.
 void buildHierarchy(Impl& s) {
     s.nodes.clear();
     if (s.triangles.empty()) return;
@@ -122,10 +143,7 @@ void buildHierarchy(Impl& s) {
         }
         const glm::dvec3 extent = hi - lo;
         const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-        const uint32_t half = n.count / 2;
-        std::nth_element(first, first + half, last, [axis](const Centroid& a, const Centroid& b) {
-            return a.c[axis] != b.c[axis] ? a.c[axis] < b.c[axis] : a.triangle < b.triangle;
-        });
+        const uint32_t half = splitCentroids(first, last, axis, 0.5 * (lo[axis] + hi[axis]));
         s.nodes[i].child = uint32_t(s.nodes.size());
         s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), n.first, half, 0});
         s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), n.first + half, n.count - half, 0});
