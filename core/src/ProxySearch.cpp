@@ -28,7 +28,7 @@ constexpr double kSearchStep = 1.5, kSearchStepMax = 4.0;
 // end; one between that and the tolerance is certified at once (the samples often miss the last few
 // percent of the distance), unless a run certified within already sampled as far (the distance is then
 // a feature the runs share, which that certificate saw).
-constexpr size_t kSampledProxyTriangles = 8192, kSampledRenderTriangles = 1024;
+constexpr size_t kSampledProxyTriangles = 8192, kSampledRenderTriangles = 512;
 constexpr double kLikelyFraction = 0.9;
 // Points kept that showed earlier candidates beyond the tolerance (Witnesses).
 constexpr size_t kMaxWitnesses = 16;
