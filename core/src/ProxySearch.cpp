@@ -49,7 +49,7 @@ struct CoarseLevel {
     size_t triangles;
     double fraction;
 };
-constexpr CoarseLevel kCoarseLevels[] = {{100'000, 0.05}, {10'000, 0.2}};
+constexpr CoarseLevel kCoarseLevels[] = {{100'000, 0.05}, {5'000, 0.2}};
 // A proxy that misses the tolerance gets a sharp bound with this many times the certification margin:
 // its h only sizes decal boxes, and a tighter one costs many more queries.
 constexpr double kMissedMarginScale = 4.0;
