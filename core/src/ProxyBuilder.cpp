@@ -240,7 +240,7 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
         proxy.source = ProxySource::OwnMesh;
     } else {
         Candidate& best = outcome->best.value();
-        proxy.mesh = std::move(best.mesh);
+        proxy.mesh = detail::finishProxy(best.mesh, s);
         proxy.source = ProxySource::Simplified;
         proxy.backend = best.backend;
         takeBound(proxy, best, tolerance);

@@ -57,7 +57,8 @@ constexpr double kMissedMarginScale = 4.0;
 // this fraction of the render mesh's diagonal instead.
 constexpr double kZeroToleranceScale = 0.001;
 
-// One simplification run with the chosen backend, made to respect the budget: a run stopped by the
+// One simplification run with the chosen backend, welded (weldedSurface; the proxy the search keeps is
+// finished by the builder), made to respect the budget: a run stopped by the
 // tolerance above the budget is redone without the tolerance, and as a last resort with the sloppy
 // simplifier.
 Result<Candidate> simplifyOnce(ProxyBackend backend, const Mesh& welded, const Mesh& meshoptInput,
@@ -82,18 +83,18 @@ Result<Candidate> simplifyOnce(ProxyBackend backend, const Mesh& welded, const M
     };
     Result<Mesh> m = run(tolerance);
     if (!m) return fail(m.error());
-    c.mesh = finishProxy(m.value(), s);
+    c.mesh = weldedSurface(m.value());
     if (budget > 0 && c.mesh.triangleCount() > budget) {
         c.budgetLimited = true;
         m = run(std::numeric_limits<double>::infinity());
         if (!m) return fail(m.error());
-        c.mesh = finishProxy(m.value(), s);
+        c.mesh = weldedSurface(m.value());
     }
     if (budget > 0 && c.mesh.triangleCount() > budget) {
         notes.push_back(std::string(proxyBackendName(backend)) + " stopped at " +
                         std::to_string(c.mesh.triangleCount()) + " triangles, above the budget of " +
                         std::to_string(budget) + ": sloppy simplification used");
-        c.mesh = finishProxy(detail::simplifySloppy(welded, budget), s);
+        c.mesh = weldedSurface(detail::simplifySloppy(welded, budget));
     }
     if (budget > 0 && c.mesh.triangleCount() > budget)
         return fail("no proxy within the budget of " + std::to_string(budget) + " triangles could be made (" +

@@ -26,7 +26,7 @@ HausdorffSettings certifyingSettings(double tolerance, double diagonal, float ma
 
 // A run of the search made a proxy: its mesh, how it was made, and its certificate once made.
 struct Candidate {
-    Mesh mesh;
+    Mesh mesh; // welded: positions and indices (finishProxy makes the kept one a proxy)
     ProxyBackend backend = ProxyBackend::None;
     bool budgetLimited = false; // the budget, not the tolerance, stopped simplification
     double target = 0.0;        // the backend's tolerance for this run (absolute)
