@@ -681,14 +681,16 @@ Result<HausdorffPair> boundBothWays(const HausdorffSurface& a, const HausdorffSu
     return HausdorffPair{ab.result(), ba.result()};
 }
 
-Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSurface& to,
-                                 size_t maxTriangles, double stopAbove, const ProgressCallback& progress) {
-    const Impl& a = from.impl();
-    const Impl& b = to.impl();
-    if (a.triangles.empty()) return 0.0;
+namespace {
+
+// sampledLowerBound over `count` triangles of `from`, whose corners corner(i, k) gives (k = 0, 1, 2).
+template <class Corner>
+Result<double> sampledFrom(size_t count, Corner&& corner, const Impl& b, size_t maxTriangles,
+                           double stopAbove, const ProgressCallback& progress) {
+    if (count == 0) return 0.0;
     if (b.triangles.empty()) return fail("the target mesh has no surface (no triangle of non-zero area)");
-    const size_t stride = std::max<size_t>(1, a.triangles.size() / std::max<size_t>(maxTriangles, 1));
-    const size_t count = (a.triangles.size() + stride - 1) / stride;
+    const size_t stride = std::max<size_t>(1, count / std::max<size_t>(maxTriangles, 1));
+    const size_t sampled = (count + stride - 1) / stride;
     const unsigned workers = detail::workerCount();
     std::vector<double> worst(workers, 0.0);
     std::atomic<bool> above{false};
@@ -702,11 +704,10 @@ Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSu
     };
     auto report = [&](double f) { return !progress || progress(float(f), "measure"); };
     const bool finished = detail::parallelChunks(
-        count, 256, workers,
+        sampled, 256, workers,
         [&](size_t begin, size_t end, unsigned w) {
             for (size_t i = begin; i < end && !above.load(std::memory_order_relaxed); ++i) {
-                const std::array<uint32_t, 3>& t = a.triangles[i * stride];
-                const glm::dvec3 p[3] = {a.positions[t[0]], a.positions[t[1]], a.positions[t[2]]};
+                const glm::dvec3 p[3] = {corner(i * stride, 0), corner(i * stride, 1), corner(i * stride, 2)};
                 for (const glm::dvec3& q : {(p[0] + p[1] + p[2]) / 3.0, 0.5 * (p[0] + p[1]),
                                             0.5 * (p[1] + p[2]), 0.5 * (p[2] + p[0])})
                     raise(worst[w], q);
@@ -716,6 +717,23 @@ Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSu
         report, &above);
     if (!finished) return fail("cancelled");
     return *std::max_element(worst.begin(), worst.end());
+}
+
+} // namespace
+
+Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSurface& to,
+                                 size_t maxTriangles, double stopAbove, const ProgressCallback& progress) {
+    const Impl& a = from.impl();
+    auto corner = [&a](size_t i, int k) { return a.positions[a.triangles[i][size_t(k)]]; };
+    return sampledFrom(a.triangles.size(), corner, to.impl(), maxTriangles, stopAbove, progress);
+}
+
+Result<double> sampledLowerBound(const Mesh& from, const HausdorffSurface& to, size_t maxTriangles,
+                                 double stopAbove, const ProgressCallback& progress) {
+    if (Status st = detail::checkTriangles(from); !st) return fail(st.error());
+    const std::vector<uint32_t> surface = detail::surfaceTriangles(from);
+    auto corner = [&](size_t i, int k) { return detail::corner(from, surface[i], k); };
+    return sampledFrom(surface.size(), corner, to.impl(), maxTriangles, stopAbove, progress);
 }
 
 Result<HausdorffResult> boundHausdorff(const HausdorffSurface& a, const HausdorffSurface& b,

@@ -202,11 +202,11 @@ Status judgeQuickly(Candidate& c, const HausdorffSurface& render, double toleran
                     const ProgressCallback& progress) {
     measured = std::numeric_limits<double>::infinity();
     if (c.mesh.indices.empty()) return {};
-    if (Status st = prepare(c); !st) return st;
-    Result<double> p2r = sampledLowerBound(*c.surface, render, kSampledProxyTriangles, tolerance, progress);
+    Result<double> p2r = sampledLowerBound(c.mesh, render, kSampledProxyTriangles, tolerance, progress);
     if (!p2r) return fail(p2r.error());
     measured = p2r.value();
     if (measured > tolerance) return {};
+    if (Status st = prepare(c); !st) return st;
     Result<double> r2p = sampledLowerBound(render, *c.surface, kSampledRenderTriangles, tolerance, progress);
     if (!r2p) return fail(r2p.error());
     measured = std::max(measured, r2p.value());

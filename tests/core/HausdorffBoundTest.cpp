@@ -300,6 +300,30 @@ TEST(HausdorffBound, SampledLowerBoundStaysUnderTheCertifiedBound) {
     EXPECT_THAT(sampledLowerBound(p, surface(Mesh{}), 10, inf).error(), HasSubstr("no surface"));
 }
 
+// A mesh not yet prepared for the certifier is sampled at the same points as its prepared surface
+// wherever every triangle is sampled (the builder judges a run before it prepares it), and a bad one
+// is refused.
+TEST(HausdorffBound, SampledLowerBoundFromAMeshEqualsTheOneFromItsSurface) {
+    SPATTER_REQUIRE_SHARED(path, "meshes/fandisk.obj");
+    Result<Scene> scene = loadScene(path);
+    ASSERT_TRUE(scene) << scene.error();
+    const Mesh& render = *scene->objects.at(0).mesh;
+    Mesh proxy = proxyOf(render, 0.01f);
+    // The farthest point: the last triangle's last corner, lifted off the surface.
+    proxy.positions[proxy.indices.back()] += glm::vec3(0.0f, 0.0f, 0.05f * render.bounds().diagonal());
+    const HausdorffSurface r = surface(render), p = surface(proxy);
+    const double inf = std::numeric_limits<double>::infinity();
+    Result<double> fromSurface = sampledLowerBound(p, r, 100000, inf);
+    Result<double> fromMesh = sampledLowerBound(proxy, r, 100000, inf);
+    ASSERT_TRUE(fromSurface && fromMesh) << fromMesh.error();
+    EXPECT_GT(fromMesh.value(), 0.01 * double(render.bounds().diagonal()));
+    EXPECT_EQ(fromMesh.value(), fromSurface.value());
+    Mesh broken = proxy;
+    broken.indices.back() = uint32_t(broken.positions.size());
+    EXPECT_THAT(sampledLowerBound(broken, r, 100000, inf).error(), HasSubstr("past the vertex count"));
+    EXPECT_EQ(sampledLowerBound(Mesh{}, r, 10, inf).value(), 0.0);
+}
+
 // A coarse square over a fine grid in its plane: the distance is 0 everywhere, and pieces across the
 // grid's edges are bounded (by the two triangles on either side, or laid over the grid) instead of
 // being cut down to the tolerance along every edge.

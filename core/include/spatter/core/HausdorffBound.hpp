@@ -133,6 +133,11 @@ Result<HausdorffPair> boundBothWays(const HausdorffSurface& a, const HausdorffSu
 Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSurface& to,
                                  size_t maxTriangles, double stopAbove,
                                  const ProgressCallback& progress = {});
+// The same from a mesh not prepared for the certifier (its surface triangles in the mesh's order, where
+// the prepared surface strides over its hierarchy's order: the same samples wherever all triangles
+// are sampled). Fails also like checkTriangles on a bad index or a non-finite position.
+Result<double> sampledLowerBound(const Mesh& from, const HausdorffSurface& to, size_t maxTriangles,
+                                 double stopAbove, const ProgressCallback& progress = {});
 
 // Both directions (a to b first, its lower bound then carried into b to a): lower and upper are the
 // two-sided ones; `exceeded` as soon as either direction exceeds. Fails like boundOneSided, and when
