@@ -118,6 +118,11 @@ void finishResult(Proxy& p, const Clock::time_point& start) {
     p.seconds = std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// The cache key, where there is a cache (the key hashes the whole render mesh).
+uint64_t cacheKey(const Mesh& render, const ProxySettings& s, const Mesh* authoredCollider) {
+    return s.cacheDirectory.empty() ? 0 : proxyCacheKey(render, s, authoredCollider);
+}
+
 // Cache lookup: the proxy on a hit; nothing on a miss (a corrupt entry adds a note).
 std::optional<Proxy> lookUp(const ProxySettings& s, uint64_t key, const ProgressCallback& progress,
                             std::vector<std::string>& notes) {
@@ -167,7 +172,7 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
     proxy.inputTriangles = inputTriangles;
 
     if (authoredCollider) {
-        const uint64_t key = proxyCacheKey(render, s, authoredCollider);
+        const uint64_t key = cacheKey(render, s, authoredCollider);
         if (std::optional<Proxy> hit = lookUp(s, key, progress, proxy.notes)) {
             hit->notes = std::move(proxy.notes);
             finishResult(*hit, start);
@@ -207,7 +212,7 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
         return proxy;
     }
 
-    const uint64_t key = proxyCacheKey(render, s, nullptr);
+    const uint64_t key = cacheKey(render, s, nullptr);
     if (std::optional<Proxy> hit = lookUp(s, key, progress, proxy.notes)) {
         hit->notes = std::move(proxy.notes);
         finishResult(*hit, start);
