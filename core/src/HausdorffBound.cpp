@@ -111,8 +111,8 @@ uint32_t splitCentroids(std::vector<Centroid>::iterator first, std::vector<Centr
     const auto below = [axis, middle](const Centroid& a) { return a.c[axis] < middle; };
     const uint32_t count = uint32_t(last - first);
     const uint32_t split = uint32_t(std::partition(first, last, below) - first);
-    if (split >= count / kLeastSplit && count - split >= count / kLeastSplit && split > 0 && split < count)
-        return split;
+    const uint32_t least = std::max(1u, count / kLeastSplit);
+    if (split >= least && count - split >= least) return split;
     std::nth_element(first, first + count / 2, last, [axis](const Centroid& a, const Centroid& b) {
         return a.c[axis] != b.c[axis] ? a.c[axis] < b.c[axis] : a.triangle < b.triangle;
     });

@@ -245,7 +245,7 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
         proxy.source = ProxySource::OwnMesh;
     } else {
         Candidate& best = outcome->best.value();
-        proxy.mesh = detail::finishProxy(best.mesh, s);
+        proxy.mesh = detail::finishProxy(std::move(best.mesh), s);
         proxy.source = ProxySource::Simplified;
         proxy.backend = best.backend;
         takeBound(proxy, best, tolerance);

@@ -134,13 +134,12 @@ void splitCreases(Mesh& m, float angleDegrees) {
     }
 }
 
-// The mesh a backend returned, made into a proxy: welded, degenerate triangles dropped, creases split
-// (so that normals stay crisp along sharp edges), normals computed.
-Mesh finishProxy(const Mesh& simplified, const ProxySettings& s) {
-    Mesh out = weldedSurface(simplified);
-    splitCreases(out, s.featureAngleDegrees);
-    computeNormals(out);
-    return out;
+// A welded run made into a proxy: creases split (so that normals stay crisp along sharp edges),
+// normals computed.
+Mesh finishProxy(Mesh welded, const ProxySettings& s) {
+    splitCreases(welded, s.featureAngleDegrees);
+    computeNormals(welded);
+    return welded;
 }
 
 } // namespace spatter::detail

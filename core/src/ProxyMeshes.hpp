@@ -22,8 +22,8 @@ Mesh weldedSurface(const Mesh& in);
 // seams (collapsible only along themselves).
 void splitCreases(Mesh& m, float angleDegrees);
 
-// The mesh a backend returned, made into a proxy: welded, degenerate triangles dropped, creases split
-// (so that normals stay crisp along sharp edges), normals computed.
-Mesh finishProxy(const Mesh& simplified, const ProxySettings& s);
+// A run of the search, welded (weldedSurface), made into a proxy: creases split (so that normals stay
+// crisp along sharp edges), normals computed.
+Mesh finishProxy(Mesh welded, const ProxySettings& s);
 
 } // namespace spatter::detail
