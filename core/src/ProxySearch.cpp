@@ -50,6 +50,12 @@ struct CoarseLevel {
     double fraction;
 };
 constexpr CoarseLevel kCoarseLevels[] = {{100'000, 0.05}, {5'000, 0.2}};
+// A run above the coarsest run judged within starts from that run's mesh instead (creases split
+// again) where that run measured at most kCascadeRoom of the tolerance: meshoptimizer then measures
+// its error from that mesh, not from the render mesh, and often goes further at the same certified
+// distance. The two distances add up, so a base with less room than this mostly fails, and a run
+// from a base that fails is redone from the render mesh.
+constexpr double kCascadeRoom = 0.65;
 // A proxy that misses the tolerance gets a sharp bound with this many times the certification margin:
 // its h only sizes decal boxes, and a tighter one costs many more queries.
 constexpr double kMissedMarginScale = 4.0;
@@ -243,16 +249,13 @@ double certifiedSampled(const std::vector<Candidate>& accepted, double tolerance
     return largest;
 }
 
-// `accepted`: the runs judged within so far, the coarsest last. A coarser target that keeps as many
-// triangles as that one gains nothing over it (mostly it is the same proxy: meshoptimizer's collapses
-// run in order of error) and is not judged.
-Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
-                           const std::vector<Candidate>& accepted, Witnesses& witnesses) {
-    const Mesh* input = &k.meshoptInput;
-    for (const CoarseInput& level : k.coarse)
-        if (target >= level.target) input = &level.mesh;
+// A run from `input` at `target`, judged. `accepted`: the runs judged within so far, the coarsest
+// last. A coarser target that keeps as many triangles as that one gains nothing over it (mostly it is
+// the same proxy: meshoptimizer's collapses run in order of error) and is not judged.
+Result<Judged> runAndJudgeFrom(const SearchContext& k, const Mesh& input, double target, Judge judge,
+                               const std::vector<Candidate>& accepted, Witnesses& witnesses) {
     Result<Candidate> c =
-        simplifyOnce(k.backend, k.welded, *input, target, k.settings, k.progress.stage(0.0, 0.2), k.notes);
+        simplifyOnce(k.backend, k.welded, input, target, k.settings, k.progress.stage(0.0, 0.2), k.notes);
     if (!c) return fail(c.error());
     Judged j;
     j.candidate = std::move(c).value();
@@ -282,6 +285,32 @@ Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
     j.measured = j.candidate.lower();
     j.within = j.candidate.within(k.tolerance);
     return j;
+}
+
+// The run to start a run at `target` from (kCascadeRoom), or none.
+const Candidate* cascadeBase(const SearchContext& k, double target, const std::vector<Candidate>& accepted) {
+    if (k.backend != ProxyBackend::MeshOpt || accepted.empty()) return nullptr;
+    const Candidate& base = accepted.back();
+    const double measured = base.certified ? base.lower() : base.sampled;
+    const bool room = measured <= kCascadeRoom * k.tolerance;
+    return room && target > base.target && !base.mesh.indices.empty() ? &base : nullptr;
+}
+
+// A run of the search at `target`: from the cascade's base where there is one, and where that run is
+// not within, from the render mesh (or the coarsest pre-simplified input at most `target`).
+Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
+                           const std::vector<Candidate>& accepted, Witnesses& witnesses) {
+    if (const Candidate* base = cascadeBase(k, target, accepted)) {
+        Mesh input = base->mesh;
+        if (k.settings.keepSharpFeatures) splitCreases(input, k.settings.featureAngleDegrees);
+        Result<Judged> j = runAndJudgeFrom(k, input, target, judge, accepted, witnesses);
+        if (j) j->candidate.resultError = target; // meshoptimizer's error is from the base, not the render
+        if (!j || j->within || j->repeated) return j;
+    }
+    const Mesh* input = &k.meshoptInput;
+    for (const CoarseInput& level : k.coarse)
+        if (target >= level.target) input = &level.mesh;
+    return runAndJudgeFrom(k, *input, target, judge, accepted, witnesses);
 }
 
 // Bisects the target from `target` within `bracket` until it closes or the runs are spent. Candidates

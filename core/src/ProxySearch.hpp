@@ -30,8 +30,9 @@ struct Candidate {
     ProxyBackend backend = ProxyBackend::None;
     bool budgetLimited = false; // the budget, not the tolerance, stopped simplification
     double target = 0.0;        // the backend's tolerance for this run (absolute)
-    // meshoptimizer: the error it reports for the result (absolute); its collapses run in order of
-    // error, so a target between this and `target` gives the same mesh. For OpenMesh: `target`.
+    // meshoptimizer from the render mesh or a pre-simplified copy: the error it reports for the result
+    // (absolute); its collapses run in order of error, so a target between this and `target` gives the
+    // same mesh from that input. Otherwise (OpenMesh, or a run from an earlier run): `target`.
     double resultError = 0.0;
     // The mesh prepared for the certifier, made once for the judgement and the certificate.
     std::shared_ptr<const HausdorffSurface> surface;

@@ -1,5 +1,6 @@
 #include "spatter/core/ProxyBuilder.hpp"
 
+#include "spatter/core/GalleryScene.hpp"
 #include "spatter/core/ProxyCache.hpp"
 #include "spatter/core/Random.hpp"
 #include "spatter/core/SceneLoader.hpp"
@@ -409,6 +410,24 @@ TEST(ProxyBuilder, LargeMeshIsSearchedFromACoarserCopyAndCertifiedAgainstTheRend
     ASSERT_TRUE(again);
     EXPECT_EQ(again->mesh.indices, p->mesh.indices);
     EXPECT_EQ(again->errorBound, p->errorBound);
+}
+
+// A run above the coarsest one judged within starts from that run's mesh where it left room under the
+// tolerance: the gallery's crate, a bevelled cube with flush boards, comes out a box at 2% of its
+// diagonal, where runs from the render mesh alone stop at about 50 triangles.
+TEST(ProxyBuilder, SearchContinuesFromARunWithRoomLeftUnderTheTolerance) {
+    const Scene gallery = makeGalleryScene();
+    const auto crate = std::find_if(gallery.objects.begin(), gallery.objects.end(),
+                                    [](const SceneObject& o) { return o.name == "crate_0"; });
+    ASSERT_NE(crate, gallery.objects.end());
+    const Mesh& render = *crate->mesh;
+    Result<Proxy> p = buildProxy(render, settingsFor(ProxyBackend::MeshOpt, 0.02f));
+    ASSERT_TRUE(p) << p.error();
+    expectValidProxy(p.value());
+    EXPECT_TRUE(p->toleranceMet) << "h " << p->errorBound << " tolerance " << p->tolerance;
+    EXPECT_LE(p->proxyTriangles, 16u);
+    EXPECT_GE(p->errorBound,
+              std::max(denseOneSided(p->mesh, render, 50000, 41), denseOneSided(render, p->mesh, 50000, 42)));
 }
 
 TEST(ProxyBuilder, FandiskAtHalfAPercentWithBothBackends) {
