@@ -18,9 +18,10 @@
 //
 // The search. meshoptimizer (or OpenMesh, when asked for) runs at a target error, bisected between a
 // candidate within the tolerance and one that is not, until the coarsest target within is known
-// within 10% or maxAttempts runs are spent. Runs are judged by a sampled lower bound of their
-// distance (a run close to the tolerance by the certificate at once); the candidates judged within are
-// then certified, coarsest first, both directions at once with the early answer to "is h <=
+// within 10% or maxAttempts runs are spent (a run at a larger target than the coarsest run judged
+// within starts from that run's mesh where it left room under the tolerance). Runs are judged by a sampled
+// lower bound of their distance (a run close to the tolerance by the certificate at once); the candidates
+// judged within are then certified, coarsest first, both directions at once with the early answer to "is h <=
 // tolerance?", and the first certified is the proxy, unless certified runs between it and a coarser
 // candidate that failed give fewer triangles (see docs/PROXIES.md, "The search").
 // Its h is at most max(largest measured distance + marginFraction * tolerance, tolerance): the search
