@@ -223,11 +223,7 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
     PendingSurface renderSurface(render);
     const Mesh welded = detail::weldedSurface(render);
     detail::SearchProgress searchProgress(progress);
-    Mesh meshoptInput;
-    if (backend == ProxyBackend::MeshOpt) {
-        meshoptInput = welded;
-        if (s.keepSharpFeatures) detail::splitCreases(meshoptInput, s.featureAngleDegrees);
-    }
+    const Mesh meshoptInput = backend == ProxyBackend::MeshOpt ? detail::meshoptInputOf(welded, s) : Mesh();
     // The certificate still measures every candidate against the render mesh.
     const std::vector<CoarseInput> coarse =
         backend == ProxyBackend::MeshOpt && s.maxTriangles == 0

@@ -134,6 +134,11 @@ void splitCreases(Mesh& m, float angleDegrees) {
     }
 }
 
+Mesh meshoptInputOf(Mesh welded, const ProxySettings& s) {
+    if (s.keepSharpFeatures) splitCreases(welded, s.featureAngleDegrees);
+    return welded;
+}
+
 // A welded run made into a proxy: creases split (so that normals stay crisp along sharp edges),
 // normals computed.
 Mesh finishProxy(Mesh welded, const ProxySettings& s) {

@@ -22,6 +22,10 @@ Mesh weldedSurface(const Mesh& in);
 // seams (collapsible only along themselves).
 void splitCreases(Mesh& m, float angleDegrees);
 
+// What meshoptimizer simplifies: a welded mesh (the render mesh or a run of the search) with its
+// creases split where `s` keeps sharp features.
+Mesh meshoptInputOf(Mesh welded, const ProxySettings& s);
+
 // A run of the search, welded (weldedSurface), made into a proxy: creases split (so that normals stay
 // crisp along sharp edges), normals computed.
 Mesh finishProxy(Mesh welded, const ProxySettings& s);

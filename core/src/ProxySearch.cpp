@@ -290,10 +290,9 @@ Result<Judged> runAndJudgeFrom(const SearchContext& k, const Mesh& input, double
 // The run to start a run at `target` from (kCascadeRoom), or none.
 const Candidate* cascadeBase(const SearchContext& k, double target, const std::vector<Candidate>& accepted) {
     if (k.backend != ProxyBackend::MeshOpt || accepted.empty()) return nullptr;
-    const Candidate& base = accepted.back();
+    const Candidate& base = accepted.back(); // judged within: never empty
     const double measured = base.certified ? base.lower() : base.sampled;
-    const bool room = measured <= kCascadeRoom * k.tolerance;
-    return room && target > base.target && !base.mesh.indices.empty() ? &base : nullptr;
+    return measured <= kCascadeRoom * k.tolerance && target > base.target ? &base : nullptr;
 }
 
 // A run of the search at `target`: from the cascade's base where there is one, and where that run is
@@ -301,9 +300,8 @@ const Candidate* cascadeBase(const SearchContext& k, double target, const std::v
 Result<Judged> runAndJudge(const SearchContext& k, double target, Judge judge,
                            const std::vector<Candidate>& accepted, Witnesses& witnesses) {
     if (const Candidate* base = cascadeBase(k, target, accepted)) {
-        Mesh input = base->mesh;
-        if (k.settings.keepSharpFeatures) splitCreases(input, k.settings.featureAngleDegrees);
-        Result<Judged> j = runAndJudgeFrom(k, input, target, judge, accepted, witnesses);
+        Result<Judged> j =
+            runAndJudgeFrom(k, meshoptInputOf(base->mesh, k.settings), target, judge, accepted, witnesses);
         if (j) j->candidate.resultError = target; // meshoptimizer's error is from the base, not the render
         if (!j || j->within || j->repeated) return j;
     }
