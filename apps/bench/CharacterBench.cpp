@@ -258,7 +258,10 @@ int runCharactersCommand(int argc, char** argv) {
                 "decal pass ms", "frame ms", "(no decals)"},
                table);
     if (parsed->has("--json")) {
-        Json j{{"command", kCharactersCommand}, {"machine", toJson(machine)}, {"rows", rows}};
+        Json j{{"command", kCharactersCommand},
+               {"machine", toJson(machine)},
+               {"gl_renderer", gl->info().renderer},
+               {"rows", rows}};
         if (Status s = writeJson(j, parsed->value("--json")); !s) {
             std::fprintf(stderr, "spatter-bench characters: %s\n", s.error().c_str());
             return 1;

@@ -68,7 +68,7 @@ Target: at most 160 bytes per decal for 1,000,000 decals, decal system, renderer
 MESH        as in `tradeoff` (default stanford-bunny.obj when the shared data is there, else
             builtin:gallery)
 --decals N  decals (default 1000000)        --no-gpu  no OpenGL context (renderer rows skipped)
---quick     20,000 decals, builtin:gallery at detail 0 unless MESH is given (smoke test)
+--quick     20,000 decals, a 64 x 128 UV sphere unless MESH is given (smoke test)
 --json FILE {"cpu_bytes_per_decal", "gpu_bytes_per_decal", "renderer_cpu_bytes_per_decal",
             "total_mb_per_million", "objects": {...}, ...}
 )";

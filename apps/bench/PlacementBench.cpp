@@ -117,7 +117,7 @@ int runPlacementCommand(int argc, char** argv) {
                                     {"--quick", "--help", "-h"});
     if (!parsed) return usageError(kPlacementCommand, parsed.error());
     const Args& args = parsed.value();
-    if (args.has("--help")) {
+    if (args.has("--help") || args.has("-h")) {
         std::cout << kPlacementUsage;
         return 0;
     }

@@ -79,7 +79,8 @@ renderer's decal pass.
                   after the culling, the binning, the drawing and the read-back of the counts; each
                   waits for the work before it, so the stages add up to a little more than decal ms)
                   and print them (JSON rows: "decal_stages_ms": {"cull", "bin", "draw", "read_back"})
---quick           720p and 1080p, at most 10,000 decals, 2 frames, 3 s per row (smoke test)
+--quick           720p and 1080p, at most 10,000 decals in view (100,000 in the world for the
+                  occlusion group), 2 frames, 3 s per row (smoke test)
 --json FILE       {"rows": [{"group", "resolution", "world", "visible", "decal_px", "feature",
                   "decal_ms", "ns_per_visible_decal", "projector_ms", "host_pass_ms",
                   "baseline_ms", ...}], "targets": {...}, "gl_renderer", ...}

@@ -16,9 +16,10 @@ With a display it opens a window (first-person controls below); without one, or 
 it runs a scripted, seeded session and writes DIR/gallery.png and DIR/gallery.json.
 
 options:
-  --scene FILE        glTF/GLB (its dynamic nodes are the targets, sliding on rails; in a scene with
-                      an animation its nodes follow the first animation instead) or builtin:gallery
-                      (default; with a skinned dummy whose arms swing, generated like the rest)
+  --scene FILE        a .gltf, .glb, .obj, .ply, .off or .stl file (a glTF scene's dynamic nodes
+                      are the targets, sliding on rails; in a scene with an animation its nodes
+                      follow the first animation instead) or builtin:gallery (default; with a
+                      skinned dummy whose arms swing, generated like the rest)
   --headless          run the scripted session even when a display is present
   --out DIR           output folder of the headless run (default gallery-out)
   --shots N           shots of the headless run (default 160)
@@ -42,6 +43,7 @@ window controls:
   right button        paint splat (large, wraps around corners)
   F                   scorch mark
   F5, F9              quick-save, quick-load the decals (the --save file)
+  R                   rebuild the proxies at the HUD's tolerance (clears the decals)
   Esc                 quit
 )";
 

@@ -34,7 +34,8 @@ collision mesh it uses: an earlier object placed with the same mesh and authored
 own index.
 
 SCENE is builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file.
-On a scene that cannot be loaded: a one-line error on stderr and exit code 1.
+On a scene that cannot be loaded or traced: a one-line error on stderr and exit code 1; on bad
+usage, exit code 2.
 )";
 
 int main(int argc, char** argv) {

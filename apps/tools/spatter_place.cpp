@@ -57,17 +57,20 @@ Records:
   {"ray":2,"status":"rejected","reason":"..."}
 status is placed, missed (the ray hits no decal receiver) or rejected (a line that cannot be
 parsed, an invalid ray, a grazing hit, ...); non-placed records carry only ray, status and reason.
-position is the decal centre in world space (the hit on the collision mesh); normal, tangent and
+position is the decal centre in world space (the hit on the collision mesh; on a skinned or morphed
+object the drawn surface under it); normal, tangent and
 bitangent are the unit axes of its right-handed frame; the decal box is |x| <= w/2, |y| <= h/2,
 |z| <= half_depth in that frame, its depth lines along projection (the unit axis the texture is
 projected along: the reversed ray, turned to 85 degrees from the normal at most, so the decal lands
 where the ray meets the drawn surface; the normal for a type projected along it). object_id is the object's 8-bit decal ID (0 for static
 geometry), decal_id the decal's 32-bit random ID. proxy_error_bound is the collision mesh's error
 bound h in world units (the render surface lies within h of the collision surface);
-half_depth = h + 0.25 * max(w, h).
+half_depth = s * h + 0.25 * max(w, h), where s is 1, or up to 2 for a decal turned to face the
+drawn surface under the hit (its box reaches farther along that normal); on a skinned or morphed
+object, where the decal lies on the drawn surface, half_depth = 0.25 * max(w, h).
 
 Options:
-  --seed N          seed of the decal IDs and rotations (default 1)
+  --seed N          seed of the decal IDs, rotations and objects' decal IDs (default 1)
   --size W[,H]      decal width and height in world units (H defaults to W; default 2% of the
                     scene's bounding diagonal, so that decals fit a model of centimetres and one
                     of a hundred metres alike)
@@ -77,7 +80,9 @@ Options:
                     default), auto (the proxy builder's defaults: h target 0.5% of each object's
                     bounding diagonal), or a tolerance TOL for h, absolute (0.01) or relative to
                     each object's bounding diagonal (1%). With auto and TOL an object's authored
-                    collider, where it has one, is its proxy; h is certified by the proxy builder.
+                    collider, where it has one, is its proxy (not on a skinned or morphed object,
+                    whose proxy holds its bound over the poses); h is certified by the proxy
+                    builder.
                     On a terminal, stderr shows the progress of the builds
   --cache DIR       with auto and TOL: reuse proxies stored in DIR and store new ones there, keyed
                     by a hash of the object's mesh, its collider and the proxy settings, and for
@@ -106,8 +111,8 @@ its place) is left out (rays pass through it)
 with a warning on stderr that names it and says why; the rest of the scene is traced as usual.
 
 No area limits apply: every ray gets its own decal. Exit code 0 when the scene loads (whatever
-happens to the rays), 1 when it cannot be loaded (or a proxy cannot be built), 2 on bad options or
-unreadable files.
+happens to the rays), 1 when it cannot be loaded or a proxy, the collision world or the decal system
+cannot be built, 2 on bad options or on files that cannot be read or written.
 )";
 
 // The double nearest to the shortest decimal that reads back as `f`, so that floats print briefly.

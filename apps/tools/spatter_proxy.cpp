@@ -28,15 +28,16 @@ Builds the collision proxy of MESH and writes it to PROXY.obj (positions, normal
   --tolerance T     target for the error bound h, in world units; T% is a percentage of the
                     diagonal of the merged mesh's bounding box (0.5% = 0.005 x diagonal).
   --backend B       openmesh (OpenMesh Decimater), meshopt (meshoptimizer, the fast path) or
-                    auto (the default: picks by size and tolerance).
+                    auto (the default: meshoptimizer, fast enough for the search's runs).
   --report FILE     writes {"input_triangles", "proxy_triangles", "backend", "tolerance",
                     "error_bound", "proxy_to_render_max", "render_to_proxy_max", "seconds",
                     "cached"}: tolerance and distances in world units, backend "none" when the
-                    mesh is its own proxy (below 512 triangles, or nothing to remove).
+                    mesh is its own proxy (a tolerance of 0, below 512 triangles within the
+                    budget, or nothing to remove).
   --cache DIR       reuses or stores the proxy in DIR, keyed by a hash of the mesh and the
                     settings. Without it nothing is cached.
   --max-triangles N largest number of proxy triangles (0, the default: no limit).
-  --quiet           no progress on stderr.
+  --quiet           no progress, notes or summary on stderr (warnings still).
 
 h is never below the true two-sided Hausdorff distance between the proxy and the merged mesh.
 Progress and notes go to stderr. Exit code 0 on success, 1 on an error (one line on stderr),

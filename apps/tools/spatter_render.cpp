@@ -42,13 +42,16 @@ and writes one view as a PNG.
 Decals:
   --decals FILE   spatter-place output (JSON Lines): every "placed" record becomes a decal on the
                   object it names ("object"), with its world-space centre ("position"), frame
-                  ("normal", "tangent", "bitangent"), "size", "half_depth", "max_angle_deg" and
-                  "object_id" (the object's 8-bit decal ID). Other records are ignored.
+                  ("normal", "tangent", "bitangent"), "size", "half_depth", "max_angle_deg",
+                  "object_id" (the object's 8-bit decal ID), "decal_id" and "projection" (the axis
+                  its texture is projected along; the normal where it is absent). Other records
+                  are ignored.
   --rays FILE     one ray per line, "ox oy oz dx dy dz" ('#' starts a comment), placed here through
-                  the decal system on the render meshes, with --decal-size W[,H] in world
-                  units (default 2% of the scene's bounding diagonal, so that decals fit a
-                  model of centimetres and one of a hundred metres alike),
-                  --max-angle (default 80) and --seed (default 1).
+                  the decal system on the render meshes (an object's authored collider where it
+                  has one), with --decal-size W[,H] in world units (default 2% of the scene's
+                  bounding diagonal, so that decals fit a model of centimetres and one of a
+                  hundred metres alike), --max-angle in (0, 90] (default 80) and --seed (the seed
+                  of the decal IDs, rotations and objects' decal IDs; default 1).
   --texture NAME  look of the decals: bullet_hole (default), blood, paint, scorch, or mixed (the
                   four in turn, decal by decal).
 
@@ -66,7 +69,8 @@ View:
                   the surface (stencil), instead of a flat texture
   --texture-space OBJECT[:SIZE]
                   draw the decals of the named object in texture space (rendered once into its own
-                  SIZE x SIZE decal texture through its UVs, default 512, in the pose drawn)
+                  SIZE x SIZE decal texture through its UVs, SIZE a power of two in [16, 4096],
+                  default 512, in the pose drawn)
                   instead of projecting them; repeatable. The object's UVs must not overlap and
                   must lie in [0, 1]: a mesh that breaks this is reported (first overlapping
                   triangles) and the tool exits with 1.
@@ -223,6 +227,8 @@ int main(int argc, char** argv) {
             if (colon != std::string::npos &&
                 (!parseFinite(v.substr(colon + 1), size) || size != std::floor(size) || size < 1.0))
                 return usageError("--texture-space needs OBJECT[:SIZE] with a whole SIZE");
+            if (size < 16.0 || size > 4096.0 || (int(size) & (int(size) - 1)) != 0)
+                return usageError("--texture-space needs a SIZE that is a power of two in [16, 4096]");
             textureSpace.push_back({v.substr(0, colon), int(size)});
         } else if (a == "--texture") {
             if (!value()) return usageError("--texture needs bullet_hole, blood, paint, scorch or mixed");
@@ -235,9 +241,11 @@ int main(int argc, char** argv) {
                 (p.size() == 2 && !parseFinite(p[1], h)))
                 return usageError("--decal-size needs W or W,H");
             decalSize = glm::dvec2(w, p.size() == 1 ? w : h);
+            if (!(decalSize->x > 0.0 && decalSize->y > 0.0))
+                return usageError("--decal-size needs W and H above 0");
         } else if (a == "--max-angle") {
-            if (!value() || !parseFinite(v, maxAngle))
-                return usageError("--max-angle needs a number of degrees");
+            if (!value() || !parseFinite(v, maxAngle) || !(maxAngle > 0.0 && maxAngle <= 90.0))
+                return usageError("--max-angle needs a number of degrees in (0, 90]");
         } else if (a == "--seed") {
             char* end = nullptr;
             if (!value() || v.empty() || v[0] == '-')

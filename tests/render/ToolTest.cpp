@@ -164,6 +164,9 @@ TEST(SpatterRender, ReportsBadInputThroughItsExitCode) {
     EXPECT_EQ(runTool(wall + " --camera 'eye=0,0,1'"), 2);               // no target
     EXPECT_EQ(runTool(wall + " --decals a --rays b"), 2);                // both
     EXPECT_EQ(runTool(wall + " --frobnicate"), 2);                       // unknown option
+    EXPECT_EQ(runTool(wall + " --max-angle 95"), 2);                     // past (0, 90]
+    EXPECT_EQ(runTool(wall + " --decal-size 1,0"), 2);                   // no height
+    EXPECT_EQ(runTool(wall + " --texture-space wall:100"), 2);           // not a power of two
     EXPECT_EQ(runTool(dir + "/missing.obj --out " + dir + "/x.png"), 1); // no such scene
     {
         std::ofstream f(dir + "/bad.jsonl");

@@ -137,8 +137,9 @@ std::string usage(const std::string& program, const std::string& description,
   --decals FILE   spatter-place output (JSON Lines): every "placed" record becomes a decal on the
                   object it names
   --rays FILE     one ray per line, "ox oy oz dx dy dz" ('#' starts a comment), placed here through
-                  the decal system on the render meshes (decals of 2% of the scene's bounding
-                  diagonal within 80 degrees, seed 1)
+                  the decal system on the render meshes, or an object's authored collider where
+                  it has one (decals of 2% of the scene's bounding diagonal within 80 degrees,
+                  seed 1)
   --camera "eye=x,y,z;target=x,y,z;up=x,y,z;fov=DEG"
                   perspective camera; up defaults to 0,1,0 and fov (vertical, degrees) to 60.
                   Default: looking at the centre of the scene's bounds from the front, above.

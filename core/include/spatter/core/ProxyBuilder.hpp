@@ -54,7 +54,7 @@
 namespace spatter {
 
 enum class ProxyBackend : uint32_t {
-    Auto = 0,     // settings: pick by size and tolerance (see resolveProxyBackend)
+    Auto = 0,     // settings: meshoptimizer (see resolveProxyBackend)
     OpenMesh = 1, // OpenMesh Decimater: quadric priority, Hausdorff and normal-deviation constraints
     MeshOpt = 2,  // meshoptimizer's meshopt_simplify: the fast path
     None = 3,     // result only: nothing was simplified (own mesh or authored collider)
