@@ -141,9 +141,12 @@ bool parallelChunks(size_t count, size_t chunk, unsigned workers, Body&& body, R
     return !cancelled.load();
 }
 
+// The most threads a parallel step of the core uses.
+constexpr unsigned kMaxWorkers = 16;
+
 inline unsigned workerCount() {
     const unsigned hw = std::thread::hardware_concurrency();
-    return std::clamp(hw, 1u, 16u);
+    return std::clamp(hw, 1u, kMaxWorkers);
 }
 
 } // namespace spatter::detail

@@ -107,14 +107,22 @@ Result<std::optional<PlacedRecord>> parseRecord(const std::string& line) {
         return fail("a placed record needs \"object\": the name of a scene object");
     r.object = rec["object"].get<std::string>();
     if (Status s = readBox(rec, r.box); !s) return fail(s.error());
-    r.maxAngleDeg = number(rec, "max_angle_deg").value_or(r.maxAngleDeg);
+    if (rec.contains("max_angle_deg")) {
+        const std::optional<double> angle = number(rec, "max_angle_deg");
+        if (!angle || !(*angle > 0.0 && *angle <= 90.0))
+            return fail("\"max_angle_deg\" must be a number of degrees in (0, 90]");
+        r.maxAngleDeg = *angle;
+    }
     if (rec.contains("object_id")) {
         const std::optional<double> id = number(rec, "object_id");
         if (!id || *id < 0.0 || *id > 255.0) return fail("\"object_id\" must be a number in 0..255");
         r.objectId = uint8_t(*id);
     }
-    if (rec.contains("decal_id") && rec["decal_id"].is_number_unsigned())
+    if (rec.contains("decal_id")) {
+        if (!rec["decal_id"].is_number_unsigned() || rec["decal_id"].get<uint64_t>() > UINT32_MAX)
+            return fail("\"decal_id\" must be an integer in 0..4294967295");
         r.decalId = rec["decal_id"].get<uint32_t>();
+    }
     if (Status s = readPose(rec, r); !s) return fail(s.error());
     return std::optional<PlacedRecord>(std::move(r));
 }

@@ -1,5 +1,6 @@
 #include "spatter/core/HausdorffBound.hpp"
 
+#include "spatter/core/GalleryScene.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/Random.hpp"
 #include "spatter/core/SceneLoader.hpp"
@@ -187,6 +188,40 @@ TEST(HausdorffBound, BothWaysBoundsEachDirectionAndStopsOnEitherNo) {
     EXPECT_FALSE(boundBothWays(a, surface(degenerate), s));
 }
 
+// A proxy's bound is the same on any machine: the walk's subtrees do not follow the thread count.
+// The gallery's pillar at 1% against its proxy, certified at the tolerance and sharp.
+TEST(HausdorffBound, SameBoundOnAnyNumberOfThreads) {
+    const Scene gallery = makeGalleryScene();
+    const auto pillar = std::find_if(gallery.objects.begin(), gallery.objects.end(),
+                                     [](const SceneObject& o) { return o.name == "pillar_2"; });
+    ASSERT_NE(pillar, gallery.objects.end());
+    ProxySettings ps;
+    ps.tolerance = 0.01f;
+    const Result<Proxy> proxy = buildProxy(*pillar->mesh, ps);
+    ASSERT_TRUE(proxy);
+    const HausdorffSurface render = surface(*pillar->mesh), coarse = surface(proxy->mesh);
+    for (const double tolerance : {proxy->tolerance, std::numeric_limits<double>::infinity()}) {
+        HausdorffSettings s;
+        s.margin = 0.05 * proxy->tolerance;
+        s.tolerance = tolerance;
+        s.roomShare = 0.25;
+        std::vector<HausdorffPair> bounds;
+        for (const unsigned threads : {1u, 2u, 3u, 8u, 16u}) {
+            s.threads = threads;
+            const Result<HausdorffPair> both = boundBothWays(render, coarse, s);
+            ASSERT_TRUE(both) << both.error();
+            ASSERT_FALSE(both->ab.exceeded || both->ba.exceeded);
+            bounds.push_back(both.value());
+        }
+        for (const HausdorffPair& b : bounds) {
+            EXPECT_EQ(b.ab.upper, bounds[0].ab.upper) << "tolerance " << tolerance;
+            EXPECT_EQ(b.ba.upper, bounds[0].ba.upper) << "tolerance " << tolerance;
+            EXPECT_EQ(b.ab.lower, bounds[0].ab.lower);
+            EXPECT_EQ(b.ba.lower, bounds[0].ba.lower);
+        }
+    }
+}
+
 TEST(HausdorffBound, RejectsBadSettingsAndAOneSidedSurface) {
     const HausdorffSurface a = surface(square(0.0f, 1.0f));
     Mesh degenerate;
@@ -205,6 +240,9 @@ TEST(HausdorffBound, RejectsBadSettingsAndAOneSidedSurface) {
     s.minRoom = 0.0;
     EXPECT_THAT(boundOneSided(a, a, s).error(), HasSubstr("minRoom"));
     s.minRoom = 0.01;
+    s.threads = 17;
+    EXPECT_THAT(boundBothWays(a, a, s).error(), HasSubstr("threads 17"));
+    s.threads = 0;
     s.tolerance = std::numeric_limits<double>::infinity();
     EXPECT_THAT(boundHausdorff(a, empty, s).error(), HasSubstr("no surface"));
     Result<HausdorffResult> none = boundHausdorff(empty, empty, s);

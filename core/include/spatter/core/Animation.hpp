@@ -26,7 +26,8 @@ struct SceneNode {
     bool hasMatrix = false; // true: `matrix` is the local transform and no channel may target it
     glm::dmat4 matrix{1.0}; // the local transform when hasMatrix
     glm::dvec3 translation{0.0};
-    glm::dquat rotation{1.0, 0.0, 0.0, 0.0}; // (w, x, y, z), unit length
+    glm::dquat rotation{1.0, 0.0, 0.0, 0.0}; // (w, x, y, z), unit length (as glTF requires; used
+                                             // as given)
     glm::dvec3 scale{1.0};
     std::vector<double> weights; // rest morph weights, one per morph target of the node's mesh
 };
@@ -34,7 +35,8 @@ struct SceneNode {
 // Joints of a skin and the matrices that take the mesh from its bind space to each joint's space.
 struct Skin {
     std::string name;
-    std::vector<int> joints;                     // node indices, distinct
+    std::vector<int> joints;                     // node indices, distinct (as glTF requires; not
+                                                 // checked)
     std::vector<glm::dmat4> inverseBindMatrices; // one per joint (identity where the file has none)
 };
 
@@ -56,8 +58,10 @@ struct AnimationChannel {
 
 struct Animation {
     std::string name;
-    std::vector<AnimationChannel> channels; // at most one per node and path
-    double duration = 0.0;                  // the last key time of all channels
+    std::vector<AnimationChannel> channels; // at most one per node and path (as glTF requires; not
+                                            // checked: of two, the later wins)
+    double duration = 0.0;                  // the last key time of all channels (as the loader sets
+                                            // it; not checked)
 };
 
 // Everything that animates a scene. Empty for a scene without animations, skins or morph targets.

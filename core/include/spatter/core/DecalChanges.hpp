@@ -30,7 +30,8 @@ namespace spatter {
 
 enum class DecalChangeKind : uint8_t {
     Added,   // a new decal at `index`, which is the previous size (appended)
-    Changed, // the decal at `index` changed in place (its opacity, centre or frame)
+    Changed, // the decal at `index` changed in place (its opacity, centre, frame, size, depth or
+             // slant: re-read it whole)
     Removed, // the decal at `index` is gone; the last decal (at `from` = previous size - 1) moves into
              // `index` when index != from; the size shrinks by one
 };

@@ -31,8 +31,8 @@ enum class Projection : uint8_t {
 // the box within 11.5 half-depths of its centre along the plane.
 constexpr double kMaxSlantDeg = 85.0;
 
-// The slopes packed as two half floats (x in bits 0-15), each clamped to what kMaxSlantDeg allows and
-// a value that is not finite taken as 0.
+// The slopes packed as two half floats (x in bits 0-15), the pair scaled down to a length of at most
+// tan kMaxSlantDeg, and a pair with a value that is not finite taken as (0, 0).
 uint32_t packSlant(const glm::vec2& slopes);
 
 // The slopes of packed bits: (0, 0) for 0.

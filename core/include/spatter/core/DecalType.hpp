@@ -28,7 +28,9 @@ struct DecalType {
                                 // along (the reversed shot, for a decal along its shot)
     float lifetime = 0.0f;      // seconds; 0 = permanent
     float fadeOutTime = 1.0f;   // seconds of fading before a decal is removed (lifetime, eviction)
-    float halfDepth = 0.0f;     // override of the automatic half-depth; 0 = automatic
+    float halfDepth = 0.0f;     // least half-depth (world units): the automatic one (h plus
+                                // depthMargin times the size) where larger; 0 = automatic; not
+                                // used on skinned or morphed objects (laid on the drawn surface)
     bool onDynamic = true;      // may land on dynamic objects
     // The axis the texture is projected along (DecalProjection.hpp). Shot: a decal placed by spawn or
     // spawnBatch lands where its ray meets the drawn surface, even where that lies off the collision
@@ -50,7 +52,7 @@ struct DecalType {
     int priority = 0;
     // Volumetric: instead of the projected texture, a crater model is drawn behind a stencil hole in
     // the surface (Renderer.hpp), with the surface's material continued into it; the decal system
-    // clips it where the solid ends around the hit (Decal::clips).
+    // clips it where the solid ends around the hit (DecalSystem::craterClips).
     bool volumetric = false;
 };
 

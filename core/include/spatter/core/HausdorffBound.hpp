@@ -34,10 +34,12 @@
 // at most L + margin), so the refinement ends. When a measured distance exceeds the tolerance, the answer to
 // "is h <= tol?" is no, and the search stops there (`exceeded`).
 //
-// Work is split over the subtrees of the hierarchy on up to 16 threads; each subtree starts from the
-// same lower bound (the distances at a fixed stride of triangle centroids), so the result does not depend on
-// the thread count or on timing. A relative allowance of 1e-9 (of the bound and of the largest coordinate)
-// covers double rounding.
+// Work is split over a fixed number of subtrees of the hierarchy, walked on up to 16 threads; each subtree
+// starts from the same lower bound (the distances at a fixed stride of triangle centroids), so a result that
+// is not `exceeded` does not depend on the thread count or on timing: the same on every machine. (An
+// `exceeded` one stops at the first distance above the tolerance that some thread measures: its `lower` and
+// `farthest` may differ from run to run; the answer does not.) A relative allowance of 1e-9 (of the bound and
+// of the largest coordinate) covers double rounding.
 
 #include "spatter/core/Mesh.hpp"
 #include "spatter/core/MeshDistance.hpp"
@@ -76,8 +78,9 @@ private:
 };
 
 struct HausdorffSettings {
-    // The bound may exceed the largest measured distance by up to this (absolute, > 0): it trades
-    // the sharpness of the bound for speed.
+    // The bound may exceed the largest measured distance by up to this (absolute, > 0; there is no
+    // default, since it depends on the meshes' scale: the 0 left here is refused): it trades the
+    // sharpness of the bound for speed.
     double margin = 0.0;
     // Early answer: a bound at most this is accepted as it is, and a measured distance above it stops
     // the computation (exceeded). Infinity asks for the sharp bound only.
@@ -88,8 +91,11 @@ struct HausdorffSettings {
     // margin shrinks to this share of the room left under the tolerance, while that room is at least
     // `minRoom` of the tolerance, so that a distance under the tolerance is certified in one walk
     // instead of bounded above it (undecided). 0 keeps the margin as given.
-    double roomShare = 0.0;
-    double minRoom = 0.01;
+    double roomShare = 0.0; // in [0, 1)
+    double minRoom = 0.01;  // in (0, 1]
+    // Threads to walk on: 0 for the hardware's (at most 16), else 1 to 16. The result does not depend
+    // on it (see the top of this file).
+    unsigned threads = 0;
 };
 
 struct HausdorffResult {
@@ -108,8 +114,8 @@ struct HausdorffResult {
 
 // The one-sided distance from `from` to `to` (see the top of this file). 0 for a `from` without
 // surface. Fails when `from` has a surface and `to` has none, on a margin that is not finite and > 0,
-// on a negative or NaN tolerance, and on cancellation ("cancelled"); progress reports the stage
-// "measure".
+// on a negative or NaN tolerance, a roomShare, minRoom or thread count out of its range, and on
+// cancellation ("cancelled"); progress reports the stage "measure".
 Result<HausdorffResult> boundOneSided(const HausdorffSurface& from, const HausdorffSurface& to,
                                       const HausdorffSettings& settings,
                                       const ProgressCallback& progress = {});

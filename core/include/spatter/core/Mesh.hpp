@@ -30,8 +30,9 @@ struct Mesh {
     Bounds bounds() const; // bounds of the referenced and unreferenced positions alike
 };
 
-// Checks that the mesh can be used safely: index count a multiple of 3, every index below the vertex
-// count, every position finite, attribute arrays empty or sized like `positions`, submeshes inside
+// Checks that the mesh can be used safely: index count a multiple of 3, at most 2^32 vertices, every
+// index below the vertex count, every position finite, one finite normal per position (computeNormals
+// makes them), UVs and tangents empty or one per position, submeshes whole triangle ranges inside
 // `indices`. The error names the first problem found.
 Status validateMesh(const Mesh& mesh);
 

@@ -21,7 +21,7 @@
 // A, so the largest sampled distance is attained: measuredMax <= true distance <= bound.
 // A relative allowance of 1e-9 (of the bound and of the largest coordinate) covers double rounding.
 // When the pieces would need more than maxSamples samples, r is doubled and the cutting redone; the
-// margin reported is the r finally used.
+// margin reported is bound - measuredMax, at most the r finally used (up to the rounding allowance).
 //
 // Thread safety: a ClosestPointQuery may be queried from several threads at once.
 
@@ -94,8 +94,8 @@ private:
 
 struct SurfaceSampling {
     // Sampling radius r (absolute units): the bound exceeds the measured maximum by at most r.
-    // <= 0 samples only the vertices and edge midpoints (the margin is then the largest enclosing
-    // radius of their pieces).
+    // <= 0 samples only the vertices and edge midpoints (the margin is then at most the largest
+    // enclosing radius of their pieces).
     double radius = 0.0;
     // Largest number of samples per direction for the cutting; r is doubled until it fits. Vertices
     // and edge midpoints are always measured.
@@ -109,7 +109,7 @@ struct SurfaceSampling {
 struct OneSidedDistance {
     double measuredMax = 0.0; // largest distance at a sample: the true distance is at least this
     double bound = 0.0;       // the true one-sided Hausdorff distance is at most this
-    double margin = 0.0;      // bound <= measuredMax + margin (up to the rounding allowance)
+    double margin = 0.0;      // bound - measuredMax
     size_t samples = 0;       // closest-point queries made
 };
 

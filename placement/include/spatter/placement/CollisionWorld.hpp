@@ -69,8 +69,10 @@ struct CollisionObject {
     std::string untraced;      // why an object in the world is not traced; empty when traced
     glm::dmat4 transform{1.0}; // object to world, current
     double errorBound = 0.0;   // h, object-space units
-    size_t triangles = 0;      // collision triangles (0 when not in the world)
-    Bounds localBounds;        // of the collision mesh (of the render mesh when not in the world)
+    size_t triangles = 0;      // collision triangles (0 for an object never in the world; one
+                               // removed keeps its value)
+    Bounds localBounds;        // of the collision mesh (of the render mesh for an object never in
+                               // the world; one removed keeps its collision mesh's)
     // What the decals on the object were placed against: a 64-bit hash (FNV-1a over little-endian
     // 32-bit words) of the collision mesh's vertex count, positions, index count and indices and of the
     // error bound; 0 for an object built outside the world. A save of a decal system keys its objects
@@ -211,7 +213,7 @@ public:
     // The object at `index`, or nullptr when out of range.
     const CollisionObject* object(uint32_t index) const;
     // World-space bounds of the object's collision mesh under its current transform (of the render
-    // mesh for objects not in the world); empty for an index out of range or an empty mesh.
+    // mesh for objects never in the world); empty for an index out of range or an empty mesh.
     DBounds worldBounds(uint32_t index) const;
     // The object's error bound in world units under its current transform: errorBound times a bound
     // of how far the transform's linear part stretches (LinearStretch.hpp: its largest scale for TRS

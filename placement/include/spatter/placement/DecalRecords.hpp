@@ -29,8 +29,8 @@ struct LoadedDecals {
     std::vector<Decal> decals;         // in their objects' space; Decal::type indexes `types`
     std::vector<DecalType> types;      // the looks of DecalLooks.hpp on the caller's base type
     std::vector<uint8_t> objectIds;    // one per scene object: its 8-bit decal ID
-    std::vector<CraterClips> clips;    // parallel to decals where a ray file placed volumetric ones
-                                       // (DecalSystem::craterClips), else empty
+    std::vector<CraterClips> clips;    // one per decal after placeRays (DecalSystem::craterClips,
+                                       // inactive for flat decals); empty after loadPlacedRecords
     std::vector<std::string> warnings; // objects the ray trace leaves out, and why (placeRays)
     size_t records = 0;                // records (non-blank lines) or rays (ray lines) read
     size_t placed = 0;                 // decals made from them
@@ -65,22 +65,23 @@ struct DrawPose {
 // the object it names ("object", found by findObject), from its world-space "position", "tangent",
 // "bitangent", "normal", "size", "half_depth" and "projection" (optional: the normal when absent),
 // with "object_id" (0..255, default 0) as its
-// object's decal ID and "decal_id" as its ID when given. Its type is `base` with "max_angle_deg"
-// (default 80) and the look lookOf(look, k) for the k-th decal, one type per distinct pair. Other
-// records and blank lines are skipped. Dynamic objects that no record names get the smallest object
-// ID no record uses, so that no decal shows on them. Fails on an unreadable file, a line that is not
-// a JSON object, a placed record with a missing or bad field, or an object the scene lacks; the
-// error starts with "path:line: " and names the field. With `drawn`, a record that carries the time
-// it was placed ("time") and the render triangle it lies on ("anchor": {"triangle", "bary"}, as
-// spatter-place --time writes them for skinned and morphed objects) is moved from that time's pose to
-// the drawn one with its triangle, so that it lies on the surface it was placed on (the triangle
-// posed by the scene's animation in the world moved by drawn->offset; the objects' transforms in
-// `scene` are those decals are drawn at, as for every record).
+// object's decal ID and "decal_id" (an integer below 2^32) as its ID when given. Its type is `base`
+// with "max_angle_deg" (in (0, 90], default 80) and the look lookOf(look, k) for the k-th decal, one type per
+// distinct pair. Other records and blank lines are skipped. Dynamic objects that no record names get the
+// smallest object ID no record uses, so that no decal shows on them. Fails on an unreadable file, a line that
+// is not a JSON object, a placed record with a missing or bad field, or an object the scene lacks; the error
+// starts with "path:line: " and names the field. With `drawn`, a record that carries the time it was placed
+// ("time") and the render triangle it lies on ("anchor": {"triangle", "bary"}, as spatter-place --time writes
+// them for skinned and morphed objects) is moved from that time's pose to the drawn one with its triangle, so
+// that it lies on the surface it was placed on (the triangle posed by the scene's animation in the world
+// moved by drawn->offset; the objects' transforms in `scene` are those decals are drawn at, as for every
+// record).
 Result<LoadedDecals> loadPlacedRecords(const std::string& path, const Scene& scene, const DecalType& base,
                                        int look, const std::optional<DrawPose>& drawn = std::nullopt);
 
 // Reads a ray file (one ray per line, "ox oy oz dx dy dz", RayParser.hpp) and places the rays in
-// order through a DecalSystem on the scene's render meshes with `type`, `seed` and no area limits or
+// order through a DecalSystem on the scene's render meshes (an object's authored collider where it
+// has one) with `type`, `seed` and no area limits or
 // budget. Lines that do not parse and rays the system rejects place nothing. Every decal gets
 // `type` with the look lookOf(look, k) (types holds the four looks, indexed by DecalTexture); the
 // object IDs are the system's. With `drawn`, the rays meet the scene as it stands then: skinned and

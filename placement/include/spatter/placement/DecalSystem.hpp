@@ -182,8 +182,9 @@ public:
 
     // Places a decal on `object` at `localPosition` facing `localNormal` (object space; no ray, no
     // angle check). InvalidArgument for an index out of range, a non-finite vector, or a normal whose
-    // components are all zero or denormal;
-    // NotReceiver for an object not in the world, or dynamic with a type that has onDynamic == false.
+    // components are all zero or denormal or that cannot be normalised in world space;
+    // NotReceiver for an object not in the world or left out of the trace (its transform breaks the
+    // rule of TraceTransform.hpp), or dynamic with a type that has onDynamic == false.
     // The tangent starts along the object's X axis, so the result does not depend on where the
     // object is at the time. On a skinned or morphed object the decal lands on the drawn surface under
     // the point and follows the pose (setPose).
@@ -303,13 +304,14 @@ public:
     Result<TransformUpdate> setTransform(uint32_t object, const glm::dmat4& transform);
     // Poses a skinned or morphed dynamic object as it is drawn (CollisionWorld::setPose: later shots
     // meet the posed surface). A decal that a shot (spawn, spawnBatch) places on such an object lands
-    // on the drawn surface under the hit, with a half-depth of depthMargin times its size whatever
-    // its type asks (volumetric ones stay at the proxy's hit), and keeps that point of the render
-    // surface (CollisionWorld::anchorAt): each setPose moves, turns and bends it with the surface
-    // (its centre and frame change in place, logged as Changed); a save keeps that point
+    // on the drawn surface under the hit, with a half-depth of depthMargin times its size (at least a
+    // hundredth of it) whatever its type asks (volumetric ones stay at the proxy's hit), and keeps that point
+    // of the render surface (CollisionWorld::anchorAt): each setPose moves, turns and bends it with the
+    // surface (its centre and frame change in place, logged as Changed); a save keeps that point
     // (DecalPersistence.hpp). Decals placed by spawnAt land and stay the same way, under their probe;
     // those of spawnAttached too, under a short probe along their normal through the given point (the
-    // point as the object stands; twice the object's error bound either side of it), unless that
+    // point as the object stands; twice the object's error bound either side of it, and at least a
+    // hundredth of the type's size), unless that
     // probe meets another object first or nothing: then they ride the object's transform only. Fails, and
     // changes nothing, as CollisionWorld::setPose does.
     Result<TransformUpdate> setPose(uint32_t object, const glm::dmat4& transform,

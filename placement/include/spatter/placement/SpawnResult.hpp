@@ -12,8 +12,8 @@ enum class SpawnStatus : uint8_t {
     Missed,          // the ray (or the probe of spawnAt) hit no decal receiver
     GrazingAngle,    // the angle between the reversed ray (spawnAt: the given normal) and the surface
                      // normal exceeds the type's maxAngleDeg
-    NotReceiver,     // the object does not take this decal: not in the collision world, or dynamic
-                     // while the type has onDynamic == false
+    NotReceiver,     // the object does not take this decal: not in the collision world, left out of
+                     // the trace (spawnAttached), or dynamic while the type has onDynamic == false
     InvalidRay,      // rayProblem rejected the ray
     InvalidType,     // no decal type has that index
     InvalidArgument, // spawnAt / spawnAttached: non-finite or zero vector, object index out of range;

@@ -49,16 +49,17 @@
 // and dispatch indirect buffer bindings, blending (enable per draw buffer 0-3, equations, functions), colour
 // masks of draw buffers 0-3, depth test, function and mask, stencil test, scissor test, face culling and cull
 // mode, front face, clip control, GL_FRAMEBUFFER_SRGB, the unpack alignment, and polygon mode, rasterizer
-// discard, colour logic op, depth clamp and clip distances 0-7 (which it switches off for its draws, whatever
-// the host left on). What it changes are the contents of the textures it writes (draw) and its own GL
-// objects. bindForward alone changes bindings on purpose: those its ForwardBindings name, for the host's
-// forward pass. It needs the host's context current on the calling thread, and that context must outlive the
-// projector.
+// discard, colour logic op, depth clamp and clip distances 0-7 (which it sets for its draws, whatever the
+// host left on: all off, except depth clamp on for the boxes). What it changes are the contents of the
+// textures it writes (draw) and its own GL objects. bindForward alone changes bindings on purpose: those its
+// ForwardBindings name, for the host's forward pass. It needs the host's context current on the calling
+// thread, and that context must outlive the projector.
 //
 // Bad input changes nothing: a HostFrame with a missing required texture, an unsupported format,
 // mismatched sizes, a viewport outside the textures or a camera that cannot be inverted fails with
-// an error naming the field, before any GL call; decals naming a missing object or type, or with a
-// degenerate or non-finite box, are skipped and counted (ProjectorStats::invalid).
+// an error naming the field, before any GL state changes (the checks only query the textures); decals naming
+// a missing object or type, or with a degenerate or non-finite box, are skipped and counted
+// (ProjectorStats::invalid).
 
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalChanges.hpp"
@@ -77,8 +78,8 @@ namespace spatter {
 
 // What the host's depth texture holds.
 enum class DepthEncoding {
-    Window,     // window-space depth of `projection`, as a depth attachment holds it (any depth or
-                // float format); ClipDepth and reversedZ say how it was produced
+    Window,     // window-space depth of `projection`, as a depth attachment holds it (any depth, float
+                // or normalised colour format); ClipDepth and reversedZ say how it was produced
     LinearView, // the distance from the eye along the view direction, world units, > 0 on surfaces
                 // (a float colour texture, R32F or R16F); 0 or less is the background
 };
@@ -129,7 +130,8 @@ struct HostRoughness {    // G-buffer blend only
 // texelFetch at level 0 through the projector's own nearest-filter sampler (the texture's filters do
 // not matter: an integer texture left with a mipmap filter would otherwise read 0); the colour targets are
 // attached to the projector's own framebuffer and written with blending (an sRGB albedo format is encoded and
-// blended in linear space).
+// blended in linear space), or, by the compute resolve, bound to image units 0-2 and loaded and stored (an
+// sRGB albedo through an RGBA8 view, encoded and decoded by the shader).
 struct HostFrame {
     // The region of the host's textures this frame covers, in pixels from their lower left corner;
     // every texture must contain it.
@@ -215,7 +217,8 @@ struct ProjectorSettings {
     static constexpr size_t kGpuCullingInViewFrom = 1024;
     static constexpr size_t kComputeResolveFrom = 256; // DeferredResolve::Auto
     // draw() culling on the GPU also culls the boxes hidden behind the host's depth where that pays: a
-    // depth pyramid of the frame (half its size, farthest depth per texel) is built, and a box whose
+    // depth pyramid of the frame (a texel per 4 x 4 pixels at its finest level, farthest depth per
+    // texel) is built, and a box whose
     // nearest point lies beyond every texel under its screen rectangle is not drawn (it could not
     // change a pixel). It runs while the GPU's latest counts show it hiding at least 256 boxes and one
     // in 20 of those in the frustum, and otherwise once every 16 draws and on the first draw after
@@ -301,7 +304,8 @@ struct ProjectorStats {
     // taken: no such decal in view); "in-place" (none needed: a few boxes whose screen rectangles do
     // not overlap, none wrapping, each pixel read and written by one box at most); when the visible
     // boxes cover at most a quarter of the viewport, "rects" (each box's screen rectangle, for a few
-    // boxes) or "boxes" (a draw of the boxes); otherwise "viewport".
+    // boxes) or "boxes" (a draw of the boxes); otherwise "viewport". Culled on the GPU, where only an
+    // earlier count of the decals in view is known: "boxes" while it is at most 1,024, else "viewport".
     std::string normalCopy;
     bool gpuCulled = false; // the visible list was built on the GPU (ProjectorSettings::gpuCullingFrom)
     // Culled on the GPU: the groups of 256 places of the draw order (spawn order within a priority)
@@ -355,7 +359,8 @@ struct ProjectorResources {
     size_t visibleCount = 0;   // with culling on the GPU, the count of an earlier draw (unless
                                // waitForTimers): entries past this draw's list may name gone decals
     // The decal buffers of the last ProjectorPath::DBuffer draw (0 before the first): GL_TEXTURE_2D,
-    // the size of the host's depth texture, cleared over the frame's viewport by each such draw. RGB
+    // the size of the host's depth texture, cleared whole (RGB 0, A 1) before each such draw where an
+    // earlier one wrote them. RGB
     // holds the decals premultiplied by their alpha, A the fraction of the surface that shows through.
     uint32_t dbufferAlbedo = 0;   // SRGB8_ALPHA8: linear albedo
     uint32_t dbufferNormal = 0;   // RGBA16F: world-space normal
@@ -380,18 +385,19 @@ struct ProjectorMemory {
     size_t gpuScreenBytes = 0; // the part of gpuBufferBytes sized by the viewport and the decals in
                                // view, not by the decals held: the depth pyramid, the screen tiles
                                // and the normal copy
-    // The normal copy is held while draws read it: kNormalCopyIdleDraws draws and bins in a row that
-    // take none (no decal writing normals in view, normals blended in place, or the compute resolve,
-    // which reads the targets before it writes them) free it, and the next draw that needs it makes it
-    // again. Half a second at 60 frames a second, so that a view hovering between a draw that copies
-    // and one that does not keeps the copy rather than making it anew every frame.
+    // The normal copy is held while draws read it: kNormalCopyIdleDraws draws and bins in a row with
+    // decals in view that take none (no decal writing normals in view, normals blended in place, or the
+    // compute resolve, which reads the targets before it writes them) free it, and the next draw that needs
+    // it makes it again. Half a second at 60 frames a second, so that a view hovering between a draw that
+    // copies and one that does not keeps the copy rather than making it anew every frame.
     static constexpr int kNormalCopyIdleDraws = 30;
 };
 
 class DecalProjector {
 public:
     // Compiles nothing yet (variants are built on first use) and builds the decal texture array with
-    // the built-in layers. Needs a current OpenGL 4.5 core context. Fails on settings out of range.
+    // the built-in layers. Needs a current OpenGL 4.5 core context. Fails on settings out of range and
+    // on a context with fewer than 11 shader storage buffer bindings.
     static Result<DecalProjector> create(const ProjectorSettings& settings = {});
 
     DecalProjector(DecalProjector&&) noexcept;
@@ -458,7 +464,8 @@ public:
     Result<ProjectorStats> bin(const ForwardFrame& frame);
     // Binds the buffers of the last bin() and the decal texture arrays for the host's forward pass.
     // It changes exactly the shader storage bindings and texture units `bindings` names (and binds
-    // sampler 0 to those units): the one call that leaves GL state changed, for the host's next draws.
+    // sampler 0 to those units), and the generic shader storage buffer binding: the one call that leaves GL
+    // state changed, for the host's next draws.
     void bindForward(const ForwardBindings& bindings = {}) const;
 
     // Looks for the drawn surface along each line in the host's depth (on the GPU; the frame's depth,

@@ -39,7 +39,8 @@ struct FrameStats {
     size_t decalsInvalid = 0;      // skipped: object or type out of range, degenerate or non-finite box
     size_t decalsCulled = 0;       // outside the view frustum (test of the box corners) or occluded
     size_t decalsDrawn = 0;        // instances drawn in the decal pass
-    size_t decalsInside = 0;       // of those, drawn as "camera inside" (box crosses the near plane)
+    size_t decalsInside = 0;       // of those, boxes that may hold the eye or cross the near plane
+                                   // (ProjectorStats::inside; 0 when culled on the GPU)
     size_t decalBytesUploaded = 0; // instance and visibility data sent to the GPU this frame
     bool decalPassSkipped = true;  // no visible decal: no normal copy, no decal pass
     std::string decalVariant;      // features of the decal shader used, e.g. "IDS WRAP NORMAL_MAP FADE"
@@ -66,8 +67,8 @@ struct FrameStats {
 };
 
 // One JSON object with every field above ("gpu_ms": {"geometry", "decals", "late", "lighting",
-// "overlay", "splat", "total", "frame"}; "decal_stages_ms": {"cull", "bin", "draw", "read_back",
-// "frame"}).
+// "overlay", "splat", "volumetric", "total", "frame"}; "decal_stages_ms": {"cull", "bin", "draw",
+// "read_back", "frame"}).
 std::string toJson(const FrameStats& stats);
 
 } // namespace spatter

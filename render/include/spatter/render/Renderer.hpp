@@ -12,10 +12,11 @@
 //                 footprint marks the stencil where the surface is visible (and the ID matches),
 //                 then the crater mesh, behind the surface, replaces it there in the G-buffer with the
 //                 surface's material continued into the hole (docs/RENDERING.md, "Volumetric decals");
-//   2. decals     one instanced unit cube per visible decal, one draw for the boxes that may contain
-//                 the eye (front faces culled, no depth test) and one for the rest (back faces
-//                 culled, depth test GL_GEQUAL, which is "not behind the scene" under reversed-Z).
-//                 Each fragment rebuilds the scene position from depth, keeps it when it is inside
+//   2. decals     the decal projector (DecalProjector.hpp): one instanced draw of a unit cube per
+//                 visible decal, its far faces (front faces culled, depth clamped, depth test
+//                 GL_LEQUAL: the far face not in front of the scene under reversed-Z), or, on a GPU
+//                 with many decals in view, one compute pass over screen tiles doing the same per
+//                 pixel. Each fragment rebuilds the scene position from depth, keeps it when it is inside
 //                 the box, has the decal's object ID, and has a normal within the type's angle of
 //                 the decal axis, and writes albedo, normal (Whiteout) and roughness into the
 //                 G-buffer, so that decals are lit like everything else;
@@ -149,7 +150,8 @@ public:
     // meshes. The ID target exists exactly when the scene has dynamic objects.
     Status setScene(const Scene& scene);
     // Moves an object (double precision, like SceneObject::transform). Fails for an index out of
-    // range or a transform that is not finite and invertible.
+    // range or a transform that is not finite and affine (a singular one is taken: the object is
+    // drawn flattened).
     Status setObjectTransform(uint32_t object, const glm::dmat4& transform);
     // Poses the scene: every object moves to its transform, skinned objects (SceneObject::skin) are
     // skinned on the GPU by their joint matrices (their own transform then only places their decals,
@@ -232,8 +234,9 @@ public:
 
     // Renders one frame of `view` from `camera` into the output image.
     Result<FrameStats> render(const Camera& camera, View view = View::Final);
-    // The same with overlays and decal-pass debug switches. Fails, drawing nothing, on an invalid
-    // camera, a depth bias outside [0, 0.5] or a shader that does not build.
+    // The same with overlays and decal-pass debug switches. Fails on an invalid camera or a depth
+    // bias outside [0, 0.5], drawing nothing, and on a shader that does not build (the G-buffer may
+    // then be written; the output image is not).
     Result<FrameStats> render(const Camera& camera, const RenderOptions& options);
     // The output image of the last render, RGBA8, row 0 at the top.
     Result<Image> readback() const;
