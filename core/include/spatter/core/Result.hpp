@@ -25,10 +25,13 @@ public:
     bool ok() const { return value_.has_value(); }
     explicit operator bool() const { return ok(); }
 
-    // Precondition: ok(). The caller owns the moved-out value.
+    // Precondition: ok(). The caller owns the moved-out value. *r is r.value(), as for std::optional.
     T& value() & { return *value_; }
     const T& value() const& { return *value_; }
     T&& value() && { return std::move(*value_); }
+    T& operator*() & { return *value_; }
+    const T& operator*() const& { return *value_; }
+    T&& operator*() && { return std::move(*value_); }
     T* operator->() { return &*value_; }
     const T* operator->() const { return &*value_; }
 

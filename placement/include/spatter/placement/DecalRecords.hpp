@@ -5,8 +5,8 @@
 // their objects' space, the decal types they index, and one 8-bit decal ID per object.
 //
 //   Result<LoadedDecals> d = loadPlacedRecords("decals.jsonl", scene, DecalType{}, kMixedLooks);
-//   if (!d) std::fprintf(stderr, "%s\n", d.error().c_str());   // "decals.jsonl:3: ..."
-//   projector.setDecalTypes(d->types);
+//   if (!d) return fail(d.error());                            // "decals.jsonl:3: ..."
+//   projector.setDecalTypes(d->types);                         // (kMixedLooks: DecalLooks.hpp)
 //   projector.setDecals(d->decals);   // spatter's renderer: setDecals(d->decals, craterClipsOf(d->clips))
 //   projector.setObjects(transforms, d->objectIds);
 

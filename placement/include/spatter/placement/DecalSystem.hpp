@@ -7,7 +7,7 @@
 //   uint16_t hole = sys->registerType(holeType).value();
 //   SpawnResult r = sys->spawn(Ray{eye, aim}, hole);               // r.placed() or r.status/r.reason
 //   sys->update(dt);                                               // ages, fades, expires
-//   renderer.draw(sys->decals());                                  // contiguous, object space
+//   renderer.setDecals(sys->decals());                             // contiguous, object space
 //   DecalChanges c = sys->changesSince(seen); seen = c.version;    // or only what changed since
 //
 // Rules every call follows:

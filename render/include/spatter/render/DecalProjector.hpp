@@ -21,7 +21,9 @@
 //   projector->setDecalTypes(types);                                 // appearance, by Decal::type
 //   each frame, after the host's geometry pass and before its lighting:
 //     projector->setObjects(transforms, ids);                        // one entry per object
-//     projector->setDecals(decalSystem.decals());                    // changed instances are uploaded
+//     const DecalChanges changes = decalSystem.changesSince(seen);   // what changed since last time
+//     projector->updateDecals(decalSystem.decals(), changes);        // (setDecals: all of them)
+//     seen = changes.version;
 //     HostFrame f;                                                   // see HostFrame below
 //     f.width = w; f.height = h; f.view = view; f.projection = proj; f.eye = eye;
 //     f.depth = {depthTexture, DepthEncoding::Window, ClipDepth::ZeroToOne, /*reversedZ*/ true};
@@ -417,8 +419,8 @@ public:
     // types' priorities. The projector keeps no copy of the decals: the changes and `decals` together
     // say what changed. Per decal it keeps 44 bytes on the GPU, and on the CPU about 4 bytes (its
     // place in the draw order, a validity bit) plus, for culling on the CPU, a 48-byte record and the
-    // draw order's entries (5 bytes), which go once draw() culls on the GPU
-    // (ProjectorSettings::gpuCullingFrom): the draw order's changes then go to the GPU as writes.
+    // draw order's entries (5 bytes), which go once it holds ProjectorSettings::gpuCullingFrom decals
+    // or more: the draw order's changes then go to the GPU as writes.
     void updateDecals(const std::vector<Decal>& decals, const DecalChanges& changes);
     // Object-to-world transforms (double) and 8-bit decal IDs, one entry per object that decals may
     // name (Decal::object); a decal clips to its object's decal ID (Decal::objectId is not read).
