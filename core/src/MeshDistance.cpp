@@ -79,7 +79,10 @@ bool closestPointCallback(RTCPointQueryFunctionArguments* args) {
     const glm::dvec3* t = s->corners + 3 * size_t(args->primID);
     const glm::dvec3 q = closestOnTriangle(s->p, t[0], t[1], t[2]);
     const double d2 = glm::dot(q - s->p, q - s->p);
-    if (!(d2 < s->best2) || d2 > s->reach2) return false;
+    // Of triangles at the same distance, the first (the smallest index): the answer does not depend on
+    // the order Embree visits them in, which its BVH's width, and so the processor, decides.
+    const bool nearer = d2 < s->best2 || (d2 == s->best2 && args->primID < s->bestTriangle);
+    if (!nearer || d2 > s->reach2) return false;
     s->best2 = d2;
     s->bestPoint = q;
     s->bestTriangle = args->primID;

@@ -1,5 +1,6 @@
 #include "spatter/core/MeshDistance.hpp"
 
+#include "spatter/core/MeshBuilder.hpp"
 #include "spatter/core/Random.hpp"
 
 #include "ReferenceGeometry.hpp"
@@ -111,6 +112,50 @@ TEST(ClosestPointQuery, ExactAtFaceEdgeAndCornerOfOneTriangle) {
     EXPECT_DOUBLE_EQ(q->closest({1.0, -4.0, 0.0})->distance, 4.0);
     EXPECT_DOUBLE_EQ(q->closest({-3.0, -4.0, 0.0})->distance, 5.0);
     EXPECT_EQ(q->closest({-3.0, -4.0, 0.0})->point, glm::dvec3(0.0));
+}
+
+// Triangles at the same distance: the one first in the mesh, whatever order the BVH visits them in
+// (its width follows the processor). Fans of triangles around a vertex, the query above the vertex,
+// listed in shuffled orders; and a grid of squares, queried above each shared corner.
+TEST(ClosestPointQuery, OfTrianglesAtTheSameDistanceAnswersTheFirstInTheMesh) {
+    Rng rng(11);
+    for (uint32_t fan : {6u, 24u, 96u}) {
+        Mesh m;
+        m.positions.push_back({0.0f, 0.0f, 0.0f});
+        for (uint32_t k = 0; k < fan; ++k) {
+            const float a = 6.2831853f * float(k) / float(fan);
+            m.positions.push_back({std::cos(a), std::sin(a), 0.0f});
+        }
+        std::vector<uint32_t> order(fan);
+        for (uint32_t k = 0; k < fan; ++k)
+            order[k] = k;
+        for (uint32_t k = fan - 1; k > 0; --k)
+            std::swap(order[k], order[rng.below(k + 1)]);
+        for (uint32_t k : order)
+            m.indices.insert(m.indices.end(), {0, 1 + k, 1 + (k + 1) % fan});
+        const Result<ClosestPointQuery> q = ClosestPointQuery::create(m);
+        ASSERT_TRUE(q) << q.error();
+        const std::optional<ClosestPoint> c = q->closest({0.0, 0.0, 0.5});
+        ASSERT_TRUE(c);
+        EXPECT_EQ(c->triangle, 0u) << fan << " triangles around the vertex";
+        EXPECT_EQ(c->distance, 0.5);
+    }
+    std::vector<float> steps(33);
+    for (size_t i = 0; i < steps.size(); ++i)
+        steps[i] = float(i);
+    const Mesh grid = makeGrid(steps, steps); // in the XZ plane, facing +Y
+    const Result<ClosestPointQuery> q = ClosestPointQuery::create(grid);
+    ASSERT_TRUE(q) << q.error();
+    for (const glm::vec3& corner : grid.positions) {
+        const glm::dvec3 above = glm::dvec3(corner) + glm::dvec3(0.0, 0.25, 0.0);
+        const std::optional<ClosestPoint> c = q->closest(above);
+        ASSERT_TRUE(c);
+        uint32_t first = UINT32_MAX;
+        for (uint32_t t = 0; t < grid.triangleCount() && first == UINT32_MAX; ++t)
+            for (int k = 0; k < 3; ++k)
+                if (grid.positions[grid.indices[3 * t + uint32_t(k)]] == corner) first = t;
+        EXPECT_EQ(c->triangle, first);
+    }
 }
 
 TEST(ClosestPointQuery, IgnoresDegenerateTriangles) {

@@ -60,8 +60,9 @@ public:
     ClosestPointQuery& operator=(ClosestPointQuery&&) noexcept;
     ~ClosestPointQuery();
 
-    // The nearest surface point to `p`, exact up to double rounding. Empty when the mesh has no
-    // surface or `p` is not finite.
+    // The nearest surface point to `p`, exact up to double rounding; of triangles at the same
+    // distance, the one first in the mesh, so that the answer is the same on every processor. Empty
+    // when the mesh has no surface or `p` is not finite.
     std::optional<ClosestPoint> closest(const glm::dvec3& p) const;
     // The same, searched only within `reach` of `p` (up to double rounding): empty also when no surface
     // point lies that near, or `reach` is NaN or negative. A caller that knows how far the surface can
