@@ -67,23 +67,24 @@ Result<PoseCandidate> candidate(const Scene& scene, size_t object, Proxy proxy) 
 }
 
 // `proxy` with its deformation and the distances over the poses, sampled (sampledOverPoses).
-Result<PoseCandidate> sampled(const Scene& scene, size_t object, Proxy proxy, int samples) {
+Result<PoseCandidate> sampled(const Scene& scene, size_t object, Proxy proxy, int samples, unsigned threads) {
     Result<PoseCandidate> c = candidate(scene, object, std::move(proxy));
     if (!c) return c;
     Result<PoseBound> b =
-        sampledOverPoses(scene, object, c->proxy.mesh, c->deformation, samples, kSampledTriangles);
+        sampledOverPoses(scene, object, c->proxy.mesh, c->deformation, samples, kSampledTriangles, threads);
     if (!b) return fail(b.error());
     c->poses = b.value();
     return c;
 }
 
 // `c` with its bound over the poses certified (boundOverPoses).
-Status judge(const Scene& scene, size_t object, PoseCandidate& c, int samples) {
+Status judge(const Scene& scene, size_t object, PoseCandidate& c, int samples, unsigned threads) {
     const SceneObject& o = scene.objects[object];
     const double margin =
         0.1 *
         std::max(c.proxy.errorBound, 1e-9 * double(glm::length(o.mesh->bounds().max - o.mesh->bounds().min)));
-    Result<PoseBound> b = boundOverPoses(scene, object, c.proxy.mesh, c.deformation, samples, margin);
+    Result<PoseBound> b =
+        boundOverPoses(scene, object, c.proxy.mesh, c.deformation, samples, margin, threads);
     if (!b) return fail(b.error());
     c.poses = b.value();
     return {};
@@ -138,7 +139,7 @@ Result<std::optional<PoseCandidate>> posedCandidate(const Scene& scene, size_t o
     if (!posed) return fail(posed.error());
     Result<PoseCandidate> c = candidate(scene, object, std::move(posed).value());
     if (!c) return fail(c.error());
-    if (Status st = judge(scene, object, c.value(), samples); !st) return fail(st.error());
+    if (Status st = judge(scene, object, c.value(), samples, settings.threads); !st) return fail(st.error());
     return std::optional<PoseCandidate>(std::move(c).value());
 }
 
@@ -160,7 +161,7 @@ Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, co
         own.restCertified = true;
         return own;
     }
-    Result<PoseCandidate> best = sampled(scene, object, std::move(rest).value(), samples);
+    Result<PoseCandidate> best = sampled(scene, object, std::move(rest).value(), samples, settings.threads);
     if (!best) return fail(name + best.error());
     Result<std::optional<PoseCandidate>> posed =
         posedCandidate(scene, object, best.value(), settings, samples);
@@ -170,7 +171,8 @@ Result<DeformingProxy> buildDeformingProxy(const Scene& scene, size_t object, co
     // The rest proxy's bound would be at least its sampled distances: below them, it loses uncertified.
     bool posedWins = other && other->poses.bound < best->poses.bound;
     if (!posedWins) {
-        if (Status st = judge(scene, object, best.value(), samples); !st) return fail(name + st.error());
+        if (Status st = judge(scene, object, best.value(), samples, settings.threads); !st)
+            return fail(name + st.error());
         out.restCertified = true;
         posedWins = other && other->poses.bound < best->poses.bound;
     }

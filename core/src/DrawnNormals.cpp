@@ -27,11 +27,11 @@ glm::dvec3 faceNormal(const Mesh& mesh, uint32_t t) {
 } // namespace
 
 DrawnNormals DrawnNormals::build(const Mesh& render, const ClosestPointQuery& query, const Mesh& collision,
-                                 double reach) {
+                                 double reach, unsigned threads) {
     constexpr uint32_t kNone = UINT32_MAX;
     std::vector<Packed> normals;
     normals.reserve(collision.triangleCount() * kPiecesPerTriangle);
-    for (uint32_t t : nearestTrianglePerPiece(query, collision, kNone, reach))
+    for (uint32_t t : nearestTrianglePerPiece(query, collision, kNone, reach, threads))
         normals.push_back(packNormal(t != kNone ? faceNormal(render, t) : glm::dvec3(0.0)));
     return DrawnNormals(std::move(normals));
 }

@@ -523,11 +523,6 @@ Status checkSettings(const HausdorffSettings& s) {
     return {};
 }
 
-// The threads a bound walks on (HausdorffSettings::threads).
-unsigned threadsFor(const HausdorffSettings& s) {
-    return s.threads > 0 ? s.threads : detail::workerCount();
-}
-
 // One direction of the bound in steps, so that two directions can share one pool of threads and one
 // early answer: the starting samples, the walks of the subtrees, the result.
 class OneSided {
@@ -662,7 +657,7 @@ Result<HausdorffResult> boundOneSided(const HausdorffSurface& from, const Hausdo
     const Impl& b = to.impl();
     if (a.triangles.empty()) return HausdorffResult{};
     if (b.triangles.empty()) return fail("the target mesh has no surface (no triangle of non-zero area)");
-    const unsigned workers = threadsFor(s);
+    const unsigned workers = detail::workersFor(s.threads);
     std::atomic<bool> exceeded{false};
     OneSided job(a, b, s, exceeded);
     job.sampleStart(workers);
@@ -678,7 +673,7 @@ Result<HausdorffPair> boundBothWays(const HausdorffSurface& a, const HausdorffSu
         return fail(std::string("mesh ") + (a.surfaceTriangleCount() == 0 ? "A" : "B") +
                     " has no surface (no triangle of non-zero area) but the other has one");
     if (a.surfaceTriangleCount() == 0) return HausdorffPair{};
-    const unsigned workers = threadsFor(s);
+    const unsigned workers = detail::workersFor(s.threads);
     std::atomic<bool> exceeded{false};
     OneSided ab(a.impl(), b.impl(), s, exceeded), ba(b.impl(), a.impl(), s, exceeded);
     ab.sampleStart(workers);
@@ -696,12 +691,12 @@ namespace {
 // sampledLowerBound over `count` triangles of `from`, whose corners corner(i, k) gives (k = 0, 1, 2).
 template <class Corner>
 Result<double> sampledFrom(size_t count, Corner&& corner, const Impl& b, size_t maxTriangles,
-                           double stopAbove, const ProgressCallback& progress) {
+                           double stopAbove, const ProgressCallback& progress, unsigned threads) {
     if (count == 0) return 0.0;
     if (b.triangles.empty()) return fail("the target mesh has no surface (no triangle of non-zero area)");
     const size_t stride = std::max<size_t>(1, count / std::max<size_t>(maxTriangles, 1));
     const size_t sampled = (count + stride - 1) / stride;
-    const unsigned workers = detail::workerCount();
+    const unsigned workers = detail::workersFor(threads);
     std::vector<double> worst(workers, 0.0);
     std::atomic<bool> above{false};
     // Only a sample farther than the worker's largest so far changes the result, and "is the surface
@@ -732,18 +727,19 @@ Result<double> sampledFrom(size_t count, Corner&& corner, const Impl& b, size_t 
 } // namespace
 
 Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSurface& to,
-                                 size_t maxTriangles, double stopAbove, const ProgressCallback& progress) {
+                                 size_t maxTriangles, double stopAbove, const ProgressCallback& progress,
+                                 unsigned threads) {
     const Impl& a = from.impl();
     auto corner = [&a](size_t i, int k) { return a.positions[a.triangles[i][size_t(k)]]; };
-    return sampledFrom(a.triangles.size(), corner, to.impl(), maxTriangles, stopAbove, progress);
+    return sampledFrom(a.triangles.size(), corner, to.impl(), maxTriangles, stopAbove, progress, threads);
 }
 
 Result<double> sampledLowerBound(const Mesh& from, const HausdorffSurface& to, size_t maxTriangles,
-                                 double stopAbove, const ProgressCallback& progress) {
+                                 double stopAbove, const ProgressCallback& progress, unsigned threads) {
     if (Status st = detail::checkTriangles(from); !st) return fail(st.error());
     const std::vector<uint32_t> surface = detail::surfaceTriangles(from);
     auto corner = [&](size_t i, int k) { return detail::corner(from, surface[i], k); };
-    return sampledFrom(surface.size(), corner, to.impl(), maxTriangles, stopAbove, progress);
+    return sampledFrom(surface.size(), corner, to.impl(), maxTriangles, stopAbove, progress, threads);
 }
 
 Result<HausdorffResult> boundHausdorff(const HausdorffSurface& a, const HausdorffSurface& b,

@@ -31,7 +31,7 @@ std::vector<glm::dvec3> displacement(const std::vector<glm::dvec3>& from, const 
 // one from `at` to `after` (either may be null: no such interval), their points paired as they lie at
 // `at` (RelativeMotion.hpp).
 detail::Motions motionsAt(const Mesh& render, const Mesh& collision, const Sample* before, const Sample& at,
-                          const Sample* after) {
+                          const Sample* after, unsigned threads) {
     std::vector<glm::dvec3> dr[2], dc[2];
     if (before) {
         dr[0] = displacement(before->render, at.render);
@@ -43,7 +43,7 @@ detail::Motions motionsAt(const Mesh& render, const Mesh& collision, const Sampl
     }
     return detail::relativeMotion(
         {render, at.render, {before ? &dr[0] : nullptr, after ? &dr[1] : nullptr}},
-        {collision, at.collision, {before ? &dc[0] : nullptr, after ? &dc[1] : nullptr}}, at.bound);
+        {collision, at.collision, {before ? &dc[0] : nullptr, after ? &dc[1] : nullptr}}, at.bound, threads);
 }
 
 // Both meshes at the evaluator's pose, and their surfaces.
@@ -71,12 +71,13 @@ Result<Posed> posedAt(const Scene& scene, size_t object, const Mesh& collision,
 }
 
 Result<Sample> sampleAt(const Scene& scene, size_t object, const Mesh& collision,
-                        const VertexDeformation& deformation, const SceneEvaluator& evaluator,
-                        double margin) {
+                        const VertexDeformation& deformation, const SceneEvaluator& evaluator, double margin,
+                        unsigned threads) {
     Result<Posed> p = posedAt(scene, object, collision, deformation, evaluator);
     if (!p) return fail(p.error());
     HausdorffSettings settings;
     settings.margin = margin;
+    settings.threads = threads;
     Result<HausdorffResult> h = boundHausdorff(*p->render, *p->collision, settings);
     if (!h) return fail(h.error());
     p->sample.bound = h->upper;
@@ -86,13 +87,13 @@ Result<Sample> sampleAt(const Scene& scene, size_t object, const Mesh& collision
 // The largest distance sampled between both meshes at the evaluator's pose, both ways.
 Result<double> sampledAt(const Scene& scene, size_t object, const Mesh& collision,
                          const VertexDeformation& deformation, const SceneEvaluator& evaluator,
-                         size_t maxTriangles) {
+                         size_t maxTriangles, unsigned threads) {
     Result<Posed> p = posedAt(scene, object, collision, deformation, evaluator);
     if (!p) return fail(p.error());
     const double inf = std::numeric_limits<double>::infinity();
-    Result<double> ab = sampledLowerBound(*p->render, *p->collision, maxTriangles, inf);
+    Result<double> ab = sampledLowerBound(*p->render, *p->collision, maxTriangles, inf, {}, threads);
     if (!ab) return ab;
-    Result<double> ba = sampledLowerBound(*p->collision, *p->render, maxTriangles, inf);
+    Result<double> ba = sampledLowerBound(*p->collision, *p->render, maxTriangles, inf, {}, threads);
     if (!ba) return ba;
     return std::max(ab.value(), ba.value());
 }
@@ -135,9 +136,10 @@ struct Walk {
 // Measures the relative motion at `w.at` over the intervals from `w.before` and to `next` (null at the
 // animation's end), and takes the interval from `w.before` to `w.at`, both its ends now measured, into
 // `out`: the larger sampled bound plus half the larger motion at either end.
-void advance(PoseBound& out, const Mesh& render, const Mesh& collision, Walk& w, const Sample* next) {
+void advance(PoseBound& out, const Mesh& render, const Mesh& collision, Walk& w, const Sample* next,
+             unsigned threads) {
     const Sample* before = w.before ? &*w.before : nullptr;
-    const detail::Motions m = motionsAt(render, collision, before, *w.at, next);
+    const detail::Motions m = motionsAt(render, collision, before, *w.at, next, threads);
     if (before) {
         const double motion = 0.5 * std::max(w.motionAfterBefore, m[0]);
         out.motion = std::max(out.motion, motion);
@@ -163,7 +165,8 @@ template <class Step> Status walkPoses(const Scene& scene, int samples, Step&& s
 } // namespace
 
 Result<PoseBound> boundOverPoses(const Scene& scene, size_t object, const Mesh& collision,
-                                 const VertexDeformation& deformation, int samples, double margin) {
+                                 const VertexDeformation& deformation, int samples, double margin,
+                                 unsigned threads) {
     if (Status st = checkArguments(scene, object, collision, deformation, samples); !st)
         return fail(st.error());
     if (!(margin > 0.0) || !std::isfinite(margin))
@@ -174,15 +177,15 @@ Result<PoseBound> boundOverPoses(const Scene& scene, size_t object, const Mesh& 
     Status st =
         walkPoses(scene, samples, [&](int a, int i, double t, const SceneEvaluator& evaluator) -> Status {
             if (i == 0) walk = Walk{};
-            Result<Sample> s = sampleAt(scene, object, collision, deformation, evaluator, margin);
+            Result<Sample> s = sampleAt(scene, object, collision, deformation, evaluator, margin, threads);
             if (!s) return fail(s.error());
             takePose(out, s->bound, a, t);
             if (walk.at) {
-                advance(out, render, collision, walk, &s.value());
+                advance(out, render, collision, walk, &s.value(), threads);
                 walk.before = std::move(walk.at);
             }
             walk.at = std::move(s).value();
-            if (i == samples && walk.before) advance(out, render, collision, walk, nullptr);
+            if (i == samples && walk.before) advance(out, render, collision, walk, nullptr, threads);
             return {};
         });
     if (!st) return fail(st.error());
@@ -190,13 +193,15 @@ Result<PoseBound> boundOverPoses(const Scene& scene, size_t object, const Mesh& 
 }
 
 Result<PoseBound> sampledOverPoses(const Scene& scene, size_t object, const Mesh& collision,
-                                   const VertexDeformation& deformation, int samples, size_t maxTriangles) {
+                                   const VertexDeformation& deformation, int samples, size_t maxTriangles,
+                                   unsigned threads) {
     if (Status st = checkArguments(scene, object, collision, deformation, samples); !st)
         return fail(st.error());
     PoseBound out;
     Status st =
         walkPoses(scene, samples, [&](int a, int, double t, const SceneEvaluator& evaluator) -> Status {
-            Result<double> d = sampledAt(scene, object, collision, deformation, evaluator, maxTriangles);
+            Result<double> d =
+                sampledAt(scene, object, collision, deformation, evaluator, maxTriangles, threads);
             if (!d) return fail(d.error());
             takePose(out, d.value(), a, t);
             return {};

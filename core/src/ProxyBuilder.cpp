@@ -1,6 +1,7 @@
 #include "spatter/core/ProxyBuilder.hpp"
 #include "ProxyMeshes.hpp"
 #include "ProxySearch.hpp"
+#include "SurfaceGeometry.hpp"
 
 #include "spatter/core/HausdorffBound.hpp"
 #include "spatter/core/ProxyCache.hpp"
@@ -93,6 +94,9 @@ Status checkSettings(const ProxySettings& s) {
         return fail("proxy settings: margin fraction " + std::to_string(s.marginFraction) +
                     " is not in (0, 1)");
     if (s.maxAttempts < 1) return fail("proxy settings: maxAttempts must be at least 1");
+    if (s.threads > detail::kMaxWorkers)
+        return fail("proxy settings: threads " + std::to_string(s.threads) + " is above " +
+                    std::to_string(detail::kMaxWorkers));
     return {};
 }
 
@@ -165,7 +169,8 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
     const double tolerance = s.toleranceRelative ? double(s.tolerance) * diagonal : double(s.tolerance);
     const size_t inputTriangles = render.triangleCount();
     const size_t surfaceTriangles = surfaceTriangleCount(render);
-    const HausdorffSettings certifying = detail::certifyingSettings(tolerance, diagonal, s.marginFraction);
+    const HausdorffSettings certifying =
+        detail::certifyingSettings(tolerance, diagonal, s.marginFraction, s.threads);
 
     Proxy proxy;
     proxy.tolerance = tolerance;
@@ -194,7 +199,7 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
             return fail(st.error() == "cancelled" ? st.error() : "authored collider: " + st.error());
         takeBound(proxy, c, tolerance);
         proxy.drawnNormals =
-            DrawnNormals::build(render, renderSurface->query(), proxy.mesh, proxy.errorBound);
+            DrawnNormals::build(render, renderSurface->query(), proxy.mesh, proxy.errorBound, s.threads);
         finishResult(proxy, start);
         store(s, key, proxy);
         return proxy;
@@ -220,7 +225,7 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
     }
 
     const ProxyBackend backend = resolveProxyBackend(s.backend, inputTriangles, tolerance, diagonal);
-    PendingSurface renderSurface(render);
+    PendingSurface renderSurface(render, s.threads);
     const Mesh welded = detail::weldedSurface(render);
     detail::SearchProgress searchProgress(progress);
     const Mesh meshoptInput = backend == ProxyBackend::MeshOpt ? detail::meshoptInputOf(welded, s) : Mesh();
@@ -248,7 +253,7 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
         Result<const HausdorffSurface*> drawn = renderSurface.get(); // ready: the search certified `best`
         if (!drawn) return fail(drawn.error());
         proxy.drawnNormals =
-            DrawnNormals::build(render, drawn.value()->query(), proxy.mesh, proxy.errorBound);
+            DrawnNormals::build(render, drawn.value()->query(), proxy.mesh, proxy.errorBound, s.threads);
         if (!proxy.toleranceMet)
             proxy.notes.push_back(
                 std::string("h = ") + std::to_string(proxy.errorBound) + " is above the tolerance " +

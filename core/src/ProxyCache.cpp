@@ -27,7 +27,7 @@ constexpr char kMagic[4] = {'S', 'P', 'X', 'C'};
 constexpr uint32_t kFormatVersion = 2;
 // Part of every key: bump it whenever the builder gives a different proxy for the same input, so
 // that entries written by an older builder are never loaded.
-constexpr uint32_t kBuilderVersion = 6;
+constexpr uint32_t kBuilderVersion = 7;
 // Bytes before the vertex data (magic through the count of drawn normals), and the checksum after it.
 constexpr size_t kHeaderSize = 4 + 4 + 8 + 4 * 4 + 8 * 2 + 8 * 5 + 4 * 3;
 constexpr size_t kDrawnNormalSize = 6; // three 16-bit fractions

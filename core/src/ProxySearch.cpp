@@ -204,16 +204,18 @@ struct Judged {
 
 // The quick judgement of a run: the larger of two sampled lower bounds, proxy to render first (where
 // a coarse triangle hides its largest distance inside), each stopping above the tolerance.
-Status judgeQuickly(Candidate& c, const HausdorffSurface& render, double tolerance, double& measured,
-                    const ProgressCallback& progress) {
+Status judgeQuickly(Candidate& c, const HausdorffSurface& render, double tolerance, unsigned threads,
+                    double& measured, const ProgressCallback& progress) {
     measured = std::numeric_limits<double>::infinity();
     if (c.mesh.indices.empty()) return {};
-    Result<double> p2r = sampledLowerBound(c.mesh, render, kSampledProxyTriangles, tolerance, progress);
+    Result<double> p2r =
+        sampledLowerBound(c.mesh, render, kSampledProxyTriangles, tolerance, progress, threads);
     if (!p2r) return fail(p2r.error());
     measured = p2r.value();
     if (measured > tolerance) return {};
     if (Status st = prepare(c); !st) return st;
-    Result<double> r2p = sampledLowerBound(render, *c.surface, kSampledRenderTriangles, tolerance, progress);
+    Result<double> r2p =
+        sampledLowerBound(render, *c.surface, kSampledRenderTriangles, tolerance, progress, threads);
     if (!r2p) return fail(r2p.error());
     measured = std::max(measured, r2p.value());
     return {};
@@ -270,8 +272,8 @@ Result<Judged> runAndJudgeFrom(const SearchContext& k, const Mesh& input, double
     Result<const HausdorffSurface*> render = k.render.get();
     if (!render) return fail(render.error());
     if (judge == Judge::Sampled) {
-        if (Status st = judgeQuickly(j.candidate, *render.value(), k.tolerance, j.measured,
-                                     k.progress.stage(0.2, 0.8));
+        if (Status st = judgeQuickly(j.candidate, *render.value(), k.tolerance, k.settings.threads,
+                                     j.measured, k.progress.stage(0.2, 0.8));
             !st)
             return fail(st.error());
         j.within = j.measured <= k.tolerance;
@@ -343,12 +345,14 @@ Status bisect(const SearchContext& k, Judge judge, double target, Bracket& brack
 
 } // namespace
 
-HausdorffSettings certifyingSettings(double tolerance, double diagonal, float marginFraction) {
+HausdorffSettings certifyingSettings(double tolerance, double diagonal, float marginFraction,
+                                     unsigned threads) {
     HausdorffSettings s;
     s.margin = double(marginFraction) * (tolerance > 0.0 ? tolerance : kZeroToleranceScale * diagonal);
     s.tolerance = tolerance;
     s.roomShare = kRoomShare;
     s.minRoom = kMinRoom;
+    s.threads = threads;
     return s;
 }
 

@@ -21,8 +21,10 @@
 namespace spatter::detail {
 
 // The settings of every certificate of a build at `tolerance` (absolute): its margin, `marginFraction`
-// of the tolerance (of a thousandth of `diagonal` for a tolerance of 0), shrinking near the tolerance.
-HausdorffSettings certifyingSettings(double tolerance, double diagonal, float marginFraction);
+// of the tolerance (of a thousandth of `diagonal` for a tolerance of 0), shrinking near the tolerance,
+// on `threads` threads (ProxySettings::threads).
+HausdorffSettings certifyingSettings(double tolerance, double diagonal, float marginFraction,
+                                     unsigned threads);
 
 // A run of the search made a proxy: its mesh, how it was made, and its certificate once made.
 struct Candidate {
@@ -80,13 +82,14 @@ struct SearchOutcome {
 };
 
 // The render mesh prepared for the certifier (its hierarchy and closest-point structure) on a thread
-// of its own, while the mesh is welded and first simplified; the first judgement waits for it.
+// of its own, while the mesh is welded and first simplified; the first judgement waits for it. With
+// one thread (ProxySettings::threads), or when a thread cannot be started, on this thread when needed.
 class PendingSurface {
 public:
-    explicit PendingSurface(const Mesh& render)
-        // (Built on this thread when a thread cannot be started.)
-        : future_(std::async(std::launch::async | std::launch::deferred,
-                             [&render] { return HausdorffSurface::create(render); })) {}
+    PendingSurface(const Mesh& render, unsigned threads)
+        : future_(
+              std::async(threads == 1 ? std::launch::deferred : std::launch::async | std::launch::deferred,
+                         [&render] { return HausdorffSurface::create(render); })) {}
     // The surface, once ready; fails like HausdorffSurface::create.
     Result<const HausdorffSurface*> get() {
         if (!result_) result_.emplace(future_.get());

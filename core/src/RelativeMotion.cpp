@@ -227,7 +227,8 @@ Motions pieceMotion2(const Triangle& p, int depth, const Drawn& drawn, TriangleG
 
 } // namespace
 
-Motions relativeMotion(const MovingMesh& render, const MovingMesh& collision, double reach) {
+Motions relativeMotion(const MovingMesh& render, const MovingMesh& collision, double reach,
+                       unsigned threads) {
     if (render.topology.indices.size() < 3 || collision.topology.indices.size() < 3) return {};
     if (!finite(render) || !finite(collision) || !std::isfinite(reach)) {
         Motions infinite;
@@ -243,7 +244,7 @@ Motions relativeMotion(const MovingMesh& render, const MovingMesh& collision, do
     const double rounding =
         kRoundingShare * std::max(largestCoordinate(triangles), largestCoordinate(pieces));
     const Drawn drawn{triangles, grid, edge, reach + rounding};
-    const unsigned workers = std::max(1u, std::min(workerCount(), unsigned(pieces.size() / 64 + 1)));
+    const unsigned workers = std::max(1u, std::min(workersFor(threads), unsigned(pieces.size() / 64 + 1)));
     std::vector<TriangleGrid::Visits> visits(workers, grid.visits());
     std::vector<Motions> most(workers, Motions{});
     parallelChunks(

@@ -34,9 +34,9 @@ struct MovingMesh {
 // For each interval, the largest |displacement(i) - displacement(k)| over corners i of a piece of a
 // collision triangle and k of a render triangle whose bounding boxes lie within `reach` of each other
 // at this pose (a superset of the pairs within `reach`, with room for the rounding of the float
-// meshes `reach` was certified on), on all cores. The pairs are found once for both intervals. 0
-// when either mesh has no triangle; infinity when a position, a displacement or `reach` is not
+// meshes `reach` was certified on), on `threads` threads (0: all cores). The pairs are found once for both
+// intervals. 0 when either mesh has no triangle; infinity when a position, a displacement or `reach` is not
 // finite.
-Motions relativeMotion(const MovingMesh& render, const MovingMesh& collision, double reach);
+Motions relativeMotion(const MovingMesh& render, const MovingMesh& collision, double reach, unsigned threads);
 
 } // namespace spatter::detail

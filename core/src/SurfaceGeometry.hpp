@@ -149,4 +149,9 @@ inline unsigned workerCount() {
     return std::clamp(hw, 1u, kMaxWorkers);
 }
 
+// The threads a step asked for `threads` uses: the hardware's for 0, else at most kMaxWorkers.
+inline unsigned workersFor(unsigned threads) {
+    return threads > 0 ? std::min(threads, kMaxWorkers) : workerCount();
+}
+
 } // namespace spatter::detail

@@ -7,7 +7,7 @@
 namespace spatter {
 
 std::vector<uint32_t> nearestTrianglePerPiece(const ClosestPointQuery& query, const Mesh& collision,
-                                              uint32_t none, double reach) {
+                                              uint32_t none, double reach, unsigned threads) {
     std::vector<uint32_t> nearest(collision.triangleCount() * kPiecesPerTriangle, none);
     auto nearestTo = [&](const glm::dvec3& centre) {
         std::optional<ClosestPoint> near = query.closest(centre, reach);
@@ -15,7 +15,7 @@ std::vector<uint32_t> nearestTrianglePerPiece(const ClosestPointQuery& query, co
         return near ? near->triangle : none;
     };
     detail::parallelChunks(
-        collision.triangleCount(), 64, detail::workerCount(),
+        collision.triangleCount(), 64, detail::workersFor(threads),
         [&](size_t begin, size_t end, unsigned) {
             for (size_t t = begin; t < end; ++t) {
                 const uint32_t* c = &collision.indices[3 * t];

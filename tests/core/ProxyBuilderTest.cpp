@@ -264,6 +264,38 @@ TEST(ProxyBuilder, RejectsInvalidSettings) {
     s = ProxySettings{};
     s.backend = ProxyBackend::None;
     EXPECT_THAT(buildProxy(render, s).error(), HasSubstr("backend"));
+    s = ProxySettings{};
+    s.threads = 17;
+    EXPECT_THAT(buildProxy(render, s).error(), HasSubstr("threads 17"));
+}
+
+// The proxy, its bound and its drawn normals are the same whatever the number of threads a build
+// uses (one: the calling thread alone), so that every machine builds the same: the gallery's pillar
+// and a crate, whose certificates cut their hierarchies, and the crate's search from earlier runs.
+TEST(ProxyBuilder, SameProxyOnAnyNumberOfThreads) {
+    const Scene gallery = makeGalleryScene();
+    for (const auto& [name, tolerance] :
+         {std::pair<const char*, float>{"pillar_2", 0.01f}, {"crate_0", 0.002f}}) {
+        const auto object = std::find_if(gallery.objects.begin(), gallery.objects.end(),
+                                         [name = name](const SceneObject& o) { return o.name == name; });
+        ASSERT_NE(object, gallery.objects.end());
+        std::vector<Proxy> built;
+        for (const unsigned threads : {1u, 2u, 5u, 16u}) {
+            ProxySettings s = settingsFor(ProxyBackend::MeshOpt, tolerance);
+            s.threads = threads;
+            Result<Proxy> p = buildProxy(*object->mesh, s);
+            ASSERT_TRUE(p) << p.error();
+            built.push_back(std::move(p).value());
+        }
+        for (const Proxy& p : built) {
+            EXPECT_EQ(p.mesh.positions, built[0].mesh.positions) << name;
+            EXPECT_EQ(p.mesh.indices, built[0].mesh.indices) << name;
+            EXPECT_EQ(p.errorBound, built[0].errorBound) << name;
+            EXPECT_EQ(p.proxyToRenderMax, built[0].proxyToRenderMax) << name;
+            EXPECT_EQ(p.renderToProxyMax, built[0].renderToProxyMax) << name;
+            EXPECT_EQ(p.drawnNormals.packed(), built[0].drawnNormals.packed()) << name;
+        }
+    }
 }
 
 TEST(ProxyBuilder, ProgressReportsFractionsOfTheBuildAndCanCancel) {

@@ -209,6 +209,25 @@ TEST(DeformingProxy, HoldsItsBoundOverThePosesWhereARestProxyCutsAcrossTheBend) 
     ASSERT_EQ(p->deformation.skin.joints.size(), p->proxy.mesh.positions.size() * 2);
 }
 
+// The bound over the poses (certificates and the relative motion between samples) does not depend on
+// the number of threads.
+TEST(DeformingProxy, SameBoundOverThePosesOnAnyNumberOfThreads) {
+    const Scene arm = makeSkinnedArm();
+    ProxySettings settings;
+    settings.tolerance = 0.02f;
+    std::vector<DeformingProxy> built;
+    for (const unsigned threads : {1u, 3u}) {
+        settings.threads = threads;
+        Result<DeformingProxy> p = buildDeformingProxy(arm, 0, settings, 8);
+        ASSERT_TRUE(p.ok()) << p.error();
+        built.push_back(std::move(p).value());
+    }
+    EXPECT_EQ(built[1].proxy.mesh.indices, built[0].proxy.mesh.indices);
+    EXPECT_EQ(built[1].poses.bound, built[0].poses.bound);
+    EXPECT_EQ(built[1].poses.motion, built[0].poses.motion);
+    EXPECT_EQ(built[1].restPoses.bound, built[0].restPoses.bound);
+}
+
 TEST(DeformingProxy, RejectsAnObjectThatDoesNotDeform) {
     Scene scene;
     scene.source = "test:static";

@@ -33,9 +33,10 @@ public:
 
     // The table for collision mesh `collision` standing for `render` (both in the same space), `query`
     // answering for `render`; `reach` bounds how far `render` lies from `collision` (the proxy's h;
-    // infinity when unknown), which only makes the search quicker.
+    // infinity when unknown), which only makes the search quicker. `threads`: as for
+    // nearestTrianglePerPiece.
     static DrawnNormals build(const Mesh& render, const ClosestPointQuery& query, const Mesh& collision,
-                              double reach);
+                              double reach, unsigned threads = 0);
     // The same with a nearest-point structure over `render` built for it. Fails when it cannot be.
     static Result<DrawnNormals> build(const Mesh& render, const Mesh& collision, double reach);
 

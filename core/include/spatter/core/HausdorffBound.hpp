@@ -135,15 +135,17 @@ Result<HausdorffPair> boundBothWays(const HausdorffSurface& a, const HausdorffSu
 // A lower bound only: the largest distance from `from` to `to` at the centroids and edge midpoints of
 // at most `maxTriangles` of from's triangles (a fixed stride), stopping as soon as one is above
 // `stopAbove`. No refinement and no upper bound: cheap, for steering a search whose answer is
-// certified afterwards. 0 for a `from` without surface; fails like boundOneSided.
+// certified afterwards. 0 for a `from` without surface; fails like boundOneSided. `threads` as
+// HausdorffSettings::threads (the result does not depend on it; above 16, 16 are used).
 Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSurface& to,
-                                 size_t maxTriangles, double stopAbove,
-                                 const ProgressCallback& progress = {});
+                                 size_t maxTriangles, double stopAbove, const ProgressCallback& progress = {},
+                                 unsigned threads = 0);
 // The same from a mesh not prepared for the certifier (its surface triangles in the mesh's order, where
 // the prepared surface strides over its hierarchy's order: the same samples wherever all triangles
 // are sampled). Fails also like checkTriangles on a bad index or a non-finite position.
 Result<double> sampledLowerBound(const Mesh& from, const HausdorffSurface& to, size_t maxTriangles,
-                                 double stopAbove, const ProgressCallback& progress = {});
+                                 double stopAbove, const ProgressCallback& progress = {},
+                                 unsigned threads = 0);
 
 // Both directions (a to b first, its lower bound then carried into b to a): lower and upper are the
 // two-sided ones; `exceeded` as soon as either direction exceeds. Fails like boundOneSided, and when

@@ -53,8 +53,10 @@ template <class F> void forEachSampledPose(const Scene& scene, int samples, F&& 
 // it) against the render mesh of `scene.objects[object]` over the scene's animations, sampled
 // `samples` (>= 1) times each. Each certification may exceed the distance it measures by `margin`
 // (absolute, > 0). Fails on bad arguments or when a pose cannot be certified (the message says which).
+// `threads` as HausdorffSettings::threads (the result does not depend on it).
 Result<PoseBound> boundOverPoses(const Scene& scene, size_t object, const Mesh& collision,
-                                 const VertexDeformation& deformation, int samples, double margin);
+                                 const VertexDeformation& deformation, int samples, double margin,
+                                 unsigned threads = 0);
 
 // The same poses sampled, not certified: at each, the largest distance sampledLowerBound finds both
 // ways at up to `maxTriangles` triangles a direction, a distance the meshes attain there. `bound` and
@@ -62,6 +64,7 @@ Result<PoseBound> boundOverPoses(const Scene& scene, size_t object, const Mesh& 
 // `motion` is 0. Much cheaper than boundOverPoses: for finding the worst pose and for ruling a
 // candidate out. Fails like boundOverPoses.
 Result<PoseBound> sampledOverPoses(const Scene& scene, size_t object, const Mesh& collision,
-                                   const VertexDeformation& deformation, int samples, size_t maxTriangles);
+                                   const VertexDeformation& deformation, int samples, size_t maxTriangles,
+                                   unsigned threads = 0);
 
 } // namespace spatter

@@ -48,9 +48,11 @@ inline size_t pieceOf(const glm::dvec3& bary) {
 // For each piece of each triangle of `collision`, in piece order, the triangle of the mesh `query`
 // answers for that is nearest the piece's centre; `none` where it finds none. `reach`: how far that
 // surface may lie from `collision` (a certified bound such as a proxy's h; infinity when none is
-// known): the search looks that far first, then everywhere. On all cores.
+// known): the search looks that far first, then everywhere. On `threads` threads (0: the hardware's,
+// at most 16; the result does not depend on it).
 std::vector<uint32_t> nearestTrianglePerPiece(const ClosestPointQuery& query, const Mesh& collision,
                                               uint32_t none,
-                                              double reach = std::numeric_limits<double>::infinity());
+                                              double reach = std::numeric_limits<double>::infinity(),
+                                              unsigned threads = 0);
 
 } // namespace spatter
