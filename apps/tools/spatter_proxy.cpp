@@ -19,7 +19,7 @@
 static const char* kUsage =
     R"(usage: spatter-proxy build MESH --tolerance T[%] [--backend openmesh|meshopt|auto]
                            --out PROXY.obj [--report REPORT.json] [--cache DIR]
-                           [--max-triangles N] [--quiet]
+                           [--max-triangles N] [--threads N] [--quiet]
 
 Builds the collision proxy of MESH and writes it to PROXY.obj (positions, normals, triangles).
 
@@ -37,6 +37,8 @@ Builds the collision proxy of MESH and writes it to PROXY.obj (positions, normal
   --cache DIR       reuses or stores the proxy in DIR, keyed by a hash of the mesh and the
                     settings. Without it nothing is cached.
   --max-triangles N largest number of proxy triangles (0, the default: no limit).
+  --threads N       threads the build uses, 1 to 16 (0, the default: the machine's, at most 16).
+                    The proxy does not depend on it.
   --quiet           no progress, notes or summary on stderr (warnings still).
 
 h is never below the true two-sided Hausdorff distance between the proxy and the merged mesh.
@@ -165,6 +167,11 @@ int main(int argc, char** argv) {
             if (!value(v) || !parseNumber(v, n) || n < 0.0 || n > 4294967295.0 || n != std::floor(n))
                 return usageError("--max-triangles needs a whole number >= 0");
             settings.maxTriangles = uint32_t(n);
+        } else if (arg == "--threads") {
+            double n = 0.0;
+            if (!value(v) || !parseNumber(v, n) || n < 0.0 || n > 16.0 || n != std::floor(n))
+                return usageError("--threads needs a whole number from 0 to 16");
+            settings.threads = unsigned(n);
         } else if (arg == "--quiet") {
             quiet = true;
         } else {

@@ -1,0 +1,81 @@
+// spatter-proxy: a certified proxy of a mesh file, written as OBJ with its report, the same whatever
+// the number of threads the build is given; bad usage exits 2, a mesh it cannot read 1.
+
+#include "PlaceToolRun.hpp"
+#include "TestData.hpp"
+
+#include "spatter/core/GalleryScene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <sys/wait.h>
+
+using namespace spatter;
+
+namespace {
+
+#ifdef SPATTER_PROXY_TOOL
+const char* const kProxyTool = SPATTER_PROXY_TOOL;
+#else
+const char* const kProxyTool = nullptr;
+#endif
+
+// The gallery's second pillar as OBJ in `dir` (positions to the float bit), and its triangles.
+std::string writePillar(const std::string& dir, size_t& triangles) {
+    const Scene gallery = makeGalleryScene();
+    const auto pillar = std::find_if(gallery.objects.begin(), gallery.objects.end(),
+                                     [](const SceneObject& o) { return o.name == "pillar_2"; });
+    const Mesh& m = *pillar->mesh;
+    triangles = m.triangleCount();
+    const std::string path = dir + "/pillar.obj";
+    std::ofstream f(path);
+    f << std::setprecision(9);
+    for (const glm::vec3& p : m.positions)
+        f << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (size_t i = 0; i + 2 < m.indices.size(); i += 3)
+        f << "f " << m.indices[i] + 1 << ' ' << m.indices[i + 1] + 1 << ' ' << m.indices[i + 2] + 1 << '\n';
+    return path;
+}
+
+// The exit code of `spatter-proxy build ARGS` (-1 when it did not exit).
+int runProxyTool(const std::string& args, const std::string& dir) {
+    const std::string command =
+        std::string("'") + kProxyTool + "' build " + args + " 2> '" + dir + "/err.txt'";
+    const int status = std::system(command.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+} // namespace
+
+TEST(SpatterProxy, WritesACertifiedProxyThatTheThreadCountDoesNotChange) {
+    if (!kProxyTool) GTEST_SKIP() << "spatter-proxy is not built";
+    const std::string dir = test::scratchDir("proxy-tool");
+    size_t triangles = 0;
+    const std::string pillar = writePillar(dir, triangles);
+    for (const char* threads : {"0", "1", "8", "16"})
+        ASSERT_EQ(runProxyTool(pillar + " --tolerance 1% --quiet --threads " + threads + " --out '" + dir +
+                                   "/p" + threads + ".obj' --report '" + dir + "/p" + threads + ".json'",
+                               dir),
+                  0)
+            << test::readFile(dir + "/err.txt");
+    const nlohmann::json report = nlohmann::json::parse(test::readFile(dir + "/p0.json"));
+    EXPECT_EQ(report["input_triangles"], triangles);
+    EXPECT_LT(report["proxy_triangles"], report["input_triangles"].get<size_t>() / 4);
+    EXPECT_LE(report["error_bound"].get<double>(), report["tolerance"].get<double>());
+    EXPECT_EQ(report["backend"], "meshopt");
+    for (const char* threads : {"1", "8", "16"}) {
+        EXPECT_EQ(test::readFile(dir + "/p" + threads + ".obj"), test::readFile(dir + "/p0.obj")) << threads;
+        const nlohmann::json other = nlohmann::json::parse(test::readFile(dir + "/p" + threads + ".json"));
+        EXPECT_EQ(other["error_bound"], report["error_bound"]) << threads;
+        EXPECT_EQ(other["proxy_triangles"], report["proxy_triangles"]) << threads;
+    }
+    const std::string out = " --out '" + dir + "/x.obj'";
+    EXPECT_EQ(runProxyTool(pillar + " --tolerance 1%" + out + " --threads 17", dir), 2);
+    EXPECT_EQ(runProxyTool(pillar + " --tolerance 1%" + out + " --threads 1.5", dir), 2);
+    EXPECT_EQ(runProxyTool(pillar + out, dir), 2); // no tolerance
+    EXPECT_EQ(runProxyTool("'" + dir + "/missing.obj' --tolerance 1%" + out, dir), 1);
+}
