@@ -12,16 +12,7 @@
 #include <sys/wait.h>
 
 using namespace spatter;
-
-namespace {
-
-#ifdef SPATTER_INFO_TOOL
-const char* const kInfoTool = SPATTER_INFO_TOOL;
-#else
-const char* const kInfoTool = nullptr;
-#endif
-
-} // namespace
+using spatter::test::kInfoTool;
 
 TEST(SpatterInfo, DescribesEveryObjectAndTheCollisionMeshItUses) {
     if (!kInfoTool) GTEST_SKIP() << "spatter-info is not built";

@@ -11,6 +11,16 @@ const char* const kPlaceTool = SPATTER_PLACE_TOOL;
 #else
 const char* const kPlaceTool = nullptr;
 #endif
+#ifdef SPATTER_INFO_TOOL
+const char* const kInfoTool = SPATTER_INFO_TOOL;
+#else
+const char* const kInfoTool = nullptr;
+#endif
+#ifdef SPATTER_PROXY_TOOL
+const char* const kProxyTool = SPATTER_PROXY_TOOL;
+#else
+const char* const kProxyTool = nullptr;
+#endif
 
 std::string readFile(const std::string& path) {
     std::ifstream in(path);

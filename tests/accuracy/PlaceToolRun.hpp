@@ -1,5 +1,5 @@
 #pragma once
-// Runs the spatter-place binary of this build and collects what it wrote.
+// Runs the spatter-place binary of this build and collects what it wrote; where the other tools are.
 
 #include <nlohmann/json.hpp>
 
@@ -7,8 +7,11 @@
 
 namespace spatter::test {
 
-// The spatter-place binary, or nullptr when the tools are not built (SPATTER_BUILD_APPS=OFF).
+// The spatter-place, spatter-info and spatter-proxy binaries, or nullptr when the tools are not built
+// (SPATTER_BUILD_APPS=OFF).
 extern const char* const kPlaceTool;
+extern const char* const kInfoTool;
+extern const char* const kProxyTool;
 
 struct PlaceToolRun {
     int status = -1;        // as std::system returns it

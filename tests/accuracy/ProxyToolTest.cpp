@@ -15,14 +15,9 @@
 #include <sys/wait.h>
 
 using namespace spatter;
+using spatter::test::kProxyTool;
 
 namespace {
-
-#ifdef SPATTER_PROXY_TOOL
-const char* const kProxyTool = SPATTER_PROXY_TOOL;
-#else
-const char* const kProxyTool = nullptr;
-#endif
 
 // The gallery's second pillar as OBJ in `dir` (positions to the float bit), and its triangles.
 std::string writePillar(const std::string& dir, size_t& triangles) {
