@@ -517,9 +517,8 @@ Status checkSettings(const HausdorffSettings& s) {
     if (!(s.tolerance >= 0.0)) return fail("Hausdorff bound: tolerance is negative or NaN");
     if (!(s.roomShare >= 0.0 && s.roomShare < 1.0) || !(s.minRoom > 0.0 && s.minRoom <= 1.0))
         return fail("Hausdorff bound: roomShare must lie in [0, 1) and minRoom in (0, 1]");
-    if (s.threads > detail::kMaxWorkers)
-        return fail("Hausdorff bound: threads " + std::to_string(s.threads) + " is above " +
-                    std::to_string(detail::kMaxWorkers));
+    if (const std::string p = detail::threadsProblem(s.threads); !p.empty())
+        return fail("Hausdorff bound: " + p);
     return {};
 }
 

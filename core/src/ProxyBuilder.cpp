@@ -94,9 +94,8 @@ Status checkSettings(const ProxySettings& s) {
         return fail("proxy settings: margin fraction " + std::to_string(s.marginFraction) +
                     " is not in (0, 1)");
     if (s.maxAttempts < 1) return fail("proxy settings: maxAttempts must be at least 1");
-    if (s.threads > detail::kMaxWorkers)
-        return fail("proxy settings: threads " + std::to_string(s.threads) + " is above " +
-                    std::to_string(detail::kMaxWorkers));
+    if (const std::string p = detail::threadsProblem(s.threads); !p.empty())
+        return fail("proxy settings: " + p);
     return {};
 }
 

@@ -149,6 +149,13 @@ inline unsigned workerCount() {
     return std::clamp(hw, 1u, kMaxWorkers);
 }
 
+// What is wrong with `threads` as a thread count of the core's settings (0 to kMaxWorkers); "" when
+// nothing is.
+inline std::string threadsProblem(unsigned threads) {
+    if (threads <= kMaxWorkers) return {};
+    return "threads " + std::to_string(threads) + " is above " + std::to_string(kMaxWorkers);
+}
+
 // The threads a step asked for `threads` uses: the hardware's for 0, else at most kMaxWorkers.
 inline unsigned workersFor(unsigned threads) {
     return threads > 0 ? std::min(threads, kMaxWorkers) : workerCount();

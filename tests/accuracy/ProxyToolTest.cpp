@@ -2,29 +2,25 @@
 // the number of threads the build is given; bad usage exits 2, a mesh it cannot read 1.
 
 #include "PlaceToolRun.hpp"
+#include "ReferenceGeometry.hpp"
 #include "TestData.hpp"
-
-#include "spatter/core/GalleryScene.hpp"
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <sys/wait.h>
 
 using namespace spatter;
+using spatter::test::galleryMesh;
 using spatter::test::kProxyTool;
 
 namespace {
 
 // The gallery's second pillar as OBJ in `dir` (positions to the float bit), and its triangles.
 std::string writePillar(const std::string& dir, size_t& triangles) {
-    const Scene gallery = makeGalleryScene();
-    const auto pillar = std::find_if(gallery.objects.begin(), gallery.objects.end(),
-                                     [](const SceneObject& o) { return o.name == "pillar_2"; });
-    const Mesh& m = *pillar->mesh;
+    const Mesh& m = *galleryMesh("pillar_2");
     triangles = m.triangleCount();
     const std::string path = dir + "/pillar.obj";
     std::ofstream f(path);

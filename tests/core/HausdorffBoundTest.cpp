@@ -1,6 +1,5 @@
 #include "spatter/core/HausdorffBound.hpp"
 
-#include "spatter/core/GalleryScene.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/Random.hpp"
 #include "spatter/core/SceneLoader.hpp"
@@ -191,15 +190,13 @@ TEST(HausdorffBound, BothWaysBoundsEachDirectionAndStopsOnEitherNo) {
 // A proxy's bound is the same on any machine: the walk's subtrees do not follow the thread count.
 // The gallery's pillar at 1% against its proxy, certified at the tolerance and sharp.
 TEST(HausdorffBound, SameBoundOnAnyNumberOfThreads) {
-    const Scene gallery = makeGalleryScene();
-    const auto pillar = std::find_if(gallery.objects.begin(), gallery.objects.end(),
-                                     [](const SceneObject& o) { return o.name == "pillar_2"; });
-    ASSERT_NE(pillar, gallery.objects.end());
+    const std::shared_ptr<const Mesh> pillar = galleryMesh("pillar_2");
+    ASSERT_TRUE(pillar);
     ProxySettings ps;
     ps.tolerance = 0.01f;
-    const Result<Proxy> proxy = buildProxy(*pillar->mesh, ps);
+    const Result<Proxy> proxy = buildProxy(*pillar, ps);
     ASSERT_TRUE(proxy);
-    const HausdorffSurface render = surface(*pillar->mesh), coarse = surface(proxy->mesh);
+    const HausdorffSurface render = surface(*pillar), coarse = surface(proxy->mesh);
     for (const double tolerance : {proxy->tolerance, std::numeric_limits<double>::infinity()}) {
         HausdorffSettings s;
         s.margin = 0.05 * proxy->tolerance;

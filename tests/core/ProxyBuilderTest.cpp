@@ -1,6 +1,5 @@
 #include "spatter/core/ProxyBuilder.hpp"
 
-#include "spatter/core/GalleryScene.hpp"
 #include "spatter/core/ProxyCache.hpp"
 #include "spatter/core/Random.hpp"
 #include "spatter/core/SceneLoader.hpp"
@@ -273,17 +272,15 @@ TEST(ProxyBuilder, RejectsInvalidSettings) {
 // uses (one: the calling thread alone), so that every machine builds the same: the gallery's pillar
 // and a crate, whose certificates cut their hierarchies, and the crate's search from earlier runs.
 TEST(ProxyBuilder, SameProxyOnAnyNumberOfThreads) {
-    const Scene gallery = makeGalleryScene();
     for (const auto& [name, tolerance] :
          {std::pair<const char*, float>{"pillar_2", 0.01f}, {"crate_0", 0.002f}}) {
-        const auto object = std::find_if(gallery.objects.begin(), gallery.objects.end(),
-                                         [name = name](const SceneObject& o) { return o.name == name; });
-        ASSERT_NE(object, gallery.objects.end());
+        const std::shared_ptr<const Mesh> object = galleryMesh(name);
+        ASSERT_TRUE(object) << name;
         std::vector<Proxy> built;
         for (const unsigned threads : {1u, 2u, 5u, 16u}) {
             ProxySettings s = settingsFor(ProxyBackend::MeshOpt, tolerance);
             s.threads = threads;
-            Result<Proxy> p = buildProxy(*object->mesh, s);
+            Result<Proxy> p = buildProxy(*object, s);
             ASSERT_TRUE(p) << p.error();
             built.push_back(std::move(p).value());
         }
@@ -448,11 +445,9 @@ TEST(ProxyBuilder, LargeMeshIsSearchedFromACoarserCopyAndCertifiedAgainstTheRend
 // tolerance: the gallery's crate, a bevelled cube with flush boards, comes out a box at 2% of its
 // diagonal, where runs from the render mesh alone stop at about 50 triangles.
 TEST(ProxyBuilder, SearchContinuesFromARunWithRoomLeftUnderTheTolerance) {
-    const Scene gallery = makeGalleryScene();
-    const auto crate = std::find_if(gallery.objects.begin(), gallery.objects.end(),
-                                    [](const SceneObject& o) { return o.name == "crate_0"; });
-    ASSERT_NE(crate, gallery.objects.end());
-    const Mesh& render = *crate->mesh;
+    const std::shared_ptr<const Mesh> crate = galleryMesh("crate_0");
+    ASSERT_TRUE(crate);
+    const Mesh& render = *crate;
     Result<Proxy> p = buildProxy(render, settingsFor(ProxyBackend::MeshOpt, 0.02f));
     ASSERT_TRUE(p) << p.error();
     expectValidProxy(p.value());

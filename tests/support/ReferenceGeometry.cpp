@@ -1,5 +1,6 @@
 #include "ReferenceGeometry.hpp"
 
+#include "spatter/core/GalleryScene.hpp"
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/Random.hpp"
 
@@ -10,6 +11,12 @@
 #include <limits>
 
 namespace spatter::test {
+
+std::shared_ptr<const Mesh> galleryMesh(const std::string& name) {
+    for (const SceneObject& o : makeGalleryScene().objects)
+        if (o.name == name) return o.mesh;
+    return nullptr;
+}
 
 namespace {
 constexpr float kPi = 3.14159265358979f;

@@ -1,16 +1,22 @@
 #pragma once
-// Reference geometry for the mesh-distance and proxy tests: a closed sphere of known shape, and
-// point-to-surface distances found by brute force with a method independent of the library's
-// closest-point code (ClosestPointQuery), to check it and the proxy error bounds against.
+// Reference geometry for the mesh-distance and proxy tests: a closed sphere of known shape, the
+// gallery's meshes by name, and point-to-surface distances found by brute force with a method
+// independent of the library's closest-point code (ClosestPointQuery), to check it and the proxy
+// error bounds against.
 
 #include "spatter/core/Mesh.hpp"
 
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
+#include <string>
 #include <vector>
 
 namespace spatter::test {
+
+// The render mesh of builtin:gallery's object `name` (GalleryScene.hpp); null when there is none.
+std::shared_ptr<const Mesh> galleryMesh(const std::string& name);
 
 // A closed sphere of latitude/longitude quads split into triangles, poles on the z axis, with
 // normals; `bump` displaces the radius by bump * sin(8 theta) * sin(8 phi) (0: a plain sphere).
