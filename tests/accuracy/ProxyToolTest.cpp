@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <memory>
 #include <sys/wait.h>
 
 using namespace spatter;
@@ -20,7 +21,8 @@ namespace {
 
 // The gallery's second pillar as OBJ in `dir` (positions to the float bit), and its triangles.
 std::string writePillar(const std::string& dir, size_t& triangles) {
-    const Mesh& m = *galleryMesh("pillar_2");
+    const std::shared_ptr<const Mesh> pillar = galleryMesh("pillar_2");
+    const Mesh& m = *pillar;
     triangles = m.triangleCount();
     const std::string path = dir + "/pillar.obj";
     std::ofstream f(path);
