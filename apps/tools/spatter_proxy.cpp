@@ -3,6 +3,7 @@
 
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/SceneLoader.hpp"
+#include "spatter/core/Threads.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -16,6 +17,7 @@
 #include <string>
 #include <unistd.h>
 
+static_assert(spatter::kMaxThreads == 16, "kUsage names the most threads a build uses");
 static const char* kUsage =
     R"(usage: spatter-proxy build MESH --tolerance T[%] [--backend openmesh|meshopt|auto]
                            --out PROXY.obj [--report REPORT.json] [--cache DIR]
@@ -169,8 +171,10 @@ int main(int argc, char** argv) {
             settings.maxTriangles = uint32_t(n);
         } else if (arg == "--threads") {
             double n = 0.0;
-            if (!value(v) || !parseNumber(v, n) || n < 0.0 || n > 16.0 || n != std::floor(n))
-                return usageError("--threads needs a whole number from 0 to 16");
+            if (!value(v) || !parseNumber(v, n) || n < 0.0 || n > double(spatter::kMaxThreads) ||
+                n != std::floor(n))
+                return usageError("--threads needs a whole number from 0 to " +
+                                  std::to_string(spatter::kMaxThreads));
             settings.threads = unsigned(n);
         } else if (arg == "--quiet") {
             quiet = true;

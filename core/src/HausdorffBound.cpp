@@ -29,7 +29,7 @@ constexpr uint32_t kHullTriangles = 16;
 constexpr size_t kStartSamples = 1024, kStartChunk = 64;
 // Subtrees handed out to the threads: a fixed number, whatever the thread count, since each subtree's
 // walk raises its own acceptance level, so that the bound depends on how the hierarchy is cut (16 a
-// thread for the most threads, kMaxWorkers; on two, as fast as 64 over 96 proxy builds).
+// thread for the most threads, kMaxThreads; on two, as fast as 64 over 96 proxy builds).
 constexpr size_t kSubtrees = 256;
 // Subtrees walked first, per thread: those with the farthest starting samples (walkAll).
 constexpr size_t kFarthestFirstPerWorker = 2;

@@ -5,6 +5,7 @@
 
 #include "spatter/core/Mesh.hpp"
 #include "spatter/core/Result.hpp"
+#include "spatter/core/Threads.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -141,24 +142,21 @@ bool parallelChunks(size_t count, size_t chunk, unsigned workers, Body&& body, R
     return !cancelled.load();
 }
 
-// The most threads a parallel step of the core uses.
-constexpr unsigned kMaxWorkers = 16;
-
 inline unsigned workerCount() {
     const unsigned hw = std::thread::hardware_concurrency();
-    return std::clamp(hw, 1u, kMaxWorkers);
+    return std::clamp(hw, 1u, kMaxThreads);
 }
 
-// What is wrong with `threads` as a thread count of the core's settings (0 to kMaxWorkers); "" when
+// What is wrong with `threads` as a thread count of the core's settings (0 to kMaxThreads); "" when
 // nothing is.
 inline std::string threadsProblem(unsigned threads) {
-    if (threads <= kMaxWorkers) return {};
-    return "threads " + std::to_string(threads) + " is above " + std::to_string(kMaxWorkers);
+    if (threads <= kMaxThreads) return {};
+    return "threads " + std::to_string(threads) + " is above " + std::to_string(kMaxThreads);
 }
 
-// The threads a step asked for `threads` uses: the hardware's for 0, else at most kMaxWorkers.
+// The threads a step asked for `threads` uses: the hardware's for 0, else at most kMaxThreads.
 inline unsigned workersFor(unsigned threads) {
-    return threads > 0 ? std::min(threads, kMaxWorkers) : workerCount();
+    return threads > 0 ? std::min(threads, kMaxThreads) : workerCount();
 }
 
 } // namespace spatter::detail

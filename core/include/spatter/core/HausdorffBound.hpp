@@ -34,7 +34,7 @@
 // at most L + margin), so the refinement ends. When a measured distance exceeds the tolerance, the answer to
 // "is h <= tol?" is no, and the search stops there (`exceeded`).
 //
-// Work is split over a fixed number of subtrees of the hierarchy, walked on up to 16 threads; each subtree
+// Work is split over a fixed number of subtrees of the hierarchy, walked on up to kMaxThreads threads; each subtree
 // starts from the same lower bound (the distances at a fixed stride of triangle centroids), so a result that
 // is not `exceeded` does not depend on the thread count or on timing: the same on every machine. (An
 // `exceeded` one stops at the first distance above the tolerance that some thread measures: its `lower` and
@@ -44,6 +44,7 @@
 #include "spatter/core/Mesh.hpp"
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/Result.hpp"
+#include "spatter/core/Threads.hpp"
 
 #include <glm/glm.hpp>
 #include <limits>
@@ -93,7 +94,7 @@ struct HausdorffSettings {
     // instead of bounded above it (undecided). 0 keeps the margin as given.
     double roomShare = 0.0; // in [0, 1)
     double minRoom = 0.01;  // in (0, 1]
-    // Threads to walk on: 0 for the hardware's (at most 16), else 1 to 16. The result does not depend
+    // Threads to walk on: 0 for the hardware's (at most kMaxThreads), else 1 to kMaxThreads. The result does not depend
     // on it (see the top of this file).
     unsigned threads = 0;
 };
@@ -136,7 +137,7 @@ Result<HausdorffPair> boundBothWays(const HausdorffSurface& a, const HausdorffSu
 // at most `maxTriangles` of from's triangles (a fixed stride), stopping as soon as one is above
 // `stopAbove`. No refinement and no upper bound: cheap, for steering a search whose answer is
 // certified afterwards. 0 for a `from` without surface; fails like boundOneSided. `threads` as
-// HausdorffSettings::threads (the result does not depend on it; above 16, 16 are used).
+// HausdorffSettings::threads (the result does not depend on it; above kMaxThreads, kMaxThreads are used).
 Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSurface& to,
                                  size_t maxTriangles, double stopAbove, const ProgressCallback& progress = {},
                                  unsigned threads = 0);

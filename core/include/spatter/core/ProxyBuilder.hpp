@@ -45,6 +45,7 @@
 #include "spatter/core/Mesh.hpp"
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/Result.hpp"
+#include "spatter/core/Threads.hpp"
 
 #include <cstdint>
 #include <memory>
@@ -100,7 +101,7 @@ struct ProxySettings {
     uint32_t maxAttempts = 8;
     // Directory of the on-disk cache; empty for no cache. Created when missing.
     std::string cacheDirectory;
-    // Threads a build may use (0: the hardware's, at most 16; 1: the calling thread alone), besides
+    // Threads a build may use (0: the hardware's, at most kMaxThreads; 1: the calling thread alone), besides
     // the threads of Embree's own BVH builds. The proxy does not depend on it, and the cache key
     // leaves it out: a caller that builds several proxies at once can give each fewer.
     unsigned threads = 0;

@@ -7,6 +7,7 @@
 
 #include "spatter/core/Mesh.hpp"
 #include "spatter/core/MeshDistance.hpp"
+#include "spatter/core/Threads.hpp"
 
 #include <glm/glm.hpp>
 
@@ -49,7 +50,7 @@ inline size_t pieceOf(const glm::dvec3& bary) {
 // answers for that is nearest the piece's centre; `none` where it finds none. `reach`: how far that
 // surface may lie from `collision` (a certified bound such as a proxy's h; infinity when none is
 // known): the search looks that far first, then everywhere. On `threads` threads (0: the hardware's,
-// at most 16; the result does not depend on it).
+// at most kMaxThreads; the result does not depend on it).
 std::vector<uint32_t> nearestTrianglePerPiece(const ClosestPointQuery& query, const Mesh& collision,
                                               uint32_t none,
                                               double reach = std::numeric_limits<double>::infinity(),
