@@ -1,5 +1,7 @@
 #include "CoverageProbe.hpp"
 
+#include <limits>
+
 namespace spatter::bench {
 
 DecalSettings unlimited(double diagonal, uint64_t seed) {
@@ -64,7 +66,7 @@ double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
         both += a[i] & b[i];
         either += a[i] | b[i];
     }
-    return either ? double(both) / double(either) : 1.0;
+    return either ? double(both) / double(either) : std::numeric_limits<double>::quiet_NaN(); // nothing seen
 }
 
 } // namespace spatter::bench

@@ -57,7 +57,8 @@ private:
     DecalType type_;
 };
 
-// Intersection over union of two masks of the same image; 1 when neither covers a pixel.
+// Intersection over union of two masks of the same image; NaN (not measured) when neither covers a
+// pixel.
 double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
 
 } // namespace spatter::bench

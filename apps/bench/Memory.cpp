@@ -402,15 +402,22 @@ int runMemoryCommand(int argc, char** argv) {
         std::max({std::isnan(gpuMeasured) ? 0.0 : gpuMeasured, std::isnan(gpuPerDecal) ? 0.0 : gpuPerDecal,
                   std::isnan(gpuHeld) ? 0.0 : gpuHeld});
     const double rendererCpuPart = std::isnan(rendererCpu) ? 0.0 : rendererCpu;
+    // The target is for a million decals with the renderer's parts measured.
+    const bool judged =
+        n == 1000000 && !std::isnan(rendererCpu) && totalPerDecal > cpuPerDecal + rendererCpuPart;
+    const bool met = totalPerDecal <= 160.0;
     std::printf(
-        "\nper decal: decal system %.1f B + renderer CPU %.1f B + GPU %.1f B = %.1f B, target <= 160: %s\n",
+        "\nper decal: decal system %.1f B + renderer CPU %.1f B + GPU %.1f B = %.1f B, target <= 160: "
+        "%s\n",
         cpuPerDecal, rendererCpuPart, totalPerDecal - cpuPerDecal - rendererCpuPart, totalPerDecal,
-        totalPerDecal <= 160.0 ? "met" : "missed");
+        !judged ? "not judged (it is for 1,000,000 decals with the renderer measured)"
+        : met   ? "met"
+                : "missed");
     std::printf("1,000,000 decals: %.0f MB\n", mb(totalPerDecal * million));
     j["total_bytes_per_decal"] = totalPerDecal;
     j["total_mb_per_million"] = mb(totalPerDecal * million);
     Json targets;
-    targets["total_met"] = totalPerDecal <= 160.0;
+    targets["total_met"] = judged ? Json(met) : Json();
     j["targets"] = targets;
     if (args.has("--json"))
         if (Status s = writeJson(j, args.value("--json")); !s) {

@@ -62,8 +62,10 @@ MESH       anything loadScene reads, or a file in the shared data (default: stan
 --quick    small and short: for the smoke test (256 rays, 16 shots, 3 repetitions of 0.01 s)
 --embree-config CONFIG  Embree device configuration for both sides, e.g. "isa=avx2" (default: Embree's)
 --filter REGEX  run only the measurements whose "set/method" name matches (for profiling)
---json FILE     the numbers as JSON: raw_single_ns, raw_packet_ns, spawn_ns, spawn_batch_ns,
-                spawn_over_raw, batch_speedup, shot_over_normal and the details
+--json FILE     the numbers as JSON: raw_single_ns, spawn_ns, spawn_over_raw and shot_over_normal
+                of the scattered rays; raw_packet_ns, spawn_batch_ns and batch_speedup of the
+                shotgun shots; targets: {spawn_over_raw_met, batch_speedup_met} (null for a set left
+                out); sets: every figure of every set of rays
 )";
 
 // Collects the per-iteration real time (ns) of every repetition, by benchmark name.
@@ -411,6 +413,9 @@ int runPlacementCommand(int argc, char** argv) {
         j["spawn_over_raw"] = number(spawnOverRaw);
         j["batch_speedup"] = number(batchSpeedup);
         j["shot_over_normal"] = number(shotOverNormal);
+        j["targets"] = {
+            {"spawn_over_raw_met", std::isnan(spawnOverRaw) ? Json() : Json(spawnOverRaw <= 1.25)},
+            {"batch_speedup_met", std::isnan(batchSpeedup) ? Json() : Json(batchSpeedup >= 1.3)}};
         j["sets"] = setJson;
         if (Status s = writeJson(j, args.value("--json")); !s) {
             std::cerr << "spatter-bench placement: " << s.error() << "\n";

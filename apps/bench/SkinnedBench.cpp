@@ -676,18 +676,20 @@ Json driftSection(const std::vector<ModelReport>& reports) {
     std::vector<std::vector<std::string>> table;
     for (const ModelReport& r : reports)
         for (const DriftSamples& d : r.drift) {
+            const bool measured = !d.along.empty(); // no decal followed: nothing to judge
             const double med = median(d.along), max = percentile(d.along, 1.0);
-            const bool met = max <= kDriftTarget;
+            const Json met = measured ? Json(max <= kDriftTarget) : Json();
             table.push_back({r.model->name, d.method, std::to_string(d.decals),
-                             std::to_string(d.along.size()), percent(med), percent(max), percent(d.wholeMax),
-                             verdict(met)});
+                             std::to_string(d.along.size()), measured ? percent(med) : "-",
+                             measured ? percent(max) : "-", measured ? percent(d.wholeMax) : "-",
+                             measured ? verdict(met.get<bool>()) : "-"});
             rows.push_back({{"model", r.model->name},
                             {"method", d.method},
                             {"decals", d.decals},
                             {"samples", d.along.size()},
-                            {"median", number(med)},
-                            {"max", number(max)},
-                            {"whole_max", number(d.wholeMax)},
+                            {"median", measured ? number(med) : Json()},
+                            {"max", measured ? number(max) : Json()},
+                            {"whole_max", measured ? number(d.wholeMax) : Json()},
                             {"within_target", met}});
         }
     std::printf("\ndrift along the surface from the point placed on, of the decal's size\n");

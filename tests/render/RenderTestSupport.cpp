@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 namespace spatter::test {
 
@@ -56,7 +57,8 @@ double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
         inter += (a[i] && b[i]) ? 1 : 0;
         uni += (a[i] || b[i]) ? 1 : 0;
     }
-    return uni == 0 ? 1.0 : double(inter) / double(uni);
+    return uni == 0 ? std::numeric_limits<double>::quiet_NaN()
+                    : double(inter) / double(uni); // fails any bound
 }
 
 size_t countSet(const std::vector<uint8_t>& mask) {

@@ -42,7 +42,8 @@ Image renderView(Renderer& r, const Camera& camera, View view, FrameStats* stats
 
 // Pixels of a readback that are white (> 127 in red), one byte per pixel, row 0 at the top.
 std::vector<uint8_t> whiteMask(const Image& image);
-// Intersection over union of two masks (1 when both are empty).
+// Intersection over union of two masks; NaN when both are empty, so that no bound holds for a view in
+// which nothing was drawn.
 double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
 size_t countSet(const std::vector<uint8_t>& mask);
 
