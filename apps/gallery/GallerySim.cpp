@@ -4,6 +4,7 @@
 #include "spatter/core/ProxyInstances.hpp"
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/core/SkinnedDummy.hpp"
+#include "spatter/core/Threads.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -168,7 +169,7 @@ Result<ProxySet> GallerySim::buildProxies(float tolerancePercent, std::atomic<fl
     settings.backend = ProxyBackend::MeshOpt;
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     const unsigned builders = std::min(8u, cores);
-    settings.threads = std::max(1u, cores / builders);
+    settings.threads = std::clamp(cores / builders, 1u, kMaxThreads); // above kMaxThreads a build refuses
     ProxySet set;
     set.tolerancePercent = tolerancePercent;
     set.proxies.resize(scene_->objects.size());
