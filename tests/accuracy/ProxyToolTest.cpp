@@ -5,11 +5,11 @@
 #include "ReferenceGeometry.hpp"
 #include "TestData.hpp"
 
+#include "spatter/core/SceneLoader.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <fstream>
-#include <iomanip>
 #include <memory>
 #include <sys/wait.h>
 
@@ -22,15 +22,9 @@ namespace {
 // The gallery's second pillar as OBJ in `dir` (positions to the float bit), and its triangles.
 std::string writePillar(const std::string& dir, size_t& triangles) {
     const std::shared_ptr<const Mesh> pillar = galleryMesh("pillar_2");
-    const Mesh& m = *pillar;
-    triangles = m.triangleCount();
+    triangles = pillar->triangleCount();
     const std::string path = dir + "/pillar.obj";
-    std::ofstream f(path);
-    f << std::setprecision(9);
-    for (const glm::vec3& p : m.positions)
-        f << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
-    for (size_t i = 0; i + 2 < m.indices.size(); i += 3)
-        f << "f " << m.indices[i] + 1 << ' ' << m.indices[i + 1] + 1 << ' ' << m.indices[i + 2] + 1 << '\n';
+    EXPECT_TRUE(writeObj(*pillar, path).ok()) << path;
     return path;
 }
 
