@@ -535,7 +535,7 @@ public:
         starts_.reserve(workers);
         for (unsigned w = 0; w < workers; ++w)
             starts_.emplace_back(a_, b_, s_, cache_, exceeded_, std::max(0.0, s_.knownLower));
-        const size_t stride = std::max<size_t>(1, a_.triangles.size() / kStartSamples);
+        const size_t stride = std::max<size_t>(1, (a_.triangles.size() + kStartSamples - 1) / kStartSamples);
         std::vector<double> sampled((a_.triangles.size() + stride - 1) / stride, 0.0);
         detail::parallelChunks(
             sampled.size(), kStartChunk, workers,
