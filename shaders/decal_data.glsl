@@ -11,9 +11,10 @@
 // of its look comes from its type, and the decal ID it clips to from its object.
 struct DecalBounds {
     vec3 center;       // the box's centre in object space
-    uint objectRadius; // bits 16-31: the box's bounding radius in object space, the high half of a
-                       // float rounded up (0: a decal that cannot be drawn); bits 0-15: the object
-                       // index's low 16 bits
+    uint objectRadius; // bits 16-30: the box's bounding radius in object space, the high half of a
+                       // positive float rounded up, without its sign (0: a decal that cannot be
+                       // drawn); bit 31: the object index has bits past the low 16; bits 0-15: the
+                       // object index's low 16 bits
 };
 
 // Scalars only: an array of them has a stride of 28 bytes.

@@ -11,9 +11,11 @@ namespace spatter::render_detail {
 
 namespace {
 
-// The high half of the bits of a float at least `radius` (positive): the next such value up unless
-// the low half is zero. Past the largest float it is infinite, a sphere no plane culls.
+// The high half of the bits of a float at least `radius`: the next such value up unless the low half
+// is zero. Past the largest float it is infinite, a sphere no plane culls; 0 (not drawable) unless
+// `radius` is positive, so that the sign bit stays free (kBoundsWideObject).
 uint32_t radiusBits(double radius) {
+    if (!(radius > 0.0)) return 0u;
     float f = float(radius);
     if (double(f) < radius) f = std::nextafter(f, std::numeric_limits<float>::infinity());
     uint32_t bits = 0;
@@ -46,8 +48,9 @@ uint32_t objectField(const DecalRecordGpu& r) {
 
 DecalBoundsGpu recordBounds(const DecalRecordGpu& r) {
     const bool drawable = r.centerDepth.w > 0.0f;
-    return {glm::vec3(r.centerDepth),
-            (drawable ? radiusBits(recordRadius(r)) : 0u) | (objectField(r) & 0xffffu)};
+    const uint32_t object = objectField(r);
+    return {glm::vec3(r.centerDepth), (drawable ? radiusBits(recordRadius(r)) : 0u) | (object & 0xffffu) |
+                                          (object > 0xffffu ? kBoundsWideObject : 0u)};
 }
 
 DecalBodyGpu recordBody(const DecalRecordGpu& r) {

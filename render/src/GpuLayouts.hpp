@@ -81,10 +81,15 @@ static_assert(sizeof(DecalRecordGpu) == 48, "DecalRecordGpu is three vec4s");
 // std430, binding kDecalBoundsBuffer: what the culling's pass over every decal reads (DecalBounds).
 struct alignas(16) DecalBoundsGpu {
     glm::vec3 center;      // the box's centre in object space
-    uint32_t objectRadius; // bits 16-31: bounding radius (a float's high half, rounded up; 0: not
-                           // drawable); bits 0-15: the object index's low 16 bits
+    uint32_t objectRadius; // bits 16-30: bounding radius (a positive float's high half without its
+                           // sign, rounded up; 0: not drawable); bit 31: the object index is past 16
+                           // bits (kBoundsWideObject); bits 0-15: the object index's low 16 bits
 };
 static_assert(sizeof(DecalBoundsGpu) == 16, "DecalBoundsGpu must match DecalBounds (std430)");
+// DecalBoundsGpu::objectRadius's bit telling that the object index has bits past the low 16, so that a
+// culling which reads only those (at most 65,536 objects) takes such a decal's object for unknown
+// instead of another one.
+constexpr uint32_t kBoundsWideObject = 0x80000000u;
 
 // std430, binding kDecalBuffer: the rest of a decal (DecalBody). Scalars only, so that the array's
 // stride is 28 bytes (a vector member would align the struct, and its stride, to 8 or 16).

@@ -276,7 +276,9 @@ TEST(GpuCulling, MatchesTheCpuFarFromTheOrigin) {
 
 // Decals of a type the host draws, of a type that cannot be drawn, and naming a type or an object
 // that does not exist, in view and out of it: the GPU counts them as the CPU does and draws none (its
-// first pass then reads each decal's type, which it skips while every type is the projector's).
+// first pass then reads each decal's type, which it skips while every type is the projector's). Among
+// the objects that do not exist, 65,536 and 65,537, whose low 16 bits (all the culling reads of an
+// object's index while there are at most 65,536 objects) name the wall.
 TEST(GpuCulling, CountsTheHostsDecalsAndThoseThatCannotBeDrawnAsTheCpuDoes) {
     SPATTER_REQUIRE_GL(gl);
     const test::WallScene wall;
@@ -291,6 +293,7 @@ TEST(GpuCulling, CountsTheHostsDecalsAndThoseThatCannotBeDrawnAsTheCpuDoes) {
         const uint16_t kinds[4] = {0, host, none, uint16_t(none + 5)};
         decals[i].type = kinds[i % 4];
         if (i % 9 == 0) decals[i].object = 7; // no such object
+        if (i % 9 == 1) decals[i].object = 65536 + uint32_t(i % 2);
     }
     expectSameCounts(decals, variant);
 }
