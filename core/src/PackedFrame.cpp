@@ -25,9 +25,14 @@ uint64_t quantize(const double c[4], int largest, double scale, bool mirrored) {
     return bits;
 }
 
+bool finite(const glm::dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
 } // namespace
 
 uint64_t packFrame(const glm::dvec3& t, const glm::dvec3& b, const glm::dvec3& n, bool mirrored) {
+    if (!finite(t) || !finite(b) || !finite(n)) return kNoOrientation; // the trace may not see one
     // 4 w^2, 4 x^2, 4 y^2, 4 z^2 from the trace and the diagonal; row r, column c of the matrix is
     // m[c][r]: t is column 0, b column 1, n column 2.
     const double s[4] = {1.0 + t.x + b.y + n.z, 1.0 + t.x - b.y - n.z, 1.0 - t.x + b.y - n.z,

@@ -194,6 +194,7 @@ Status DecalSystem::update(double dt) {
         return fail("update: dt must be finite, >= 0 and not denormal");
     Impl& s = *impl_;
     const std::lock_guard<std::mutex> lock(s.mutex);
+    if (!std::isfinite(s.time + dt)) return fail("update: the clock would pass the largest finite time");
     s.time += dt;
     // Only the timed decals can change: the others are opaque (1) from their placement on and stay.
     // They are visited from the highest dense index down, as a walk over every decal would meet them,

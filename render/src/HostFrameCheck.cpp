@@ -1,8 +1,10 @@
 #include "HostFrameCheck.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
+#include <iterator>
 #include <utility>
 
 namespace spatter::render_detail {
@@ -79,7 +81,7 @@ std::string checkTexture(GLuint texture, const char* field, const HostFrame& fra
                          const char* need) {
     Level l;
     if (std::string p = level(texture, field, l); !p.empty()) return p;
-    if (frame.x + frame.width > l.width || frame.y + frame.height > l.height)
+    if (int64_t(frame.x) + frame.width > l.width || int64_t(frame.y) + frame.height > l.height)
         return std::string(field) + ": texture of " + std::to_string(l.width) + "x" +
                std::to_string(l.height) + " does not hold the viewport " + std::to_string(frame.x) + "," +
                std::to_string(frame.y) + " " + std::to_string(frame.width) + "x" +
@@ -137,6 +139,29 @@ std::string normalTextureProblem(GLuint texture, const char* name, const HostFra
                    : "a colour format of three or more channels (RGBA8, RGB10_A2)");
 }
 
+// Two fields of the frame that the pass uses naming one texture: it would read a texture it writes,
+// or write one twice. Roughness in the albedo target's alpha is the one sharing allowed.
+std::string sharedTextureProblem(const HostFrame& f, const ProjectorDraw& options) {
+    const bool coverage = options.coverageTexture != 0;
+    const bool blend = !coverage && options.path == ProjectorPath::GBufferBlend;
+    const std::pair<GLuint, const char*> used[] = {
+        {f.depth.texture, "HostFrame.depth.texture"},
+        {f.normals.texture, "HostFrame.normals.texture"},
+        {f.faceNormalTexture, "HostFrame.faceNormalTexture"},
+        {f.objectIdTexture, "HostFrame.objectIdTexture"},
+        {blend ? f.albedoTexture : 0u, "HostFrame.albedoTexture"},
+        {blend ? f.roughness.texture : 0u, "HostFrame.roughness.texture"},
+        {options.coverageTexture, "ProjectorDraw.coverageTexture"}};
+    const size_t albedo = 4, roughness = 5;
+    for (size_t j = 1; j < std::size(used); ++j)
+        for (size_t i = 0; i < j; ++i)
+            if (used[j].first != 0 && used[j].first == used[i].first &&
+                !(i == albedo && j == roughness && f.roughness.channel == 3))
+                return std::string(used[j].second) + ": the same texture as " + used[i].second +
+                       (j == roughness ? " (roughness may share the albedo target only in its alpha)" : "");
+    return {};
+}
+
 } // namespace
 
 FormatFacts formatFacts(GLenum internalFormat) {
@@ -192,20 +217,14 @@ std::string hostFrameProblem(const HostFrame& f, const ProjectorDraw& options) {
             [channel](const FormatFacts& k) { return k.renderable && !k.integer && k.channels > channel; },
             "a colour format with that channel");
         if (!p.empty()) return p;
-        if (f.roughness.texture == f.normals.texture ||
-            (f.roughness.texture == f.albedoTexture && channel != 3))
-            return "HostFrame.roughness.texture: the same texture as the normal target, or as the albedo "
-                   "target with roughness outside its alpha channel";
     }
-    if (blend && f.normals.texture != 0 && f.normals.texture == f.albedoTexture)
-        return "HostFrame.normals.texture: the same texture as the albedo target";
     if (f.objectIdTexture != 0) {
         p = checkTexture(
             f.objectIdTexture, "HostFrame.objectIdTexture", f, [](const FormatFacts& k) { return k.integer; },
             "an unsigned integer format (R8UI)");
         if (!p.empty()) return p;
     }
-    return {};
+    return sharedTextureProblem(f, options);
 }
 
 HostFrame cameraFrame(const ForwardFrame& f) {

@@ -94,6 +94,15 @@ TEST(Decal, NonFiniteOrZeroQuaternionPacksToNoOrientation) {
     EXPECT_TRUE(zeroFrame(d.frame()));
 }
 
+// A NaN or an infinity off the diagonal, which the trace and the diagonal do not show.
+TEST(Decal, FrameWithANonFiniteComponentPacksToNoOrientation) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(packFrame({1.0, 0.0, 0.0}, {0.0, 1.0, nan}, {0.0, 0.0, 1.0}, false), kNoOrientation);
+    EXPECT_EQ(packFrame({1.0, 0.0, 0.0}, {0.0, 1.0, inf}, {0.0, 0.0, 1.0}, false), kNoOrientation);
+    EXPECT_EQ(packFrame({1.0, -inf, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}, true), kNoOrientation);
+}
+
 TEST(Decal, EveryPackedValueWithItsFrameBitUnpacksToAUnitQuaternion) {
     // Bits a frame never packs to (a sum of squares above 1) still unpack to a rotation.
     Rng rng(13);

@@ -1,6 +1,7 @@
 #include "PlacementTestUtil.hpp"
 
 #include "spatter/core/SceneLoader.hpp"
+#include "spatter/placement/DecalPersistence.hpp"
 #include "spatter/placement/DecalSystem.hpp"
 #include "spatter/placement/ObjectIds.hpp"
 
@@ -728,6 +729,21 @@ TEST(DecalSystem, LifetimeFadesThenExpires) {
     EXPECT_NE(s.get(p), nullptr);
     EXPECT_FLOAT_EQ(s.get(p)->opacity, 1.0f);
     EXPECT_EQ(s.stats().alive, 1u);
+}
+
+// Each step is finite, the clock they would sum to is not: the step is refused and the clock stays
+// where it was, so that the system's save (which holds the clock) can still be loaded.
+TEST(DecalSystem, UpdateRefusesAStepThatWouldTakeTheClockPastTheLargestFiniteTime) {
+    DecalSystem s = makeSystem(boxScene());
+    const double largest = std::numeric_limits<double>::max();
+    ASSERT_TRUE(s.update(largest).ok());
+    const Status past = s.update(largest);
+    EXPECT_FALSE(past.ok());
+    EXPECT_NE(past.error().find("clock"), std::string::npos) << past.error();
+    EXPECT_EQ(s.time(), largest);
+    const std::vector<uint8_t> bytes = saveDecals(s);
+    DecalSystem other = makeSystem(boxScene());
+    EXPECT_TRUE(loadDecals(other, bytes.data(), bytes.size()).ok());
 }
 
 TEST(DecalSystem, StaleHandlesAreDetected) {

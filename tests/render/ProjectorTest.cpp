@@ -392,6 +392,15 @@ TEST(Projector, RejectsHostFramesThatDoNotFitNamingTheFieldAndDrawsNothing) {
          }},
         {"HostFrame viewport", [](HostFrame& f, const Textures&) { f.width = 0; }},
         {"HostFrame.depth.texture", [](HostFrame& f, const Textures&) { f.x = 1; }},
+        {"HostFrame.depth.texture", // x + width past the largest int
+         [](HostFrame& f, const Textures&) {
+             f.x = std::numeric_limits<int>::max();
+             f.width = 1;
+         }},
+        {"HostFrame.albedoTexture: the same texture as HostFrame.depth.texture",
+         [](HostFrame& f, const Textures&) { f.depth.texture = f.albedoTexture; }},
+        {"HostFrame.normals.texture: the same texture as HostFrame.depth.texture",
+         [](HostFrame& f, const Textures&) { f.depth.texture = f.normals.texture; }},
     };
     const Image before = h->host.read(h->host.albedoTexture());
     for (const Case& c : cases) {

@@ -26,7 +26,8 @@ constexpr uint64_t kIdentityOrientation =
 
 // Packs the rotation whose columns are t, b and n, an orthonormal right-handed frame (not checked;
 // Decal::setFrame makes any frame one first), and the mirrored flag: Shepperd's method without a
-// branch, whose choice of the largest component is the one packing needs.
+// branch, whose choice of the largest component is the one packing needs. kNoOrientation where a
+// component is not finite.
 uint64_t packFrame(const glm::dvec3& t, const glm::dvec3& b, const glm::dvec3& n, bool mirrored);
 
 // Packs a unit quaternion (its length is not checked: it is taken as unit) and the mirrored flag.

@@ -201,7 +201,8 @@ public:
     // Advances the clock by `dt` seconds (finite, >= 0, not denormal): a decal whose type has a
     // lifetime stays opaque until the last fadeOutTime seconds of it, fades linearly to 0, and is
     // removed (expired) when its age reaches the lifetime; a decal evicted under FadeOldest fades over
-    // fadeOutTime from its eviction and is then removed. Fails, changing nothing, on a bad dt.
+    // fadeOutTime from its eviction and is then removed. Fails, changing nothing, on a bad dt or one
+    // that would take the clock past the largest finite double.
     // Visits only the decals that can change (type lifetime > 0, or fading), from the highest index in
     // decals() down: O(those decals + decals().size() / 4096); permanent decals cost nothing.
     Status update(double dt);
