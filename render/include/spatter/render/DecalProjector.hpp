@@ -58,10 +58,10 @@
 // thread, and that context must outlive the projector.
 //
 // Bad input changes nothing: a HostFrame with a missing required texture, an unsupported format,
-// mismatched sizes, a viewport outside the textures or a camera that cannot be inverted fails with
-// an error naming the field, before any GL state changes (the checks only query the textures); decals naming
-// a missing object or type, or with a degenerate or non-finite box, are skipped and counted
-// (ProjectorStats::invalid).
+// mismatched sizes, a viewport outside the textures, one texture in two roles (but roughness in the
+// albedo's alpha) or a camera that cannot be inverted fails with an error naming the field, before
+// any GL state changes (the checks only query the textures); decals naming a missing object or
+// type, or with a degenerate or non-finite box, are skipped and counted (ProjectorStats::invalid).
 
 #include "spatter/core/Decal.hpp"
 #include "spatter/core/DecalChanges.hpp"
