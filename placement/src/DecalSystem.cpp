@@ -1,6 +1,7 @@
 #include "DecalSystemImpl.hpp"
 
 #include "DecalSystemState.hpp"
+#include "DecalTypeCheck.hpp"
 #include "spatter/placement/ObjectIds.hpp"
 
 namespace spatter {
@@ -52,26 +53,7 @@ Result<uint16_t> DecalSystem::registerType(const DecalType& t) {
     for (const DecalType& other : impl_->types)
         if (other.name == t.name) return fail(where + "a type of that name is already registered");
     if (impl_->types.size() >= 65535) return fail(where + "65535 types are registered already");
-    if (!std::isfinite(t.size.x) || !std::isfinite(t.size.y) || !(t.size.x > 0.0f) || !(t.size.y > 0.0f) ||
-        denormal(t.size.x) || denormal(t.size.y))
-        return fail(where + "size must be finite, > 0 and not denormal");
-    if (!std::isfinite(t.sizeJitter) || t.sizeJitter < 0.0f || !(t.sizeJitter < 1.0f) ||
-        denormal(t.sizeJitter))
-        return fail(where + "sizeJitter must be in [0, 1) and not denormal");
-    if (!std::isfinite(t.maxAngleDeg) || !(t.maxAngleDeg > 0.0f) || t.maxAngleDeg > 90.0f ||
-        denormal(t.maxAngleDeg))
-        return fail(where + "maxAngleDeg must be in (0, 90] and not denormal");
-    if (!std::isfinite(t.lifetime) || t.lifetime < 0.0f || denormal(t.lifetime))
-        return fail(where + "lifetime must be finite, >= 0 and not denormal");
-    if (!std::isfinite(t.fadeOutTime) || t.fadeOutTime < 0.0f || denormal(t.fadeOutTime))
-        return fail(where + "fadeOutTime must be finite, >= 0 and not denormal");
-    if (!std::isfinite(t.halfDepth) || t.halfDepth < 0.0f || denormal(t.halfDepth))
-        return fail(where + "halfDepth must be finite, >= 0 and not denormal");
-    if (t.texture < 0) return fail(where + "texture must be >= 0");
-    if (!std::isfinite(t.tint.x) || !std::isfinite(t.tint.y) || !std::isfinite(t.tint.z) ||
-        !std::isfinite(t.tint.w))
-        return fail(where + "tint must be finite");
-    if (!std::isfinite(t.roughness)) return fail(where + "roughness must be finite");
+    if (const std::string p = decalTypeProblem(t); !p.empty()) return fail(where + p);
     impl_->types.push_back(t);
     return uint16_t(impl_->types.size() - 1);
 }

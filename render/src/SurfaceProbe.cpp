@@ -63,6 +63,9 @@ Status SurfaceProbe::prepare(const HostFrame& frame) {
 
 Result<uint64_t> SurfaceProbe::find(const HostFrame& frame, const std::vector<SurfaceLine>& lines,
                                     GLuint sampler) {
+    if (lines.size() > kMaxSurfaceLines)
+        return fail("projector: " + std::to_string(lines.size()) + " surface lines, more than the " +
+                    std::to_string(kMaxSurfaceLines) + " one search takes");
     std::vector<glm::vec4> gpuLines;
     gpuLines.reserve(2 * lines.size() + 2);
     for (size_t i = 0; i < lines.size(); ++i) {

@@ -787,6 +787,11 @@ TEST(DecalSystem, RegisterTypeRejectsBadTypes) {
         [](DecalType& t) { t.halfDepth = -0.1f; },
         [](DecalType& t) { t.texture = -1; },
         [&](DecalType& t) { t.tint.w = nan; },
+        [](DecalType& t) { t.tint.x = -1.0f; },
+        [](DecalType& t) { t.tint.w = 1.5f; },
+        [](DecalType& t) { t.roughness = 1e30f; },
+        [](DecalType& t) { t.depthFade = DepthFade(7); },
+        [](DecalType& t) { t.projection = Projection(9); },
     };
     for (size_t i = 0; i < breakers.size(); ++i) {
         DecalType t = plainType("bad" + std::to_string(i));

@@ -159,7 +159,7 @@ TEST(SurfaceProbe, FindsNothingWhereTheCameraDoesNotSeeTheMeet) {
         EXPECT_FALSE(points[i].found) << "line " << i;
 }
 
-TEST(SurfaceProbe, RefusesLinesThatAreNotFiniteAndFramesBeforeTheFirstRender) {
+TEST(SurfaceProbe, RefusesLinesThatAreNotFiniteTooManyLinesAndFramesBeforeTheFirstRender) {
     SPATTER_REQUIRE_GL(gl);
     Result<Renderer> fresh = makeRenderer(64, 48);
     ASSERT_TRUE(fresh.ok()) << fresh.error();
@@ -173,6 +173,9 @@ TEST(SurfaceProbe, RefusesLinesThatAreNotFiniteAndFramesBeforeTheFirstRender) {
     const Result<uint64_t> bad = r->findSurface({vertical(0.0, 0.0), {{nan, 0.0, 0.0}, {0.0, 0.0, 0.0}}});
     ASSERT_FALSE(bad.ok());
     EXPECT_NE(bad.error().find("surface line 1"), std::string::npos) << bad.error();
+    const Result<uint64_t> many = r->findSurface(std::vector<SurfaceLine>(kMaxSurfaceLines + 1));
+    ASSERT_FALSE(many.ok()); // more work groups than a dispatch takes
+    EXPECT_NE(many.error().find("more than the"), std::string::npos) << many.error();
     EXPECT_FALSE(r->surfaceFound(12345, true).has_value()); // never made
     const Result<uint64_t> good = r->findSurface({vertical(0.0, 0.0)});
     ASSERT_TRUE(good.ok()) << good.error();

@@ -150,7 +150,9 @@ public:
     // duplicate name, a size that is not finite and positive, sizeJitter outside [0, 1),
     // maxAngleDeg outside (0, 90], a lifetime, fadeOutTime or halfDepth that is negative or not
     // finite, a denormal size, sizeJitter, maxAngleDeg, lifetime, fadeOutTime or halfDepth, a
-    // negative texture, a non-finite tint or roughness, or more than 65535 types.
+    // negative texture, a tint that is not finite or negative or whose alpha is above 1, a roughness
+    // that is not finite or above 1, a projection or depthFade that names no value of its enum, or
+    // more than 65535 types.
     Result<uint16_t> registerType(const DecalType& type);
     // Index of the type named `name`, or an error naming it.
     Result<uint16_t> typeIndex(const std::string& name) const;

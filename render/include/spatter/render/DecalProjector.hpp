@@ -328,6 +328,10 @@ struct ProjectorStats {
 // (DecalSystem::axisLine), from the side its shot came from; for a shot that the collision surface
 // refused (met none, or met it too steeply), the shot (DecalSystem::spawnOnDrawnSurface), with
 // `anyObject`.
+// The most lines one findSurface call takes: 64 a work group, and the 65,535 work groups every GL 4.5
+// implementation dispatches at once.
+constexpr size_t kMaxSurfaceLines = size_t(65535) * 64;
+
 struct SurfaceLine {
     glm::dvec3 from{0.0}, to{0.0};
     uint8_t objectId = 0;   // with the frame's object ID texture: the surface must carry this decal ID
@@ -487,7 +491,7 @@ public:
     // rather than the proxy's (ACCURACY.md). A line whose ends lie past float's range from the camera
     // meets nothing. Returns the request's number for surfaceFound. Fails,
     // queuing nothing, on a frame that does not fit (the depth, object ID texture and camera checks of
-    // draw()) or a line that is not finite.
+    // draw()), a line that is not finite or more than kMaxSurfaceLines lines.
     Result<uint64_t> findSurface(const HostFrame& frame, const std::vector<SurfaceLine>& lines);
     // The points of a findSurface request, in its lines' order, once the GPU has finished it (waiting
     // for it with `wait`, which stalls); empty while it has not, and for a request taken already or
