@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -21,6 +22,10 @@ namespace spatter {
 namespace {
 
 using Json = nlohmann::json;
+
+// How far an anchor's barycentric coordinates may stray below 0, and their sum from 1 (the rounding
+// of the written digits).
+constexpr double kBaryRoom = 1e-6;
 
 // One "placed" record of spatter-place.
 struct PlacedRecord {
@@ -56,11 +61,21 @@ Status readVec3(const Json& rec, const char* key, glm::dvec3& out) {
     return {};
 }
 
+// Whether an axis and the normal are non-zero and far enough from parallel for the frame they span
+// to be made orthonormal (Decal::setFrame).
+bool spansAFrame(const glm::dvec3& axis, const glm::dvec3& normal) {
+    const double lengths = glm::length(axis) * glm::length(normal);
+    return lengths > 0.0 && std::isfinite(lengths) && glm::length(glm::cross(axis, normal)) > 1e-6 * lengths;
+}
+
 Status readBox(const Json& rec, WorldDecalBox& box) {
     const char* const vectors[4] = {"position", "tangent", "bitangent", "normal"};
     glm::dvec3* const targets[4] = {&box.center, &box.axes[0], &box.axes[1], &box.axes[2]};
     for (int k = 0; k < 4; ++k)
         if (Status s = readVec3(rec, vectors[k], *targets[k]); !s) return s;
+    if (!spansAFrame(box.axes[0], box.axes[2]) || !spansAFrame(box.axes[1], box.axes[2]))
+        return fail("a placed record's \"tangent\", \"bitangent\" and \"normal\" must be non-zero, and "
+                    "neither of the first two parallel to the normal");
     const Json* size = rec.contains("size") ? &rec["size"] : nullptr;
     const std::optional<double> w =
         size && size->is_array() && size->size() == 2 ? finite((*size)[0]) : std::nullopt;
@@ -94,6 +109,10 @@ Status readPose(const Json& rec, PlacedRecord& r) {
         return fail("\"anchor\" needs \"triangle\": a triangle index of the object's render mesh");
     anchor.triangle = a["triangle"].get<uint32_t>();
     if (Status s = readVec3(a, "bary", anchor.bary); !s) return fail("\"anchor\": " + s.error());
+    const glm::dvec3& b = anchor.bary;
+    if (std::min({b.x, b.y, b.z}) < -kBaryRoom || std::abs(b.x + b.y + b.z - 1.0) > kBaryRoom)
+        return fail("\"anchor\": \"bary\" must be the barycentric coordinates of a point of the triangle "
+                    "(each >= 0, their sum 1)");
     r.anchor = anchor;
     return {};
 }
@@ -115,7 +134,8 @@ Result<std::optional<PlacedRecord>> parseRecord(const std::string& line) {
     }
     if (rec.contains("object_id")) {
         const std::optional<double> id = number(rec, "object_id");
-        if (!id || *id < 0.0 || *id > 255.0) return fail("\"object_id\" must be a number in 0..255");
+        if (!id || *id < 0.0 || *id > 255.0 || std::floor(*id) != *id)
+            return fail("\"object_id\" must be an integer in 0..255");
         r.objectId = uint8_t(*id);
     }
     if (rec.contains("decal_id")) {
@@ -127,15 +147,21 @@ Result<std::optional<PlacedRecord>> parseRecord(const std::string& line) {
     return std::optional<PlacedRecord>(std::move(r));
 }
 
+// The most decal types the records may need: Decal::type is 16 bits.
+constexpr size_t kMaxLoadedTypes = 65535;
+
 // Decal types by (max angle, look), as they are first met.
 class TypeTable {
 public:
     TypeTable(const DecalType& base, int look) : base_(base), look_(look) {}
 
-    uint16_t typeOf(double maxAngleDeg, size_t k, std::vector<DecalType>& types) {
+    Result<uint16_t> typeOf(double maxAngleDeg, size_t k, std::vector<DecalType>& types) {
         const int look = lookOf(look_, k);
         auto it = index_.find({maxAngleDeg, look});
         if (it != index_.end()) return it->second;
+        if (types.size() >= kMaxLoadedTypes)
+            return fail("more than " + std::to_string(kMaxLoadedTypes) +
+                        " decal types (distinct \"max_angle_deg\" and look pairs)");
         DecalType t = withLook(base_, look);
         t.maxAngleDeg = float(maxAngleDeg);
         types.push_back(t);
@@ -161,6 +187,21 @@ void giveSpareIds(const Scene& scene, LoadedDecals& out) {
         ++spare;
     for (size_t i = 0; i < scene.objects.size(); ++i)
         if (scene.objects[i].dynamic && !named[i]) out.objectIds[i] = uint8_t(spare < 256 ? spare : 255);
+}
+
+// A look of DecalLooks.hpp: a built-in texture or kMixedLooks.
+Status checkLook(int look) {
+    if (look == kMixedLooks || (look >= 0 && look < int(DecalTexture::Count))) return {};
+    return fail("look " + std::to_string(look) + " is not a built-in decal texture (0 to " +
+                std::to_string(int(DecalTexture::Count) - 1) + ") or kMixedLooks");
+}
+
+// Whether a decal read from a record can be drawn: oriented, its size, depth and centre finite floats,
+// its size and depth positive.
+bool drawable(const Decal& d) {
+    return hasOrientation(d.packedFrame) && std::isfinite(d.size.x) && std::isfinite(d.size.y) &&
+           std::isfinite(d.halfDepth) && d.size.x > 0.0f && d.size.y > 0.0f && d.halfDepth > 0.0f &&
+           std::isfinite(d.center.x) && std::isfinite(d.center.y) && std::isfinite(d.center.z);
 }
 
 // The rays of a ray file, and how many ray lines it has (parsed or not).
@@ -233,6 +274,7 @@ Result<WorldDecalBox> boxAt(const PlacedRecord& r, uint32_t object, const std::o
 
 Result<LoadedDecals> loadPlacedRecords(const std::string& path, const Scene& scene, const DecalType& base,
                                        int look, const std::optional<DrawPose>& drawn) {
+    if (Status s = checkLook(look); !s) return fail(s.error());
     std::ifstream in(path);
     if (!in) return fail("cannot read " + path);
     LoadedDecals out;
@@ -254,7 +296,12 @@ Result<LoadedDecals> loadPlacedRecords(const std::string& path, const Scene& sce
         Result<WorldDecalBox> box = boxAt(r, uint32_t(object), drawn, poses, scene);
         if (!box) return fail(where + box.error());
         Decal d = toObjectSpace(scene.objects[size_t(object)], uint32_t(object), box.value());
-        d.type = types.typeOf(r.maxAngleDeg, out.decals.size(), out.types);
+        if (!drawable(d))
+            return fail(where + "the record's box, in the space of '" + r.object +
+                        "', has no orientation or a size, depth or position that float does not hold");
+        Result<uint16_t> type = types.typeOf(r.maxAngleDeg, out.decals.size(), out.types);
+        if (!type) return fail(where + type.error());
+        d.type = type.value();
         d.objectId = r.objectId;
         if (r.decalId) d.id = *r.decalId;
         out.objectIds[size_t(object)] = d.objectId;
@@ -267,6 +314,7 @@ Result<LoadedDecals> loadPlacedRecords(const std::string& path, const Scene& sce
 
 Result<LoadedDecals> placeRays(const std::string& path, const Scene& scene, const DecalType& type, int look,
                                uint64_t seed, const std::optional<DrawPose>& drawn) {
+    if (Status s = checkLook(look); !s) return fail(s.error());
     Result<std::pair<std::vector<Ray>, size_t>> rays = readRays(path);
     if (!rays) return fail(rays.error());
     DecalSettings settings;

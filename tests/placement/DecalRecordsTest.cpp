@@ -155,6 +155,12 @@ TEST(DecalRecords, ErrorsNameTheFileLineAndField) {
         {good.substr(0, good.size() - 1) + ",\"object\":\"crate\"}", "no object named 'crate'"},
         {good.substr(0, good.size() - 1) + ",\"projection\":[0,1]}", "\"projection\""},
         {good.substr(0, good.size() - 1) + ",\"projection\":[0,0.3,-1]}", "side of its \"normal\""},
+        {good.substr(0, good.size() - 1) + ",\"tangent\":[0,0,0]}", "\"tangent\", \"bitangent\""},
+        {good.substr(0, good.size() - 1) + ",\"bitangent\":[0,0,-2]}", "parallel to the normal"},
+        {good.substr(0, good.size() - 1) + ",\"object_id\":3.7}", "\"object_id\""},
+        {good.substr(0, good.size() - 1) + ",\"size\":[1e-300,0.2]}", "float does not hold"},
+        {good.substr(0, good.size() - 1) + ",\"size\":[1e300,0.2]}", "float does not hold"},
+        {good.substr(0, good.size() - 1) + ",\"anchor\":{\"triangle\":0,\"bary\":[50,-49,0]}}", "\"bary\""},
     };
     for (const Case& c : cases) {
         const std::string path = writeFile("bad.jsonl", good + "\n" + c.line + "\n");
@@ -166,6 +172,31 @@ TEST(DecalRecords, ErrorsNameTheFileLineAndField) {
     Result<LoadedDecals> missing = loadPlacedRecords(writeFile("x", "") + ".missing", scene, DecalType{}, 0);
     ASSERT_FALSE(missing.ok());
     EXPECT_THAT(missing.error(), HasSubstr("cannot read"));
+    const std::string path = writeFile("good.jsonl", good + "\n");
+    for (const int look : {int(DecalTexture::Count), -2}) {
+        Result<LoadedDecals> noLook = loadPlacedRecords(path, scene, DecalType{}, look);
+        ASSERT_FALSE(noLook.ok());
+        EXPECT_THAT(noLook.error(), HasSubstr("look " + std::to_string(look)));
+        Result<LoadedDecals> rays =
+            placeRays(writeFile("rays.txt", "0 0 3 0 0 -1\n"), scene, DecalType{}, look, 1);
+        ASSERT_FALSE(rays.ok());
+        EXPECT_THAT(rays.error(), HasSubstr("look " + std::to_string(look)));
+    }
+}
+
+// Each distinct "max_angle_deg" takes a type, and a decal's type is 16 bits: the 65,536th is refused
+// (it would have wrapped around to the first type).
+TEST(DecalRecords, RecordsNeedingMoreTypesThanADecalIndexesAreRefused) {
+    const Scene scene = test::boxScene();
+    std::string lines;
+    for (int i = 0; i <= 65535; ++i)
+        lines +=
+            R"({"status":"placed","object":"box","position":[0,0,0.5],"normal":[0,0,1],"tangent":[1,0,0],)"
+            R"("bitangent":[0,1,0],"size":[0.2,0.2],"half_depth":0.1,"max_angle_deg":)" +
+            std::to_string(1.0 + i * 1e-3) + "}\n";
+    Result<LoadedDecals> loaded = loadPlacedRecords(writeFile("types.jsonl", lines), scene, DecalType{}, 0);
+    ASSERT_FALSE(loaded.ok());
+    EXPECT_THAT(loaded.error(), HasSubstr(":65536: more than 65535 decal types"));
 }
 
 // Rays are placed in order; a line that does not parse counts as a ray and places nothing.

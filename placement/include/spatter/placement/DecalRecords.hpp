@@ -64,13 +64,17 @@ struct DrawPose {
 // Reads spatter-place's JSON Lines output: every record with "status": "placed" becomes a decal on
 // the object it names ("object", found by findObject), from its world-space "position", "tangent",
 // "bitangent", "normal", "size", "half_depth" and "projection" (optional: the normal when absent),
-// with "object_id" (0..255, default 0) as its
-// object's decal ID and "decal_id" (an integer below 2^32) as its ID when given. Its type is `base`
-// with "max_angle_deg" (in (0, 90], default 80) and the look lookOf(look, k) for the k-th decal, one type per
-// distinct pair. Other records and blank lines are skipped. Dynamic objects that no record names get the
-// smallest object ID no record uses, so that no decal shows on them. Fails on an unreadable file, a line that
-// is not a JSON object, a placed record with a missing or bad field, or an object the scene lacks; the error
-// starts with "path:line: " and names the field. With `drawn`, a record that carries the time it was placed
+// with "object_id" (an integer in 0..255, default 0) as its object's decal ID and "decal_id" (an
+// integer below 2^32) as its ID when given. Its type is `base` with "max_angle_deg" (in (0, 90],
+// default 80) and the look lookOf(look, k) for the k-th decal, one type per distinct pair. Other
+// records and blank lines are skipped. Dynamic objects that no record names get the smallest object
+// ID no record uses, so that no decal shows on them. Fails on a look that is neither a DecalTexture
+// value nor kMixedLooks, an unreadable file, a line that is not a JSON object, a placed record with a
+// missing or bad field (a tangent, bitangent or normal that is zero, an axis parallel to the normal,
+// an anchor's "bary" outside its triangle), a box that has no orientation or whose size, depth or
+// position float does not hold in its object's space, more than 65,535 types, or an object the scene
+// lacks; the error starts with "path:line: " and names the field. With `drawn`, a record that carries the
+// time it was placed
 // ("time") and the render triangle it lies on ("anchor": {"triangle", "bary"}, as spatter-place --time writes
 // them for skinned and morphed objects) is moved from that time's pose to the drawn one with its triangle, so
 // that it lies on the surface it was placed on (the triangle posed by the scene's animation in the world
@@ -87,8 +91,9 @@ Result<LoadedDecals> loadPlacedRecords(const std::string& path, const Scene& sce
 // object IDs are the system's. With `drawn`, the rays meet the scene as it stands then: skinned and
 // morphed objects deformed as the scene's first animation has them at drawn->time, in the world moved
 // by drawn->offset (poseDecalSystem; the objects' transforms in `scene` are those of that pose), and
-// an object the system cannot pose is left as it was with a warning. Fails on an unreadable file, a
-// scene the collision world cannot take, or a `type` the system refuses.
+// an object the system cannot pose is left as it was with a warning. Fails on a look that is neither
+// a DecalTexture value nor kMixedLooks, an unreadable file, a scene the collision world cannot take,
+// or a `type` the system refuses.
 Result<LoadedDecals> placeRays(const std::string& path, const Scene& scene, const DecalType& type, int look,
                                uint64_t seed, const std::optional<DrawPose>& drawn = std::nullopt);
 
