@@ -102,7 +102,7 @@ Result<Candidate> simplifyOnce(ProxyBackend backend, const Mesh& welded, const M
                         std::to_string(budget) + ": sloppy simplification used");
         c.mesh = weldedSurface(detail::simplifySloppy(welded, budget));
     }
-    if (budget > 0 && c.mesh.triangleCount() > budget)
+    if (budget > 0 && (c.mesh.triangleCount() > budget || c.mesh.indices.empty()))
         return fail("no proxy within the budget of " + std::to_string(budget) + " triangles could be made (" +
                     std::to_string(c.mesh.triangleCount()) + " left)");
     if (progress && !progress(1.0f, "simplify")) return fail("cancelled");

@@ -179,6 +179,17 @@ TEST_P(ProxyBackends, RespectsTheTriangleBudget) {
     EXPECT_GE(p->errorBound, denseOneSided(render, p->mesh, 50000, 8));
 }
 
+// A budget no simplification reaches without removing every triangle fails: an empty proxy would let
+// every shot through.
+TEST_P(ProxyBackends, RefusesABudgetThatLeavesNoTriangle) {
+    const Mesh render = latLongSphere(1.0f, 60, 80, 0.05f);
+    ProxySettings s = settingsFor(GetParam(), 0.01f);
+    s.maxTriangles = 1;
+    Result<Proxy> p = buildProxy(render, s);
+    ASSERT_FALSE(p.ok()) << p->proxyTriangles << " triangles";
+    EXPECT_NE(p.error().find("budget of 1 triangles"), std::string::npos) << p.error();
+}
+
 TEST_P(ProxyBackends, SurvivesDegenerateInput) {
     Mesh render = latLongSphere(1.0f, 30, 40);
     const uint32_t n = uint32_t(render.positions.size());

@@ -78,7 +78,7 @@ struct ProxySettings {
     float tolerance = 0.005f;
     bool toleranceRelative = true;
     // Largest number of proxy triangles; 0 for no limit. A hard limit: met even if h exceeds the
-    // tolerance.
+    // tolerance; a build that can meet it only by removing every triangle fails.
     uint32_t maxTriangles = 0;
     ProxyBackend backend = ProxyBackend::Auto;
     // Keep open boundaries in place (OpenMesh: boundary vertices locked; meshopt: LockBorder).
