@@ -260,7 +260,9 @@ public:
     // with the shot as hint and turned by a random angle as spawn builds one, projected as its type
     // asks, its box as deep as on a surface with no error bound. Checked, counted and logged as spawn
     // does (InvalidType, InvalidRay, GrazingAngle from the shot and `normal`, NotReceiver, AreaLimit,
-    // InvalidArgument for a point or normal that is not finite or a zero normal); Missed when no
+    // InvalidArgument for a point or normal that is not finite, a zero normal, or a point off the
+    // shot: farther from its line than a hundredth of the type's size plus 1e-5 of its distance along
+    // the shot, or outside its span [tnear, tfar] by as much); Missed when no
     // object is found so; NotReceiver on a skinned or morphed object (its proxy is
     // bound over its poses: shoot it again) and InvalidArgument for a volumetric type, whose crater
     // is clipped by the proxy around a proxy hit. Any refusal changes no decal and draws no random
