@@ -341,7 +341,7 @@ Result<PathTimes> PathHost::frame(HostPath path, DecalProjector& projector, cons
         Result<ProjectorStats> s = m.timed([&] { return projector.bin(ff); }, t.projectorMs);
         if (!s) return fail(s.error());
         t.stats = s.value();
-        projector.bindForward();
+        if (Status bound = projector.bindForward(); !bound) return fail(bound.error());
         t.hostPassMs = m.drawMeshes(m.colorFbo, m.forward, camera);
         t.baselineMs = m.drawMeshes(m.colorFbo, m.plainForward, camera);
     } else {

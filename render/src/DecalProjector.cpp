@@ -81,6 +81,13 @@ Status validateSettings(const ProjectorSettings& s) {
     if (s.forwardTileCapacity < 16 || s.forwardTileCapacity > 4096)
         return fail("projector: forwardTileCapacity must be in [16, 4096], not " +
                     std::to_string(s.forwardTileCapacity));
+    if (s.normalFrame != DecalNormalFrame::DecalAxes && s.normalFrame != DecalNormalFrame::DepthDerivatives)
+        return fail("projector: normalFrame " + std::to_string(int(s.normalFrame)) +
+                    " names no DecalNormalFrame");
+    if (s.deferredResolve != DeferredResolve::Auto && s.deferredResolve != DeferredResolve::Boxes &&
+        s.deferredResolve != DeferredResolve::Compute)
+        return fail("projector: deferredResolve " + std::to_string(int(s.deferredResolve)) +
+                    " names no DeferredResolve");
     return {};
 }
 
@@ -762,13 +769,15 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
     return stats;
 }
 
-void DecalProjector::bindForward(const ForwardBindings& bindings) const {
+Status DecalProjector::bindForward(const ForwardBindings& bindings) const {
+    if (const std::string p = forwardBindingsProblem(bindings); !p.empty()) return fail("projector: " + p);
     const Impl& m = *impl_;
     m.forward.bind(bindings);
     glBindTextureUnit(bindings.albedoUnit, m.textures.albedoTexture());
     glBindTextureUnit(bindings.normalUnit, m.textures.normalTexture());
     glBindSampler(bindings.albedoUnit, 0);
     glBindSampler(bindings.normalUnit, 0);
+    return {};
 }
 
 Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const ProjectorDraw& options) {

@@ -176,6 +176,8 @@ GLenum textureFormat(GLuint texture) {
 }
 
 std::string hostFrameProblem(const HostFrame& f, const ProjectorDraw& options) {
+    if (options.path != ProjectorPath::GBufferBlend && options.path != ProjectorPath::DBuffer)
+        return "ProjectorDraw.path " + std::to_string(int(options.path)) + " names no ProjectorPath";
     if (f.width <= 0 || f.height <= 0 || f.x < 0 || f.y < 0)
         return "HostFrame viewport " + std::to_string(f.x) + "," + std::to_string(f.y) + " " +
                std::to_string(f.width) + "x" + std::to_string(f.height) +
@@ -262,6 +264,31 @@ std::string forwardFrameProblem(const ForwardFrame& f) {
                std::to_string(f.width) + "x" + std::to_string(f.height) + ": the size must be in [1, " +
                std::to_string(kMaxForwardSize) + "] and the corner not negative";
     return cameraProblem(cameraFrame(f), "ForwardFrame");
+}
+
+std::string forwardBindingsProblem(const ForwardBindings& b) {
+    GLint buffers = 0, units = 0;
+    glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &buffers);
+    glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
+    const std::pair<uint32_t, const char*> points[] = {
+        {b.decals, "decals"}, {b.tiles, "tiles"}, {b.items, "items"}};
+    const std::pair<uint32_t, const char*> textures[] = {{b.albedoUnit, "albedoUnit"},
+                                                         {b.normalUnit, "normalUnit"}};
+    for (size_t i = 0; i < std::size(points); ++i) {
+        if (points[i].first >= uint32_t(buffers))
+            return std::string("ForwardBindings.") + points[i].second + ": binding point " +
+                   std::to_string(points[i].first) + " is past the context's " + std::to_string(buffers);
+        for (size_t j = 0; j < i; ++j)
+            if (points[j].first == points[i].first)
+                return std::string("ForwardBindings.") + points[i].second + ": the binding point of " +
+                       points[j].second;
+    }
+    for (const auto& [unit, name] : textures)
+        if (unit >= uint32_t(units))
+            return std::string("ForwardBindings.") + name + ": texture unit " + std::to_string(unit) +
+                   " is past the context's " + std::to_string(units);
+    if (b.albedoUnit == b.normalUnit) return "ForwardBindings.normalUnit: the texture unit of albedoUnit";
+    return {};
 }
 
 } // namespace spatter::render_detail

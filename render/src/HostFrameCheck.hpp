@@ -40,4 +40,8 @@ ForwardFrame forwardFrame(const HostFrame& frame);
 // Empty when `frame` fits; otherwise an error naming the field.
 std::string forwardFrameProblem(const ForwardFrame& frame);
 
+// Empty when the current context has the binding points and texture units `bindings` names, each
+// once; otherwise an error naming the field.
+std::string forwardBindingsProblem(const ForwardBindings& bindings);
+
 } // namespace spatter::render_detail

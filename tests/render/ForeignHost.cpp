@@ -224,7 +224,7 @@ Result<ProjectorStats> ForeignHost::drawForward(const std::vector<glm::dmat4>& t
     Result<ProjectorStats> stats = projector.bin(forwardFrame(camera));
     if (!stats) return stats;
     const ForwardBindings bindings;
-    projector.bindForward(bindings);
+    if (Status bound = projector.bindForward(bindings); !bound) return fail(bound.error());
     drawMeshes(impl_->forwardFbo, impl_->forwardProgram, transforms, ids, camera);
     for (const GLuint b : {bindings.decals, bindings.tiles, bindings.items})
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);

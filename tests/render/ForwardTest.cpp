@@ -195,5 +195,52 @@ TEST(Forward, RefusesFramesThatDoNotFitNamingTheField) {
     Result<DecalProjector> bad = DecalProjector::create(tiles);
     ASSERT_FALSE(bad.ok());
     EXPECT_THAT(bad.error(), HasSubstr("forwardTileSize"));
+    ProjectorSettings frame, resolve;
+    frame.normalFrame = DecalNormalFrame(5);
+    resolve.deferredResolve = DeferredResolve(9);
+    for (const auto& [settings, field] :
+         {std::pair{frame, "normalFrame"}, std::pair{resolve, "deferredResolve"}}) {
+        Result<DecalProjector> none = DecalProjector::create(settings);
+        ASSERT_FALSE(none.ok()) << field;
+        EXPECT_THAT(none.error(), HasSubstr(field));
+    }
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}
+
+// Bindings past the context's limits, or two on one point or unit, are refused naming the field, and
+// nothing is bound.
+TEST(Forward, RefusesBindingsTheContextHasNotOrThatCollide) {
+    SPATTER_REQUIRE_GL(gl);
+    std::optional<test::HostedWall> h = test::HostedWall::make();
+    ASSERT_TRUE(h);
+    ASSERT_TRUE(h->projector.bin(h->host.forwardFrame(h->wall.camera)).ok());
+    struct Case {
+        const char* field;
+        ForwardBindings bindings;
+    };
+    std::vector<Case> cases(4);
+    cases[0].field = "ForwardBindings.albedoUnit";
+    cases[0].bindings.albedoUnit = 100000;
+    cases[1].field = "ForwardBindings.items";
+    cases[1].bindings.items = 100000;
+    cases[2].field = "ForwardBindings.tiles: the binding point of decals";
+    cases[2].bindings.tiles = cases[2].bindings.decals;
+    cases[3].field = "ForwardBindings.normalUnit: the texture unit of albedoUnit";
+    cases[3].bindings.normalUnit = cases[3].bindings.albedoUnit;
+    for (const Case& c : cases) {
+        glBindTextureUnit(c.bindings.albedoUnit < 64 ? c.bindings.albedoUnit : 0, 0);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, c.bindings.decals, 0);
+        const Status st = h->projector.bindForward(c.bindings);
+        ASSERT_FALSE(st.ok()) << c.field;
+        EXPECT_THAT(st.error(), HasSubstr(c.field));
+        GLint texture = -1, buffer = -1;
+        glActiveTexture(GL_TEXTURE0 + (c.bindings.albedoUnit < 64 ? c.bindings.albedoUnit : 0));
+        glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &texture);
+        glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, c.bindings.decals, &buffer);
+        EXPECT_EQ(texture, 0) << c.field;
+        EXPECT_EQ(buffer, 0) << c.field;
+    }
+    glActiveTexture(GL_TEXTURE0);
+    EXPECT_TRUE(h->projector.bindForward().ok());
     EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }

@@ -410,6 +410,11 @@ TEST(Projector, RejectsHostFramesThatDoNotFitNamingTheFieldAndDrawsNothing) {
         ASSERT_FALSE(st.ok()) << c.field;
         EXPECT_THAT(st.error(), HasSubstr(c.field));
     }
+    ProjectorDraw nowhere;
+    nowhere.path = ProjectorPath(7);
+    Result<ProjectorStats> st = h->projector.draw(good, nowhere);
+    ASSERT_FALSE(st.ok());
+    EXPECT_THAT(st.error(), HasSubstr("ProjectorDraw.path 7"));
     EXPECT_EQ(test::differingPixels(before, h->host.read(h->host.albedoTexture())), 0u);
     const GLuint textures[3] = {t.rgba8, t.narrow, t.r32f};
     glDeleteTextures(3, textures);

@@ -103,7 +103,8 @@ spatter::Result<spatter::ProjectorStats> binDecals(spatter::DecalProjector& proj
     f.clip = spatter::ClipDepth::MinusOneToOne;
     f.reversedZ = false;
     spatter::Result<spatter::ProjectorStats> stats = projector.bin(f);
-    if (stats) projector.bindForward();
+    if (!stats) return stats;
+    if (spatter::Status bound = projector.bindForward(); !bound) return spatter::fail(bound.error());
     return stats;
 }
 

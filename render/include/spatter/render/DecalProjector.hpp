@@ -402,8 +402,9 @@ struct ProjectorMemory {
 class DecalProjector {
 public:
     // Compiles nothing yet (variants are built on first use) and builds the decal texture array with
-    // the built-in layers. Needs a current OpenGL 4.5 core context. Fails on settings out of range and
-    // on a context with fewer than 11 shader storage buffer bindings.
+    // the built-in layers. Needs a current OpenGL 4.5 core context. Fails on settings out of range
+    // (an enum naming none of its values included) and on a context with fewer than 11 shader storage
+    // buffer bindings.
     static Result<DecalProjector> create(const ProjectorSettings& settings = {});
 
     DecalProjector(DecalProjector&&) noexcept;
@@ -471,8 +472,9 @@ public:
     // Binds the buffers of the last bin() and the decal texture arrays for the host's forward pass.
     // It changes exactly the shader storage bindings and texture units `bindings` names (and binds
     // sampler 0 to those units), and the generic shader storage buffer binding: the one call that leaves GL
-    // state changed, for the host's next draws.
-    void bindForward(const ForwardBindings& bindings = {}) const;
+    // state changed, for the host's next draws. Fails, binding nothing, on a binding point or texture
+    // unit past the context's limits, or two of them the same.
+    Status bindForward(const ForwardBindings& bindings = {}) const;
 
     // Looks for the drawn surface along each line in the host's depth (on the GPU; the frame's depth,
     // camera, object ID and face normal textures are read, nothing is written): the first point from a
