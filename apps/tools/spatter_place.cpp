@@ -14,6 +14,13 @@
 #include "spatter/placement/RayParser.hpp"
 #include "spatter/placement/ScenePosing.hpp"
 
+#include "cli/Arguments.hpp"
+#include "cli/DistinctFiles.hpp"
+#include "cli/Numbers.hpp"
+#include "cli/OutputCleanup.hpp"
+#include "cli/PathChecks.hpp"
+#include "cli/Tolerance.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -70,7 +77,8 @@ drawn surface under the hit (its box reaches farther along that normal); on a sk
 object, where the decal lies on the drawn surface, half_depth = 0.25 * max(w, h).
 
 Options:
-  --seed N          seed of the decal IDs, rotations and objects' decal IDs (default 1)
+  --seed N          seed of the decal IDs, rotations and objects' decal IDs, a whole number in
+                    0..18446744073709551615 (default 1)
   --size W[,H]      decal width and height in world units (H defaults to W; default 2% of the
                     scene's bounding diagonal, so that decals fit a model of centimetres and one
                     of a hundred metres alike)
@@ -87,8 +95,8 @@ Options:
   --cache DIR       with auto and TOL: reuse proxies stored in DIR and store new ones there, keyed
                     by a hash of the object's mesh, its collider and the proxy settings, and for
                     a skinned or morphed object of its skin and its sampled poses (a second run
-                    simplifies and measures nothing; a corrupt entry is rebuilt). Without it
-                    nothing is cached
+                    simplifies and measures nothing; a corrupt entry is rebuilt). DIR is a
+                    directory, or one that can be created. Without it nothing is cached
   --translate X,Y,Z move the whole scene by this offset before building the collision world (the
                     rays are given in the moved world)
   --time T          trace the scene posed at T seconds of its first animation: animated objects at
@@ -110,9 +118,14 @@ scaled beyond 2^+-25, more than 2^32 from the world's centre, or smaller than a 
 its place) is left out (rays pass through it)
 with a warning on stderr that names it and says why; the rest of the scene is traced as usual.
 
+Numbers are decimal ("2", "-0.5", "1e-3"; no hexadecimal, no blanks). Each option is given at most
+once. --out and --save name neither an input nor each other's file.
+
 No area limits apply: every ray gets its own decal. Exit code 0 when the scene loads (whatever
 happens to the rays), 1 when it cannot be loaded or a proxy, the collision world or the decal system
-cannot be built, 2 on bad options or on files that cannot be read or written.
+cannot be built, 2 on bad options (an option given twice or without its value, an output that is an
+input) or on files that cannot be read or written; the files that are named are checked before the
+work. A run that fails leaves no --out file of its own: one it began is removed.
 )";
 
 // The double nearest to the shortest decimal that reads back as `f`, so that floats print briefly.
@@ -129,13 +142,6 @@ nlohmann::ordered_json vec3(const glm::vec3& v) {
     return {shortFloat(v.x), shortFloat(v.y), shortFloat(v.z)};
 }
 
-bool parseDouble(const std::string& s, double& out) {
-    if (s.empty()) return false;
-    char* end = nullptr;
-    out = std::strtod(s.c_str(), &end);
-    return end == s.c_str() + s.size();
-}
-
 std::vector<std::string> split(const std::string& s, char sep) {
     std::vector<std::string> parts;
     std::string part;
@@ -149,6 +155,111 @@ std::vector<std::string> split(const std::string& s, char sep) {
 int usageError(const std::string& message) {
     std::cerr << "spatter-place: " << message << "\n(see spatter-place --help)\n";
     return 2;
+}
+
+// The command line.
+struct Options {
+    std::string scenePath, raysPath = "-", outPath, savePath, proxyMode = "render";
+    uint64_t seed = 1;
+    std::optional<glm::dvec2> decalSize; // default: decalSizeForScene
+    float maxAngle = 80.0f;
+    glm::dvec3 translate{0.0};
+    std::optional<double> time;
+    bool summary = false;
+    spatter::ProxySettings proxySettings; // --proxy TOL and --cache
+};
+
+// Reads the option `a` (and its value from `args`) into `o`; an error message, or "" when it is one.
+std::string parseOption(const std::string& a, spatter::cli::Arguments& args, Options& o) {
+    auto value = [&](std::string& out) {
+        const std::optional<std::string> v = args.value();
+        if (v) out = *v;
+        return v.has_value();
+    };
+    std::string v;
+    if (a == "--summary") {
+        o.summary = true;
+    } else if (a == "--rays") {
+        if (!value(o.raysPath) || o.raysPath.empty()) return "--rays needs a file";
+    } else if (a == "--out") {
+        if (!value(o.outPath) || o.outPath.empty()) return "--out needs a file";
+    } else if (a == "--save") {
+        if (!value(o.savePath) || o.savePath.empty()) return "--save needs a file";
+    } else if (a == "--proxy") {
+        if (!value(o.proxyMode) || (o.proxyMode != "render" && o.proxyMode != "auto" &&
+                                    !spatter::cli::parseTolerance(o.proxyMode, o.proxySettings)))
+            return "--proxy needs render, auto or a tolerance (0.01 or 1%)";
+    } else if (a == "--cache") {
+        if (!value(o.proxySettings.cacheDirectory) || o.proxySettings.cacheDirectory.empty())
+            return "--cache needs a directory";
+    } else if (a == "--seed") {
+        if (!value(v) || !spatter::cli::parseWhole(v, UINT64_MAX, o.seed))
+            return "--seed needs a whole number in 0.." + std::to_string(UINT64_MAX);
+    } else if (a == "--size") {
+        const std::vector<std::string> parts = value(v) ? split(v, ',') : std::vector<std::string>();
+        double w = 0.0, h = 0.0;
+        if (parts.empty() || parts.size() > 2 || !spatter::cli::parseDecimal(parts[0], w) ||
+            (parts.size() == 2 && !spatter::cli::parseDecimal(parts[1], h)))
+            return "--size needs W or W,H";
+        o.decalSize = glm::dvec2(w, parts.size() == 1 ? w : h);
+    } else if (a == "--max-angle") {
+        double d = 0.0;
+        if (!value(v) || !spatter::cli::parseDecimal(v, d)) return "--max-angle needs a number of degrees";
+        o.maxAngle = float(d);
+    } else if (a == "--translate") {
+        const std::vector<std::string> parts = value(v) ? split(v, ',') : std::vector<std::string>();
+        if (parts.size() != 3 || !spatter::cli::parseDecimal(parts[0], o.translate.x) ||
+            !spatter::cli::parseDecimal(parts[1], o.translate.y) ||
+            !spatter::cli::parseDecimal(parts[2], o.translate.z))
+            return "--translate needs three finite numbers X,Y,Z";
+    } else if (a == "--time") {
+        double t = 0.0;
+        if (!value(v) || !spatter::cli::parseDecimal(v, t)) return "--time needs a finite number of seconds";
+        o.time = t;
+    } else {
+        return "unknown option " + a;
+    }
+    return "";
+}
+
+// Reads argv into `o`. Returns -1 to go on, or the exit code: 0 after --help, 2 after a usage error.
+int parseOptions(int argc, char** argv, Options& o) {
+    spatter::cli::Arguments args(argc, argv);
+    while (args.more()) {
+        const spatter::Result<std::string> a = args.next();
+        if (!a) return usageError(a.error());
+        if (*a == "--help" || *a == "-h") {
+            std::fputs(kUsage, stdout);
+            return 0;
+        }
+        if (a->size() > 1 && (*a)[0] == '-') {
+            if (const std::string error = parseOption(*a, args, o); !error.empty()) return usageError(error);
+        } else if (o.scenePath.empty()) {
+            o.scenePath = *a;
+        } else {
+            return usageError("more than one scene given");
+        }
+    }
+    if (o.scenePath.empty()) return usageError("no scene given");
+    if (!o.proxySettings.cacheDirectory.empty() && o.proxyMode == "render")
+        return usageError("--cache needs --proxy auto or TOL");
+    return -1;
+}
+
+// The files the options name, before any work: the rays can be read, the outputs can be written and
+// are neither an input nor each other, the cache is a usable directory.
+spatter::Status checkFiles(const Options& o) {
+    using spatter::cli::NamedPath;
+    const NamedPath scene{"SCENE", o.scenePath}, rays{"--rays", o.raysPath}, out{"--out", o.outPath},
+        save{"--save", o.savePath}, cache{"--cache", o.proxySettings.cacheDirectory};
+    if (spatter::Status s = spatter::cli::distinctFiles({out, save}, {scene, rays}); !s) return s;
+    if (rays.path != "-")
+        if (spatter::Status s = spatter::cli::readableFile(rays); !s) return s;
+    for (const NamedPath& output : {out, save})
+        if (!output.path.empty())
+            if (spatter::Status s = spatter::cli::creatableFile(output); !s) return s;
+    if (!cache.path.empty()) return spatter::cli::usableDirectory(cache);
+    return {};
 }
 
 // The render triangle a decal on a deforming object lies on at time t, and its barycentric
@@ -193,86 +304,20 @@ int main(int argc, char** argv) {
     using Clock = std::chrono::steady_clock;
     const Clock::time_point start = Clock::now();
 
-    std::string scenePath, raysPath = "-", outPath, savePath, proxyMode = "render", cacheDir;
-    uint64_t seed = 1;
-    std::optional<glm::dvec2> decalSize; // default: decalSizeForScene
-    float maxAngle = 80.0f;
-    glm::dvec3 translate(0.0);
-    std::optional<double> time;
-    bool summary = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&](std::string& out) {
-            if (i + 1 >= argc) return false;
-            out = argv[++i];
-            return true;
-        };
-        std::string v;
-        if (a == "--help" || a == "-h") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        } else if (a == "--summary") {
-            summary = true;
-        } else if (a == "--rays") {
-            if (!value(raysPath)) return usageError("--rays needs a file");
-        } else if (a == "--out") {
-            if (!value(outPath)) return usageError("--out needs a file");
-        } else if (a == "--save") {
-            if (!value(savePath) || savePath.empty()) return usageError("--save needs a file");
-        } else if (a == "--proxy") {
-            if (!value(proxyMode)) return usageError("--proxy needs render, auto or a tolerance");
-        } else if (a == "--cache") {
-            if (!value(cacheDir) || cacheDir.empty()) return usageError("--cache needs a directory");
-        } else if (a == "--seed") {
-            char* end = nullptr;
-            if (!value(v) || v.empty() || v[0] == '-')
-                return usageError("--seed needs a non-negative integer");
-            seed = std::strtoull(v.c_str(), &end, 10);
-            if (end != v.c_str() + v.size()) return usageError("--seed needs a non-negative integer");
-        } else if (a == "--size") {
-            if (!value(v)) return usageError("--size needs W or W,H");
-            const std::vector<std::string> parts = split(v, ',');
-            double w = 0.0, h = 0.0;
-            if (parts.empty() || parts.size() > 2 || !parseDouble(parts[0], w) ||
-                (parts.size() == 2 && !parseDouble(parts[1], h)))
-                return usageError("--size needs W or W,H");
-            decalSize = glm::dvec2(w, parts.size() == 1 ? w : h);
-        } else if (a == "--max-angle") {
-            double d = 0.0;
-            if (!value(v) || !parseDouble(v, d)) return usageError("--max-angle needs a number of degrees");
-            maxAngle = float(d);
-        } else if (a == "--translate") {
-            const std::vector<std::string> parts = value(v) ? split(v, ',') : std::vector<std::string>();
-            if (parts.size() != 3 || !parseDouble(parts[0], translate.x) ||
-                !parseDouble(parts[1], translate.y) || !parseDouble(parts[2], translate.z) ||
-                !std::isfinite(translate.x) || !std::isfinite(translate.y) || !std::isfinite(translate.z))
-                return usageError("--translate needs three finite numbers X,Y,Z");
-        } else if (a == "--time") {
-            double t = 0.0;
-            if (!value(v) || !parseDouble(v, t) || !std::isfinite(t))
-                return usageError("--time needs a finite number of seconds");
-            time = t;
-        } else if (!a.empty() && a[0] == '-' && a != "-") {
-            return usageError("unknown option " + a);
-        } else if (scenePath.empty()) {
-            scenePath = a;
-        } else {
-            return usageError("more than one scene given");
-        }
-    }
-    if (scenePath.empty()) return usageError("no scene given");
-    spatter::ProxySettings proxySettings;
-    if (proxyMode != "render" && proxyMode != "auto") {
-        std::string number = proxyMode;
-        proxySettings.toleranceRelative = !number.empty() && number.back() == '%';
-        if (proxySettings.toleranceRelative) number.pop_back();
-        double tolerance = 0.0;
-        if (!parseDouble(number, tolerance) || !std::isfinite(tolerance) || tolerance < 0.0)
-            return usageError("--proxy needs render, auto or a tolerance (0.01 or 1%)");
-        proxySettings.tolerance = float(proxySettings.toleranceRelative ? tolerance / 100.0 : tolerance);
-    }
-    if (!cacheDir.empty() && proxyMode == "render") return usageError("--cache needs --proxy auto or TOL");
-    proxySettings.cacheDirectory = cacheDir;
+    Options options;
+    if (const int exitCode = parseOptions(argc, argv, options); exitCode >= 0) return exitCode;
+    if (spatter::Status s = checkFiles(options); !s) return usageError(s.error());
+    const std::string &scenePath = options.scenePath, &raysPath = options.raysPath,
+                      &outPath = options.outPath, &savePath = options.savePath,
+                      &proxyMode = options.proxyMode;
+    const uint64_t seed = options.seed;
+    const std::optional<glm::dvec2> decalSize = options.decalSize;
+    const float maxAngle = options.maxAngle;
+    const glm::dvec3 translate = options.translate;
+    const std::optional<double> time = options.time;
+    const bool summary = options.summary;
+    const spatter::ProxySettings& proxySettings = options.proxySettings;
+    spatter::cli::OutputCleanup cleanup; // the outputs of a run that fails
 
     spatter::Result<spatter::Scene> scene = spatter::loadScene(scenePath);
     if (!scene) {
@@ -391,6 +436,7 @@ int main(int argc, char** argv) {
     std::ofstream outFile;
     std::ostream* out = &std::cout;
     if (!outPath.empty()) {
+        cleanup.writing(outPath);
         outFile.open(outPath);
         if (!outFile) return usageError("cannot write " + outPath);
         out = &outFile;
@@ -448,7 +494,8 @@ int main(int argc, char** argv) {
         *out << rec.dump() << '\n';
     }
     out->flush();
-    if (!savePath.empty())
+    if (!*out) return usageError("cannot write " + (outPath.empty() ? std::string("stdout") : outPath));
+    if (!savePath.empty()) // written whole or not at all (saveDecalsToFile)
         if (spatter::Status s = spatter::saveDecalsToFile(system.value(), savePath); !s)
             return usageError(s.error());
 
@@ -475,5 +522,6 @@ int main(int argc, char** argv) {
         s["seconds"] = std::chrono::duration<double>(Clock::now() - start).count();
         std::cerr << s.dump() << "\n";
     }
+    cleanup.keep();
     return 0;
 }
