@@ -5,6 +5,13 @@
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/core/Threads.hpp"
 
+#include "cli/Arguments.hpp"
+#include "cli/DistinctFiles.hpp"
+#include "cli/Numbers.hpp"
+#include "cli/OutputCleanup.hpp"
+#include "cli/PathChecks.hpp"
+#include "cli/Tolerance.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -14,6 +21,8 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <optional>
+#include <set>
 #include <string>
 #include <unistd.h>
 
@@ -27,8 +36,9 @@ Builds the collision proxy of MESH and writes it to PROXY.obj (positions, normal
 
   MESH              builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file. The render
                     meshes of all its objects are merged into one mesh in world space.
-  --tolerance T     target for the error bound h, in world units; T% is a percentage of the
-                    diagonal of the merged mesh's bounding box (0.5% = 0.005 x diagonal).
+  --tolerance T     target for the error bound h, in world units, from 0 to 3.4e38; T% is a
+                    percentage of the diagonal of the merged mesh's bounding box (0.5% = 0.005 x
+                    diagonal).
   --backend B       openmesh (OpenMesh Decimater), meshopt (meshoptimizer, the fast path) or
                     auto (the default: meshoptimizer, fast enough for the search's runs).
   --report FILE     writes {"input_triangles", "proxy_triangles", "backend", "tolerance",
@@ -37,15 +47,20 @@ Builds the collision proxy of MESH and writes it to PROXY.obj (positions, normal
                     mesh is its own proxy (a tolerance of 0, below 512 triangles within the
                     budget, or nothing to remove).
   --cache DIR       reuses or stores the proxy in DIR, keyed by a hash of the mesh and the
-                    settings. Without it nothing is cached.
+                    settings; DIR is a directory, or one that can be created. Without it nothing
+                    is cached.
   --max-triangles N largest number of proxy triangles (0, the default: no limit).
   --threads N       threads the build uses, 1 to 16 (0, the default: the machine's, at most 16).
                     The proxy does not depend on it.
   --quiet           no progress, notes or summary on stderr (warnings still).
 
 h is never below the true two-sided Hausdorff distance between the proxy and the merged mesh.
+Numbers are decimal ("0.5", "1e-3"; no hexadecimal, no blanks; N a whole number). Each option is
+given at most once, with its value (a following "--..." is not one). The files named are checked
+before the work: --out and --report must be files that can be written, neither MESH nor each other.
 Progress and notes go to stderr. Exit code 0 on success, 1 on an error (one line on stderr),
-2 on bad usage.
+2 on bad usage (the checks above included). A run that fails leaves no --out or --report file of its
+own: one it began is removed.
 )";
 
 namespace {
@@ -53,13 +68,6 @@ namespace {
 int usageError(const std::string& message) {
     std::cerr << "spatter-proxy: " << message << "\n(spatter-proxy --help for usage)\n";
     return 2;
-}
-
-bool parseNumber(const std::string& text, double& out) {
-    if (text.empty()) return false;
-    char* end = nullptr;
-    out = std::strtod(text.c_str(), &end);
-    return end == text.c_str() + text.size() && std::isfinite(out);
 }
 
 // The render meshes of every object, transformed to world space, as one mesh.
@@ -123,6 +131,98 @@ private:
     int percent_ = -1;
 };
 
+// The command line after "build MESH".
+struct Options {
+    std::string mesh, out, report;
+    bool toleranceGiven = false, quiet = false;
+    spatter::ProxySettings settings;
+};
+
+// Reads the value `v` of the option `arg` into `o`; an error message, or "" when it is one.
+std::string parseValue(const std::string& arg, const std::string& v, Options& o) {
+    uint64_t n = 0;
+    if (arg == "--tolerance") {
+        o.toleranceGiven = true;
+        if (!spatter::cli::parseTolerance(v, o.settings))
+            return "--tolerance needs a number from 0 to 3.4e38, optionally followed by %, not '" + v + "'";
+    } else if (arg == "--backend") {
+        if (v == "openmesh")
+            o.settings.backend = spatter::ProxyBackend::OpenMesh;
+        else if (v == "meshopt")
+            o.settings.backend = spatter::ProxyBackend::MeshOpt;
+        else if (v == "auto")
+            o.settings.backend = spatter::ProxyBackend::Auto;
+        else
+            return "unknown backend '" + v + "' (openmesh, meshopt or auto)";
+    } else if (arg == "--out" || arg == "--report") {
+        if (v.empty()) return arg + " needs a file";
+        (arg == "--out" ? o.out : o.report) = v;
+    } else if (arg == "--cache") {
+        if (v.empty()) return "--cache needs a directory";
+        o.settings.cacheDirectory = v;
+    } else if (arg == "--max-triangles") {
+        if (!spatter::cli::parseWhole(v, UINT32_MAX, n)) return "--max-triangles needs a whole number >= 0";
+        o.settings.maxTriangles = uint32_t(n);
+    } else if (arg == "--threads") {
+        if (!spatter::cli::parseWhole(v, spatter::kMaxThreads, n))
+            return "--threads needs a whole number from 0 to " + std::to_string(spatter::kMaxThreads);
+        o.settings.threads = unsigned(n);
+    }
+    return "";
+}
+
+// Reads argv[3..argc) into `o`. Returns -1 to go on, or 2 after a usage error.
+int parseOptions(int argc, char** argv, Options& o) {
+    static const std::set<std::string> kValued = {"--tolerance", "--backend",       "--out",    "--report",
+                                                  "--cache",     "--max-triangles", "--threads"};
+    o.mesh = argv[2];
+    spatter::cli::Arguments args(argc, argv, 3);
+    while (args.more()) {
+        const spatter::Result<std::string> arg = args.next();
+        if (!arg) return usageError(arg.error());
+        if (*arg == "--quiet") {
+            o.quiet = true;
+            continue;
+        }
+        if (!kValued.count(*arg)) return usageError("unknown argument '" + *arg + "'");
+        const std::optional<std::string> v = args.value();
+        if (!v) return usageError(*arg + " needs a value");
+        if (const std::string error = parseValue(*arg, *v, o); !error.empty()) return usageError(error);
+    }
+    if (!o.toleranceGiven) return usageError("--tolerance is required");
+    if (o.out.empty()) return usageError("--out is required");
+    return -1;
+}
+
+// The files the options name, before any work: the outputs can be written and are neither the mesh
+// nor each other, the cache is a usable directory.
+spatter::Status checkFiles(const Options& o) {
+    using spatter::cli::NamedPath;
+    const NamedPath out{"--out", o.out}, report{"--report", o.report};
+    if (spatter::Status s = spatter::cli::distinctFiles({out, report}, {{"MESH", o.mesh}}); !s) return s;
+    for (const NamedPath& output : {out, report})
+        if (!output.path.empty())
+            if (spatter::Status s = spatter::cli::creatableFile(output); !s) return s;
+    if (!o.settings.cacheDirectory.empty())
+        return spatter::cli::usableDirectory({"--cache", o.settings.cacheDirectory});
+    return {};
+}
+
+// The report: sizes, the backend, the tolerance and the distances in world units, the time.
+nlohmann::ordered_json reportOf(const spatter::Proxy& proxy) {
+    nlohmann::ordered_json r;
+    r["input_triangles"] = proxy.inputTriangles;
+    r["proxy_triangles"] = proxy.proxyTriangles;
+    r["backend"] = spatter::proxyBackendName(proxy.backend);
+    r["tolerance"] = proxy.tolerance;
+    r["error_bound"] = proxy.errorBound;
+    r["proxy_to_render_max"] = proxy.proxyToRenderMax;
+    r["render_to_proxy_max"] = proxy.renderToProxyMax;
+    r["seconds"] = proxy.seconds;
+    r["cached"] = proxy.cached;
+    return r;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -134,64 +234,12 @@ int main(int argc, char** argv) {
         std::fputs(kUsage, stderr);
         return 2;
     }
-    const std::string mesh = argv[2];
-    std::string out, report, toleranceText;
-    bool quiet = false;
-    spatter::ProxySettings settings;
-    for (int i = 3; i < argc; ++i) {
-        const std::string arg = argv[i];
-        auto value = [&](std::string& into) {
-            if (i + 1 >= argc) return false;
-            into = argv[++i];
-            return true;
-        };
-        std::string v;
-        if (arg == "--tolerance") {
-            if (!value(toleranceText)) return usageError("--tolerance needs a value");
-        } else if (arg == "--backend") {
-            if (!value(v)) return usageError("--backend needs a value");
-            if (v == "openmesh")
-                settings.backend = spatter::ProxyBackend::OpenMesh;
-            else if (v == "meshopt")
-                settings.backend = spatter::ProxyBackend::MeshOpt;
-            else if (v == "auto")
-                settings.backend = spatter::ProxyBackend::Auto;
-            else
-                return usageError("unknown backend '" + v + "' (openmesh, meshopt or auto)");
-        } else if (arg == "--out") {
-            if (!value(out)) return usageError("--out needs a file");
-        } else if (arg == "--report") {
-            if (!value(report)) return usageError("--report needs a file");
-        } else if (arg == "--cache") {
-            if (!value(settings.cacheDirectory)) return usageError("--cache needs a directory");
-        } else if (arg == "--max-triangles") {
-            double n = 0.0;
-            if (!value(v) || !parseNumber(v, n) || n < 0.0 || n > 4294967295.0 || n != std::floor(n))
-                return usageError("--max-triangles needs a whole number >= 0");
-            settings.maxTriangles = uint32_t(n);
-        } else if (arg == "--threads") {
-            double n = 0.0;
-            if (!value(v) || !parseNumber(v, n) || n < 0.0 || n > double(spatter::kMaxThreads) ||
-                n != std::floor(n))
-                return usageError("--threads needs a whole number from 0 to " +
-                                  std::to_string(spatter::kMaxThreads));
-            settings.threads = unsigned(n);
-        } else if (arg == "--quiet") {
-            quiet = true;
-        } else {
-            return usageError("unknown argument '" + arg + "'");
-        }
-    }
-    if (toleranceText.empty()) return usageError("--tolerance is required");
-    if (out.empty()) return usageError("--out is required");
-    const bool percent = toleranceText.back() == '%';
-    double tolerance = 0.0;
-    if (!parseNumber(percent ? toleranceText.substr(0, toleranceText.size() - 1) : toleranceText,
-                     tolerance) ||
-        tolerance < 0.0)
-        return usageError("--tolerance needs a number >= 0, optionally followed by %");
-    settings.tolerance = float(percent ? tolerance / 100.0 : tolerance);
-    settings.toleranceRelative = percent;
+    Options options;
+    if (const int exitCode = parseOptions(argc, argv, options); exitCode >= 0) return exitCode;
+    if (spatter::Status s = checkFiles(options); !s) return usageError(s.error());
+    const std::string &mesh = options.mesh, &out = options.out, &report = options.report;
+    const bool quiet = options.quiet;
+    const spatter::ProxySettings& settings = options.settings;
 
     spatter::Result<spatter::Scene> scene = spatter::loadScene(mesh);
     if (!scene) {
@@ -201,9 +249,9 @@ int main(int argc, char** argv) {
     for (const std::string& w : scene->warnings)
         std::cerr << "spatter-proxy: warning: " << w << "\n";
     const spatter::Mesh world = mergeWorld(scene.value());
-    for (const spatter::SceneObject& o : scene->objects)
-        if (o.collider && !quiet)
-            std::cerr << "spatter-proxy: note: object '" << o.name
+    for (const spatter::SceneObject& object : scene->objects)
+        if (object.collider && !quiet)
+            std::cerr << "spatter-proxy: note: object '" << object.name
                       << "' has an authored collider; this tool simplifies the merged render meshes\n";
 
     ProgressPrinter printer;
@@ -218,29 +266,23 @@ int main(int argc, char** argv) {
     if (!quiet)
         for (const std::string& note : proxy->notes)
             std::cerr << "spatter-proxy: note: " << note << "\n";
+    spatter::cli::OutputCleanup cleanup; // the outputs of a run that fails
+    cleanup.writing(out);
     if (!writeObj(out, proxy.value())) {
         std::cerr << "spatter-proxy: cannot write " << out << "\n";
         return 1;
     }
-    nlohmann::ordered_json r;
-    r["input_triangles"] = proxy->inputTriangles;
-    r["proxy_triangles"] = proxy->proxyTriangles;
-    r["backend"] = spatter::proxyBackendName(proxy->backend);
-    r["tolerance"] = proxy->tolerance;
-    r["error_bound"] = proxy->errorBound;
-    r["proxy_to_render_max"] = proxy->proxyToRenderMax;
-    r["render_to_proxy_max"] = proxy->renderToProxyMax;
-    r["seconds"] = proxy->seconds;
-    r["cached"] = proxy->cached;
     if (!report.empty()) {
+        cleanup.writing(report);
         std::ofstream f(report);
-        f << r.dump(2) << "\n";
+        f << reportOf(proxy.value()).dump(2) << "\n";
         f.close();
         if (!f) {
             std::cerr << "spatter-proxy: cannot write " << report << "\n";
             return 1;
         }
     }
+    cleanup.keep();
     if (!quiet)
         std::cerr << "spatter-proxy: " << proxy->inputTriangles << " -> " << proxy->proxyTriangles
                   << " triangles (" << spatter::proxySourceName(proxy->source) << ", "
