@@ -12,6 +12,12 @@
 #include "spatter/render/Renderer.hpp"
 #include "spatter/render/View.hpp"
 
+#include "cli/Arguments.hpp"
+#include "cli/DistinctFiles.hpp"
+#include "cli/Numbers.hpp"
+#include "cli/OutputCleanup.hpp"
+#include "cli/PathChecks.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -23,6 +29,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -98,7 +105,15 @@ so in float, scaled beyond 2^+-25, more than 2^32 from the world's centre, or sm
 float steps at its place) is left out of the
 trace (rays pass through it; it is still drawn) with a warning on stderr that names it and says why.
 
-Exit code 0 on success, 1 when the scene, the decals or the GL context fail, 2 on bad options.
+Numbers are decimal ("2", "-0.5", "1e-3"; no hexadecimal, no blanks), sizes and --seed (0 to
+18446744073709551615) whole numbers. Each option but --texture-space is given at most once, with its
+value (a following "--..." is not one). Before the work the files named are checked: --out and
+--stats must be files that can be written, neither an input nor each other; --decals or --rays a
+file that can be read. A run that fails leaves no --out or --stats file of its own: one it began is
+removed.
+
+Exit code 0 on success, 1 when the scene, the decals or the GL context fail, 2 on bad options (the
+output checks above included).
 )";
 
 int usageError(const std::string& message) {
@@ -111,14 +126,10 @@ int failure(const std::string& message) {
     return 1;
 }
 
-// A finite number (one that underflows reads as zero or a subnormal).
-bool parseFinite(const std::string& s, double& out) {
-    return spatter::parseNumber(s, out, spatter::OutOfRange::Accept) && std::isfinite(out);
-}
-
 bool parseVec3(const std::string& s, glm::dvec3& out) {
     const std::vector<std::string> p = spatter::splitFields(s, ',');
-    return p.size() == 3 && parseFinite(p[0], out.x) && parseFinite(p[1], out.y) && parseFinite(p[2], out.z);
+    return p.size() == 3 && spatter::cli::parseDecimal(p[0], out.x) &&
+           spatter::cli::parseDecimal(p[1], out.y) && spatter::cli::parseDecimal(p[2], out.z);
 }
 
 // The scene posed at time `t` of its first animation (the rest pose without one), moved by `offset`.
@@ -157,111 +168,180 @@ spatter::Camera defaultCamera(const spatter::DBounds& b) {
     return cam;
 }
 
-} // namespace
-
-int main(int argc, char** argv) {
+// The command line.
+struct Options {
     std::string scenePath, decalsPath, raysPath, cameraText, outPath = "render.png", statsPath,
                                                              textureName = "bullet_hole";
     int width = 960, height = 540;
     spatter::View view = spatter::View::Final;
-    glm::dvec3 translate(0.0);
+    glm::dvec3 translate{0.0};
     std::optional<glm::dvec2> decalSize; // default: decalSizeForScene
     double maxAngle = 80.0;
     uint64_t seed = 1;
     std::vector<std::pair<std::string, int>> textureSpace; // object name, texture size
     bool volumetric = false;
     std::optional<double> time;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        std::string v;
-        auto value = [&]() {
-            if (i + 1 >= argc) return false;
-            v = argv[++i];
-            return true;
-        };
-        if (a == "--help" || a == "-h") {
+};
+
+// "WxH", whole numbers in 1..16384.
+bool parseSize(const std::string& v, Options& o) {
+    const size_t x = v.find('x');
+    uint64_t w = 0, h = 0;
+    if (x == std::string::npos || !spatter::cli::parseWhole(v.substr(0, x), 16384, w) ||
+        !spatter::cli::parseWhole(v.substr(x + 1), 16384, h) || w < 1 || h < 1)
+        return false;
+    o.width = int(w);
+    o.height = int(h);
+    return true;
+}
+
+// "OBJECT[:SIZE]"; an error message, or "" when it is one.
+std::string parseTextureSpace(const std::string& v, Options& o) {
+    const size_t colon = v.rfind(':');
+    uint64_t size = 512;
+    if (v.empty()) return "--texture-space needs OBJECT[:SIZE]";
+    if (colon != std::string::npos && !spatter::cli::parseWhole(v.substr(colon + 1), UINT64_MAX, size))
+        return "--texture-space needs OBJECT[:SIZE] with a whole SIZE";
+    if (size < 16 || size > 4096 || (size & (size - 1)) != 0)
+        return "--texture-space needs a SIZE that is a power of two in [16, 4096]";
+    o.textureSpace.push_back({v.substr(0, colon), int(size)});
+    return "";
+}
+
+// "W[,H]", both above 0; an error message, or "" when it is one.
+std::string parseDecalSize(const std::string& v, Options& o) {
+    const std::vector<std::string> p = spatter::splitFields(v, ',');
+    double w = 0.0, h = 0.0;
+    if (p.size() > 2 || !spatter::cli::parseDecimal(p[0], w) ||
+        (p.size() == 2 && !spatter::cli::parseDecimal(p[1], h)))
+        return "--decal-size needs W or W,H";
+    o.decalSize = glm::dvec2(w, p.size() == 1 ? w : h);
+    if (!(o.decalSize->x > 0.0 && o.decalSize->y > 0.0)) return "--decal-size needs W and H above 0";
+    return "";
+}
+
+// Reads the value `v` of the option `a` into `o`; an error message, or "" when it is one.
+std::string parseValue(const std::string& a, const std::string& v, Options& o) {
+    if (a == "--decals" || a == "--rays" || a == "--out" || a == "--stats") {
+        if (v.empty()) return a + " needs a file";
+        (a == "--decals" ? o.decalsPath
+         : a == "--rays" ? o.raysPath
+         : a == "--out"  ? o.outPath
+                         : o.statsPath) = v;
+    } else if (a == "--camera") {
+        o.cameraText = v;
+    } else if (a == "--size") {
+        if (!parseSize(v, o)) return "--size needs WxH, whole numbers in 1..16384";
+    } else if (a == "--view") {
+        spatter::Result<spatter::View> parsed = spatter::parseView(v);
+        if (!parsed) return parsed.error();
+        o.view = parsed.value();
+    } else if (a == "--translate") {
+        if (!parseVec3(v, o.translate)) return "--translate needs three finite numbers X,Y,Z";
+    } else if (a == "--time") {
+        double t = 0.0;
+        if (!spatter::cli::parseDecimal(v, t)) return "--time needs a finite number of seconds";
+        o.time = t;
+    } else if (a == "--texture-space") {
+        return parseTextureSpace(v, o);
+    } else if (a == "--texture") {
+        o.textureName = v;
+    } else if (a == "--decal-size") {
+        return parseDecalSize(v, o);
+    } else if (a == "--max-angle") {
+        if (!spatter::cli::parseDecimal(v, o.maxAngle) || !(o.maxAngle > 0.0 && o.maxAngle <= 90.0))
+            return "--max-angle needs a number of degrees in (0, 90]";
+    } else if (a == "--seed") {
+        if (!spatter::cli::parseWhole(v, UINT64_MAX, o.seed))
+            return "--seed needs a whole number in 0.." + std::to_string(UINT64_MAX);
+    }
+    return "";
+}
+
+// Reads argv into `o`. Returns -1 to go on, or the exit code: 0 after --help, 2 after a usage error.
+int parseOptions(int argc, char** argv, Options& o) {
+    static const std::set<std::string> kValued = {
+        "--decals",    "--rays", "--camera",        "--size",    "--view",       "--out",       "--stats",
+        "--translate", "--time", "--texture-space", "--texture", "--decal-size", "--max-angle", "--seed"};
+    spatter::cli::Arguments args(argc, argv, 1, {"--texture-space"});
+    while (args.more()) {
+        const spatter::Result<std::string> a = args.next();
+        if (!a) return usageError(a.error());
+        if (*a == "--help" || *a == "-h") {
             std::fputs(kUsage, stdout);
             return 0;
-        } else if (a == "--decals") {
-            if (!value()) return usageError("--decals needs a file");
-            decalsPath = v;
-        } else if (a == "--rays") {
-            if (!value()) return usageError("--rays needs a file");
-            raysPath = v;
-        } else if (a == "--camera") {
-            if (!value()) return usageError("--camera needs \"eye=x,y,z;target=x,y,z;...\"");
-            cameraText = v;
-        } else if (a == "--size") {
-            const size_t x = value() ? v.find('x') : std::string::npos;
-            double w = 0.0, h = 0.0;
-            if (x == std::string::npos || !parseFinite(v.substr(0, x), w) ||
-                !parseFinite(v.substr(x + 1), h) || w < 1.0 || h < 1.0 || w > 16384.0 || h > 16384.0 ||
-                w != std::floor(w) || h != std::floor(h))
-                return usageError("--size needs WxH, whole numbers in 1..16384");
-            width = int(w);
-            height = int(h);
-        } else if (a == "--view") {
-            if (!value()) return usageError("--view needs a view name");
-            spatter::Result<spatter::View> parsed = spatter::parseView(v);
-            if (!parsed) return usageError(parsed.error());
-            view = parsed.value();
-        } else if (a == "--out") {
-            if (!value()) return usageError("--out needs a file");
-            outPath = v;
-        } else if (a == "--stats") {
-            if (!value()) return usageError("--stats needs a file");
-            statsPath = v;
-        } else if (a == "--translate") {
-            if (!value() || !parseVec3(v, translate))
-                return usageError("--translate needs three finite numbers X,Y,Z");
-        } else if (a == "--time") {
-            double t = 0.0;
-            if (!value() || !parseFinite(v, t)) return usageError("--time needs a finite number of seconds");
-            time = t;
-        } else if (a == "--volumetric") {
-            volumetric = true;
-        } else if (a == "--texture-space") {
-            if (!value() || v.empty()) return usageError("--texture-space needs OBJECT[:SIZE]");
-            const size_t colon = v.rfind(':');
-            double size = 512.0;
-            if (colon != std::string::npos &&
-                (!parseFinite(v.substr(colon + 1), size) || size != std::floor(size) || size < 1.0))
-                return usageError("--texture-space needs OBJECT[:SIZE] with a whole SIZE");
-            if (size < 16.0 || size > 4096.0 || (int(size) & (int(size) - 1)) != 0)
-                return usageError("--texture-space needs a SIZE that is a power of two in [16, 4096]");
-            textureSpace.push_back({v.substr(0, colon), int(size)});
-        } else if (a == "--texture") {
-            if (!value()) return usageError("--texture needs bullet_hole, blood, paint, scorch or mixed");
-            textureName = v;
-        } else if (a == "--decal-size") {
-            const std::vector<std::string> p =
-                value() ? spatter::splitFields(v, ',') : std::vector<std::string>();
-            double w = 0.0, h = 0.0;
-            if (p.empty() || p.size() > 2 || !parseFinite(p[0], w) ||
-                (p.size() == 2 && !parseFinite(p[1], h)))
-                return usageError("--decal-size needs W or W,H");
-            decalSize = glm::dvec2(w, p.size() == 1 ? w : h);
-            if (!(decalSize->x > 0.0 && decalSize->y > 0.0))
-                return usageError("--decal-size needs W and H above 0");
-        } else if (a == "--max-angle") {
-            if (!value() || !parseFinite(v, maxAngle) || !(maxAngle > 0.0 && maxAngle <= 90.0))
-                return usageError("--max-angle needs a number of degrees in (0, 90]");
-        } else if (a == "--seed") {
-            char* end = nullptr;
-            if (!value() || v.empty() || v[0] == '-')
-                return usageError("--seed needs a non-negative integer");
-            seed = std::strtoull(v.c_str(), &end, 10);
-            if (end != v.c_str() + v.size()) return usageError("--seed needs a non-negative integer");
-        } else if (!a.empty() && a[0] == '-') {
-            return usageError("unknown option " + a);
-        } else if (scenePath.empty()) {
-            scenePath = a;
+        }
+        if (*a == "--volumetric") {
+            o.volumetric = true;
+        } else if (kValued.count(*a)) {
+            const std::optional<std::string> v = args.value();
+            if (!v) return usageError(*a + " needs a value");
+            if (const std::string error = parseValue(*a, *v, o); !error.empty()) return usageError(error);
+        } else if (!a->empty() && (*a)[0] == '-') {
+            return usageError("unknown option " + *a);
+        } else if (o.scenePath.empty()) {
+            o.scenePath = *a;
         } else {
             return usageError("more than one scene given");
         }
     }
-    if (scenePath.empty()) return usageError("no scene given");
-    if (!decalsPath.empty() && !raysPath.empty()) return usageError("--decals and --rays exclude each other");
+    if (o.scenePath.empty()) return usageError("no scene given");
+    if (!o.decalsPath.empty() && !o.raysPath.empty())
+        return usageError("--decals and --rays exclude each other");
+    return -1;
+}
+
+// The files the options name, before any work: the outputs can be written and are neither an input
+// nor each other (exit code 2), the decals or rays can be read (1).
+int checkFiles(const Options& o) {
+    using spatter::cli::NamedPath;
+    const NamedPath decals{"--decals", o.decalsPath}, rays{"--rays", o.raysPath}, out{"--out", o.outPath},
+        stats{"--stats", o.statsPath};
+    if (spatter::Status s = spatter::cli::distinctFiles({out, stats}, {{"SCENE", o.scenePath}, decals, rays});
+        !s)
+        return usageError(s.error());
+    for (const NamedPath& output : {out, stats})
+        if (!output.path.empty())
+            if (spatter::Status s = spatter::cli::creatableFile(output); !s) return usageError(s.error());
+    for (const NamedPath& input : {decals, rays})
+        if (!input.path.empty())
+            if (spatter::Status s = spatter::cli::readableFile(input); !s) return failure(s.error());
+    return -1;
+}
+
+// The frame stats with what was drawn, as --stats writes them.
+nlohmann::ordered_json statsJson(const spatter::FrameStats& stats, const Options& o,
+                                 const spatter::Camera& camera, const spatter::GlContext& gl,
+                                 const spatter::LoadedDecals& loaded) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(spatter::toJson(stats));
+    j["scene"] = o.scenePath;
+    j["camera"] = spatter::formatCamera(camera);
+    j["gl_platform"] = gl.info().platform;
+    j["input_records"] = loaded.records;
+    j["input_placed"] = loaded.placed;
+    if (o.time) j["time"] = *o.time;
+    return j;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    Options options;
+    if (const int exitCode = parseOptions(argc, argv, options); exitCode >= 0) return exitCode;
+    if (const int exitCode = checkFiles(options); exitCode >= 0) return exitCode;
+    const std::string &scenePath = options.scenePath, &decalsPath = options.decalsPath,
+                      &raysPath = options.raysPath, &cameraText = options.cameraText,
+                      &outPath = options.outPath, &statsPath = options.statsPath,
+                      &textureName = options.textureName;
+    const int width = options.width, height = options.height;
+    const spatter::View view = options.view;
+    const glm::dvec3 translate = options.translate;
+    const std::optional<glm::dvec2> decalSize = options.decalSize;
+    const double maxAngle = options.maxAngle;
+    const uint64_t seed = options.seed;
+    const std::vector<std::pair<std::string, int>>& textureSpace = options.textureSpace;
+    const bool volumetric = options.volumetric;
+    const std::optional<double> time = options.time;
     const spatter::Result<int> look = spatter::parseDecalLook(textureName);
     if (!look) return usageError("--texture needs bullet_hole, blood, paint, scorch or mixed");
 
@@ -336,19 +416,16 @@ int main(int argc, char** argv) {
     if (!stats) return failure(stats.error());
     spatter::Result<spatter::Image> image = renderer->readback();
     if (!image) return failure(image.error());
+    spatter::cli::OutputCleanup cleanup; // the outputs of a run that fails
+    cleanup.writing(outPath);
     if (spatter::Status s = spatter::writePng(outPath, image.value()); !s) return failure(s.error());
-
     if (!statsPath.empty()) {
-        nlohmann::ordered_json j = nlohmann::ordered_json::parse(spatter::toJson(stats.value()));
-        j["scene"] = scenePath;
-        j["camera"] = spatter::formatCamera(camera);
-        j["gl_platform"] = gl->info().platform;
-        j["input_records"] = loaded->records;
-        j["input_placed"] = loaded->placed;
-        if (time) j["time"] = *time;
+        cleanup.writing(statsPath);
         std::ofstream f(statsPath);
+        f << statsJson(stats.value(), options, camera, gl.value(), loaded.value()).dump(2) << "\n";
+        f.close();
         if (!f) return failure("cannot write " + statsPath);
-        f << j.dump(2) << "\n";
     }
+    cleanup.keep();
     return 0;
 }

@@ -16,7 +16,9 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -42,6 +44,20 @@ std::string record(double x, double y, double s, const std::string& object = "wa
       << R"(,0],"normal":[0,0,1],"tangent":[1,0,0],"bitangent":[0,1,0],"size":[)" << s << "," << s
       << R"(],"half_depth":0.2,"max_angle_deg":80,"proxy_error_bound":0})";
     return r.str();
+}
+
+std::string fileText(const std::string& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// The exit code of spatter-render `args`, its stderr in `errors`.
+int renderWithErrors(const std::string& args, const std::string& dir, std::string& errors) {
+    const std::string command =
+        std::string(SPATTER_RENDER_TOOL) + " " + args + " >/dev/null 2>'" + dir + "/err.txt'";
+    const int status = std::system(command.c_str());
+    errors = fileText(dir + "/err.txt");
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 bool white(const Image& im, int x, int y) {
@@ -220,4 +236,60 @@ TEST(SpatterRender, VolumetricOptionDrawsCratersInsteadOfFlatDecals) {
     ASSERT_TRUE(v.is_object() && f.is_object());
     EXPECT_EQ(v["decals_volumetric"], 1);
     EXPECT_EQ(f["decals_volumetric"], 0);
+}
+
+TEST(RenderTool, RefusesAnOutputThatIsAnInputOrTheOtherOutput) {
+    const std::string dir = test::scratchDir("tool-same-file");
+    const std::string wall = writeWall(dir), mesh = fileText(wall);
+    std::string errors;
+    EXPECT_EQ(renderWithErrors(wall + " --out " + dir + "/./wall.obj", dir, errors), 2);
+    EXPECT_NE(errors.find("SCENE and --out name the same file"), std::string::npos) << errors;
+    EXPECT_EQ(renderWithErrors(wall + " --out " + dir + "/x.png --stats " + wall, dir, errors), 2);
+    EXPECT_EQ(fileText(wall), mesh);
+    std::ofstream(dir + "/rays.txt") << "0 1 5 0 0 -1\n";
+    EXPECT_EQ(renderWithErrors(wall + " --rays " + dir + "/rays.txt --out " + dir + "/rays.txt", dir, errors),
+              2);
+    EXPECT_NE(errors.find("--rays and --out name the same file"), std::string::npos) << errors;
+    EXPECT_EQ(renderWithErrors(wall + " --out " + dir + "/x.png --stats " + dir + "/x.png", dir, errors), 2);
+    EXPECT_NE(errors.find("--out and --stats name the same file"), std::string::npos) << errors;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
+}
+
+TEST(RenderTool, ChecksItsOutputsFirstAndLeavesNoImageWhenTheStatsFail) {
+    const std::string dir = test::scratchDir("tool-outputs");
+    const std::string wall = writeWall(dir) + " --size 32x16 --out " + dir + "/x.png";
+    std::string errors;
+    EXPECT_EQ(renderWithErrors(wall + " --stats " + dir + "/no/such/folder/s.json", dir, errors), 2);
+    EXPECT_NE(errors.find("does not exist"), std::string::npos) << errors;
+    EXPECT_EQ(renderWithErrors(wall + " --stats " + dir, dir, errors), 2);
+    EXPECT_NE(errors.find("is a directory"), std::string::npos) << errors;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
+    SPATTER_REQUIRE_TOOL_GL();
+    if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full to fail a write";
+    EXPECT_EQ(renderWithErrors(wall + " --stats /dev/full", dir, errors), 1); // fails as it is written
+    EXPECT_FALSE(std::filesystem::exists(dir + "/x.png")) << errors;
+}
+
+TEST(RenderTool, RefusesADirectoryGivenAsDecalsOrRays) {
+    const std::string dir = test::scratchDir("tool-directories");
+    const std::string wall = writeWall(dir);
+    std::string errors;
+    for (const char* option : {" --decals ", " --rays "}) {
+        EXPECT_EQ(renderWithErrors(wall + option + dir + " --out " + dir + "/x.png", dir, errors), 1)
+            << option;
+        EXPECT_NE(errors.find(dir + " is a directory"), std::string::npos) << errors;
+    }
+}
+
+TEST(RenderTool, RefusesARepeatedOptionASeedOutOfRangeAndPaddedNumbers) {
+    const std::string dir = test::scratchDir("tool-usage");
+    const std::string wall = writeWall(dir) + " --out " + dir + "/x.png ";
+    std::string errors;
+    EXPECT_EQ(renderWithErrors(wall + "--view final --view ids", dir, errors), 2);
+    EXPECT_NE(errors.find("--view given twice"), std::string::npos) << errors;
+    for (const char* bad :
+         {"--seed 99999999999999999999", "--seed ' -1'", "--seed +1", "--size ' 64x36'", "--size 64x36.0",
+          "--size 0x10x10", "--time 0x10", "--max-angle ' 45'", "--decal-size 1e999", "--out --volumetric"})
+        EXPECT_EQ(renderWithErrors(wall + bad, dir, errors), 2) << bad;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
 }
