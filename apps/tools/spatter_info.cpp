@@ -35,7 +35,7 @@ own index.
 
 SCENE is builtin:gallery or a .gltf, .glb, .obj, .ply, .off or .stl file.
 On a scene that cannot be loaded or traced: a one-line error on stderr and exit code 1; on bad
-usage, exit code 2.
+usage (no scene, more than one, or an option other than --help), exit code 2.
 )";
 
 int main(int argc, char** argv) {
@@ -45,6 +45,10 @@ int main(int argc, char** argv) {
     }
     if (argc != 2) {
         std::fputs(kUsage, stderr);
+        return 2;
+    }
+    if (argv[1][0] == '-' && argv[1][1] != '\0') {
+        std::cerr << "spatter-info: unknown option " << argv[1] << "\n(see spatter-info --help)\n";
         return 2;
     }
     spatter::Result<spatter::Scene> scene = spatter::loadScene(argv[1]);

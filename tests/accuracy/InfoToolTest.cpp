@@ -43,3 +43,21 @@ TEST(SpatterInfo, DescribesEveryObjectAndTheCollisionMeshItUses) {
     }
     EXPECT_EQ(shared, 3u); // the second and third targets, the second banner
 }
+
+TEST(InfoTool, ExitsTwoOnAnUnknownOptionAsItsHelpSays) {
+    if (!kInfoTool) GTEST_SKIP() << "spatter-info is not built";
+    const std::string dir = test::scratchDir("info-usage");
+    auto exitCode = [&](const std::string& args) {
+        const std::string command =
+            std::string("'") + kInfoTool + "' " + args + " > /dev/null 2> '" + dir + "/err.txt'";
+        const int status = std::system(command.c_str());
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    };
+    EXPECT_EQ(exitCode("--bogus"), 2);
+    EXPECT_NE(test::readFile(dir + "/err.txt").find("unknown option --bogus"), std::string::npos);
+    EXPECT_EQ(exitCode("-x"), 2);
+    EXPECT_EQ(exitCode(""), 2);
+    EXPECT_EQ(exitCode("builtin:gallery builtin:gallery"), 2);
+    EXPECT_EQ(exitCode("'" + dir + "/missing.obj'"), 1);
+    EXPECT_EQ(exitCode("--help"), 0);
+}
