@@ -1,8 +1,11 @@
 #include "GalleryOptions.hpp"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
+#include "cli/Arguments.hpp"
+#include "cli/Numbers.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <set>
 #include <string>
 
 namespace spatter::gallery {
@@ -36,6 +39,12 @@ options:
                       quick-save file (default OUT/quick.save)
   -h, --help          this text
 
+Each option is given once, with its value (a following "--..." is not one); numbers are decimal,
+N a whole number (no sign, blanks or hexadecimal). Before the session a headless run creates the
+--out folder (so that --save OUT/NAME works) and checks that DIR/gallery.png, DIR/gallery.json and
+the --save file can be written and are neither the scene nor each other, and that --cache is a
+folder. Exit code 2 on bad options (these checks included), 1 when the session fails.
+
 window controls:
   mouse               look (Tab frees the cursor for the HUD)
   W A S D, Q E        move, down/up; Shift runs
@@ -47,75 +56,79 @@ window controls:
   Esc                 quit
 )";
 
-static bool parseInt(const std::string& s, long long lo, long long hi, long long& out) {
-    char* end = nullptr;
-    errno = 0;
-    const long long v = std::strtoll(s.c_str(), &end, 10);
-    if (s.empty() || *end != '\0' || errno != 0 || v < lo || v > hi) return false;
-    out = v;
+namespace {
+
+// A whole number in lo..hi, digits only.
+bool parseInt(const std::string& s, uint64_t lo, uint64_t hi, long long& out) {
+    uint64_t v = 0;
+    if (!cli::parseWhole(s, hi, v) || v < lo) return false;
+    out = (long long)v;
     return true;
 }
 
+// Reads the value `v` of the option `arg` into `o`; an error message, or "" when it is one.
+std::string parseValue(const std::string& arg, const std::string& v, GalleryOptions& o) {
+    long long n = 0, w = 0, h = 0;
+    double d = 0.0;
+    if (arg == "--scene") {
+        o.scene = v;
+    } else if (arg == "--out") {
+        if (v.empty()) return "--out needs a folder";
+        o.outDir = v;
+    } else if (arg == "--shots") {
+        if (!parseInt(v, 0, 1000000, n)) return "--shots needs a count in 0..1000000";
+        o.shots = int(n);
+    } else if (arg == "--seed") {
+        if (!parseInt(v, 0, INT64_MAX, n))
+            return "--seed needs a whole number in 0.." + std::to_string(INT64_MAX);
+        o.seed = uint64_t(n);
+    } else if (arg == "--size") {
+        const size_t x = v.find('x');
+        if (x == std::string::npos || !parseInt(v.substr(0, x), 16, 8192, w) ||
+            !parseInt(v.substr(x + 1), 16, 8192, h))
+            return "--size needs WxH with each side in 16..8192";
+        o.width = int(w);
+        o.height = int(h);
+    } else if (arg == "--tolerance") {
+        const std::string t = !v.empty() && v.back() == '%' ? v.substr(0, v.size() - 1) : v;
+        if (!cli::parseDecimal(t, d) || d < 0.0 || d > 50.0) return "--tolerance needs a percentage in 0..50";
+        o.tolerancePercent = float(d);
+    } else if (arg == "--cache") {
+        o.cacheDir = v;
+    } else if (arg == "--load" || arg == "--save") {
+        if (v.empty()) return arg + " needs a file";
+        (arg == "--load" ? o.loadPath : o.savePath) = v;
+    } else if (arg == "--time") {
+        if (!cli::parseDecimal(v, d)) return "--time needs a finite number of seconds";
+        o.startTime = d;
+    } else if (arg == "--quit-after") {
+        if (!parseInt(v, 1, 100000000, n)) return "--quit-after needs a frame count";
+        o.quitAfterFrames = int(n);
+    }
+    return "";
+}
+
+} // namespace
+
 Result<GalleryOptions> parseGalleryOptions(int argc, char** argv) {
+    static const std::set<std::string> kValued = {"--scene", "--out",       "--shots",     "--seed",
+                                                  "--size",  "--tolerance", "--cache",     "--load",
+                                                  "--save",  "--time",      "--quit-after"};
     GalleryOptions o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        auto value = [&](std::string& out) -> bool {
-            if (i + 1 >= argc) return false;
-            out = argv[++i];
-            return true;
-        };
-        std::string v;
-        long long n = 0;
-        if (arg == "-h" || arg == "--help") {
+    cli::Arguments args(argc, argv);
+    while (args.more()) {
+        const Result<std::string> arg = args.next();
+        if (!arg) return fail(arg.error());
+        if (*arg == "-h" || *arg == "--help") {
             o.help = true;
-        } else if (arg == "--headless") {
+        } else if (*arg == "--headless") {
             o.headless = true;
-        } else if (arg == "--scene") {
-            if (!value(o.scene)) return fail("--scene needs a file");
-        } else if (arg == "--out") {
-            if (!value(o.outDir) || o.outDir.empty()) return fail("--out needs a folder");
-        } else if (arg == "--shots") {
-            if (!value(v) || !parseInt(v, 0, 1000000, n)) return fail("--shots needs a count in 0..1000000");
-            o.shots = int(n);
-        } else if (arg == "--seed") {
-            if (!value(v) || !parseInt(v, 0, INT64_MAX, n))
-                return fail("--seed needs a non-negative integer");
-            o.seed = uint64_t(n);
-        } else if (arg == "--size") {
-            long long w = 0, h = 0;
-            const size_t x = value(v) ? v.find('x') : std::string::npos;
-            if (x == std::string::npos || !parseInt(v.substr(0, x), 16, 8192, w) ||
-                !parseInt(v.substr(x + 1), 16, 8192, h))
-                return fail("--size needs WxH with each side in 16..8192");
-            o.width = int(w);
-            o.height = int(h);
-        } else if (arg == "--tolerance") {
-            char* end = nullptr;
-            if (!value(v)) return fail("--tolerance needs a percentage");
-            if (!v.empty() && v.back() == '%') v.pop_back();
-            const float t = std::strtof(v.c_str(), &end);
-            if (v.empty() || *end != '\0' || !std::isfinite(t) || t < 0.0f || t > 50.0f)
-                return fail("--tolerance needs a percentage in 0..50");
-            o.tolerancePercent = t;
-        } else if (arg == "--cache") {
-            if (!value(o.cacheDir)) return fail("--cache needs a folder");
-        } else if (arg == "--load") {
-            if (!value(o.loadPath) || o.loadPath.empty()) return fail("--load needs a file");
-        } else if (arg == "--save") {
-            if (!value(o.savePath) || o.savePath.empty()) return fail("--save needs a file");
-        } else if (arg == "--time") {
-            char* end = nullptr;
-            if (!value(v)) return fail("--time needs a number of seconds");
-            const double t = std::strtod(v.c_str(), &end);
-            if (v.empty() || *end != '\0' || !std::isfinite(t))
-                return fail("--time needs a finite number of seconds");
-            o.startTime = t;
-        } else if (arg == "--quit-after") {
-            if (!value(v) || !parseInt(v, 1, 100000000, n)) return fail("--quit-after needs a frame count");
-            o.quitAfterFrames = int(n);
+        } else if (kValued.count(*arg)) {
+            const std::optional<std::string> v = args.value();
+            if (!v) return fail(*arg + " needs a value");
+            if (const std::string error = parseValue(*arg, *v, o); !error.empty()) return fail(error);
         } else {
-            return fail("unknown option '" + arg + "' (see --help)");
+            return fail("unknown option '" + *arg + "' (see --help)");
         }
     }
     return o;

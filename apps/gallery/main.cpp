@@ -1,6 +1,7 @@
 // spatter-gallery: the shooting-gallery demo (see --help).
 
 #include "GalleryOptions.hpp"
+#include "GalleryOutputs.hpp"
 #include "Headless.hpp"
 #include "Interactive.hpp"
 
@@ -17,6 +18,15 @@ static bool displayPresent() {
     return (x && *x) || (wayland && *wayland);
 }
 
+// The headless session, once its outputs are ready (exit code 2 when they cannot be).
+static int headless(const GalleryOptions& options) {
+    if (Status s = prepareHeadlessOutputs(options); !s) {
+        std::cerr << "spatter-gallery: " << s.error() << "\n";
+        return 2;
+    }
+    return runHeadless(options);
+}
+
 int main(int argc, char** argv) {
     Result<GalleryOptions> options = parseGalleryOptions(argc, argv);
     if (!options) {
@@ -27,7 +37,7 @@ int main(int argc, char** argv) {
         std::fputs(kGalleryUsage, stdout);
         return 0;
     }
-    if (options->headless || !displayPresent()) return runHeadless(options.value());
+    if (options->headless || !displayPresent()) return headless(options.value());
 
     WindowSettings window;
     window.title = "spatter shooting gallery";
@@ -38,7 +48,7 @@ int main(int argc, char** argv) {
     Result<GlContext> context = GlContext::createWindow(window);
     if (!context) {
         std::cerr << "spatter-gallery: no window (" << context.error() << "); running headless\n";
-        return runHeadless(options.value());
+        return headless(options.value());
     }
     return runInteractive(options.value(), context.value());
 }

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -168,4 +169,42 @@ TEST(Gallery, HeadlessSessionContinuesFromASave) {
     const CommandRun bad = runCommand(base + "0 --out " + dir + "/c --load " + dir + "/a/gallery.png", dir);
     EXPECT_EQ(bad.exitCode, 1);
     EXPECT_THAT(bad.output, ::testing::HasSubstr("not a decal save"));
+}
+
+TEST(Gallery, RefusesARepeatedOptionAMissingValueAndNumbersThatAreNotDecimal) {
+    const std::string dir = test::scratchDir("gallery-usage");
+    const std::string exe = std::string(SPATTER_GALLERY_EXE) + " --headless --out " + dir + "/out ";
+    const CommandRun twice = runCommand(exe + "--scene a.glb --scene b.glb", dir);
+    EXPECT_EQ(twice.exitCode, 2);
+    EXPECT_THAT(twice.output, ::testing::HasSubstr("--scene given twice"));
+    for (const char* bad : {"--seed ' 5'", "--seed 99999999999999999999", "--seed -1", "--shots 0x10",
+                            "--size ' 64x36'", "--tolerance 0x1", "--time 1e999", "--save --shots 3"})
+        EXPECT_EQ(runCommand(exe + bad, dir).exitCode, 2) << bad;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out")) << "refused before the session";
+}
+
+TEST(Gallery, ChecksItsOutputsBeforeTheSessionAndMakesTheOutFolderFirst) {
+    const std::string dir = test::scratchDir("gallery-outputs");
+    std::ofstream(dir + "/file.txt") << "not a folder\n";
+    const std::string exe = std::string(SPATTER_GALLERY_EXE) +
+                            " --headless --size 320x180 --tolerance 2 --shots 0" + " --cache " + dir +
+                            "/cache ";
+    const CommandRun underFile = runCommand(exe + "--out " + dir + "/file.txt/out", dir);
+    EXPECT_EQ(underFile.exitCode, 2);
+    EXPECT_THAT(underFile.output, ::testing::HasSubstr("--out: cannot create the folder"));
+    EXPECT_THAT(underFile.output, ::testing::Not(::testing::HasSubstr("proxies")));
+    const CommandRun saveDir = runCommand(exe + "--out " + dir + "/a --save " + dir, dir);
+    EXPECT_EQ(saveDir.exitCode, 2);
+    EXPECT_THAT(saveDir.output, ::testing::HasSubstr("is a directory"));
+    const CommandRun same = runCommand(exe + "--out " + dir + "/a --save " + dir + "/a/gallery.json", dir);
+    EXPECT_EQ(same.exitCode, 2);
+    EXPECT_THAT(same.output, ::testing::HasSubstr("--out and --save name the same file"));
+    const CommandRun cache = runCommand(std::string(SPATTER_GALLERY_EXE) + " --headless --out " + dir +
+                                            "/a --cache " + dir + "/file.txt",
+                                        dir);
+    EXPECT_EQ(cache.exitCode, 2);
+    const CommandRun fresh = runCommand(exe + "--out " + dir + "/new --save " + dir + "/new/q.save", dir);
+    EXPECT_EQ(fresh.exitCode, 0) << fresh.output;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/new/q.save"));
+    EXPECT_TRUE(std::filesystem::exists(dir + "/new/gallery.json"));
 }
