@@ -5,6 +5,11 @@
 #include "spatter/core/Random.hpp"
 #include "spatter/core/SceneLoader.hpp"
 
+#include "cli/Arguments.hpp"
+#include "cli/Numbers.hpp"
+#include "cli/OutputCleanup.hpp"
+#include "cli/PathChecks.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <regex>
 #include <sstream>
 #include <thread>
 #include <unistd.h>
@@ -32,37 +38,46 @@ std::string Args::value(const std::string& name, const std::string& fallback) co
 Result<Args> parseArgs(int argc, char** argv, const std::set<std::string>& valued,
                        const std::set<std::string>& switches) {
     Args args;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (switches.count(a)) {
-            args.flags.insert(a);
-        } else if (a.size() > 2 && a.compare(0, 2, "--") == 0) {
-            if (valued.count(a)) {
-                if (i + 1 >= argc) return fail(a + " needs a value");
-                args.values[a] = argv[++i];
-            } else {
-                return fail("unknown option " + a);
-            }
+    cli::Arguments walk(argc, argv);
+    while (walk.more()) {
+        const Result<std::string> a = walk.next();
+        if (!a) return fail(a.error());
+        if (switches.count(*a)) {
+            args.flags.insert(*a);
+        } else if (a->size() > 2 && a->compare(0, 2, "--") == 0) {
+            if (!valued.count(*a)) return fail("unknown option " + *a);
+            const std::optional<std::string> v = walk.value();
+            if (!v) return fail(*a + " needs a value");
+            args.values[*a] = *v;
         } else {
-            args.positional.push_back(a);
+            args.positional.push_back(*a);
         }
     }
+    if (args.values.count("--json"))
+        if (Status s = cli::creatableFile({"--json", args.values["--json"]}); !s) return fail(s.error());
     return args;
 }
 
 Result<double> parseNumber(const std::string& text, const std::string& option) {
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v))
-        return fail(option + ": '" + text + "' is not a finite number");
+    double v = 0.0;
+    if (!cli::parseDecimal(text, v)) return fail(option + ": '" + text + "' is not a finite decimal number");
     return v;
 }
 
 Result<uint64_t> parseCount(const std::string& text, const std::string& option) {
-    if (text.empty() || text.size() > 18 || text.find_first_not_of("0123456789") != std::string::npos)
-        return fail(option + ": '" + text + "' is not a count");
-    return uint64_t(std::strtoull(text.c_str(), nullptr, 10));
+    uint64_t v = 0;
+    if (!cli::parseWhole(text, INT64_MAX, v)) return fail(option + ": '" + text + "' is not a count");
+    return v;
+}
+
+Status checkFilter(const std::string& text, const std::string& option) {
+    const std::string pattern = !text.empty() && text[0] == '-' ? text.substr(1) : text; // '-': all but
+    try {
+        const std::regex compiled(pattern, std::regex::extended);
+    } catch (const std::regex_error& e) {
+        return fail(option + ": '" + text + "' is not a regular expression (" + e.what() + ")");
+    }
+    return {};
 }
 
 Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option) {
@@ -403,11 +418,14 @@ Json number(double v) {
 }
 
 Status writeJson(const Json& j, const std::string& path) {
+    cli::OutputCleanup cleanup; // a file half written
+    cleanup.writing(path);
     std::ofstream out(path, std::ios::binary);
     if (!out) return fail("cannot write '" + path + "'");
     out << j.dump(2) << "\n";
     out.close();
     if (!out) return fail("cannot write '" + path + "'");
+    cleanup.keep();
     return {};
 }
 

@@ -40,14 +40,20 @@ struct Args {
 };
 
 // Parses argv[1..argc) (argv[0] is the command's name). `valued` lists the options that take a
-// value, `switches` those that do not; anything else starting with "--" is an error naming it.
+// value, `switches` those that do not; anything else starting with "--" is an error naming it, as
+// are an option given twice and a value that is missing or starts with "--". A --json FILE must be
+// a file that can be written (checked here, before the command's work).
 Result<Args> parseArgs(int argc, char** argv, const std::set<std::string>& valued,
                        const std::set<std::string>& switches);
 
-// A finite number, or an error naming the option.
+// A finite decimal number (cli::parseDecimal: no blanks, no hexadecimal), or an error naming the
+// option.
 Result<double> parseNumber(const std::string& text, const std::string& option);
-// A non-negative integer below 2^63, or an error naming the option.
+// A whole number below 2^63, digits only, or an error naming the option.
 Result<uint64_t> parseCount(const std::string& text, const std::string& option);
+// Fails, naming the option, unless `text` is a filter google benchmark compiles: a POSIX extended
+// regular expression, after a leading '-' (which negates it).
+Status checkFilter(const std::string& text, const std::string& option);
 // Comma-separated finite numbers.
 Result<std::vector<double>> parseNumberList(const std::string& text, const std::string& option);
 

@@ -124,6 +124,9 @@ int runPlacementCommand(int argc, char** argv) {
         return 0;
     }
     if (args.positional.size() > 1) return usageError(kPlacementCommand, "at most one MESH");
+    if (args.has("--filter"))
+        if (Status s = checkFilter(args.value("--filter"), "--filter"); !s)
+            return usageError(kPlacementCommand, s.error());
     const bool quick = args.has("--quick");
 
     auto count = [&](const std::string& name, uint64_t fallback) -> Result<uint64_t> {

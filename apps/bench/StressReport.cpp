@@ -5,6 +5,10 @@
 
 #include "spatter/render/GlContext.hpp"
 
+#include "cli/Arguments.hpp"
+#include "cli/Numbers.hpp"
+#include "cli/PathChecks.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cerrno>
@@ -42,12 +46,14 @@ Options:
   --quick            the CI sizes instead of the full ones
   --case NAME        run only this case (repeatable); names are listed below
   --data DIR         the shared data directory (fandisk); default $SPATTER_SHARED_DATA or ../shared/data
-  --place-tool PATH  the spatter-place binary; default: next to spatter-bench, else the build's
-  --seed N           seed of every random input (default 1)
+  --place-tool PATH  the spatter-place binary, an executable file; default: next to
+                     spatter-bench, else the build's
+  --seed N           seed of every random input, a whole number (default 1)
   --no-gpu           do not create an OpenGL context (the GPU cases are skipped)
 
 Exit code 0 when every case that ran passes (a case that could not run, such as a GPU case without
-an OpenGL context, is listed as skipped), 1 when one fails, 2 on bad options.
+an OpenGL context, is listed as skipped), 1 when one fails, 2 on bad options (an option other than
+--case given twice, a --json FILE that cannot be written, checked before the cases run).
 
 Cases:
 )";
@@ -136,12 +142,16 @@ int runStressCommand(int argc, char** argv) {
     std::string jsonPath;
     std::vector<std::string> only;
     bool gpu = true;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
+    bool placeToolGiven = false;
+    cli::Arguments args(argc, argv, 1, {"--case"});
+    while (args.more()) {
+        const Result<std::string> next = args.next();
+        if (!next) return usageError(next.error());
+        const std::string& a = next.value();
         auto value = [&](std::string& out) {
-            if (i + 1 >= argc) return false;
-            out = argv[++i];
-            return true;
+            const std::optional<std::string> v = args.value();
+            if (v) out = *v;
+            return v.has_value();
         };
         if (a == "--help" || a == "-h") {
             std::cout << kStressUsage;
@@ -149,7 +159,7 @@ int runStressCommand(int argc, char** argv) {
                 std::printf("  %-22s %s\n", c.name, c.summary);
             return 0;
         } else if (a == "--json") {
-            if (!value(jsonPath)) return usageError("--json needs a file");
+            if (!value(jsonPath) || jsonPath.empty()) return usageError("--json needs a file");
         } else if (a == "--quick") {
             config.full = false;
         } else if (a == "--case") {
@@ -164,20 +174,22 @@ int runStressCommand(int argc, char** argv) {
             if (!value(config.dataDir)) return usageError("--data needs a directory");
         } else if (a == "--place-tool") {
             if (!value(config.placeTool)) return usageError("--place-tool needs a path");
+            placeToolGiven = true;
         } else if (a == "--seed") {
             std::string v;
-            if (!value(v)) return usageError("--seed needs a number");
-            char* end = nullptr;
-            errno = 0;
-            config.seed = std::strtoull(v.c_str(), &end, 10);
-            if (v.empty() || end != v.c_str() + v.size() || errno == ERANGE || v[0] == '-')
-                return usageError("--seed needs a non-negative integer");
+            if (!value(v) || !cli::parseWhole(v, UINT64_MAX, config.seed))
+                return usageError("--seed needs a whole number in 0.." + std::to_string(UINT64_MAX));
         } else if (a == "--no-gpu") {
             gpu = false;
         } else {
             return usageError("unknown option " + a);
         }
     }
+    if (placeToolGiven)
+        if (Status s = cli::executableFile({"--place-tool", config.placeTool}); !s)
+            return usageError(s.error());
+    if (!jsonPath.empty())
+        if (Status s = cli::creatableFile({"--json", jsonPath}); !s) return usageError(s.error());
 
     std::optional<GlContext> context;
     if (gpu) {
@@ -226,14 +238,11 @@ int runStressCommand(int argc, char** argv) {
     }
     report["pass"] = allPass;
     report["skipped"] = skipped;
-    if (!jsonPath.empty()) {
-        std::ofstream out(jsonPath);
-        out << report.dump(2) << "\n";
-        if (!out) {
-            std::cerr << "spatter-bench stress: cannot write " << jsonPath << "\n";
+    if (!jsonPath.empty())
+        if (Status s = writeJson(report, jsonPath); !s) {
+            std::cerr << "spatter-bench stress: " << s.error() << "\n";
             return 1;
         }
-    }
     if (!allPass)
         std::printf("\nSOME CASES FAIL\n");
     else if (skipped.empty())

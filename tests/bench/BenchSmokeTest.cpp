@@ -351,3 +351,39 @@ TEST(BenchSmoke, VolumetricQuickDrawsEveryCraterInAFewInstancedDraws) {
         EXPECT_GT(row["ratio"].get<double>(), 0.0) << row.dump();
     }
 }
+
+TEST(BenchTool, RefusesARepeatedOptionAMissingValueAndNumbersThatAreNotDecimal) {
+    const std::string dir = test::scratchDir("bench-usage");
+    const std::string log = dir + "/log";
+    EXPECT_EQ(runBench("load --repeat 3 --repeat 4", log), 2);
+    EXPECT_NE(readAll(log).find("--repeat given twice"), std::string::npos) << readAll(log);
+    for (const char* bad :
+         {"memory --json --quick", "pose --frames 0x10", "pose --frames ' 5'", "placement --cone ' 1'",
+          "placement --cone 0x1", "stress --seed ' 5'", "stress --seed 99999999999999999999",
+          "stress --quick --quick", "stress --json --quick"})
+        EXPECT_EQ(runBench(bad, log), 2) << bad << ": " << readAll(log);
+}
+
+TEST(BenchTool, ChecksItsJsonFileBeforeTheWork) {
+    const std::string dir = test::scratchDir("bench-json");
+    const std::string log = dir + "/log", json = " --json " + dir + "/no/such/folder/x.json";
+    EXPECT_EQ(runBench("persistence --quick --decals 10 --repeat 1" + json, log), 2) << readAll(log);
+    EXPECT_NE(readAll(log).find("does not exist"), std::string::npos) << readAll(log);
+    EXPECT_EQ(runBench("stress --quick --case degenerate --no-gpu" + json, log), 2) << readAll(log);
+    EXPECT_EQ(runBench("persistence --quick --decals 10 --repeat 1 --json " + dir, log), 2) << readAll(log);
+}
+
+TEST(BenchTool, PlacementRefusesAFilterThatIsNotARegularExpression) {
+    const std::string dir = test::scratchDir("bench-filter");
+    EXPECT_EQ(runBench("placement --quick --filter '('", dir + "/log"), 2) << readAll(dir + "/log");
+    EXPECT_NE(readAll(dir + "/log").find("--filter"), std::string::npos);
+}
+
+TEST(BenchTool, StressRefusesAPlaceToolThatIsNotAnExecutableFile) {
+    const std::string dir = test::scratchDir("bench-place-tool");
+    const std::string log = dir + "/log";
+    for (const std::string& tool : {dir + "/nonexistent", dir})
+        EXPECT_EQ(runBench("stress --quick --case far-tool --no-gpu --place-tool " + tool, log), 2)
+            << readAll(log);
+    EXPECT_NE(readAll(log).find("is not an executable file"), std::string::npos) << readAll(log);
+}
