@@ -95,3 +95,13 @@ TEST(DeferredExample, ReportsBadInputThroughItsExitCode) {
                                    dir + "/x.png"}),
               1);
 }
+
+TEST(DeferredExample, RefusesARepeatedOptionAFollowingOptionAsAValueAndPaddedSizes) {
+    const char* tool = SPATTER_EXAMPLE_DEFERRED;
+    EXPECT_EQ(test::runTool(tool, {"builtin:gallery", "--view", "final", "--view", "albedo"}), 2);
+    EXPECT_EQ(test::runTool(tool, {"builtin:gallery", "--dbuffer", "--dbuffer"}), 2);
+    EXPECT_EQ(test::runTool(tool, {"builtin:gallery", "--out", "--dbuffer"}), 2);
+    EXPECT_EQ(test::runTool(tool, {"builtin:gallery", "--size", " 64x36"}), 2);
+    EXPECT_EQ(test::runTool(tool, {"builtin:gallery", "--size", "0x40x36"}), 2);
+    EXPECT_EQ(test::runTool(tool, {"builtin:gallery", "--size", "64x36.0"}), 2);
+}

@@ -13,10 +13,12 @@ namespace example {
 
 namespace {
 
-// A whole number in 1..16384 (the image sizes spatter-render takes).
+// A whole number in 1..16384 written as digits (the image sizes spatter-render takes).
 bool parseSide(const std::string& text, int& out) {
     double v = 0.0;
-    if (!spatter::parseNumber(text, v) || v < 1.0 || v > 16384.0 || v != std::floor(v)) return false;
+    if (text.empty() || text.size() > 5 || text.find_first_not_of("0123456789") != std::string::npos ||
+        !spatter::parseNumber(text, v) || v < 1.0 || v > 16384.0)
+        return false;
     out = int(v);
     return true;
 }
@@ -42,7 +44,7 @@ spatter::Status parseView(const std::string& text, Options& o) {
 // Takes the option argv[i] (and its value, moving i past it) into `o`.
 spatter::Status parseOption(int argc, char** argv, int& i, const std::vector<Switch>& own, Options& o) {
     const std::string a = argv[i];
-    const bool hasValue = i + 1 < argc;
+    const bool hasValue = i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0; // not an option
     const std::string v = hasValue ? argv[i + 1] : "";
     if (a == "--help" || a == "-h") {
         o.help = true;
@@ -101,9 +103,11 @@ glm::dmat4 projectionFor(const spatter::Camera& camera, const spatter::Scene& sc
 
 spatter::Result<Options> parseCommandLine(int argc, char** argv, const std::vector<Switch>& own) {
     Options o;
+    std::set<std::string> given; // the options so far: each is given once
     for (int i = 1; i < argc && !o.help; ++i) {
         const std::string a = argv[i];
-        if (!a.empty() && a[0] == '-') {
+        if (a.size() > 1 && a[0] == '-') {
+            if (!given.insert(a).second) return spatter::fail(a + " given twice");
             if (spatter::Status s = parseOption(argc, argv, i, own, o); !s) return spatter::fail(s.error());
         } else if (o.scene.empty()) {
             o.scene = a;
@@ -152,6 +156,7 @@ std::string usage(const std::string& program, const std::string& description,
   --out FILE.png  the image (default render.png)
   --help          this text
 
+Each option is given once, with its value (a following "--..." is not one); W and H are digits.
 Exit code 0 on success, 1 when the scene, the decals or the GL context fail, 2 on bad options.
 )";
 }

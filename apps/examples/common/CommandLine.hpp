@@ -46,8 +46,8 @@ struct Options {
 };
 
 // The options in argv[1..argc), taking `own` switches besides spatter-render's options. Fails with a
-// message that names the option at fault: an unknown option, a missing or bad value, no scene or
-// two, --decals with --rays.
+// message that names the option at fault: an unknown option, one given twice, a missing value (or
+// one that starts with "--") or a bad one, no scene or two, --decals with --rays.
 spatter::Result<Options> parseCommandLine(int argc, char** argv, const std::vector<Switch>& own = {});
 
 // The usage text of `program`, after a paragraph of `description`, with its `own` switches.
