@@ -1,70 +1,164 @@
-// MeshFileGuard for OBJ: OpenMesh's reader adds the "v" lines with three numbers as vertices, then
-// reads each face corner "v[/vt[/vn]]" and stores its texture coordinate and normal at vertex v
-// without checking v (an unparsable v leaves it an uninitialised int).
+// MeshFileGuard for OBJ. OpenMesh's reader adds the "v" lines whose first three words read as floats
+// and silently skips the others, so that every later face index names another vertex; it skips "vn"
+// lines the same way, shifting normals. It reads each face corner "v[/vt[/vn]]" as iostreams read an
+// int, skips a corner that is no number (and a whole face left with fewer than three different
+// vertices), and stores the corner's texture coordinate and normal at vertex v without checking v
+// (an unparsable v leaves it an uninitialised int). The guard reads every line once, strictly: a
+// file it accepts is read by OpenMesh with every vertex and every face.
 
 #include "MeshFileGuardFormats.hpp"
+#include "MeshFileWords.hpp"
+#include "TextLineReader.hpp"
 
+#include <algorithm>
 #include <cctype>
-#include <cstdint>
-#include <fstream>
-#include <sstream>
+#include <string>
+#include <vector>
 
 namespace spatter::detail {
 
 namespace {
 
-std::string trimObjLine(const std::string& line) {
-    const size_t first = line.find_first_not_of(" \t\r\n"), last = line.find_last_not_of(" \t\r\n");
-    return first == std::string::npos ? std::string() : line.substr(first, last - first + 1);
+// A corner's index into the "v", "vt" or "vn" lines, which may come before or after the faces.
+struct ObjIndexRange {
+    explicit ObjIndexRange(const char* kind) : name(kind) {}
+
+    const char* name;
+    int64_t lines = 0; // the lines of this kind so far
+    struct Forward {   // a corner naming a line further on, the largest so far when it came
+        size_t line;
+        std::string corner;
+        int64_t index;
+    };
+    std::vector<Forward> forward;
+};
+
+struct ObjCheck {
+    ObjIndexRange positions{"vertex"}, texCoords{"texture coordinate"}, normals{"normal"};
+    std::vector<int64_t> faceVertices; // reused from face to face
+    size_t line = 0;
+
+    Error at(const std::string& problem) const {
+        return fail("line " + std::to_string(line) + ": " + problem);
+    }
+};
+
+// The first `needed` words of a "v", "vt" or "vn" line (after `keyword`) must be finite numbers.
+Status checkObjNumbers(std::string_view keyword, std::string_view rest, unsigned needed, const char* what,
+                       const ObjCheck& c) {
+    for (unsigned i = 0; i < needed; ++i) {
+        const std::string_view word = nextWord(rest);
+        if (word.empty() || word[0] == '#')
+            return c.at("'" + std::string(keyword) + "' line has " + std::to_string(i) +
+                        (i == 1 ? " number, " : " numbers, ") + std::to_string(needed) + " needed");
+        float value;
+        if (const NumberWord kind = readFloatWord(word, value); kind != NumberWord::Finite)
+            return c.at(std::string(what) + " '" + excerpt(word) + "' " + numberWordProblem(kind));
+    }
+    return {};
 }
 
-bool objSkips(const std::string& line) {
-    return line.empty() || line[0] == '#' || std::isspace(static_cast<unsigned char>(line[0]));
+// Checks a corner's index of one kind: a negative one counts back from the lines so far, a positive
+// one beyond them is checked once all lines are known.
+Status checkObjIndex(int64_t value, std::string_view corner, ObjIndexRange& range, const ObjCheck& c,
+                     int64_t& index) {
+    index = value < 0 ? range.lines + value + 1 : value;
+    const int64_t largest = range.forward.empty() ? range.lines : range.forward.back().index;
+    if (index > largest) range.forward.push_back({c.line, std::string(corner), index});
+    if (index < 1)
+        return c.at("face corner '" + excerpt(corner) + "' refers to " + range.name + " " +
+                    std::to_string(index) + " of " + std::to_string(range.lines));
+    return {};
+}
+
+Status checkObjForwardIndices(const ObjIndexRange& range) {
+    for (const ObjIndexRange::Forward& f : range.forward) // the first corner past the last line
+        if (f.index > range.lines)
+            return fail("line " + std::to_string(f.line) + ": face corner '" + excerpt(f.corner) +
+                        "' refers to " + range.name + " " + std::to_string(f.index) + " of " +
+                        std::to_string(range.lines));
+    return {};
+}
+
+Status checkObjCorner(std::string_view corner, ObjCheck& c) {
+    std::string_view parts[3];
+    size_t count = 0;
+    for (std::string_view rest = corner;; ++count) {
+        const size_t slash = rest.find('/');
+        if (count == 3) return c.at("face corner '" + excerpt(corner) + "' has more than v/vt/vn");
+        parts[count] = rest.substr(0, slash);
+        if (slash == std::string_view::npos) break;
+        rest.remove_prefix(slash + 1);
+    }
+    int64_t value = 0, index = 0;
+    if (!readIntegerWord(parts[0], value)) {
+        if (count == 0) return c.at("face corner '" + excerpt(corner) + "' is not an integer vertex index");
+        return c.at("face corner '" + excerpt(corner) + "' has no vertex index" +
+                    (parts[0].empty() ? "" : " ('" + excerpt(parts[0]) + "' is not an integer)"));
+    }
+    if (Status s = checkObjIndex(value, corner, c.positions, c, index); !s) return s;
+    c.faceVertices.push_back(index);
+    ObjIndexRange* ranges[3] = {nullptr, &c.texCoords, &c.normals};
+    for (size_t k = 1; k <= count && k < 3; ++k) {
+        if (parts[k].empty()) continue; // "v//vn" and "v/" leave a part out
+        if (!readIntegerWord(parts[k], value))
+            return c.at("face corner '" + excerpt(corner) + "': " + ranges[k]->name + " index '" +
+                        excerpt(parts[k]) + "' is not an integer");
+        if (Status s = checkObjIndex(value, corner, *ranges[k], c, index); !s) return s;
+    }
+    return {};
+}
+
+Status checkObjFace(std::string_view rest, ObjCheck& c) {
+    c.faceVertices.clear();
+    for (std::string_view corner = nextWord(rest); !corner.empty(); corner = nextWord(rest)) {
+        if (corner[0] == '#') break; // a comment to the end of the line
+        if (c.faceVertices.size() == kMaxFaceCorners)
+            return c.at("face has more than " + std::to_string(kMaxFaceCorners) + " corners");
+        if (Status s = checkObjCorner(corner, c); !s) return s;
+    }
+    const size_t corners = c.faceVertices.size();
+    if (corners < 3) return c.at("face has " + std::to_string(corners) + " corners, at least 3 needed");
+    std::sort(c.faceVertices.begin(), c.faceVertices.end());
+    const size_t different =
+        size_t(std::unique(c.faceVertices.begin(), c.faceVertices.end()) - c.faceVertices.begin());
+    if (different < 3)
+        return c.at("face has " + std::to_string(corners) + " corners but " + std::to_string(different) +
+                    " different vertices, at least 3 needed");
+    return {};
+}
+
+Status checkObjLine(std::string_view line, ObjCheck& c) {
+    std::string_view rest = trimLine(line);
+    if (rest.empty() || rest[0] == '#' || std::isspace(static_cast<unsigned char>(rest[0]))) return {};
+    const std::string_view keyword = nextWord(rest);
+    if (keyword == "v") {
+        ++c.positions.lines;
+        return checkObjNumbers(keyword, rest, 3, "vertex coordinate", c);
+    }
+    if (keyword == "vt") {
+        ++c.texCoords.lines;
+        return checkObjNumbers(keyword, rest, 2, "texture coordinate", c);
+    }
+    if (keyword == "vn") {
+        ++c.normals.lines;
+        return checkObjNumbers(keyword, rest, 3, "normal coordinate", c);
+    }
+    if (keyword == "f") return checkObjFace(rest, c);
+    return {};
 }
 
 } // namespace
 
 Status checkObjForOpenMesh(std::ifstream& in) {
-    int64_t positions = 0;
-    for (std::string raw; std::getline(in, raw);) {
-        const std::string line = trimObjLine(raw);
-        if (objSkips(line)) continue;
-        std::istringstream words(line);
-        std::string keyword;
-        float x, y, z;
-        if (words >> keyword && keyword == "v" && words >> x >> y >> z) positions++;
+    ObjCheck c;
+    TextLineReader lines(in);
+    for (std::string_view line; lines.next(line);) {
+        c.line = lines.lineNumber();
+        if (Status s = checkObjLine(line, c); !s) return s;
     }
-    in.clear();
-    in.seekg(0);
-    int64_t vLines = 0; // negative indices count back from the "v" lines so far
-    size_t lineNumber = 0;
-    for (std::string raw; std::getline(in, raw);) {
-        ++lineNumber;
-        const std::string line = trimObjLine(raw);
-        if (objSkips(line)) continue;
-        std::istringstream words(line);
-        std::string keyword;
-        words >> keyword;
-        if (keyword == "v") vLines++;
-        if (keyword != "f") continue;
-        const std::string where = "line " + std::to_string(lineNumber) + ": ";
-        unsigned corners = 0;
-        for (std::string corner; words >> corner;) {
-            const size_t slash = corner.find('/');
-            std::istringstream first(corner.substr(0, slash));
-            int value = 0;
-            if (!(first >> value)) {
-                if (slash == std::string::npos) continue; // a lone word the reader skips
-                return fail(where + "face corner '" + corner + "' has no vertex index");
-            }
-            const int64_t index = value < 0 ? vLines + value + 1 : value;
-            if (index < 1 || index > positions)
-                return fail(where + "face corner '" + corner + "' refers to vertex " + std::to_string(index) +
-                            " of " + std::to_string(positions));
-            if (++corners > kMaxFaceCorners)
-                return fail(where + "face has more than " + std::to_string(kMaxFaceCorners) + " corners");
-        }
-    }
+    for (const ObjIndexRange* range : {&c.positions, &c.texCoords, &c.normals})
+        if (Status s = checkObjForwardIndices(*range); !s) return s;
     return {};
 }
 

@@ -100,3 +100,93 @@ TEST(MeshFileLoader, RejectsIndexPastVertexCount) {
     Result<Scene> scene = loadScene(writeFile(dir, "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n"));
     EXPECT_FALSE(scene.ok());
 }
+
+// OpenMesh's OBJ reader skips a "v" line whose first three words do not read as floats, so that
+// every later face index names the vertex after the one meant.
+TEST(MeshFileLoader, RejectsAVertexLineThatIsNotThreeFiniteNumbers) {
+    const std::string dir = test::scratchForTest("objvertex");
+    auto error = [&](const std::string& vertex) {
+        const std::string obj = "v 0 0 0\n" + vertex + "\nv 5 0 0\nv 0 5 0\nf 1 2 3\n";
+        Result<Scene> scene = loadScene(writeFile(dir, "v.obj", obj));
+        return scene ? std::string("loaded") : scene.error();
+    };
+    EXPECT_THAT(error("v nan nan nan"), HasSubstr("v.obj: line 2: vertex coordinate 'nan' is not finite"));
+    EXPECT_THAT(error("v 0 -inf 0"), HasSubstr("line 2: vertex coordinate '-inf' is not finite"));
+    EXPECT_THAT(error("v 1e999 0 0"), HasSubstr("line 2: vertex coordinate '1e999' is not finite"));
+    EXPECT_THAT(error("v 0x10 0 0"), HasSubstr("line 2: vertex coordinate '0x10' is not a decimal number"));
+    EXPECT_THAT(error("v 0 0 1abc"), HasSubstr("line 2: vertex coordinate '1abc' is not a decimal number"));
+    EXPECT_THAT(error("v 1,5 0 0"), HasSubstr("line 2: vertex coordinate '1,5' is not a decimal number"));
+    EXPECT_THAT(error("v 1 2"), HasSubstr("line 2: 'v' line has 2 numbers, 3 needed"));
+    EXPECT_THAT(error("v 1 2 # z"), HasSubstr("line 2: 'v' line has 2 numbers, 3 needed"));
+    // What iostreams read as numbers still loads: signs, bare points, exponents, a w, colours, and
+    // magnitudes below float's range (read as 0).
+    expectMesh(writeFile(dir, "fine.obj", "v +1. -.5 2E+1 1\nv 1e-50 0 0 0.5 0.5 0.5\nv 0 1 0\nf 1 2 3\n"), 3,
+               1);
+}
+
+// A skipped "vn" line shifts every later normal; a "vt" line that is not numbers fails the whole read
+// without saying where.
+TEST(MeshFileLoader, RejectsANormalOrTextureCoordinateLineThatIsNotFiniteNumbers) {
+    const std::string dir = test::scratchForTest("objattributes");
+    const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    EXPECT_THAT(loadScene(writeFile(dir, "vn.obj", triangle + "vn nan 0 1\nf 1//1 2//1 3//1\n")).error(),
+                HasSubstr("vn.obj: line 4: normal coordinate 'nan' is not finite"));
+    EXPECT_THAT(loadScene(writeFile(dir, "vt.obj", triangle + "vt 0 inf\nf 1/1 2/1 3/1\n")).error(),
+                HasSubstr("vt.obj: line 4: texture coordinate 'inf' is not finite"));
+    EXPECT_THAT(loadScene(writeFile(dir, "vt1.obj", triangle + "vt 0\nf 1/1 2/1 3/1\n")).error(),
+                HasSubstr("line 4: 'vt' line has 1 number, 2 needed"));
+}
+
+// OpenMesh's OBJ reader skips a corner that is no integer and then a face left with fewer than three
+// different vertices, while the other faces load.
+TEST(MeshFileLoader, RejectsObjFacesTheReaderWouldDrop) {
+    const std::string dir = test::scratchForTest("objfaces");
+    auto error = [&](const std::string& face) {
+        const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n" + face + "\n";
+        Result<Scene> scene = loadScene(writeFile(dir, "f.obj", obj));
+        return scene ? std::string("loaded") : scene.error();
+    };
+    EXPECT_THAT(error("f 1 2"), HasSubstr("f.obj: line 6: face has 2 corners, at least 3 needed"));
+    EXPECT_THAT(error("f"), HasSubstr("line 6: face has 0 corners, at least 3 needed"));
+    EXPECT_THAT(error("f a b c"), HasSubstr("line 6: face corner 'a' is not an integer vertex index"));
+    EXPECT_THAT(error("f 1.5 2 4"), HasSubstr("line 6: face corner '1.5' is not an integer vertex index"));
+    EXPECT_THAT(error("f 1 2 4x"), HasSubstr("line 6: face corner '4x' is not an integer vertex index"));
+    EXPECT_THAT(error("f 1 2 99999999999"), HasSubstr("line 6: face corner '99999999999' refers to vertex "
+                                                      "99999999999 of 4"));
+    EXPECT_THAT(error("f 1 2 4294967297"), HasSubstr("refers to vertex 4294967297 of 4"));
+    EXPECT_THAT(error("f 1 2 1"), HasSubstr("line 6: face has 3 corners but 2 different vertices"));
+    EXPECT_THAT(error("f 1/x 2 4"),
+                HasSubstr("line 6: face corner '1/x': texture coordinate index 'x' is not"));
+    EXPECT_THAT(error("f 1/1 2/1 4/1"),
+                HasSubstr("line 6: face corner '1/1' refers to texture coordinate 1 of 0"));
+    EXPECT_THAT(error("f 1//2 2//2 4//2"), HasSubstr("line 6: face corner '1//2' refers to normal 2 of 0"));
+    EXPECT_THAT(error("f 1/1/1/1 2 4"), HasSubstr("line 6: face corner '1/1/1/1' has more than v/vt/vn"));
+    EXPECT_EQ(error("f 1 2 4 # a comment"), "loaded");
+}
+
+// Faces may come before the vertices they name; of several corners past the last vertex the first
+// one in the file is named.
+TEST(MeshFileLoader, ChecksObjIndicesAgainstEveryVertexOfTheFile) {
+    const std::string dir = test::scratchForTest("objforward");
+    expectMesh(writeFile(dir, "ahead.obj", "f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1// -1// -2//\n"), 3, 2);
+    EXPECT_THAT(
+        loadScene(writeFile(dir, "past.obj", "f 1 2 5\nf 1 2 9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"))
+            .error(),
+        HasSubstr("past.obj: line 1: face corner '5' refers to vertex 5 of 4"));
+}
+
+// The OBJ check reads the file in blocks: lines across a block's end, a line longer than a block, CR
+// LF line ends and a last line without one are all read whole.
+TEST(MeshFileLoader, ReadsObjLinesAcrossBlocksWhole) {
+    const std::string dir = test::scratchForTest("objblocks");
+    std::string obj = "# " + std::string(3u << 20, 'x') + "\r\n";
+    for (int i = 0; i < 60000; ++i)
+        obj += "v " + std::to_string(i) + ".25 " + std::to_string(i % 7) + " -" + std::to_string(i % 11) +
+               "\r\n";
+    for (int i = 1; i + 2 <= 60000; i += 3)
+        obj += "f " + std::to_string(i) + " " + std::to_string(i + 1) + " " + std::to_string(i + 2) + "\r\n";
+    expectMesh(writeFile(dir, "blocks.obj", obj + "f 60000 2 1"), 60000, 20001);
+    obj += "v 1 2 nan\r\n";
+    EXPECT_THAT(loadScene(writeFile(dir, "late.obj", obj)).error(),
+                HasSubstr("line 80002: vertex coordinate 'nan' is not finite"));
+}
