@@ -20,6 +20,7 @@ Status checkMeshFileForOpenMesh(const std::string& path) {
     if (extension == ".obj") return checkObjForOpenMesh(in);
     if (extension == ".ply") return checkPlyForOpenMesh(in, size);
     if (extension == ".off") return checkOffForOpenMesh(in, size);
+    if (extension == ".stl") return checkStlForOpenMesh(in, size);
     return {};
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// MeshFileGuard: what OpenMesh's OBJ, PLY and OFF readers cannot be trusted with, checked before
+// MeshFileGuard: what OpenMesh's OBJ, PLY, OFF and STL readers cannot be trusted with, checked before
 // loadMeshFile hands them a file. Those readers take counts and indices from the file unchecked:
 // a PLY header that ends early makes the header parser loop forever, a face corner past the
 // vertices makes the OBJ reader write out of bounds, and a count of billions makes any of them
@@ -17,8 +17,8 @@ namespace spatter::detail {
 // The most corners a face may have (OpenMesh checks every pair of a face's corners).
 constexpr unsigned kMaxFaceCorners = 4096;
 
-// Checks `path` for the reader its extension selects (.obj, .ply, .off, case-insensitive; other
-// extensions pass). Empty when OpenMesh may read it; otherwise what is wrong, without the path.
+// Checks `path` for the reader its extension selects (.obj, .ply, .off, .stl, case-insensitive;
+// other extensions pass). Empty when OpenMesh may read it; otherwise what is wrong, without the path.
 Status checkMeshFileForOpenMesh(const std::string& path);
 
 } // namespace spatter::detail

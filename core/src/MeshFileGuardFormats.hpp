@@ -12,5 +12,6 @@ namespace spatter::detail {
 Status checkObjForOpenMesh(std::ifstream& in);
 Status checkPlyForOpenMesh(std::ifstream& in, uintmax_t fileSize);
 Status checkOffForOpenMesh(std::ifstream& in, uintmax_t fileSize);
+Status checkStlForOpenMesh(std::ifstream& in, uintmax_t fileSize);
 
 } // namespace spatter::detail

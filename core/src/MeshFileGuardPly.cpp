@@ -4,6 +4,7 @@
 // the corners read) and fill a face with garbage corners past the end of a binary file.
 
 #include "MeshFileGuardFormats.hpp"
+#include "MeshFileWords.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -98,6 +99,7 @@ enum class PlyRead {
 };
 
 struct PlyProperty {
+    std::string name;
     PlyRead read = PlyRead::Skip;
     PlyType type = PlyType::Unsupported;
     PlyType countType = PlyType::Unsupported; // Corners: the type of the corner count
@@ -107,6 +109,12 @@ struct PlyElement {
     std::string name;
     unsigned count = 0;
     std::vector<PlyProperty> properties;
+};
+
+struct PlyHeader {
+    std::vector<PlyElement> elements;
+    bool binary = false, msb = false;
+    bool declined = false; // not a PLY file to the reader, which leaves it to another
 };
 
 PlyRead plyRead(const std::string& element, const std::string& name) {
@@ -147,78 +155,93 @@ size_t plyBinaryBytes(PlyRead read, PlyType t) {
     return plySize(t);
 }
 
-} // namespace
+Status readPlyProperty(std::istream& in, PlyElement& e) {
+    std::string first, second, name;
+    if (!(in >> first)) return fail("PLY header: incomplete property");
+    PlyProperty p;
+    if (first == "list") {
+        std::string countType, entryType;
+        if (!(in >> countType >> entryType >> name)) return fail("PLY header: incomplete list property");
+        const bool corners = e.name == "face" && (name == "vertex_index" || name == "vertex_indices");
+        if (!corners) // read as one value, the list would shift everything after it
+            return fail("PLY header: list property '" + name + "' of element '" + e.name +
+                        "' is not supported");
+        if (countType != "uint8" && countType != "uint16" && countType != "uchar" && countType != "int")
+            return fail("PLY header: list count type '" + countType + "' is not supported");
+        p.read = PlyRead::Corners;
+        p.countType = plyType(countType, countType);
+        p.type = plyType(entryType, entryType);
+        if (p.type == PlyType::Unsupported || plyFloatOrDouble(p.type))
+            return fail("PLY header: vertex indices of type '" + entryType + "'");
+    } else {
+        if (!(in >> second)) return fail("PLY header: incomplete property");
+        p.type = plyType(first, second);
+        name = isPlyTypeName(first) ? second : isPlyTypeName(second) ? first : std::string();
+        if (p.type == PlyType::Unsupported)
+            return fail("PLY header: property '" + first + " " + second + "' has no supported type");
+        p.read = plyRead(e.name, name);
+    }
+    p.name = name;
+    e.properties.push_back(p);
+    return {};
+}
 
-Status checkPlyForOpenMesh(std::ifstream& in, uintmax_t fileSize) {
+Status readPlyElement(std::istream& in, uintmax_t fileSize, std::vector<PlyElement>& elements) {
+    PlyElement e;
+    std::string count;
+    int64_t value = 0;
+    if (!(in >> e.name >> count) || !readIntegerWord(count, value))
+        return fail("PLY header: element without a name and a count");
+    if (value < 0 || uintmax_t(value) > fileSize)
+        return fail("PLY header: element '" + e.name + "' counts " + excerpt(count) +
+                    (value < 0 ? ", a negative count" : ", more than the file has bytes"));
+    e.count = unsigned(value);
+    for (const PlyElement& other : elements)
+        if (other.name == e.name && (e.name == "vertex" || e.name == "face"))
+            return fail("PLY header: more than one '" + e.name + "' element");
+    elements.push_back(e);
+    return {};
+}
+
+// Reads the header as the reader does and leaves `in` where the reader starts on the body.
+Status readPlyHeader(std::ifstream& in, uintmax_t fileSize, PlyHeader& h) {
     std::string line;
     std::getline(in, line);
     std::string magic; // the first line must be the single word ply (else the reader declines it)
     if (std::istringstream(line) >> magic >> line) magic.clear();
-    if (magic != "ply" && magic != "PLY") return {};
     std::string keyword, format;
     float version = 0.0f;
+    h.declined = magic != "ply" && magic != "PLY";
+    if (h.declined) return {};
     if (!(in >> keyword >> format >> version)) return fail("PLY header: no format line");
-    if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian") return {};
+    h.declined = format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian";
+    if (h.declined) return {};
 
-    std::vector<PlyElement> elements;
     std::streamoff beforeWord = in.tellg();
     while (in >> keyword && keyword != "end_header") {
+        Status s;
         if (keyword == "comment") {
             std::getline(in, line);
         } else if (keyword == "element") {
-            PlyElement e;
-            if (!(in >> e.name >> e.count)) return fail("PLY header: element without a name and a count");
-            if (e.count > fileSize)
-                return fail("PLY header: element '" + e.name + "' counts " + std::to_string(e.count) +
-                            ", more than the file has bytes");
-            for (const PlyElement& other : elements)
-                if (other.name == e.name && (e.name == "vertex" || e.name == "face"))
-                    return fail("PLY header: more than one '" + e.name + "' element");
-            elements.push_back(e);
+            s = readPlyElement(in, fileSize, h.elements);
         } else if (keyword == "property") {
-            if (elements.empty()) return fail("PLY header: property before any element");
-            PlyElement& e = elements.back();
-            std::string first, second, name;
-            if (!(in >> first)) return fail("PLY header: incomplete property");
-            PlyProperty p;
-            if (first == "list") {
-                std::string countType, entryType;
-                if (!(in >> countType >> entryType >> name))
-                    return fail("PLY header: incomplete list property");
-                const bool corners = e.name == "face" && (name == "vertex_index" || name == "vertex_indices");
-                if (!corners) // read as one value, the list would shift everything after it
-                    return fail("PLY header: list property '" + name + "' of element '" + e.name +
-                                "' is not supported");
-                if (countType != "uint8" && countType != "uint16" && countType != "uchar" &&
-                    countType != "int")
-                    return fail("PLY header: list count type '" + countType + "' is not supported");
-                p.read = PlyRead::Corners;
-                p.countType = plyType(countType, countType);
-                p.type = plyType(entryType, entryType);
-                if (p.type == PlyType::Unsupported || plyFloatOrDouble(p.type))
-                    return fail("PLY header: vertex indices of type '" + entryType + "'");
-            } else {
-                if (!(in >> second)) return fail("PLY header: incomplete property");
-                p.type = plyType(first, second);
-                name = isPlyTypeName(first) ? second : isPlyTypeName(second) ? first : std::string();
-                if (p.type == PlyType::Unsupported)
-                    return fail("PLY header: property '" + first + " " + second + "' has no supported type");
-                p.read = plyRead(e.name, name);
-            }
-            e.properties.push_back(p);
+            if (h.elements.empty()) return fail("PLY header: property before any element");
+            s = readPlyProperty(in, h.elements.back());
         }
+        if (!s) return s;
         beforeWord = in.tellg();
     }
     if (keyword != "end_header") return fail("PLY header has no end_header (truncated or malformed)");
 
-    const bool binary = format != "ascii", msb = format == "binary_big_endian";
-    for (const PlyElement& e : elements)
+    h.binary = format != "ascii";
+    h.msb = format == "binary_big_endian";
+    for (const PlyElement& e : h.elements)
         for (const PlyProperty& p : e.properties)
-            if (binary && p.read != PlyRead::Corners && plyBinaryBytes(p.read, p.type) == 0)
+            if (h.binary && p.read != PlyRead::Corners && plyBinaryBytes(p.read, p.type) == 0)
                 return fail("binary PLY: a coordinate or colour of element '" + e.name +
                             "' has a type the reader skips (coordinates: float or double; colours: float or "
                             "an integer type)");
-    if (binary) { // the reader starts at the word before end_header plus "\nend_header\n" (or CR LF)
+    if (h.binary) { // the reader starts at the word before end_header plus "\nend_header\n" (or CR LF)
         in.clear();
         in.seekg(beforeWord);
         char c1 = 0, c2 = 0;
@@ -227,48 +250,104 @@ Status checkPlyForOpenMesh(std::ifstream& in, uintmax_t fileSize) {
         in.clear();
         in.seekg(beforeWord + ((c1 == '\r' && c2 == '\n') ? 14 : 12));
     }
-    const std::string truncated = "PLY data ends before its faces do (truncated or malformed)";
-    for (const PlyElement& e : elements) {
-        const bool faces = e.name == "face";
-        for (unsigned i = 0; i < e.count; ++i) {
-            for (const PlyProperty& p : e.properties) {
-                if (p.read == PlyRead::Corners) {
-                    int64_t corners = 0;
-                    if (binary) {
-                        if (!readPlyInteger(in, p.countType, msb, corners)) return fail(truncated);
-                    } else {
-                        unsigned count = 0;
-                        if (!(in >> count)) return fail(truncated);
-                        corners = count;
-                    }
-                    if (corners < 0 || corners > int64_t(kMaxFaceCorners))
-                        return fail("PLY face " + std::to_string(i) + " has " + std::to_string(corners) +
-                                    " corners (at most " + std::to_string(kMaxFaceCorners) + ")");
-                    for (int64_t k = 0; k < corners; ++k) {
-                        int64_t index = 0;
-                        unsigned word = 0;
-                        if (binary ? !readPlyInteger(in, p.type, msb, index) : !(in >> word))
-                            return fail(truncated);
-                    }
-                } else if (binary) {
-                    in.ignore(std::streamsize(plyBinaryBytes(p.read, p.type)));
-                } else if (p.read == PlyRead::Float || (p.read == PlyRead::Color && plyFloat(p.type))) {
-                    float value;
-                    in >> value;
-                } else if (p.read == PlyRead::Color) {
-                    int value;
-                    in >> value;
-                } else {
-                    std::string word;
-                    in >> word;
-                }
-                if (faces && in.fail()) return fail(truncated);
-            }
-        }
-        if (faces) break; // the reader stops after the faces
-        if (in.fail()) return fail("PLY element '" + e.name + "' is truncated or malformed");
+    return {};
+}
+
+// The body as the reader walks it: element by element, up to and including the faces.
+struct PlyBody {
+    PlyBody(std::istream& stream, const PlyHeader& h) : in(stream), header(h) {}
+
+    std::istream& in;
+    const PlyHeader& header;
+    int64_t vertices = 0;
+    std::string word;             // reused from value to value
+    std::vector<int64_t> corners; // reused from face to face
+};
+
+const char* const kPlyTruncated = "PLY data ends before its faces do (truncated or malformed)";
+
+std::string plyItem(const std::string& element, unsigned i) {
+    return "PLY " + element + " " + std::to_string(i);
+}
+
+// One value of a text PLY file: a whole word, a finite number where the reader reads a float.
+Status checkPlyText(PlyBody& b, const PlyElement& e, const PlyProperty& p, unsigned i) {
+    if (!(b.in >> b.word))
+        return fail(e.name == "face" ? kPlyTruncated
+                                     : "PLY element '" + e.name + "' is truncated or malformed");
+    float f = 0.0f;
+    int64_t n = 0;
+    if (p.read == PlyRead::Float || (p.read == PlyRead::Color && plyFloat(p.type))) {
+        if (const NumberWord kind = readFloatWord(b.word, f); kind != NumberWord::Finite)
+            return fail(plyItem(e.name, i) + ": " + p.name + " '" + excerpt(b.word) + "' " +
+                        numberWordProblem(kind));
+    } else if (p.read == PlyRead::Color && !readIntegerWord(b.word, n)) {
+        return fail(plyItem(e.name, i) + ": " + p.name + " '" + excerpt(b.word) + "' is not an integer");
     }
     return {};
+}
+
+// A face's corner count or index: binary, of type `t`; text, a whole integer word.
+Status readPlyIndex(PlyBody& b, PlyType t, unsigned face, int64_t& value) {
+    if (b.header.binary)
+        return readPlyInteger(b.in, t, b.header.msb, value) ? Status() : Status(fail(kPlyTruncated));
+    if (!(b.in >> b.word)) return fail(kPlyTruncated);
+    if (!readIntegerWord(b.word, value))
+        return fail(plyItem("face", face) + ": '" + excerpt(b.word) + "' is not an integer");
+    return {};
+}
+
+// The reader skips a face with fewer than three corners, a corner that is no vertex, or a vertex twice.
+Status checkPlyCorners(PlyBody& b, const PlyProperty& p, unsigned face) {
+    int64_t count = 0;
+    if (Status s = readPlyIndex(b, p.countType, face, count); !s) return s;
+    if (count < 3 || count > int64_t(kMaxFaceCorners))
+        return fail(plyItem("face", face) + " has " + std::to_string(count) +
+                    " corners (at least 3, at most " + std::to_string(kMaxFaceCorners) + ")");
+    b.corners.clear();
+    for (int64_t k = 0; k < count; ++k) {
+        int64_t index = 0;
+        if (Status s = readPlyIndex(b, p.type, face, index); !s) return s;
+        if (index < 0 || index >= b.vertices)
+            return fail(plyItem("face", face) + ": corner " + std::to_string(index) + " is not one of the " +
+                        std::to_string(b.vertices) + " vertices (numbered from 0)");
+        b.corners.push_back(index);
+    }
+    std::sort(b.corners.begin(), b.corners.end());
+    if (auto twice = std::adjacent_find(b.corners.begin(), b.corners.end()); twice != b.corners.end())
+        return fail(plyItem("face", face) + " names vertex " + std::to_string(*twice) + " twice");
+    return {};
+}
+
+Status checkPlyBody(PlyBody& b) {
+    for (const PlyElement& e : b.header.elements) {
+        if (e.name == "vertex") b.vertices = e.count;
+        for (unsigned i = 0; i < e.count; ++i) {
+            for (const PlyProperty& p : e.properties) {
+                Status s;
+                if (p.read == PlyRead::Corners)
+                    s = checkPlyCorners(b, p, i);
+                else if (b.header.binary)
+                    b.in.ignore(std::streamsize(plyBinaryBytes(p.read, p.type)));
+                else
+                    s = checkPlyText(b, e, p, i);
+                if (!s) return s;
+                if (e.name == "face" && b.in.fail()) return fail(kPlyTruncated);
+            }
+        }
+        if (e.name == "face") break; // the reader stops after the faces
+        if (b.in.fail()) return fail("PLY element '" + e.name + "' is truncated or malformed");
+    }
+    return {};
+}
+
+} // namespace
+
+Status checkPlyForOpenMesh(std::ifstream& in, uintmax_t fileSize) {
+    PlyHeader header;
+    if (Status s = readPlyHeader(in, fileSize, header); !s || header.declined) return s;
+    PlyBody body(in, header);
+    return checkPlyBody(body);
 }
 
 } // namespace spatter::detail

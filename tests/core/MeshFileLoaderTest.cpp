@@ -190,3 +190,117 @@ TEST(MeshFileLoader, ReadsObjLinesAcrossBlocksWhole) {
     EXPECT_THAT(loadScene(writeFile(dir, "late.obj", obj)).error(),
                 HasSubstr("line 80002: vertex coordinate 'nan' is not finite"));
 }
+
+// OpenMesh's PLY and OFF readers skip a face with a corner past the vertices, a vertex twice or fewer
+// than three corners, while the other faces load.
+TEST(MeshFileLoader, RejectsPlyAndOffFacesTheReaderWouldDrop) {
+    const std::string dir = test::scratchForTest("plyofffaces");
+    auto ply = [&](const std::string& face) {
+        const std::string text =
+            "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+            "property float z\nelement face 2\nproperty list uchar int vertex_indices\n"
+            "end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n" +
+            face + "\n";
+        Result<Scene> scene = loadScene(writeFile(dir, "f.ply", text));
+        return scene ? std::string("loaded") : scene.error();
+    };
+    EXPECT_THAT(ply("3 0 1 99"), HasSubstr("f.ply: PLY face 1: corner 99 is not one of the 4 vertices"));
+    EXPECT_THAT(ply("3 0 -1 3"), HasSubstr("PLY face 1: corner -1 is not one of the 4 vertices"));
+    EXPECT_THAT(ply("3 0 0 3"), HasSubstr("PLY face 1 names vertex 0 twice"));
+    EXPECT_THAT(ply("2 0 3"), HasSubstr("PLY face 1 has 2 corners (at least 3"));
+    EXPECT_THAT(ply("3 0 x 3"), HasSubstr("PLY face 1: 'x' is not an integer"));
+    EXPECT_EQ(ply("4 0 1 3 2"), "loaded");
+
+    std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                         "property float y\nproperty float z\nelement face 1\n"
+                         "property list uchar int vertex_indices\nend_header\n";
+    const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const int32_t corners[3] = {0, 1, -5};
+    binary.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+    binary += char(3);
+    binary.append(reinterpret_cast<const char*>(corners), sizeof corners);
+    EXPECT_THAT(loadScene(writeFile(dir, "neg.ply", binary)).error(),
+                HasSubstr("PLY face 0: corner -5 is not one of the 3 vertices"));
+
+    auto off = [&](const std::string& face) {
+        const std::string text = "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n" + face + "\n";
+        Result<Scene> scene = loadScene(writeFile(dir, "f.off", text));
+        return scene ? std::string("loaded") : scene.error();
+    };
+    EXPECT_THAT(off("3 0 1 7"), HasSubstr("f.off: OFF face 1: corner 7 is not one of the 4 vertices"));
+    EXPECT_THAT(off("3 0 1 -1"), HasSubstr("OFF face 1: corner -1 is not one of the 4 vertices"));
+    EXPECT_THAT(off("4 0 1 1 3"), HasSubstr("OFF face 1 names vertex 1 twice"));
+    EXPECT_THAT(off("2 0 1"), HasSubstr("OFF face 1 has 2 corners (at least 3"));
+    EXPECT_EQ(off("3 0 1 3"), "loaded");
+}
+
+// A coordinate that is no number fails every later read of OpenMesh's text PLY and OFF readers.
+TEST(MeshFileLoader, NamesTheVertexOfANonFiniteCoordinateInTextPlyAndOff) {
+    const std::string dir = test::scratchForTest("plyoffnan");
+    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                            "end_header\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n";
+    EXPECT_THAT(loadScene(writeFile(dir, "nan.ply", ply)).error(),
+                HasSubstr("nan.ply: PLY vertex 1: y 'nan' is not finite"));
+    EXPECT_THAT(
+        loadScene(writeFile(dir, "nan.off", "OFF\n3 1 0\n0 0 0\n1 0 1e999\n0 1 0\n3 0 1 2\n")).error(),
+        HasSubstr("nan.off: OFF vertex 1: coordinate '1e999' is not finite"));
+}
+
+// OpenMesh's OFF reader reads a count of -3 as 4294967293 and ignores counts on the "OFF" line.
+TEST(MeshFileLoader, RejectsOffCountsThatAreNegativeOrOnTheHeaderLine) {
+    const std::string dir = test::scratchForTest("offcounts");
+    EXPECT_THAT(loadScene(writeFile(dir, "neg.off", "OFF\n-3 1 0\n0 0 0\n")).error(),
+                HasSubstr("neg.off: OFF header: the vertex count -3 is negative"));
+    EXPECT_THAT(loadScene(writeFile(dir, "line.off", "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")).error(),
+                HasSubstr("OFF header: the reader ignores the rest of the line 'OFF 3 1 0'"));
+}
+
+// OpenMesh's STL reader takes a binary file with a wrong triangle count as ASCII (no facets), reads
+// an ASCII coordinate that is no number as 0, ignores a fourth vertex, and merges binary corners
+// through a map that NaN leaves without order.
+TEST(MeshFileLoader, RejectsStlFacetsTheReaderWouldMisread) {
+    const std::string dir = test::scratchForTest("stlfacets");
+    auto ascii = [&](const std::string& loop) {
+        const std::string text =
+            "solid t\nfacet normal 0 0 1\nouter loop\n" + loop + "endloop\nendfacet\nendsolid t\n";
+        Result<Scene> scene = loadScene(writeFile(dir, "a.stl", text));
+        return scene ? std::string("loaded") : scene.error();
+    };
+    EXPECT_THAT(ascii("vertex nan 0 0\nvertex 1 0 0\nvertex 0 1 0\n"),
+                HasSubstr("a.stl: line 4: vertex coordinate 'nan' is not finite"));
+    EXPECT_THAT(ascii("vertex 0 0 0\nvertex abc 0 0\nvertex 0 1 0\n"),
+                HasSubstr("line 5: vertex coordinate 'abc' is not a decimal number"));
+    EXPECT_THAT(ascii("vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nvertex 5 5 5\n"),
+                HasSubstr("line 7: facet has more than 3 vertices"));
+    EXPECT_THAT(ascii("vertex 0 0 0\nvertex 1 0 0\n"), HasSubstr("line 6: facet has fewer than 3 vertices"));
+    EXPECT_THAT(ascii("vertex 0 0 0\nvertex 1 0\nvertex 0 1 0\n"),
+                HasSubstr("line 5: vertex has 2 coordinates"));
+    EXPECT_EQ(ascii("  VERTEX 0 0 0\r\nvertex 1 0 0\nvertex 0 1 0\n"), "loaded");
+    EXPECT_THAT(
+        loadScene(writeFile(dir, "cut.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"))
+            .error(),
+        HasSubstr("ASCII STL ends inside a facet"));
+
+    auto binary = [&](const std::string& header, uint32_t count, const std::vector<float>& corners) {
+        std::string bytes = header;
+        bytes.resize(80, '\0');
+        bytes.append(reinterpret_cast<const char*>(&count), 4);
+        for (size_t t = 0; t + 9 <= corners.size(); t += 9) {
+            const float normal[3] = {0, 0, 1};
+            bytes.append(reinterpret_cast<const char*>(normal), sizeof normal);
+            bytes.append(reinterpret_cast<const char*>(&corners[t]), 9 * sizeof(float));
+            bytes.append(2, '\0');
+        }
+        Result<Scene> scene = loadScene(writeFile(dir, "b.stl", bytes));
+        return scene ? std::string("loaded") : scene.error();
+    };
+    const std::vector<float> two = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    EXPECT_EQ(binary("solid but binary", 2, two), "loaded");
+    EXPECT_THAT(binary("", 3, two),
+                HasSubstr("b.stl: binary STL: the header counts 3 triangles, which take 234 "
+                          "bytes, but the file has 184"));
+    std::vector<float> nan = two;
+    nan[10] = NAN;
+    EXPECT_THAT(binary("", 2, nan), HasSubstr("binary STL triangle 1: corner 0 (1, nan, 0) is not finite"));
+}
