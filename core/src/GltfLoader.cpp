@@ -20,12 +20,14 @@
 #include "GltfAnimation.hpp"
 #include "GltfDraco.hpp"
 #include "GltfExtension.hpp"
+#include "GltfFiles.hpp"
 #include "GltfImages.hpp"
 #include "GltfInstancing.hpp"
 #include "GltfMeshopt.hpp"
 #include "GltfPrepare.hpp"
 #include "GltfRequired.hpp"
 #include "GltfTextureTransform.hpp"
+#include "RegularFile.hpp"
 
 #include <tiny_gltf.h>
 
@@ -499,8 +501,7 @@ Status prepareDocument(std::vector<unsigned char>& bytes, bool binary, size_t& l
 }
 
 Result<std::vector<unsigned char>> readFile(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) return fail("file not found");
+    if (std::string problem = detail::regularFileProblem(path); !problem.empty()) return fail(problem);
     std::ifstream in(path, std::ios::binary);
     if (!in) return fail("cannot open file");
     std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -526,6 +527,8 @@ Status parseModel(const std::string& path, tinygltf::Model& model, ImageDecoding
     tinygltf::TinyGLTF parser;
     images.model = &model;
     parser.SetImageLoader(&decodeGltfImage, &images);
+    tinygltf::FsCallbacks files = regularFileCallbacks();
+    parser.SetFsCallbacks(files);
     const std::string baseDir = std::filesystem::path(path).parent_path().string();
     std::string err, warn;
     bool parsed = false;
@@ -551,6 +554,7 @@ Status parseModel(const std::string& path, tinygltf::Model& model, ImageDecoding
         return fail("not valid glTF: " + (why.empty() ? std::string("the parser gave no reason") : why));
     }
     restoreMovedIndices(model);
+    explainUnreadImageFiles(model, baseDir, images.errors);
     return {};
 }
 

@@ -17,7 +17,7 @@ Status checkMeshFileForOpenMesh(const std::string& path) {
     const uintmax_t size = std::filesystem::file_size(path, ec);
     std::ifstream in(path, std::ios::binary);
     if (ec || !in) return fail("cannot be opened");
-    if (extension == ".obj") return checkObjForOpenMesh(in);
+    if (extension == ".obj") return checkObjForOpenMesh(in, path);
     if (extension == ".ply") return checkPlyForOpenMesh(in, size);
     if (extension == ".off") return checkOffForOpenMesh(in, size);
     if (extension == ".stl") return checkStlForOpenMesh(in, size);

@@ -6,10 +6,11 @@
 
 #include <cstdint>
 #include <fstream>
+#include <string>
 
 namespace spatter::detail {
 
-Status checkObjForOpenMesh(std::ifstream& in);
+Status checkObjForOpenMesh(std::ifstream& in, const std::string& path);
 Status checkPlyForOpenMesh(std::ifstream& in, uintmax_t fileSize);
 Status checkOffForOpenMesh(std::ifstream& in, uintmax_t fileSize);
 Status checkStlForOpenMesh(std::ifstream& in, uintmax_t fileSize);

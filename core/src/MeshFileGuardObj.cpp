@@ -8,6 +8,7 @@
 
 #include "MeshFileGuardFormats.hpp"
 #include "MeshFileWords.hpp"
+#include "RegularFile.hpp"
 #include "TextLineReader.hpp"
 
 #include <algorithm>
@@ -36,6 +37,7 @@ struct ObjIndexRange {
 struct ObjCheck {
     ObjIndexRange positions{"vertex"}, texCoords{"texture coordinate"}, normals{"normal"};
     std::vector<int64_t> faceVertices; // reused from face to face
+    std::string directory;             // where the reader looks for material libraries
     size_t line = 0;
 
     Error at(const std::string& problem) const {
@@ -128,6 +130,15 @@ Status checkObjFace(std::string_view rest, ObjCheck& c) {
     return {};
 }
 
+// The reader opens and reads the material library the line names: a FIFO would wait for a writer and
+// a device (/dev/zero) would never end. A directory or a missing file it skips with a warning.
+Status checkObjMaterialLibrary(std::string_view rest, const ObjCheck& c) {
+    const std::string name(trimLine(rest)), library = c.directory + name;
+    const std::string problem = regularFileProblem(library);
+    if (problem.empty() || problem == "file not found" || problem == "is a directory") return {};
+    return c.at("material library '" + excerpt(name, 64) + "' " + problem);
+}
+
 Status checkObjLine(std::string_view line, ObjCheck& c) {
     std::string_view rest = trimLine(line);
     if (rest.empty() || rest[0] == '#' || std::isspace(static_cast<unsigned char>(rest[0]))) return {};
@@ -145,13 +156,16 @@ Status checkObjLine(std::string_view line, ObjCheck& c) {
         return checkObjNumbers(keyword, rest, 3, "normal coordinate", c);
     }
     if (keyword == "f") return checkObjFace(rest, c);
+    if (keyword == "mtllib") return checkObjMaterialLibrary(rest, c);
     return {};
 }
 
 } // namespace
 
-Status checkObjForOpenMesh(std::ifstream& in) {
+Status checkObjForOpenMesh(std::ifstream& in, const std::string& path) {
     ObjCheck c;
+    const size_t slash = path.rfind('/');
+    c.directory = slash == std::string::npos ? "./" : path.substr(0, slash + 1);
     TextLineReader lines(in);
     for (std::string_view line; lines.next(line);) {
         c.line = lines.lineNumber();

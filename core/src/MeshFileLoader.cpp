@@ -3,6 +3,7 @@
 #include "spatter/core/SceneLoader.hpp"
 
 #include "MeshFileGuard.hpp"
+#include "RegularFile.hpp"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -39,7 +40,8 @@ Status writeObj(const Mesh& mesh, const std::string& path) {
 
 Result<Scene> loadMeshFile(const std::string& path) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) return fail(path + ": file not found");
+    if (std::string problem = detail::regularFileProblem(path); !problem.empty())
+        return fail(path + ": " + problem);
     if (std::filesystem::file_size(path, ec) == 0) return fail(path + ": file is empty");
     if (Status st = detail::checkMeshFileForOpenMesh(path); !st) return fail(path + ": " + st.error());
 

@@ -2,6 +2,7 @@
 
 #include "spatter/core/SceneLoader.hpp"
 
+#include "FifoWriter.hpp"
 #include "GltfBuilder.hpp"
 #include "GltfLoading.hpp"
 #include "TestData.hpp"
@@ -17,6 +18,8 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+
+#include <sys/stat.h>
 
 using namespace spatter;
 using ::testing::HasSubstr;
@@ -768,4 +771,35 @@ TEST(GltfLoader, RejectsSceneWithoutTriangles) {
     GltfBuilder g = quadScene();
     g.doc["meshes"][0]["primitives"][0]["mode"] = 0;
     EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "points")), HasSubstr("no triangle meshes"));
+}
+
+// tinygltf's own file callbacks open a buffer's or image's uri to see whether it exists, which waits
+// forever on a FIFO, and take a directory's length as an allocation ("std::bad_alloc").
+TEST(GltfLoader, ReadsBuffersAndImagesFromRegularFilesOnly) {
+    const std::string dir = scratchForTest("gltf-");
+    GltfBuilder folder = quadScene();
+    folder.writeGltf(dir, "folder", false);
+    json doc = json::parse(std::ifstream(dir + "/folder.gltf"));
+    doc["buffers"][0]["uri"] = ".";
+    std::ofstream(dir + "/folder.gltf") << doc.dump();
+    EXPECT_THAT(rejection(dir + "/folder.gltf"), HasSubstr("/. : is a directory"));
+
+    ASSERT_EQ(mkfifo((dir + "/pipe.bin").c_str(), 0644), 0);
+    doc["buffers"][0]["uri"] = "pipe.bin";
+    std::ofstream(dir + "/pipe.gltf") << doc.dump();
+    FifoWriter writer(dir + "/pipe.bin");
+    EXPECT_THAT(rejection(dir + "/pipe.gltf"),
+                HasSubstr("pipe.bin : is a FIFO (named pipe), not a regular file"));
+    GltfBuilder textured = quadScene();
+    textured.doc["images"] = {{{"uri", "."}}};
+    textured.doc["textures"] = {{{"source", 0}}};
+    textured.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+    textured.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    EXPECT_THAT(rejection(textured.writeGltf(dir, "imagefolder")),
+                HasSubstr("image 0 (.): '" + dir + "/.' is a directory"));
+    ASSERT_EQ(mkfifo((dir + "/pipe.png").c_str(), 0644), 0);
+    FifoWriter imageWriter(dir + "/pipe.png");
+    textured.doc["images"][0]["uri"] = "pipe.png";
+    EXPECT_THAT(rejection(textured.writeGltf(dir, "imagepipe")),
+                HasSubstr("image 0 (pipe.png): '" + dir + "/pipe.png' is a FIFO"));
 }

@@ -1,11 +1,14 @@
 #include "spatter/core/SceneLoader.hpp"
 
+#include "FifoWriter.hpp"
 #include "TestData.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
+
+#include <sys/stat.h>
 
 using namespace spatter;
 using ::testing::HasSubstr;
@@ -303,4 +306,18 @@ TEST(MeshFileLoader, RejectsStlFacetsTheReaderWouldMisread) {
     std::vector<float> nan = two;
     nan[10] = NAN;
     EXPECT_THAT(binary("", 2, nan), HasSubstr("binary STL triangle 1: corner 0 (1, nan, 0) is not finite"));
+}
+
+// OpenMesh's OBJ reader opens and reads the material library an "mtllib" line names, beside the file:
+// a FIFO waits for a writer, a device such as /dev/zero never ends. Missing ones it skips.
+TEST(MeshFileLoader, RejectsAnObjMaterialLibraryThatIsNotARegularFile) {
+    const std::string dir = test::scratchForTest("objmtllib");
+    ASSERT_EQ(mkfifo((dir + "/pipe.mtl").c_str(), 0644), 0);
+    test::FifoWriter writer(dir + "/pipe.mtl");
+    const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    EXPECT_THAT(
+        loadScene(writeFile(dir, "pipe.obj", "mtllib pipe.mtl\n" + triangle)).error(),
+        HasSubstr(
+            "pipe.obj: line 1: material library 'pipe.mtl' is a FIFO (named pipe), not a regular file"));
+    expectMesh(writeFile(dir, "missing.obj", "mtllib missing.mtl\n" + triangle), 3, 1);
 }

@@ -1,11 +1,15 @@
 #include "spatter/core/SceneLoader.hpp"
 #include "spatter/core/MeshBuilder.hpp"
 
+#include "TestData.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
+
+#include <sys/stat.h>
 
 using namespace spatter;
 using ::testing::HasSubstr;
@@ -75,4 +79,19 @@ TEST(SceneLoader, ValidateSceneRejectsAnObjectWithoutAMesh) {
     EXPECT_TRUE(validateScene(scene).ok());
     scene.objects[1].mesh.reset();
     EXPECT_THAT(validateScene(scene).error(), HasSubstr("object 1 (copy): has no render mesh"));
+}
+
+// Opening a FIFO waits for a writer; a directory has nothing to read. Neither is "not found".
+TEST(SceneLoader, SaysWhatAScenePathThatIsNotARegularFileIs) {
+    const std::string dir = test::scratchForTest("notregular");
+    for (const std::string ext : {".obj", ".ply", ".off", ".stl", ".gltf", ".glb"}) {
+        const std::string folder = dir + "/folder" + ext, pipe = dir + "/pipe" + ext;
+        ASSERT_EQ(mkdir(folder.c_str(), 0755), 0);
+        ASSERT_EQ(mkfifo(pipe.c_str(), 0644), 0);
+        EXPECT_THAT(loadScene(folder).error(), HasSubstr("folder" + ext + ": is a directory"));
+        EXPECT_THAT(loadScene(pipe).error(),
+                    HasSubstr("pipe" + ext + ": is a FIFO (named pipe), not a regular file"));
+        EXPECT_THAT(loadScene(dir + "/missing" + ext).error(),
+                    HasSubstr("missing" + ext + ": file not found"));
+    }
 }
