@@ -64,9 +64,27 @@ constexpr uint32_t kGlbJsonChunk = 0x4E4F534A; // "JSON"
 constexpr size_t kMaxSceneElements = size_t(1) << 26;
 constexpr size_t kMaxSceneObjects = size_t(1) << 20;
 
-// tinygltf's messages are newline-terminated and may quote whole data URIs: join them into one line
-// and cut each data URI after its header.
-std::string tidyParserMessage(const std::string& text) {
+// The input a JSON parse error quotes ("last read: '...'", at the end or before "; expected"), cut to
+// kQuotedInputChars.
+constexpr size_t kQuotedInputChars = 32;
+std::string shortenQuotedInput(std::string text) {
+    const std::string marker = "last read: '";
+    const size_t start = text.find(marker);
+    if (start == std::string::npos) return text;
+    const size_t from = start + marker.size();
+    size_t end = text.find("'; expected", from); // nlohmann's message may go on after the quote
+    if (end == std::string::npos) end = text.rfind('\'');
+    if (end < from) return text;
+    if (end - from > kQuotedInputChars)
+        text.replace(from + kQuotedInputChars, end - from - kQuotedInputChars, "...");
+    return text;
+}
+
+// tinygltf's messages are newline-terminated and may quote whole data URIs or, for a document that is
+// not JSON, its bytes: join them into one printable line (other bytes as \xNN), cut each data URI
+// after its header and the quoted input to a short excerpt.
+std::string tidyParserMessage(const std::string& message) {
+    const std::string text = shortenQuotedInput(message);
     std::string out;
     size_t i = 0;
     while (i < text.size()) {
@@ -79,10 +97,16 @@ std::string tidyParserMessage(const std::string& text) {
                 continue;
             }
         }
-        if (text[i] == '\n') {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        if (c == '\n') {
             if (i + 1 < text.size()) out += "; ";
+        } else if (c < 0x20 || c >= 0x7f) {
+            static const char kHex[] = "0123456789ABCDEF";
+            out += "\\x";
+            out += kHex[c >> 4];
+            out += kHex[c & 15];
         } else {
-            out += text[i];
+            out += char(c);
         }
         ++i;
     }
@@ -539,7 +563,7 @@ Status parseModel(const std::string& path, tinygltf::Model& model, ImageDecoding
                                                      reinterpret_cast<const char*>(bytes->data()),
                                                      unsigned(length), baseDir);
     } catch (const std::exception& e) {
-        return fail(std::string("not valid glTF: ") + e.what());
+        return fail("not valid glTF: " + tidyParserMessage(e.what()));
     }
     if (!parsed) {
         std::string why = tidyParserMessage(err.empty() ? warn : err);

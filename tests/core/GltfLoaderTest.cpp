@@ -803,3 +803,28 @@ TEST(GltfLoader, ReadsBuffersAndImagesFromRegularFilesOnly) {
     EXPECT_THAT(rejection(textured.writeGltf(dir, "imagepipe")),
                 HasSubstr("image 0 (pipe.png): '" + dir + "/pipe.png' is a FIFO"));
 }
+
+// The JSON parser's message quotes the input it stopped at: raw bytes of a binary file, or a whole
+// string of thousands of characters.
+TEST(GltfLoader, QuotesAtMostAShortPrintableExcerptOfInputThatIsNotJson) {
+    const std::string dir = scratchForTest("gltf-");
+    auto printable = [](const std::string& text) {
+        for (unsigned char c : text)
+            if (c < 0x20 || c >= 0x7f) return false;
+        return true;
+    };
+    std::vector<uint8_t> glb = quadScene().glbBytes();
+    const uint32_t jsonLength = uint32_t(glb[12]) | uint32_t(glb[13]) << 8 | uint32_t(glb[14]) << 16;
+    std::fill(glb.begin() + 20, glb.begin() + 20 + jsonLength, uint8_t(0xff));
+    writeBytes(dir + "/garbage.glb", glb);
+    const std::string garbage = rejection(dir + "/garbage.glb");
+    EXPECT_THAT(garbage, HasSubstr("last read: '\\xFF'"));
+    EXPECT_TRUE(printable(garbage)) << garbage;
+
+    std::ofstream(dir + "/long.gltf", std::ios::binary)
+        << "{\"asset\": \"" << std::string(5000, 'a') << "\x01\"}";
+    const std::string longString = rejection(dir + "/long.gltf");
+    EXPECT_THAT(longString, HasSubstr("last read: '\"" + std::string(31, 'a') + "...'"));
+    EXPECT_LT(longString.size(), 400u);
+    EXPECT_TRUE(printable(longString)) << longString;
+}
