@@ -23,6 +23,7 @@
 #include "GltfFiles.hpp"
 #include "GltfImages.hpp"
 #include "GltfInstancing.hpp"
+#include "GltfJsonTypes.hpp"
 #include "GltfMeshopt.hpp"
 #include "GltfPrepare.hpp"
 #include "GltfRequired.hpp"
@@ -546,6 +547,8 @@ Status parseModel(const std::string& path, tinygltf::Model& model, ImageDecoding
         if (!declared) return fail(declared.error());
         length = declared.value();
     }
+    const char* json = reinterpret_cast<const char*>(bytes->data()) + (binary ? 20 : 0);
+    if (Status s = checkPropertyTypes(json, binary ? size_t(le32(bytes.value(), 12)) : length); !s) return s;
     if (Status s = prepareDocument(bytes.value(), binary, length); !s) return s;
 
     tinygltf::TinyGLTF parser;

@@ -828,3 +828,35 @@ TEST(GltfLoader, QuotesAtMostAShortPrintableExcerptOfInputThatIsNotJson) {
     EXPECT_LT(longString.size(), 400u);
     EXPECT_TRUE(printable(longString)) << longString;
 }
+
+// tinygltf takes an optional property of the wrong JSON type as absent: the node would stay at the
+// origin, the accessor read from offset 0, the node lose its mesh.
+TEST(GltfLoader, RejectsPropertiesOfTheWrongJsonType) {
+    const std::string dir = scratchForTest("gltf-");
+    auto error = [&](const std::string& name, const char* collection, const char* property,
+                     const json& value) {
+        GltfBuilder g = quadScene();
+        g.doc[collection][0][property] = value;
+        return rejection(g.writeGltf(dir, name));
+    };
+    EXPECT_THAT(error("translation", "nodes", "translation", "abc"),
+                HasSubstr("node 0 (quad): \"translation\" is \"abc\", not an array of numbers"));
+    EXPECT_THAT(error("rotation", "nodes", "rotation", {0, 0, "1", 0}),
+                HasSubstr("\"rotation\" is [0,0,\"1\",0]"));
+    EXPECT_THAT(error("mesh", "nodes", "mesh", "0"),
+                HasSubstr("node 0 (quad): \"mesh\" is \"0\", not an integer of at least 0"));
+    EXPECT_THAT(error("children", "nodes", "children", {-1}), HasSubstr("\"children\" is [-1]"));
+    EXPECT_THAT(error("offset", "accessors", "byteOffset", -4),
+                HasSubstr("accessor 0: \"byteOffset\" is -4, not an integer of at least 0"));
+    EXPECT_THAT(error("offset4", "accessors", "byteOffset", 4.0), HasSubstr("\"byteOffset\" is 4.0"));
+    EXPECT_THAT(error("view", "bufferViews", "byteOffset", "0"), HasSubstr("buffer view 0: \"byteOffset\""));
+    GltfBuilder attribute = quadScene();
+    attribute.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = "0";
+    EXPECT_THAT(rejection(attribute.writeGltf(dir, "attribute")),
+                HasSubstr("mesh 0 (quadMesh) primitive 0: attribute \"POSITION\" is \"0\""));
+    // Strings of any length are read whole around the data URI of the buffer.
+    GltfBuilder named = quadScene();
+    named.doc["nodes"][0]["name"] = std::string(5000, 'n') + "\"\\";
+    named.doc["nodes"][0]["translation"] = {1, 2, 3};
+    EXPECT_EQ(loaded(named.writeGltf(dir, "named")).objects.size(), 1u);
+}
