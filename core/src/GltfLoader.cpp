@@ -646,6 +646,8 @@ Status addObjects(const tinygltf::Model& model, Scene& scene) {
         const bool dynamic = visit.dynamic || dynamicFlag.value().value_or(false);
         const bool decals = decalsFlag.value().value_or(visit.decals);
 
+        if (node.skin != -1 && !validIndex(node.skin, model.skins.size()))
+            return fail(what + " refers to skin " + std::to_string(node.skin) + ", which does not exist");
         int drawnAncestor = visit.drawnAncestor;
         if (node.mesh != -1) {
             if (!validIndex(node.mesh, model.meshes.size()))

@@ -829,6 +829,14 @@ TEST(GltfLoader, QuotesAtMostAShortPrintableExcerptOfInputThatIsNotJson) {
     EXPECT_TRUE(printable(longString)) << longString;
 }
 
+// A missing mesh index is an error; a missing skin index was ignored when the file had no skins.
+TEST(GltfLoader, RejectsInvalidSkinIndex) {
+    GltfBuilder g = quadScene();
+    g.doc["nodes"][0]["skin"] = 5;
+    EXPECT_THAT(rejection(g.writeGltf(scratchForTest("gltf-"), "skin5")),
+                HasSubstr("node 0 (quad) refers to skin 5, which does not exist"));
+}
+
 // tinygltf takes an optional property of the wrong JSON type as absent: the node would stay at the
 // origin, the accessor read from offset 0, the node lose its mesh.
 TEST(GltfLoader, RejectsPropertiesOfTheWrongJsonType) {
