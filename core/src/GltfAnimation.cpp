@@ -261,6 +261,9 @@ Status readTimes(const tinygltf::Model& model, int accessor, std::vector<double>
     for (size_t i = 0; i < input->count; ++i) {
         const double t = input->component(i, 0);
         if (!std::isfinite(t)) return fail("has key time " + num(i) + " that is not finite (NaN or Inf)");
+        if (i == 0 && t < 0.0) // the glTF schema: "time[0] >= 0.0"
+            return fail("has key time 0 at " + std::to_string(t) +
+                        " s, before 0 (glTF key times start at 0 or later)");
         if (i > 0 && !(t > times.back()))
             return fail("has key times that do not increase (key " + num(i) + " at " + std::to_string(t) +
                         " s, key " + num(i - 1) + " at " + std::to_string(times.back()) + " s)");

@@ -107,6 +107,13 @@ TEST(GltfAnimationRejection, KeyTimesThatDoNotIncrease) {
     EXPECT_THAT(rejection(g), HasSubstr("key times that do not increase (key 2"));
 }
 
+// The glTF schema of animation.sampler.input: "time[0] >= 0.0" (tinygltf does not check it).
+TEST(GltfAnimationRejection, KeyTimesBeforeZero) {
+    GltfBuilder g = animatedQuad();
+    replaceFloats(g, inputOf(g), {-5, 1, 2}, "SCALAR");
+    EXPECT_THAT(rejection(g), HasSubstr("sampler 0 has key time 0 at -5.000000 s, before 0"));
+}
+
 TEST(GltfAnimationRejection, SamplerWithoutKeys) {
     GltfBuilder g = animatedQuad();
     g.doc["accessors"][inputOf(g)]["count"] = 0;
