@@ -9,6 +9,7 @@
 #include "MeshFileWords.hpp"
 #include "TextLineReader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
