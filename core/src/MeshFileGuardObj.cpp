@@ -2,9 +2,9 @@
 // and silently skips the others, so that every later face index names another vertex; it skips "vn"
 // lines the same way, shifting normals. It reads each face corner "v[/vt[/vn]]" as iostreams read an
 // int, skips a corner that is no number (and a whole face left with fewer than three different
-// vertices), and stores the corner's texture coordinate and normal at vertex v without checking v
-// (an unparsable v leaves it an uninitialised int). The guard reads every line once, strictly: a
-// file it accepts is read by OpenMesh with every vertex and every face.
+// vertices, which has no area when no corner was skipped), and stores the corner's texture coordinate and
+// normal at vertex v without checking v (an unparsable v leaves it an uninitialised int). The guard reads
+// every line once, strictly: a file it accepts is read by OpenMesh with every vertex and every face.
 
 #include "MeshFileGuardFormats.hpp"
 #include "MeshFileWords.hpp"
@@ -119,14 +119,10 @@ Status checkObjFace(std::string_view rest, ObjCheck& c) {
             return c.at("face has more than " + std::to_string(kMaxFaceCorners) + " corners");
         if (Status s = checkObjCorner(corner, c); !s) return s;
     }
+    // A face of fewer than three different vertices, which the reader skips, has no area: no surface
+    // is lost (the degenerate faces of exported meshes load).
     const size_t corners = c.faceVertices.size();
     if (corners < 3) return c.at("face has " + std::to_string(corners) + " corners, at least 3 needed");
-    std::sort(c.faceVertices.begin(), c.faceVertices.end());
-    const size_t different =
-        size_t(std::unique(c.faceVertices.begin(), c.faceVertices.end()) - c.faceVertices.begin());
-    if (different < 3)
-        return c.at("face has " + std::to_string(corners) + " corners but " + std::to_string(different) +
-                    " different vertices, at least 3 needed");
     return {};
 }
 

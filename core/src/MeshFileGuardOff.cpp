@@ -97,7 +97,8 @@ Status checkOffVertices(OffBody& b) {
     return {};
 }
 
-// The reader skips a face with fewer than three corners, a corner that is no vertex, or a vertex twice.
+// The reader skips a face with fewer than three corners, a corner that is no vertex, or a vertex twice:
+// an error unless the face has no area (fewer than three different vertices), which loses no surface.
 Status checkOffFace(OffBody& b, int64_t face) {
     const std::string name = "OFF face " + std::to_string(face);
     int64_t count = 0;
@@ -116,7 +117,8 @@ Status checkOffFace(OffBody& b, int64_t face) {
     }
     if (b.format.colors && !b.format.binary) std::getline(b.in, b.word);
     std::sort(b.corners.begin(), b.corners.end());
-    if (auto twice = std::adjacent_find(b.corners.begin(), b.corners.end()); twice != b.corners.end())
+    const auto twice = std::adjacent_find(b.corners.begin(), b.corners.end());
+    if (twice != b.corners.end() && std::unique(b.corners.begin(), b.corners.end()) - b.corners.begin() >= 3)
         return fail(name + " names vertex " + std::to_string(*twice) + " twice");
     return {};
 }

@@ -297,7 +297,8 @@ Status readPlyIndex(PlyBody& b, PlyType t, unsigned face, int64_t& value) {
     return {};
 }
 
-// The reader skips a face with fewer than three corners, a corner that is no vertex, or a vertex twice.
+// The reader skips a face with fewer than three corners, a corner that is no vertex, or a vertex twice:
+// an error unless the face has no area (fewer than three different vertices), which loses no surface.
 Status checkPlyCorners(PlyBody& b, const PlyProperty& p, unsigned face) {
     int64_t count = 0;
     if (Status s = readPlyIndex(b, p.countType, face, count); !s) return s;
@@ -314,7 +315,8 @@ Status checkPlyCorners(PlyBody& b, const PlyProperty& p, unsigned face) {
         b.corners.push_back(index);
     }
     std::sort(b.corners.begin(), b.corners.end());
-    if (auto twice = std::adjacent_find(b.corners.begin(), b.corners.end()); twice != b.corners.end())
+    const auto twice = std::adjacent_find(b.corners.begin(), b.corners.end());
+    if (twice != b.corners.end() && std::unique(b.corners.begin(), b.corners.end()) - b.corners.begin() >= 3)
         return fail(plyItem("face", face) + " names vertex " + std::to_string(*twice) + " twice");
     return {};
 }
