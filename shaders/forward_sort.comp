@@ -26,8 +26,9 @@ layout(std430, binding = 2) buffer TileCounts {
 layout(std430, binding = 0) readonly buffer CulledDraw {
     uint drawIndices, visibleCount, drawFirstIndex, drawBaseVertex, drawBaseInstance;
 };
-// What the CPU reads back (ForwardBins::tileInfo_): 1 when decals were left out (zeroed by pass 1),
-// the most decals of a tile.
+// What the CPU reads back (ForwardBins::tileInfo_): 1 when decals were left out for want of room in
+// the buffers, 2 when a tile past u_mostPerTile left them out (zeroed by pass 1); the most decals of
+// a tile.
 layout(std430, binding = 10) writeonly buffer TileReadback {
     uint tileReadback[2];
 };
@@ -45,7 +46,7 @@ uvec2 tileRun(uint t, bool writer) {
     }
     if (count > u_tileCapacity && writer) { // the decals past the run are left out
         spatterTileInfo.z = 1;
-        tileReadback[0] = 1u;
+        tileReadback[0] = 2u; // a tile overflowed, not the buffers (ForwardBins::kTileOverflowed)
     }
     uvec2 run = uvec2(t * u_tileCapacity, min(count, u_tileCapacity));
     if (writer) spatterTiles[t] = run;

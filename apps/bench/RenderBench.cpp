@@ -83,7 +83,8 @@ renderer's decal pass.
                   occlusion group), 2 frames, 3 s per row (smoke test)
 --json FILE       {"rows": [{"group", "resolution", "world", "visible", "decal_px", "feature",
                   "decal_ms", "ns_per_visible_decal", "projector_ms", "host_pass_ms",
-                  "baseline_ms", ...}], "targets": {...}, "gl_renderer", ...}
+                  "baseline_ms", "frames_compute", "frames_tiles_left_out", ...}], "targets":
+                  {...}, "gl_renderer", ...}
 )";
 
 struct Feature {
@@ -199,6 +200,9 @@ struct RenderRow {
     int width = 0, height = 0;
     FrameTimes times; // for the projector's paths: decalsMs is the path's decal cost
     PathTimes path;   // the projector's paths: medians of the frames
+    // The projector's paths: frames resolved by the compute pass, and frames whose binning left decals
+    // out of the screen tiles (ProjectorStats::tilesLeftOut).
+    size_t computeFrames = 0, leftOutFrames = 0;
     double setDecalsS = 0.0;
     std::string error;
 };
@@ -340,6 +344,8 @@ private:
             pass.push_back(t->hostPassMs);
             baseline.push_back(t->baselineMs);
             row.path.stats = t->stats;
+            row.computeFrames += t->stats.variant.find("COMPUTE") != std::string::npos ? 1 : 0;
+            row.leftOutFrames += t->stats.tilesLeftOut ? 1 : 0;
         }
         row.times.frames = cost.size();
         row.times.decalsMs = median(cost);
@@ -455,6 +461,8 @@ Json renderRowJson(const RenderRow& r) {
         j["projector_ms"] = r.path.projectorMs;
         j["host_pass_ms"] = r.path.hostPassMs;
         j["baseline_ms"] = r.path.baselineMs;
+        j["frames_compute"] = r.computeFrames;
+        j["frames_tiles_left_out"] = r.leftOutFrames;
     }
     return j;
 }

@@ -520,14 +520,16 @@ struct DecalProjector::Impl {
 
     // The host's targets when draw() blends `o` into `f` by ComputeResolve rather than by boxes, with
     // `inView` decals in view (culled on the GPU: the latest count it has given); nothing for boxes.
-    // Auto draws boxes for 16 draws after a binning that left decals out, then tries the tiles again.
+    // Auto draws boxes for 16 draws after a binning that left decals out of a tile past
+    // forwardTileCapacity, then tries the tiles again. Decals left out for want of room in the buffers
+    // (a sudden jump in the decals in view) change nothing: the next binning has room for the count.
     std::optional<ComputeResolve::Targets> computeTargets(const HostFrame& f, const ProjectorDraw& o,
                                                           size_t inView) {
         const DeferredResolve mode = settings.deferredResolve;
         if (mode == DeferredResolve::Boxes) return std::nullopt;
         if (mode == DeferredResolve::Auto) {
             if (!computeOnAuto || inView < ProjectorSettings::kComputeResolveFrom) return std::nullopt;
-            if (forward.leftOut(false) && boxesSinceLeftOut < 16) {
+            if (forward.tileOverflowed(false) && boxesSinceLeftOut < 16) {
                 ++boxesSinceLeftOut;
                 return std::nullopt;
             }

@@ -15,6 +15,9 @@ namespace {
 
 constexpr GLuint kGroup = 64;               // local size of the per-decal and per-tile passes
 constexpr GLuint kTileReadbackBinding = 10; // TileReadback of forward_prepare.comp and forward_sort.comp
+// TileReadback's first word when a tile held more than forwardTileCapacity (forward_sort.comp); 1 when
+// the buffers were short (forward_prepare.comp).
+constexpr uint32_t kTileOverflowed = 2;
 
 GLuint groups(uint32_t n) {
     return GLuint((n + kGroup - 1) / kGroup);
@@ -186,6 +189,11 @@ size_t ForwardBins::reserveItems(size_t runItems, size_t everyDecal) {
 bool ForwardBins::leftOut(bool wait) {
     if (wait) readBack();
     return tileInfo_.latest(wait)[0] != 0;
+}
+
+bool ForwardBins::tileOverflowed(bool wait) {
+    if (wait) readBack();
+    return tileInfo_.latest(wait)[0] == kTileOverflowed;
 }
 
 std::optional<uint32_t> ForwardBins::fullestTile(bool wait) {

@@ -57,6 +57,9 @@ public:
     // readBack() has not been) left decals out: more
     // visible decals than the buffers held, or a tile past `mostPerTile`.
     bool leftOut(bool wait);
+    // Whether it left decals out because a tile held more than `mostPerTile` (not for want of room in
+    // the buffers, which the next binning sizes from the latest count).
+    bool tileOverflowed(bool wait);
     // The most decals one tile held in the latest binCulled the GPU has finished (this one's when
     // `wait`); nothing before the first, or after a binning culled on the CPU.
     std::optional<uint32_t> fullestTile(bool wait);

@@ -176,7 +176,7 @@ enum class DeferredResolve {
              // in the albedo's alpha); other frames, coverage mode, angleReject off and the DBuffer
              // path use boxes. Culled on the GPU, the tiles are binned as bin()'s are
              // (forwardTileCapacity); decals left out are reported (ProjectorStats::tilesLeftOut), and
-             // Auto then draws boxes for 16 draws
+             // where a tile held more than forwardTileCapacity Auto then draws boxes for 16 draws
 };
 
 struct ProjectorSettings {
@@ -315,7 +315,8 @@ struct ProjectorStats {
     size_t groupsTested = 0;
     // The latest binning culled on the GPU that the GPU has finished (this one's with waitForTimers), of
     // bin() or of the compute resolve, left decals out of screen tiles: a tile past forwardTileCapacity,
-    // or more decals in view than twice an earlier count. DeferredResolve::Auto then draws boxes for a while.
+    // or more decals in view than twice an earlier count. DeferredResolve::Auto then draws boxes for a
+    // while after the first; the next binning has room for the second.
     bool tilesLeftOut = false;
     std::string variant;        // shader features used, e.g. "IDS WRAP NORMAL_MAP FADE"
     double gpuMs = 0.0;         // GPU time of the pass, of frame `gpuFrame` (see waitForTimers, passTimer)
