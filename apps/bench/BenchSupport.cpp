@@ -9,6 +9,7 @@
 #include "cli/Numbers.hpp"
 #include "cli/OutputCleanup.hpp"
 #include "cli/PathChecks.hpp"
+#include "spatter/core/TextFields.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -60,7 +61,7 @@ Result<Args> parseArgs(int argc, char** argv, const std::set<std::string>& value
 
 Result<double> parseNumber(const std::string& text, const std::string& option) {
     double v = 0.0;
-    if (!cli::parseDecimal(text, v)) return fail(option + ": '" + text + "' is not a finite decimal number");
+    if (!parseDecimal(text, v)) return fail(option + ": '" + text + "' is not a finite decimal number");
     return v;
 }
 

@@ -2,6 +2,7 @@
 
 #include "cli/Arguments.hpp"
 #include "cli/Numbers.hpp"
+#include "spatter/core/TextFields.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -91,7 +92,7 @@ std::string parseValue(const std::string& arg, const std::string& v, GalleryOpti
         o.height = int(h);
     } else if (arg == "--tolerance") {
         const std::string t = !v.empty() && v.back() == '%' ? v.substr(0, v.size() - 1) : v;
-        if (!cli::parseDecimal(t, d) || d < 0.0 || d > 50.0) return "--tolerance needs a percentage in 0..50";
+        if (!parseDecimal(t, d) || d < 0.0 || d > 50.0) return "--tolerance needs a percentage in 0..50";
         o.tolerancePercent = float(d);
     } else if (arg == "--cache") {
         o.cacheDir = v;
@@ -99,7 +100,7 @@ std::string parseValue(const std::string& arg, const std::string& v, GalleryOpti
         if (v.empty()) return arg + " needs a file";
         (arg == "--load" ? o.loadPath : o.savePath) = v;
     } else if (arg == "--time") {
-        if (!cli::parseDecimal(v, d)) return "--time needs a finite number of seconds";
+        if (!parseDecimal(v, d)) return "--time needs a finite number of seconds";
         o.startTime = d;
     } else if (arg == "--quit-after") {
         if (!parseInt(v, 1, 100000000, n)) return "--quit-after needs a frame count";

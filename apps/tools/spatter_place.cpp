@@ -20,6 +20,7 @@
 #include "cli/OutputCleanup.hpp"
 #include "cli/PathChecks.hpp"
 #include "cli/Tolerance.hpp"
+#include "spatter/core/TextFields.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -198,23 +199,23 @@ std::string parseOption(const std::string& a, spatter::cli::Arguments& args, Opt
     } else if (a == "--size") {
         const std::vector<std::string> parts = value(v) ? split(v, ',') : std::vector<std::string>();
         double w = 0.0, h = 0.0;
-        if (parts.empty() || parts.size() > 2 || !spatter::cli::parseDecimal(parts[0], w) ||
-            (parts.size() == 2 && !spatter::cli::parseDecimal(parts[1], h)))
+        if (parts.empty() || parts.size() > 2 || !spatter::parseDecimal(parts[0], w) ||
+            (parts.size() == 2 && !spatter::parseDecimal(parts[1], h)))
             return "--size needs W or W,H";
         o.decalSize = glm::dvec2(w, parts.size() == 1 ? w : h);
     } else if (a == "--max-angle") {
         double d = 0.0;
-        if (!value(v) || !spatter::cli::parseDecimal(v, d)) return "--max-angle needs a number of degrees";
+        if (!value(v) || !spatter::parseDecimal(v, d)) return "--max-angle needs a number of degrees";
         o.maxAngle = float(d);
     } else if (a == "--translate") {
         const std::vector<std::string> parts = value(v) ? split(v, ',') : std::vector<std::string>();
-        if (parts.size() != 3 || !spatter::cli::parseDecimal(parts[0], o.translate.x) ||
-            !spatter::cli::parseDecimal(parts[1], o.translate.y) ||
-            !spatter::cli::parseDecimal(parts[2], o.translate.z))
+        if (parts.size() != 3 || !spatter::parseDecimal(parts[0], o.translate.x) ||
+            !spatter::parseDecimal(parts[1], o.translate.y) ||
+            !spatter::parseDecimal(parts[2], o.translate.z))
             return "--translate needs three finite numbers X,Y,Z";
     } else if (a == "--time") {
         double t = 0.0;
-        if (!value(v) || !spatter::cli::parseDecimal(v, t)) return "--time needs a finite number of seconds";
+        if (!value(v) || !spatter::parseDecimal(v, t)) return "--time needs a finite number of seconds";
         o.time = t;
     } else {
         return "unknown option " + a;

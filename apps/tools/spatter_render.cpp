@@ -128,8 +128,8 @@ int failure(const std::string& message) {
 
 bool parseVec3(const std::string& s, glm::dvec3& out) {
     const std::vector<std::string> p = spatter::splitFields(s, ',');
-    return p.size() == 3 && spatter::cli::parseDecimal(p[0], out.x) &&
-           spatter::cli::parseDecimal(p[1], out.y) && spatter::cli::parseDecimal(p[2], out.z);
+    return p.size() == 3 && spatter::parseDecimal(p[0], out.x) && spatter::parseDecimal(p[1], out.y) &&
+           spatter::parseDecimal(p[2], out.z);
 }
 
 // The scene posed at time `t` of its first animation (the rest pose without one), moved by `offset`.
@@ -212,8 +212,7 @@ std::string parseTextureSpace(const std::string& v, Options& o) {
 std::string parseDecalSize(const std::string& v, Options& o) {
     const std::vector<std::string> p = spatter::splitFields(v, ',');
     double w = 0.0, h = 0.0;
-    if (p.size() > 2 || !spatter::cli::parseDecimal(p[0], w) ||
-        (p.size() == 2 && !spatter::cli::parseDecimal(p[1], h)))
+    if (p.size() > 2 || !spatter::parseDecimal(p[0], w) || (p.size() == 2 && !spatter::parseDecimal(p[1], h)))
         return "--decal-size needs W or W,H";
     o.decalSize = glm::dvec2(w, p.size() == 1 ? w : h);
     if (!(o.decalSize->x > 0.0 && o.decalSize->y > 0.0)) return "--decal-size needs W and H above 0";
@@ -240,7 +239,7 @@ std::string parseValue(const std::string& a, const std::string& v, Options& o) {
         if (!parseVec3(v, o.translate)) return "--translate needs three finite numbers X,Y,Z";
     } else if (a == "--time") {
         double t = 0.0;
-        if (!spatter::cli::parseDecimal(v, t)) return "--time needs a finite number of seconds";
+        if (!spatter::parseDecimal(v, t)) return "--time needs a finite number of seconds";
         o.time = t;
     } else if (a == "--texture-space") {
         return parseTextureSpace(v, o);
@@ -249,7 +248,7 @@ std::string parseValue(const std::string& a, const std::string& v, Options& o) {
     } else if (a == "--decal-size") {
         return parseDecalSize(v, o);
     } else if (a == "--max-angle") {
-        if (!spatter::cli::parseDecimal(v, o.maxAngle) || !(o.maxAngle > 0.0 && o.maxAngle <= 90.0))
+        if (!spatter::parseDecimal(v, o.maxAngle) || !(o.maxAngle > 0.0 && o.maxAngle <= 90.0))
             return "--max-angle needs a number of degrees in (0, 90]";
     } else if (a == "--seed") {
         if (!spatter::cli::parseWhole(v, UINT64_MAX, o.seed))

@@ -1,6 +1,6 @@
 #include "spatter/core/TextFields.hpp"
 
-#include <cerrno>
+#include <cmath>
 #include <cstdlib>
 
 namespace spatter {
@@ -27,12 +27,39 @@ std::vector<std::string> splitFields(const std::string& text, char sep) {
     return parts;
 }
 
-bool parseNumber(const std::string& text, double& out, OutOfRange outOfRange) {
-    if (text.empty()) return false;
-    char* end = nullptr;
-    errno = 0;
-    out = std::strtod(text.c_str(), &end);
-    return end == text.c_str() + text.size() && (outOfRange == OutOfRange::Accept || errno != ERANGE);
+namespace {
+
+// Moves `i` past the decimal digits of `s` from `i`; returns how many there were.
+size_t skipDigits(const std::string& s, size_t& i) {
+    const size_t start = i;
+    while (i < s.size() && s[i] >= '0' && s[i] <= '9')
+        ++i;
+    return i - start;
+}
+
+// [+-] digits [. digits] [(e|E) [+-] digits], with at least one digit before the exponent.
+bool decimalSyntax(const std::string& s) {
+    size_t i = 0;
+    if (i < s.size() && (s[i] == '-' || s[i] == '+')) ++i;
+    size_t digits = skipDigits(s, i);
+    if (i < s.size() && s[i] == '.') digits += skipDigits(s, ++i);
+    if (digits == 0) return false;
+    if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+        ++i;
+        if (i < s.size() && (s[i] == '-' || s[i] == '+')) ++i;
+        if (skipDigits(s, i) == 0) return false;
+    }
+    return i == s.size();
+}
+
+} // namespace
+
+bool parseDecimal(const std::string& text, double& out) {
+    if (!decimalSyntax(text)) return false;
+    const double v = std::strtod(text.c_str(), nullptr); // the library keeps the "C" locale
+    if (!std::isfinite(v)) return false;                 // beyond double's range
+    out = v;
+    return true;
 }
 
 } // namespace spatter

@@ -1,17 +1,11 @@
 #include "spatter/placement/RayParser.hpp"
 
-#include <cstdlib>
+#include "spatter/core/TextFields.hpp"
+
 #include <sstream>
 #include <vector>
 
 namespace spatter {
-
-static bool parseNumber(const std::string& s, double& out) {
-    if (s.empty()) return false;
-    char* end = nullptr;
-    out = std::strtod(s.c_str(), &end);
-    return end == s.c_str() + s.size();
-}
 
 RayLine parseRayLine(const std::string& raw, size_t lineNumber) {
     RayLine p;
@@ -25,9 +19,9 @@ RayLine parseRayLine(const std::string& raw, size_t lineNumber) {
     double v[6];
     bool good = tokens.size() == 6;
     for (size_t i = 0; good && i < 6; ++i)
-        good = parseNumber(tokens[i], v[i]);
+        good = parseDecimal(tokens[i], v[i]);
     if (!good) {
-        p.error = "line " + std::to_string(lineNumber) + ": expected 6 numbers \"ox oy oz dx dy dz\"";
+        p.error = "line " + std::to_string(lineNumber) + ": expected 6 decimal numbers \"ox oy oz dx dy dz\"";
         return p;
     }
     p.ok = true;

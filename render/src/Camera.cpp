@@ -38,7 +38,7 @@ Result<Camera> parseCamera(const std::string& text) {
             if (haveFov) return fail("camera: fov given twice");
             haveFov = true;
             const std::string field = trimBlanks(value);
-            if (!parseNumber(field, cam.fovYDeg)) return fail("camera: fov '" + field + "' is not a number");
+            if (!parseDecimal(field, cam.fovYDeg)) return fail("camera: fov '" + field + "' is not a number");
             continue;
         }
         struct Slot {
@@ -59,7 +59,7 @@ Result<Camera> parseCamera(const std::string& text) {
         if (parts.size() != 3) return fail("camera: " + key + " needs three comma-separated numbers");
         for (int k = 0; k < 3; ++k) {
             const std::string field = trimBlanks(parts[size_t(k)]);
-            if (!parseNumber(field, (*dst)[k]))
+            if (!parseDecimal(field, (*dst)[k]))
                 return fail("camera: " + key + " component '" + field + "' is not a number");
         }
     }

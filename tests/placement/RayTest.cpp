@@ -1,4 +1,5 @@
 #include "spatter/placement/Ray.hpp"
+#include "spatter/placement/RayParser.hpp"
 
 #include <gtest/gtest.h>
 
@@ -85,4 +86,18 @@ TEST(RayProblem, RejectsBadRanges) {
     r = good();
     r.tfar = -kInf;
     EXPECT_NE(rayProblem(r), nullptr);
+}
+
+// A ray line holds six decimal numbers: hexadecimal, "nan" or "inf" make it an error, not a value.
+TEST(RayParser, ReadsSixDecimalNumbersAndNothingElse) {
+    const RayLine good = parseRayLine("1e-3 0 3.5 0 0 -1 # a comment", 4);
+    ASSERT_TRUE(good.ok) << good.error;
+    EXPECT_EQ(good.ray.origin, glm::dvec3(1e-3, 0.0, 3.5));
+    for (const char* line : {"0x10 0 3 0 0 -1", "nan 0 3 0 0 -1", "0 0 3 0 0 -inf", "0 0 3 0 0"}) {
+        const RayLine bad = parseRayLine(line, 4);
+        EXPECT_TRUE(bad.isRay) << line;
+        EXPECT_FALSE(bad.ok) << line;
+        EXPECT_EQ(bad.error.rfind("line 4: expected 6 decimal numbers", 0), 0u) << bad.error;
+    }
+    EXPECT_FALSE(parseRayLine("  # only a comment", 5).isRay);
 }

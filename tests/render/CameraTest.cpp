@@ -41,6 +41,7 @@ TEST(Camera, RejectsMalformedCameraStrings) {
         "eye=inf,0,1;target=0,0,0",         // infinite
         "eye=0,0,1;eye=0,0,2;target=0,0,0", // twice
         "eye",                              // no '='
+        "eye=0x1,0,1;target=0,0,0",         // hexadecimal
     };
     for (const char* s : bad) {
         Result<Camera> c = parseCamera(s);

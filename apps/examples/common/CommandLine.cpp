@@ -17,7 +17,7 @@ namespace {
 bool parseSide(const std::string& text, int& out) {
     double v = 0.0;
     if (text.empty() || text.size() > 5 || text.find_first_not_of("0123456789") != std::string::npos ||
-        !spatter::parseNumber(text, v) || v < 1.0 || v > 16384.0)
+        !spatter::parseDecimal(text, v) || v < 1.0 || v > 16384.0)
         return false;
     out = int(v);
     return true;

@@ -1,6 +1,6 @@
 #include "cli/Tolerance.hpp"
 
-#include "cli/Numbers.hpp"
+#include "spatter/core/TextFields.hpp"
 
 #include <cmath>
 #include <limits>

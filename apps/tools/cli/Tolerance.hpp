@@ -9,7 +9,7 @@
 namespace spatter::cli {
 
 // Sets settings.tolerance and settings.toleranceRelative from `text`: a decimal number >= 0 (see
-// parseDecimal), then '%' for a relative one. False, leaving `settings` as it was, for anything else
+// spatter::parseDecimal), then '%' for a relative one. False, leaving `settings` as it was, for anything else
 // and for a tolerance beyond float's range.
 bool parseTolerance(const std::string& text, ProxySettings& settings);
 

@@ -15,14 +15,11 @@ std::string trimBlanks(const std::string& text);
 // "a,,b" gives {"a", "", "b"}, "a," gives {"a", ""} and "" gives {""}. Never empty.
 std::vector<std::string> splitFields(const std::string& text, char sep);
 
-// What parseNumber does with a value strtod reports out of double's range (ERANGE): one that
-// overflows (read as +-HUGE_VAL) or underflows (read as zero or a subnormal).
-enum class OutOfRange { Reject, Accept };
-
-// Reads all of `text` as one number the way strtod reads it: decimal or hexadecimal, "inf" and
-// "nan" included, blanks before it skipped; nothing may follow it (trim the text first to allow
-// blanks there). Returns false, with `out` unspecified, for text that holds no number, anything
-// after the number, and (unless `outOfRange` says Accept) a value out of double's range.
-bool parseNumber(const std::string& text, double& out, OutOfRange outOfRange = OutOfRange::Reject);
+// Reads all of `text` as a decimal number: an optional sign, digits with an optional point, an
+// optional exponent ("e-3"). False, with `out` unchanged, for anything else (blanks, hexadecimal,
+// "inf", "nan") and for a value beyond double's range; one that underflows reads as zero or a
+// subnormal. The tools, the camera string and the ray files read numbers through it, so that a number
+// means the same everywhere.
+bool parseDecimal(const std::string& text, double& out);
 
 } // namespace spatter

@@ -18,9 +18,9 @@ struct RayLine {
     std::string error; // when isRay and not ok: "line N: ..." saying what was expected
 };
 
-// Parses `line` (its number `lineNumber`, used in the error). Each number is read whole by strtod
-// (decimal or hexadecimal, "nan" and "inf" included: rayProblem judges the values, not the parser);
-// anything but exactly six numbers is an error. Never reads outside `line`.
+// Parses `line` (its number `lineNumber`, used in the error). Each number is read whole as a finite
+// decimal number (parseDecimal: no hexadecimal, "nan" or "inf"); anything but exactly six such numbers
+// is an error. Never reads outside `line`.
 RayLine parseRayLine(const std::string& line, size_t lineNumber);
 
 } // namespace spatter
