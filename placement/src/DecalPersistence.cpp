@@ -77,19 +77,22 @@ Status saveDecals(const DecalSystem& system, std::ostream& out) {
 
 Status saveDecalsToFile(const DecalSystem& system, const std::string& path) {
     const std::string temp = path + ".tmp";
+    std::error_code ec;
+    // A failure leaves no temporary file behind (the file at `path` is as it was).
+    auto failWith = [&](const std::string& message) {
+        std::error_code ignored;
+        std::filesystem::remove(temp, ignored);
+        return fail(message);
+    };
     {
         std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        if (!out) return fail("decal save " + temp + ": cannot be created");
-        if (Status s = saveDecals(system, out); !s) return fail(temp + ": " + s.error());
+        if (!out) return failWith("decal save " + temp + ": cannot be created");
+        if (Status s = saveDecals(system, out); !s) return failWith(temp + ": " + s.error());
         out.close();
-        if (!out) return fail("decal save " + temp + ": cannot be written");
+        if (!out) return failWith("decal save " + temp + ": cannot be written");
     }
-    std::error_code ec;
     std::filesystem::rename(temp, path, ec);
-    if (ec) {
-        std::filesystem::remove(temp, ec);
-        return fail("decal save " + path + ": cannot replace it: " + ec.message());
-    }
+    if (ec) return failWith("decal save " + path + ": cannot replace it: " + ec.message());
     return {};
 }
 

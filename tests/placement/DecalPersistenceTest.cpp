@@ -737,3 +737,17 @@ TEST_F(DecalPersistence, SlotUsedTwiceIsRefused) {
 
 } // namespace
 } // namespace spatter::test
+
+// A save over a directory fails naming why, and leaves no temporary file beside it.
+TEST(DecalPersistenceFile, ASaveThatCannotReplaceItsPathSaysWhyAndLeavesNoTemporaryFile) {
+    const std::filesystem::path dir = test::scratchDir("persistence-file");
+    const std::filesystem::path target = dir / "taken";
+    std::filesystem::create_directories(target / "inside");
+    DecalSystem s = makeSystem(boxScene());
+    const Status st = saveDecalsToFile(s, target.string());
+    ASSERT_FALSE(st.ok());
+    EXPECT_NE(st.error().find("cannot replace it"), std::string::npos) << st.error();
+    EXPECT_EQ(st.error().find("Success"), std::string::npos) << st.error();
+    EXPECT_FALSE(std::filesystem::exists(target.string() + ".tmp"));
+    EXPECT_TRUE(std::filesystem::is_directory(target / "inside"));
+}

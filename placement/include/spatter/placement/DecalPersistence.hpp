@@ -59,7 +59,8 @@ std::vector<uint8_t> saveDecals(const DecalSystem& system);
 // Writes the save to `out`. Fails, naming what failed, when the stream does.
 Status saveDecals(const DecalSystem& system, std::ostream& out);
 // Writes the save to `path` through a temporary file in the same directory renamed over it, so a
-// reader never sees half a save. Fails with a message naming the file.
+// reader never sees half a save. Fails with a message naming the file and the problem, leaving the
+// file at `path` as it was and no temporary file.
 Status saveDecalsToFile(const DecalSystem& system, const std::string& path);
 
 // Loads the save in [data, data + size) (exactly one save) into `system`. Fails, changing nothing,
