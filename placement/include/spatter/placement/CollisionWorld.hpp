@@ -138,6 +138,8 @@ public:
                                         const std::vector<std::shared_ptr<const Proxy>>& proxies = {},
                                         const WorldSettings& settings = {});
 
+    // Movable, not copyable. A moved-from CollisionWorld holds nothing: assign to it or destroy it, and call
+    // nothing else on it.
     CollisionWorld(CollisionWorld&&) noexcept;
     CollisionWorld& operator=(CollisionWorld&&) noexcept;
     ~CollisionWorld();

@@ -142,6 +142,8 @@ public:
     // Builds the collision world of `scene` (CollisionWorld::build with no proxies) and the system.
     static Result<DecalSystem> create(const Scene& scene, const DecalSettings& settings = {});
 
+    // Movable, not copyable. A moved-from DecalSystem holds nothing: assign to it or destroy it, and call
+    // nothing else on it.
     DecalSystem(DecalSystem&&) noexcept;
     DecalSystem& operator=(DecalSystem&&) noexcept;
     ~DecalSystem();

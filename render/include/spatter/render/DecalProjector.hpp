@@ -408,6 +408,8 @@ public:
     // buffer bindings.
     static Result<DecalProjector> create(const ProjectorSettings& settings = {});
 
+    // Movable, not copyable. A moved-from DecalProjector holds nothing: assign to it or destroy it, and call
+    // nothing else on it.
     DecalProjector(DecalProjector&&) noexcept;
     DecalProjector& operator=(DecalProjector&&) noexcept;
     ~DecalProjector();

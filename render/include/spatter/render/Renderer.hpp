@@ -141,6 +141,8 @@ public:
     // does not build (the message carries the driver's log).
     static Result<Renderer> create(const GlContext& context, const RendererSettings& settings = {});
 
+    // Movable, not copyable. A moved-from Renderer holds nothing: assign to it or destroy it, and call
+    // nothing else on it.
     Renderer(Renderer&&) noexcept;
     Renderer& operator=(Renderer&&) noexcept;
     ~Renderer();
