@@ -89,6 +89,8 @@ Status validateCamera(const Camera& c) {
                     exactNumber(kMinNearPlane));
     if (!std::isfinite(c.farPlane) || (c.farPlane != 0.0 && c.farPlane <= c.nearPlane))
         return fail("camera: far plane must be 0 (infinite) or beyond the near plane");
+    if (c.nearPlane > kMaxPlaneDistance || c.farPlane > kMaxPlaneDistance)
+        return fail("camera: near and far planes must lie within " + exactNumber(kMaxPlaneDistance));
     const glm::dvec3 dir = c.target - c.eye;
     const double len = glm::length(dir);
     if (!(len > 0.0) || !std::isfinite(len)) return fail("camera: eye and target must differ");

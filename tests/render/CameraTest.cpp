@@ -101,3 +101,23 @@ TEST(Camera, NearPlaneRadiusReachesTheNearPlaneCorners) {
     const double expected = std::sqrt(0.4 * 0.4 + 0.2 * 0.2 + 0.2 * 0.2);
     EXPECT_NEAR(nearPlaneRadius(c, aspect), expected, 1e-12);
 }
+
+// Planes the float projection cannot hold, and the smallest near plane and field of view, are refused.
+TEST(Camera, RefusesPlanesAndAnglesTheFloatProjectionCannotHold) {
+    Camera c = parseCamera("eye=0,0,1;target=0,0,0").value();
+    ASSERT_TRUE(validateCamera(c).ok());
+    Camera far = c;
+    far.nearPlane = 1e300;
+    EXPECT_FALSE(validateCamera(far).ok());
+    far = c;
+    far.farPlane = 2.0 * kMaxPlaneDistance;
+    EXPECT_FALSE(validateCamera(far).ok());
+    far.farPlane = kMaxPlaneDistance;
+    EXPECT_TRUE(validateCamera(far).ok());
+    Camera narrow = c;
+    narrow.fovYDeg = 0.5 * kMinFovDeg;
+    EXPECT_FALSE(validateCamera(narrow).ok());
+    Camera near = c;
+    near.nearPlane = 0.5 * kMinNearPlane;
+    EXPECT_FALSE(validateCamera(near).ok());
+}

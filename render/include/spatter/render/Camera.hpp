@@ -36,13 +36,16 @@ Result<Camera> parseCamera(const std::string& text);
 // The camera as parseCamera reads it.
 std::string formatCamera(const Camera& camera);
 
-// Smallest field of view and near plane validateCamera accepts.
+// Smallest field of view and near plane validateCamera accepts, and the farthest near or far plane
+// (the float projection holds them).
 constexpr double kMinFovDeg = 1e-3;
 constexpr double kMinNearPlane = 1e-6;
+constexpr double kMaxPlaneDistance = 1e15;
 
 // Fails when a value is not finite, eye equals target, up is zero or parallel to the view
 // direction, the field of view is outside [kMinFovDeg, 180), the near plane is below
-// kMinNearPlane, or a far plane is set (non-zero) but not beyond the near plane.
+// kMinNearPlane, a far plane is set (non-zero) but not beyond the near plane, or either plane lies
+// beyond kMaxPlaneDistance.
 Status validateCamera(const Camera& camera);
 
 // Unit axes of the camera in world space: right (+X), up (+Y) and back (+Z; the view direction
