@@ -35,21 +35,6 @@ const char* normalProblem(const glm::dvec3& normal) {
     return nullptr;
 }
 
-// Why `point` does not lie on `shot` within its span [tnear, tfar], or empty. It may stray from the
-// shot's line by `room` plus 1e-5 of its distance along the shot, the rounding of a point a renderer
-// found in a depth buffer.
-std::string offShotProblem(const Ray& shot, const glm::dvec3& point, double room) {
-    const double length = glm::length(shot.direction);
-    const glm::dvec3 dir = shot.direction / length;
-    const double along = glm::dot(point - shot.origin, dir);
-    const double slack = room + 1e-5 * std::abs(along);
-    const double off = glm::length(point - (shot.origin + along * dir));
-    if (off > slack) return "point lies " + formatNumber(off) + " from the shot's line";
-    if (along + slack < shot.tnear * length || along - slack > shot.tfar * length)
-        return "point lies on the shot's line outside its span [tnear, tfar]";
-    return {};
-}
-
 // Why a decal of type `t` on `o` cannot be laid on the drawn surface at `point` facing `normal`
 // (world space), or empty.
 std::string drawnSurfaceRefusal(const DecalType& t, const CollisionObject& o, bool deforms,
@@ -208,9 +193,6 @@ SpawnResult DecalSystem::Impl::spawnOnDrawnSurface(const char* caller, const Ray
         return reject(SpawnStatus::InvalidArgument, where + "a decal of volumetric type '" + t.name +
                                                         "' needs a proxy hit, where its crater is clipped");
     if (!finite3(point)) return reject(SpawnStatus::InvalidArgument, where + "point is not finite");
-    const double slack = 0.01 * double(std::max(t.size.x, t.size.y));
-    if (const std::string problem = offShotProblem(shot, point, slack); !problem.empty())
-        return reject(SpawnStatus::InvalidArgument, where + problem);
     if (const char* problem = normalProblem(normal))
         return reject(SpawnStatus::InvalidArgument, where + problem);
     const glm::dvec3 dir = glm::normalize(shot.direction);
@@ -222,6 +204,7 @@ SpawnResult DecalSystem::Impl::spawnOnDrawnSurface(const char* caller, const Ray
                                                      formatNumber(angle) +
                                                      " degrees from its normal (type '" + t.name +
                                                      "' allows " + formatNumber(t.maxAngleDeg) + ")");
+    const double slack = 0.01 * double(std::max(t.size.x, t.size.y));
     const std::optional<uint32_t> owner = receiverNear(world, point, n, slack);
     if (!owner)
         return reject(SpawnStatus::Missed, where + "no one collision surface lies within twice its error "

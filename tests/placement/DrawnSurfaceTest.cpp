@@ -462,8 +462,7 @@ TEST(DrawnSurface, ADecalWhoseShotMetTheDrawnSurfaceBeforeItsBoxTooSteeplyIsRemo
     const SpawnResult stale = s.replaceOnDrawnSurface(DecalHandle{1000, 1}, shot, floorPoint(target), up);
     EXPECT_EQ(stale.status, SpawnStatus::InvalidArgument);
     EXPECT_NE(stale.reason.find("stale or invalid handle"), std::string::npos) << stale.reason;
-    const SpawnResult far = s.replaceOnDrawnSurface(
-        a.handle, shot, floorPoint(target) + 8.0 * glm::normalize(shot.direction), up);
+    const SpawnResult far = s.replaceOnDrawnSurface(a.handle, shot, floorPoint(target) + 3.0 * up, up);
     EXPECT_EQ(far.status, SpawnStatus::Missed) << far.reason;
     EXPECT_TRUE(sameDecals(s.decals(), decals));
     EXPECT_EQ(s.version(), version);
@@ -510,12 +509,8 @@ TEST(DrawnSurface, ASpawnOnTheDrawnSurfaceThatIsRefusedChangesNoDecal) {
         {"zero normal", shot, point, glm::dvec3(0.0), t, SpawnStatus::InvalidArgument, "normal"},
         {"normal across the shot", shot, point, across, t, SpawnStatus::GrazingAngle,
          "degrees from its normal"},
-        {"point off the shot", shot, point + 0.05 * across, up, t, SpawnStatus::InvalidArgument,
-         "from the shot's line"},
-        {"point behind the shot's origin", shot, shot.origin - shot.direction, up, t,
-         SpawnStatus::InvalidArgument, "outside its span"},
-        {"point far from every surface", shot, point + 8.0 * glm::normalize(shot.direction), up, t,
-         SpawnStatus::Missed, "no one collision surface"},
+        {"point far from every surface", shot, point + 3.0 * glm::normalize(up), up, t, SpawnStatus::Missed,
+         "no one collision surface"},
     };
     const uint64_t version = s.version();
     for (const Refusal& r : refusals) {

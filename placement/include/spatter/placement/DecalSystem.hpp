@@ -251,7 +251,8 @@ public:
     // Places the decal of a shot that the collision surface refused (spawn gave Missed or GrazingAngle:
     // SpawnResult::refusedByCollisionSurface) where a renderer found the shot meeting the drawn surface:
     // `point` on it and `normal`, that surface's normal there (world space; need not be unit, turned to
-    // face the shot). A proxy lies within its error bound h of the drawn surface, so near an object's
+    // face the shot). The point need not lie on the shot: found in a later frame, a point on a moving
+    // object is carried with it (as the gallery does), so only finiteness is checked. A proxy lies within its error bound h of the drawn surface, so near an object's
     // outline a shot can pass the proxy and still meet what is drawn, and a proxy facet tilted against
     // the drawn surface can graze a shot that meets the drawn surface within the type's angle. The
     // decal is the one the shot would have placed on the render mesh there: on the object
@@ -262,9 +263,7 @@ public:
     // with the shot as hint and turned by a random angle as spawn builds one, projected as its type
     // asks, its box as deep as on a surface with no error bound. Checked, counted and logged as spawn
     // does (InvalidType, InvalidRay, GrazingAngle from the shot and `normal`, NotReceiver, AreaLimit,
-    // InvalidArgument for a point or normal that is not finite, a zero normal, or a point off the
-    // shot: farther from its line than a hundredth of the type's size plus 1e-5 of its distance along
-    // the shot, or outside its span [tnear, tfar] by as much); Missed when no
+    // InvalidArgument for a point or normal that is not finite or a zero normal); Missed when no
     // object is found so; NotReceiver on a skinned or morphed object (its proxy is
     // bound over its poses: shoot it again) and InvalidArgument for a volumetric type, whose crater
     // is clipped by the proxy around a proxy hit. Any refusal changes no decal and draws no random
