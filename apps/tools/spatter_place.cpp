@@ -92,7 +92,9 @@ Options:
                     collider, where it has one, is its proxy (not on a skinned or morphed object,
                     whose proxy holds its bound over the poses); h is certified by the proxy
                     builder.
-                    On a terminal, stderr shows the progress of the builds
+                    On a terminal, stderr shows the progress of the builds; the builder's
+                    notes (a cache entry that could not be stored, a tolerance not met) go to
+                    stderr as "spatter-place: note: ..." lines
   --cache DIR       with auto and TOL: reuse proxies stored in DIR and store new ones there, keyed
                     by a hash of the object's mesh, its collider and the proxy settings, and for
                     a skinned or morphed object of its skin and its sampled poses (a second run
@@ -368,6 +370,9 @@ int main(int argc, char** argv) {
                 return 1;
             }
             doneTriangles += double(o.mesh->triangleCount());
+            if (terminal && !proxy->notes.empty()) std::fputs("\r\033[K", stderr);
+            for (const std::string& note : proxy->notes) // a cache that could not be written, among others
+                std::cerr << "spatter-place: note: proxy of object '" << o.name << "': " << note << "\n";
             proxiesBuilt += proxy->cached ? 0 : 1;
             proxiesCached += proxy->cached ? 1 : 0;
             proxies[i] = spatter::shareProxy(std::move(proxy).value());
