@@ -24,4 +24,13 @@ Status checkMeshFileForOpenMesh(const std::string& path) {
     return {};
 }
 
+std::optional<int64_t> vertexTwiceInAFaceWithArea(std::vector<int64_t>& corners) {
+    std::sort(corners.begin(), corners.end());
+    const auto twice = std::adjacent_find(corners.begin(), corners.end());
+    if (twice == corners.end()) return std::nullopt;
+    const int64_t vertex = *twice;
+    const bool area = std::unique(corners.begin(), corners.end()) - corners.begin() >= 3;
+    return area ? std::optional<int64_t>(vertex) : std::nullopt;
+}
+
 } // namespace spatter::detail

@@ -6,7 +6,9 @@
 
 #include <cstdint>
 #include <fstream>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace spatter::detail {
 
@@ -14,5 +16,10 @@ Status checkObjForOpenMesh(std::ifstream& in, const std::string& path);
 Status checkPlyForOpenMesh(std::ifstream& in, uintmax_t fileSize);
 Status checkOffForOpenMesh(std::ifstream& in, uintmax_t fileSize);
 Status checkStlForOpenMesh(std::ifstream& in, uintmax_t fileSize);
+
+// The vertex a face of `corners` names twice, where the face still has three different vertices
+// (the PLY and OFF readers skip such a face and its surface with it); nothing otherwise: a face of
+// fewer has no area and may go. Sorts `corners`.
+std::optional<int64_t> vertexTwiceInAFaceWithArea(std::vector<int64_t>& corners);
 
 } // namespace spatter::detail

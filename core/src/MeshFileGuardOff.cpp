@@ -116,9 +116,7 @@ Status checkOffFace(OffBody& b, int64_t face) {
         b.corners.push_back(index);
     }
     if (b.format.colors && !b.format.binary) std::getline(b.in, b.word);
-    std::sort(b.corners.begin(), b.corners.end());
-    const auto twice = std::adjacent_find(b.corners.begin(), b.corners.end());
-    if (twice != b.corners.end() && std::unique(b.corners.begin(), b.corners.end()) - b.corners.begin() >= 3)
+    if (const std::optional<int64_t> twice = vertexTwiceInAFaceWithArea(b.corners))
         return fail(name + " names vertex " + std::to_string(*twice) + " twice");
     return {};
 }

@@ -314,9 +314,7 @@ Status checkPlyCorners(PlyBody& b, const PlyProperty& p, unsigned face) {
                         std::to_string(b.vertices) + " vertices (numbered from 0)");
         b.corners.push_back(index);
     }
-    std::sort(b.corners.begin(), b.corners.end());
-    const auto twice = std::adjacent_find(b.corners.begin(), b.corners.end());
-    if (twice != b.corners.end() && std::unique(b.corners.begin(), b.corners.end()) - b.corners.begin() >= 3)
+    if (const std::optional<int64_t> twice = vertexTwiceInAFaceWithArea(b.corners))
         return fail(plyItem("face", face) + " names vertex " + std::to_string(*twice) + " twice");
     return {};
 }
