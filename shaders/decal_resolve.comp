@@ -8,6 +8,9 @@
 // blend state blends them; roughness in its channel (u_roughnessChannel, -1: none) of its own target
 // or, with ROUGHNESS_ALBEDO_ALPHA, in the albedo's alpha. Target formats: NORMALS_RG16F,
 // NORMALS_RGBA16F, NORMALS_RGB10A2, else RGBA8; ROUGHNESS_R8, ROUGHNESS_RG8, else RGBA8.
+// DBUFFER resolves into the projector's decal buffers instead (dbuffer.glsl: RGB the decals'
+// contribution, A how much of the surface shows through), which DecalBuffers::prepare cleared to RGB 0,
+// A 1: the targets are then written, not read, and the host's normals are read through s_normal.
 #define SPATTER_FORWARD_HELPERS_ONLY // spatterApplyForwardDecals takes derivatives, which compute lacks
 #define SPATTER_DECAL_ALBEDO_UNIT 3
 #define SPATTER_DECAL_NORMAL_UNIT 4
@@ -18,6 +21,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(binding = 0) uniform sampler2D s_depth;
 layout(binding = 2) uniform usampler2D s_ids;
+#ifdef DBUFFER
+layout(binding = 1) uniform sampler2D s_normal;
+#endif
 
 layout(binding = 0, rgba8) uniform restrict image2D i_albedo;
 #if defined(NORMALS_RG16F)
@@ -82,8 +88,11 @@ bool inBox(vec3 box) {
 // What the pixel's decals make of its targets, decal after decal as the blend state would.
 struct Targets {
     vec3 albedo;    // linear
-    vec4 normal;    // in the host's encoding
+    vec4 normal;    // in the host's encoding (DBUFFER: world space, signed)
     float roughness;
+#ifdef DBUFFER
+    vec3 shows; // how much of the surface's albedo, normal and roughness shows through
+#endif
 };
 
 // Blends decal `d` into `t` when spatterDecalLook keeps the point (IDS: clipped by the pixel's
@@ -97,17 +106,31 @@ bool blendDecal(SpatterForwardDecal d, vec3 box, vec3 p, vec3 dpdx, vec3 dpdy, v
     float alpha = look.colour.a;
     if (alpha <= 0.0) return true; // clear: every mix below would keep what is there
     t.albedo = mix(t.albedo, look.colour.rgb, alpha);
+#ifdef DBUFFER
+    vec3 covers = vec3(alpha, 0.0, 0.0); // what this decal hides of the surface's albedo, normal, roughness
+#endif
 #ifdef NORMAL_MAP
     if ((d.info.z & SPATTER_DECAL_NORMAL_MAP) != 0u) {
         vec4 mapped = encodeHostNormal(spatterDecalNormalMap(d, spatterDecalDetail(look), p, dpdx, dpdy, n));
-#if defined(NORMAL_WORLD_SIGNED) || defined(NORMAL_WORLD_UNORM) || defined(NORMAL_VIEW_UNORM)
+#if defined(NORMAL_WORLD_SIGNED) || defined(NORMAL_WORLD_UNORM) || defined(NORMAL_VIEW_UNORM) || defined(DBUFFER)
         t.normal.xyz = mix(t.normal.xyz, mapped.xyz, alpha);
 #else
         t.normal.xy = mix(t.normal.xy, mapped.xy, alpha); // octahedral: the third channel is kept
 #endif
+#ifdef DBUFFER
+        covers.y = alpha;
+#endif
     }
 #endif
-    if ((d.info.z & SPATTER_DECAL_ROUGHNESS) != 0u) t.roughness = mix(t.roughness, d.params.y, alpha);
+    if ((d.info.z & SPATTER_DECAL_ROUGHNESS) != 0u) {
+        t.roughness = mix(t.roughness, d.params.y, alpha);
+#ifdef DBUFFER
+        covers.z = alpha;
+#endif
+    }
+#ifdef DBUFFER
+    t.shows *= 1.0 - covers;
+#endif
     return true;
 }
 
@@ -129,6 +152,10 @@ void main() {
     if (!held) return;
 #endif
     vec3 dpdx = positionStep(pixel, p, ivec2(1, 0)), dpdy = positionStep(pixel, p, ivec2(0, 1));
+#ifdef DBUFFER
+    Targets t = Targets(vec3(0.0), vec4(0.0), 0.0, vec3(1.0));
+    vec3 n = decodeHostNormal(texelFetch(s_normal, pixel, 0));
+#else
     vec4 albedo = imageLoad(i_albedo, pixel);
     Targets t;
     t.albedo = toLinear(albedo.rgb);
@@ -140,6 +167,7 @@ void main() {
     t.roughness = u_roughnessChannel >= 0 ? material[u_roughnessChannel] : 0.0;
 #endif
     vec3 n = decodeHostNormal(t.normal);
+#endif
     uint id = 0u;
 #ifdef IDS
     id = texelFetch(s_ids, pixel, 0).r;
@@ -152,7 +180,10 @@ void main() {
         changed = blendDecal(spatterForwardDecals[index], box, p, dpdx, dpdy, n, id, t) || changed;
     }
     if (!changed) return;
-#ifdef ROUGHNESS_ALBEDO_ALPHA
+#ifdef DBUFFER
+    imageStore(i_albedo, pixel, vec4(fromLinear(t.albedo), t.shows.x));
+    imageStore(i_roughness, pixel, vec4(vec3(t.roughness), t.shows.z));
+#elif defined(ROUGHNESS_ALBEDO_ALPHA)
     imageStore(i_albedo, pixel, vec4(fromLinear(t.albedo), t.roughness));
 #else
     imageStore(i_albedo, pixel, vec4(fromLinear(t.albedo), albedo.a));
@@ -162,6 +193,10 @@ void main() {
     }
 #endif
 #ifdef NORMAL_MAP
+#ifdef DBUFFER
+    imageStore(i_normal, pixel, vec4(t.normal.xyz, t.shows.y));
+#else
     imageStore(i_normal, pixel, t.normal);
+#endif
 #endif
 }

@@ -49,17 +49,15 @@ std::string roughnessFormat(GLint format) {
     }
 }
 
-} // namespace
-
-std::optional<ComputeResolve::Targets> ComputeResolve::targets(const HostFrame& f, const ProjectorDraw& o) {
-    if (o.path != ProjectorPath::GBufferBlend || o.coverageTexture != 0 || !o.angleReject)
-        return std::nullopt;
-    if (f.depth.encoding != DepthEncoding::Window || f.normals.texture == 0) return std::nullopt;
-    Targets t;
+// The G-buffer blend's targets: the host's.
+std::optional<ComputeResolve::Targets> gbufferTargets(const HostFrame& f) {
+    ComputeResolve::Targets t;
+    t.normals = f.normals.texture;
     t.normalFormat = GLenum(internalFormat(f.normals.texture));
     const std::string normals = normalFormat(GLint(t.normalFormat));
     if (normals.empty()) return std::nullopt;
     t.defines.push_back(normals);
+    t.albedo = f.albedoTexture;
     const GLint albedo = internalFormat(f.albedoTexture);
     t.srgbAlbedo = albedo == GL_SRGB8_ALPHA8 && immutable(f.albedoTexture);
     if (t.srgbAlbedo)
@@ -72,11 +70,38 @@ std::optional<ComputeResolve::Targets> ComputeResolve::targets(const HostFrame& 
         t.defines.push_back("ROUGHNESS_ALBEDO_ALPHA");
         return t;
     }
+    t.roughness = f.roughness.texture;
+    t.roughnessChannel = f.roughness.channel;
     t.roughnessFormat = GLenum(internalFormat(f.roughness.texture));
     const std::string roughness = roughnessFormat(GLint(t.roughnessFormat));
     if (f.roughness.channel >= 3 || roughness.empty()) return std::nullopt;
     t.defines.push_back(roughness);
     return t;
+}
+
+// The DBuffer path's targets: the projector's decal buffers (DecalBuffers' formats).
+ComputeResolve::Targets dbufferTargets(const DecalBuffers& dbuffer) {
+    ComputeResolve::Targets t;
+    t.defines = {"NORMALS_RGBA16F", "ALBEDO_SRGB", "ROUGHNESS_RGBA8"};
+    t.albedo = dbuffer.albedo();
+    t.srgbAlbedo = true;
+    t.normals = dbuffer.normal();
+    t.normalFormat = GL_RGBA16F;
+    t.roughness = dbuffer.material();
+    t.roughnessFormat = GL_RGBA8;
+    t.roughnessChannel = 0;
+    return t;
+}
+
+} // namespace
+
+std::optional<ComputeResolve::Targets> ComputeResolve::targets(const HostFrame& f, const ProjectorDraw& o,
+                                                               const DecalBuffers& dbuffer) {
+    if (o.coverageTexture != 0 || !o.angleReject) return std::nullopt;
+    if (f.depth.encoding != DepthEncoding::Window || f.normals.texture == 0) return std::nullopt;
+    if (o.path == ProjectorPath::DBuffer) return dbufferTargets(dbuffer);
+    if (o.path != ProjectorPath::GBufferBlend) return std::nullopt;
+    return gbufferTargets(f);
 }
 
 Result<GLuint> ComputeResolve::program(const std::vector<std::string>& defines) {
@@ -95,22 +120,21 @@ Status ComputeResolve::run(const HostFrame& f, const Targets& t, const std::vect
 
     // An sRGB target is loaded and stored through an RGBA8 view of it (sRGB formats are no image formats).
     GlTexture view;
-    GLuint albedo = f.albedoTexture;
+    GLuint albedo = t.albedo;
     if (t.srgbAlbedo) {
         GLuint name = 0;
         glGenTextures(1, &name);
-        glTextureView(name, GL_TEXTURE_2D, f.albedoTexture, GL_RGBA8, 0, 1, 0, 1);
+        glTextureView(name, GL_TEXTURE_2D, t.albedo, GL_RGBA8, 0, 1, 0, 1);
         view = GlTexture(name);
         albedo = name;
     }
-    const bool roughness = t.roughnessFormat != 0;
     glBindImageTexture(0, albedo, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
-    glBindImageTexture(1, f.normals.texture, 0, GL_FALSE, 0, GL_READ_WRITE, t.normalFormat);
-    if (roughness)
-        glBindImageTexture(2, f.roughness.texture, 0, GL_FALSE, 0, GL_READ_WRITE, t.roughnessFormat);
+    glBindImageTexture(1, t.normals, 0, GL_FALSE, 0, GL_READ_WRITE, t.normalFormat);
+    if (t.roughness != 0)
+        glBindImageTexture(2, t.roughness, 0, GL_FALSE, 0, GL_READ_WRITE, t.roughnessFormat);
     glUseProgram(p.value());
     glUniform4i(0, f.x, f.y, f.width, f.height);
-    glUniform1i(1, roughness ? f.roughness.channel : -1);
+    glUniform1i(1, t.roughness != 0 ? t.roughnessChannel : -1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     glDispatchCompute((GLuint(f.width) + kGroupSize - 1) / kGroupSize,
                       (GLuint(f.height) + kGroupSize - 1) / kGroupSize, 1);

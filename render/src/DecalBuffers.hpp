@@ -18,6 +18,8 @@ public:
     // Attaches them to `fbo` as colour attachments 0 to 2, each blending src * a + dst * (1 - a) in
     // RGB and dst * (1 - a) in A; they count as written from here on.
     void attach(GLuint fbo);
+    // They count as written from here on: a compute pass stores into them (ComputeResolve).
+    void markWritten() { written_ = true; }
 
     GLuint albedo() const { return textures_[0].get(); }
     GLuint normal() const { return textures_[1].get(); }

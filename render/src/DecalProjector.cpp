@@ -518,7 +518,7 @@ struct DecalProjector::Impl {
         }
     }
 
-    // The host's targets when draw() blends `o` into `f` by ComputeResolve rather than by boxes, with
+    // The targets when draw() resolves `o` into `f` by ComputeResolve rather than by boxes, with
     // `inView` decals in view (culled on the GPU: the latest count it has given); nothing for boxes.
     // Auto draws boxes for 16 draws after a binning that left decals out of a tile past
     // forwardTileCapacity, then tries the tiles again. Decals left out for want of room in the buffers
@@ -535,20 +535,20 @@ struct DecalProjector::Impl {
             }
             boxesSinceLeftOut = 0;
         }
-        return ComputeResolve::targets(f, o);
+        return ComputeResolve::targets(f, o, dbuffer);
     }
 
-    // The G-buffer blend by one compute pass (ComputeResolve) over the visible decals binned into the
-    // tiles of `f`, whose targets are `targets`, with the variant `bits`' conventions and features.
+    // The G-buffer blend or DBuffer by one compute pass (ComputeResolve) over the visible decals binned into
+    // the tiles of `f`, whose targets are `targets`, with the variant `bits`' conventions and features.
     Result<ProjectorStats> resolveInCompute(const HostFrame& f, const ComputeResolve::Targets& targets,
                                             const FrameCamera& camera, bool onGpu, const DecalVisibility& vis,
                                             uint32_t bits, ProjectorStats stats) {
         if (Status s = forward.prepare(); !s) return fail(s.error());
         if (onGpu)
             if (Status s = culling.prepare(); !s) return fail(s.error());
-        constexpr uint32_t kResolveBits = kVariantIds | kVariantNormalMap | kVariantClipMinusOne |
-                                          kVariantStandardZ | kVariantNormalWorldSigned |
-                                          kVariantNormalWorldUnorm | kVariantNormalViewUnorm;
+        constexpr uint32_t kResolveBits =
+            kVariantIds | kVariantNormalMap | kVariantDBuffer | kVariantClipMinusOne | kVariantStandardZ |
+            kVariantNormalWorldSigned | kVariantNormalWorldUnorm | kVariantNormalViewUnorm;
         const std::vector<std::string> defines = variantDefines(bits & kResolveBits);
         stats.variant = join(defines) + (defines.empty() ? "" : " ") + "COMPUTE";
         GlStateGuard guard;
@@ -792,7 +792,8 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
         vis.flags = m.batch.flagsUnion();
     } else {
         CullView cull = camera.cull;
-        cull.rects = blendsIntoHost(options) && frame.normals.texture != 0; // for the normal copy
+        // The screen rectangles: for the normal copy, and for the tiles of the DBuffer's compute resolve.
+        cull.rects = (blendsIntoHost(options) && frame.normals.texture != 0) || fillsDBuffer(options);
         vis = m.cullOnCpu(cull);
     }
     ProjectorStats stats = m.cpuStats(vis, onGpu);
@@ -800,8 +801,10 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     if (stats.skipped) return stats;
     const uint32_t bits = m.variantBits(frame, options, vis.flags);
     const size_t inView = onGpu ? m.gpuInView() : vis.visible.size();
-    if (const std::optional<ComputeResolve::Targets> targets = m.computeTargets(frame, options, inView))
+    if (const std::optional<ComputeResolve::Targets> targets = m.computeTargets(frame, options, inView)) {
+        if (fillsDBuffer(options)) m.dbuffer.markWritten();
         return m.resolveInCompute(frame, *targets, camera, onGpu, vis, bits, stats);
+    }
     Passes passes;
     Result<GLuint> program = m.program(bits);
     if (!program) return fail(program.error());

@@ -6,9 +6,11 @@
 #include "RenderTestSupport.hpp"
 #include "ShotDecals.hpp"
 
+#include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <optional>
 
@@ -64,6 +66,33 @@ std::pair<int, size_t> difference(const Image& a, const Image& b, int tolerance,
         over += worst > tolerance;
     }
     return {largest, over};
+}
+
+// Texture `texture` of the wall host's size as RGBA floats (the DBuffer's normals are signed).
+std::vector<float> readFloats(GLuint texture) {
+    std::vector<float> texels(size_t(test::kWallWidth) * test::kWallHeight * 4);
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(texels.size() * sizeof(float)), texels.data());
+    return texels;
+}
+
+// How many texels of `a` and `b` differ by more than `tolerance` in a channel.
+size_t texelsApart(const std::vector<float>& a, const std::vector<float>& b, float tolerance) {
+    size_t over = 0;
+    for (size_t t = 0; t + 3 < a.size() && t + 3 < b.size(); t += 4) {
+        bool apart = false;
+        for (size_t c = 0; c < 4; ++c)
+            apart = apart || std::abs(a[t + c] - b[t + c]) > tolerance;
+        over += apart;
+    }
+    return over;
+}
+
+// How many texels of `t` some decal covers (A below 1: less of the surface shows through).
+size_t coveredTexels(const std::vector<float>& t) {
+    size_t covered = 0;
+    for (size_t i = 3; i < t.size(); i += 4)
+        covered += t[i] < 0.99f;
+    return covered;
 }
 
 // The compute resolve of decals the GPU culls, the counts of each draw read at its end.
@@ -177,6 +206,59 @@ TEST(ComputeResolve, BlendsAHostsFrameAsTheBoxesDo) {
         }
     }
 }
+
+// The DBuffer path resolved in compute fills the projector's decal buffers as its boxes do, culled on
+// the CPU and on the GPU: thirty overlapping normal-mapped decals on the wall (and the crate's, kept
+// off the wall by object IDs) give the same albedo, normals and roughness, each with how much of the
+// surface shows through; a later draw with nothing in view clears what the compute pass wrote.
+class ComputeResolveDBuffer : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ComputeResolveDBuffer, FillsTheDecalBuffersAsTheBoxesDo) {
+    SPATTER_REQUIRE_GL(gl);
+    std::vector<std::vector<float>> buffers[3];
+    std::vector<std::string> variants;
+    for (const DeferredResolve resolve : {DeferredResolve::Boxes, DeferredResolve::Compute}) {
+        ProjectorSettings settings;
+        settings.deferredResolve = resolve;
+        if (GetParam()) settings.gpuCullingFrom = 0;
+        std::optional<test::HostedWall> h = test::HostedWall::make(settings);
+        ASSERT_TRUE(h);
+        std::vector<Decal> decals = h->wall.decals;
+        for (int i = 0; i < 30; ++i) {
+            Decal d = test::WallScene::decalAt(0, {-0.9f + 0.06f * float(i), 0.1f * float(i % 4), 0.05f});
+            d.size = glm::vec2(0.25f);
+            decals.push_back(d);
+        }
+        h->projector.setDecals(decals);
+        ProjectorDraw dbuffer;
+        dbuffer.path = ProjectorPath::DBuffer;
+        Result<ProjectorStats> st = h->projector.draw(h->host.frame(h->wall.camera, true), dbuffer);
+        ASSERT_TRUE(st.ok()) << st.error();
+        variants.push_back(st->variant);
+        const ProjectorResources r = h->projector.resources();
+        const GLuint textures[3] = {r.dbufferAlbedo, r.dbufferNormal, r.dbufferMaterial};
+        for (int b = 0; b < 3; ++b)
+            buffers[b].push_back(readFloats(textures[b]));
+        const Camera away = test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 8.0});
+        ASSERT_TRUE(h->projector.draw(h->host.frame(away, true), dbuffer).ok());
+        for (const GLuint t : textures)
+            EXPECT_EQ(coveredTexels(readFloats(t)), 0u) << "texture " << t;
+    }
+    EXPECT_EQ(variants[0].find("COMPUTE"), std::string::npos) << variants[0];
+    EXPECT_NE(variants[1].find("DBUFFER"), std::string::npos) << variants[1];
+    EXPECT_NE(variants[1].find("COMPUTE"), std::string::npos) << variants[1];
+    const size_t texels = buffers[0][0].size() / 4;
+    const char* names[3] = {"albedo", "normal", "material"};
+    for (int b = 0; b < 3; ++b) {
+        EXPECT_GT(coveredTexels(buffers[b][0]), texels / 40) << names[b];
+        EXPECT_LT(texelsApart(buffers[b][0], buffers[b][1], 4.0f / 255.0f), texels / 100) << names[b];
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(CpuAndGpu, ComputeResolveDBuffer, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& p) {
+                             return p.param ? "GpuCulled" : "CpuCulled";
+                         });
 
 // Culled on the GPU, a tile holds at most forwardTileCapacity decals: 40 decals over one spot, with a
 // capacity of 16, are reported as left out (ProjectorStats::tilesLeftOut); 8 are not.

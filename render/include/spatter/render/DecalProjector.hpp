@@ -170,11 +170,12 @@ enum class DeferredResolve {
     Boxes,   // a box per visible decal, drawn over the G-buffer (the rasteriser hands each box its pixels)
     Compute, // one compute pass over the screen tiles of the forward path's binning: each pixel with
              // decals in its tile reads the host's targets once, applies its decals in drawing order
-             // with the boxes' tests and blending and writes once. It needs window depth, normals and
-             // targets it can load and store (albedo RGBA8 or SRGB8_ALPHA8 of immutable storage,
-             // normals RG16F, RGBA16F, RGB10_A2 or RGBA8, roughness R8, RG8 or RGBA8 in R, G or B, or
-             // in the albedo's alpha); other frames, coverage mode, angleReject off and the DBuffer
-             // path use boxes. Culled on the GPU, the tiles are binned as bin()'s are
+             // with the boxes' tests and blending and writes once (the DBuffer path: into the decal
+             // buffers). It needs window depth, normals and, for the G-buffer blend, targets it can
+             // load and store (albedo RGBA8 or SRGB8_ALPHA8 of immutable storage, normals RG16F,
+             // RGBA16F, RGB10_A2 or RGBA8, roughness R8, RG8 or RGBA8 in R, G or B, or in the albedo's
+             // alpha); other frames, coverage mode and angleReject off use boxes. Culled on the GPU,
+             // the tiles are binned as bin()'s are
              // (forwardTileCapacity); decals left out are reported (ProjectorStats::tilesLeftOut), and
              // where a tile held more than forwardTileCapacity Auto then draws boxes for 16 draws
 };
