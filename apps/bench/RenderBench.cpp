@@ -73,7 +73,7 @@ renderer's decal pass.
                   its cores, every row then sees the same drift (default 1)
 --max-seconds S   wall-time cap per row and round: fewer frames are timed when it is reached (default 20)
 --forward-tile N  the forward path's tile size in pixels (ProjectorSettings::forwardTileSize, default 16)
---resolve MODE    how the G-buffer blend is drawn (ProjectorSettings::deferredResolve): auto (default:
+--resolve MODE    how the G-buffer blend and the DBuffer are drawn (deferredResolve): auto (default:
                   one compute pass on a GPU from 256 decals in view, boxes otherwise), boxes or compute
 --stages          also time the decal pass's stages (ProjectorSettings::stageTimers: GPU timestamps
                   after the culling, the binning, the drawing and the read-back of the counts; each
