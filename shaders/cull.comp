@@ -102,7 +102,10 @@ void main() {
     uint entry = place < u_count ? drawOrder[place] : 0xffffffffu; // an empty place
     uint c = entry != 0xffffffffu ? classify(entry) : kCulled;  // while the group is tested
     barrier();
-    if (!sTested) return; // culled whole: its places are not candidates, its count stays 0
+    if (!sTested) { // culled whole: its places are not candidates, its count stays 0
+        if (t == 0u && u_every != 0u) atomicAdd(tested.groupsX, 1u); // the few culled whole are counted
+        return;
+    }
     uint rank = 0u;
     if (c == kCandidate) rank = atomicAdd(sCandidates, 1u);
     else if (c != kCulled) atomicAdd(sCounts[c - kInvalid], 1u);
@@ -111,7 +114,6 @@ void main() {
         if (sCandidates != 0u) sFirst = atomicAdd(candidateCount, sCandidates);
         if (sCounts[0] != 0u) atomicAdd(invalidCount, sCounts[0]);
         if (sCounts[1] != 0u) atomicAdd(hostDrawnCount, sCounts[1]);
-        if (u_every != 0u) atomicAdd(tested.groupsX, 1u); // the count read back
     }
     if (t < kGroupPlaces / 32u) classBits[group * (kGroupPlaces / 32u) + t] = 0u;
     barrier();

@@ -24,6 +24,7 @@ layout(std430, binding = 5) coherent buffer Counters {
     uint hostDrawnCount;       // decals of a type or on an object the host draws itself
     uint candidateCount;       // places cull.comp left to cull_exact.comp
     DispatchIndirect tested;   // x: the groups cull_groups.comp left to cull.comp, a work group each
+                               // (cull.comp testing every group: the groups it culled whole)
 };
 
 layout(std430, binding = 6) readonly buffer DrawOrder {

@@ -54,7 +54,8 @@ void writeGroup(uint group, uint t) {
 void main() {
     uint t = gl_LocalInvocationIndex, w = gl_NumWorkGroups.x;
     if (gl_WorkGroupID.x == 0u && t == 0u)
-        readback = uint[5](draw.instanceCount, occludedCount, invalidCount, hostDrawnCount, tested.groupsX);
+        readback = uint[5](draw.instanceCount, occludedCount, invalidCount, hostDrawnCount,
+                           u_every != 0u ? u_groups - tested.groupsX : tested.groupsX);
     uint listed = u_every != 0u ? u_groups : tested.groupsX, start = listStart(u_groups);
     for (uint first = gl_WorkGroupID.x; first < listed; first += 64u * w) {
         if (t == 0u) sFound = 0u;

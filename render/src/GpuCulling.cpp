@@ -24,9 +24,11 @@ constexpr GLintptr kTestedDispatchOffset = 9 * sizeof(uint32_t);
 // The test by place is dispatched indirectly, a work group for each group the first pass listed (on llvmpipe,
 // work groups looping over the listed groups, whose bodies hold barriers, took 3 to 10 times as long by wall
 // time), unless the latest count read back listed more than half the groups: then it tests every group,
-// dispatched directly, each work group culling its group whole or counting it tested, and neither the first
-// pass nor a command barrier comes before it (the decals in view spread through the draw order, or most of a
-// smaller world in view: 10,000 decals all in view take 4% less on an H200). The corner test and the scatter
+// dispatched directly, each work group culling its group whole (and counting it: the few groups culled
+// whole are counted, not the many tested, whose one counter took the spread row 3 to 4 us on an H100) or
+// testing it, and neither the first pass nor a command barrier comes before it (the decals in view spread
+// through the draw order, or most of a smaller world in view: 10,000 decals all in view take 4% less on an
+// H200). The corner test and the scatter
 // are dispatched directly, not indirectly at this run's counts: an indirect dispatch needs a command barrier,
 // which costs a GPU more than work groups that find no work. A software rasteriser pays for every work group,
 // so they are sized by the latest counts read back, with room to spare; their invocations stride over the
