@@ -68,6 +68,16 @@ std::pair<int, size_t> difference(const Image& a, const Image& b, int tolerance,
     return {largest, over};
 }
 
+// `decals` and thirty overlapping decals a quarter wide across the wall.
+std::vector<Decal> withThirtyOverlapping(std::vector<Decal> decals) {
+    for (int i = 0; i < 30; ++i) {
+        Decal d = test::WallScene::decalAt(0, {-0.9f + 0.06f * float(i), 0.1f * float(i % 4), 0.05f});
+        d.size = glm::vec2(0.25f);
+        decals.push_back(d);
+    }
+    return decals;
+}
+
 // Texture `texture` of the wall host's size as RGBA floats (the DBuffer's normals are signed).
 std::vector<float> readFloats(GLuint texture) {
     std::vector<float> texels(size_t(test::kWallWidth) * test::kWallHeight * 4);
@@ -180,13 +190,7 @@ TEST(ComputeResolve, BlendsAHostsFrameAsTheBoxesDo) {
             settings.deferredResolve = resolve;
             std::optional<test::HostedWall> h = test::HostedWall::make(settings);
             ASSERT_TRUE(h);
-            std::vector<Decal> decals = h->wall.decals;
-            for (int i = 0; i < 30; ++i) {
-                Decal d = test::WallScene::decalAt(0, {-0.9f + 0.06f * float(i), 0.1f * float(i % 4), 0.05f});
-                d.size = glm::vec2(0.25f);
-                decals.push_back(d);
-            }
-            h->projector.setDecals(decals);
+            h->projector.setDecals(withThirtyOverlapping(h->wall.decals));
             HostFrame f = h->host.frame(h->wall.camera, true);
             if (alphaRoughness) f.roughness = {f.albedoTexture, 3};
             Result<ProjectorStats> st = h->projector.draw(f);
@@ -223,13 +227,7 @@ TEST_P(ComputeResolveDBuffer, FillsTheDecalBuffersAsTheBoxesDo) {
         if (GetParam()) settings.gpuCullingFrom = 0;
         std::optional<test::HostedWall> h = test::HostedWall::make(settings);
         ASSERT_TRUE(h);
-        std::vector<Decal> decals = h->wall.decals;
-        for (int i = 0; i < 30; ++i) {
-            Decal d = test::WallScene::decalAt(0, {-0.9f + 0.06f * float(i), 0.1f * float(i % 4), 0.05f});
-            d.size = glm::vec2(0.25f);
-            decals.push_back(d);
-        }
-        h->projector.setDecals(decals);
+        h->projector.setDecals(withThirtyOverlapping(h->wall.decals));
         ProjectorDraw dbuffer;
         dbuffer.path = ProjectorPath::DBuffer;
         Result<ProjectorStats> st = h->projector.draw(h->host.frame(h->wall.camera, true), dbuffer);
