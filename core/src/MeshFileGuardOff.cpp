@@ -41,15 +41,7 @@ OffFormat readOffFormat(const std::string& header) {
 
 const char* const kOffTruncated = "OFF data ends before its faces do (truncated or malformed)";
 
-struct OffBody {
-    OffBody(std::istream& stream, const OffFormat& f) : in(stream), format(f) {}
-
-    std::istream& in;
-    const OffFormat& format;
-    int64_t vertices = 0;
-    std::string word;             // reused from value to value
-    std::vector<int64_t> corners; // reused from face to face
-};
+using OffBody = MeshBody<OffFormat>;
 
 // A count or index: binary, 32 bits little-endian; text, a whole integer word. `what` names it for a
 // message when it is no integer.

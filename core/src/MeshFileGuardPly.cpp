@@ -254,15 +254,7 @@ Status readPlyHeader(std::ifstream& in, uintmax_t fileSize, PlyHeader& h) {
 }
 
 // The body as the reader walks it: element by element, up to and including the faces.
-struct PlyBody {
-    PlyBody(std::istream& stream, const PlyHeader& h) : in(stream), header(h) {}
-
-    std::istream& in;
-    const PlyHeader& header;
-    int64_t vertices = 0;
-    std::string word;             // reused from value to value
-    std::vector<int64_t> corners; // reused from face to face
-};
+using PlyBody = MeshBody<PlyHeader>;
 
 const char* const kPlyTruncated = "PLY data ends before its faces do (truncated or malformed)";
 
@@ -289,8 +281,8 @@ Status checkPlyText(PlyBody& b, const PlyElement& e, const PlyProperty& p, unsig
 
 // A face's corner count or index: binary, of type `t`; text, a whole integer word.
 Status readPlyIndex(PlyBody& b, PlyType t, unsigned face, int64_t& value) {
-    if (b.header.binary)
-        return readPlyInteger(b.in, t, b.header.msb, value) ? Status() : Status(fail(kPlyTruncated));
+    if (b.format.binary)
+        return readPlyInteger(b.in, t, b.format.msb, value) ? Status() : Status(fail(kPlyTruncated));
     if (!(b.in >> b.word)) return fail(kPlyTruncated);
     if (!readIntegerWord(b.word, value))
         return fail(plyItem("face", face) + ": '" + excerpt(b.word) + "' is not an integer");
@@ -320,14 +312,14 @@ Status checkPlyCorners(PlyBody& b, const PlyProperty& p, unsigned face) {
 }
 
 Status checkPlyBody(PlyBody& b) {
-    for (const PlyElement& e : b.header.elements) {
+    for (const PlyElement& e : b.format.elements) {
         if (e.name == "vertex") b.vertices = e.count;
         for (unsigned i = 0; i < e.count; ++i) {
             for (const PlyProperty& p : e.properties) {
                 Status s;
                 if (p.read == PlyRead::Corners)
                     s = checkPlyCorners(b, p, i);
-                else if (b.header.binary)
+                else if (b.format.binary)
                     b.in.ignore(std::streamsize(plyBinaryBytes(p.read, p.type)));
                 else
                     s = checkPlyText(b, e, p, i);
