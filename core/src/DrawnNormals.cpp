@@ -24,22 +24,31 @@ glm::dvec3 faceNormal(const Mesh& mesh, uint32_t t) {
     return glm::cross(glm::dvec3(mesh.positions[c[1]]) - p0, glm::dvec3(mesh.positions[c[2]]) - p0);
 }
 
+constexpr uint32_t kNone = UINT32_MAX;
+
+// The table from each piece's nearest render triangle (kNone where there is none).
+std::vector<DrawnNormals::Packed> packedNormals(const Mesh& render, const std::vector<uint32_t>& nearest) {
+    std::vector<DrawnNormals::Packed> normals;
+    normals.reserve(nearest.size());
+    for (uint32_t t : nearest)
+        normals.push_back(packNormal(t != kNone ? faceNormal(render, t) : glm::dvec3(0.0)));
+    return normals;
+}
+
 } // namespace
 
-DrawnNormals DrawnNormals::build(const Mesh& render, const ClosestPointQuery& query, const Mesh& collision,
+DrawnNormals DrawnNormals::build(const Mesh& render, const HausdorffSurface& surface, const Mesh& collision,
                                  double reach, unsigned threads) {
-    constexpr uint32_t kNone = UINT32_MAX;
-    std::vector<Packed> normals;
-    normals.reserve(collision.triangleCount() * kPiecesPerTriangle);
-    for (uint32_t t : nearestTrianglePerPiece(query, collision, kNone, reach, threads))
-        normals.push_back(packNormal(t != kNone ? faceNormal(render, t) : glm::dvec3(0.0)));
-    return DrawnNormals(std::move(normals));
+    return DrawnNormals(
+        packedNormals(render, nearestTrianglePerPiece(surface.query(), collision, kNone, reach, threads,
+                                                      surface.sameTriangles(collision))));
 }
 
 Result<DrawnNormals> DrawnNormals::build(const Mesh& render, const Mesh& collision, double reach) {
     Result<ClosestPointQuery> query = ClosestPointQuery::create(render);
     if (!query) return fail(query.error());
-    return build(render, query.value(), collision, reach);
+    return DrawnNormals(
+        packedNormals(render, nearestTrianglePerPiece(query.value(), collision, kNone, reach)));
 }
 
 std::optional<glm::dvec3> DrawnNormals::at(uint32_t triangle, const glm::dvec3& bary) const {

@@ -198,7 +198,7 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
             return fail(st.error() == "cancelled" ? st.error() : "authored collider: " + st.error());
         takeBound(proxy, c, tolerance);
         proxy.drawnNormals =
-            DrawnNormals::build(render, renderSurface->query(), proxy.mesh, proxy.errorBound, s.threads);
+            DrawnNormals::build(render, renderSurface.value(), proxy.mesh, proxy.errorBound, s.threads);
         finishResult(proxy, start);
         store(s, key, proxy);
         return proxy;
@@ -252,7 +252,7 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
         Result<const HausdorffSurface*> drawn = renderSurface.get(); // ready: the search certified `best`
         if (!drawn) return fail(drawn.error());
         proxy.drawnNormals =
-            DrawnNormals::build(render, drawn.value()->query(), proxy.mesh, proxy.errorBound, s.threads);
+            DrawnNormals::build(render, *drawn.value(), proxy.mesh, proxy.errorBound, s.threads);
         if (!proxy.toleranceMet)
             proxy.notes.push_back(
                 std::string("h = ") + std::to_string(proxy.errorBound) + " is above the tolerance " +

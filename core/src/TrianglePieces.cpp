@@ -2,12 +2,14 @@
 
 #include "SurfaceGeometry.hpp"
 
+#include <algorithm>
 #include <optional>
 
 namespace spatter {
 
 std::vector<uint32_t> nearestTrianglePerPiece(const ClosestPointQuery& query, const Mesh& collision,
-                                              uint32_t none, double reach, unsigned threads) {
+                                              uint32_t none, double reach, unsigned threads,
+                                              const std::vector<uint32_t>& held) {
     std::vector<uint32_t> nearest(collision.triangleCount() * kPiecesPerTriangle, none);
     auto nearestTo = [&](const glm::dvec3& centre) {
         std::optional<ClosestPoint> near = query.closest(centre, reach);
@@ -18,6 +20,11 @@ std::vector<uint32_t> nearestTrianglePerPiece(const ClosestPointQuery& query, co
         collision.triangleCount(), 64, detail::workersFor(threads),
         [&](size_t begin, size_t end, unsigned) {
             for (size_t t = begin; t < end; ++t) {
+                if (t < held.size() && held[t] != none) {
+                    std::fill_n(nearest.begin() + std::ptrdiff_t(t * kPiecesPerTriangle), kPiecesPerTriangle,
+                                held[t]);
+                    continue;
+                }
                 const uint32_t* c = &collision.indices[3 * t];
                 const glm::dvec3 p0(collision.positions[c[0]]);
                 size_t k = t * kPiecesPerTriangle;

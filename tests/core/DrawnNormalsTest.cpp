@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -68,6 +69,25 @@ TEST(DrawnNormals, AProxyCarriesTheNormalOfTheRenderTriangleNearestEachPieceOfIt
     ASSERT_TRUE(p) << p.error();
     ASSERT_EQ(p->source, ProxySource::Simplified);
     expectNearestFaces(p->drawnNormals, p->mesh, render);
+}
+
+// At a fine tolerance the proxy keeps many render triangles as they are (a fifth of them here); each
+// piece of such a triangle takes that triangle's normal without a search: the table a search gives.
+TEST(DrawnNormals, ProxyTrianglesKeptFromTheRenderMeshTakeTheirOwnNormals) {
+    const Mesh render = latLongSphere(1.0f, 48, 64, 0.05f);
+    ProxySettings s;
+    s.tolerance = 0.004f;
+    Result<Proxy> p = buildProxy(render, s);
+    ASSERT_TRUE(p) << p.error();
+    ASSERT_EQ(p->source, ProxySource::Simplified);
+    Result<HausdorffSurface> surface = HausdorffSurface::create(render);
+    ASSERT_TRUE(surface) << surface.error();
+    const std::vector<uint32_t> same = surface->sameTriangles(p->mesh);
+    EXPECT_GT(std::count_if(same.begin(), same.end(), [](uint32_t t) { return t != UINT32_MAX; }),
+              std::ptrdiff_t(p->mesh.triangleCount() / 5));
+    Result<DrawnNormals> searched = DrawnNormals::build(render, p->mesh, p->errorBound);
+    ASSERT_TRUE(searched) << searched.error();
+    EXPECT_EQ(p->drawnNormals.packed(), searched->packed());
 }
 
 TEST(DrawnNormals, AnAuthoredColliderCarriesThemToo) {

@@ -7,6 +7,7 @@
 // built there already) and the cache keeps it, so that a collision world built from cached proxies
 // does not search the render meshes again.
 
+#include "spatter/core/HausdorffBound.hpp"
 #include "spatter/core/Mesh.hpp"
 #include "spatter/core/MeshDistance.hpp"
 #include "spatter/core/Result.hpp"
@@ -31,11 +32,12 @@ public:
     // A table as stored (kPiecesPerTriangle entries per collision triangle, in piece order).
     explicit DrawnNormals(std::vector<Packed> packed) : normals_(std::move(packed)) {}
 
-    // The table for collision mesh `collision` standing for `render` (both in the same space), `query`
-    // answering for `render`; `reach` bounds how far `render` lies from `collision` (the proxy's h;
-    // infinity when unknown), which only makes the search quicker. `threads`: as for
-    // nearestTrianglePerPiece.
-    static DrawnNormals build(const Mesh& render, const ClosestPointQuery& query, const Mesh& collision,
+    // The table for collision mesh `collision` standing for `render` (both in the same space), `surface`
+    // prepared from `render` (its nearest-point query searches, and a collision triangle it shares
+    // corner for corner takes that render triangle's normal without a search); `reach` bounds how far
+    // `render` lies from `collision` (the proxy's h; infinity when unknown), which only makes the search
+    // quicker. `threads`: as for nearestTrianglePerPiece.
+    static DrawnNormals build(const Mesh& render, const HausdorffSurface& surface, const Mesh& collision,
                               double reach, unsigned threads = 0);
     // The same with a nearest-point structure over `render` built for it. Fails when it cannot be.
     static Result<DrawnNormals> build(const Mesh& render, const Mesh& collision, double reach);

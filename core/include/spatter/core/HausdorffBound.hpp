@@ -32,14 +32,16 @@
 // reported is the largest bound of an accepted node or piece: every point of A lies in one of them, so it is
 // >= h(A, B). A piece whose enclosing radius is at most the margin is always accepted (its Lipschitz bound is
 // at most L + margin), so the refinement ends. When a measured distance exceeds the tolerance, the answer to
-// "is h <= tol?" is no, and the search stops there (`exceeded`).
+// "is h <= tol?" is no, and the search stops there (`exceeded`). A triangle of A with the three corners of
+// a triangle of B lies on B: it and the nodes holding only such triangles are not bounded at all (where
+// one surface has at most 4 times the other's triangles; sameTriangles below).
 //
-// Work is split over a fixed number of subtrees of the hierarchy, walked on up to kMaxThreads threads; each subtree
-// starts from the same lower bound (the distances at a fixed stride of triangle centroids), so a result that
-// is not `exceeded` does not depend on the thread count or on timing: the same on every machine. (An
-// `exceeded` one stops at the first distance above the tolerance that some thread measures: its `lower` and
-// `farthest` may differ from run to run; the answer does not.) A relative allowance of 1e-9 (of the bound and
-// of the largest coordinate) covers double rounding.
+// Work is split over a fixed number of subtrees of the hierarchy, walked on up to kMaxThreads threads; each
+// subtree starts from the same lower bound (the distances at a fixed stride of triangle centroids), so a
+// result that is not `exceeded` does not depend on the thread count or on timing: the same on every machine.
+// (An `exceeded` one stops at the first distance above the tolerance that some thread measures: its `lower`
+// and `farthest` may differ from run to run; the answer does not.) A relative allowance of 1e-9 (of the bound
+// and of the largest coordinate) covers double rounding.
 
 #include "spatter/core/Mesh.hpp"
 #include "spatter/core/MeshDistance.hpp"
@@ -49,6 +51,7 @@
 #include <glm/glm.hpp>
 #include <limits>
 #include <memory>
+#include <vector>
 
 namespace spatter {
 
@@ -68,6 +71,13 @@ public:
     size_t surfaceTriangleCount() const;
     // The nearest-point structure over the mesh (its triangle indices are the mesh's).
     const ClosestPointQuery& query() const;
+    // For each triangle of `mesh` (in the same space), the index of a surface triangle of this mesh
+    // with the same three corners (bit-identical positions, in any order; the lowest where several
+    // have), or UINT32_MAX where none has or the triangle names a vertex `mesh` lacks. A proxy
+    // simplified from this mesh keeps many of its triangles as they are at a fine tolerance. Where
+    // this surface has more than 4 times the triangles of `mesh`, few can be shared and none is looked
+    // for: every entry is UINT32_MAX.
+    std::vector<uint32_t> sameTriangles(const Mesh& mesh) const;
 
     // The prepared data, opaque outside the certifier.
     struct Impl;
@@ -94,8 +104,8 @@ struct HausdorffSettings {
     // instead of bounded above it (undecided). 0 keeps the margin as given.
     double roomShare = 0.0; // in [0, 1)
     double minRoom = 0.01;  // in (0, 1]
-    // Threads to walk on: 0 for the hardware's (at most kMaxThreads), else 1 to kMaxThreads. The result does not depend
-    // on it (see the top of this file).
+    // Threads to walk on: 0 for the hardware's (at most kMaxThreads), else 1 to kMaxThreads. The result does
+    // not depend on it (see the top of this file).
     unsigned threads = 0;
 };
 

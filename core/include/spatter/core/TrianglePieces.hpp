@@ -50,10 +50,13 @@ inline size_t pieceOf(const glm::dvec3& bary) {
 // answers for that is nearest the piece's centre; `none` where it finds none. `reach`: how far that
 // surface may lie from `collision` (a certified bound such as a proxy's h; infinity when none is
 // known): the search looks that far first, then everywhere. On `threads` threads (0: the hardware's,
-// at most kMaxThreads; the result does not depend on it).
+// at most kMaxThreads; the result does not depend on it). `held`, empty or one entry per collision
+// triangle: a triangle of that surface holding the collision triangle (the same corners;
+// HausdorffSurface::sameTriangles), `none` where none is known; each piece of a held triangle lies on
+// it, so it is taken without a search.
 std::vector<uint32_t> nearestTrianglePerPiece(const ClosestPointQuery& query, const Mesh& collision,
                                               uint32_t none,
                                               double reach = std::numeric_limits<double>::infinity(),
-                                              unsigned threads = 0);
+                                              unsigned threads = 0, const std::vector<uint32_t>& held = {});
 
 } // namespace spatter
