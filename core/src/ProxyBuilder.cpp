@@ -233,9 +233,10 @@ Result<Proxy> buildProxy(const Mesh& render, const ProxySettings& s, const Mesh*
         backend == ProxyBackend::MeshOpt && s.maxTriangles == 0
             ? detail::coarseInputs(meshoptInput, welded.triangleCount(), tolerance, s.keepBoundaries)
             : std::vector<CoarseInput>();
+    SampleMemory judged;
     const SearchContext context{backend,          welded,       meshoptInput,  coarse,     tolerance,
                                 surfaceTriangles, withinBudget, renderSurface, certifying, s,
-                                searchProgress,   proxy.notes};
+                                searchProgress,   proxy.notes,  judged};
     Result<SearchOutcome> outcome = searchBackend(context, s.maxAttempts);
     if (!outcome) return fail(outcome.error());
     proxy.attempts = outcome->runs;

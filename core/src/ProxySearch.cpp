@@ -203,13 +203,14 @@ struct Judged {
 };
 
 // The quick judgement of a run: the larger of two sampled lower bounds, proxy to render first (where
-// a coarse triangle hides its largest distance inside), each stopping above the tolerance.
+// a coarse triangle hides its largest distance inside; the triangles earlier runs kept are measured
+// again only where they could raise it, `judged`), each stopping above the tolerance.
 Status judgeQuickly(Candidate& c, const HausdorffSurface& render, double tolerance, unsigned threads,
-                    double& measured, const ProgressCallback& progress) {
+                    SampleMemory& judged, double& measured, const ProgressCallback& progress) {
     measured = std::numeric_limits<double>::infinity();
     if (c.mesh.indices.empty()) return {};
     Result<double> p2r =
-        sampledLowerBound(c.mesh, render, kSampledProxyTriangles, tolerance, progress, threads);
+        sampledLowerBound(c.mesh, render, kSampledProxyTriangles, tolerance, progress, threads, &judged);
     if (!p2r) return fail(p2r.error());
     measured = p2r.value();
     if (measured > tolerance) return {};
@@ -272,7 +273,7 @@ Result<Judged> runAndJudgeFrom(const SearchContext& k, const Mesh& input, double
     Result<const HausdorffSurface*> render = k.render.get();
     if (!render) return fail(render.error());
     if (judge == Judge::Sampled) {
-        if (Status st = judgeQuickly(j.candidate, *render.value(), k.tolerance, k.settings.threads,
+        if (Status st = judgeQuickly(j.candidate, *render.value(), k.tolerance, k.settings.threads, k.judged,
                                      j.measured, k.progress.stage(0.2, 0.8));
             !st)
             return fail(st.error());

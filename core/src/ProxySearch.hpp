@@ -7,6 +7,7 @@
 #include "spatter/core/Mesh.hpp"
 #include "spatter/core/ProxyBuilder.hpp"
 #include "spatter/core/Result.hpp"
+#include "spatter/core/SampleMemory.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -129,6 +130,7 @@ struct SearchContext {
     const ProxySettings& settings;
     SearchProgress& progress;
     std::vector<std::string>& notes;
+    SampleMemory& judged; // what the runs' judgements measured on their triangles toward the render mesh
 };
 
 // The coarsest certified proxy one backend gives (see "The search" in docs/PROXIES.md). The

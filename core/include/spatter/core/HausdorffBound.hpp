@@ -55,6 +55,8 @@
 
 namespace spatter {
 
+class SampleMemory;
+
 // One mesh prepared for certification on either side: its hierarchy (for the side measured from)
 // and its closest-point query (for the side measured to). Built once and reused across any number
 // of bounds, e.g. a render mesh against many candidate proxies. Copies what it needs. Move-only.
@@ -153,10 +155,12 @@ Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSu
                                  unsigned threads = 0);
 // The same from a mesh not prepared for the certifier (its surface triangles in the mesh's order, where
 // the prepared surface strides over its hierarchy's order: the same samples wherever all triangles
-// are sampled). Fails also like checkTriangles on a bad index or a non-finite position.
+// are sampled). Fails also like checkTriangles on a bad index or a non-finite position. `memory`, where
+// given: what earlier calls toward `to` (and toward no other surface) measured on the triangles they
+// sampled, used and added to (SampleMemory.hpp); the answer is the same without it.
 Result<double> sampledLowerBound(const Mesh& from, const HausdorffSurface& to, size_t maxTriangles,
                                  double stopAbove, const ProgressCallback& progress = {},
-                                 unsigned threads = 0);
+                                 unsigned threads = 0, SampleMemory* memory = nullptr);
 
 // Both directions (a to b first, its lower bound then carried into b to a): lower and upper are the
 // two-sided ones; `exceeded` as soon as either direction exceeds. Fails like boundOneSided, and when
