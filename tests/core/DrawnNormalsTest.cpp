@@ -59,35 +59,41 @@ void expectNearestFaces(const DrawnNormals& table, const Mesh& collision, const 
     }
 }
 
+// Builds the proxy of `render` at `tolerance` (of the diagonal) into `out`; fails unless the builder
+// simplified it.
+::testing::AssertionResult buildSimplified(const Mesh& render, float tolerance, Proxy& out) {
+    ProxySettings s;
+    s.tolerance = tolerance;
+    Result<Proxy> p = buildProxy(render, s);
+    if (!p) return ::testing::AssertionFailure() << p.error();
+    if (p->source != ProxySource::Simplified) return ::testing::AssertionFailure() << "not simplified";
+    out = std::move(p).value();
+    return ::testing::AssertionSuccess();
+}
+
 } // namespace
 
 TEST(DrawnNormals, AProxyCarriesTheNormalOfTheRenderTriangleNearestEachPieceOfIt) {
     const Mesh render = latLongSphere(1.0f, 24, 32, 0.05f);
-    ProxySettings s;
-    s.tolerance = 0.02f;
-    Result<Proxy> p = buildProxy(render, s);
-    ASSERT_TRUE(p) << p.error();
-    ASSERT_EQ(p->source, ProxySource::Simplified);
-    expectNearestFaces(p->drawnNormals, p->mesh, render);
+    Proxy p;
+    ASSERT_TRUE(buildSimplified(render, 0.02f, p));
+    expectNearestFaces(p.drawnNormals, p.mesh, render);
 }
 
 // At a fine tolerance the proxy keeps many render triangles as they are (a fifth of them here); each
 // piece of such a triangle takes that triangle's normal without a search: the table a search gives.
 TEST(DrawnNormals, ProxyTrianglesKeptFromTheRenderMeshTakeTheirOwnNormals) {
     const Mesh render = latLongSphere(1.0f, 48, 64, 0.05f);
-    ProxySettings s;
-    s.tolerance = 0.004f;
-    Result<Proxy> p = buildProxy(render, s);
-    ASSERT_TRUE(p) << p.error();
-    ASSERT_EQ(p->source, ProxySource::Simplified);
+    Proxy p;
+    ASSERT_TRUE(buildSimplified(render, 0.004f, p));
     Result<HausdorffSurface> surface = HausdorffSurface::create(render);
     ASSERT_TRUE(surface) << surface.error();
-    const std::vector<uint32_t> same = surface->sameTriangles(p->mesh);
+    const std::vector<uint32_t> same = surface->sameTriangles(p.mesh);
     EXPECT_GT(std::count_if(same.begin(), same.end(), [](uint32_t t) { return t != UINT32_MAX; }),
-              std::ptrdiff_t(p->mesh.triangleCount() / 5));
-    Result<DrawnNormals> searched = DrawnNormals::build(render, p->mesh, p->errorBound);
+              std::ptrdiff_t(p.mesh.triangleCount() / 5));
+    Result<DrawnNormals> searched = DrawnNormals::build(render, p.mesh, p.errorBound);
     ASSERT_TRUE(searched) << searched.error();
-    EXPECT_EQ(p->drawnNormals.packed(), searched->packed());
+    EXPECT_EQ(p.drawnNormals.packed(), searched->packed());
 }
 
 TEST(DrawnNormals, AnAuthoredColliderCarriesThemToo) {
