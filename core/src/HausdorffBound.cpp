@@ -1,9 +1,7 @@
 #include "spatter/core/HausdorffBound.hpp"
 
-#include "spatter/core/SampleMemory.hpp"
-
+#include "HausdorffSurfaceImpl.hpp"
 #include "PieceOverlay.hpp"
-#include "SharedTriangles.hpp"
 #include "SurfaceGeometry.hpp"
 
 #include <algorithm>
@@ -21,11 +19,6 @@ namespace spatter {
 
 namespace {
 
-// Largest number of triangles in a leaf of the hierarchy.
-constexpr uint32_t kLeafTriangles = 4;
-// A node is split at the middle of its extent unless less than this fraction of its triangles would
-// go to one side (buildHierarchy).
-constexpr uint32_t kLeastSplit = 8;
 // A node of at most this many triangles is bounded over its triangles' corners (the convex hull of
 // its surface) instead of its box corners.
 constexpr uint32_t kHullTriangles = 16;
@@ -46,149 +39,13 @@ constexpr double kOverlayEps = 1e-12;
 // per triangle under the piece; counting one to four steps per triangle gave the same build times on
 // the shared meshes and the gallery).
 constexpr double kStepsPerTriangle = 4.0, kStepsPerQuery = 4.0;
-// Triangles two surfaces share are looked for only where the larger has at most this many times the
-// smaller's triangles. A proxy keeps fewer of the render mesh's triangles as they are the smaller it is
-// (DamagedHelmet: 58% of the proxy's at 0.2%, 1.6 times smaller; 10% at 1%, 4.8 times; 6% at 2%), and
-// the table of the larger's triangles costs about 85 ns a triangle (6 ms for the 69,451-triangle
-// bunny): looked for up to 8 times, the builds between 4 and 8 times came out 0.97x to 1.08x of the
-// time, none faster.
-constexpr size_t kShareRatio = 4;
 // B's mean triangle area, as a fraction of the acceptance level squared, below which no piece is
 // laid over B: pieces are then bounded by Lipschitz long before they cover enough of B's triangles
 // for the overlay to pay, and B's edges need not be linked at all.
 constexpr double kOverlayArea = 0.05;
 
-struct Node {
-    glm::dvec3 lo{0.0}, hi{0.0};
-    uint32_t first = 0, count = 0; // range of Impl::triangles
-    uint32_t child = 0;            // first of two children (child + 1 is the second); 0 for a leaf
-};
-
-} // namespace
-
-struct HausdorffSurface::Impl {
-    std::vector<glm::dvec3> positions;
-    std::vector<uint32_t> indices;                  // the mesh's, so that query results index them
-    std::vector<std::array<uint32_t, 3>> triangles; // surface triangles' corners, in hierarchy order
-    std::vector<Node> nodes;                        // nodes[0] is the root
-    std::vector<uint32_t> surface;                  // the surface triangles' indices in the mesh
-    std::vector<uint32_t> meshTriangles;            // the mesh's index of each of `triangles`
-    ClosestPointQuery query;
-    double scale = 0.0;        // largest absolute coordinate of a surface vertex
-    double triangleArea = 0.0; // mean area of a surface triangle
-
-    explicit Impl(ClosestPointQuery q) : query(std::move(q)) {}
-
-    glm::dvec3 corner(uint32_t meshTriangle, int k) const {
-        return positions[indices[3 * size_t(meshTriangle) + size_t(k)]];
-    }
-
-    // The triangles across each edge (the side measured to, for the overlay bound), made at the first
-    // call: most bounds never lay a piece over this side.
-    const detail::EdgeNeighbours& neighbours() const {
-        std::call_once(neighboursMade_,
-                       [this] { neighbours_ = detail::edgeNeighbours(positions, indices, surface); });
-        return neighbours_;
-    }
-
-    // The surface triangles by their corners, to find those another surface shares, made at the first
-    // call: a render mesh bounded against many candidates tables its triangles once.
-    const detail::TriangleCorners& corners() const {
-        std::call_once(cornersMade_, [this] { corners_.emplace(positions, triangles); });
-        return *corners_;
-    }
-
-private:
-    mutable std::once_flag neighboursMade_;
-    mutable detail::EdgeNeighbours neighbours_;
-    mutable std::once_flag cornersMade_;
-    mutable std::optional<detail::TriangleCorners> corners_;
-};
-
-namespace {
-
 using Impl = HausdorffSurface::Impl;
-
-void fitBox(Impl& s, Node& n) {
-    n.lo = glm::dvec3(std::numeric_limits<double>::infinity());
-    n.hi = -n.lo;
-    for (uint32_t i = n.first; i < n.first + n.count; ++i)
-        for (uint32_t v : s.triangles[i]) {
-            n.lo = glm::min(n.lo, s.positions[v]);
-            n.hi = glm::max(n.hi, s.positions[v]);
-        }
-}
-
-// A triangle's centroid and its index, split by the hierarchy (in place, without indirection).
-struct Centroid {
-    glm::dvec3 c;
-    uint32_t triangle;
-};
-
-// The number of the centroids in [first, last) that go to the first child: those below the middle of
-// their extent along `axis`, split in place in one pass; where fewer than 1 / kLeastSplit of them lie
-// on one side of it, the lower half by their order along the axis (so that the depth stays
-// logarithmic whatever the spacing of the triangles).
-uint32_t splitCentroids(std::vector<Centroid>::iterator first, std::vector<Centroid>::iterator last, int axis,
-                        double middle) {
-    const auto below = [axis, middle](const Centroid& a) { return a.c[axis] < middle; };
-    const uint32_t count = uint32_t(last - first);
-    const uint32_t split = uint32_t(std::partition(first, last, below) - first);
-    const uint32_t least = std::max(1u, count / kLeastSplit);
-    if (split >= least && count - split >= least) return split;
-    std::nth_element(first, first + count / 2, last, [axis](const Centroid& a, const Centroid& b) {
-        return a.c[axis] != b.c[axis] ? a.c[axis] < b.c[axis] : a.triangle < b.triangle;
-    });
-    return count / 2;
-}
-
-// Split at the middle of the centroids' extent along its longest axis (a pass over the node, where a
-// median costs a selection), until leaves of kLeafTriangles.
-void buildHierarchy(Impl& s) {
-    s.nodes.clear();
-    if (s.triangles.empty()) return;
-    std::vector<Centroid> order(s.triangles.size());
-    for (size_t i = 0; i < s.triangles.size(); ++i)
-        order[i] = {(s.positions[s.triangles[i][0]] + s.positions[s.triangles[i][1]] +
-                     s.positions[s.triangles[i][2]]) /
-                        3.0,
-                    uint32_t(i)};
-    s.nodes.reserve(2 * s.triangles.size() / kLeafTriangles + 1);
-    s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), 0, uint32_t(order.size()), 0});
-    for (size_t i = 0; i < s.nodes.size(); ++i) {
-        const Node n = s.nodes[i];
-        if (n.count <= kLeafTriangles) continue;
-        const auto first = order.begin() + n.first, last = first + n.count;
-        glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi = -lo;
-        for (auto it = first; it != last; ++it) {
-            lo = glm::min(lo, it->c);
-            hi = glm::max(hi, it->c);
-        }
-        const glm::dvec3 extent = hi - lo;
-        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-        const uint32_t half = splitCentroids(first, last, axis, 0.5 * (lo[axis] + hi[axis]));
-        s.nodes[i].child = uint32_t(s.nodes.size());
-        s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), n.first, half, 0});
-        s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), n.first + half, n.count - half, 0});
-    }
-    std::vector<std::array<uint32_t, 3>> sorted(order.size());
-    s.meshTriangles.resize(order.size());
-    for (size_t i = 0; i < order.size(); ++i) {
-        sorted[i] = s.triangles[order[i].triangle];
-        s.meshTriangles[i] = s.surface[order[i].triangle];
-    }
-    s.triangles = std::move(sorted);
-    // Leaves from their triangles, inner nodes from their children (which come after them).
-    for (size_t i = s.nodes.size(); i-- > 0;) {
-        Node& n = s.nodes[i];
-        if (n.child == 0) {
-            fitBox(s, n);
-        } else {
-            n.lo = glm::min(s.nodes[n.child].lo, s.nodes[n.child + 1].lo);
-            n.hi = glm::max(s.nodes[n.child].hi, s.nodes[n.child + 1].hi);
-        }
-    }
-}
+using Node = detail::HausdorffNode;
 
 // Which of a surface's triangles (hierarchy order) the other surface shares corner for corner, and
 // which of its nodes hold only such triangles: every distance from them to the other surface is 0.
@@ -220,7 +77,7 @@ std::pair<Shared, Shared> sharedTriangles(const Impl& a, const Impl& b) {
     const bool aLarger = a.triangles.size() >= b.triangles.size();
     const Impl& large = aLarger ? a : b;
     const Impl& small = aLarger ? b : a;
-    if (large.triangles.size() > kShareRatio * small.triangles.size()) return {};
+    if (large.triangles.size() > detail::kShareRatio * small.triangles.size()) return {};
     Shared sa, sb;
     sa.triangles.assign(a.triangles.size(), 0);
     sb.triangles.assign(b.triangles.size(), 0);
@@ -545,61 +402,6 @@ std::vector<uint32_t> subtrees(const Impl& a, size_t wanted) {
 
 } // namespace
 
-HausdorffSurface::HausdorffSurface(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
-HausdorffSurface::HausdorffSurface(HausdorffSurface&&) noexcept = default;
-HausdorffSurface& HausdorffSurface::operator=(HausdorffSurface&&) noexcept = default;
-HausdorffSurface::~HausdorffSurface() = default;
-
-Result<HausdorffSurface> HausdorffSurface::create(const Mesh& mesh) {
-    Result<ClosestPointQuery> query = ClosestPointQuery::create(mesh); // validates the mesh
-    if (!query) return fail(query.error());
-    auto impl = std::make_unique<Impl>(std::move(query).value());
-    impl->positions.reserve(mesh.positions.size());
-    for (const glm::vec3& p : mesh.positions)
-        impl->positions.emplace_back(p);
-    impl->indices = mesh.indices;
-    const std::vector<uint32_t> surface = detail::surfaceTriangles(mesh);
-    for (uint32_t t : surface) {
-        impl->triangles.push_back(
-            {mesh.indices[3 * size_t(t)], mesh.indices[3 * size_t(t) + 1], mesh.indices[3 * size_t(t) + 2]});
-        for (uint32_t v : impl->triangles.back())
-            for (int k = 0; k < 3; ++k)
-                impl->scale = std::max(impl->scale, std::fabs(impl->positions[v][k]));
-    }
-    impl->surface = surface;
-    for (const std::array<uint32_t, 3>& t : impl->triangles) {
-        const glm::dvec3 a = impl->positions[t[0]];
-        impl->triangleArea +=
-            0.5 * glm::length(glm::cross(impl->positions[t[1]] - a, impl->positions[t[2]] - a));
-    }
-    if (!impl->triangles.empty()) impl->triangleArea /= double(impl->triangles.size());
-    buildHierarchy(*impl);
-    return HausdorffSurface(std::move(impl));
-}
-
-size_t HausdorffSurface::surfaceTriangleCount() const {
-    return impl_->triangles.size();
-}
-
-const ClosestPointQuery& HausdorffSurface::query() const {
-    return impl_->query;
-}
-
-std::vector<uint32_t> HausdorffSurface::sameTriangles(const Mesh& mesh) const {
-    std::vector<uint32_t> same(mesh.triangleCount(), UINT32_MAX);
-    const Impl& s = *impl_;
-    if (s.triangles.size() > kShareRatio * same.size()) return same;
-    for (size_t t = 0; t < same.size(); ++t) {
-        const uint32_t* c = &mesh.indices[3 * t];
-        if (std::max({c[0], c[1], c[2]}) >= mesh.positions.size()) continue;
-        s.corners().forEachSame(
-            s.positions, s.triangles,
-            {detail::corner(mesh, t, 0), detail::corner(mesh, t, 1), detail::corner(mesh, t, 2)},
-            [&](uint32_t i) { same[t] = std::min(same[t], s.meshTriangles[i]); });
-    }
-    return same;
-}
-
 namespace {
 
 Status checkSettings(const HausdorffSettings& s) {
@@ -779,93 +581,6 @@ Result<HausdorffPair> boundBothWays(const HausdorffSurface& a, const HausdorffSu
     if (!walkAll({&ab, &ba}, workers, exceeded, progress)) return fail("cancelled");
     if (!exceeded.load() && progress && !progress(1.0f, "measure")) return fail("cancelled");
     return HausdorffPair{ab.result(), ba.result()};
-}
-
-namespace {
-
-// The samples of triangle p (its centroid and edge midpoints), each raising `largest` where it lies
-// farther: "is b within `largest` of it?" first, a search that stops at the first triangle answering
-// yes, and the exact distance only where it is not. What they showed of the triangle.
-SampleMemory::Known measureSamples(const Impl& b, const glm::dvec3 (&p)[3], double& largest) {
-    double exact = -1.0, bound = 0.0;
-    for (const glm::dvec3& q :
-         {(p[0] + p[1] + p[2]) / 3.0, 0.5 * (p[0] + p[1]), 0.5 * (p[1] + p[2]), 0.5 * (p[2] + p[0])}) {
-        if (b.query.within(q, largest)) {
-            bound = std::max(bound, largest);
-            continue;
-        }
-        const std::optional<ClosestPoint> c = b.query.closest(q);
-        exact = std::max(exact, c ? c->distance : std::numeric_limits<double>::infinity());
-        largest = std::max(largest, exact);
-    }
-    return {std::max(exact, bound), exact >= bound};
-}
-
-// sampledLowerBound over `count` triangles of `from`, whose corners corner(i, k) gives (k = 0, 1, 2),
-// with `memory` (SampleMemory.hpp) where given: a triangle it knows is measured only where its samples
-// could lie farther than the largest distance found so far, and what is measured is added to it.
-template <class Corner>
-Result<double> sampledFrom(size_t count, Corner&& corner, const Impl& b, size_t maxTriangles,
-                           double stopAbove, const ProgressCallback& progress, unsigned threads,
-                           SampleMemory* memory) {
-    if (count == 0) return 0.0;
-    if (b.triangles.empty()) return fail("the target mesh has no surface (no triangle of non-zero area)");
-    const size_t stride = std::max<size_t>(1, count / std::max<size_t>(maxTriangles, 1));
-    const size_t sampled = (count + stride - 1) / stride;
-    const unsigned workers = detail::workersFor(threads);
-    std::vector<double> worst(workers, 0.0);
-    std::vector<std::vector<std::pair<SampleMemory::TriangleKey, SampleMemory::Known>>> learned(workers);
-    std::atomic<bool> above{false};
-    // Only a sample farther than the worker's largest so far changes the result.
-    auto sample = [&](const glm::dvec3(&p)[3], unsigned w) {
-        if (!memory) {
-            measureSamples(b, p, worst[w]);
-            return;
-        }
-        const SampleMemory::TriangleKey key = SampleMemory::keyOf(p[0], p[1], p[2]);
-        const SampleMemory::Known* known = memory->find(key);
-        if (known && known->attained)
-            worst[w] = std::max(worst[w], known->farthest);
-        else if (!known || known->farthest > worst[w])
-            learned[w].emplace_back(key, measureSamples(b, p, worst[w]));
-    };
-    auto report = [&](double f) { return !progress || progress(float(f), "measure"); };
-    const bool finished = detail::parallelChunks(
-        sampled, 256, workers,
-        [&](size_t begin, size_t end, unsigned w) {
-            for (size_t i = begin; i < end && !above.load(std::memory_order_relaxed); ++i) {
-                const glm::dvec3 p[3] = {corner(i * stride, 0), corner(i * stride, 1), corner(i * stride, 2)};
-                sample(p, w);
-                if (worst[w] > stopAbove) above.store(true, std::memory_order_relaxed);
-            }
-        },
-        report, &above);
-    if (memory) // read-only while the workers ran
-        for (const auto& found : learned)
-            for (const auto& [key, known] : found)
-                memory->keep(key, known);
-    if (!finished) return fail("cancelled");
-    return *std::max_element(worst.begin(), worst.end());
-}
-
-} // namespace
-
-Result<double> sampledLowerBound(const HausdorffSurface& from, const HausdorffSurface& to,
-                                 size_t maxTriangles, double stopAbove, const ProgressCallback& progress,
-                                 unsigned threads) {
-    const Impl& a = from.impl();
-    auto corner = [&a](size_t i, int k) { return a.positions[a.triangles[i][size_t(k)]]; };
-    return sampledFrom(a.triangles.size(), corner, to.impl(), maxTriangles, stopAbove, progress, threads,
-                       nullptr);
-}
-
-Result<double> sampledLowerBound(const Mesh& from, const HausdorffSurface& to, size_t maxTriangles,
-                                 double stopAbove, const ProgressCallback& progress, unsigned threads,
-                                 SampleMemory* memory) {
-    if (Status st = detail::checkTriangles(from); !st) return fail(st.error());
-    const std::vector<uint32_t> surface = detail::surfaceTriangles(from);
-    auto corner = [&](size_t i, int k) { return detail::corner(from, surface[i], k); };
-    return sampledFrom(surface.size(), corner, to.impl(), maxTriangles, stopAbove, progress, threads, memory);
 }
 
 Result<HausdorffResult> boundHausdorff(const HausdorffSurface& a, const HausdorffSurface& b,
