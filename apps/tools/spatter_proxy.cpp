@@ -84,23 +84,14 @@ spatter::Mesh mergeWorld(const spatter::Scene& scene) {
     return out;
 }
 
-bool writeObj(const std::string& path, const spatter::Proxy& proxy) {
-    std::FILE* f = std::fopen(path.c_str(), "w");
-    if (!f) return false;
-    const spatter::Mesh& m = proxy.mesh;
-    std::fprintf(f, "# spatter-proxy: %zu vertices, %zu triangles, source %s, backend %s, h = %.9g\n",
-                 m.positions.size(), m.triangleCount(), spatter::proxySourceName(proxy.source),
-                 spatter::proxyBackendName(proxy.backend), proxy.errorBound);
-    for (const glm::vec3& p : m.positions)
-        std::fprintf(f, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
-    for (const glm::vec3& n : m.normals)
-        std::fprintf(f, "vn %.9g %.9g %.9g\n", n.x, n.y, n.z);
-    for (size_t t = 0; t < m.triangleCount(); ++t) {
-        const uint32_t a = m.indices[3 * t] + 1, b = m.indices[3 * t + 1] + 1, c = m.indices[3 * t + 2] + 1;
-        std::fprintf(f, "f %u//%u %u//%u %u//%u\n", a, a, b, b, c, c);
-    }
-    const bool ok = std::ferror(f) == 0;
-    return std::fclose(f) == 0 && ok;
+// The comment line of the proxy's OBJ file.
+std::string objComment(const spatter::Proxy& proxy) {
+    char line[256];
+    std::snprintf(
+        line, sizeof line, "spatter-proxy: %zu vertices, %zu triangles, source %s, backend %s, h = %.9g",
+        proxy.mesh.positions.size(), proxy.mesh.triangleCount(), spatter::proxySourceName(proxy.source),
+        spatter::proxyBackendName(proxy.backend), proxy.errorBound);
+    return line;
 }
 
 // Progress of the whole build on stderr: on a terminal one line, rewritten in place with the stage
@@ -268,8 +259,8 @@ int main(int argc, char** argv) {
             std::cerr << "spatter-proxy: note: " << note << "\n";
     spatter::cli::OutputCleanup cleanup; // the outputs of a run that fails
     cleanup.writing(out);
-    if (!writeObj(out, proxy.value())) {
-        std::cerr << "spatter-proxy: cannot write " << out << "\n";
+    if (spatter::Status written = spatter::writeObj(proxy->mesh, out, objComment(proxy.value())); !written) {
+        std::cerr << "spatter-proxy: " << written.error() << "\n";
         return 1;
     }
     if (!report.empty()) {

@@ -26,14 +26,25 @@ struct QuietOpenMesh {
 
 } // namespace
 
-Status writeObj(const Mesh& mesh, const std::string& path) {
+Status writeObj(const Mesh& mesh, const std::string& path, const std::string& comment) {
+    if (comment.find_first_of("\r\n") != std::string::npos)
+        return fail("cannot write '" + path + "': the comment spans more than one line");
     std::FILE* f = std::fopen(path.c_str(), "wb");
     if (!f) return fail("cannot write '" + path + "'");
+    if (!comment.empty()) std::fprintf(f, "# %s\n", comment.c_str());
     for (const glm::vec3& p : mesh.positions)
         std::fprintf(f, "v %.9g %.9g %.9g\n", double(p.x), double(p.y), double(p.z));
-    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
-        std::fprintf(f, "f %u %u %u\n", mesh.indices[t] + 1, mesh.indices[t + 1] + 1,
-                     mesh.indices[t + 2] + 1);
+    const bool normals = !mesh.normals.empty() && mesh.normals.size() == mesh.positions.size();
+    if (normals)
+        for (const glm::vec3& n : mesh.normals)
+            std::fprintf(f, "vn %.9g %.9g %.9g\n", double(n.x), double(n.y), double(n.z));
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const uint32_t a = mesh.indices[t] + 1, b = mesh.indices[t + 1] + 1, c = mesh.indices[t + 2] + 1;
+        if (normals)
+            std::fprintf(f, "f %u//%u %u//%u %u//%u\n", a, a, b, b, c, c);
+        else
+            std::fprintf(f, "f %u %u %u\n", a, b, c);
+    }
     const bool ok = std::ferror(f) == 0;
     return std::fclose(f) == 0 && ok ? Status() : Status(fail("cannot write '" + path + "'"));
 }

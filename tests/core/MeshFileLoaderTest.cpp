@@ -325,3 +325,33 @@ TEST(MeshFileLoader, RejectsAnObjMaterialLibraryThatIsNotARegularFile) {
             "pipe.obj: line 1: material library 'pipe.mtl' is a FIFO (named pipe), not a regular file"));
     expectMesh(writeFile(dir, "missing.obj", "mtllib missing.mtl\n" + triangle), 3, 1);
 }
+
+// writeObj's file reads back to the same positions (to the float bit), triangles and normals, after
+// its comment line; a comment of two lines is refused before anything is written.
+TEST(MeshFileLoader, ReadsBackWhatWriteObjWrote) {
+    const std::string dir = test::scratchDir("writeobj");
+    Mesh m;
+    m.positions = {{0.1f, 0.0f, 1e-7f}, {1.0f / 3.0f, 0.0f, 0.0f}, {0.0f, 2.0f / 3.0f, 0.0f}};
+    m.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    m.indices = {0, 1, 2};
+    const std::string path = dir + "/written.obj";
+    ASSERT_TRUE(writeObj(m, path, "three vertices"));
+    std::ifstream in(path);
+    std::string first;
+    std::getline(in, first);
+    EXPECT_EQ(first, "# three vertices");
+    Result<Scene> back = loadScene(path);
+    ASSERT_TRUE(back) << back.error();
+    ASSERT_EQ(back->objects.size(), 1u);
+    const Mesh& read = *back->objects[0].mesh;
+    EXPECT_EQ(read.positions, m.positions);
+    EXPECT_EQ(read.indices, m.indices);
+    ASSERT_EQ(read.normals.size(), 3u);
+    EXPECT_EQ(read.normals[2], m.normals[2]);
+
+    const std::string refused = dir + "/refused.obj";
+    Status twoLines = writeObj(m, refused, "one\ntwo");
+    ASSERT_FALSE(twoLines);
+    EXPECT_THAT(twoLines.error(), HasSubstr("more than one line"));
+    EXPECT_FALSE(std::ifstream(refused).good());
+}

@@ -33,7 +33,8 @@ Result<Scene> loadGltf(const std::string& path);
 Result<Scene> loadMeshFile(const std::string& path);
 
 // Writes the positions and triangles of `mesh` as OBJ (9 significant digits, so floats read back
-// exactly); the error names the file.
-Status writeObj(const Mesh& mesh, const std::string& path);
+// exactly), its normals too where it has one per position, after `comment` as a comment line where
+// given (one line); the error names the file.
+Status writeObj(const Mesh& mesh, const std::string& path, const std::string& comment = {});
 
 } // namespace spatter
