@@ -26,12 +26,13 @@ glm::dvec3 faceNormal(const Mesh& mesh, uint32_t t) {
 
 constexpr uint32_t kNone = UINT32_MAX;
 
-// The table from each piece's nearest render triangle (kNone where there is none).
+// The table from each piece's nearest render triangle (kNone where there is none; a triangle `render`
+// lacks, from a query or surface of another mesh, gives none either).
 std::vector<DrawnNormals::Packed> packedNormals(const Mesh& render, const std::vector<uint32_t>& nearest) {
     std::vector<DrawnNormals::Packed> normals;
     normals.reserve(nearest.size());
     for (uint32_t t : nearest)
-        normals.push_back(packNormal(t != kNone ? faceNormal(render, t) : glm::dvec3(0.0)));
+        normals.push_back(packNormal(t < render.triangleCount() ? faceNormal(render, t) : glm::dvec3(0.0)));
     return normals;
 }
 

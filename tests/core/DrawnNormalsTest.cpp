@@ -123,6 +123,20 @@ TEST(DrawnNormals, AReachTooShortStillFindsTheNearestTriangle) {
     expectNearestFaces(within.value(), collider, render);
 }
 
+// A surface prepared from another mesh than the render mesh names triangles the render mesh may lack:
+// their pieces get no normal, and nothing is read past the render mesh.
+TEST(DrawnNormals, ASurfaceOfAnotherMeshGivesNoNormalPastTheRenderMesh) {
+    const Mesh render = box(1.0f), other = latLongSphere(1.0f, 24, 32);
+    Result<HausdorffSurface> wrong = HausdorffSurface::create(other);
+    ASSERT_TRUE(wrong) << wrong.error();
+    const DrawnNormals table = DrawnNormals::build(render, wrong.value(), other, 1.0);
+    ASSERT_TRUE(table.fits(other.triangleCount()));
+    size_t none = 0;
+    for (const DrawnNormals::Packed& n : table.packed())
+        none += n == DrawnNormals::Packed{0, 0, 0} ? 1 : 0;
+    EXPECT_GT(none, 0u);
+}
+
 TEST(DrawnNormals, ABrokenRenderMeshIsNamed) {
     Mesh render = box(1.0f);
     render.indices[4] = 99;
