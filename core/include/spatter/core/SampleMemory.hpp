@@ -2,9 +2,9 @@
 // SampleMemory: what sampledLowerBound (HausdorffBound.hpp) measured toward one surface, triangle by
 // triangle, so that a later call toward the same surface from a mesh that keeps some of those triangles
 // measures them again only where they could raise its answer. A proxy search's runs keep most of one
-// another's triangles (its later runs 80% to 95% of them on the shared meshes), and each run is judged
-// by such samples against the same render mesh. The answers do not change: a triangle is skipped only
-// where none of its samples can lie farther than the largest distance found so far.
+// another's triangles (from its third run on, 75% to 97% of them on the shared meshes), and each run
+// is judged by such samples against the same render mesh. The answers do not change: a triangle is
+// skipped only where none of its samples can lie farther than the largest distance found so far.
 
 #include <glm/glm.hpp>
 
