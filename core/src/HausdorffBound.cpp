@@ -72,12 +72,12 @@ void markNodes(const Impl& s, Shared& shared) {
 }
 
 // The triangles a and b share, for each of them: the smaller surface's looked up in the larger's table;
-// none where the larger has more than kShareRatio times the smaller's triangles.
+// none where the larger has too many more triangles (detail::looksForShared).
 std::pair<Shared, Shared> sharedTriangles(const Impl& a, const Impl& b) {
     const bool aLarger = a.triangles.size() >= b.triangles.size();
     const Impl& large = aLarger ? a : b;
     const Impl& small = aLarger ? b : a;
-    if (large.triangles.size() > detail::kShareRatio * small.triangles.size()) return {};
+    if (!detail::looksForShared(large.triangles.size(), small.triangles.size())) return {};
     Shared sa, sb;
     sa.triangles.assign(a.triangles.size(), 0);
     sb.triangles.assign(b.triangles.size(), 0);

@@ -147,7 +147,7 @@ const ClosestPointQuery& HausdorffSurface::query() const {
 std::vector<uint32_t> HausdorffSurface::sameTriangles(const Mesh& mesh) const {
     std::vector<uint32_t> same(mesh.triangleCount(), UINT32_MAX);
     const Impl& s = *impl_;
-    if (s.triangles.size() > detail::kShareRatio * same.size()) return same;
+    if (!detail::looksForShared(s.triangles.size(), same.size())) return same;
     for (size_t t = 0; t < same.size(); ++t) {
         const uint32_t* c = &mesh.indices[3 * t];
         if (std::max({c[0], c[1], c[2]}) >= mesh.positions.size()) continue;

@@ -36,6 +36,11 @@ struct HausdorffNode {
 // time, none faster.
 constexpr size_t kShareRatio = 4;
 
+// Whether the triangles a surface of `larger` triangles shares with one of `smaller` are looked for.
+inline bool looksForShared(size_t larger, size_t smaller) {
+    return larger <= kShareRatio * smaller;
+}
+
 } // namespace detail
 
 struct HausdorffSurface::Impl {
