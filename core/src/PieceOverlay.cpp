@@ -141,6 +141,24 @@ bool goesOn(const Part& part, const Part& piece, const glm::dvec3& s, const glm:
     return reaches && past;
 }
 
+// The largest distance to triangle t over `part`'s corners where it is above `bound`, else at most
+// `bound`. The distance to t grows by at most the length moved, so a corner nearer to the last corner
+// measured than `bound` less that corner's distance is not measured (most parts lie much nearer t than
+// the piece's farthest point).
+double partBound(const Part& part, const std::array<glm::dvec3, 3>& t, double bound) {
+    constexpr double kRounding = 1.0 + 1e-12; // on the sum, so that a skipped corner cannot round past
+    double largest = 0.0, known = 0.0;
+    glm::dvec3 at(0.0);
+    for (int c = 0; c < part.count; ++c) {
+        const glm::dvec3& p = part.corner[size_t(c)];
+        if (c > 0 && (known + glm::length(p - at)) * kRounding <= bound) continue;
+        known = glm::length(p - closestOnTriangle(p, t[0], t[1], t[2]));
+        at = p;
+        largest = std::max(largest, known);
+    }
+    return largest;
+}
+
 } // namespace
 
 EdgeNeighbours edgeNeighbours(const std::vector<glm::dvec3>& positions, const std::vector<uint32_t>& indices,
@@ -204,11 +222,7 @@ double overlayAlong(const Part& whole, const std::array<uint32_t, 3>& near, cons
         if (!facesAlong(corners, along) || !partOver(whole, corners, along, eps, part, side)) return cap;
         if (part.count < 3) continue;
         laid = true;
-        for (int c = 0; c < part.count; ++c) {
-            const glm::dvec3& p = part.corner[size_t(c)];
-            bound =
-                std::max(bound, glm::length(p - closestOnTriangle(p, corners[0], corners[1], corners[2])));
-        }
+        bound = std::max(bound, partBound(part, corners, bound));
         if (bound >= cap) return cap;
         for (int k = 0; k < 3; ++k) {
             if (!goesOn(part, whole, side[k], corners[k], eps)) continue;
