@@ -205,6 +205,34 @@ TEST(GpuCulling, MatchesTheCpuOverManyBlocksOfTheDrawOrder) {
     expectSameAsCpu("blocks", decals, glm::dvec3(0.0), test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0}), false);
 }
 
+// The same view drawn twice over 600 decals in view, each followed by 255 far out of view, so that
+// nearly every group of three blocks holds a visible place: the second draw tests every group in one
+// pass (most were tested in the first), and each block's visible places are counted from nothing
+// again, not added to the first draw's.
+TEST(GpuCulling, MatchesTheCpuOverManyBlocksDrawnAgain) {
+    SPATTER_REQUIRE_GL(gl);
+    Rng rng(37);
+    std::vector<Decal> decals;
+    for (int i = 0; i < 600; ++i) {
+        Decal d = test::WallScene::decalAt(0, {rng.uniform(-1.0f, 1.0f), rng.uniform(0.4f, 1.6f), 0.05f});
+        d.size = glm::vec2(0.1f);
+        decals.push_back(d);
+        Decal away = d;
+        away.center.x += 500.0f;
+        decals.insert(decals.end(), 255, away);
+    }
+    const Camera camera = test::lookAt({0.0, 1.0, 4.0}, {0.0, 1.0, 0.0});
+    Variant variant;
+    variant.occlusion = false;
+    const Culled cpu = coverage(decals, {}, camera, false, variant);
+    variant.earlier = camera;
+    const Culled again = coverage(decals, {}, camera, true, variant);
+    std::printf("%zu drawn, %zu groups tested by place; %zu covered pixels\n", again.stats.drawn,
+                size_t(again.stats.groupsTested), test::countSet(again.coverage));
+    EXPECT_GE(again.stats.groupsTested, 590u);
+    expectSameCoverage("drawn again", cpu, again);
+}
+
 // The GPU's passes are sized by the counts of an earlier draw: a view that takes in thousands of
 // decals after one that took in none still culls every box, its passes' invocations striding over
 // more candidates and groups than they were sized for: the same boxes as a first draw, in the same order
