@@ -84,12 +84,13 @@ void buildHierarchy(Impl& s) {
         s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), n.first + half, n.count - half, 0});
     }
     std::vector<std::array<uint32_t, 3>> sorted(order.size());
-    s.meshTriangles.resize(order.size());
+    std::vector<uint32_t> sortedMesh(order.size());
     for (size_t i = 0; i < order.size(); ++i) {
         sorted[i] = s.triangles[order[i].triangle];
-        s.meshTriangles[i] = s.surface[order[i].triangle];
+        sortedMesh[i] = s.meshTriangles[order[i].triangle];
     }
     s.triangles = std::move(sorted);
+    s.meshTriangles = std::move(sortedMesh);
     // Leaves from their triangles, inner nodes from their children (which come after them).
     for (size_t i = s.nodes.size(); i-- > 0;) {
         Node& n = s.nodes[i];
@@ -125,7 +126,7 @@ Result<HausdorffSurface> HausdorffSurface::create(const Mesh& mesh) {
             for (int k = 0; k < 3; ++k)
                 impl->scale = std::max(impl->scale, std::fabs(impl->positions[v][k]));
     }
-    impl->surface = surface;
+    impl->meshTriangles = surface; // put in the hierarchy's order with `triangles`
     for (const std::array<uint32_t, 3>& t : impl->triangles) {
         const glm::dvec3 a = impl->positions[t[0]];
         impl->triangleArea +=

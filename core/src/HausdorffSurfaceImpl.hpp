@@ -48,7 +48,6 @@ struct HausdorffSurface::Impl {
     std::vector<uint32_t> indices;                  // the mesh's, so that query results index them
     std::vector<std::array<uint32_t, 3>> triangles; // surface triangles' corners, in hierarchy order
     std::vector<detail::HausdorffNode> nodes;       // nodes[0] is the root
-    std::vector<uint32_t> surface;                  // the surface triangles' indices in the mesh
     std::vector<uint32_t> meshTriangles;            // the mesh's index of each of `triangles`
     ClosestPointQuery query;
     double scale = 0.0;        // largest absolute coordinate of a surface vertex
@@ -64,7 +63,7 @@ struct HausdorffSurface::Impl {
     // call: most bounds never lay a piece over this side.
     const detail::EdgeNeighbours& neighbours() const {
         std::call_once(neighboursMade_,
-                       [this] { neighbours_ = detail::edgeNeighbours(positions, indices, surface); });
+                       [this] { neighbours_ = detail::edgeNeighbours(positions, indices, meshTriangles); });
         return neighbours_;
     }
 
