@@ -3,8 +3,9 @@
 // distance above a flat mesh, and is the caller's cap where the piece reaches past the mesh's border.
 
 #include "PieceOverlay.hpp"
-#include "SurfaceGeometry.hpp"
+#include "ReferenceGeometry.hpp"
 
+#include "spatter/core/MeshBuilder.hpp"
 #include "spatter/core/Random.hpp"
 
 #include <gtest/gtest.h>
@@ -22,21 +23,21 @@ namespace {
 constexpr double kCap = 1.0e3;
 constexpr double kEps = 1.0e-9;
 
-// A height field over [0, n]^2: two triangles a unit cell, z from `height` at the grid's points.
+// A height field over [0, n]^2 of the x-z plane (makeGrid's, unit cells), y from `height` at the
+// grid's points.
 struct Grid {
     std::vector<glm::dvec3> positions;
     std::vector<uint32_t> indices;
     EdgeNeighbours neighbours;
 
     Grid(int n, const std::function<double(int, int)>& height) {
-        for (int y = 0; y <= n; ++y)
-            for (int x = 0; x <= n; ++x)
-                positions.push_back({x, y, height(x, y)});
-        auto at = [n](int x, int y) { return uint32_t(y * (n + 1) + x); };
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x)
-                indices.insert(indices.end(), {at(x, y), at(x + 1, y), at(x + 1, y + 1), at(x, y),
-                                               at(x + 1, y + 1), at(x, y + 1)});
+        std::vector<float> lines(size_t(n) + 1);
+        for (int i = 0; i <= n; ++i)
+            lines[size_t(i)] = float(i);
+        const Mesh mesh = makeGrid(lines, lines);
+        for (const glm::vec3& p : mesh.positions)
+            positions.push_back({p.x, height(int(p.x), int(p.z)), p.z});
+        indices = mesh.indices;
         std::vector<uint32_t> all(indices.size() / 3);
         for (uint32_t t = 0; t < all.size(); ++t)
             all[t] = t;
@@ -45,11 +46,12 @@ struct Grid {
 
     glm::dvec3 corner(size_t t, int k) const { return positions[indices[3 * t + size_t(k)]]; }
 
-    // The exact distance from `p` to the grid and its triangle closest to `p`.
+    // The distance from `p` to the grid and its triangle closest to `p`, by the tests' own reference
+    // (not the library's closest point, which the overlay uses).
     std::pair<double, uint32_t> closest(const glm::dvec3& p) const {
         std::pair<double, uint32_t> best{std::numeric_limits<double>::infinity(), 0};
         for (uint32_t t = 0; t < indices.size() / 3; ++t) {
-            const double d = glm::length(p - closestOnTriangle(p, corner(t, 0), corner(t, 1), corner(t, 2)));
+            const double d = test::triangleDistance(p, corner(t, 0), corner(t, 1), corner(t, 2));
             if (d < best.first) best = {d, t};
         }
         return best;
@@ -79,8 +81,8 @@ struct Grid {
 
 TEST(PieceOverlay, BoundsAPieceAboveAFlatMeshByItsHeight) {
     const Grid grid(8, [](int, int) { return 0.0; });
-    const std::array<glm::dvec3, 3> piece = {glm::dvec3(1.3, 1.1, 0.25), glm::dvec3(6.7, 2.2, 0.25),
-                                             glm::dvec3(3.1, 6.9, 0.25)};
+    const std::array<glm::dvec3, 3> piece = {glm::dvec3(1.3, 0.25, 1.1), glm::dvec3(6.7, 0.25, 2.2),
+                                             glm::dvec3(3.1, 0.25, 6.9)};
     const double bound = grid.bound(piece);
     EXPECT_GE(bound, 0.25);
     EXPECT_LE(bound, 0.25 + 1e-6);
@@ -101,7 +103,7 @@ TEST(PieceOverlay, NeverFallsBelowTheDistanceSampledOnABumpyMesh) {
     for (size_t i = 0; i < pieces; ++i) {
         std::array<glm::dvec3, 3> piece;
         for (glm::dvec3& p : piece)
-            p = {rng.uniform(1.0f, 11.0f), rng.uniform(1.0f, 11.0f), rng.uniform(-0.2f, 0.6f)};
+            p = {rng.uniform(1.0f, 11.0f), rng.uniform(-0.2f, 0.6f), rng.uniform(1.0f, 11.0f)};
         const double bound = grid.bound(piece);
         if (bound >= kCap) continue;
         ++bounded;
@@ -115,7 +117,7 @@ TEST(PieceOverlay, NeverFallsBelowTheDistanceSampledOnABumpyMesh) {
 
 TEST(PieceOverlay, GivesTheCapWhereThePieceReachesPastTheBorder) {
     const Grid grid(8, [](int, int) { return 0.0; });
-    const std::array<glm::dvec3, 3> piece = {glm::dvec3(1.0, 1.0, 0.1), glm::dvec3(9.5, 2.0, 0.1),
-                                             glm::dvec3(3.0, 6.0, 0.1)};
+    const std::array<glm::dvec3, 3> piece = {glm::dvec3(1.0, 0.1, 1.0), glm::dvec3(9.5, 0.1, 2.0),
+                                             glm::dvec3(3.0, 0.1, 6.0)};
     EXPECT_EQ(grid.bound(piece), kCap);
 }
