@@ -10,8 +10,8 @@ constexpr GLenum kFormats[DecalBuffers::kTargets] = {GL_SRGB8_ALPHA8, GL_RGBA16F
 
 } // namespace
 
-void DecalBuffers::prepare(GLuint depthTexture) {
-    GlStateGuard guard;
+void DecalBuffers::prepare(GLuint depthTexture, bool restoreGlState) {
+    GlStateGuard guard(restoreGlState);
     GLint w = 0, h = 0;
     glGetTextureLevelParameteriv(depthTexture, 0, GL_TEXTURE_WIDTH, &w);
     glGetTextureLevelParameteriv(depthTexture, 0, GL_TEXTURE_HEIGHT, &h);

@@ -13,8 +13,8 @@ public:
     static constexpr int kTargets = 3;
 
     // Gives the buffers the size of `depthTexture` and clears them when a draw wrote into them since
-    // the last clear. Leaves the GL state as it was.
-    void prepare(GLuint depthTexture);
+    // the last clear. Leaves the GL state as it was where `restoreGlState` (ProjectorSettings).
+    void prepare(GLuint depthTexture, bool restoreGlState);
     // Attaches them to `fbo` as colour attachments 0 to 2, each blending src * a + dst * (1 - a) in
     // RGB and dst * (1 - a) in A; they count as written from here on.
     void attach(GLuint fbo);

@@ -551,7 +551,7 @@ struct DecalProjector::Impl {
             kVariantNormalWorldSigned | kVariantNormalWorldUnorm | kVariantNormalViewUnorm;
         const std::vector<std::string> defines = variantDefines(bits & kResolveBits);
         stats.variant = join(defines) + (defines.empty() ? "" : " ") + "COMPUTE";
-        GlStateGuard guard;
+        GlStateGuard guard(settings.restoreGlState);
         beginPass(f, camera);
         const bool shortRuns = binVisible(forwardFrame(f), camera, onGpu, vis, stats, true);
         bindInputs(f);
@@ -643,7 +643,7 @@ DecalProjector::~DecalProjector() = default;
 Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings) {
     if (Status s = validateSettings(settings); !s) return fail(s.error());
     if (Status s = checkStorageBindings(); !s) return fail(s.error());
-    GlStateGuard guard;
+    GlStateGuard guard(settings.restoreGlState);
     auto impl = std::make_unique<Impl>();
     impl->settings = settings;
     impl->computeOnAuto = !softwareRasteriser();
@@ -712,7 +712,7 @@ Status DecalProjector::setObjects(const std::vector<glm::dmat4>& transforms,
 }
 
 Result<int> DecalProjector::addDecalTexture(const Image& albedo, const Image& normalMap) {
-    GlStateGuard guard;
+    GlStateGuard guard(impl_->settings.restoreGlState);
     Result<int> layer = impl_->textures.add(albedo, normalMap);
     if (layer) {
         impl_->batch.configure(impl_->settings.wrapMaxAngleDeg, impl_->textures.cutouts());
@@ -764,7 +764,7 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
     ProjectorStats stats = m.cpuStats(vis, onGpu);
     stats.variant = "FORWARD";
 
-    GlStateGuard guard;
+    GlStateGuard guard(m.settings.restoreGlState);
     m.beginPass(host, camera);
     m.binVisible(frame, camera, onGpu, vis, stats, false);
     m.endPass(onGpu, stats);
@@ -797,7 +797,9 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
         vis = m.cullOnCpu(cull);
     }
     ProjectorStats stats = m.cpuStats(vis, onGpu);
-    if (fillsDBuffer(options)) m.dbuffer.prepare(frame.depth.texture); // cleared, even when nothing is drawn
+    if (fillsDBuffer(options))
+        m.dbuffer.prepare(frame.depth.texture,
+                          m.settings.restoreGlState); // cleared, even when nothing is drawn
     if (stats.skipped) return stats;
     const uint32_t bits = m.variantBits(frame, options, vis.flags);
     const size_t inView = onGpu ? m.gpuInView() : vis.visible.size();
@@ -827,7 +829,7 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
     if (onGpu && m.settings.occlusionCulling)
         if (Status s = m.pyramid.prepare(frame); !s) return fail(s.error());
 
-    GlStateGuard guard;
+    GlStateGuard guard(m.settings.restoreGlState);
     m.beginPass(frame, camera);
     m.drawDecals(frame, options, camera, onGpu, vis, passes, stats);
     m.endPass(onGpu, stats);
@@ -841,7 +843,7 @@ Result<uint64_t> DecalProjector::findSurface(const HostFrame& frame, const std::
     read.roughness = {};
     if (const std::string p = hostFrameProblem(read, ProjectorDraw{ProjectorPath::DBuffer}); !p.empty())
         return fail("projector: " + p);
-    GlStateGuard guard;
+    GlStateGuard guard(m.settings.restoreGlState);
     return m.surfaceProbe.find(read, lines, m.nearest.get());
 }
 

@@ -5,10 +5,15 @@
 
 namespace spatter::render_detail {
 
-// Binds `framebuffer` with a viewport of `width` x `height` and resets what a pass may have changed:
-// clip control (lower left, depth 0..1), no scissor, stencil, blending, culling or depth test, depth
-// writes off, all colour channels written, counter-clockwise front faces; sRGB encoding on writes
-// as `srgb` says.
+// Texture units whose sampler objects a pass resets: those the projector binds its own samplers to.
+constexpr GLsizei kPassTextureUnits = 8;
+
+// Binds `framebuffer` with a viewport of `width` x `height` and resets what a pass may have changed
+// (the renderer's projector leaves its state as its passes set it: ProjectorSettings::restoreGlState):
+// clip control (lower left, depth 0..1), no scissor, stencil, blending, culling, depth test or depth
+// clamp, depth writes off, all colour channels written, counter-clockwise front faces, no sampler
+// objects on units 0-7 (each texture samples with its own parameters); sRGB encoding on writes as
+// `srgb` says.
 inline void resetPassState(GLuint framebuffer, int width, int height, bool srgb) {
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, width, height);
@@ -18,9 +23,11 @@ inline void resetPassState(GLuint framebuffer, int width, int height, bool srgb)
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glDisable(GL_DEPTH_TEST);
+    glDisable(GL_DEPTH_CLAMP);
     glDepthMask(GL_FALSE);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glFrontFace(GL_CCW);
+    glBindSamplers(0, kPassTextureUnits, nullptr);
     if (srgb)
         glEnable(GL_FRAMEBUFFER_SRGB);
     else

@@ -13,7 +13,8 @@ void enable(GLenum cap, GLboolean on) {
 
 } // namespace
 
-GlStateGuard::GlStateGuard() {
+GlStateGuard::GlStateGuard(bool save) : saved_(save) {
+    if (!save) return;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer_);
     glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer_);
     glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
@@ -87,6 +88,7 @@ GlStateGuard::GlStateGuard() {
 }
 
 GlStateGuard::~GlStateGuard() {
+    if (!saved_) return;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(drawFramebuffer_));
     glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(readFramebuffer_));
     glUseProgram(GLuint(program_));

@@ -1,9 +1,10 @@
 #pragma once
 // GlStateGuard: saves, on construction, the GL state the projector may change and restores it on
 // destruction (the list in spatter/render/DecalProjector.hpp), as Dear ImGui's OpenGL 3 backend
-// does, so that a host can call the projector between its own passes. neutralise() then switches
-// off what a host may have left on that would change the projector's draws (polygon mode, rasterizer
-// discard, logic op, depth clamp, clip distances).
+// does, so that a host can call the projector between its own passes; or, for a host that binds what
+// its passes use (ProjectorSettings::restoreGlState off), neither queries nor restores anything. neutralise()
+// then switches off what a host may have left on that would change the projector's draws (polygon mode,
+// rasterizer discard, logic op, depth clamp, clip distances).
 
 #include <epoxy/gl.h>
 
@@ -19,7 +20,8 @@ public:
     static constexpr int kStorageBindings = 11;
     static constexpr int kImageUnits = 3;
 
-    GlStateGuard();
+    // Saves the state where `save`; otherwise the guard does nothing.
+    explicit GlStateGuard(bool save);
     ~GlStateGuard();
     // Fills polygons, with rasterizer discard, colour logic op, depth clamp and clip distances 0-7 off.
     static void neutralise();
@@ -40,6 +42,7 @@ private:
         GLboolean mask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
     };
 
+    bool saved_ = false;
     GLint drawFramebuffer_ = 0, readFramebuffer_ = 0, program_ = 0, vertexArray_ = 0, activeTexture_ = 0;
     GLint viewport_[4] = {0, 0, 0, 0};
     std::array<GLint, kTextureUnits> texture2d_{}, textureArray_{}, sampler_{};

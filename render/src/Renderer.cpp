@@ -594,6 +594,7 @@ Result<Renderer> Renderer::create(const GlContext& context, const RendererSettin
     projector.occlusionCulling = settings.occlusionCulling;
     projector.stageTimers = settings.decalStageTimers;
     projector.deferredResolve = settings.deferredResolve;
+    projector.restoreGlState = false; // every pass of the renderer starts from resetPassState
     Result<DecalProjector> p = DecalProjector::create(projector);
     if (!p) return fail("renderer: " + p.error());
     impl->projector.emplace(std::move(p).value());

@@ -318,6 +318,29 @@ TEST(Projector, BlendsTheSameWithoutItsPassTimerAndReportsNoGpuTime) {
     EXPECT_EQ(test::differingPixels(albedo[0], albedo[1]), 0u);
 }
 
+// Without restoring the GL state (ProjectorSettings::restoreGlState off) the projector blends the same
+// albedo, and leaves its own program bound where the restoring one leaves the host's: it saved nothing.
+TEST(Projector, BlendsTheSameWithoutRestoringTheGlStateAndLeavesItsOwn) {
+    SPATTER_REQUIRE_GL(gl);
+    ProjectorSettings leaving;
+    leaving.restoreGlState = false;
+    std::vector<Image> albedo;
+    for (const ProjectorSettings& settings : {ProjectorSettings{}, leaving}) {
+        std::optional<test::HostedWall> h = test::HostedWall::make(settings);
+        ASSERT_TRUE(h);
+        glUseProgram(0);
+        Result<ProjectorStats> st = h->projector.draw(h->host.frame(h->wall.camera, true));
+        ASSERT_TRUE(st.ok()) << st.error();
+        EXPECT_EQ(st->drawn, 2u);
+        GLint program = -1;
+        glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+        EXPECT_EQ(program != 0, !settings.restoreGlState) << program;
+        albedo.push_back(h->host.read(h->host.albedoTexture()));
+    }
+    EXPECT_EQ(test::differingPixels(albedo[0], albedo[1]), 0u);
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}
+
 // A decal clips to the decal ID the host gives its object (setObjects), not to the one it carries:
 // the crate's decal covers the same pixels whatever its own ID says, and once the crate's ID changes
 // in the host's frame and in setObjects alike it follows.

@@ -237,6 +237,45 @@ TEST(Renderer, RendersTexturedSharedGltfScenes) {
     EXPECT_EQ(gl.debugErrorCount(), 0u);
 }
 
+// The renderer's projector leaves the GL state as its passes set it (ProjectorSettings::restoreGlState
+// off), since each of the renderer's passes sets what it uses: a second frame of a view draws the
+// pixels of the first, whose passes ran before any decal pass. (A sampler of the projector's left on a
+// texture unit samples the floor's checkers without their mipmaps; its depth clamp left on draws what
+// lies before the near plane.)
+TEST(Renderer, DrawsTheSameFrameAfterItsDecalPass) {
+    SPATTER_REQUIRE_GL(gl);
+    Result<Renderer> r = test::makeRenderer(kW, kH);
+    ASSERT_TRUE(r.ok()) << r.error();
+    Scene scene = orangeFloor(0);
+    Image checker{64, 64, {}, "checker"};
+    for (int y = 0; y < checker.height; ++y)
+        for (int x = 0; x < checker.width; ++x) {
+            const uint8_t v = (x / 4 + y / 4) % 2 != 0 ? 255 : 0;
+            checker.rgba.insert(checker.rgba.end(), {v, v, v, 255});
+        }
+    scene.images = {checker};
+    scene.materials[0].baseColorTexture = 0;
+    ASSERT_TRUE(r->setScene(scene).ok());
+    Result<DecalSystem> sys = DecalSystem::create(scene);
+    ASSERT_TRUE(sys.ok()) << sys.error();
+    DecalType t;
+    t.name = "t";
+    t.size = {1.0f, 1.0f};
+    const uint16_t type = sys->registerType(t).value();
+    Camera cam = lookAt({0.0, 1.0, 6.0}, {0.0, 0.0, -4.0});
+    cam.nearPlane = 2.0; // the floor's nearest part lies before it
+    for (int s = 0; s < 5; ++s)
+        ASSERT_TRUE(sys->spawn(Ray{cam.eye, glm::normalize(glm::dvec3(s - 2.0, -1.0, -5.0))}, type).placed());
+    r->setDecalTypes({t});
+    r->setDecals(sys->decals());
+    FrameStats stats;
+    const Image first = renderView(r.value(), cam, View::Final, &stats);
+    ASSERT_GT(stats.decalsDrawn, 0u);
+    const Image second = renderView(r.value(), cam, View::Final);
+    EXPECT_TRUE(first.rgba == second.rgba);
+    EXPECT_EQ(gl.debugErrorCount(), 0u);
+}
+
 // Objects placed with one mesh share its upload: each still draws at its own transform and with its
 // own object ID, pixel for pixel as copies that differ by an unused vertex (distinct meshes) draw.
 TEST(Renderer, DrawsCopiesOfAMeshAsItDrawsDistinctMeshes) {

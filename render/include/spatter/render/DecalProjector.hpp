@@ -54,8 +54,10 @@
 // discard, colour logic op, depth clamp and clip distances 0-7 (which it sets for its draws, whatever the
 // host left on: all off, except depth clamp on for the boxes). What it changes are the contents of the
 // textures it writes (draw) and its own GL objects. bindForward alone changes bindings on purpose: those its
-// ForwardBindings name, for the host's forward pass. It needs the host's context current on the calling
-// thread, and that context must outlive the projector.
+// ForwardBindings name, for the host's forward pass. With ProjectorSettings::restoreGlState off it saves and
+// restores nothing, and the listed state is left as its passes set it (the host binds what its own passes
+// use). It needs the host's context current on the calling thread, and that context must outlive the
+// projector.
 //
 // Bad input changes nothing: a HostFrame with a missing required texture, an unsupported format,
 // mismatched sizes, a viewport outside the textures, one texture in two roles (but roughness in the
@@ -237,6 +239,12 @@ struct ProjectorSettings {
     // GPU timestamps between the pass's stages, for ProjectorStats::stages (profiling: each waits for
     // the GPU work queued before it, a few microseconds a mark on a GPU).
     bool stageTimers = false;
+    // Every call saves and restores the GL state listed at the top of this file: about 150 queries, whose
+    // save took 16 us a call on an H100's driver and 0.4 to 0.6 ms with its threaded optimisation
+    // (__GL_THREADED_OPTIMIZATIONS), where a query waits for the driver's thread to catch up. Off,
+    // a call queries and restores none of it: that state is left as the projector's last pass set it,
+    // for a host that binds what each of its passes uses (or resets its state cache after the call).
+    bool restoreGlState = true;
 };
 
 // Where a draw puts the decals (the forward path, DecalProjector::bin, draws nothing).
