@@ -797,9 +797,8 @@ Result<ProjectorStats> DecalProjector::draw(const HostFrame& frame, const Projec
         vis = m.cullOnCpu(cull);
     }
     ProjectorStats stats = m.cpuStats(vis, onGpu);
-    if (fillsDBuffer(options))
-        m.dbuffer.prepare(frame.depth.texture,
-                          m.settings.restoreGlState); // cleared, even when nothing is drawn
+    // The decal buffers are cleared, even when nothing is drawn.
+    if (fillsDBuffer(options)) m.dbuffer.prepare(frame.depth.texture, m.settings.restoreGlState);
     if (stats.skipped) return stats;
     const uint32_t bits = m.variantBits(frame, options, vis.flags);
     const size_t inView = onGpu ? m.gpuInView() : vis.visible.size();
