@@ -60,9 +60,8 @@ bool softwareRasteriser() {
 
 // The context's shader storage bindings against the projector's (GlStateGuard::kStorageBindings: its
 // buffers use bindings 0-10; OpenGL 4.5 promises 8).
-Status checkStorageBindings() {
-    GLint bindings = 0;
-    glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &bindings);
+Status checkStorageBindings(const ContextLimits& limits) {
+    const GLint bindings = limits.storageBindings;
     if (bindings >= GlStateGuard::kStorageBindings) return {};
     return fail(
         "projector: the context has " + std::to_string(bindings) +
@@ -166,6 +165,7 @@ FrameCamera frameCamera(const HostFrame& f) {
 
 struct DecalProjector::Impl {
     ProjectorSettings settings;
+    ContextLimits limits; // bindForward's checks
     DecalBatch batch;
     DecalTextureArray textures;
     std::map<uint32_t, GlProgram> programs;
@@ -642,10 +642,12 @@ DecalProjector::~DecalProjector() = default;
 
 Result<DecalProjector> DecalProjector::create(const ProjectorSettings& settings) {
     if (Status s = validateSettings(settings); !s) return fail(s.error());
-    if (Status s = checkStorageBindings(); !s) return fail(s.error());
+    const ContextLimits limits = contextLimits();
+    if (Status s = checkStorageBindings(limits); !s) return fail(s.error());
     GlStateGuard guard(settings.restoreGlState);
     auto impl = std::make_unique<Impl>();
     impl->settings = settings;
+    impl->limits = limits;
     impl->computeOnAuto = !softwareRasteriser();
     impl->gpuCullingFrom =
         settings.gpuCullingFrom.value_or(softwareRasteriser() ? ProjectorSettings::kGpuCullingFromSoftware
@@ -772,8 +774,9 @@ Result<ProjectorStats> DecalProjector::bin(const ForwardFrame& frame) {
 }
 
 Status DecalProjector::bindForward(const ForwardBindings& bindings) const {
-    if (const std::string p = forwardBindingsProblem(bindings); !p.empty()) return fail("projector: " + p);
     const Impl& m = *impl_;
+    if (const std::string p = forwardBindingsProblem(bindings, m.limits); !p.empty())
+        return fail("projector: " + p);
     m.forward.bind(bindings);
     glBindTextureUnit(bindings.albedoUnit, m.textures.albedoTexture());
     glBindTextureUnit(bindings.normalUnit, m.textures.normalTexture());

@@ -266,10 +266,15 @@ std::string forwardFrameProblem(const ForwardFrame& f) {
     return cameraProblem(cameraFrame(f), "ForwardFrame");
 }
 
-std::string forwardBindingsProblem(const ForwardBindings& b) {
-    GLint buffers = 0, units = 0;
-    glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &buffers);
-    glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
+ContextLimits contextLimits() {
+    ContextLimits limits;
+    glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &limits.storageBindings);
+    glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &limits.textureUnits);
+    return limits;
+}
+
+std::string forwardBindingsProblem(const ForwardBindings& b, const ContextLimits& limits) {
+    const GLint buffers = limits.storageBindings, units = limits.textureUnits;
     const std::pair<uint32_t, const char*> points[] = {
         {b.decals, "decals"}, {b.tiles, "tiles"}, {b.items, "items"}};
     const std::pair<uint32_t, const char*> textures[] = {{b.albedoUnit, "albedoUnit"},

@@ -40,8 +40,15 @@ ForwardFrame forwardFrame(const HostFrame& frame);
 // Empty when `frame` fits; otherwise an error naming the field.
 std::string forwardFrameProblem(const ForwardFrame& frame);
 
-// Empty when the current context has the binding points and texture units `bindings` names, each
+// The current context's shader storage binding points and combined texture units, queried once (at
+// DecalProjector::create) so that no later call waits on a query.
+struct ContextLimits {
+    GLint storageBindings = 0, textureUnits = 0;
+};
+ContextLimits contextLimits();
+
+// Empty when a context of `limits` has the binding points and texture units `bindings` names, each
 // once; otherwise an error naming the field.
-std::string forwardBindingsProblem(const ForwardBindings& bindings);
+std::string forwardBindingsProblem(const ForwardBindings& bindings, const ContextLimits& limits);
 
 } // namespace spatter::render_detail
