@@ -278,7 +278,9 @@ int main(int argc, char** argv) {
     GLuint emptyVertexArray = 0;
     glCreateVertexArrays(1, &emptyVertexArray);
 
-    // The projector: created once on the host's context and told the decal types.
+    // The projector: created once on the host's context and told the decal types. Each of its calls
+    // leaves the GL state as it found it; a host whose passes bind what they use turns that off
+    // (ProjectorSettings::restoreGlState) and saves the calls' queries.
     spatter::Result<spatter::DecalProjector> projector = spatter::DecalProjector::create();
     if (!projector) return example::failure(kProgram, projector.error());
     projector->setDecalTypes(in->decals.types);
