@@ -1,12 +1,11 @@
 #pragma once
 // The fixed-function state every pass starts from.
 
+#include "GlStateGuard.hpp"
+
 #include <epoxy/gl.h>
 
 namespace spatter::render_detail {
-
-// Texture units whose sampler objects a pass resets: those the projector binds its own samplers to.
-constexpr GLsizei kPassTextureUnits = 8;
 
 // Binds `framebuffer` with a viewport of `width` x `height` and resets what a pass may have changed
 // (the renderer's projector leaves its state as its passes set it: ProjectorSettings::restoreGlState):
@@ -27,7 +26,7 @@ inline void resetPassState(GLuint framebuffer, int width, int height, bool srgb)
     glDepthMask(GL_FALSE);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glFrontFace(GL_CCW);
-    glBindSamplers(0, kPassTextureUnits, nullptr);
+    glBindSamplers(0, GlStateGuard::kTextureUnits, nullptr); // the units the projector may change
     if (srgb)
         glEnable(GL_FRAMEBUFFER_SRGB);
     else

@@ -11,9 +11,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <numeric>
+#include <vector>
 
 using namespace spatter;
 using namespace spatter::detail;
@@ -39,8 +42,7 @@ struct Grid {
             positions.push_back({p.x, height(int(p.x), int(p.z)), p.z});
         indices = mesh.indices;
         std::vector<uint32_t> all(indices.size() / 3);
-        for (uint32_t t = 0; t < all.size(); ++t)
-            all[t] = t;
+        std::iota(all.begin(), all.end(), 0u);
         neighbours = edgeNeighbours(positions, indices, all);
     }
 
