@@ -31,7 +31,8 @@ void fitBox(Impl& s, Node& n) {
         }
 }
 
-// A triangle's centroid and its index, split by the hierarchy (in place, without indirection).
+// A triangle's centroid and its index in the mesh, split by the hierarchy (in place, without
+// indirection).
 struct Centroid {
     glm::dvec3 c;
     uint32_t triangle;
@@ -54,18 +55,18 @@ uint32_t splitCentroids(std::vector<Centroid>::iterator first, std::vector<Centr
     return count / 2;
 }
 
-// Split at the middle of the centroids' extent along its longest axis (a pass over the node, where a
-// median costs a selection), until leaves of kLeafTriangles.
-void buildHierarchy(Impl& s) {
+// The hierarchy over the mesh's surface triangles `surface`: split at the middle of the centroids'
+// extent along its longest axis (a pass over the node, where a median costs a selection), until
+// leaves of kLeafTriangles. Fills s.nodes, and s.triangles and s.meshTriangles in the hierarchy's order.
+void buildHierarchy(Impl& s, const std::vector<uint32_t>& surface) {
     s.nodes.clear();
-    if (s.triangles.empty()) return;
-    std::vector<Centroid> order(s.triangles.size());
-    for (size_t i = 0; i < s.triangles.size(); ++i)
-        order[i] = {(s.positions[s.triangles[i][0]] + s.positions[s.triangles[i][1]] +
-                     s.positions[s.triangles[i][2]]) /
-                        3.0,
-                    uint32_t(i)};
-    s.nodes.reserve(2 * s.triangles.size() / kLeafTriangles + 1);
+    if (surface.empty()) return;
+    std::vector<Centroid> order(surface.size());
+    for (size_t i = 0; i < surface.size(); ++i) {
+        const uint32_t* c = &s.indices[3 * size_t(surface[i])];
+        order[i] = {(s.positions[c[0]] + s.positions[c[1]] + s.positions[c[2]]) / 3.0, surface[i]};
+    }
+    s.nodes.reserve(2 * order.size()); // a binary tree of at most order.size() leaves
     s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), 0, uint32_t(order.size()), 0});
     for (size_t i = 0; i < s.nodes.size(); ++i) {
         const Node n = s.nodes[i];
@@ -83,14 +84,13 @@ void buildHierarchy(Impl& s) {
         s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), n.first, half, 0});
         s.nodes.push_back({glm::dvec3(0.0), glm::dvec3(0.0), n.first + half, n.count - half, 0});
     }
-    std::vector<std::array<uint32_t, 3>> sorted(order.size());
-    std::vector<uint32_t> sortedMesh(order.size());
+    s.triangles.resize(order.size());
+    s.meshTriangles.resize(order.size());
     for (size_t i = 0; i < order.size(); ++i) {
-        sorted[i] = s.triangles[order[i].triangle];
-        sortedMesh[i] = s.meshTriangles[order[i].triangle];
+        const uint32_t* c = &s.indices[3 * size_t(order[i].triangle)];
+        s.triangles[i] = {c[0], c[1], c[2]};
+        s.meshTriangles[i] = order[i].triangle;
     }
-    s.triangles = std::move(sorted);
-    s.meshTriangles = std::move(sortedMesh);
     // Leaves from their triangles, inner nodes from their children (which come after them).
     for (size_t i = s.nodes.size(); i-- > 0;) {
         Node& n = s.nodes[i];
@@ -120,20 +120,16 @@ Result<HausdorffSurface> HausdorffSurface::create(const Mesh& mesh) {
     impl->indices = mesh.indices;
     const std::vector<uint32_t> surface = detail::surfaceTriangles(mesh);
     for (uint32_t t : surface) {
-        impl->triangles.push_back(
-            {mesh.indices[3 * size_t(t)], mesh.indices[3 * size_t(t) + 1], mesh.indices[3 * size_t(t) + 2]});
-        for (uint32_t v : impl->triangles.back())
+        const uint32_t* c = &mesh.indices[3 * size_t(t)];
+        for (int j = 0; j < 3; ++j)
             for (int k = 0; k < 3; ++k)
-                impl->scale = std::max(impl->scale, std::fabs(impl->positions[v][k]));
-    }
-    impl->meshTriangles = surface; // put in the hierarchy's order with `triangles`
-    for (const std::array<uint32_t, 3>& t : impl->triangles) {
-        const glm::dvec3 a = impl->positions[t[0]];
+                impl->scale = std::max(impl->scale, std::fabs(impl->positions[c[j]][k]));
+        const glm::dvec3 a = impl->positions[c[0]];
         impl->triangleArea +=
-            0.5 * glm::length(glm::cross(impl->positions[t[1]] - a, impl->positions[t[2]] - a));
+            0.5 * glm::length(glm::cross(impl->positions[c[1]] - a, impl->positions[c[2]] - a));
     }
-    if (!impl->triangles.empty()) impl->triangleArea /= double(impl->triangles.size());
-    buildHierarchy(*impl);
+    if (!surface.empty()) impl->triangleArea /= double(surface.size());
+    buildHierarchy(*impl, surface);
     return HausdorffSurface(std::move(impl));
 }
 

@@ -35,7 +35,8 @@ using detail::workerCount;
 struct ClosestPointQuery::Impl {
     RTCDevice device = nullptr; // the shared one (sharedDevice), retained
     RTCScene scene = nullptr;
-    std::vector<glm::dvec3> corners;   // three per surface triangle
+    // Three per surface triangle, as the mesh holds them (in float: each converts to double exactly).
+    std::vector<glm::vec3> corners;
     std::vector<uint32_t> triangleIds; // surface triangle -> mesh triangle
 
     ~Impl() {
@@ -65,7 +66,7 @@ float roundedRadius(double radius) {
 }
 
 struct PointQueryState {
-    const glm::dvec3* corners;
+    const glm::vec3* corners;
     glm::dvec3 p;
     double rounding = 0.0; // pointRounding(p)
     double best2 = std::numeric_limits<double>::infinity();
@@ -76,8 +77,8 @@ struct PointQueryState {
 
 bool closestPointCallback(RTCPointQueryFunctionArguments* args) {
     auto* s = static_cast<PointQueryState*>(args->userPtr);
-    const glm::dvec3* t = s->corners + 3 * size_t(args->primID);
-    const glm::dvec3 q = closestOnTriangle(s->p, t[0], t[1], t[2]);
+    const glm::vec3* t = s->corners + 3 * size_t(args->primID);
+    const glm::dvec3 q = closestOnTriangle(s->p, glm::dvec3(t[0]), glm::dvec3(t[1]), glm::dvec3(t[2]));
     const double d2 = glm::dot(q - s->p, q - s->p);
     // Of triangles at the same distance, the first (the smallest index): the answer does not depend on
     // the order Embree visits them in, which its BVH's width, and so the processor, decides.
@@ -98,7 +99,7 @@ bool closestPointCallback(RTCPointQueryFunctionArguments* args) {
 // Whether some triangle lies within sqrt(radius2) of p: found at the first, after which the query's
 // radius is 0 so that Embree visits little more.
 struct WithinState {
-    const glm::dvec3* corners;
+    const glm::vec3* corners;
     glm::dvec3 p;
     double radius2;
     bool found = false;
@@ -107,8 +108,8 @@ struct WithinState {
 bool withinCallback(RTCPointQueryFunctionArguments* args) {
     auto* s = static_cast<WithinState*>(args->userPtr);
     if (s->found) return false;
-    const glm::dvec3* t = s->corners + 3 * size_t(args->primID);
-    const glm::dvec3 q = closestOnTriangle(s->p, t[0], t[1], t[2]);
+    const glm::vec3* t = s->corners + 3 * size_t(args->primID);
+    const glm::dvec3 q = closestOnTriangle(s->p, glm::dvec3(t[0]), glm::dvec3(t[1]), glm::dvec3(t[2]));
     if (!(glm::dot(q - s->p, q - s->p) <= s->radius2)) return false;
     s->found = true;
     args->query->radius = 0.0f;
@@ -146,7 +147,7 @@ Result<ClosestPointQuery> ClosestPointQuery::create(const Mesh& mesh) {
     impl->corners.reserve(3 * surface.size());
     for (uint32_t t : surface)
         for (int k = 0; k < 3; ++k)
-            impl->corners.push_back(corner(mesh, t, k));
+            impl->corners.push_back(mesh.positions[mesh.indices[3 * size_t(t) + size_t(k)]]);
     if (surface.empty()) return ClosestPointQuery(std::move(impl));
 
     impl->device = sharedDevice();

@@ -64,6 +64,13 @@ bool sidePlane(const std::array<glm::dvec3, 3>& t, int k, const glm::dvec3& n, g
     return true;
 }
 
+// The side planes of t through its three edges along n (sidePlane); false where t is seen edge-on.
+bool sidePlanes(const std::array<glm::dvec3, 3>& t, const glm::dvec3& n, glm::dvec3 (&s)[3]) {
+    for (int k = 0; k < 3; ++k)
+        if (!sidePlane(t, k, n, s[k])) return false;
+    return true;
+}
+
 // The corners of mesh triangle t.
 std::array<glm::dvec3, 3> cornersOf(const OverlayMesh& mesh, uint32_t t) {
     const uint32_t* c = &mesh.indices[3 * size_t(t)];
@@ -122,7 +129,7 @@ private:
 // The part of the piece over triangle t: the piece clipped by t's side planes (each eps outside its
 // edge), and those planes. False where t is seen edge-on.
 bool partOver(const Part& piece, const std::array<glm::dvec3, 3>& t, const glm::dvec3& n, double eps,
-              Part& part, glm::dvec3 side[3]) {
+              Part& part, glm::dvec3 (&side)[3]) {
     part = piece;
     for (int k = 0; k < 3 && part.count >= 3; ++k)
         if (!sidePlane(t, k, n, side[k]) || !clip(part, side[k], t[k], eps)) return false;
@@ -144,20 +151,66 @@ bool goesOn(const Part& part, const Part& piece, const glm::dvec3& s, const glm:
 // The largest distance to triangle t over `part`'s corners where it is above `bound`, else at most
 // `bound`. The distance to t grows by at most the length moved, so a corner nearer to the last corner
 // measured than `bound` less that corner's distance is not measured (most parts lie much nearer t than
-// the piece's farthest point).
-double partBound(const Part& part, const std::array<glm::dvec3, 3>& t, double bound) {
+// the piece's farthest point); nor is a corner whose distance is known to be at most `bound`
+// (`atMost`, where given: one per corner).
+double partBound(const Part& part, const std::array<glm::dvec3, 3>& t, double bound,
+                 const double* atMost = nullptr) {
     constexpr double kRounding = 1.0 + 1e-12; // on the sum, so that a skipped corner cannot round past
     double largest = 0.0, known = 0.0;
     glm::dvec3 at(0.0);
+    bool measured = false;
     for (int c = 0; c < part.count; ++c) {
         const glm::dvec3& p = part.corner[size_t(c)];
-        if (c > 0 && (known + glm::length(p - at)) * kRounding <= bound) continue;
+        if (atMost && atMost[c] * kRounding <= bound) continue;
+        if (measured && (known + glm::length(p - at)) * kRounding <= bound) continue;
         known = glm::length(p - closestOnTriangle(p, t[0], t[1], t[2]));
         at = p;
+        measured = true;
         largest = std::max(largest, known);
     }
     return largest;
 }
+
+// The side planes of a piece along a direction, for the part over a triangle lying wholly over the
+// piece: there the part is the triangle itself moved along the direction onto the piece's plane, and
+// the overlay goes on across each of its edges, without clipping.
+class PieceSides {
+public:
+    // `margin`: how far inside every side a triangle's corners must lie (> 0).
+    PieceSides(const Part& piece, const glm::dvec3& along, double margin)
+        : origin_(piece.corner[0]), along_(along), margin_(margin) {
+        normal_ = glm::cross(piece.corner[1] - piece.corner[0], piece.corner[2] - piece.corner[0]);
+        corner_ = {piece.corner[0], piece.corner[1], piece.corner[2]};
+        valid_ = glm::dot(normal_, along) != 0.0 && sidePlanes(corner_, along, side_);
+    }
+    // Whether triangle t lies over the piece, each corner more than the margin inside every side.
+    bool holds(const std::array<glm::dvec3, 3>& t) const {
+        if (!valid_) return false;
+        for (const glm::dvec3& p : t)
+            for (int k = 0; k < 3; ++k)
+                if (!(glm::dot(side_[k], p - corner_[k]) > margin_)) return false;
+        return true;
+    }
+    // t's corners moved along the direction onto the piece's plane, and how far each moved.
+    Part projected(const std::array<glm::dvec3, 3>& t, double (&moved)[3]) const {
+        Part part;
+        part.count = 3;
+        const double across = glm::dot(normal_, along_);
+        for (int k = 0; k < 3; ++k) {
+            const double step = glm::dot(normal_, origin_ - t[k]) / across;
+            part.corner[size_t(k)] = t[k] + along_ * step;
+            moved[k] = std::abs(step);
+        }
+        return part;
+    }
+
+private:
+    glm::dvec3 origin_, along_, normal_;
+    double margin_;
+    std::array<glm::dvec3, 3> corner_;
+    glm::dvec3 side_[3];
+    bool valid_ = false;
+};
 
 } // namespace
 
@@ -212,20 +265,29 @@ double overlayAlong(const Part& whole, const std::array<uint32_t, 3>& near, cons
     visits.start();
     for (uint32_t t : near)
         visits.push(t);
+    const PieceSides sides(whole, along, 2.0 * eps);
     double bound = 0.0;
     bool laid = false;
     for (size_t i = 0; i < visits.size(); ++i) {
         const uint32_t t = visits[i];
         const std::array<glm::dvec3, 3> corners = cornersOf(mesh, t);
+        if (!facesAlong(corners, along)) return cap;
         Part part;
         glm::dvec3 side[3];
-        if (!facesAlong(corners, along) || !partOver(whole, corners, along, eps, part, side)) return cap;
+        double moved[3];
+        const bool over = sides.holds(corners); // the part is t moved onto the piece
+        if (over) {
+            if (!sidePlanes(corners, along, side)) return cap;
+            part = sides.projected(corners, moved);
+        } else if (!partOver(whole, corners, along, eps, part, side)) {
+            return cap;
+        }
         if (part.count < 3) continue;
+        bound = std::max(bound, partBound(part, corners, bound, over ? moved : nullptr));
         laid = true;
-        bound = std::max(bound, partBound(part, corners, bound));
         if (bound >= cap) return cap;
         for (int k = 0; k < 3; ++k) {
-            if (!goesOn(part, whole, side[k], corners[k], eps)) continue;
+            if (!over && !goesOn(part, whole, side[k], corners[k], eps)) continue;
             const uint32_t u = mesh.neighbours.across[3 * size_t(t) + size_t(k)];
             // Past a border, or onto a triangle on t's side of the edge (folded over it): the parts
             // would not cover the piece.

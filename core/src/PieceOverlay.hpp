@@ -20,7 +20,12 @@
 // budget of visits, there is no bound (the caller's cap) and the caller cuts P instead. A point of P
 // past an edge's line by at most eps, where the walk does not go on, lies within eps / |n . d| <= 10
 // eps of a part (n: P's normal), so its distance is at most that much more, which the certifier's
-// rounding allowance covers.
+// rounding allowance covers. A triangle lying wholly over P (each corner inside P's side planes along
+// d by more than 2 eps) needs no clipping: its part is t itself moved along d onto P's plane, the walk
+// goes on across each of its edges (P reaches past each by more than eps), and neighbouring parts of
+// that kind meet without a gap, since the corners they share are moved by the same arithmetic; a
+// moved corner's distance to t is at most how far it moved, so where that is at most the bound so far
+// it is not measured.
 //
 // d is P's normal where the triangles closest to P's corners face along it (each side plane then
 // crosses P at right angles). Beside a crease of B a corner may find the far face closest, and a

@@ -90,6 +90,20 @@ TEST(PieceOverlay, BoundsAPieceAboveAFlatMeshByItsHeight) {
     EXPECT_LE(bound, 0.25 + 1e-6);
 }
 
+// A piece over a flat mesh with one dip far inside it: the triangles around the dip lie wholly under
+// the piece, away from every triangle that its edges cross, and only they show the dip's depth. A bound
+// that skipped their parts, or whose walk stopped at them, would give the flat mesh's 0.25.
+TEST(PieceOverlay, BoundsADipWhollyUnderThePieceByItsDepth) {
+    const Grid grid(12, [](int x, int z) { return x == 4 && z == 4 ? -0.5 : 0.0; });
+    const std::array<glm::dvec3, 3> piece = {glm::dvec3(0.5, 0.25, 0.5), glm::dvec3(11.5, 0.25, 0.5),
+                                             glm::dvec3(0.5, 0.25, 11.5)};
+    const double bound = grid.bound(piece);
+    const double sampled = grid.sampledLargest(piece, 110);
+    EXPECT_GT(sampled, 0.5); // the dip shows: about 0.67 above its deepest point
+    EXPECT_GE(bound + 10.0 * kEps, sampled);
+    EXPECT_LE(bound, 0.75 + 1e-6); // at most the distance to the dip's vertex
+}
+
 // Pieces tilted at random over a field of random bumps, each across many triangles: where the overlay
 // gives a bound (most pieces), it is at least every distance sampled on the piece, less the 10 eps the
 // clipping's allowance may leave to the certifier's rounding allowance. The largest distance lies
