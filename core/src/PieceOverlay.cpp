@@ -92,21 +92,23 @@ bool facesAlong(const std::array<glm::dvec3, 3>& t, const glm::dvec3& n) {
 }
 
 // The triangles one overlay visits, breadth first, each queued once, at most kMaxVisits. Which were
-// queued is kept in a table of its own size, stamped by the overlay that wrote each slot, so that
-// neither the size of the mesh nor switching between meshes costs anything.
+// queued is kept in a table stamped by the overlay that wrote each slot, so that neither the size of
+// the mesh nor switching between meshes costs anything; it starts small and doubles as an overlay
+// fills it (most overlays visit a few triangles, and each thread of a certificate makes its own).
 class Visits {
 public:
     void start() {
         if (++call_ == 0) { // the stamps wrapped around: none may pass for this overlay's
-            slots_.assign(kSlots, Slot());
+            std::fill(slots_.begin(), slots_.end(), Slot());
             call_ = 1;
         }
         queue_.clear();
     }
     // Queues t unless it was queued; false when that would pass kMaxVisits.
     bool push(uint32_t t) {
-        size_t i = (t * 2654435761u) & (kSlots - 1);
-        for (; slots_[i].call == call_; i = (i + 1) & (kSlots - 1))
+        if (queue_.size() < kMaxVisits && 2 * (queue_.size() + 1) > slots_.size()) grow();
+        size_t i = first(t);
+        for (; slots_[i].call == call_; i = (i + 1) & (slots_.size() - 1))
             if (slots_[i].triangle == t) return true;
         if (queue_.size() == kMaxVisits) return false;
         slots_[i] = {t, call_};
@@ -117,11 +119,24 @@ public:
     uint32_t operator[](size_t i) const { return queue_[i]; }
 
 private:
-    static constexpr size_t kSlots = 2 * kMaxVisits; // a power of two, at most half full
+    static constexpr size_t kFirstSlots = 64, kMaxSlots = 2 * kMaxVisits; // powers of two, at most half full
     struct Slot {
         uint32_t triangle = 0, call = 0;
     };
-    std::vector<Slot> slots_ = std::vector<Slot>(kSlots);
+    size_t first(uint32_t t) const { return (t * 2654435761u) & (slots_.size() - 1); }
+    void stamp(uint32_t t) {
+        size_t i = first(t);
+        while (slots_[i].call == call_)
+            i = (i + 1) & (slots_.size() - 1);
+        slots_[i] = {t, call_};
+    }
+    // Twice the slots, this overlay's triangles stamped again.
+    void grow() {
+        slots_.assign(std::min(2 * slots_.size(), kMaxSlots), Slot());
+        for (uint32_t t : queue_)
+            stamp(t);
+    }
+    std::vector<Slot> slots_ = std::vector<Slot>(kFirstSlots);
     std::vector<uint32_t> queue_;
     uint32_t call_ = 0;
 };
