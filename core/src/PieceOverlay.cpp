@@ -107,9 +107,8 @@ public:
     // Queues t unless it was queued; false when that would pass kMaxVisits.
     bool push(uint32_t t) {
         if (queue_.size() < kMaxVisits && 2 * (queue_.size() + 1) > slots_.size()) grow();
-        size_t i = first(t);
-        for (; slots_[i].call == call_; i = (i + 1) & (slots_.size() - 1))
-            if (slots_[i].triangle == t) return true;
+        const size_t i = slotOf(t);
+        if (slots_[i].call == call_) return true;
         if (queue_.size() == kMaxVisits) return false;
         slots_[i] = {t, call_};
         queue_.push_back(t);
@@ -123,18 +122,18 @@ private:
     struct Slot {
         uint32_t triangle = 0, call = 0;
     };
-    size_t first(uint32_t t) const { return (t * 2654435761u) & (slots_.size() - 1); }
-    void stamp(uint32_t t) {
-        size_t i = first(t);
-        while (slots_[i].call == call_)
+    // The slot holding t for this overlay, or the free slot where it would go.
+    size_t slotOf(uint32_t t) const {
+        size_t i = (t * 2654435761u) & (slots_.size() - 1);
+        while (slots_[i].call == call_ && slots_[i].triangle != t)
             i = (i + 1) & (slots_.size() - 1);
-        slots_[i] = {t, call_};
+        return i;
     }
     // Twice the slots, this overlay's triangles stamped again.
     void grow() {
         slots_.assign(std::min(2 * slots_.size(), kMaxSlots), Slot());
         for (uint32_t t : queue_)
-            stamp(t);
+            slots_[slotOf(t)] = {t, call_};
     }
     std::vector<Slot> slots_ = std::vector<Slot>(kFirstSlots);
     std::vector<uint32_t> queue_;
@@ -192,8 +191,7 @@ double partBound(const Part& part, const std::array<glm::dvec3, 3>& t, double bo
 class PieceSides {
 public:
     // `margin`: how far inside every side a triangle's corners must lie (> 0).
-    PieceSides(const Part& piece, const glm::dvec3& along, double margin)
-        : origin_(piece.corner[0]), along_(along), margin_(margin) {
+    PieceSides(const Part& piece, const glm::dvec3& along, double margin) : along_(along), margin_(margin) {
         normal_ = glm::cross(piece.corner[1] - piece.corner[0], piece.corner[2] - piece.corner[0]);
         corner_ = {piece.corner[0], piece.corner[1], piece.corner[2]};
         valid_ = glm::dot(normal_, along) != 0.0 && sidePlanes(corner_, along, side_);
@@ -212,7 +210,7 @@ public:
         part.count = 3;
         const double across = glm::dot(normal_, along_);
         for (int k = 0; k < 3; ++k) {
-            const double step = glm::dot(normal_, origin_ - t[k]) / across;
+            const double step = glm::dot(normal_, corner_[0] - t[k]) / across;
             part.corner[size_t(k)] = t[k] + along_ * step;
             moved[k] = std::abs(step);
         }
@@ -220,7 +218,7 @@ public:
     }
 
 private:
-    glm::dvec3 origin_, along_, normal_;
+    glm::dvec3 along_, normal_;
     double margin_;
     std::array<glm::dvec3, 3> corner_;
     glm::dvec3 side_[3];
